@@ -1,0 +1,69 @@
+#pragma once
+// The OpenCL device, its context and in-order queue, and a cache of built programs.
+//
+// Device choice: HFX_CL_PLATFORM and HFX_CL_DEVICE, case-insensitive substrings of the platform
+// and device names ("portable", "cpu", "nvidia"); by default PoCL's CPU device when present,
+// else the first device of the first platform. The choice is logged once to stderr.
+//
+// Thread: one ClContext per thread that enqueues; programs and kernels it hands out are not
+// shared across threads.
+
+#include "hfx/compute/OpenCl.h"
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <utility>
+
+namespace hfx {
+
+struct ClContextConfig {
+    std::string platform; ///< substring of the platform name; empty: HFX_CL_PLATFORM
+    std::string device;   ///< substring of the device name; empty: HFX_CL_DEVICE
+    bool log = true;      ///< print the chosen device to stderr
+};
+
+class ClContext {
+public:
+    explicit ClContext(const ClContextConfig& config = {});
+
+    const cl::Context& context() const { return context_; }
+    const cl::Device& device() const { return device_; }
+    cl::CommandQueue& queue() { return queue_; }
+    std::string description() const; ///< "device name (platform name, OpenCL x.y)"
+
+    /// Builds an embedded kernel file (kernels/*.cl, with its #include "X.h" of the shared
+    /// headers resolved) once per set of options; later calls return the cached program.
+    /// Throws hfx::Error with the build log when it does not build.
+    const cl::Program& program(std::string_view file, const std::string& options = {});
+    /// Builds OpenCL C source text under a name used in errors; cached by name and options.
+    const cl::Program& programFromSource(const std::string& name, const std::string& source,
+                                         const std::string& options = {});
+    cl::Kernel kernel(std::string_view file, const char* name, const std::string& options = {});
+
+private:
+    cl::Platform platform_;
+    cl::Device device_;
+    cl::Context context_;
+    cl::CommandQueue queue_;
+    std::map<std::pair<std::string, std::string>, cl::Program> programs_;
+};
+
+/// Runs f, turning an OpenCL exception into hfx::Error that says what was being done.
+template <typename F>
+decltype(auto) clGuard(const char* what, F&& f);
+
+namespace detail {
+[[noreturn]] void rethrowCl(const char* what, const cl::Error& e);
+}
+
+template <typename F>
+decltype(auto) clGuard(const char* what, F&& f) {
+    try {
+        return f();
+    } catch (const cl::Error& e) {
+        detail::rethrowCl(what, e);
+    }
+}
+
+} // namespace hfx

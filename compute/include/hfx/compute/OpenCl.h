@@ -1,0 +1,12 @@
+#pragma once
+// The Khronos C++ bindings, configured once by hfx::compute's compile definitions
+// (exceptions enabled, OpenCL 1.2 API).
+
+#include <CL/opencl.hpp>
+
+#include <string>
+
+namespace hfx {
+/// "CL_OUT_OF_RESOURCES (-5)" for an OpenCL status code.
+std::string clErrorName(cl_int code);
+} // namespace hfx

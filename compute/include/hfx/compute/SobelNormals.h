@@ -1,0 +1,38 @@
+#pragma once
+// Tangent-space normals of any float height buffer by a 3x3 Sobel filter, written as float4
+// (normal.xyz, height) per texel: the layout hfx::SurfaceTextures uploads. The output buffer is
+// allocated host-visible (CL_MEM_ALLOC_HOST_PTR) so mapping it for the GL upload costs no copy.
+
+#include "hfx/compute/ClContext.h"
+
+namespace hfx {
+
+struct SobelConfig {
+    int width = 512;
+    int height = 512;
+    /// Depth of the height range in texture units (the renderer's depth scale): the normals are
+    /// those of the surface z = depthScale * h(u, v).
+    float depthScale = 0.05f;
+    bool wrapEdges = true; ///< periodic fields wrap; others clamp to the edge texel
+    void validate() const;
+};
+
+class SobelNormals {
+public:
+    SobelNormals(ClContext& cl, const SobelConfig& config);
+
+    /// Enqueues the filter over `height` (width x height floats); does not wait.
+    void run(const cl::Buffer& height);
+    void setDepthScale(float depthScale);
+
+    const cl::Buffer& output() const { return output_; }
+    const SobelConfig& config() const { return config_; }
+
+private:
+    ClContext& cl_;
+    SobelConfig config_;
+    cl::Buffer output_;
+    cl::Kernel kernel_;
+};
+
+} // namespace hfx

@@ -1,0 +1,20 @@
+#ifndef HFX_CL_PRELUDE_H
+#define HFX_CL_PRELUDE_H
+/* Lets one header hold math that compiles both as C++ (the CPU references) and as OpenCL C
+   (the kernels), so the reference cannot drift from the kernel. */
+#ifdef __OPENCL_VERSION__
+#define HFX_FN
+#define HFX_SQRT sqrt
+#define HFX_SIN sin
+#define HFX_POW pow
+#define HFX_FLOOR floor
+#else
+#include <cmath>
+#define HFX_FN inline
+#define HFX_SQRT std::sqrt
+#define HFX_SIN std::sin
+#define HFX_POW std::pow
+#define HFX_FLOOR std::floor
+#endif
+#define HFX_TWO_PI 6.28318530717958647692f
+#endif

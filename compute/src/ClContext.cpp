@@ -1,0 +1,188 @@
+#include "hfx/compute/ClContext.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Source.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+namespace hfx {
+namespace detail {
+std::string_view embeddedKernel(std::string_view name);
+
+void rethrowCl(const char* what, const cl::Error& e) {
+    throw Error(str(what, ": ", e.what(), " failed with ", clErrorName(e.err())));
+}
+} // namespace detail
+
+std::string clErrorName(cl_int code) {
+    switch (code) {
+#define HFX_CASE(c) case c: return str(#c, " (", code, ")")
+        HFX_CASE(CL_DEVICE_NOT_FOUND);
+        HFX_CASE(CL_DEVICE_NOT_AVAILABLE);
+        HFX_CASE(CL_MEM_OBJECT_ALLOCATION_FAILURE);
+        HFX_CASE(CL_OUT_OF_RESOURCES);
+        HFX_CASE(CL_OUT_OF_HOST_MEMORY);
+        HFX_CASE(CL_BUILD_PROGRAM_FAILURE);
+        HFX_CASE(CL_INVALID_VALUE);
+        HFX_CASE(CL_INVALID_BUFFER_SIZE);
+        HFX_CASE(CL_INVALID_KERNEL_NAME);
+        HFX_CASE(CL_INVALID_KERNEL_ARGS);
+        HFX_CASE(CL_INVALID_ARG_SIZE);
+        HFX_CASE(CL_INVALID_WORK_GROUP_SIZE);
+        HFX_CASE(CL_INVALID_GLOBAL_WORK_SIZE);
+        HFX_CASE(CL_INVALID_MEM_OBJECT);
+        HFX_CASE(CL_INVALID_BUILD_OPTIONS);
+#undef HFX_CASE
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR (-1001)";
+    default: return str("OpenCL error ", code);
+    }
+}
+
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+bool matches(const std::string& name, const std::string& filter) {
+    return filter.empty() || lower(name).find(lower(filter)) != std::string::npos;
+}
+
+std::string fromEnv(const std::string& value, const char* variable) {
+    if (!value.empty()) return value;
+    const char* env = std::getenv(variable);
+    return env ? env : "";
+}
+
+/// Replaces `#include "X.h"` lines by the embedded header X.h (each header once).
+std::string resolveIncludes(const std::string& source, std::vector<std::string>& seen) {
+    static const std::regex include(R"re(^[ \t]*#[ \t]*include[ \t]*"([^"]+)")re");
+    std::string out;
+    std::istringstream in(source);
+    std::string line;
+    while (std::getline(in, line)) {
+        std::smatch m;
+        if (std::regex_search(line, m, include)) {
+            const std::string file = m[1].str();
+            const std::string base = file.substr(file.find_last_of('/') + 1);
+            if (std::find(seen.begin(), seen.end(), base) == seen.end()) {
+                seen.push_back(base);
+                out += resolveIncludes(
+                    loadSource(base, detail::embeddedKernel(base), "HFX_KERNEL_DIR").text, seen);
+            }
+            out += '\n';
+            continue;
+        }
+        out += line + '\n';
+    }
+    return out;
+}
+
+std::string numbered(const std::string& source) {
+    std::istringstream in(source);
+    std::string line, out;
+    for (int n = 1; std::getline(in, line); ++n) out += str(n < 10 ? "   " : n < 100 ? "  " : " ", n, "| ", line, '\n');
+    return out;
+}
+
+} // namespace
+
+ClContext::ClContext(const ClContextConfig& config) {
+    const std::string platformFilter = fromEnv(config.platform, "HFX_CL_PLATFORM");
+    const std::string deviceFilter = fromEnv(config.device, "HFX_CL_DEVICE");
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error&) {
+        platforms.clear();
+    }
+    if (platforms.empty())
+        throw Error("no OpenCL platform found: install an OpenCL driver (on Debian without GPU: "
+                    "apt-get install pocl-opencl-icd ocl-icd-libopencl1)");
+
+    // Candidates in order of preference: PoCL first unless a filter says otherwise.
+    std::stable_sort(platforms.begin(), platforms.end(), [](const cl::Platform& a, const cl::Platform& b) {
+        auto pocl = [](const cl::Platform& p) {
+            return lower(p.getInfo<CL_PLATFORM_NAME>()).find("portable") != std::string::npos;
+        };
+        return pocl(a) && !pocl(b);
+    });
+    std::string seen;
+    for (const cl::Platform& p : platforms) {
+        const std::string pname = p.getInfo<CL_PLATFORM_NAME>();
+        std::vector<cl::Device> devices;
+        try {
+            p.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error&) {
+            continue;
+        }
+        for (const cl::Device& d : devices) {
+            const std::string dname = d.getInfo<CL_DEVICE_NAME>();
+            seen += str("\n  '", dname, "' on '", pname, "'");
+            if (!device_() && matches(pname, platformFilter) && matches(dname, deviceFilter)) {
+                platform_ = p;
+                device_ = d;
+            }
+        }
+    }
+    if (!device_())
+        throw Error(str("no OpenCL device matches HFX_CL_PLATFORM='", platformFilter,
+                        "' HFX_CL_DEVICE='", deviceFilter, "'; devices present:",
+                        seen.empty() ? std::string("\n  (none)") : seen));
+    clGuard("creating the OpenCL context", [&] {
+        context_ = cl::Context(device_);
+        queue_ = cl::CommandQueue(context_, device_);
+    });
+    if (config.log) std::fprintf(stderr, "hfx: OpenCL device %s\n", description().c_str());
+}
+
+std::string ClContext::description() const {
+    return str("'", device_.getInfo<CL_DEVICE_NAME>(), "' (", platform_.getInfo<CL_PLATFORM_NAME>(),
+               ", ", device_.getInfo<CL_DEVICE_VERSION>(), ")");
+}
+
+const cl::Program& ClContext::program(std::string_view file, const std::string& options) {
+    const auto key = std::make_pair(std::string(file), options);
+    if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+    const SourceFile source = loadSource(file, detail::embeddedKernel(file), "HFX_KERNEL_DIR");
+    return programFromSource(source.name, source.text, options);
+}
+
+const cl::Program& ClContext::programFromSource(const std::string& name, const std::string& source,
+                                                const std::string& options) {
+    const auto key = std::make_pair(name, options);
+    if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+    std::vector<std::string> seen;
+    const std::string text = resolveIncludes(source, seen);
+    cl::Program program = clGuard("creating an OpenCL program", [&] {
+        return cl::Program(context_, text);
+    });
+    try {
+        program.build({device_}, options.c_str());
+    } catch (const cl::Error& e) {
+        std::string log;
+        try {
+            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+        } catch (const cl::Error&) {
+            log = "(no build log)";
+        }
+        throw Error(str("OpenCL kernel ", name, " failed to build (", clErrorName(e.err()),
+                        ") with options '", options, "' on ", description(), ":\n", log,
+                        "\nsource after includes:\n", numbered(text)));
+    }
+    return programs_.emplace(key, std::move(program)).first->second;
+}
+
+cl::Kernel ClContext::kernel(std::string_view file, const char* name, const std::string& options) {
+    const cl::Program& p = program(file, options);
+    return clGuard("creating an OpenCL kernel", [&] { return cl::Kernel(p, name); });
+}
+
+} // namespace hfx

@@ -1,0 +1,50 @@
+#include "hfx/compute/SobelNormals.h"
+
+#include "hfx/core/Error.h"
+
+#include <cmath>
+
+namespace hfx {
+
+void SobelConfig::validate() const {
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw Error(str("SobelConfig size must be in 1..16384, got ", width, "x", height));
+    if (!(depthScale >= 0.0f) || !std::isfinite(depthScale))
+        throw Error(str("SobelConfig.depthScale must be >= 0 and finite, got ", depthScale));
+}
+
+SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config) : cl_(cl), config_(config) {
+    config.validate();
+    clGuard("creating the Sobel normals", [&] {
+        output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
+                             sizeof(cl_float4) * size_t(config.width) * config.height);
+        kernel_ = cl.kernel("sobel.cl", "sobel", config.wrapEdges ? "" : "-DCLAMP_EDGES");
+    });
+}
+
+void SobelNormals::setDepthScale(float depthScale) {
+    SobelConfig next = config_;
+    next.depthScale = depthScale;
+    next.validate();
+    config_ = next;
+}
+
+void SobelNormals::run(const cl::Buffer& height) {
+    const size_t bytes = height.getInfo<CL_MEM_SIZE>();
+    const size_t needed = sizeof(float) * size_t(config_.width) * config_.height;
+    if (bytes < needed)
+        throw Error(str("SobelNormals::run: height buffer holds ", bytes, " bytes, ", config_.width,
+                        "x", config_.height, " floats need ", needed));
+    clGuard("SobelNormals::run", [&] {
+        kernel_.setArg(0, height);
+        kernel_.setArg(1, output_);
+        kernel_.setArg(2, config_.width);
+        kernel_.setArg(3, config_.height);
+        kernel_.setArg(4, config_.depthScale * config_.width);
+        kernel_.setArg(5, config_.depthScale * config_.height);
+        cl_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
+                                         cl::NDRange(config_.width, config_.height));
+    });
+}
+
+} // namespace hfx

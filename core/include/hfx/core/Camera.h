@@ -1,0 +1,35 @@
+#pragma once
+// A perspective look-at camera (right-handed, OpenGL clip space).
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace hfx {
+
+struct Ray {
+    glm::dvec3 origin;
+    glm::dvec3 direction; ///< unit length
+};
+
+struct Camera {
+    glm::vec3 position{0.0f, 1.0f, 2.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovY = 0.8f; ///< radians
+    float aspect = 16.0f / 9.0f;
+    float nearPlane = 0.01f;
+    float farPlane = 100.0f;
+
+    glm::mat4 view() const;
+    glm::mat4 projection() const;
+    glm::mat4 viewProjection() const { return projection() * view(); }
+    /// The ray through a point of the image, in pixels from the bottom-left corner
+    /// (x + 0.5, y + 0.5 is a pixel's centre), in double precision for reference tracers.
+    Ray rayThroughPixel(double x, double y, int width, int height) const;
+
+    /// Places the camera at `distance` from `target`, `elevation` radians above the XZ plane
+    /// and `azimuth` radians around +Y.
+    static Camera orbit(glm::vec3 target, float distance, float azimuth, float elevation);
+};
+
+} // namespace hfx

@@ -1,0 +1,55 @@
+#pragma once
+// Errors: a failure of the environment or of input (missing file, no OpenCL platform, a shader
+// or kernel that does not build, a bad parameter) throws hfx::Error carrying the whole story.
+// A programmer's contract violation is HFX_CHECK: always on, prints the values, aborts.
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace hfx {
+
+class Error : public std::runtime_error {
+public:
+    explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+namespace detail {
+[[noreturn]] void checkFailed(const char* file, int line, const char* expr, const std::string& values);
+
+template <typename A, typename B>
+std::string describe(const char* op, const A& a, const B& b) {
+    std::ostringstream s;
+    s << a << ' ' << op << ' ' << b;
+    return s.str();
+}
+} // namespace detail
+
+/// Concatenates its arguments with operator<<, for error messages.
+template <typename... Args>
+std::string str(const Args&... args) {
+    std::ostringstream s;
+    (s << ... << args);
+    return s.str();
+}
+
+} // namespace hfx
+
+#define HFX_CHECK(cond)                                                                            \
+    do {                                                                                           \
+        if (!(cond)) ::hfx::detail::checkFailed(__FILE__, __LINE__, #cond, {});                    \
+    } while (0)
+
+#define HFX_CHECK_OP(a, op, b)                                                                     \
+    do {                                                                                           \
+        const auto& hfxA_ = (a);                                                                   \
+        const auto& hfxB_ = (b);                                                                   \
+        if (!(hfxA_ op hfxB_))                                                                     \
+            ::hfx::detail::checkFailed(__FILE__, __LINE__, #a " " #op " " #b,                      \
+                                       ::hfx::detail::describe(#op, hfxA_, hfxB_));                \
+    } while (0)
+
+#define HFX_CHECK_EQ(a, b) HFX_CHECK_OP(a, ==, b)
+#define HFX_CHECK_LT(a, b) HFX_CHECK_OP(a, <, b)
+#define HFX_CHECK_LE(a, b) HFX_CHECK_OP(a, <=, b)
+#define HFX_CHECK_GT(a, b) HFX_CHECK_OP(a, >, b)

@@ -1,0 +1,54 @@
+#pragma once
+// Triangle meshes carrying the tangent frame POM needs. The tangent and bitangent are the
+// derivatives of position with respect to the texcoords (world units per texcoord unit), not unit
+// vectors: with them the shader converts the view ray into texture space exactly, whatever the
+// mesh's size and texture repeat.
+
+#include "hfx/core/GlObject.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace hfx {
+
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;    ///< unit geometric normal
+    glm::vec3 tangent;   ///< dP/du
+    glm::vec3 bitangent; ///< dP/dv
+    glm::vec2 texcoord;
+};
+
+struct MeshData {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices; ///< triangles, counter-clockwise seen from the normal side
+};
+
+struct PlaneConfig {
+    float size = 2.0f;          ///< edge length in world units, centred on the origin
+    float texcoordScale = 1.0f; ///< texcoords run 0..texcoordScale across the plane
+    int subdivisions = 1;       ///< quads per edge
+    void validate() const;
+};
+
+/// A square in the XZ plane, normal +Y; u grows along +X and v along -Z, so T x B = N.
+MeshData makePlane(const PlaneConfig& config = {});
+
+/// Vertex and index buffers plus a vertex array, laid out as Vertex (locations 0..4).
+class Mesh {
+public:
+    Mesh() = default;
+    explicit Mesh(const MeshData& data);
+    void draw() const;
+    GLsizei indexCount() const { return indexCount_; }
+
+private:
+    GlBuffer vertices_, indices_;
+    GlVertexArray vao_;
+    GLsizei indexCount_ = 0;
+};
+
+} // namespace hfx

@@ -1,0 +1,55 @@
+#pragma once
+// A linked GLSL program built from named sources. Variants come from #define lines placed after
+// the #version line; a #line directive keeps the info log's line numbers equal to the file's.
+// Compile and link failures throw hfx::Error with the file name, line and the driver's log.
+
+#include "hfx/core/GlObject.h"
+#include "hfx/core/Source.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace hfx {
+
+struct ShaderDefine {
+    std::string name;
+    std::string value = "1";
+};
+
+class ShaderProgram {
+public:
+    ShaderProgram() = default;
+    /// Compiles and links; `defines` go to both stages.
+    ShaderProgram(const SourceFile& vertex, const SourceFile& fragment,
+                  const std::vector<ShaderDefine>& defines = {});
+
+    GLuint id() const { return program_.id(); }
+    void use() const { glUseProgram(program_.id()); }
+
+    /// Uniform location, cached; -1 (silently ignored by GL) when the linker removed it.
+    GLint uniform(std::string_view name) const;
+    void set(std::string_view name, int v) const;
+    void set(std::string_view name, float v) const;
+    void set(std::string_view name, const glm::vec2& v) const;
+    void set(std::string_view name, const glm::vec3& v) const;
+    void set(std::string_view name, const glm::vec4& v) const;
+    void set(std::string_view name, const glm::mat4& v) const;
+
+private:
+    GlProgram program_;
+    mutable std::unordered_map<std::string, GLint> uniforms_;
+};
+
+namespace detail {
+/// Rewrites "0:12(5): error: ..." (Mesa) or "0(12) : error ..." (others) as "file:12: error: ...".
+std::string annotateShaderLog(const std::string& log, const std::string& fileName);
+} // namespace detail
+
+} // namespace hfx

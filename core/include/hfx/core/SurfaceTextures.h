@@ -1,0 +1,42 @@
+#pragma once
+// The GL side of a height field: one RGBA32F texture holding the tangent-space normal in xyz and
+// the height in w (h in [0,1], 1 = the polygon surface), so a POM step costs one fetch, plus an
+// RGBA8 albedo texture. Storage is allocated once; upload() refreshes it in place every frame.
+
+#include "hfx/core/GlObject.h"
+#include "hfx/core/Image.h"
+
+namespace hfx {
+
+enum class EdgeMode { Wrap, Clamp };
+
+struct SurfaceTexturesConfig {
+    int width = 512;
+    int height = 512;
+    bool mipmaps = true; ///< POM's level-of-detail switch needs them; tests of the search don't
+    EdgeMode edges = EdgeMode::Wrap;
+    void validate() const;
+};
+
+class SurfaceTextures {
+public:
+    explicit SurfaceTextures(const SurfaceTexturesConfig& config);
+
+    /// Replaces the normal+height texels: `normalHeight` is width*height float4, row 0 at v = 0
+    /// (the first row of a compute buffer), and regenerates the mip chain when there is one.
+    void upload(const float* normalHeight);
+    /// Replaces the albedo; the image must match the surface size or be 1x1 (a solid colour).
+    void setAlbedo(const Image& albedo);
+
+    GLuint surface() const { return surface_.id(); }
+    GLuint albedo() const { return albedo_.id(); }
+    const SurfaceTexturesConfig& config() const { return config_; }
+    int levels() const { return levels_; }
+
+private:
+    SurfaceTexturesConfig config_;
+    int levels_ = 1;
+    GlTexture surface_, albedo_;
+};
+
+} // namespace hfx

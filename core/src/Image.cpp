@@ -1,0 +1,55 @@
+#include "hfx/core/Image.h"
+
+#include "hfx/core/Error.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace hfx {
+
+Image readImage(const std::string& path, const ImageReadLimits& limits) {
+    if (!std::filesystem::exists(path)) throw Error(str("image '", path, "' does not exist"));
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error(str("cannot read image '", path, "': ", OIIO::geterror()));
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        throw Error(str("image '", path, "' has an empty size ", spec.width, "x", spec.height,
+                        "x", spec.nchannels));
+    if (static_cast<long long>(spec.width) * spec.height > limits.maxPixels)
+        throw Error(str("image '", path, "' is ", spec.width, "x", spec.height,
+                        ", above the limit of ", limits.maxPixels, " pixels"));
+    Image image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.channels = std::min(spec.nchannels, 4);
+    image.pixels.resize(static_cast<size_t>(image.width) * image.height * image.channels);
+    if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+        throw Error(str("image '", path, "' is corrupt or truncated: ", in->geterror()));
+    for (float v : image.pixels)
+        if (!std::isfinite(v))
+            throw Error(str("image '", path, "' holds NaN or infinite values"));
+    return image;
+}
+
+void writeImage(const std::string& path, const Image& image) {
+    if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
+        image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels)
+        throw Error(str("cannot write '", path, "': malformed image ", image.width, "x",
+                        image.height, "x", image.channels));
+    const std::string ext = std::filesystem::path(path).extension().string();
+    const OIIO::TypeDesc format = (ext == ".exr" || ext == ".EXR") ? OIIO::TypeDesc::FLOAT
+                                  : (ext == ".png" || ext == ".PNG") ? OIIO::TypeDesc::UINT8
+                                                                     : OIIO::TypeDesc::UNKNOWN;
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) throw Error(str("cannot write '", path, "': ", OIIO::geterror()));
+    OIIO::ImageSpec spec(image.width, image.height, image.channels,
+                         format == OIIO::TypeDesc::UNKNOWN ? OIIO::TypeDesc::UINT8 : format);
+    if (!out->open(path, spec))
+        throw Error(str("cannot write '", path, "': ", out->geterror()));
+    if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
+        throw Error(str("writing '", path, "' failed: ", out->geterror()));
+}
+
+} // namespace hfx

@@ -1,0 +1,79 @@
+#include "hfx/core/Mesh.h"
+
+#include "hfx/core/Error.h"
+
+#include <cmath>
+#include <cstddef>
+
+namespace hfx {
+
+void PlaneConfig::validate() const {
+    if (!(size > 0.0f) || !std::isfinite(size))
+        throw Error(str("PlaneConfig.size must be positive and finite, got ", size));
+    if (!(texcoordScale > 0.0f) || !std::isfinite(texcoordScale))
+        throw Error(str("PlaneConfig.texcoordScale must be positive, got ", texcoordScale));
+    if (subdivisions < 1 || subdivisions > 4096)
+        throw Error(str("PlaneConfig.subdivisions must be in [1, 4096], got ", subdivisions));
+}
+
+MeshData makePlane(const PlaneConfig& config) {
+    config.validate();
+    MeshData mesh;
+    const int n = config.subdivisions;
+    const float dPdu = config.size / config.texcoordScale;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float s = float(i) / n, t = float(j) / n;
+            Vertex v;
+            v.position = {(s - 0.5f) * config.size, 0.0f, (0.5f - t) * config.size};
+            v.normal = {0, 1, 0};
+            v.tangent = {dPdu, 0, 0};
+            v.bitangent = {0, 0, -dPdu};
+            v.texcoord = {s * config.texcoordScale, t * config.texcoordScale};
+            mesh.vertices.push_back(v);
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + (n + 1), d = c + 1;
+            mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+        }
+    return mesh;
+}
+
+Mesh::Mesh(const MeshData& data)
+    : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
+      vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())) {
+    if (data.vertices.empty() || data.indices.empty() || data.indices.size() % 3 != 0)
+        throw Error(str("mesh needs triangles, got ", data.vertices.size(), " vertices and ",
+                        data.indices.size(), " indices"));
+    for (uint32_t index : data.indices)
+        if (index >= data.vertices.size())
+            throw Error(str("mesh index ", index, " is out of range (", data.vertices.size(),
+                            " vertices)"));
+    glNamedBufferStorage(vertices_.id(), data.vertices.size() * sizeof(Vertex),
+                         data.vertices.data(), 0);
+    glNamedBufferStorage(indices_.id(), data.indices.size() * sizeof(uint32_t),
+                         data.indices.data(), 0);
+    const GLuint vao = vao_.id();
+    glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao, indices_.id());
+    auto attribute = [vao](GLuint location, GLint components, size_t offset) {
+        glEnableVertexArrayAttrib(vao, location);
+        glVertexArrayAttribFormat(vao, location, components, GL_FLOAT, GL_FALSE,
+                                  static_cast<GLuint>(offset));
+        glVertexArrayAttribBinding(vao, location, 0);
+    };
+    attribute(0, 3, offsetof(Vertex, position));
+    attribute(1, 3, offsetof(Vertex, normal));
+    attribute(2, 3, offsetof(Vertex, tangent));
+    attribute(3, 3, offsetof(Vertex, bitangent));
+    attribute(4, 2, offsetof(Vertex, texcoord));
+}
+
+void Mesh::draw() const {
+    glBindVertexArray(vao_.id());
+    glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+}
+
+} // namespace hfx

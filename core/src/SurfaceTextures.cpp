@@ -1,0 +1,72 @@
+#include "hfx/core/SurfaceTextures.h"
+
+#include "hfx/core/Error.h"
+
+#include <algorithm>
+#include <bit>
+#include <vector>
+
+namespace hfx {
+
+void SurfaceTexturesConfig::validate() const {
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw Error(str("surface size must be in 1..16384, got ", width, "x", height));
+}
+
+SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
+    : config_(config), surface_(GlTexture::create()), albedo_(GlTexture::create()) {
+    config_.validate();
+    levels_ = config.mipmaps
+                  ? static_cast<int>(std::bit_width(static_cast<unsigned>(
+                        std::max(config.width, config.height))))
+                  : 1;
+    const GLenum wrap = config.edges == EdgeMode::Wrap ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    for (const GlTexture* t : {&surface_, &albedo_}) {
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, wrap);
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, wrap);
+        glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER,
+                            levels_ > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    }
+    glTextureStorage2D(surface_.id(), levels_, GL_RGBA32F, config.width, config.height);
+    glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height);
+    setAlbedo(Image{1, 1, 3, {0.8f, 0.8f, 0.8f}});
+    std::vector<float> flat(static_cast<size_t>(config.width) * config.height * 4, 0.0f);
+    for (size_t i = 0; i < flat.size(); i += 4) flat[i + 2] = flat[i + 3] = 1.0f;
+    upload(flat.data());
+}
+
+void SurfaceTextures::upload(const float* normalHeight) {
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA, GL_FLOAT,
+                        normalHeight);
+    if (levels_ > 1) glGenerateTextureMipmap(surface_.id());
+}
+
+void SurfaceTextures::setAlbedo(const Image& albedo) {
+    const bool solid = albedo.width == 1 && albedo.height == 1;
+    if (!solid && (albedo.width != config_.width || albedo.height != config_.height))
+        throw Error(str("albedo is ", albedo.width, "x", albedo.height, " but the surface is ",
+                        config_.width, "x", config_.height));
+    if (albedo.channels < 1 || albedo.channels > 4 || albedo.empty())
+        throw Error(str("albedo needs 1 to 4 channels, got ", albedo.channels));
+    std::vector<unsigned char> rgba(static_cast<size_t>(config_.width) * config_.height * 4);
+    for (int y = 0; y < config_.height; ++y)
+        for (int x = 0; x < config_.width; ++x) {
+            // Files store the top row first; texture row 0 is v = 0, the bottom.
+            const int sx = solid ? 0 : x, sy = solid ? 0 : albedo.height - 1 - y;
+            for (int c = 0; c < 4; ++c) {
+                float v = c < 3 ? albedo.at(sx, sy, std::min(c, albedo.channels - 1))
+                                : (albedo.channels == 4 ? albedo.at(sx, sy, 3) : 1.0f);
+                if (albedo.channels == 2 && c < 3) v = albedo.at(sx, sy, 0);
+                rgba[(static_cast<size_t>(y) * config_.width + x) * 4 + c] =
+                    static_cast<unsigned char>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+            }
+        }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(albedo_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
+                        GL_UNSIGNED_BYTE, rgba.data());
+    if (levels_ > 1) glGenerateTextureMipmap(albedo_.id());
+}
+
+} // namespace hfx

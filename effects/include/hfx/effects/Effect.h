@@ -1,0 +1,27 @@
+#pragma once
+// What a user of the module drives each frame: update(dt) produces this frame's height field on
+// the compute device, derives its normals and hands both to GL; the caller then draws with a
+// SurfaceRenderer using textures() and material().
+
+#include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+namespace hfx {
+
+/// Wall-clock milliseconds of the last update, by stage (measured on the host around waits).
+struct StageTimes {
+    double compute = 0.0; ///< field step + normals, enqueue to finish
+    double upload = 0.0;  ///< map, GL upload, mip generation
+};
+
+class Effect {
+public:
+    virtual ~Effect() = default;
+    /// Advances the effect by dt seconds (> 0) and refreshes its textures.
+    virtual void update(double dt) = 0;
+    virtual const SurfaceTextures& textures() const = 0;
+    virtual const SurfaceMaterial& material() const = 0;
+    virtual StageTimes lastTimes() const = 0;
+};
+
+} // namespace hfx

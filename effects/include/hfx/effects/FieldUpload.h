@@ -1,0 +1,14 @@
+#pragma once
+// Moves a compute buffer of float4 (normal.xyz, height) into SurfaceTextures: maps the
+// host-visible buffer (no read into fresh memory) and uploads from the mapping.
+
+#include "hfx/compute/ClContext.h"
+#include "hfx/core/SurfaceTextures.h"
+
+namespace hfx {
+
+/// Waits for the queue's work on `normalHeight`, then uploads it. The buffer must hold
+/// textures.config().width * height float4.
+void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures);
+
+} // namespace hfx

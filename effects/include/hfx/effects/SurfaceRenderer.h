@@ -1,0 +1,73 @@
+#pragma once
+// Draws a mesh with a height-field surface: parallax occlusion mapping (shaders/surface.frag) or
+// plain normal mapping. It draws into whatever framebuffer and context the caller has bound and
+// restores the GL state it changes (program, vertex array, depth test, texture units 0-1).
+//
+// Thread: the thread whose GL context is current; shader programs are built per variant on
+// first use and kept.
+
+#include "hfx/core/Camera.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/ShaderProgram.h"
+#include "hfx/core/SurfaceTextures.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <map>
+#include <string>
+
+namespace hfx {
+
+enum class Technique { NormalMapping, ParallaxOcclusion };
+/// "nm" / "pom"; throws hfx::Error naming the value otherwise.
+Technique parseTechnique(const std::string& name);
+const char* techniqueName(Technique technique);
+
+struct SurfaceMaterial {
+    float depthScale = 0.05f;    ///< texture units between h = 1 and h = 0
+    int minSamples = 8;          ///< linear-search steps seen head-on
+    int maxSamples = 50;         ///< ... at grazing angles
+    float lodThreshold = 4.0f;   ///< mip level where POM has faded to normal mapping
+    bool shadows = true;
+    int shadowSamples = 8;
+    float shadowSharpness = 2.0f;
+    bool clipToPatch = false;    ///< discard rays that leave patchBounds (finite patches)
+    glm::vec4 patchBounds{0, 0, 1, 1};
+    float specularStrength = 0.4f;
+    float specularPower = 48.0f;
+    void validate() const;       ///< throws hfx::Error naming the field and its value
+};
+
+struct DirectionalLight {
+    glm::vec3 direction{0.4f, 0.6f, 0.3f}; ///< towards the light, need not be unit length
+    glm::vec3 color{1.0f, 0.97f, 0.9f};
+    glm::vec3 ambient{0.18f, 0.2f, 0.24f};
+};
+
+struct DrawOptions {
+    Technique technique = Technique::ParallaxOcclusion;
+    bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
+};
+
+class SurfaceRenderer {
+public:
+    SurfaceRenderer() = default;
+
+    void draw(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
+              const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
+              const DrawOptions& options = {});
+
+    /// Draws a mesh in one flat colour with its own depth (for scenes and tests).
+    void drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
+                  const glm::vec4& color);
+
+    /// Builds the shader variant now (start-up) instead of on the first draw.
+    const ShaderProgram& program(const DrawOptions& options);
+
+private:
+    std::map<std::pair<int, bool>, ShaderProgram> programs_;
+    ShaderProgram flat_;
+};
+
+} // namespace hfx

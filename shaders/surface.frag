@@ -1,0 +1,177 @@
+#version 450 core
+// Surface shading of a height field: parallax occlusion mapping after Tatarchuk (I3D 2006,
+// "Dynamic Parallax Occlusion Mapping with Approximate Soft Shadows"), or plain normal mapping.
+//
+// Variants (prepended #defines):
+//   HFX_TECHNIQUE     0 = normal mapping, 1 = parallax occlusion mapping
+//   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, height fetches) of the hit to output 1
+//
+// Conventions: s_surface holds the tangent-space normal in xyz and the height h in w, h = 1 at the
+// polygon and 0 at the deepest point, u_depthScale texture units below it. Texture space has
+// x = u, y = v and z along the normal, one unit = one texture repeat.
+
+#ifndef HFX_TECHNIQUE
+#define HFX_TECHNIQUE 1
+#endif
+#ifndef HFX_TRACE_OUTPUT
+#define HFX_TRACE_OUTPUT 0
+#endif
+
+in vec3 v_worldPos;
+in vec3 v_normal;
+in vec3 v_tangent;
+in vec3 v_bitangent;
+in vec2 v_texcoord;
+
+layout(location = 0) out vec4 o_color;
+#if HFX_TRACE_OUTPUT
+layout(location = 1) out vec4 o_trace;
+#endif
+
+uniform sampler2D s_surface;
+uniform sampler2D s_albedo;
+
+uniform mat4 u_viewProj;
+uniform vec3 u_cameraPos;
+uniform float u_depthScale;      // texture units between h = 1 and h = 0
+uniform int u_minSamples;        // linear-search steps looking straight down
+uniform int u_maxSamples;        // ... and at grazing angles
+uniform float u_lodThreshold;    // mip level from which on only normal mapping is done
+uniform bool u_shadows;
+uniform int u_shadowSamples;
+uniform float u_shadowSharpness; // how fast a blocker's occlusion saturates
+uniform bool u_clipToPatch;      // discard rays that leave u_patchBounds (finite patches)
+uniform vec4 u_patchBounds;      // umin, vmin, umax, vmax
+uniform vec3 u_lightDir;         // world space, towards the light, unit length
+uniform vec3 u_lightColor;
+uniform vec3 u_ambient;
+uniform float u_specularStrength;
+uniform float u_specularPower;
+
+const int MAX_SAMPLES = 256;     // hard bound of every loop; the uniforms pick fewer
+const int MAX_SHADOW_SAMPLES = 32;
+
+float heightAt(vec2 uv, vec2 dx, vec2 dy) { return textureGrad(s_surface, uv, dx, dy).w; }
+
+void main() {
+    const vec3 geometricNormal = normalize(v_normal);
+    // World from texture space: columns dP/du, dP/dv and the normal scaled to the same units.
+    const float unitsPerTexcoord = sqrt(length(v_tangent) * length(v_bitangent));
+    const mat3 worldFromTexture = mat3(v_tangent, v_bitangent, geometricNormal * unitsPerTexcoord);
+    const mat3 textureFromWorld = inverse(worldFromTexture);
+    const vec3 toEye = u_cameraPos - v_worldPos;
+    const vec3 viewTS = textureFromWorld * toEye;
+
+    // Gradients of the undisplaced texcoords: every fetch below uses them, so mip selection
+    // does not jump where the traced texcoords jump (silhouettes of the relief).
+    const vec2 uv0 = v_texcoord;
+    const vec2 dx = dFdx(uv0), dy = dFdy(uv0);
+    const vec2 texels = vec2(textureSize(s_surface, 0));
+    const vec2 dxTexels = dx * texels, dyTexels = dy * texels;
+    const float mipLevel = 0.5 * log2(max(max(dot(dxTexels, dxTexels), dot(dyTexels, dyTexels)), 1e-12));
+
+    vec2 uv = uv0;
+    float depthFraction = 0.0; // of u_depthScale, along the view ray, at the hit
+    float fetches = 0.0;
+
+#if HFX_TECHNIQUE == 1
+    if (mipLevel <= u_lodThreshold && viewTS.z > 0.0 && u_depthScale > 0.0) {
+        // Parallax offset vector: where the ray has moved in uv when it reaches h = 0.
+        const vec2 parallax = viewTS.xy / viewTS.z * u_depthScale;
+        // Dynamic sample rate: more steps the more grazing the view.
+        const float cosView = clamp(dot(geometricNormal, normalize(toEye)), 0.0, 1.0);
+        const int steps = clamp(int(mix(float(u_maxSamples), float(u_minSamples), cosView)), 1,
+                                MAX_SAMPLES);
+        const float stepSize = 1.0 / float(steps);
+
+        // Linear search in height: stop at the first sample at or above the ray.
+        float rayHeight = 1.0;
+        float surface = heightAt(uv0, dx, dy);
+        fetches += 1.0;
+        float prevRay = 1.0, prevSurface = surface;
+        bool hit = surface >= rayHeight;
+        for (int i = 1; i <= MAX_SAMPLES && !hit; ++i) {
+            if (i > steps) break;
+            prevRay = rayHeight;
+            prevSurface = surface;
+            rayHeight = 1.0 - float(i) * stepSize;
+            surface = heightAt(uv0 - parallax * (float(i) * stepSize), dx, dy);
+            fetches += 1.0;
+            hit = surface >= rayHeight;
+        }
+        if (hit && rayHeight < 1.0) {
+            // Intersect the ray with the segment between the last two samples (piecewise-linear
+            // height profile) rather than taking the nearest sample.
+            const float before = prevSurface - prevRay; // < 0: ray above the surface
+            const float after = surface - rayHeight;    // >= 0: ray at or below it
+            const float w = before / (before - after);
+            depthFraction = (1.0 - prevRay) + w * stepSize;
+        } else {
+            depthFraction = hit ? 0.0 : 1.0;
+        }
+        const vec2 uvPom = uv0 - parallax * depthFraction;
+
+        // Level of detail: within one mip level of the threshold, fade the parallax out so the
+        // change to normal mapping is not seen as a seam.
+        const float blend = clamp(mipLevel - (u_lodThreshold - 1.0), 0.0, 1.0);
+        uv = mix(uvPom, uv0, blend);
+        depthFraction = mix(depthFraction, 0.0, blend);
+    }
+#endif
+
+    // Silhouettes of finite patches: a ray that left the patch hit nothing of it.
+    if (u_clipToPatch && (any(lessThan(uv, u_patchBounds.xy)) || any(greaterThan(uv, u_patchBounds.zw))))
+        discard;
+
+    // Depth of the displaced point, so geometry crossing the relief is clipped at the relief.
+    const vec3 displacedTS = vec3(uv - uv0, -depthFraction * u_depthScale);
+    const vec3 displacedWorld = v_worldPos + worldFromTexture * displacedTS;
+    const vec4 clip = u_viewProj * vec4(displacedWorld, 1.0);
+    const float ndcDepth = clip.z / clip.w;
+    gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+
+    const vec4 surfaceSample = textureGrad(s_surface, uv, dx, dy);
+    const vec3 albedo = textureGrad(s_albedo, uv, dx, dy).rgb;
+    const vec3 tangentUnit = normalize(v_tangent);
+    const vec3 bitangentUnit = normalize(v_bitangent);
+    const vec3 normal = normalize(tangentUnit * surfaceSample.x + bitangentUnit * surfaceSample.y +
+                                  geometricNormal * surfaceSample.z);
+    const vec3 lightDir = normalize(u_lightDir);
+    const float nDotL = dot(normal, lightDir);
+
+    // Soft self-shadows: heights along the light ray from the displaced point; a blocker's
+    // occlusion is its rise above the ray relative to the ray's own climb there, so a close
+    // blocker (small climb) darkens sharply and a far one softly. Skipped facing away.
+    float lit = 1.0;
+#if HFX_TECHNIQUE == 1
+    const vec3 lightTS = textureFromWorld * lightDir;
+    const float h0 = 1.0 - depthFraction;
+    if (u_shadows && lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && nDotL > 0.0 &&
+        h0 < 1.0 && mipLevel <= u_lodThreshold) {
+        const vec2 lightSpan = lightTS.xy / lightTS.z * u_depthScale * (1.0 - h0);
+        const int samples = clamp(u_shadowSamples, 1, MAX_SHADOW_SAMPLES);
+        float occlusion = 0.0;
+        for (int i = 1; i <= MAX_SHADOW_SAMPLES; ++i) {
+            if (i > samples) break;
+            const float f = float(i) / float(samples + 1);
+            const float rayHeight = h0 + f * (1.0 - h0);
+            const float blocker = heightAt(uv + lightSpan * f, dx, dy) - rayHeight;
+            fetches += 1.0;
+            occlusion = max(occlusion, blocker / (f * (1.0 - h0)));
+        }
+        lit = 1.0 - clamp(occlusion * u_shadowSharpness, 0.0, 1.0);
+    }
+#endif
+
+    // Blinn-Phong on the offset texcoords.
+    const vec3 viewDir = normalize(u_cameraPos - displacedWorld);
+    const vec3 halfway = normalize(lightDir + viewDir);
+    const float diffuse = max(nDotL, 0.0);
+    const float specular = nDotL > 0.0 ? pow(max(dot(normal, halfway), 0.0), u_specularPower) : 0.0;
+    const vec3 color = albedo * u_ambient +
+                       lit * u_lightColor * (albedo * diffuse + u_specularStrength * specular);
+    o_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+#if HFX_TRACE_OUTPUT
+    o_trace = vec4(uv, depthFraction, fetches);
+#endif
+}
