@@ -1,0 +1,43 @@
+#pragma once
+// Height fields with known truth, and the CPU side of the render tests.
+
+#include "hfx/core/Camera.h"
+#include "hfx/core/HeightFieldTracer.h"
+
+#include <glm/vec4.hpp>
+
+#include <vector>
+
+namespace hfx::test {
+
+/// h(x, y) = 0.5 + sum_k a_k sin(2 pi (m_k x + n_k y) / N + phi_k) at texel (x, y), periodic.
+struct SineTerm {
+    double amplitude, m, n, phase;
+};
+std::vector<float> sumOfSines(int size, const std::vector<SineTerm>& terms);
+
+/// A field with sharp-edged features: raised square blocks on a floor (mortar at h = 0).
+std::vector<float> blocks(int size, int blocksPerEdge);
+
+/// float4 (normal.xyz, h) per texel with the Sobel normals of the compute kernel's CPU twin.
+std::vector<float> packNormalHeight(const std::vector<float>& heights, int size, float depthScale);
+
+/// The plane of the render tests: edge `planeSize` world units, texcoords 0..1, normal +Y.
+struct PlaneView {
+    float planeSize = 2.0f;
+    Camera camera;
+    /// Entry texcoords and texture-space vector towards the eye of the pixel (x, y) from the
+    /// bottom; false when the pixel's ray misses the plane.
+    bool pixelRay(int x, int y, int width, int height, glm::dvec2& uv0, glm::dvec3& toEye) const;
+};
+
+/// A camera looking at the plane's centre from `angleDegrees` off its normal.
+Camera cameraAtAngle(double angleDegrees, float distance, float aspect);
+
+struct ErrorStats {
+    double mean = 0, p95 = 0, max = 0;
+    size_t count = 0;
+};
+ErrorStats statistics(std::vector<double> errors);
+
+} // namespace hfx::test

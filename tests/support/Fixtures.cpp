@@ -1,0 +1,65 @@
+#include "support/Fixtures.h"
+
+#include "hfx/core/Error.h"
+
+#include <filesystem>
+
+namespace hfx::test {
+namespace {
+std::unique_ptr<ClContext> sharedCl;
+std::string clError;
+bool clTried = false;
+std::unique_ptr<GlContext> sharedGl;
+std::string glError;
+bool glTried = false;
+
+ClContext* acquireCl() {
+    if (!clTried) {
+        clTried = true;
+        try {
+            sharedCl = std::make_unique<ClContext>();
+        } catch (const Error& e) {
+            clError = e.what();
+        }
+    }
+    return sharedCl.get();
+}
+
+GlContext* acquireGl() {
+    if (!glTried) {
+        glTried = true;
+        try {
+            sharedGl = createHeadlessContext({.width = 64, .height = 64});
+        } catch (const Error& e) {
+            glError = e.what();
+        }
+    }
+    return sharedGl.get();
+}
+} // namespace
+
+
+void ClTest::SetUp() {
+    if (!acquireCl()) GTEST_SKIP() << "no OpenCL device: " << clError;
+}
+
+ClContext& ClTest::cl() { return *acquireCl(); }
+ClContext& DeviceTest::cl() { return *acquireCl(); }
+
+void GlTest::SetUp() {
+    if (!acquireGl()) GTEST_SKIP() << "no OpenGL 4.5 context: " << glError;
+    sharedGl->makeCurrent();
+}
+
+void DeviceTest::SetUp() {
+    if (!acquireGl()) GTEST_SKIP() << "no OpenGL 4.5 context: " << glError;
+    if (!acquireCl()) GTEST_SKIP() << "no OpenCL device: " << clError;
+    sharedGl->makeCurrent();
+}
+
+std::string outputPath(const std::string& fileName) {
+    std::filesystem::create_directories(HFX_TEST_OUTPUT_DIR);
+    return (std::filesystem::path(HFX_TEST_OUTPUT_DIR) / fileName).string();
+}
+
+} // namespace hfx::test
