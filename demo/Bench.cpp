@@ -41,25 +41,30 @@ int runBench(const SceneOptions& options, int width, int height, int frames) {
     pomOptions.technique = Technique::ParallaxOcclusion;
     SceneOptions nmOptions = options;
     nmOptions.technique = Technique::NormalMapping;
+    SceneOptions unshadowedOptions = pomOptions;
+    unshadowedOptions.shadows = false;
     auto pom = makeWaterScene(cl, pomOptions);
+    auto unshadowed = makeWaterScene(cl, unshadowedOptions);
     auto nm = makeWaterScene(cl, nmOptions);
     RenderTarget target(width, height);
     target.bind();
 
-    std::vector<double> compute, upload, update, drawPom, drawNm;
+    std::vector<double> compute, upload, drawPom, drawUnshadowed, drawNm;
     for (int frame = -2; frame < frames; ++frame) { // two warm-up frames build and settle
         const double u = timeMs([&] { pom->update(1.0 / 30.0); });
         const StageTimes stages = pom->effect().lastTimes();
         const double p = timeMs([&] { target.clear(); pom->draw(); });
+        const double s = timeMs([&] { target.clear(); unshadowed->draw(); });
         const double n = timeMs([&] { target.clear(); nm->draw(); });
         if (frame < 0) continue;
-        update.push_back(u);
+        drawUnshadowed.push_back(s);
         compute.push_back(stages.compute);
         upload.push_back(u - stages.compute);
         drawPom.push_back(p);
         drawNm.push_back(n);
     }
     const double c = median(compute), up = median(upload), dp = median(drawPom), dn = median(drawNm);
+    const double ds = median(drawUnshadowed);
     std::printf("hfx-demo bench: %dx%d, field %dx%d, %d frames (medians), %s\n", width, height,
                 options.fieldSize, options.fieldSize, frames, gl->description().c_str());
     std::printf("OpenCL: %s\n", cl.description().c_str());
@@ -67,9 +72,11 @@ int runBench(const SceneOptions& options, int width, int height, int frames) {
     std::printf("| field compute (waves + Sobel) | %.2f |\n", c);
     std::printf("| upload (map + texture + mips) | %.2f |\n", up);
     std::printf("| draw, normal mapping | %.2f |\n", dn);
-    std::printf("| draw, POM %d..%d samples%s | %.2f |\n", options.minSamples, options.maxSamples,
-                options.shadows ? " + soft shadows" : "", dp);
-    std::printf("POM / normal mapping draw: %.2fx\n", dp / dn);
+    std::printf("| draw, POM %d..%d samples + %d-sample soft shadows | %.2f |\n", options.minSamples,
+                options.maxSamples, SurfaceMaterial{}.shadowSamples, dp);
+    std::printf("| draw, POM %d..%d samples, no shadows | %.2f |\n", options.minSamples,
+                options.maxSamples, ds);
+    std::printf("POM / normal mapping draw: %.2fx (without shadows %.2fx)\n", dp / dn, ds / dn);
     std::printf("compute + upload share of the POM frame: %.1f%%\n", 100.0 * (c + up) / (c + up + dp));
     return 0;
 }

@@ -17,7 +17,7 @@ struct SceneOptions {
     Technique technique = Technique::ParallaxOcclusion;
     int minSamples = 8;
     int maxSamples = 50;
-    float depthScale = 0.04f;
+    float depthScale = 0.06f;
     bool shadows = true;
     std::uint32_t seed = 1;
     float aspect = 16.0f / 9.0f;

@@ -13,11 +13,13 @@ class WaterScene final : public Scene {
 public:
     WaterScene(ClContext& cl, const SceneOptions& o)
         : options_(o), water_(cl, config(o)),
-          plane_(makePlane({.size = 24.0f, .texcoordScale = 4.0f, .subdivisions = 1})) {
-        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 7.5f, 0.35f, 0.32f);
-        camera_.target = {0.0f, -0.3f, -3.0f};
+          plane_(makePlane({.size = 48.0f, .texcoordScale = 6.0f, .subdivisions = 1})) {
+        // Low over the water, looking towards a low sun: grazing views are where POM shows.
+        camera_.position = {0.0f, 2.4f, 6.0f};
+        camera_.target = {0.0f, 0.0f, -4.0f};
         camera_.aspect = o.aspect;
-        light_.direction = {-0.5f, 0.35f, -1.0f};
+        camera_.farPlane = 200.0f;
+        light_.direction = {-0.35f, 0.3f, -1.0f};
         light_.color = {1.0f, 0.92f, 0.8f};
         light_.ambient = {0.25f, 0.32f, 0.4f};
     }

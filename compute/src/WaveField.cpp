@@ -21,8 +21,8 @@ void WaveConfig::validate() const {
     if (minCycles < 1 || maxCycles < minCycles || maxCycles > size / 2)
         throw Error(str("WaveConfig cycles must satisfy 1 <= minCycles <= maxCycles <= size/2, got ",
                         minCycles, "..", maxCycles, " for size ", size));
-    if (!(sharpness >= 1.0f) || sharpness > 16.0f)
-        throw Error(str("WaveConfig.sharpness must be in [1, 16], got ", sharpness));
+    if (!(steepness >= 0.0f) || steepness > 0.25f)
+        throw Error(str("WaveConfig.steepness must be in [0, 0.25], got ", steepness));
 }
 
 namespace {
@@ -76,6 +76,10 @@ WaveField::WaveField(ClContext& cl, const WaveConfig& config)
     : cl_(cl), config_(config), waves_(makeWaves(config)), packed_(waves_.size()) {
     clGuard("creating the waves field", [&] {
         waveBuffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, packed_.size() * sizeof(cl_float4));
+        const size_t table = sizeof(cl_float2) * waves_.size() * size_t(config.size);
+        columns_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, table);
+        rows_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, table);
+        tables_ = cl.kernel("waves.cl", "wave_tables");
         height_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE,
                              sizeof(float) * size_t(config.size) * config.size);
         kernel_ = cl.kernel("waves.cl", "waves");
@@ -107,12 +111,19 @@ void WaveField::compute() {
         // Blocking: packed_ is rewritten by the next step, so the copy must be taken now.
         q.enqueueWriteBuffer(waveBuffer_, CL_TRUE, 0, packed_.size() * sizeof(cl_float4),
                              packed_.data());
+        tables_.setArg(0, columns_);
+        tables_.setArg(1, rows_);
+        tables_.setArg(2, config_.size);
+        tables_.setArg(3, waveBuffer_);
+        q.enqueueNDRangeKernel(tables_, cl::NullRange, cl::NDRange(config_.size, waves_.size()));
         kernel_.setArg(0, height_);
         kernel_.setArg(1, config_.size);
-        kernel_.setArg(2, waveBuffer_);
-        kernel_.setArg(3, int(waves_.size()));
-        kernel_.setArg(4, config_.sharpness);
-        kernel_.setArg(5, inverseTotalAmplitude(waves_));
+        kernel_.setArg(2, columns_);
+        kernel_.setArg(3, rows_);
+        kernel_.setArg(4, waveBuffer_);
+        kernel_.setArg(5, int(waves_.size()));
+        kernel_.setArg(6, config_.steepness);
+        kernel_.setArg(7, inverseTotalAmplitude(waves_));
         q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(config_.size, config_.size));
     });
 }

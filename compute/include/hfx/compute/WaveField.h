@@ -19,7 +19,7 @@ struct WaveConfig {
     float spread = 0.7f;          ///< half-width of the directions around the wind, radians
     int minCycles = 2;            ///< longest wave: patch / maxCycles .. patch / minCycles
     int maxCycles = 20;
-    float sharpness = 1.6f;       ///< crest shape, 1 = sine
+    float steepness = 0.15f;      ///< Stokes-like crest sharpening in [0, 0.25], 0 = sine
     std::uint32_t seed = 1;
     void validate() const;        ///< throws hfx::Error naming the bad field and its value
 };
@@ -57,8 +57,8 @@ private:
     WaveConfig config_;
     std::vector<Wave> waves_;
     std::vector<cl_float4> packed_; ///< per-frame staging of (m, n, amplitude, phase)
-    cl::Buffer waveBuffer_, height_;
-    cl::Kernel kernel_;
+    cl::Buffer waveBuffer_, columns_, rows_, height_;
+    cl::Kernel tables_, kernel_;
     double time_ = 0.0;
 };
 
