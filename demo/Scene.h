@@ -21,6 +21,7 @@ struct SceneOptions {
     bool shadows = true;
     std::uint32_t seed = 1;
     float aspect = 16.0f / 9.0f;
+    std::string heightMap, normalMap, colorMap; ///< the maps scene's files
 };
 
 class Scene {
@@ -33,7 +34,11 @@ public:
     virtual Camera& camera() = 0;
 };
 
+/// The known scene names, for help texts and errors.
+inline constexpr const char* kSceneNames = "water, maps";
+
 std::unique_ptr<Scene> makeWaterScene(ClContext& cl, const SceneOptions& options);
+std::unique_ptr<Scene> makeMapsScene(ClContext& cl, const SceneOptions& options);
 /// Throws hfx::Error naming the scene and listing the known ones.
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options);
 

@@ -62,7 +62,8 @@ std::unique_ptr<Scene> makeWaterScene(ClContext& cl, const SceneOptions& options
 
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options) {
     if (name == "water") return makeWaterScene(cl, options);
-    throw Error(str("unknown scene '", name, "' (known scenes: water)"));
+    if (name == "maps") return makeMapsScene(cl, options);
+    throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
 }
 
 } // namespace hfx::demo

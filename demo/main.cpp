@@ -41,7 +41,10 @@ int run(const Options& o) {
     sceneOptions.technique = parseTechnique(o.technique);
     sceneOptions.aspect = float(o.width) / float(o.height);
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
-    if (o.scene != "water") throw Error(str("unknown scene '", o.scene, "' (known scenes: water, bench)"));
+    if (o.scene != "water" && o.scene != "maps")
+        throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));
+    if (o.scene == "maps" && sceneOptions.heightMap.empty())
+        throw Error("the maps scene needs --height-map FILE");
 
     auto gl = createContext({.width = o.width, .height = o.height, .title = "HFX " + o.scene},
                             !o.headless);
@@ -92,7 +95,9 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     CLI::App app{"HFX demo: dynamic height fields rendered with parallax occlusion mapping"};
     Options o;
-    app.add_option("scene", o.scene, "scene to show: water, or bench (frame-time benchmark)")
+    app.add_option("scene", o.scene,
+                   "scene to show: water, maps (a surface from image files), or bench (frame-time "
+                   "benchmark)")
         ->capture_default_str();
     app.add_flag("--headless", o.headless, "render off screen even when a display exists");
     app.add_option("--frames", o.frames, "frames to render (headless default 1; window: until closed)")
@@ -112,6 +117,10 @@ int main(int argc, char** argv) {
     app.add_option("--depth-scale", o.sceneOptions.depthScale, "relief depth in texture units")
         ->check(CLI::Range(0.0, 1.0))->capture_default_str();
     app.add_option("--seed", o.sceneOptions.seed, "random seed of the field")->capture_default_str();
+    app.add_option("--height-map", o.sceneOptions.heightMap, "maps scene: height map image (h in [0,1])");
+    app.add_option("--normal-map", o.sceneOptions.normalMap,
+                   "maps scene: tangent-space normal map (default: Sobel of the heights)");
+    app.add_option("--color-map", o.sceneOptions.colorMap, "maps scene: colour map");
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
     CLI11_PARSE(app, argc, argv);

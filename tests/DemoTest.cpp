@@ -79,6 +79,34 @@ TEST(Demo, UnknownSceneIsAClearError) {
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos);
 }
 
+TEST(Demo, MapsSceneRendersAFileAndRefusesBadOnes) {
+    // A 16-bit height map made here: raised blocks.
+    constexpr int N = 64;
+    Image map{N, N, 1, std::vector<float>(N * N)};
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) map.at(x, y, 0) = (x % 16 < 2 || y % 16 < 2) ? 0.1f : 0.9f;
+    const std::string heightMap = outputPath("demo_height.exr");
+    writeImage(heightMap, map);
+    const std::string out = outputPath("demo_maps");
+    const Result ok = runDemo("maps --headless --width 160 --height 90 --height-map " + heightMap + " --out " + out);
+    ASSERT_EQ(ok.exitCode, 0) << ok.output;
+    EXPECT_GT(luminanceStdDev(readImage(out + "/maps_0000.png")), 0.02);
+
+    const Result missing = runDemo("maps --headless --height-map /no/such/height.png");
+    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_NE(missing.output.find("/no/such/height.png"), std::string::npos) << missing.output;
+
+    const std::string corrupt = outputPath("demo_corrupt.png");
+    std::ofstream(corrupt, std::ios::binary) << "\x89PNG\r\n\x1a\n garbage";
+    const Result bad = runDemo("maps --headless --height-map " + corrupt);
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.output.find(corrupt), std::string::npos) << bad.output;
+
+    const Result none = runDemo("maps --headless");
+    EXPECT_NE(none.exitCode, 0);
+    EXPECT_NE(none.output.find("--height-map"), std::string::npos) << none.output;
+}
+
 TEST(Demo, BadOptionValuesAreClearErrors) {
     for (const char* args : {"water --field 0", "water --technique raytrace", "water --frames -3",
                              "water --samples-min 40 --samples-max 10", "water --width abc"}) {

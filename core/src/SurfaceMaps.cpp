@@ -1,0 +1,49 @@
+#include "hfx/core/SurfaceMaps.h"
+
+#include "hfx/core/Error.h"
+
+#include <cmath>
+
+namespace hfx {
+
+std::vector<float> heightsFromImage(const Image& image, const std::string& path) {
+    if (image.empty() || image.width < 1 || image.height < 1)
+        throw Error(str("height map '", path, "' is empty"));
+    std::vector<float> heights(size_t(image.width) * image.height);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const float h = image.at(x, image.height - 1 - y, 0);
+            if (!(h >= 0.0f && h <= 1.0f))
+                throw Error(str("height map '", path, "' has the value ", h, " at pixel (", x, ", ",
+                                image.height - 1 - y, "); heights must lie in [0,1]"));
+            heights[size_t(y) * image.width + x] = h;
+        }
+    return heights;
+}
+
+std::vector<float> packNormalMap(const Image& normalMap, const std::string& path,
+                                 const std::vector<float>& heights) {
+    if (normalMap.channels < 3)
+        throw Error(str("normal map '", path, "' has ", normalMap.channels,
+                        " channel(s); it needs RGB"));
+    if (size_t(normalMap.width) * normalMap.height != heights.size())
+        throw Error(str("normal map '", path, "' is ", normalMap.width, "x", normalMap.height,
+                        ", which does not match the height map (", heights.size(), " texels)"));
+    std::vector<float> packed(heights.size() * 4);
+    for (int y = 0; y < normalMap.height; ++y)
+        for (int x = 0; x < normalMap.width; ++x) {
+            const int row = normalMap.height - 1 - y;
+            float n[3];
+            for (int c = 0; c < 3; ++c) n[c] = 2.0f * normalMap.at(x, row, c) - 1.0f;
+            const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (!(length > 1e-3f) || n[2] < 0.0f)
+                throw Error(str("normal map '", path, "' has no usable normal at pixel (", x, ", ",
+                                row, "): a tangent-space normal map encodes z >= 0"));
+            const size_t i = size_t(y) * normalMap.width + x;
+            for (int c = 0; c < 3; ++c) packed[i * 4 + c] = n[c] / length;
+            packed[i * 4 + 3] = heights[i];
+        }
+    return packed;
+}
+
+} // namespace hfx
