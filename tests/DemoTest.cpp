@@ -20,11 +20,15 @@ struct Result {
     std::string output;
 };
 
-Result runDemo(const std::string& arguments) {
-    const std::string log = outputPath("demo_output.txt");
-    // No DISPLAY: the demo must fall back to headless by itself.
+Result runDemo(const std::string& arguments, const std::string& prefix = "env -u DISPLAY -u WAYLAND_DISPLAY") {
+    // One log per test and call: CTest runs the tests of this file in parallel processes.
+    static int call = 0;
+    const std::string log = outputPath(std::string("demo_") +
+                                       ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+                                       "_" + std::to_string(call++) + ".txt");
+    // By default no DISPLAY: the demo must fall back to headless by itself.
     const std::string command =
-        "env -u DISPLAY -u WAYLAND_DISPLAY '" HFX_DEMO_EXECUTABLE "' " + arguments + " > '" + log + "' 2>&1";
+        prefix + " '" HFX_DEMO_EXECUTABLE "' " + arguments + " > '" + log + "' 2>&1";
     const int status = std::system(command.c_str());
     std::ifstream in(log);
     std::stringstream text;
@@ -70,6 +74,18 @@ TEST(Demo, HeadlessRunsAreDeterministicAndNotFlat) {
     }
     // The field is dynamic: frames differ.
     EXPECT_NE(readBytes(a + "/water_0000.png"), readBytes(a + "/water_0002.png"));
+}
+
+TEST(Demo, OpensAWindowUnderXvfb) {
+    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+    const std::string out = outputPath("demo_window");
+    std::filesystem::remove_all(out);
+    const Result r = runDemo("water --frames 3 --width 320 --height 180 --field 64 --out " + out,
+                             "xvfb-run -a -s '-screen 0 640x480x24'");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("hfx-demo: window"), std::string::npos) << r.output;
+    EXPECT_GT(luminanceStdDev(readImage(out + "/water_0002.png")), 0.02);
 }
 
 TEST(Demo, UnknownSceneIsAClearError) {
