@@ -102,7 +102,7 @@ ShaderProgram::ShaderProgram(const SourceFile& vertex, const SourceFile& fragmen
 }
 
 GLint ShaderProgram::uniform(std::string_view name) const {
-    auto it = uniforms_.find(std::string(name));
+    auto it = uniforms_.find(name);
     if (it == uniforms_.end())
         it = uniforms_
                  .emplace(std::string(name),

@@ -43,8 +43,13 @@ public:
     void set(std::string_view name, const glm::mat4& v) const;
 
 private:
+    // Transparent hashing: looking a uniform up by string_view allocates nothing per frame.
+    struct NameHash {
+        using is_transparent = void;
+        size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+    };
     GlProgram program_;
-    mutable std::unordered_map<std::string, GLint> uniforms_;
+    mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> uniforms_;
 };
 
 namespace detail {
