@@ -17,7 +17,7 @@ class Waves : public ClTest {
 protected:
     std::vector<float> read(const WaveField& field) {
         std::vector<float> out(size_t(field.size()) * field.size());
-        cl().queue().enqueueReadBuffer(field.height(), CL_TRUE, 0, out.size() * sizeof(float),
+        cl().queue().enqueueReadBuffer(field.buffer(), CL_TRUE, 0, out.size() * sizeof(float),
                                        out.data());
         return out;
     }

@@ -4,7 +4,7 @@
 // (wave vectors on the patch's lattice), so the field tiles exactly at every time.
 // Writes h in [0,1] into a float buffer of size x size, row y at v = (y + 0.5) / size.
 
-#include "hfx/compute/ClContext.h"
+#include "hfx/compute/HeightSource.h"
 
 #include <cstdint>
 #include <vector>
@@ -29,7 +29,7 @@ struct Wave {
     float m, n, amplitude, omega, phase;
 };
 
-class WaveField {
+class WaveField final : public HeightSource {
 public:
     WaveField(ClContext& cl, const WaveConfig& config);
 
@@ -39,7 +39,10 @@ public:
     void setTime(double seconds);
     double time() const { return time_; }
 
-    const cl::Buffer& height() const { return height_; }
+    const cl::Buffer& buffer() const override { return height_; }
+    int width() const override { return config_.size; }
+    int height() const override { return config_.size; }
+    bool periodic() const override { return true; }
     int size() const { return config_.size; }
     const WaveConfig& config() const { return config_; }
     const std::vector<Wave>& waves() const { return waves_; }

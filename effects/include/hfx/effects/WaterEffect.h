@@ -1,12 +1,11 @@
 #pragma once
-// Procedural water: waves -> Sobel normals -> GL upload, every update. Draw it with
+// Procedural water: a FieldEffect over the directional-waves source. Draw it with
 // SurfaceRenderer on a plane whose texcoords repeat the (tileable) patch.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
-#include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/WaveField.h"
-#include "hfx/effects/Effect.h"
+#include "hfx/effects/FieldEffect.h"
 
 namespace hfx {
 
@@ -18,30 +17,17 @@ struct WaterConfig {
     void validate() const;
 };
 
-class WaterEffect final : public Effect {
+class WaterEffect final : public FieldEffect {
 public:
     WaterEffect(ClContext& cl, const WaterConfig& config = {});
 
-    void update(double dt) override;
     /// Jumps to an absolute time (seconds) and refreshes the textures.
     void setTime(double seconds);
     double time() const { return waves_.time(); }
-
-    const SurfaceTextures& textures() const override { return textures_; }
-    const SurfaceMaterial& material() const override { return config_.material; }
-    StageTimes lastTimes() const override { return times_; }
     const WaveField& waves() const { return waves_; }
-    const SobelNormals& normals() const { return normals_; }
 
 private:
-    void refresh(double computeStartMs);
-
-    ClContext& cl_;
-    WaterConfig config_;
-    WaveField waves_;
-    SobelNormals normals_;
-    SurfaceTextures textures_;
-    StageTimes times_;
+    WaveField& waves_;
 };
 
 } // namespace hfx
