@@ -3,7 +3,12 @@
 /* Lets one header hold math that compiles both as C++ (the CPU references) and as OpenCL C
    (the kernels), so the reference cannot drift from the kernel. */
 #ifdef __OPENCL_VERSION__
+/* No fused multiply-add behind our back: the kernels must round as the C++ references do. */
+#pragma OPENCL FP_CONTRACT OFF
 #define HFX_FN
+#define HFX_CONSTANT __constant
+#define HFX_COS cos
+#define HFX_FABS fabs
 #define HFX_SQRT sqrt
 #define HFX_SIN sin
 #define HFX_POW pow
@@ -11,6 +16,9 @@
 #else
 #include <cmath>
 #define HFX_FN inline
+#define HFX_CONSTANT inline constexpr
+#define HFX_COS std::cos
+#define HFX_FABS std::fabs
 #define HFX_SQRT std::sqrt
 #define HFX_SIN std::sin
 #define HFX_POW std::pow
