@@ -1,0 +1,39 @@
+#pragma once
+// Maximum-height mip pyramid ("minimum depth") of any height buffer, rebuilt on the device each
+// frame, for tracers that skip empty space. Conservative for the *bilinear* surface: level 0
+// holds, per bilinear cell (between texel centres i..i+1, j..j+1), the max of its four corner
+// samples; level k texel (I, J) bounds cells [I 2^k, (I+1) 2^k) x [J 2^k, (J+1) 2^k).
+// All levels live in one buffer, level after level.
+
+#include "hfx/compute/ClContext.h"
+
+#include <vector>
+
+namespace hfx {
+
+struct PyramidLevel {
+    int width, height;
+    size_t offset; ///< in floats from the start of the buffer
+};
+
+class MaxPyramid {
+public:
+    /// wrapEdges: the last cell of a row joins the last sample to the first (periodic fields).
+    MaxPyramid(ClContext& cl, int width, int height, bool wrapEdges);
+
+    /// Enqueues the whole pyramid of `height` (width x height floats); does not wait.
+    void build(const cl::Buffer& height);
+
+    const cl::Buffer& buffer() const { return buffer_; }
+    const std::vector<PyramidLevel>& levels() const { return levels_; }
+    size_t totalFloats() const;
+
+private:
+    ClContext& cl_;
+    int width_, height_;
+    std::vector<PyramidLevel> levels_;
+    cl::Buffer buffer_;
+    cl::Kernel cells_, reduce_;
+};
+
+} // namespace hfx
