@@ -1,6 +1,7 @@
 #include "hfx/compute/WaveField.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Random.h"
 
 #include <cmath>
 #include <numbers>
@@ -25,22 +26,9 @@ void WaveConfig::validate() const {
         throw Error(str("WaveConfig.steepness must be in [0, 0.25], got ", steepness));
 }
 
-namespace {
-// SplitMix64: fully specified, so a seed gives the same waves with every standard library.
-struct Random {
-    std::uint64_t state;
-    double next() {
-        std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-    }
-};
-} // namespace
-
 std::vector<Wave> WaveField::makeWaves(const WaveConfig& config) {
     config.validate();
-    Random random{config.seed};
+    SplitMix64 random(config.seed);
     std::vector<Wave> waves;
     constexpr double g = 9.81, twoPi = 2.0 * std::numbers::pi;
     for (int i = 0; i < config.waveCount; ++i) {

@@ -1,0 +1,90 @@
+#pragma once
+// A persistent damage map: bullet holes (craters with raised rims) and explosions (a large
+// crater plus scattered debris pits) stamped in batches of thousands, on top of a base height
+// map (a brick wall, say). Damage accumulates but base + damage never leaves [0,1]; it may heal
+// slowly. Stamps on a periodic map wrap across its edges.
+//
+// Positions are texcoords in [0,1); radii are in units of the map's width.
+// Thread: the thread that owns the ClContext.
+
+#include "hfx/compute/HeightSource.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace hfx {
+
+struct BulletHole {
+    float u = 0.5f, v = 0.5f;
+    float radius = 0.01f;
+    float depth = 0.35f;     ///< of the bowl at its centre, height units
+    float rimHeight = 0.08f; ///< raised lip, height units
+    float rimWidth = 0.35f;  ///< half-width of the lip, in radii
+};
+
+struct Explosion {
+    float u = 0.5f, v = 0.5f;
+    float radius = 0.06f;
+    float depth = 0.6f;
+    int debris = 24;              ///< small pits scattered around the crater
+    float debrisRadius = 0.006f;
+    float debrisSpread = 2.5f;    ///< debris lands up to this many crater radii out
+    std::uint64_t seed = 1;       ///< where the debris lands
+};
+
+struct DecalConfig {
+    int width = 512;
+    int height = 512;
+    bool periodic = true;          ///< stamps wrap across edges (tileable walls)
+    float healRate = 0.0f;         ///< damage decays as exp(-healRate t); 0 = permanent
+    int tileSize = 16;             ///< texels per binning tile edge
+    int maxStampsPerBatch = 65536; ///< a larger batch is refused, not truncated
+    float baseHeight = 0.85f;      ///< flat base when no base map is given
+    void validate() const;
+};
+
+class DecalMap final : public HeightSource {
+public:
+    /// base: width*height heights in [0,1], row 0 at v = 0; empty: flat at config.baseHeight.
+    DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<float>& base = {});
+
+    /// Queue stamps for the next step(). Throws hfx::Error and queues nothing when the stamp is
+    /// outside the map, has a non-positive radius, a negative depth or overflows the batch.
+    void addBulletHole(const BulletHole& hole);
+    void addBulletHoles(const std::vector<BulletHole>& holes); ///< all or nothing
+    void addExplosion(const Explosion& explosion);
+    size_t pendingStamps() const { return pending_.size(); }
+
+    /// Heals by dt, applies the queued stamps, writes the combined height; does not wait.
+    void step(double dt) override;
+    /// Forgets all damage.
+    void clear();
+
+    const cl::Buffer& buffer() const override { return height_; }
+    const cl::Buffer& damage() const { return damage_; }
+    int width() const override { return config_.width; }
+    int height() const override { return config_.height; }
+    bool periodic() const override { return config_.periodic; }
+    const DecalConfig& config() const { return config_; }
+
+    /// The stamps an explosion expands into: the crater first, then the debris pits.
+    static std::vector<BulletHole> expand(const Explosion& explosion, bool periodic);
+
+private:
+    void validate(const BulletHole& hole) const;
+    void bin();
+
+    ClContext& cl_;
+    DecalConfig config_;
+    int tilesX_, tilesY_;
+    std::vector<BulletHole> pending_;
+    // Staging reused every step: stamps, shapes and the tile lists.
+    std::vector<cl_float4> stamps_;
+    std::vector<cl_float2> shapes_;
+    std::vector<int> tileStart_, tileStamps_, tileCounts_;
+    size_t stampCapacity_ = 0, listCapacity_ = 0;
+    cl::Buffer base_, damage_, height_, tileStartBuffer_, tileStampsBuffer_, stampBuffer_, shapeBuffer_;
+    cl::Kernel kernel_;
+};
+
+} // namespace hfx

@@ -1,0 +1,206 @@
+#include "hfx/compute/DecalMap.h"
+
+#include "hfx/compute/shared/DecalMath.h"
+#include "hfx/core/Error.h"
+#include "hfx/core/Random.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace hfx {
+
+void DecalConfig::validate() const {
+    if (width < 2 || height < 2 || width > 16384 || height > 16384)
+        throw Error(str("DecalConfig size must be in 2..16384, got ", width, "x", height));
+    if (!(healRate >= 0.0f) || !std::isfinite(healRate))
+        throw Error(str("DecalConfig.healRate must be >= 0 and finite, got ", healRate));
+    if (tileSize < 4 || tileSize > 256)
+        throw Error(str("DecalConfig.tileSize must be in [4, 256], got ", tileSize));
+    if (maxStampsPerBatch < 1 || maxStampsPerBatch > (1 << 22))
+        throw Error(str("DecalConfig.maxStampsPerBatch must be in [1, 4194304], got ", maxStampsPerBatch));
+    if (!(baseHeight >= 0.0f && baseHeight <= 1.0f))
+        throw Error(str("DecalConfig.baseHeight must be in [0, 1], got ", baseHeight));
+}
+
+DecalMap::DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<float>& base)
+    : cl_(cl), config_((config.validate(), config)),
+      tilesX_((config.width + config.tileSize - 1) / config.tileSize),
+      tilesY_((config.height + config.tileSize - 1) / config.tileSize) {
+    const size_t texels = size_t(config.width) * config.height;
+    std::vector<float> baseHeights = base.empty() ? std::vector<float>(texels, config.baseHeight) : base;
+    if (baseHeights.size() != texels)
+        throw Error(str("DecalMap: the base map has ", base.size(), " heights, the ", config.width, "x",
+                        config.height, " map needs ", texels));
+    for (size_t i = 0; i < texels; ++i)
+        if (!(baseHeights[i] >= 0.0f && baseHeights[i] <= 1.0f))
+            throw Error(str("DecalMap: base height ", baseHeights[i], " at texel ", i % config.width, ",",
+                            i / config.width, " is outside [0, 1]"));
+    tileStart_.resize(size_t(tilesX_) * tilesY_ + 1);
+    tileCounts_.resize(size_t(tilesX_) * tilesY_);
+    clGuard("creating the decal map", [&] {
+        base_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, texels * sizeof(float),
+                           baseHeights.data());
+        damage_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, texels * sizeof(float));
+        height_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, texels * sizeof(float));
+        tileStartBuffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, tileStart_.size() * sizeof(int));
+        kernel_ = cl.kernel("decals.cl", "decals",
+                            str("-cl-fp32-correctly-rounded-divide-sqrt -DTILE=", config.tileSize,
+                                config.periodic ? "" : " -DCLAMP_EDGES"));
+    });
+    clear();
+}
+
+void DecalMap::clear() {
+    pending_.clear();
+    clGuard("clearing the decal map", [&] {
+        cl_.queue().enqueueFillBuffer(damage_, 0.0f, 0, sizeof(float) * size_t(config_.width) * config_.height);
+    });
+    step(1.0); // writes the combined height; nothing to heal yet
+}
+
+void DecalMap::validate(const BulletHole& h) const {
+    if (!(h.u >= 0.0f && h.u < 1.0f && h.v >= 0.0f && h.v < 1.0f))
+        throw Error(str("decal at (", h.u, ", ", h.v, ") is outside the map: texcoords must lie in [0, 1)"));
+    if (!(h.radius > 0.0f) || h.radius > 1.0f)
+        throw Error(str("decal radius must be in (0, 1] map widths, got ", h.radius));
+    if (!(h.depth >= 0.0f && h.depth <= 1.0f))
+        throw Error(str("decal depth must be in [0, 1], got ", h.depth));
+    if (!(h.rimHeight >= 0.0f && h.rimHeight <= 1.0f))
+        throw Error(str("decal rimHeight must be in [0, 1], got ", h.rimHeight));
+    if (!(h.rimWidth > 0.0f && h.rimWidth <= 4.0f))
+        throw Error(str("decal rimWidth must be in (0, 4] radii, got ", h.rimWidth));
+}
+
+void DecalMap::addBulletHole(const BulletHole& hole) { addBulletHoles({hole}); }
+
+void DecalMap::addBulletHoles(const std::vector<BulletHole>& holes) {
+    for (const BulletHole& h : holes) validate(h);
+    if (pending_.size() + holes.size() > size_t(config_.maxStampsPerBatch))
+        throw Error(str("decal batch of ", pending_.size() + holes.size(), " stamps exceeds maxStampsPerBatch = ",
+                        config_.maxStampsPerBatch, "; step() between batches"));
+    pending_.insert(pending_.end(), holes.begin(), holes.end());
+}
+
+std::vector<BulletHole> DecalMap::expand(const Explosion& e, bool periodic) {
+    if (e.debris < 0 || e.debris > 4096)
+        throw Error(str("explosion debris count must be in [0, 4096], got ", e.debris));
+    if (!(e.debrisSpread >= 1.0f && e.debrisSpread <= 16.0f))
+        throw Error(str("explosion debrisSpread must be in [1, 16], got ", e.debrisSpread));
+    std::vector<BulletHole> stamps;
+    stamps.push_back({e.u, e.v, e.radius, e.depth, e.depth * 0.25f, 0.3f});
+    SplitMix64 random(e.seed);
+    for (int i = 0; i < e.debris; ++i) {
+        const double angle = random.uniform(0.0, 2.0 * std::numbers::pi);
+        const double distance = e.radius * random.uniform(0.6, e.debrisSpread);
+        float u = float(e.u + distance * std::cos(angle)), v = float(e.v + distance * std::sin(angle));
+        const float size = float(e.debrisRadius * random.uniform(0.5, 1.5));
+        const float depth = float(e.depth * random.uniform(0.2, 0.5));
+        if (periodic) {
+            u -= std::floor(u);
+            v -= std::floor(v);
+            u = std::min(u, std::nextafter(1.0f, 0.0f));
+            v = std::min(v, std::nextafter(1.0f, 0.0f));
+        } else if (u < 0.0f || u >= 1.0f || v < 0.0f || v >= 1.0f) {
+            continue; // off a clamped map: the debris flew past its edge
+        }
+        stamps.push_back({u, v, size, depth, depth * 0.3f, 0.4f});
+    }
+    return stamps;
+}
+
+void DecalMap::addExplosion(const Explosion& explosion) {
+    addBulletHoles(expand(explosion, config_.periodic));
+}
+
+void DecalMap::bin() {
+    const int W = config_.width, H = config_.height, T = config_.tileSize;
+    std::fill(tileCounts_.begin(), tileCounts_.end(), 0);
+    stamps_.clear();
+    shapes_.clear();
+    tileStamps_.clear();
+    // The tiles a stamp's footprint covers, per axis as at most two ranges of tiles: on a
+    // periodic map the texel range wraps (texels carry the period, and the last tile may be
+    // partial, so wrapping is done on texels, then mapped to tiles).
+    struct Range {
+        int lo, hi;
+    };
+    auto axis = [&](double centre, double reach, int n, int tiles, Range* out) -> int {
+        int a = int(std::floor(centre - reach)), b = int(std::floor(centre + reach));
+        if (!config_.periodic) {
+            a = std::max(a, 0), b = std::min(b, n - 1);
+            if (a > b) return 0;
+            out[0] = {a / T, b / T};
+            return 1;
+        }
+        if (b - a + 1 >= n) return out[0] = {0, tiles - 1}, 1;
+        const int wa = ((a % n) + n) % n, wb = ((b % n) + n) % n;
+        if (wa <= wb) return out[0] = {wa / T, wb / T}, 1;
+        if (wb / T >= wa / T) return out[0] = {0, tiles - 1}, 1; // the two pieces share a tile
+        out[0] = {wa / T, tiles - 1};
+        out[1] = {0, wb / T};
+        return 2;
+    };
+    auto forEachTile = [&](const BulletHole& h, auto&& visit) {
+        const double reach = h.radius * (1.0 + h.rimWidth) * W + 1.0;
+        Range xs[2], ys[2];
+        const int nx = axis(h.u * W, reach, W, tilesX_, xs), ny = axis(h.v * H, reach, H, tilesY_, ys);
+        for (int i = 0; i < ny; ++i)
+            for (int ty = ys[i].lo; ty <= ys[i].hi; ++ty)
+                for (int j = 0; j < nx; ++j)
+                    for (int tx = xs[j].lo; tx <= xs[j].hi; ++tx) visit(ty * tilesX_ + tx);
+    };
+    for (const BulletHole& h : pending_) forEachTile(h, [&](int tile) { ++tileCounts_[tile]; });
+    tileStart_[0] = 0;
+    for (size_t t = 0; t < tileCounts_.size(); ++t) tileStart_[t + 1] = tileStart_[t] + tileCounts_[t];
+    tileStamps_.resize(size_t(tileStart_.back()));
+    std::fill(tileCounts_.begin(), tileCounts_.end(), 0);
+    for (size_t i = 0; i < pending_.size(); ++i) {
+        const BulletHole& h = pending_[i];
+        stamps_.push_back({{h.u, h.v, h.radius, h.depth}});
+        shapes_.push_back({{h.rimHeight, h.rimWidth}});
+        forEachTile(h, [&](int tile) { tileStamps_[size_t(tileStart_[tile] + tileCounts_[tile]++)] = int(i); });
+    }
+}
+
+void DecalMap::step(double dt) {
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw Error(str("DecalMap::step: dt must be positive and finite, got ", dt));
+    bin();
+    clGuard("DecalMap::step", [&] {
+        cl::CommandQueue& q = cl_.queue();
+        // Grow-only device buffers; at least one element so the kernel always has valid args.
+        if (stamps_.size() > stampCapacity_ || !stampBuffer_()) {
+            stampCapacity_ = std::max<size_t>(stamps_.size(), 256);
+            stampBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
+            shapeBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float2));
+        }
+        if (tileStamps_.size() > listCapacity_ || !tileStampsBuffer_()) {
+            listCapacity_ = std::max<size_t>(tileStamps_.size(), 1024);
+            tileStampsBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, listCapacity_ * sizeof(int));
+        }
+        // Blocking writes: the staging vectors are rebuilt by the next step.
+        q.enqueueWriteBuffer(tileStartBuffer_, CL_TRUE, 0, tileStart_.size() * sizeof(int), tileStart_.data());
+        if (!stamps_.empty()) {
+            q.enqueueWriteBuffer(stampBuffer_, CL_TRUE, 0, stamps_.size() * sizeof(cl_float4), stamps_.data());
+            q.enqueueWriteBuffer(shapeBuffer_, CL_TRUE, 0, shapes_.size() * sizeof(cl_float2), shapes_.data());
+            q.enqueueWriteBuffer(tileStampsBuffer_, CL_TRUE, 0, tileStamps_.size() * sizeof(int), tileStamps_.data());
+        }
+        int a = 0;
+        kernel_.setArg(a++, damage_);
+        kernel_.setArg(a++, base_);
+        kernel_.setArg(a++, height_);
+        kernel_.setArg(a++, config_.width);
+        kernel_.setArg(a++, config_.height);
+        kernel_.setArg(a++, float(std::exp(-double(config_.healRate) * dt)));
+        kernel_.setArg(a++, tilesX_);
+        kernel_.setArg(a++, tileStartBuffer_);
+        kernel_.setArg(a++, tileStampsBuffer_);
+        kernel_.setArg(a++, stampBuffer_);
+        kernel_.setArg(a++, shapeBuffer_);
+        q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(config_.width, config_.height));
+    });
+    pending_.clear();
+}
+
+} // namespace hfx
