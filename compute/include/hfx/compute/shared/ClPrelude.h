@@ -7,6 +7,9 @@
 #pragma OPENCL FP_CONTRACT OFF
 #define HFX_FN
 #define HFX_CONSTANT __constant
+#define HFX_GLOBAL __global
+#define HFX_MIN fmin
+#define HFX_MAX fmax
 #define HFX_COS cos
 #define HFX_FABS fabs
 #define HFX_SQRT sqrt
@@ -17,6 +20,9 @@
 #include <cmath>
 #define HFX_FN inline
 #define HFX_CONSTANT inline constexpr
+#define HFX_GLOBAL
+#define HFX_MIN std::fmin
+#define HFX_MAX std::fmax
 #define HFX_COS std::cos
 #define HFX_FABS std::fabs
 #define HFX_SQRT std::sqrt

@@ -1,0 +1,78 @@
+#pragma once
+// A Navier-Stokes gas (Stam's stable fluids; Harris, GPU Gems ch. 38) on a staggered grid:
+// semi-Lagrangian advection (MacCormack optional), implicit viscosity, vorticity confinement,
+// pressure projection by Jacobi iterations, advected dye, splats of force and dye, and zonal
+// jets for banded planets. x is periodic (longitude wraps); y is periodic or bounded by walls.
+// The height field is the dye, so the gas's bands and vortices read as relief.
+//
+// Grid units: lengths in cells, velocities in cells per second. See shared/GasMath.h.
+// Thread: the thread that owns the ClContext.
+
+#include "hfx/compute/HeightSource.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace hfx {
+
+struct GasConfig {
+    int width = 256;
+    int height = 128;
+    bool periodicY = false;       ///< false: walls at the top and bottom (poles)
+    float viscosity = 0.0f;       ///< cells^2 per second
+    int viscosityIterations = 20;
+    int pressureIterations = 40;
+    float vorticity = 0.0f;       ///< confinement strength epsilon
+    bool maccormack = true;
+    bool conserveDye = true;      ///< rescale the dye after advection to keep its total
+    float jetSpeed = 0.0f;        ///< zonal jets: u relaxes to jetSpeed sin(2 pi jetBands y / H)
+    float jetBands = 3.0f;
+    float jetRate = 0.05f;        ///< relaxation rate of the jets, per second
+    float initialBands = 0.0f;    ///< dye starts as 0.5 + 0.5 sin(2 pi bands y / H) plus noise
+    std::uint64_t seed = 1;
+    void validate() const;
+};
+
+/// Force and dye added around a point during the next step. Texcoords; radius in widths.
+struct GasSplat {
+    float u = 0.5f, v = 0.5f;
+    float radius = 0.03f;
+    float forceX = 0.0f, forceY = 0.0f; ///< cells per second^2, applied over the step
+    float dye = 0.0f;                   ///< added at the centre, clamped to [0,1]
+};
+
+class GasField final : public HeightSource {
+public:
+    GasField(ClContext& cl, const GasConfig& config);
+
+    void step(double dt) override;
+    void addSplat(const GasSplat& splat); ///< throws hfx::Error for a splat off the map
+    /// Runs only the pressure projection (tests, and after setting a velocity by hand).
+    void project();
+
+    /// Host access to the state (row-major W x H; see GasMath.h for where each lives).
+    void setState(const std::vector<float>& u, const std::vector<float>& v, const std::vector<float>& dye);
+    void readState(std::vector<float>& u, std::vector<float>& v, std::vector<float>& dye);
+    /// The divergence the projection's Laplacian matches: outflow through each cell's faces.
+    std::vector<float> readDivergence();
+
+    const cl::Buffer& buffer() const override { return height_; }
+    int width() const override { return config_.width; }
+    int height() const override { return config_.height; }
+    bool periodic() const override { return config_.periodicY; }
+    const GasConfig& config() const { return config_; }
+
+private:
+    void run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args);
+    void advectField(cl::Buffer& field, float ox, float oy, float dt, bool wallRow);
+    void writeHeight();
+
+    ClContext& cl_;
+    GasConfig config_;
+    std::vector<GasSplat> splats_;
+    cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_;
+    cl::Kernel advect_, maccormack_, splat_, jets_, curlKernel_, confine_, diffuse_, divergence_,
+        pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_;
+};
+
+} // namespace hfx

@@ -1,0 +1,123 @@
+#include "GasMath.h"
+
+/* Kernels of one stable-fluids step; see GasMath.h for the grid. SOLID_Y is 1 when walls bound
+   y. Face fields of v keep v = 0 on the wall row (j = 0) whenever SOLID_Y. */
+
+#define ID                                                                                         \
+    int i = get_global_id(0), j = get_global_id(1);                                                \
+    if (i >= W || j >= H) return;                                                                  \
+    int k = j * W + i;
+
+__kernel void advect(__global const float* u, __global const float* v, __global const float* src,
+                     __global float* dst, int W, int H, float ox, float oy, float dt, int wallRow) {
+    ID
+    dst[k] = (SOLID_Y && wallRow && j == 0) ? 0.0f
+                                            : hfx_gas_advect(u, v, src, W, H, i, j, ox, oy, dt, SOLID_Y);
+}
+
+__kernel void maccormack(__global const float* u, __global const float* v, __global const float* src,
+                         __global const float* forward, __global const float* backward,
+                         __global float* dst, int W, int H, float ox, float oy, float dt, int wallRow) {
+    ID
+    dst[k] = (SOLID_Y && wallRow && j == 0)
+                 ? 0.0f
+                 : hfx_gas_maccormack(u, v, src, forward, backward, W, H, i, j, ox, oy, dt, SOLID_Y);
+}
+
+/* A round splat of force (cells/s^2 for dt seconds) and dye at (x, y) cells, Gaussian radius r. */
+__kernel void splat(__global float* u, __global float* v, __global float* dye, int W, int H, float x,
+                    float y, float r, float fx, float fy, float amount, float dt) {
+    ID
+    float dx = (float)i + 0.5f - x, dy = (float)j + 0.5f - y;
+    dx -= W * rint(dx / W);
+    if (!SOLID_Y) dy -= H * rint(dy / H);
+    float w = exp(-(dx * dx + dy * dy) / (r * r));
+    u[k] += dt * fx * exp(-((dx + 0.5f) * (dx + 0.5f) + dy * dy) / (r * r));
+    if (!(SOLID_Y && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
+    dye[k] = clamp(dye[k] + amount * w, 0.0f, 1.0f);
+}
+
+/* Zonal jets: u relaxes towards speed * sin(2 pi bands y / H) at `rate` per second. */
+__kernel void jets(__global float* u, int W, int H, float speed, float bands, float rate, float dt) {
+    ID
+    float target = speed * sin(6.28318530717958647692f * bands * ((float)j + 0.5f) / (float)H);
+    u[k] += (target - u[k]) * (1.0f - exp(-rate * dt));
+}
+
+__kernel void curl(__global const float* u, __global const float* v, __global float* w, int W, int H) {
+    ID
+    w[k] = hfx_gas_curl(u, v, W, H, i, j);
+}
+
+/* Adds the confinement force, computed at the two cells beside each face, to u and v. */
+__kernel void confine(__global const float* w, __global float* u, __global float* v, int W, int H,
+                      float eps, float dt) {
+    ID
+    float a[2], b[2];
+    hfx_gas_confinement(w, W, H, i, j, eps, a);
+    hfx_gas_confinement(w, W, H, hfx_gas_wrap(i - 1, W), j, eps, b);
+    u[k] += dt * 0.5f * (a[0] + b[0]);
+    if (SOLID_Y && j == 0) return;
+    hfx_gas_confinement(w, W, H, i, hfx_gas_wrap(j - 1, H), eps, b);
+    v[k] += dt * 0.5f * (a[1] + b[1]);
+}
+
+__kernel void diffuse(__global const float* x, __global const float* x0, __global float* dst, int W,
+                      int H, float a, int wallRow) {
+    ID
+    dst[k] = (SOLID_Y && wallRow && j == 0) ? 0.0f : hfx_gas_diffuse_jacobi(x, x0, W, H, i, j, a);
+}
+
+__kernel void divergence(__global const float* u, __global const float* v, __global float* div, int W, int H) {
+    ID
+    div[k] = hfx_gas_divergence(u, v, W, H, i, j);
+}
+
+__kernel void pressure(__global const float* p, __global const float* div, __global float* dst, int W, int H) {
+    ID
+    dst[k] = hfx_gas_pressure_jacobi(p, div, W, H, i, j, SOLID_Y);
+}
+
+/* u -= grad p on every face; the wall's v stays 0. */
+__kernel void project(__global float* u, __global float* v, __global const float* p, int W, int H) {
+    ID
+    u[k] -= p[k] - p[j * W + hfx_gas_wrap(i - 1, W)];
+    v[k] = (SOLID_Y && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_wrap(j - 1, H) * W + i]);
+}
+
+__kernel void dye_height(__global const float* dye, __global float* height, int W, int H) {
+    ID
+    height[k] = clamp(dye[k], 0.0f, 1.0f);
+}
+
+/* Dye mass, kept by a global correction: advection by interpolation (and MacCormack's limiter
+   above all) is not conservative. Row sums (Kahan), then one work-item totals them and leaves
+   before/after in factor[0], then every texel scales: no read-back, no host round trip. */
+__kernel void row_sums(__global const float* f, __global float* sums, int W, int H) {
+    int j = get_global_id(0);
+    if (j >= H) return;
+    float sum = 0.0f, carry = 0.0f;
+    for (int i = 0; i < W; ++i) {
+        float y = f[j * W + i] - carry;
+        float t = sum + y;
+        carry = (t - sum) - y;
+        sum = t;
+    }
+    sums[j] = sum;
+}
+
+__kernel void mass_factor(__global const float* before, __global const float* after, int H,
+                          __global float* factor) {
+    if (get_global_id(0) != 0) return;
+    float a = 0.0f, b = 0.0f;
+    for (int j = 0; j < H; ++j) {
+        a += before[j];
+        b += after[j];
+    }
+    factor[0] = b > 0.0f ? a / b : 1.0f;
+}
+
+__kernel void scale(__global float* f, __global const float* factor, int W, int H) {
+    ID
+    f[k] = clamp(f[k] * factor[0], 0.0f, 1.0f);
+}

@@ -1,0 +1,232 @@
+#include "hfx/compute/GasField.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Random.h"
+
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+namespace hfx {
+
+void GasConfig::validate() const {
+    if (width < 4 || height < 4 || width > 8192 || height > 8192)
+        throw Error(str("GasConfig size must be in 4..8192, got ", width, "x", height));
+    if (!(viscosity >= 0.0f) || !std::isfinite(viscosity))
+        throw Error(str("GasConfig.viscosity must be >= 0, got ", viscosity));
+    if (viscosityIterations < 1 || viscosityIterations > 1000)
+        throw Error(str("GasConfig.viscosityIterations must be in [1, 1000], got ", viscosityIterations));
+    if (pressureIterations < 1 || pressureIterations > 10000)
+        throw Error(str("GasConfig.pressureIterations must be in [1, 10000], got ", pressureIterations));
+    if (!(vorticity >= 0.0f) || !std::isfinite(vorticity))
+        throw Error(str("GasConfig.vorticity must be >= 0, got ", vorticity));
+    if (!std::isfinite(jetSpeed) || !(jetBands >= 0.0f) || !(jetRate >= 0.0f) || !std::isfinite(jetRate))
+        throw Error(str("GasConfig jets must be finite and non-negative, got speed ", jetSpeed, " bands ",
+                        jetBands, " rate ", jetRate));
+    if (!(initialBands >= 0.0f) || initialBands > float(height))
+        throw Error(str("GasConfig.initialBands must be in [0, height], got ", initialBands));
+}
+
+GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(config) {
+    config.validate();
+    const size_t n = size_t(config.width) * config.height, bytes = n * sizeof(float);
+    clGuard("creating the gas", [&] {
+        for (cl::Buffer* b : {&u_, &v_, &dye_, &work_[0], &work_[1], &work_[2], &work_[3], &p_, &p2_, &div_,
+                              &curl_, &height_})
+            *b = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, bytes);
+        sumsBefore_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
+        sumsAfter_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
+        factor_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float));
+        const std::string options = config.periodicY ? "-DSOLID_Y=0" : "-DSOLID_Y=1";
+        const cl::Program& program = cl.program("gas.cl", options);
+        advect_ = cl::Kernel(program, "advect");
+        maccormack_ = cl::Kernel(program, "maccormack");
+        splat_ = cl::Kernel(program, "splat");
+        jets_ = cl::Kernel(program, "jets");
+        curlKernel_ = cl::Kernel(program, "curl");
+        confine_ = cl::Kernel(program, "confine");
+        diffuse_ = cl::Kernel(program, "diffuse");
+        divergence_ = cl::Kernel(program, "divergence");
+        pressure_ = cl::Kernel(program, "pressure");
+        project_ = cl::Kernel(program, "project");
+        dyeHeight_ = cl::Kernel(program, "dye_height");
+        rowSums_ = cl::Kernel(program, "row_sums");
+        massFactor_ = cl::Kernel(program, "mass_factor");
+        scale_ = cl::Kernel(program, "scale");
+    });
+    // Initial state: jets already blowing, banded dye with a little noise to seed the storms.
+    std::vector<float> u(n), v(n, 0.0f), dye(n);
+    SplitMix64 random(config.seed);
+    const double twoPi = 2.0 * std::numbers::pi;
+    for (int j = 0; j < config.height; ++j)
+        for (int i = 0; i < config.width; ++i) {
+            const double y = (j + 0.5) / config.height;
+            u[size_t(j) * config.width + i] =
+                float(config.jetSpeed * std::sin(twoPi * config.jetBands * y) * (1.0 + 0.05 * random.uniform(-1, 1)));
+            dye[size_t(j) * config.width + i] =
+                config.initialBands > 0
+                    ? float(0.5 + 0.45 * std::sin(twoPi * config.initialBands * y) + 0.05 * random.uniform(-1, 1))
+                    : 0.0f;
+        }
+    setState(u, v, dye);
+}
+
+void GasField::run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args) {
+    cl_uint index = 0;
+    for (const auto& [size, value] : args) kernel.setArg(index++, size, value);
+    cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(config_.width, config_.height));
+}
+
+namespace {
+template <typename T>
+std::pair<size_t, const void*> arg(const T& value) {
+    return {sizeof(T), &value};
+}
+std::pair<size_t, const void*> arg(const cl::Buffer& buffer) { return {sizeof(cl_mem), &buffer()}; }
+} // namespace
+
+void GasField::addSplat(const GasSplat& s) {
+    if (!(s.u >= 0.0f && s.u < 1.0f && s.v >= 0.0f && s.v < 1.0f))
+        throw Error(str("gas splat at (", s.u, ", ", s.v, ") is outside the map: texcoords must lie in [0, 1)"));
+    if (!(s.radius > 0.0f) || s.radius > 1.0f)
+        throw Error(str("gas splat radius must be in (0, 1] widths, got ", s.radius));
+    if (!std::isfinite(s.forceX) || !std::isfinite(s.forceY) || !std::isfinite(s.dye))
+        throw Error("gas splat force and dye must be finite");
+    splats_.push_back(s);
+}
+
+void GasField::advectField(cl::Buffer& field, float ox, float oy, float dt, bool wallRow) {
+    const int W = config_.width, H = config_.height, wall = wallRow ? 1 : 0;
+    const float back = -dt;
+    if (!config_.maccormack) {
+        run(advect_, {arg(u_), arg(v_), arg(field), arg(work_[0]), arg(W), arg(H), arg(ox), arg(oy), arg(dt), arg(wall)});
+    } else {
+        run(advect_, {arg(u_), arg(v_), arg(field), arg(work_[1]), arg(W), arg(H), arg(ox), arg(oy), arg(dt), arg(wall)});
+        run(advect_, {arg(u_), arg(v_), arg(work_[1]), arg(work_[2]), arg(W), arg(H), arg(ox), arg(oy), arg(back), arg(wall)});
+        run(maccormack_, {arg(u_), arg(v_), arg(field), arg(work_[1]), arg(work_[2]), arg(work_[0]), arg(W), arg(H),
+                          arg(ox), arg(oy), arg(dt), arg(wall)});
+    }
+}
+
+void GasField::step(double dtSeconds) {
+    if (!(dtSeconds > 0.0) || !std::isfinite(dtSeconds))
+        throw Error(str("GasField::step: dt must be positive and finite, got ", dtSeconds));
+    const float dt = float(dtSeconds);
+    const int W = config_.width, H = config_.height;
+    clGuard("GasField::step", [&] {
+        cl::CommandQueue& q = cl_.queue();
+        const size_t bytes = sizeof(float) * size_t(W) * H;
+        for (const GasSplat& s : splats_) {
+            const float x = s.u * W, y = s.v * H, r = s.radius * W;
+            run(splat_, {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r), arg(s.forceX),
+                         arg(s.forceY), arg(s.dye), arg(dt)});
+        }
+        splats_.clear();
+        if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f)
+            run(jets_, {arg(u_), arg(W), arg(H), arg(config_.jetSpeed), arg(config_.jetBands), arg(config_.jetRate), arg(dt)});
+        if (config_.vorticity > 0.0f) {
+            run(curlKernel_, {arg(u_), arg(v_), arg(curl_), arg(W), arg(H)});
+            run(confine_, {arg(curl_), arg(u_), arg(v_), arg(W), arg(H), arg(config_.vorticity), arg(dt)});
+        }
+        // Self-advection: both components read the old velocity, so the new u waits in work_[3].
+        // Results change places with the state by swapping handles, not by copying.
+        advectField(u_, 0.0f, 0.5f, dt, false);
+        std::swap(work_[0], work_[3]);
+        advectField(v_, 0.5f, 0.0f, dt, true);
+        std::swap(work_[0], v_);
+        std::swap(work_[3], u_);
+        if (config_.viscosity > 0.0f) {
+            const float a = config_.viscosity * dt;
+            for (cl::Buffer* x : {&u_, &v_}) {
+                const int wall = x == &v_ ? 1 : 0;
+                q.enqueueCopyBuffer(*x, work_[1], 0, 0, bytes); // x0, the right-hand side
+                for (int it = 0; it < config_.viscosityIterations; ++it) {
+                    run(diffuse_, {arg(*x), arg(work_[1]), arg(work_[2]), arg(W), arg(H), arg(a), arg(wall)});
+                    std::swap(*x, work_[2]);
+                }
+            }
+        }
+        project();
+        auto rowSums = [&](const cl::Buffer& field, const cl::Buffer& sums) {
+            rowSums_.setArg(0, field);
+            rowSums_.setArg(1, sums);
+            rowSums_.setArg(2, W);
+            rowSums_.setArg(3, H);
+            q.enqueueNDRangeKernel(rowSums_, cl::NullRange, cl::NDRange(size_t(H)));
+        };
+        if (config_.conserveDye) rowSums(dye_, sumsBefore_);
+        advectField(dye_, 0.5f, 0.5f, dt, false);
+        std::swap(work_[0], dye_);
+        if (config_.conserveDye) {
+            rowSums(dye_, sumsAfter_);
+            massFactor_.setArg(0, sumsBefore_);
+            massFactor_.setArg(1, sumsAfter_);
+            massFactor_.setArg(2, H);
+            massFactor_.setArg(3, factor_);
+            q.enqueueNDRangeKernel(massFactor_, cl::NullRange, cl::NDRange(1));
+            run(scale_, {arg(dye_), arg(factor_), arg(W), arg(H)});
+        }
+        writeHeight();
+    });
+}
+
+void GasField::project() {
+    const int W = config_.width, H = config_.height;
+    clGuard("GasField::project", [&] {
+        cl::CommandQueue& q = cl_.queue();
+        run(divergence_, {arg(u_), arg(v_), arg(div_), arg(W), arg(H)});
+        q.enqueueFillBuffer(p_, 0.0f, 0, sizeof(float) * size_t(W) * H);
+        for (int it = 0; it < config_.pressureIterations; ++it) {
+            run(pressure_, {arg(p_), arg(div_), arg(p2_), arg(W), arg(H)});
+            std::swap(p_, p2_);
+        }
+        run(project_, {arg(u_), arg(v_), arg(p_), arg(W), arg(H)});
+    });
+}
+
+void GasField::writeHeight() {
+    const int W = config_.width, H = config_.height;
+    run(dyeHeight_, {arg(dye_), arg(height_), arg(W), arg(H)});
+}
+
+void GasField::setState(const std::vector<float>& u, const std::vector<float>& v, const std::vector<float>& dye) {
+    const size_t n = size_t(config_.width) * config_.height;
+    if (u.size() != n || v.size() != n || dye.size() != n)
+        throw Error(str("GasField::setState: fields must hold ", n, " values, got ", u.size(), ", ", v.size(),
+                        ", ", dye.size()));
+    for (const std::vector<float>* f : {&u, &v, &dye})
+        for (float x : *f)
+            if (!std::isfinite(x)) throw Error("GasField::setState: the state holds NaN or infinite values");
+    clGuard("GasField::setState", [&] {
+        cl::CommandQueue& q = cl_.queue();
+        q.enqueueWriteBuffer(u_, CL_TRUE, 0, n * sizeof(float), u.data());
+        q.enqueueWriteBuffer(v_, CL_TRUE, 0, n * sizeof(float), v.data());
+        q.enqueueWriteBuffer(dye_, CL_TRUE, 0, n * sizeof(float), dye.data());
+        writeHeight();
+    });
+}
+
+void GasField::readState(std::vector<float>& u, std::vector<float>& v, std::vector<float>& dye) {
+    const size_t n = size_t(config_.width) * config_.height;
+    u.resize(n);
+    v.resize(n);
+    dye.resize(n);
+    clGuard("GasField::readState", [&] {
+        cl::CommandQueue& q = cl_.queue();
+        q.enqueueReadBuffer(u_, CL_TRUE, 0, n * sizeof(float), u.data());
+        q.enqueueReadBuffer(v_, CL_TRUE, 0, n * sizeof(float), v.data());
+        q.enqueueReadBuffer(dye_, CL_TRUE, 0, n * sizeof(float), dye.data());
+    });
+}
+
+std::vector<float> GasField::readDivergence() {
+    const int W = config_.width, H = config_.height;
+    std::vector<float> out(size_t(W) * H);
+    clGuard("GasField::readDivergence", [&] {
+        run(divergence_, {arg(u_), arg(v_), arg(div_), arg(W), arg(H)});
+        cl_.queue().enqueueReadBuffer(div_, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+    });
+    return out;
+}
+
+} // namespace hfx
