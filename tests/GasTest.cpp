@@ -191,7 +191,7 @@ struct GasReference {
                     v[j * W() + i] += dt * 0.5f * (a[1] + b[1]);
                 }
         }
-            const auto u2 = advect(u, 0.0f, 0.5f, dt, false);
+        const auto u2 = advect(u, 0.0f, 0.5f, dt, false);
         const auto v2 = advect(v, 0.5f, 0.0f, dt, true);
         u = u2;
         v = v2;
