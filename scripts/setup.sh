@@ -7,7 +7,7 @@ packages=(
     build-essential cmake pkg-config python3-glad
     libglm-dev libglfw3-dev libosmesa6-dev libgl-dev
     ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
-    libopenimageio-dev
+    libopenimageio-dev libclfft-dev
     libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev xvfb xauth
 )
 
