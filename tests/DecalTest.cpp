@@ -2,6 +2,7 @@
 // promise under thousands of overlapping stamps, wrapping, healing and refusals.
 
 #include "support/Fixtures.h"
+#include "support/References.h"
 
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/shared/DecalMath.h"
@@ -84,7 +85,10 @@ TEST_F(Decals, KernelMatchesUnbinnedReference) {
                                   0.2f * unit(random), 0.1f + unit(random)});
             map.addBulletHoles(stamps);
             map.step(0.1);
+            std::vector<float> footprint = damage;
+            decalsReference(config, base, footprint, stamps);
             damage = reference(config, base, damage, stamps);
+            for (size_t i = 0; i < damage.size(); ++i) ASSERT_NEAR(footprint[i], damage[i], 1e-6) << i;
             const auto gpu = read(map.damage(), damage.size());
             double maxDiff = 0;
             for (size_t i = 0; i < gpu.size(); ++i) maxDiff = std::max(maxDiff, double(std::abs(gpu[i] - damage[i])));

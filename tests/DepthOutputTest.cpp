@@ -2,6 +2,7 @@
 // polygon is: POM writes gl_FragDepth of the displaced point.
 
 #include "support/Fields.h"
+#include "support/References.h"
 #include "support/Fixtures.h"
 
 #include "hfx/core/Mesh.h"
@@ -20,7 +21,7 @@ TEST_F(DepthOutput, QuadIsClippedAtTheDisplacedSurface) {
     constexpr float depthScale = 0.15f, planeSize = 2.0f;
     const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
     SurfaceTextures textures({.width = field, .height = field, .mipmaps = false});
-    textures.upload(packNormalHeight(heights, field, depthScale).data());
+    textures.upload(sobelReference(heights, field, depthScale).data());
     textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
     const Mesh plane(makePlane({.size = planeSize}));
     PlaneView view{.planeSize = planeSize, .camera = cameraAtAngle(40, 8.0f, 1.0f)};

@@ -3,6 +3,7 @@
 // the CPU traces the same pixel's ray through HeightFieldTracer in double precision.
 
 #include "support/Fields.h"
+#include "support/References.h"
 #include "support/Fixtures.h"
 
 #include "hfx/core/Mesh.h"
@@ -31,7 +32,7 @@ struct Measured {
 
 Measured renderAndCompare(const std::vector<float>& heights, double angle, const char* tag) {
     SurfaceTextures textures({.width = kField, .height = kField, .mipmaps = false});
-    textures.upload(packNormalHeight(heights, kField, kDepthScale).data());
+    textures.upload(sobelReference(heights, kField, kDepthScale).data());
     const Mesh plane(makePlane({.size = 2.0f}));
     PlaneView view{.planeSize = 2.0f, .camera = cameraAtAngle(angle, 8.0f, 1.0f)};
     RenderTarget target(kImage, kImage, true);

@@ -1,6 +1,5 @@
 #include "support/Fields.h"
 
-#include "hfx/compute/shared/SobelMath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,24 +29,6 @@ std::vector<float> blocks(int size, int blocksPerEdge) {
             h[size_t(y) * size + x] = inMortar ? 0.1f : 0.9f;
         }
     return h;
-}
-
-std::vector<float> packNormalHeight(const std::vector<float>& heights, int size, float depthScale) {
-    std::vector<float> out(heights.size() * 4);
-    auto at = [&](int x, int y) {
-        return heights[size_t((y + size) % size) * size + size_t((x + size) % size)];
-    };
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const float dx = hfx_sobel_dx(at(x - 1, y - 1), at(x + 1, y - 1), at(x - 1, y),
-                                          at(x + 1, y), at(x - 1, y + 1), at(x + 1, y + 1));
-            const float dy = hfx_sobel_dy(at(x - 1, y - 1), at(x, y - 1), at(x + 1, y - 1),
-                                          at(x - 1, y + 1), at(x, y + 1), at(x + 1, y + 1));
-            float* o = &out[(size_t(y) * size + x) * 4];
-            hfx_normal_from_slopes(dx, dy, depthScale * size, depthScale * size, o);
-            o[3] = at(x, y);
-        }
-    return out;
 }
 
 bool PlaneView::pixelRay(int x, int y, int width, int height, glm::dvec2& uv0,

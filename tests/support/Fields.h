@@ -19,9 +19,6 @@ std::vector<float> sumOfSines(int size, const std::vector<SineTerm>& terms);
 /// A field with sharp-edged features: raised square blocks on a floor (mortar at h = 0).
 std::vector<float> blocks(int size, int blocksPerEdge);
 
-/// float4 (normal.xyz, h) per texel with the Sobel normals of the compute kernel's CPU twin.
-std::vector<float> packNormalHeight(const std::vector<float>& heights, int size, float depthScale);
-
 /// The plane of the render tests: edge `planeSize` world units, texcoords 0..1, normal +Y.
 struct PlaneView {
     float planeSize = 2.0f;

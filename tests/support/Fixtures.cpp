@@ -6,10 +6,13 @@
 
 namespace hfx::test {
 namespace {
-std::unique_ptr<ClContext> sharedCl;
+// The shared contexts are never destroyed: at exit, static destructors would release OpenCL
+// objects after PoCL's own teardown may have begun (seen as a rare crash after all tests
+// passed). The process's end releases them.
+ClContext* sharedCl = nullptr;
 std::string clError;
 bool clTried = false;
-std::unique_ptr<GlContext> sharedGl;
+GlContext* sharedGl = nullptr;
 std::string glError;
 bool glTried = false;
 
@@ -17,24 +20,24 @@ ClContext* acquireCl() {
     if (!clTried) {
         clTried = true;
         try {
-            sharedCl = std::make_unique<ClContext>();
+            sharedCl = new ClContext();
         } catch (const Error& e) {
             clError = e.what();
         }
     }
-    return sharedCl.get();
+    return sharedCl;
 }
 
 GlContext* acquireGl() {
     if (!glTried) {
         glTried = true;
         try {
-            sharedGl = createHeadlessContext({.width = 64, .height = 64});
+            sharedGl = createHeadlessContext({.width = 64, .height = 64}).release();
         } catch (const Error& e) {
             glError = e.what();
         }
     }
-    return sharedGl.get();
+    return sharedGl;
 }
 } // namespace
 

@@ -1,0 +1,93 @@
+#pragma once
+// Plain single-threaded C++ references of the compute kernels, written from the same shared
+// math headers: what the tests compare the kernels with and the benchmarks time them against.
+
+#include "hfx/compute/DecalMap.h"
+#include "hfx/compute/GasField.h"
+#include "hfx/compute/WaveField.h"
+#include "hfx/compute/shared/GasMath.h"
+
+#include <vector>
+
+namespace hfx::test {
+
+/// The waves formula as written, sin(2 pi (m u + n v) + phase) evaluated directly in double:
+/// the kernel takes the separable route through per-row and per-column tables.
+std::vector<float> wavesReference(const WaveConfig& config, double t);
+
+/// Sobel normals (float4 per texel) of a periodic size x size field, from SobelMath.h.
+std::vector<float> sobelReference(const std::vector<float>& heights, int size, float depthScale);
+
+/// Each stamp over its own footprint, in batch order: how one thread would stamp.
+void decalsReference(const DecalConfig& config, const std::vector<float>& base, std::vector<float>& damage,
+                     const std::vector<BulletHole>& stamps);
+
+/// Level 0 and the reductions of the max-height pyramid, concatenated like MaxPyramid's buffer.
+std::vector<float> pyramidReference(const std::vector<float>& heights, int width, int height);
+
+// One step of GasField, written out on the host with the same per-cell functions (without the
+// dye-mass correction, a global rescale that DyeMassIsConserved checks).
+struct GasReference {
+    GasConfig c;
+    std::vector<float> u, v, dye;
+    int W() const { return c.width; }
+    int H() const { return c.height; }
+    int solid() const { return c.periodicY ? 0 : 1; }
+    template <typename F>
+    std::vector<float> map(F&& f) const {
+        std::vector<float> out(size_t(W()) * H());
+        for (int j = 0; j < H(); ++j)
+            for (int i = 0; i < W(); ++i) out[size_t(j) * W() + i] = f(i, j);
+        return out;
+    }
+    std::vector<float> advect(const std::vector<float>& src, float ox, float oy, float dt, bool wallRow) const {
+        auto plain = [&](const std::vector<float>& s, float step) {
+            return map([&](int i, int j) {
+                return (solid() && wallRow && j == 0)
+                           ? 0.0f
+                           : hfx_gas_advect(u.data(), v.data(), s.data(), W(), H(), i, j, ox, oy, step, solid());
+            });
+        };
+        if (!c.maccormack) return plain(src, dt);
+        const auto forward = plain(src, dt), backward = plain(forward, -dt);
+        return map([&](int i, int j) {
+            return (solid() && wallRow && j == 0)
+                       ? 0.0f
+                       : hfx_gas_maccormack(u.data(), v.data(), src.data(), forward.data(), backward.data(), W(), H(),
+                                            i, j, ox, oy, dt, solid());
+        });
+    }
+    void step(float dt) {
+        if (c.vorticity > 0) {
+            const auto w = map([&](int i, int j) { return hfx_gas_curl(u.data(), v.data(), W(), H(), i, j); });
+            for (int j = 0; j < H(); ++j)
+                for (int i = 0; i < W(); ++i) {
+                    float a[2], b[2];
+                    hfx_gas_confinement(w.data(), W(), H(), i, j, c.vorticity, a);
+                    hfx_gas_confinement(w.data(), W(), H(), hfx_gas_wrap(i - 1, W()), j, c.vorticity, b);
+                    u[j * W() + i] += dt * 0.5f * (a[0] + b[0]);
+                    if (solid() && j == 0) continue;
+                    hfx_gas_confinement(w.data(), W(), H(), i, hfx_gas_wrap(j - 1, H()), c.vorticity, b);
+                    v[j * W() + i] += dt * 0.5f * (a[1] + b[1]);
+                }
+        }
+        const auto u2 = advect(u, 0.0f, 0.5f, dt, false);
+        const auto v2 = advect(v, 0.5f, 0.0f, dt, true);
+        u = u2;
+        v = v2;
+        std::vector<float> div = map([&](int i, int j) { return hfx_gas_divergence(u.data(), v.data(), W(), H(), i, j); });
+        std::vector<float> p(div.size(), 0.0f);
+        for (int it = 0; it < c.pressureIterations; ++it)
+            p = map([&](int i, int j) { return hfx_gas_pressure_jacobi(p.data(), div.data(), W(), H(), i, j, solid()); });
+        for (int j = 0; j < H(); ++j)
+            for (int i = 0; i < W(); ++i) {
+                const int k = j * W() + i;
+                u[k] -= p[k] - p[j * W() + hfx_gas_wrap(i - 1, W())];
+                v[k] = (solid() && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_wrap(j - 1, H()) * W() + i]);
+            }
+        dye = advect(dye, 0.5f, 0.5f, dt, false);
+    }
+};
+
+
+} // namespace hfx::test
