@@ -143,6 +143,14 @@ ClContext::ClContext(const ClContextConfig& config) {
     if (config.log) std::fprintf(stderr, "hfx: OpenCL device %s\n", description().c_str());
 }
 
+ClContext::~ClContext() {
+    try {
+        if (queue_()) queue_.finish();
+    } catch (...) {
+        // Destructors never throw; a failed finish leaves nothing to wait for.
+    }
+}
+
 std::string ClContext::description() const {
     return str("'", device_.getInfo<CL_DEVICE_NAME>(), "' (", platform_.getInfo<CL_PLATFORM_NAME>(),
                ", ", device_.getInfo<CL_DEVICE_VERSION>(), ")");

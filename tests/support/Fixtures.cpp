@@ -47,6 +47,17 @@ void ClTest::SetUp() {
 }
 
 ClContext& ClTest::cl() { return *acquireCl(); }
+
+namespace {
+// PoCL compiles kernels on its own threads at first launch; a process that exits while one is
+// compiling aborts in LLVM's teardown. Every device test waits for its work before it ends.
+void drain() {
+    if (sharedCl) sharedCl->queue().finish();
+}
+} // namespace
+
+void ClTest::TearDown() { drain(); }
+void DeviceTest::TearDown() { drain(); }
 ClContext& DeviceTest::cl() { return *acquireCl(); }
 
 void GlTest::SetUp() {

@@ -16,6 +16,7 @@ namespace hfx::test {
 class ClTest : public ::testing::Test {
 protected:
     void SetUp() override;
+    void TearDown() override; ///< drains the queue: no test leaves work behind at exit
     ClContext& cl();
 };
 
@@ -28,6 +29,7 @@ protected:
 class DeviceTest : public ::testing::Test {
 protected:
     void SetUp() override;
+    void TearDown() override;
     ClContext& cl();
 };
 

@@ -26,6 +26,11 @@ struct ClContextConfig {
 class ClContext {
 public:
     explicit ClContext(const ClContextConfig& config = {});
+    /// Waits for the queue's work first: a process must not exit while the driver still
+    /// compiles or runs what was enqueued.
+    ~ClContext();
+    ClContext(const ClContext&) = delete;
+    ClContext& operator=(const ClContext&) = delete;
 
     const cl::Context& context() const { return context_; }
     const cl::Device& device() const { return device_; }
