@@ -5,12 +5,13 @@
    Stamps are binned on the host into square tiles of TILE texels: tileStart[t]..tileStart[t+1]
    index tileStamps, the stamps whose footprint touches tile t, in batch order. A texel loops
    over its tile's list only, so thousands of stamps cost what their footprints cover.
-   stamps[i] = (u, v, radius, depth), shapes[i] = (rimHeight, rimWidth); distances in units of
-   the map's width. */
+   stamps[i] = (centre x, centre y in texels, 1 / radius in texels, depth),
+   shapes[i] = (rimHeight, rimWidth, squared reach in texels^2, 0): texels beyond the reach of a
+   stamp in their tile's list skip it before any square root. */
 __kernel void decals(__global float* damage, __global const float* base, __global float* height,
                      int width, int rows, float heal, int tilesX,
                      __global const int* tileStart, __global const int* tileStamps,
-                     __global const float4* stamps, __global const float2* shapes) {
+                     __global const float4* stamps, __global const float4* shapes) {
     int x = get_global_id(0), y = get_global_id(1);
     if (x >= width || y >= rows) return;
     int i = y * width + x;
@@ -20,13 +21,16 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
     for (int k = tileStart[tile]; k < tileStart[tile + 1]; ++k) {
         int s = tileStamps[k];
         float4 stamp = stamps[s];
-        float dx = (x + 0.5f) - stamp.x * width, dy = (y + 0.5f) - stamp.y * rows;
+        float dx = (x + 0.5f) - stamp.x, dy = (y + 0.5f) - stamp.y;
 #ifndef CLAMP_EDGES
-        dx -= width * rint(dx / width);
-        dy -= rows * rint(dy / rows);
+        /* The nearest copy of a periodic stamp: centres lie in the map, so one shift suffices. */
+        dx += dx > 0.5f * width ? -(float)width : (dx < -0.5f * width ? (float)width : 0.0f);
+        dy += dy > 0.5f * rows ? -(float)rows : (dy < -0.5f * rows ? (float)rows : 0.0f);
 #endif
-        float r = sqrt(dx * dx + dy * dy) / (stamp.z * width);
-        float2 shape = shapes[s];
+        float4 shape = shapes[s];
+        float d2 = dx * dx + dy * dy;
+        if (d2 >= shape.z) continue;
+        float r = sqrt(d2) * stamp.z;
         d = hfx_apply_damage(d, hfx_crater_profile(r, stamp.w, shape.x, shape.y), b);
     }
     damage[i] = d;

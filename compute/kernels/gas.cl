@@ -55,10 +55,10 @@ __kernel void confine(__global const float* w, __global float* u, __global float
     ID
     float a[2], b[2];
     hfx_gas_confinement(w, W, H, i, j, eps, a);
-    hfx_gas_confinement(w, W, H, hfx_gas_wrap(i - 1, W), j, eps, b);
+    hfx_gas_confinement(w, W, H, hfx_gas_step(i - 1, W), j, eps, b);
     u[k] += dt * 0.5f * (a[0] + b[0]);
     if (SOLID_Y && j == 0) return;
-    hfx_gas_confinement(w, W, H, i, hfx_gas_wrap(j - 1, H), eps, b);
+    hfx_gas_confinement(w, W, H, i, hfx_gas_step(j - 1, H), eps, b);
     v[k] += dt * 0.5f * (a[1] + b[1]);
 }
 
@@ -81,8 +81,8 @@ __kernel void pressure(__global const float* p, __global const float* div, __glo
 /* u -= grad p on every face; the wall's v stays 0. */
 __kernel void project(__global float* u, __global float* v, __global const float* p, int W, int H) {
     ID
-    u[k] -= p[k] - p[j * W + hfx_gas_wrap(i - 1, W)];
-    v[k] = (SOLID_Y && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_wrap(j - 1, H) * W + i]);
+    u[k] -= p[k] - p[j * W + hfx_gas_step(i - 1, W)];
+    v[k] = (SOLID_Y && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H) * W + i]);
 }
 
 __kernel void dye_height(__global const float* dye, __global float* height, int W, int H) {

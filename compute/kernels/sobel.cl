@@ -2,11 +2,12 @@
 
 /* Tangent-space normals of any height buffer; writes float4 (normal.xyz, height) per texel so a
    renderer gets normal and height in one fetch. Edges wrap (periodic fields) unless CLAMP_EDGES. */
+/* i is at most one step outside [0, n): a select, not an integer division. */
 int edge(int i, int n) {
 #ifdef CLAMP_EDGES
     return clamp(i, 0, n - 1);
 #else
-    return (i + n) % n;
+    return i < 0 ? i + n : (i >= n ? i - n : i);
 #endif
 }
 

@@ -45,7 +45,7 @@ DecalMap::DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<f
         height_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, texels * sizeof(float));
         tileStartBuffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, tileStart_.size() * sizeof(int));
         kernel_ = cl.kernel("decals.cl", "decals",
-                            str("-cl-fp32-correctly-rounded-divide-sqrt -DTILE=", config.tileSize,
+                            str("-DTILE=", config.tileSize,
                                 config.periodic ? "" : " -DCLAMP_EDGES"));
     });
     clear();
@@ -157,8 +157,9 @@ void DecalMap::bin() {
     std::fill(tileCounts_.begin(), tileCounts_.end(), 0);
     for (size_t i = 0; i < pending_.size(); ++i) {
         const BulletHole& h = pending_[i];
-        stamps_.push_back({{h.u, h.v, h.radius, h.depth}});
-        shapes_.push_back({{h.rimHeight, h.rimWidth}});
+        const float radius = h.radius * float(W), reach = radius * (1.0f + h.rimWidth);
+        stamps_.push_back({{h.u * float(W), h.v * float(H), 1.0f / radius, h.depth}});
+        shapes_.push_back({{h.rimHeight, h.rimWidth, reach * reach, 0.0f}});
         forEachTile(h, [&](int tile) { tileStamps_[size_t(tileStart_[tile] + tileCounts_[tile]++)] = int(i); });
     }
 }
@@ -173,7 +174,7 @@ void DecalMap::step(double dt) {
         if (stamps_.size() > stampCapacity_ || !stampBuffer_()) {
             stampCapacity_ = std::max<size_t>(stamps_.size(), 256);
             stampBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
-            shapeBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float2));
+            shapeBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
         }
         if (tileStamps_.size() > listCapacity_ || !tileStampsBuffer_()) {
             listCapacity_ = std::max<size_t>(tileStamps_.size(), 1024);
@@ -183,7 +184,7 @@ void DecalMap::step(double dt) {
         q.enqueueWriteBuffer(tileStartBuffer_, CL_TRUE, 0, tileStart_.size() * sizeof(int), tileStart_.data());
         if (!stamps_.empty()) {
             q.enqueueWriteBuffer(stampBuffer_, CL_TRUE, 0, stamps_.size() * sizeof(cl_float4), stamps_.data());
-            q.enqueueWriteBuffer(shapeBuffer_, CL_TRUE, 0, shapes_.size() * sizeof(cl_float2), shapes_.data());
+            q.enqueueWriteBuffer(shapeBuffer_, CL_TRUE, 0, shapes_.size() * sizeof(cl_float4), shapes_.data());
             q.enqueueWriteBuffer(tileStampsBuffer_, CL_TRUE, 0, tileStamps_.size() * sizeof(int), tileStamps_.data());
         }
         int a = 0;
@@ -198,7 +199,10 @@ void DecalMap::step(double dt) {
         kernel_.setArg(a++, tileStampsBuffer_);
         kernel_.setArg(a++, stampBuffer_);
         kernel_.setArg(a++, shapeBuffer_);
-        q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(config_.width, config_.height));
+        // One work-group per tile: every work-item of a group loops over the same stamp list,
+        // so the device can run the group's loop in vector lanes.
+        const size_t T = size_t(config_.tileSize);
+        q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(tilesX_ * T, tilesY_ * T), cl::NDRange(T, T));
     });
     pending_.clear();
 }

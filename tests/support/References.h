@@ -64,10 +64,10 @@ struct GasReference {
                 for (int i = 0; i < W(); ++i) {
                     float a[2], b[2];
                     hfx_gas_confinement(w.data(), W(), H(), i, j, c.vorticity, a);
-                    hfx_gas_confinement(w.data(), W(), H(), hfx_gas_wrap(i - 1, W()), j, c.vorticity, b);
+                    hfx_gas_confinement(w.data(), W(), H(), hfx_gas_step(i - 1, W()), j, c.vorticity, b);
                     u[j * W() + i] += dt * 0.5f * (a[0] + b[0]);
                     if (solid() && j == 0) continue;
-                    hfx_gas_confinement(w.data(), W(), H(), i, hfx_gas_wrap(j - 1, H()), c.vorticity, b);
+                    hfx_gas_confinement(w.data(), W(), H(), i, hfx_gas_step(j - 1, H()), c.vorticity, b);
                     v[j * W() + i] += dt * 0.5f * (a[1] + b[1]);
                 }
         }
@@ -82,8 +82,8 @@ struct GasReference {
         for (int j = 0; j < H(); ++j)
             for (int i = 0; i < W(); ++i) {
                 const int k = j * W() + i;
-                u[k] -= p[k] - p[j * W() + hfx_gas_wrap(i - 1, W())];
-                v[k] = (solid() && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_wrap(j - 1, H()) * W() + i]);
+                u[k] -= p[k] - p[j * W() + hfx_gas_step(i - 1, W())];
+                v[k] = (solid() && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H()) * W() + i]);
             }
         dye = advect(dye, 0.5f, 0.5f, dt, false);
     }

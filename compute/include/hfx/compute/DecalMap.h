@@ -80,7 +80,7 @@ private:
     std::vector<BulletHole> pending_;
     // Staging reused every step: stamps, shapes and the tile lists.
     std::vector<cl_float4> stamps_;
-    std::vector<cl_float2> shapes_;
+    std::vector<cl_float4> shapes_;
     std::vector<int> tileStart_, tileStamps_, tileCounts_;
     size_t stampCapacity_ = 0, listCapacity_ = 0;
     cl::Buffer base_, damage_, height_, tileStartBuffer_, tileStampsBuffer_, stampBuffer_, shapeBuffer_;

@@ -11,21 +11,32 @@
    wrapped grid, is also the top edge of row H-1), where v = 0 and pressure is Neumann. */
 
 HFX_FN int hfx_gas_wrap(int i, int n) {
+    if (i >= 0 && i < n) return i; /* the common case costs no integer division */
     int m = i % n;
     return m < 0 ? m + n : m;
 }
 
-/* Bilinear sample of a field stored at (i + ox, j + oy), at point (x, y). Solid in y: y is
-   clamped to the stored rows that lie inside the walls, so nothing is read across them. */
+/* A neighbour's index, at most one step outside [0, n): a select, not an integer division. */
+HFX_FN int hfx_gas_step(int i, int n) { return i < 0 ? i + n : (i >= n ? i - n : i); }
+
+/* The sampling position of a field stored at (i + ox, j + oy), for a point (x, y). Solid in y:
+   y is clamped to the stored rows inside the walls, so nothing is read across them (rows of v
+   reach the top wall, row H, which wraps to the wall row 0; other fields stop at H-1). */
+HFX_FN void hfx_gas_position(int H, float x, float y, float ox, float oy, int solidY, float* fx,
+                             float* fy) {
+    *fx = x - ox;
+    *fy = y - oy;
+    if (solidY) *fy = HFX_MIN(HFX_MAX(*fy, 0.0f), oy == 0.0f ? (float)H : (float)(H - 1));
+}
+
+/* Bilinear sample of a field stored at (i + ox, j + oy), at point (x, y). */
 HFX_FN float hfx_gas_sample(HFX_GLOBAL const float* f, int W, int H, float x, float y, float ox,
                             float oy, int solidY) {
-    float fx = x - ox, fy = y - oy;
-    /* Rows of v reach the top wall (row H wraps to the wall row 0); other fields stop at H-1. */
-    if (solidY) fy = HFX_MIN(HFX_MAX(fy, 0.0f), oy == 0.0f ? (float)H : (float)(H - 1));
-    float x0 = HFX_FLOOR(fx), y0 = HFX_FLOOR(fy);
-    float sx = fx - x0, sy = fy - y0;
-    int i0 = hfx_gas_wrap((int)x0, W), i1 = hfx_gas_wrap((int)x0 + 1, W);
-    int j0 = hfx_gas_wrap((int)y0, H), j1 = hfx_gas_wrap((int)y0 + 1, H);
+    float fx, fy;
+    hfx_gas_position(H, x, y, ox, oy, solidY, &fx, &fy);
+    float x0 = HFX_FLOOR(fx), y0 = HFX_FLOOR(fy), sx = fx - x0, sy = fy - y0;
+    int i0 = hfx_gas_wrap((int)x0, W), j0 = hfx_gas_wrap((int)y0, H);
+    int i1 = hfx_gas_step(i0 + 1, W), j1 = hfx_gas_step(j0 + 1, H);
     float a = f[j0 * W + i0] + sx * (f[j0 * W + i1] - f[j0 * W + i0]);
     float b = f[j1 * W + i0] + sx * (f[j1 * W + i1] - f[j1 * W + i0]);
     return a + sy * (b - a);
@@ -34,10 +45,10 @@ HFX_FN float hfx_gas_sample(HFX_GLOBAL const float* f, int W, int H, float x, fl
 /* Smallest and largest of the 4 stored values around (x, y): MacCormack's limiter. */
 HFX_FN void hfx_gas_bounds(HFX_GLOBAL const float* f, int W, int H, float x, float y, float ox,
                            float oy, int solidY, float* lo, float* hi) {
-    float fx = x - ox, fy = y - oy;
-    if (solidY) fy = HFX_MIN(HFX_MAX(fy, 0.0f), oy == 0.0f ? (float)H : (float)(H - 1));
-    int i0 = hfx_gas_wrap((int)HFX_FLOOR(fx), W), i1 = hfx_gas_wrap((int)HFX_FLOOR(fx) + 1, W);
-    int j0 = hfx_gas_wrap((int)HFX_FLOOR(fy), H), j1 = hfx_gas_wrap((int)HFX_FLOOR(fy) + 1, H);
+    float fx, fy;
+    hfx_gas_position(H, x, y, ox, oy, solidY, &fx, &fy);
+    int i0 = hfx_gas_wrap((int)HFX_FLOOR(fx), W), j0 = hfx_gas_wrap((int)HFX_FLOOR(fy), H);
+    int i1 = hfx_gas_step(i0 + 1, W), j1 = hfx_gas_step(j0 + 1, H);
     float a = f[j0 * W + i0], b = f[j0 * W + i1], c = f[j1 * W + i0], d = f[j1 * W + i1];
     *lo = HFX_MIN(HFX_MIN(a, b), HFX_MIN(c, d));
     *hi = HFX_MAX(HFX_MAX(a, b), HFX_MAX(c, d));
@@ -85,7 +96,7 @@ HFX_FN float hfx_gas_maccormack(HFX_GLOBAL const float* u, HFX_GLOBAL const floa
 /* Divergence of cell (i, j): outflow through its four faces. */
 HFX_FN float hfx_gas_divergence(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H,
                                 int i, int j) {
-    int ir = hfx_gas_wrap(i + 1, W), jt = hfx_gas_wrap(j + 1, H);
+    int ir = hfx_gas_step(i + 1, W), jt = hfx_gas_step(j + 1, H);
     return (u[j * W + ir] - u[j * W + i]) + (v[jt * W + i] - v[j * W + i]);
 }
 
@@ -93,8 +104,8 @@ HFX_FN float hfx_gas_divergence(HFX_GLOBAL const float* u, HFX_GLOBAL const floa
    across a wall the neighbour is left out (Neumann). */
 HFX_FN float hfx_gas_pressure_jacobi(HFX_GLOBAL const float* p, HFX_GLOBAL const float* div, int W,
                                      int H, int i, int j, int solidY) {
-    int il = hfx_gas_wrap(i - 1, W), ir = hfx_gas_wrap(i + 1, W);
-    int jb = hfx_gas_wrap(j - 1, H), jt = hfx_gas_wrap(j + 1, H);
+    int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
+    int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
     float sum = p[j * W + il] + p[j * W + ir];
     float n = 2.0f;
     if (!solidY || j > 0) { sum += p[jb * W + i]; n += 1.0f; }
@@ -106,8 +117,8 @@ HFX_FN float hfx_gas_pressure_jacobi(HFX_GLOBAL const float* p, HFX_GLOBAL const
    solid walls keep v = 0 on row 0, handled by the caller). */
 HFX_FN float hfx_gas_diffuse_jacobi(HFX_GLOBAL const float* x, HFX_GLOBAL const float* x0, int W,
                                     int H, int i, int j, float a) {
-    int il = hfx_gas_wrap(i - 1, W), ir = hfx_gas_wrap(i + 1, W);
-    int jb = hfx_gas_wrap(j - 1, H), jt = hfx_gas_wrap(j + 1, H);
+    int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
+    int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
     float sum = x[j * W + il] + x[j * W + ir] + x[jb * W + i] + x[jt * W + i];
     return (x0[j * W + i] + a * sum) / (1.0f + 4.0f * a);
 }
@@ -115,8 +126,8 @@ HFX_FN float hfx_gas_diffuse_jacobi(HFX_GLOBAL const float* x, HFX_GLOBAL const 
 /* Cell-centred vorticity dv/dx - du/dy from the face velocities around cell (i, j). */
 HFX_FN float hfx_gas_curl(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H, int i,
                           int j) {
-    int il = hfx_gas_wrap(i - 1, W), ir = hfx_gas_wrap(i + 1, W);
-    int jb = hfx_gas_wrap(j - 1, H), jt = hfx_gas_wrap(j + 1, H);
+    int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
+    int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
     float vr = 0.5f * (v[j * W + ir] + v[jt * W + ir]), vl = 0.5f * (v[j * W + il] + v[jt * W + il]);
     float ut = 0.5f * (u[jt * W + i] + u[jt * W + ir]), ub = 0.5f * (u[jb * W + i] + u[jb * W + ir]);
     return 0.5f * (vr - vl) - 0.5f * (ut - ub);
@@ -126,8 +137,8 @@ HFX_FN float hfx_gas_curl(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, 
    Writes the force's x and y. */
 HFX_FN void hfx_gas_confinement(HFX_GLOBAL const float* curl, int W, int H, int i, int j, float eps,
                                 float* force) {
-    int il = hfx_gas_wrap(i - 1, W), ir = hfx_gas_wrap(i + 1, W);
-    int jb = hfx_gas_wrap(j - 1, H), jt = hfx_gas_wrap(j + 1, H);
+    int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
+    int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
     float gx = 0.5f * (HFX_FABS(curl[j * W + ir]) - HFX_FABS(curl[j * W + il]));
     float gy = 0.5f * (HFX_FABS(curl[jt * W + i]) - HFX_FABS(curl[jb * W + i]));
     float len = HFX_SQRT(gx * gx + gy * gy) + 1e-6f;

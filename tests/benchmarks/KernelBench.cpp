@@ -1,0 +1,197 @@
+// hfx-bench-kernels: every compute kernel at 512^2 and 2048^2, timed per step (enqueue to
+// finish), with two ratios taken in the same run: against a single-threaded C++ reference of the
+// same math, and the bytes the kernel must move per second against plain memcpy bandwidth.
+//
+//   build/tests/hfx-bench-kernels --benchmark_counters_tabular=true
+
+#include "support/References.h"
+
+#include "hfx/compute/DecalMap.h"
+#include "hfx/compute/GasField.h"
+#include "hfx/compute/MaxPyramid.h"
+#include "hfx/compute/NoiseField.h"
+#include "hfx/compute/OceanField.h"
+#include "hfx/compute/SobelNormals.h"
+#include "hfx/compute/WaveField.h"
+#include "hfx/compute/shared/NoiseMath.h"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <random>
+
+namespace hfx::test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+ClContext& cl() {
+    static ClContext* context = new ClContext({.log = false}); // outlives every benchmark
+    return *context;
+}
+
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+/// Mean seconds of f over repeats lasting at least minSeconds.
+double timeIt(const std::function<void()>& f, double minSeconds = 0.3) {
+    int runs = 0;
+    const auto start = Clock::now();
+    do {
+        f();
+        ++runs;
+    } while (seconds(start, Clock::now()) < minSeconds);
+    return seconds(start, Clock::now()) / runs;
+}
+
+/// Single-threaded memcpy bandwidth (bytes/s, counting read + write), measured once.
+double memcpyBandwidth() {
+    static const double bandwidth = [] {
+        const size_t bytes = size_t(64) << 20;
+        std::vector<char> a(bytes, 1), b(bytes);
+        const double t = timeIt([&] {
+            std::memcpy(b.data(), a.data(), bytes);
+            benchmark::DoNotOptimize(b.data());
+        });
+        return 2.0 * bytes / t;
+    }();
+    return bandwidth;
+}
+
+std::vector<float> randomHeights(int n, unsigned seed = 1) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> h(size_t(n) * n);
+    for (float& v : h) v = unit(random);
+    return h;
+}
+
+/// Times `step` (one device step, then finish) in the benchmark loop and reports: ms per step,
+/// GB/s of `bytesPerStep`, that as a fraction of memcpy, and the reference's time over the
+/// kernel's (the reference is run once per benchmark, in the same process).
+void measure(benchmark::State& state, const std::function<void()>& step, double bytesPerStep,
+             const std::function<void()>& reference) {
+    step(); // first launch compiles and picks the local size
+    cl().queue().finish();
+    double total = 0;
+    int64_t steps = 0;
+    for (auto _ : state) {
+        const auto start = Clock::now();
+        step();
+        cl().queue().finish();
+        total += seconds(start, Clock::now());
+        ++steps;
+    }
+    const double perStep = total / double(steps);
+    state.counters["ms"] = perStep * 1e3;
+    state.counters["GB/s"] = bytesPerStep / perStep / 1e9;
+    state.counters["of_memcpy"] = bytesPerStep / perStep / memcpyBandwidth();
+    if (reference) state.counters["x_1thread"] = timeIt(reference, 0.2) / perStep;
+}
+
+void BM_Sobel(benchmark::State& state) {
+    const int n = int(state.range(0));
+    const auto heights = randomHeights(n);
+    cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
+                     const_cast<float*>(heights.data()));
+    SobelNormals sobel(cl(), {.width = n, .height = n});
+    // 9 reads hit the cache; memory sees one float in and one float4 out per texel.
+    measure(state, [&] { sobel.run(input); }, 20.0 * n * n,
+            [&] { benchmark::DoNotOptimize(sobelReference(heights, n, 0.05f)); });
+}
+
+void BM_Waves(benchmark::State& state) {
+    const int n = int(state.range(0));
+    WaveField waves(cl(), {.size = n});
+    measure(state, [&] { waves.step(1.0 / 60); }, 4.0 * n * n,
+            [&] { benchmark::DoNotOptimize(wavesReference(waves.config(), 1.0)); });
+}
+
+void BM_Noise(benchmark::State& state) {
+    const int n = int(state.range(0));
+    NoiseField noise(cl(), {.width = n, .height = n, .kind = NoiseKind::Perlin, .octaves = 4});
+    const NoiseConfig& c = noise.config();
+    measure(state, [&] { noise.step(1.0 / 60); }, 4.0 * n * n, [&] {
+        std::vector<float> h(size_t(n) * n);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                h[size_t(y) * n + x] = hfx_noise_texel(0, 0, (x + 0.5f) / n, (y + 0.5f) / n, c.frequency, c.frequencyY(),
+                                                       1, 0.5f, c.octaves, c.lacunarity, c.gain, c.warp);
+        benchmark::DoNotOptimize(h.data());
+    });
+}
+
+void BM_Decals(benchmark::State& state) {
+    // One step with 2000 bullet holes (radius 1% of the width) stamped into the map.
+    const int n = int(state.range(0));
+    const DecalConfig config{.width = n, .height = n};
+    DecalMap map(cl(), config);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> unit(0.0f, 0.999f);
+    std::vector<BulletHole> holes;
+    for (int i = 0; i < 2000; ++i) holes.push_back({.u = unit(random), .v = unit(random)});
+    const std::vector<float> base(size_t(n) * n, config.baseHeight);
+    // Memory: base and damage in, damage and height out, per texel.
+    measure(state, [&] {
+        map.addBulletHoles(holes);
+        map.step(1.0 / 60);
+    }, 16.0 * n * n, [&] {
+        std::vector<float> damage(base.size(), 0.0f);
+        decalsReference(config, base, damage, holes);
+        for (size_t i = 0; i < damage.size(); ++i) damage[i] = std::clamp(base[i] + damage[i], 0.0f, 1.0f);
+        benchmark::DoNotOptimize(damage.data());
+    });
+}
+
+void BM_Pyramid(benchmark::State& state) {
+    const int n = int(state.range(0));
+    const auto heights = randomHeights(n);
+    cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
+                     const_cast<float*>(heights.data()));
+    MaxPyramid pyramid(cl(), n, n, true);
+    measure(state, [&] { pyramid.build(input); }, 4.0 * n * n * (1.0 + 4.0 / 3.0),
+            [&] { benchmark::DoNotOptimize(pyramidReference(heights, n, n)); });
+}
+
+void BM_Gas(benchmark::State& state) {
+    // A full step: jets, confinement, MacCormack advection of u, v and dye, 40 pressure sweeps.
+    const int n = int(state.range(0));
+    const GasConfig config{.width = n, .height = n, .pressureIterations = 40, .vorticity = 0.2f,
+                           .conserveDye = false, .jetSpeed = 3.0f, .initialBands = 4.0f};
+    GasField gas(cl(), config);
+    GasReference reference{config, {}, {}, {}};
+    gas.readState(reference.u, reference.v, reference.dye);
+    // Per step each of ~60 passes reads and writes a few fields: count the pressure sweeps
+    // (2 floats in, 1 out per texel) and the advections (3 fields, ~3 passes of 4 floats).
+    const double bytes = (40 * 12.0 + 3 * 3 * 16.0) * n * n;
+    measure(state, [&] { gas.step(0.5); }, bytes, n <= 512 ? std::function<void()>([&] { reference.step(0.5f); })
+                                                            : std::function<void()>());
+}
+
+void BM_Ocean(benchmark::State& state) {
+    const int n = int(state.range(0));
+    OceanField ocean(cl(), {.size = n});
+    // No single-threaded FFT on the machine to compare with: time and bandwidth only (spectrum
+    // in, FFT passes, height out: about 5 complex reads and writes per texel).
+    measure(state, [&] { ocean.step(1.0 / 60); }, 5 * 16.0 * n * n, {});
+}
+
+BENCHMARK(BM_Sobel)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Decals)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Noise)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Ocean)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Gas)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+} // namespace
+} // namespace hfx::test
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    std::printf("memcpy bandwidth (1 thread, read + write): %.2f GB/s\n", hfx::test::memcpyBandwidth() / 1e9);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+}
