@@ -8,8 +8,9 @@
     if (i >= W || j >= H) return;                                                                  \
     int k = j * W + i;
 
-__kernel void advect(__global const float* u, __global const float* v, __global const float* src,
-                     __global float* dst, int W, int H, float ox, float oy, float dt, int wallRow) {
+__kernel void advect(__global const float* restrict u, __global const float* restrict v,
+                     __global const float* restrict src, __global float* restrict dst, int W, int H,
+                     float ox, float oy, float dt, int wallRow) {
     ID
     dst[k] = (SOLID_Y && wallRow && j == 0) ? 0.0f
                                             : hfx_gas_advect(u, v, src, W, H, i, j, ox, oy, dt, SOLID_Y);

@@ -156,10 +156,12 @@ void BM_Pyramid(benchmark::State& state) {
 }
 
 void BM_Gas(benchmark::State& state) {
-    // A full step: jets, confinement, MacCormack advection of u, v and dye, 40 pressure sweeps.
+    // A full step: jets, confinement, advection of u, v and dye (semi-Lagrangian, or MacCormack
+    // when the second argument is 1), 40 pressure sweeps.
     const int n = int(state.range(0));
     const GasConfig config{.width = n, .height = n, .pressureIterations = 40, .vorticity = 0.2f,
-                           .conserveDye = false, .jetSpeed = 3.0f, .initialBands = 4.0f};
+                           .maccormack = state.range(1) != 0, .conserveDye = false, .jetSpeed = 3.0f,
+                           .initialBands = 4.0f};
     GasField gas(cl(), config);
     GasReference reference{config, {}, {}, {}};
     gas.readState(reference.u, reference.v, reference.dye);
@@ -184,7 +186,7 @@ BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMill
 BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Noise)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Ocean)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Gas)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 
 } // namespace
 } // namespace hfx::test
