@@ -73,6 +73,19 @@ TEST(HeightFieldTracer, AgreesWithFineMarching) {
     }
 }
 
+TEST(HeightFieldTracer, WrapUTilesAlongUAndClampsAlongV) {
+    constexpr int N = 8;
+    std::vector<float> h(N * N);
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) h[j * N + i] = float(i) / N + float(j) / (N * N);
+    const HeightFieldTracer grid(h, N, N, EdgeMode::WrapU);
+    // Half a texel beyond u = 0 lies between the last and the first column.
+    EXPECT_NEAR(grid.heightAt({0.0, 0.5 / N}), 0.5 * (h[N - 1] + h[0]), 1e-12);
+    // Below v = 0 the first row is held, above v = 1 the last.
+    EXPECT_NEAR(grid.heightAt({2.5 / N, -0.3}), h[2], 1e-12);
+    EXPECT_NEAR(grid.heightAt({2.5 / N, 1.3}), h[(N - 1) * N + 2], 1e-12);
+}
+
 TEST(HeightFieldTracer, RejectsMismatchedSize) {
     EXPECT_THROW(HeightFieldTracer(std::vector<float>(10), 4, 4, EdgeMode::Wrap), Error);
 }

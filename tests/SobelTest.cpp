@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -117,6 +118,26 @@ TEST_F(Sobel, KernelMatchesSharedCpuMath) {
                              at(x, y + 1), at(x + 1, y + 1)),
                 0.03f * N, 0.03f * N, expected);
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(out[y * N + x].s[c], expected[c], 1e-6);
+        }
+}
+
+TEST_F(Sobel, LongitudeLatitudeGridWrapsUAndClampsV) {
+    constexpr int W = 24, H = 16;
+    std::vector<float> heights(W * H);
+    for (int i = 0; i < W * H; ++i) heights[i] = float((i * 4241) % 97) / 96.0f;
+    const float depthScale = 0.05f;
+    const auto out = run(heights, {.width = W, .height = H, .depthScale = depthScale, .clampV = true});
+    auto at = [&](int x, int y) { return heights[std::clamp(y, 0, H - 1) * W + (x + W) % W]; };
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            float expected[3];
+            hfx_normal_from_slopes(
+                hfx_sobel_dx(at(x - 1, y - 1), at(x + 1, y - 1), at(x - 1, y), at(x + 1, y),
+                             at(x - 1, y + 1), at(x + 1, y + 1)),
+                hfx_sobel_dy(at(x - 1, y - 1), at(x, y - 1), at(x + 1, y - 1), at(x - 1, y + 1),
+                             at(x, y + 1), at(x + 1, y + 1)),
+                depthScale * W, depthScale * H, expected);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(out[y * W + x].s[c], expected[c], 1e-6) << x << "," << y;
         }
 }
 

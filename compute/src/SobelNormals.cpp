@@ -18,7 +18,7 @@ SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config) : cl_(cl), 
     clGuard("creating the Sobel normals", [&] {
         output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
                              sizeof(cl_float4) * size_t(config.width) * config.height);
-        kernel_ = cl.kernel("sobel.cl", "sobel", config.wrapEdges ? "" : "-DCLAMP_EDGES");
+        kernel_ = cl.kernel("sobel.cl", "sobel", !config.wrapEdges ? "-DCLAMP_EDGES" : (config.clampV ? "-DCLAMP_Y" : ""));
     });
 }
 

@@ -20,10 +20,11 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
                   ? static_cast<int>(std::bit_width(static_cast<unsigned>(
                         std::max(config.width, config.height))))
                   : 1;
-    const GLenum wrap = config.edges == EdgeMode::Wrap ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    const GLenum wrapS = config.edges == EdgeMode::Clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
+    const GLenum wrapT = config.edges == EdgeMode::Wrap ? GL_REPEAT : GL_CLAMP_TO_EDGE;
     for (const GlTexture* t : {&surface_, &albedo_}) {
-        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, wrap);
-        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, wrap);
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, wrapS);
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, wrapT);
         glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER,
                             levels_ > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);

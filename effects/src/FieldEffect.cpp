@@ -25,11 +25,14 @@ FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
       normals_(cl, SobelConfig{.width = checked(source).width(),
                                .height = source->height(),
                                .depthScale = material.depthScale,
-                               .wrapEdges = source->periodic()}),
+                               .wrapEdges = source->periodicU(),
+                               .clampV = !source->periodic()}),
       textures_(SurfaceTexturesConfig{.width = source->width(),
                                       .height = source->height(),
                                       .mipmaps = mipmaps,
-                                      .edges = source->periodic() ? EdgeMode::Wrap : EdgeMode::Clamp}) {
+                                      .edges = source->periodic()    ? EdgeMode::Wrap
+                                               : source->periodicU() ? EdgeMode::WrapU
+                                                                     : EdgeMode::Clamp}) {
     source_ = std::move(source);
     refresh(nowMs());
 }

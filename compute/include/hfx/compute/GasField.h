@@ -60,6 +60,7 @@ public:
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }
     bool periodic() const override { return config_.periodicY; }
+    bool periodicU() const override { return true; }
     const GasConfig& config() const { return config_; }
 
 private:

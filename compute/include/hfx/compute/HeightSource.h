@@ -19,6 +19,8 @@ public:
     virtual int height() const = 0;
     /// True when the field tiles (edges wrap for the Sobel filter and the textures).
     virtual bool periodic() const = 0;
+    /// True when the field tiles along u (x) at least: a longitude-latitude grid wraps in u only.
+    virtual bool periodicU() const { return periodic(); }
 };
 
 } // namespace hfx

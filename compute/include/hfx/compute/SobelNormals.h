@@ -14,6 +14,7 @@ struct SobelConfig {
     /// those of the surface z = depthScale * h(u, v).
     float depthScale = 0.05f;
     bool wrapEdges = true; ///< periodic fields wrap; others clamp to the edge texel
+    bool clampV = false;   ///< with wrapEdges: wrap u only, clamp v (longitude-latitude grids)
     void validate() const;
 };
 

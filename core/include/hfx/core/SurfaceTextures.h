@@ -8,7 +8,9 @@
 
 namespace hfx {
 
-enum class EdgeMode { Wrap, Clamp };
+/// How texels beyond the edges are read: Wrap tiles both ways; WrapU tiles u and clamps v (a
+/// longitude-latitude map, which wraps at the date line but not over the poles); Clamp clamps.
+enum class EdgeMode { Wrap, Clamp, WrapU };
 
 struct SurfaceTexturesConfig {
     int width = 512;
