@@ -36,5 +36,34 @@ TEST(Plane, BadConfigurationNamesTheField) {
     EXPECT_THROW(makePlane({.subdivisions = 0}), Error);
 }
 
+TEST(Sphere, TangentsAreTexcoordDerivativesAndFaceOutwards) {
+    const SphereConfig config{.radius = 2.0f, .segments = 64, .rings = 32};
+    const MeshData sphere = makeSphere(config);
+    const int row = config.segments + 1;
+    ASSERT_EQ(sphere.vertices.size(), size_t(row * (config.rings + 1)));
+    for (int j = 1; j < config.rings - 1; ++j)
+        for (int i = 0; i < config.segments; ++i) {
+            const Vertex& a = sphere.vertices[j * row + i];
+            const Vertex& b = sphere.vertices[j * row + i + 1];
+            const Vertex& c = sphere.vertices[(j + 1) * row + i];
+            ASSERT_NEAR(glm::length(a.position), 2.0f, 1e-5f);
+            // Central differences of the exact parametrisation agree with T and B to O(h^2):
+            // compare the one-sided difference with the average of the two ends' derivatives.
+            const glm::vec3 du = (b.position - a.position) / (b.texcoord.x - a.texcoord.x);
+            const glm::vec3 dv = (c.position - a.position) / (c.texcoord.y - a.texcoord.y);
+            ASSERT_LT(glm::length(du - 0.5f * (a.tangent + b.tangent)), 2e-2f * glm::length(a.tangent) + 1e-3f);
+            ASSERT_LT(glm::length(dv - 0.5f * (a.bitangent + c.bitangent)), 2e-2f * glm::length(a.bitangent));
+            ASSERT_GT(glm::dot(glm::cross(a.tangent, a.bitangent), a.position), 0.0f) << i << "," << j;
+            const glm::vec3 p0 = sphere.vertices[sphere.indices[6 * (j * config.segments + i)]].position;
+            const glm::vec3 p1 = sphere.vertices[sphere.indices[6 * (j * config.segments + i) + 1]].position;
+            const glm::vec3 p2 = sphere.vertices[sphere.indices[6 * (j * config.segments + i) + 2]].position;
+            ASSERT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), p0 + p1 + p2), 0.0f) << "winding at " << i << "," << j;
+        }
+    // The seam doubles its vertices: u = 0 and u = 1 share positions.
+    EXPECT_LT(glm::length(sphere.vertices[row * 10].position - sphere.vertices[row * 10 + config.segments].position), 1e-5f);
+    EXPECT_THROW(makeSphere({.segments = 2}), Error);
+    EXPECT_THROW(makeSphere({.radius = 0.0f}), Error);
+}
+
 } // namespace
 } // namespace hfx

@@ -107,12 +107,10 @@ float OceanField::quantisedOmega(double k, double repeatSeconds) {
     return float(std::floor(std::sqrt(kGravity * k) / w0) * w0);
 }
 
-OceanField::OceanField(ClContext& cl, const OceanConfig& config)
-    : cl_(cl), config_((config.validate(), config)), plan_(std::make_unique<Plan>()) {
+std::vector<std::complex<float>> OceanField::spectrumAmplitudes(const OceanConfig& config) {
+    config.validate();
     const int N = config.size;
-    const size_t n = size_t(N) * N;
-    h0_.resize(n);
-    omega_.resize(n);
+    std::vector<std::complex<float>> h0(size_t(N) * N);
     SplitMix64 random(config.seed);
     const double dk = 2.0 * kPi / config.patchMeters;
     for (int y = 0; y < N; ++y)
@@ -122,8 +120,33 @@ OceanField::OceanField(ClContext& cl, const OceanConfig& config)
             // Box-Muller: two unit Gaussians, one complex amplitude of variance Psi dk^2 / 2 per part.
             const double r = std::sqrt(-2.0 * std::log(1.0 - random.next())), a = 2.0 * kPi * random.next();
             const double amplitude = std::sqrt(spectralDensity(config, kx, ky) * dk * dk / 2.0);
-            h0_[size_t(y) * N + x] = {float(amplitude * r * std::cos(a)), float(amplitude * r * std::sin(a))};
-            omega_[size_t(y) * N + x] = quantisedOmega(std::hypot(kx, ky), config.repeatSeconds);
+            h0[size_t(y) * N + x] = {float(amplitude * r * std::cos(a)), float(amplitude * r * std::sin(a))};
+        }
+    return h0;
+}
+
+void OceanField::setWind(float speed, float direction) {
+    OceanConfig next = config_;
+    next.windSpeed = speed;
+    next.windDirection = direction;
+    auto h0 = spectrumAmplitudes(next); // validates; throws before anything changes
+    config_ = next;
+    h0_ = std::move(h0);
+    uploadAmplitudes();
+    compute();
+}
+
+OceanField::OceanField(ClContext& cl, const OceanConfig& config)
+    : cl_(cl), config_((config.validate(), config)), plan_(std::make_unique<Plan>()) {
+    const int N = config.size;
+    const size_t n = size_t(N) * N;
+    h0_ = spectrumAmplitudes(config);
+    omega_.resize(n);
+    const double dk = 2.0 * kPi / config.patchMeters;
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) {
+            const int kxIndex = x < N / 2 ? x : x - N, kyIndex = y < N / 2 ? y : y - N;
+            omega_[size_t(y) * N + x] = quantisedOmega(std::hypot(dk * kxIndex, dk * kyIndex), config.repeatSeconds);
         }
     clGuard("creating the ocean", [&] {
         h0Buffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, n * sizeof(cl_float2));

@@ -40,6 +40,41 @@ MeshData makePlane(const PlaneConfig& config) {
     return mesh;
 }
 
+void SphereConfig::validate() const {
+    if (!(radius > 0.0f) || !std::isfinite(radius))
+        throw Error(str("SphereConfig.radius must be positive, got ", radius));
+    if (segments < 3 || segments > 4096 || rings < 2 || rings > 4096)
+        throw Error(str("SphereConfig needs 3..4096 segments and 2..4096 rings, got ", segments,
+                        " and ", rings));
+}
+
+MeshData makeSphere(const SphereConfig& config) {
+    config.validate();
+    MeshData mesh;
+    const double pi = 3.14159265358979323846;
+    const double r = config.radius;
+    for (int j = 0; j <= config.rings; ++j)
+        for (int i = 0; i <= config.segments; ++i) {
+            const double u = double(i) / config.segments, v = double(j) / config.rings;
+            const double lon = 2.0 * pi * u, lat = pi * (v - 0.5);
+            const double cl = std::cos(lat), sl = std::sin(lat), co = std::cos(lon), so = std::sin(lon);
+            Vertex vertex;
+            vertex.normal = glm::vec3(glm::dvec3(cl * co, sl, -cl * so));
+            vertex.position = vertex.normal * config.radius;
+            vertex.tangent = glm::vec3(glm::dvec3(-cl * so, 0.0, -cl * co) * (2.0 * pi * r));
+            vertex.bitangent = glm::vec3(glm::dvec3(-sl * co, cl, sl * so) * (pi * r));
+            vertex.texcoord = {float(u), float(v)};
+            mesh.vertices.push_back(vertex);
+        }
+    const int row = config.segments + 1;
+    for (int j = 0; j < config.rings; ++j)
+        for (int i = 0; i < config.segments; ++i) {
+            const uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
+            mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+        }
+    return mesh;
+}
+
 Mesh::Mesh(const MeshData& data)
     : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
       vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())) {

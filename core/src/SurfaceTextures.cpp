@@ -44,6 +44,13 @@ void SurfaceTextures::upload(const float* normalHeight) {
     if (levels_ > 1) glGenerateTextureMipmap(surface_.id());
 }
 
+void SurfaceTextures::uploadAlbedo(const unsigned char* rgba) {
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(albedo_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
+                        GL_UNSIGNED_BYTE, rgba);
+    if (levels_ > 1) glGenerateTextureMipmap(albedo_.id());
+}
+
 void SurfaceTextures::setAlbedo(const Image& albedo) {
     const bool solid = albedo.width == 1 && albedo.height == 1;
     if (!solid && (albedo.width != config_.width || albedo.height != config_.height))

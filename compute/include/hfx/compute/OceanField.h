@@ -42,6 +42,12 @@ public:
 
     void step(double dt) override;
     void setTime(double seconds);
+    /// Changes the wind (m/s, radians from +u) and regenerates the spectrum from the same random
+    /// draws, so the sea changes character without jumping; throws and changes nothing on bad
+    /// values. Heights are renormalised to the new sigma (see heightScale()).
+    void setWind(float speed, float direction);
+    /// h0(k) of a configuration, in FFT index order (what the constructor draws).
+    static std::vector<std::complex<float>> spectrumAmplitudes(const OceanConfig& config);
     double time() const { return time_; }
 
     const cl::Buffer& buffer() const override { return height_; }

@@ -37,6 +37,18 @@ struct PlaneConfig {
 /// A square in the XZ plane, normal +Y; u grows along +X and v along -Z, so T x B = N.
 MeshData makePlane(const PlaneConfig& config = {});
 
+struct SphereConfig {
+    float radius = 1.0f;
+    int segments = 96; ///< quads around the equator (u)
+    int rings = 48;    ///< quads from pole to pole (v)
+    void validate() const;
+};
+
+/// A longitude-latitude sphere centred on the origin: u = longitude / 2 pi (the seam's
+/// vertices are doubled, u = 0 and 1), v = 0 at the south pole and 1 at the north (+Y).
+/// T = dP/du, B = dP/dv exactly, so T x B points outwards; at the poles T vanishes.
+MeshData makeSphere(const SphereConfig& config = {});
+
 /// Vertex and index buffers plus a vertex array, laid out as Vertex (locations 0..4).
 class Mesh {
 public:

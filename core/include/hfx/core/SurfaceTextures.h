@@ -29,6 +29,9 @@ public:
     void upload(const float* normalHeight);
     /// Replaces the albedo; the image must match the surface size or be 1x1 (a solid colour).
     void setAlbedo(const Image& albedo);
+    /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
+    /// field), and regenerates its mip chain.
+    void uploadAlbedo(const unsigned char* rgba);
 
     GLuint surface() const { return surface_.id(); }
     GLuint albedo() const { return albedo_.id(); }
