@@ -5,6 +5,8 @@
 // Variants (prepended #defines):
 //   HFX_TECHNIQUE     0 = normal mapping, 1 = parallax occlusion mapping
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, height fetches) of the hit to output 1
+//   HFX_SHADING       0 = Blinn-Phong, 1 = water (Fresnel sky reflection, sun glint, body colour
+//                     by depth, haze), 2 = planet (Blinn-Phong, soft terminator, atmosphere rim)
 //
 // Conventions: s_surface holds the tangent-space normal in xyz and the height h in w, h = 1 at the
 // polygon and 0 at the deepest point, u_depthScale texture units below it. Texture space has
@@ -15,6 +17,9 @@
 #endif
 #ifndef HFX_TRACE_OUTPUT
 #define HFX_TRACE_OUTPUT 0
+#endif
+#ifndef HFX_SHADING
+#define HFX_SHADING 0
 #endif
 
 in vec3 v_worldPos;
@@ -47,6 +52,30 @@ uniform vec3 u_lightColor;
 uniform vec3 u_ambient;
 uniform float u_specularStrength;
 uniform float u_specularPower;
+uniform float u_silhouetteFade;  // curved meshes: relief fades where cos(view) drops below this
+
+#if HFX_SHADING == 1
+uniform sampler2D s_environment; // equirectangular sky, when u_hasEnvironment
+uniform bool u_hasEnvironment;
+uniform vec3 u_deepColor;
+uniform vec3 u_shallowColor;
+uniform vec3 u_skyZenith;
+uniform vec3 u_skyHorizon;
+uniform float u_fresnelF0;
+uniform float u_glintPower;
+uniform float u_glintStrength;
+uniform float u_hazeDistance;
+
+// The sky seen along a world direction: the environment image, or a zenith-horizon gradient.
+vec3 sky(vec3 dir) {
+    if (u_hasEnvironment) {
+        const float pi = 3.14159265;
+        const vec2 uv = vec2(atan(dir.z, dir.x) / (2.0 * pi) + 0.5, acos(clamp(dir.y, -1.0, 1.0)) / pi);
+        return textureLod(s_environment, vec2(uv.x, 1.0 - uv.y), 0.0).rgb;
+    }
+    return mix(u_skyHorizon, u_skyZenith, sqrt(clamp(dir.y, 0.0, 1.0)));
+}
+#endif
 
 const int MAX_SAMPLES = 256;     // hard bound of every loop; the uniforms pick fewer
 const int MAX_SHADOW_SAMPLES = 32;
@@ -64,8 +93,16 @@ void main() {
     const float unitsPerTexcoord = sqrt(length(v_tangent) * length(v_bitangent));
     const mat3 worldFromTexture = mat3(v_tangent, v_bitangent, geometricNormal * unitsPerTexcoord);
     const vec3 toEye = u_cameraPos - v_worldPos;
+    const float cosView = clamp(dot(geometricNormal, normalize(toEye)), 0.0, 1.0);
+    // A degenerate frame (a sphere's poles, where dP/du vanishes) has no texture space: there the
+    // surface is normal mapped. Silhouettes of curved meshes fade the relief out.
+    const bool frameOk = length(v_tangent) > 1e-3 * length(v_bitangent) &&
+                         length(v_bitangent) > 1e-3 * length(v_tangent);
+    const float depthScale =
+        frameOk ? u_depthScale * (u_silhouetteFade > 0.0 ? smoothstep(0.0, u_silhouetteFade, cosView) : 1.0)
+                : 0.0;
 #if HFX_TECHNIQUE == 1
-    const mat3 textureFromWorld = inverse(worldFromTexture);
+    const mat3 textureFromWorld = frameOk ? inverse(worldFromTexture) : mat3(1.0);
     const vec3 viewTS = textureFromWorld * toEye;
 #endif
 
@@ -81,11 +118,10 @@ void main() {
     float fetches = 0.0;
 
 #if HFX_TECHNIQUE == 1
-    if (mipLevel <= u_lodThreshold && viewTS.z > 0.0 && u_depthScale > 0.0) {
+    if (mipLevel <= u_lodThreshold && viewTS.z > 0.0 && depthScale > 0.0) {
         // Parallax offset vector: where the ray has moved in uv when it reaches h = 0.
-        const vec2 parallax = viewTS.xy / viewTS.z * u_depthScale;
+        const vec2 parallax = viewTS.xy / viewTS.z * depthScale;
         // Dynamic sample rate: more steps the more grazing the view.
-        const float cosView = clamp(dot(geometricNormal, normalize(toEye)), 0.0, 1.0);
         const int steps = clamp(int(mix(float(u_maxSamples), float(u_minSamples), cosView)), 1,
                                 MAX_SAMPLES);
         const float stepSize = 1.0 / float(steps);
@@ -129,7 +165,7 @@ void main() {
     if (u_clipToPatch && (any(lessThan(uv, u_patchBounds.xy)) || any(greaterThan(uv, u_patchBounds.zw))))
         discard;
 
-    const vec3 displacedTS = vec3(uv - uv0, -depthFraction * u_depthScale);
+    const vec3 displacedTS = vec3(uv - uv0, -depthFraction * depthScale);
     const vec3 displacedWorld = v_worldPos + worldFromTexture * displacedTS;
 #if HFX_TECHNIQUE == 1
     // Depth of the displaced point, so geometry crossing the relief is clipped at the relief.
@@ -141,8 +177,8 @@ void main() {
 
     const vec4 surfaceSample = textureLod(s_surface, uv, mipLevel);
     const vec3 albedo = textureLod(s_albedo, uv, mipLevel).rgb;
-    const vec3 tangentUnit = normalize(v_tangent);
-    const vec3 bitangentUnit = normalize(v_bitangent);
+    const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
+    const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
     const vec3 normal = normalize(tangentUnit * surfaceSample.x + bitangentUnit * surfaceSample.y +
                                   geometricNormal * surfaceSample.z);
     const vec3 lightDir = normalize(u_lightDir);
@@ -156,8 +192,8 @@ void main() {
     const vec3 lightTS = textureFromWorld * lightDir;
     const float h0 = 1.0 - depthFraction;
     if (u_shadows && lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && nDotL > 0.0 &&
-        h0 < 1.0 && mipLevel <= u_lodThreshold) {
-        const vec2 lightSpan = lightTS.xy / lightTS.z * u_depthScale * (1.0 - h0);
+        h0 < 1.0 && mipLevel <= u_lodThreshold && depthScale > 0.0) {
+        const vec2 lightSpan = lightTS.xy / lightTS.z * depthScale * (1.0 - h0);
         const int samples = clamp(u_shadowSamples, 1, MAX_SHADOW_SAMPLES);
         float occlusion = 0.0;
         for (int i = 1; i <= MAX_SHADOW_SAMPLES; ++i) {
@@ -177,8 +213,31 @@ void main() {
     const vec3 halfway = normalize(lightDir + viewDir);
     const float diffuse = max(nDotL, 0.0);
     const float specular = nDotL > 0.0 ? pow(max(dot(normal, halfway), 0.0), u_specularPower) : 0.0;
+#if HFX_SHADING == 1
+    // Water: the body colour deepens in the troughs, the sky is reflected by Schlick's Fresnel
+    // weight, the sun leaves a sharp glint, and distance fades everything into the horizon.
+    const vec3 body = mix(u_deepColor, u_shallowColor, surfaceSample.w * surfaceSample.w) *
+                      (u_ambient + lit * diffuse * u_lightColor);
+    vec3 reflected = reflect(-viewDir, normal);
+    reflected.y = abs(reflected.y); // a ray reflected downwards sees the next wave's sky
+    const float fresnel =
+        u_fresnelF0 + (1.0 - u_fresnelF0) * pow(1.0 - clamp(dot(normal, viewDir), 0.0, 1.0), 5.0);
+    const float glint = u_glintStrength * pow(max(dot(reflected, lightDir), 0.0), u_glintPower);
+    vec3 color = mix(body, sky(reflected), fresnel) + lit * glint * u_lightColor;
+    const float distance = length(u_cameraPos - displacedWorld);
+    color = mix(color, u_skyHorizon, distance / (distance + u_hazeDistance));
+#elif HFX_SHADING == 2
+    // Planet: the sphere's own normal sets day and night (a soft terminator), the relief's
+    // normal the detail; an atmosphere brightens the lit limb.
+    const float day = smoothstep(-0.15, 0.3, dot(geometricNormal, lightDir));
+    const float rim = 0.5 * pow(1.0 - cosView, 3.0) * day;
+    vec3 color = albedo * u_ambient +
+                 day * lit * u_lightColor * (albedo * diffuse + u_specularStrength * specular) +
+                 rim * vec3(0.35, 0.55, 1.0) * u_lightColor;
+#else
     const vec3 color = albedo * u_ambient +
                        lit * u_lightColor * (albedo * diffuse + u_specularStrength * specular);
+#endif
     o_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 #if HFX_TRACE_OUTPUT
     o_trace = vec4(uv, depthFraction, fetches);

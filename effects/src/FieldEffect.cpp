@@ -53,9 +53,11 @@ void FieldEffect::setDepthScale(float depthScale) {
 
 void FieldEffect::refresh(double computeStartMs) {
     normals_.run(source_->buffer());
+    enqueueExtra();
     clGuard("FieldEffect::update", [&] { cl_.queue().finish(); });
     const double computed = nowMs();
     uploadField(cl_, normals_.output(), textures_);
+    uploadExtra();
     times_ = {computed - computeStartMs, nowMs() - computed};
 }
 

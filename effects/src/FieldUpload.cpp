@@ -4,23 +4,38 @@
 
 namespace hfx {
 
-void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures) {
-    const size_t bytes = sizeof(cl_float4) * size_t(textures.config().width) * textures.config().height;
-    if (normalHeight.getInfo<CL_MEM_SIZE>() < bytes)
-        throw Error(str("uploadField: buffer of ", normalHeight.getInfo<CL_MEM_SIZE>(),
-                        " bytes is smaller than the ", textures.config().width, "x",
-                        textures.config().height, " surface (", bytes, " bytes)"));
+namespace {
+
+/// Maps `buffer` for reading (waiting for the queue's work on it), hands the mapping to
+/// `upload`, and unmaps whatever happens.
+template <typename Upload>
+void mapAndUpload(ClContext& cl, const cl::Buffer& buffer, size_t texelBytes, const SurfaceTextures& textures,
+                  const char* what, Upload&& upload) {
+    const size_t bytes = texelBytes * size_t(textures.config().width) * textures.config().height;
+    if (buffer.getInfo<CL_MEM_SIZE>() < bytes)
+        throw Error(str(what, ": buffer of ", buffer.getInfo<CL_MEM_SIZE>(), " bytes is smaller than the ",
+                        textures.config().width, "x", textures.config().height, " surface (", bytes, " bytes)"));
     cl::CommandQueue& q = cl.queue();
-    void* mapped = clGuard("mapping the field for upload", [&] {
-        return q.enqueueMapBuffer(normalHeight, CL_TRUE, CL_MAP_READ, 0, bytes);
-    });
+    void* mapped = clGuard(what, [&] { return q.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes); });
     try {
-        textures.upload(static_cast<const float*>(mapped));
+        upload(mapped);
     } catch (...) {
-        q.enqueueUnmapMemObject(normalHeight, mapped);
+        q.enqueueUnmapMemObject(buffer, mapped);
         throw;
     }
-    clGuard("unmapping the field", [&] { q.enqueueUnmapMemObject(normalHeight, mapped); });
+    clGuard(what, [&] { q.enqueueUnmapMemObject(buffer, mapped); });
+}
+
+} // namespace
+
+void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures) {
+    mapAndUpload(cl, normalHeight, sizeof(cl_float4), textures, "uploadField",
+                 [&](const void* mapped) { textures.upload(static_cast<const float*>(mapped)); });
+}
+
+void uploadAlbedo(ClContext& cl, const cl::Buffer& rgba, SurfaceTextures& textures) {
+    mapAndUpload(cl, rgba, sizeof(cl_uchar4), textures, "uploadAlbedo",
+                 [&](const void* mapped) { textures.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });
 }
 
 } // namespace hfx

@@ -27,7 +27,7 @@ public:
         glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
         glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
         glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
-        for (int unit = 0; unit < 2; ++unit) {
+        for (int unit = 0; unit < 3; ++unit) {
             glActiveTexture(GL_TEXTURE0 + unit);
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
         }
@@ -37,7 +37,7 @@ public:
         glDepthFunc(static_cast<GLenum>(depthFunc_));
         glUseProgram(static_cast<GLuint>(program_));
         glBindVertexArray(static_cast<GLuint>(vao_));
-        for (int unit = 0; unit < 2; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
+        for (int unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
     }
     GlStateGuard(const GlStateGuard&) = delete;
@@ -45,7 +45,7 @@ public:
 
 private:
     GLboolean depthTest_;
-    GLint depthFunc_, program_, vao_, activeTexture_, textures_[2];
+    GLint depthFunc_, program_, vao_, activeTexture_, textures_[3];
 };
 
 void setTransforms(const ShaderProgram& p, const glm::mat4& model, const Camera& camera) {
@@ -83,18 +83,35 @@ void SurfaceMaterial::validate() const {
         throw Error(str("SurfaceMaterial.shadowSharpness must be positive, got ", shadowSharpness));
     if (!(specularPower >= 1.0f) || !std::isfinite(specularPower))
         throw Error(str("SurfaceMaterial.specularPower must be >= 1, got ", specularPower));
+    if (!(silhouetteFade >= 0.0f && silhouetteFade < 1.0f))
+        throw Error(str("SurfaceMaterial.silhouetteFade must be in [0, 1), got ", silhouetteFade));
+    if (shading == Shading::Water) {
+        if (!(water.fresnelF0 >= 0.0f && water.fresnelF0 <= 1.0f))
+            throw Error(str("WaterLook.fresnelF0 must be in [0, 1], got ", water.fresnelF0));
+        if (!(water.glintPower >= 1.0f) || !std::isfinite(water.glintPower))
+            throw Error(str("WaterLook.glintPower must be >= 1, got ", water.glintPower));
+        if (!(water.glintStrength >= 0.0f) || !std::isfinite(water.glintStrength))
+            throw Error(str("WaterLook.glintStrength must be >= 0, got ", water.glintStrength));
+        if (!(water.hazeDistance > 0.0f))
+            throw Error(str("WaterLook.hazeDistance must be positive, got ", water.hazeDistance));
+        if (water.environment != 0 && !glIsTexture(water.environment))
+            throw Error(str("WaterLook.environment ", water.environment, " is not a GL texture"));
+    }
 }
 
-const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options) {
-    const auto key = std::make_pair(static_cast<int>(options.technique), options.traceOutput);
+const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading) {
+    const auto key = std::make_tuple(static_cast<int>(options.technique), options.traceOutput,
+                                     static_cast<int>(shading));
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         const std::vector<ShaderDefine> defines = {
             {"HFX_TECHNIQUE", options.technique == Technique::ParallaxOcclusion ? "1" : "0"},
-            {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"}};
+            {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"},
+            {"HFX_SHADING", std::to_string(static_cast<int>(shading))}};
         ShaderProgram p(shader("surface.vert"), shader("surface.frag"), defines);
         p.set("s_surface", 0);
         p.set("s_albedo", 1);
+        p.set("s_environment", 2);
         it = programs_.emplace(key, std::move(p)).first;
     }
     return it->second;
@@ -104,7 +121,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
                            const SurfaceMaterial& material, const Camera& camera,
                            const DirectionalLight& light, const DrawOptions& options) {
     material.validate();
-    const ShaderProgram& p = program(options);
+    const ShaderProgram& p = program(options, material.shading);
     GlStateGuard guard;
     setTransforms(p, model, camera);
     p.set("u_cameraPos", camera.position);
@@ -122,8 +139,22 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
     p.set("u_ambient", light.ambient);
     p.set("u_specularStrength", material.specularStrength);
     p.set("u_specularPower", material.specularPower);
+    p.set("u_silhouetteFade", material.silhouetteFade);
+    if (material.shading == Shading::Water) {
+        const WaterLook& w = material.water;
+        p.set("u_deepColor", w.deepColor);
+        p.set("u_shallowColor", w.shallowColor);
+        p.set("u_skyZenith", w.skyZenith);
+        p.set("u_skyHorizon", w.skyHorizon);
+        p.set("u_fresnelF0", w.fresnelF0);
+        p.set("u_glintPower", w.glintPower);
+        p.set("u_glintStrength", w.glintStrength);
+        p.set("u_hazeDistance", w.hazeDistance);
+        p.set("u_hasEnvironment", w.environment != 0 ? 1 : 0);
+    }
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(1, textures.albedo());
+    if (material.shading == Shading::Water) glBindTextureUnit(2, material.water.environment);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();

@@ -30,6 +30,11 @@ public:
 protected:
     /// Runs the normals and the upload for whatever the source holds now.
     void refresh(double computeStartMs);
+    /// Hooks for derived effects: enqueue more device work after the normals (timed as
+    /// compute), and upload more after the field (timed as upload).
+    virtual void enqueueExtra() {}
+    virtual void uploadExtra() {}
+    ClContext& cl() { return cl_; }
     static double nowMs();
     SurfaceTextures& mutableTextures() { return textures_; }
 

@@ -11,4 +11,7 @@ namespace hfx {
 /// textures.config().width * height float4.
 void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures);
 
+/// Waits for the queue's work on `rgba`, then uploads it as the albedo: width * height RGBA8.
+void uploadAlbedo(ClContext& cl, const cl::Buffer& rgba, SurfaceTextures& textures);
+
 } // namespace hfx

@@ -1,7 +1,7 @@
 #pragma once
 // Draws a mesh with a height-field surface: parallax occlusion mapping (shaders/surface.frag) or
 // plain normal mapping. It draws into whatever framebuffer and context the caller has bound and
-// restores the GL state it changes (program, vertex array, depth test, texture units 0-1).
+// restores the GL state it changes (program, vertex array, depth test, texture units 0-2).
 //
 // Thread: the thread whose GL context is current; shader programs are built per variant on
 // first use and kept.
@@ -13,8 +13,10 @@
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <map>
+#include <tuple>
 #include <string>
 
 namespace hfx {
@@ -23,6 +25,28 @@ enum class Technique { NormalMapping, ParallaxOcclusion };
 /// "nm" / "pom"; throws hfx::Error naming the value otherwise.
 Technique parseTechnique(const std::string& name);
 const char* techniqueName(Technique technique);
+
+/// How the surface is lit once the relief is traced.
+enum class Shading {
+    Lit,    ///< Blinn-Phong of albedo and normal
+    Water,  ///< Fresnel-weighted sky reflection, sun glint, body colour by depth, distance haze
+    Planet, ///< Blinn-Phong with a soft terminator of the sphere and an atmosphere rim
+};
+
+/// The water look (Shading::Water). Colours are linear RGB.
+struct WaterLook {
+    glm::vec3 deepColor{0.004f, 0.035f, 0.07f};    ///< troughs: light travels far in the water
+    glm::vec3 shallowColor{0.02f, 0.16f, 0.17f};   ///< crests: thin water scatters the sun
+    glm::vec3 skyZenith{0.12f, 0.3f, 0.65f};       ///< procedural sky, used without environment
+    glm::vec3 skyHorizon{0.62f, 0.72f, 0.82f};
+    float fresnelF0 = 0.02f;                       ///< reflectance of water seen head-on
+    float glintPower = 900.0f;                     ///< sharpness of the sun's reflection
+    float glintStrength = 40.0f;
+    float hazeDistance = 90.0f;                    ///< world units where half the colour is haze
+    /// Optional equirectangular sky (a GL texture the caller owns; 0 = procedural sky).
+    unsigned environment = 0;
+    bool operator==(const WaterLook&) const = default;
+};
 
 struct SurfaceMaterial {
     float depthScale = 0.05f;    ///< texture units between h = 1 and h = 0
@@ -36,7 +60,13 @@ struct SurfaceMaterial {
     glm::vec4 patchBounds{0, 0, 1, 1};
     float specularStrength = 0.4f;
     float specularPower = 48.0f;
-    void validate() const;       ///< throws hfx::Error naming the field and its value
+    Shading shading = Shading::Lit;
+    WaterLook water;
+    /// Curved meshes: the relief fades out where the view grazes the geometry (cos below this),
+    /// so silhouettes keep the mesh's outline instead of smearing texels. 0 = off.
+    float silhouetteFade = 0.0f;
+    void validate() const;
+    bool operator==(const SurfaceMaterial&) const = default;       ///< throws hfx::Error naming the field and its value
 };
 
 struct DirectionalLight {
@@ -63,10 +93,10 @@ public:
                   const glm::vec4& color);
 
     /// Builds the shader variant now (start-up) instead of on the first draw.
-    const ShaderProgram& program(const DrawOptions& options);
+    const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit);
 
 private:
-    std::map<std::pair<int, bool>, ShaderProgram> programs_;
+    std::map<std::tuple<int, bool, int>, ShaderProgram> programs_;
     ShaderProgram flat_;
 };
 

@@ -1,0 +1,65 @@
+#pragma once
+// The gaseous-planet user: the Navier-Stokes gas on a longitude-latitude grid (periodic in u,
+// walls at the poles) drives a sphere's relief (the dye) and its colour (the dye through a
+// ColorRamp, on the device). Zonal jets make the bands; storms, seeded, spin up vortices that
+// the jets shear and vorticity confinement keeps alive. Draw it on makeSphere() with
+// modelMatrix(), which turns the planet slowly about +Y.
+//
+// Thread: the thread that owns both the ClContext and the current GL context.
+
+#include "hfx/compute/ColorRamp.h"
+#include "hfx/compute/GasField.h"
+#include "hfx/core/Random.h"
+#include "hfx/effects/FieldEffect.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace hfx {
+
+/// Banded gas giant colours: dark belts, pale zones, rusty storm cores.
+std::vector<ColorStop> gasGiantPalette();
+
+struct GasPlanetConfig {
+    GasConfig gas{.width = 512, .height = 256, .pressureIterations = 30, .vorticity = 0.35f,
+                  .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .initialBands = 9.0f};
+    std::vector<ColorStop> palette = gasGiantPalette();
+    float stormsPerSecond = 0.6f;  ///< new storms (vortex pairs of force plus dye)
+    float stormRadius = 0.025f;    ///< in map widths
+    float stormForce = 900.0f;     ///< cells per second^2 over a step
+    float rotationSpeed = 0.08f;   ///< radians per second about +Y
+    std::uint64_t seed = 1;
+    SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
+                             .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
+                             .shading = Shading::Planet, .silhouetteFade = 0.25f};
+    bool mipmaps = true;
+    void validate() const;
+};
+
+class GasPlanetEffect final : public FieldEffect {
+public:
+    explicit GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config = {});
+
+    void update(double dt) override;
+    /// A storm now: a vortex of the configured size at texcoords (u in [0,1), v in [0,1)).
+    void addStorm(float u, float v, bool clockwise);
+    GasField& gas() { return gas_; }
+    const ColorRamp& colors() const { return colors_; }
+    double time() const { return time_; }
+    /// Rotation about +Y after time() seconds: the planet's model matrix (scale not included).
+    glm::mat4 modelMatrix() const;
+
+private:
+    void enqueueExtra() override;
+    void uploadExtra() override;
+
+    GasPlanetConfig config_;
+    GasField& gas_;
+    ColorRamp colors_;
+    SplitMix64 random_;
+    double time_ = 0.0, stormClock_ = 0.0;
+};
+
+} // namespace hfx

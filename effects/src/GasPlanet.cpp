@@ -1,0 +1,79 @@
+#include "hfx/effects/GasPlanet.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/effects/FieldUpload.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace hfx {
+
+std::vector<ColorStop> gasGiantPalette() {
+    return {{0.0f, {0.30f, 0.19f, 0.12f}},  {0.25f, {0.55f, 0.36f, 0.22f}}, {0.45f, {0.80f, 0.62f, 0.42f}},
+            {0.62f, {0.93f, 0.86f, 0.72f}}, {0.8f, {0.98f, 0.95f, 0.88f}},  {1.0f, {0.78f, 0.38f, 0.22f}}};
+}
+
+void GasPlanetConfig::validate() const {
+    gas.validate();
+    if (gas.periodicY)
+        throw Error("GasPlanetConfig.gas.periodicY must be false: a planet's poles are walls, not a seam");
+    if (!(stormsPerSecond >= 0.0f && stormsPerSecond <= 100.0f))
+        throw Error(str("GasPlanetConfig.stormsPerSecond must be in [0, 100], got ", stormsPerSecond));
+    if (!(stormRadius > 0.0f && stormRadius <= 0.25f))
+        throw Error(str("GasPlanetConfig.stormRadius must be in (0, 0.25], got ", stormRadius));
+    if (!std::isfinite(stormForce) || !std::isfinite(rotationSpeed))
+        throw Error("GasPlanetConfig.stormForce and rotationSpeed must be finite");
+    material.validate();
+}
+
+namespace {
+std::unique_ptr<HeightSource> makeGas(ClContext& cl, const GasPlanetConfig& config) {
+    config.validate();
+    return std::make_unique<GasField>(cl, config.gas);
+}
+} // namespace
+
+GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
+    : FieldEffect(cl, makeGas(cl, config), config.material, config.mipmaps), config_(config),
+      gas_(static_cast<GasField&>(source())),
+      colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed) {
+    refresh(nowMs()); // again, now with the colours
+}
+
+void GasPlanetEffect::addStorm(float u, float v, bool clockwise) {
+    // Two opposite pushes a radius apart in latitude: a shear that rolls up into a vortex.
+    const float r = config_.stormRadius, dv = 0.5f * r * float(config_.gas.width) / float(config_.gas.height);
+    const float force = clockwise ? config_.stormForce : -config_.stormForce;
+    const float v0 = std::fmin(std::fmax(v, dv + 0.01f), 0.99f - dv);
+    gas_.addSplat({.u = u, .v = v0 + dv, .radius = r, .forceX = force, .dye = 0.0f});
+    gas_.addSplat({.u = u, .v = v0 - dv, .radius = r, .forceX = -force, .dye = 0.0f});
+    gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r, .dye = clockwise ? 1.0f : 0.05f});
+}
+
+void GasPlanetEffect::update(double dt) {
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw Error(str("GasPlanetEffect::update: dt must be positive and finite, got ", dt));
+    const double start = nowMs();
+    time_ += dt;
+    stormClock_ += dt * config_.stormsPerSecond;
+    for (int storms = 0; stormClock_ >= 1.0 && storms < 8; ++storms) {
+        stormClock_ -= 1.0;
+        const float u = float(random_.next());
+        const float v = float(random_.uniform(0.2, 0.8));
+        addStorm(u, v, random_.next() < 0.5);
+    }
+    gas_.step(dt);
+    refresh(start);
+}
+
+void GasPlanetEffect::enqueueExtra() { colors_.run(gas_.buffer()); }
+
+void GasPlanetEffect::uploadExtra() { uploadAlbedo(cl(), colors_.output(), mutableTextures()); }
+
+glm::mat4 GasPlanetEffect::modelMatrix() const {
+    return glm::rotate(glm::mat4(1.0f), float(std::fmod(time_ * config_.rotationSpeed, 6.283185307179586)),
+                       glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+} // namespace hfx
