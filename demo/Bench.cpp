@@ -8,7 +8,6 @@
 #include "hfx/core/GlContext.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/effects/WaterEffect.h"
 
 #include <algorithm>
 #include <chrono>
@@ -65,17 +64,18 @@ int runBench(const SceneOptions& options, int width, int height, int frames) {
     }
     const double c = median(compute), up = median(upload), dp = median(drawPom), dn = median(drawNm);
     const double ds = median(drawUnshadowed);
-    std::printf("hfx-demo bench: %dx%d, field %dx%d, %d frames (medians), %s\n", width, height,
-                options.fieldSize, options.fieldSize, frames, gl->description().c_str());
+    const int field = pom->effect().textures().config().width;
+    std::printf("hfx-demo bench: %dx%d, field %dx%d, %d frames (medians), %s\n", width, height, field, field,
+                frames, gl->description().c_str());
     std::printf("OpenCL: %s\n", cl.description().c_str());
     std::printf("| stage | ms |\n|---|---|\n");
-    std::printf("| field compute (waves + Sobel) | %.2f |\n", c);
+    std::printf("| field compute (%s waves + Sobel) | %.2f |\n", options.waves.c_str(), c);
     std::printf("| upload (map + texture + mips) | %.2f |\n", up);
     std::printf("| draw, normal mapping | %.2f |\n", dn);
-    std::printf("| draw, POM %d..%d samples + %d-sample soft shadows | %.2f |\n", options.minSamples,
-                options.maxSamples, SurfaceMaterial{}.shadowSamples, dp);
-    std::printf("| draw, POM %d..%d samples, no shadows | %.2f |\n", options.minSamples,
-                options.maxSamples, ds);
+    const SurfaceMaterial& m = pom->material();
+    std::printf("| draw, POM %d..%d samples + %d-sample soft shadows | %.2f |\n", m.minSamples, m.maxSamples,
+                m.shadowSamples, dp);
+    std::printf("| draw, POM %d..%d samples, no shadows | %.2f |\n", m.minSamples, m.maxSamples, ds);
     std::printf("POM / normal mapping draw: %.2fx (without shadows %.2fx)\n", dp / dn, ds / dn);
     std::printf("compute + upload share of the POM frame: %.1f%%\n", 100.0 * (c + up) / (c + up + dp));
     return 0;

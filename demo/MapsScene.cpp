@@ -1,9 +1,9 @@
+// A surface from image files (height, optional normal and colour maps) on a plane.
+
 #include "Scene.h"
 
-#include "hfx/core/Mesh.h"
+#include "hfx/core/Error.h"
 #include "hfx/effects/ImageSurface.h"
-
-#include <glm/mat4x4.hpp>
 
 namespace hfx::demo {
 namespace {
@@ -11,35 +11,29 @@ namespace {
 class MapsScene final : public Scene {
 public:
     MapsScene(ClContext& cl, const SceneOptions& o)
-        : options_(o), surface_(cl, config(o)),
-          plane_(makePlane({.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1})) {
+        : surface_(cl, config(o)), plane_(makePlane({.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1})) {
+        setMaterial(surface_.material(), o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.2f, 0.5f, 0.55f);
         camera_.aspect = o.aspect;
         light_.direction = {-1.0f, 0.45f, -0.3f};
     }
 
     void update(double dt) override { surface_.update(dt); }
-    void draw() override {
-        renderer_.draw(plane_, glm::mat4(1.0f), surface_.textures(), surface_.material(), camera_,
-                       light_, {.technique = options_.technique});
-    }
+    void draw() override { drawSurface(renderer_, light_); }
     Effect& effect() override { return surface_; }
-    Camera& camera() override { return camera_; }
+    const char* name() const override { return "maps"; }
+    const Mesh& mesh() const override { return plane_; }
 
 private:
     static ImageSurfaceConfig config(const SceneOptions& o) {
+        if (o.heightMap.empty()) throw Error("the maps scene needs --height-map FILE");
         ImageSurfaceConfig c{.heightMap = o.heightMap, .normalMap = o.normalMap, .colorMap = o.colorMap};
-        c.material.depthScale = o.depthScale;
-        c.material.minSamples = o.minSamples;
-        c.material.maxSamples = o.maxSamples;
-        c.material.shadows = o.shadows;
+        if (o.depthScale > 0.0f) c.material.depthScale = o.depthScale;
         return c;
     }
 
-    SceneOptions options_;
     ImageSurface surface_;
     Mesh plane_;
-    Camera camera_;
     DirectionalLight light_;
     SurfaceRenderer renderer_;
 };

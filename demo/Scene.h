@@ -1,43 +1,79 @@
 #pragma once
-// A scene of the demo: the smallest complete use of one effect of the module.
+// A scene of the demo: one user of the module (water, decals, planet, or maps from files), with
+// its camera, light and live-editable material. The program loop (main.cpp) owns the context,
+// the frame and the UI; a scene only updates its effect and draws.
 
 #include "hfx/compute/ClContext.h"
 #include "hfx/core/Camera.h"
+#include "hfx/core/Mesh.h"
 #include "hfx/effects/Effect.h"
+#include "hfx/effects/ShotList.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace hfx::demo {
 
 struct SceneOptions {
-    int fieldSize = 512;
+    int fieldSize = 0;                 ///< 0: the scene's default
     Technique technique = Technique::ParallaxOcclusion;
-    int minSamples = 8;
-    int maxSamples = 50;
-    float depthScale = 0.06f;
+    int minSamples = 0, maxSamples = 0; ///< 0: the scene's default
+    float depthScale = 0.0f;           ///< 0: the scene's default
     bool shadows = true;
+    float lodThreshold = 4.0f;
     std::uint32_t seed = 1;
     float aspect = 16.0f / 9.0f;
-    std::string heightMap, normalMap, colorMap; ///< the maps scene's files
+    int width = 1280, height = 720;    ///< the image, for pixel shots
+    std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
+    float windSpeed = 12.0f, windDirection = 0.6f;
+    std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
+    std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
+    std::string environment;           ///< water: equirectangular sky image
 };
 
 class Scene {
 public:
     virtual ~Scene() = default;
     virtual void update(double dt) = 0;
-    /// Draws into the bound framebuffer (depth test on, viewport set by the caller).
+    /// Draws into the bound framebuffer with material() and technique.
     virtual void draw() = 0;
     virtual Effect& effect() = 0;
-    virtual Camera& camera() = 0;
+    virtual const char* name() const = 0;
+    /// Scene-specific controls in the UI panel (ImGui), if any.
+    virtual void panel() {}
+    /// A click at pixel (x, y) from the top-left of a width x height image (decals: a shot).
+    virtual void click(double /*x*/, double /*y*/, int /*width*/, int /*height*/) {}
+    /// The explosion key at pixel (x, y).
+    virtual void explode(double /*x*/, double /*y*/, int /*width*/, int /*height*/) {}
+    /// The clear key (decals: forget the damage).
+    virtual void clear() {}
+
+    Camera& camera() { return camera_; }
+    /// The material drawn with; change it live, then call applyMaterial().
+    SurfaceMaterial& material() { return material_; }
+    void applyMaterial();
+    Technique technique = Technique::ParallaxOcclusion;
+    bool wireframe = false; ///< overlay the base mesh's triangles
+    /// The mesh and model matrix drawn (for the wireframe overlay and for picking).
+    virtual const Mesh& mesh() const = 0;
+    virtual glm::mat4 model() const { return glm::mat4(1.0f); }
+
+protected:
+    void drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light);
+    void setMaterial(const SurfaceMaterial& base, const SceneOptions& options);
+    Camera camera_;
+    SurfaceMaterial material_;
 };
 
 /// The known scene names, for help texts and errors.
-inline constexpr const char* kSceneNames = "water, maps";
+inline constexpr const char* kSceneNames = "water, decals, planet, maps";
 
 std::unique_ptr<Scene> makeWaterScene(ClContext& cl, const SceneOptions& options);
+std::unique_ptr<Scene> makeDecalScene(ClContext& cl, const SceneOptions& options);
+std::unique_ptr<Scene> makePlanetScene(ClContext& cl, const SceneOptions& options);
 std::unique_ptr<Scene> makeMapsScene(ClContext& cl, const SceneOptions& options);
 /// Throws hfx::Error naming the scene and listing the known ones.
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options);

@@ -1,69 +1,111 @@
+// The procedural-water user: the FFT ocean (or the cheap directional sine waves) on a large
+// plane seen low over the water towards a low sun, shaded as water.
+
 #include "Scene.h"
 
 #include "hfx/core/Error.h"
-#include "hfx/core/Mesh.h"
+#include "hfx/core/Image.h"
+#include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/WaterEffect.h"
 
-#include <glm/mat4x4.hpp>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace hfx::demo {
 namespace {
 
+constexpr PlaneConfig kPlane{.size = 48.0f, .texcoordScale = 6.0f, .subdivisions = 1};
+
 class WaterScene final : public Scene {
 public:
-    WaterScene(ClContext& cl, const SceneOptions& o)
-        : options_(o), water_(cl, config(o)),
-          plane_(makePlane({.size = 48.0f, .texcoordScale = 6.0f, .subdivisions = 1})) {
-        // Low over the water, looking towards a low sun: grazing views are where POM shows.
+    WaterScene(ClContext& cl, const SceneOptions& o) : plane_(makePlane(kPlane)), wind_(o.windSpeed), windDir_(o.windDirection) {
+        if (o.waves != "fft" && o.waves != "sine")
+            throw Error(str("unknown waves '", o.waves, "' (expected fft or sine)"));
+        if (!o.environment.empty()) {
+            const Image sky = readImage(o.environment);
+            environment_ = makeEnvironment(sky);
+        }
+        SurfaceMaterial base;
+        if (o.waves == "fft") {
+            OceanEffectConfig c;
+            c.ocean.size = o.fieldSize > 0 ? o.fieldSize : 512;
+            c.ocean.seed = o.seed;
+            c.ocean.windSpeed = o.windSpeed;
+            c.ocean.windDirection = o.windDirection;
+            ocean_ = std::make_unique<OceanEffect>(cl, c);
+            base = ocean_->material();
+        } else {
+            WaterConfig c;
+            c.waves.size = o.fieldSize > 0 ? o.fieldSize : 512;
+            c.waves.seed = o.seed;
+            c.waves.maxCycles = std::min(20, c.waves.size / 2);
+            c.waves.minCycles = std::min(c.waves.minCycles, c.waves.maxCycles);
+            c.material.shading = Shading::Water;
+            c.material.specularStrength = 0.0f;
+            sine_ = std::make_unique<WaterEffect>(cl, c);
+            base = sine_->material();
+        }
+        base.water.environment = environment_.id();
+        setMaterial(base, o);
+        applyMaterial();
         camera_.position = {0.0f, 2.4f, 6.0f};
         camera_.target = {0.0f, 0.0f, -4.0f};
         camera_.aspect = o.aspect;
         camera_.farPlane = 200.0f;
-        light_.direction = {-0.35f, 0.3f, -1.0f};
-        light_.color = {1.0f, 0.92f, 0.8f};
-        light_.ambient = {0.25f, 0.32f, 0.4f};
+        light_.direction = {-0.35f, 0.22f, -1.0f};
+        light_.color = {1.0f, 0.9f, 0.75f};
+        light_.ambient = {0.35f, 0.42f, 0.5f};
     }
 
-    void update(double dt) override { water_.update(dt); }
-    void draw() override {
-        renderer_.draw(plane_, glm::mat4(1.0f), water_.textures(), water_.material(), camera_,
-                       light_, {.technique = options_.technique});
+    void update(double dt) override { effect().update(dt); }
+    void draw() override { drawSurface(renderer_, light_); }
+    Effect& effect() override { return ocean_ ? static_cast<Effect&>(*ocean_) : *sine_; }
+    const char* name() const override { return "water"; }
+    const Mesh& mesh() const override { return plane_; }
+
+    void panel() override {
+        if (!ocean_) return;
+        bool changed = ImGui::SliderFloat("wind speed (m/s)", &wind_, 1.0f, 30.0f);
+        changed |= ImGui::SliderAngle("wind direction", &windDir_, -180.0f, 180.0f);
+        if (changed) {
+            ocean_->setWind(wind_, windDir_);
+            material_.depthScale = ocean_->material().depthScale;
+        }
     }
-    Effect& effect() override { return water_; }
-    Camera& camera() override { return camera_; }
 
 private:
-    static WaterConfig config(const SceneOptions& o) {
-        WaterConfig c;
-        c.waves.size = o.fieldSize;
-        c.waves.seed = o.seed;
-        c.waves.maxCycles = std::min(20, o.fieldSize / 2);
-        c.waves.minCycles = std::min(c.waves.minCycles, c.waves.maxCycles);
-        c.material.depthScale = o.depthScale;
-        c.material.minSamples = o.minSamples;
-        c.material.maxSamples = o.maxSamples;
-        c.material.shadows = o.shadows;
-        return c;
+    static GlTexture makeEnvironment(const Image& sky) {
+        GlTexture t = GlTexture::create();
+        std::vector<float> rgb(size_t(sky.width) * sky.height * 3);
+        for (int y = 0; y < sky.height; ++y)
+            for (int x = 0; x < sky.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    // Rows bottom first for GL; grey images fill all three channels.
+                    rgb[(size_t(sky.height - 1 - y) * sky.width + x) * 3 + c] = sky.at(x, y, std::min(c, sky.channels - 1));
+        glTextureStorage2D(t.id(), 1, GL_RGB32F, sky.width, sky.height);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage2D(t.id(), 0, 0, 0, sky.width, sky.height, GL_RGB, GL_FLOAT, rgb.data());
+        glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        return t;
     }
 
-    SceneOptions options_;
-    WaterEffect water_;
+    std::unique_ptr<OceanEffect> ocean_;
+    std::unique_ptr<WaterEffect> sine_;
+    GlTexture environment_;
     Mesh plane_;
-    Camera camera_;
     DirectionalLight light_;
     SurfaceRenderer renderer_;
+    float wind_, windDir_;
 };
 
 } // namespace
 
 std::unique_ptr<Scene> makeWaterScene(ClContext& cl, const SceneOptions& options) {
     return std::make_unique<WaterScene>(cl, options);
-}
-
-std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options) {
-    if (name == "water") return makeWaterScene(cl, options);
-    if (name == "maps") return makeMapsScene(cl, options);
-    throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
 }
 
 } // namespace hfx::demo

@@ -1,8 +1,12 @@
-// hfx-demo: the module's scenes in a window, or headless to image files.
+// hfx-demo: the module's users as scenes, in a window or headless to image files.
 //   hfx-demo water --headless --frames 8 --out frames
+//   hfx-demo decals --shots shots.txt --headless --frames 30 --video decals.mp4
+//   hfx-demo planet --export-maps maps
 //   hfx-demo bench
 
+#include "Frames.h"
 #include "Scene.h"
+#include "Window.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
@@ -29,105 +33,131 @@ struct Options {
     std::string scene = "water";
     bool headless = false;
     int frames = 0; // 0: headless 1 frame, window until closed
-    std::string out;
+    std::string out, video, exportMaps;
     int width = 1280, height = 720;
     double dt = 1.0 / 30.0;
     std::string technique = "pom";
+    bool noProgress = false;
     SceneOptions sceneOptions;
 };
+
+const glm::vec4 kBackground{0.55f, 0.68f, 0.85f, 1.0f};
+
+glm::vec4 background(const std::string& scene) {
+    return scene == "planet" ? glm::vec4(0.005f, 0.005f, 0.015f, 1.0f) : kBackground;
+}
+
+int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
+    RenderTarget target(o.width, o.height);
+    const int frames = o.frames > 0 ? o.frames : 1;
+    std::string outDir = o.out;
+    if (outDir.empty() && o.video.empty()) outDir = "frames";
+    if (!outDir.empty()) std::filesystem::create_directories(outDir);
+    std::unique_ptr<VideoWriter> video;
+    if (!o.video.empty()) video = std::make_unique<VideoWriter>(o.video, o.width, o.height, 1.0 / o.dt);
+    Progress progress(frames, !o.noProgress && frames > 1);
+    std::fprintf(stderr, "hfx-demo: headless, %s\n", gl.description().c_str());
+    for (int frame = 0; frame < frames; ++frame) {
+        // Headless runs advance by the fixed dt so two runs write identical frames.
+        if (frame > 0) scene.update(o.dt);
+        target.bind();
+        target.clear(background(o.scene));
+        scene.draw();
+        const Image image = target.readColor();
+        if (!outDir.empty()) {
+            const std::string path = framePath(outDir, o.scene, frame);
+            writeImage(path, image);
+            if (!progress.enabled()) std::printf("wrote %s\n", path.c_str());
+        }
+        if (video) video->write(image);
+        progress.step(frame + 1);
+    }
+    progress.finish();
+    if (video) video->close();
+    if (!outDir.empty() && progress.enabled())
+        std::printf("wrote %d frames to %s\n", frames, outDir.c_str());
+    if (!o.exportMaps.empty()) exportMaps(o.exportMaps, scene.effect().textures());
+    return 0;
+}
 
 int run(const Options& o) {
     SceneOptions sceneOptions = o.sceneOptions;
     sceneOptions.technique = parseTechnique(o.technique);
     sceneOptions.aspect = float(o.width) / float(o.height);
+    sceneOptions.width = o.width;
+    sceneOptions.height = o.height;
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
-    if (o.scene != "water" && o.scene != "maps")
+    if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet")
         throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));
-    if (o.scene == "maps" && sceneOptions.heightMap.empty())
-        throw Error("the maps scene needs --height-map FILE");
+    if (!o.video.empty()) checkVideoEncoder();
 
-    auto gl = createContext({.width = o.width, .height = o.height, .title = "HFX " + o.scene},
-                            !o.headless);
-    std::fprintf(stderr, "hfx-demo: %s, %s\n", gl->headless() ? "headless" : "window",
-                 gl->description().c_str());
+    auto gl = createContext({.width = o.width, .height = o.height, .title = "HFX " + o.scene}, !o.headless);
     ClContext cl;
     auto scene = makeScene(o.scene, cl, sceneOptions);
-    RenderTarget target(o.width, o.height);
-
-    const int frames = o.frames > 0 ? o.frames : (gl->headless() ? 1 : 0);
-    std::string outDir = o.out;
-    if (outDir.empty() && gl->headless()) outDir = "frames";
-    if (!outDir.empty()) std::filesystem::create_directories(outDir);
-
-    auto last = std::chrono::steady_clock::now();
-    for (int frame = 0; frames == 0 || frame < frames; ++frame) {
-        if (!gl->pollEvents()) break;
-        // Headless runs advance by the fixed dt so two runs write identical frames.
-        double dt = o.dt;
-        if (!gl->headless() && frame > 0) {
-            const auto now = std::chrono::steady_clock::now();
-            dt = std::chrono::duration<double>(now - last).count();
-            last = now;
-        }
-        if (frame > 0) scene->update(dt);
-        target.bind();
-        target.clear({0.55f, 0.68f, 0.85f, 1.0f});
-        scene->draw();
-        if (!outDir.empty() && frame < (frames == 0 ? 1 : frames)) {
-            char name[64];
-            std::snprintf(name, sizeof name, "%s_%04d.png", o.scene.c_str(), frame);
-            const std::string path = (std::filesystem::path(outDir) / name).string();
-            writeImage(path, target.readColor());
-            std::printf("wrote %s\n", path.c_str());
-        }
-        if (!gl->headless()) {
-            const glm::ivec2 size = gl->framebufferSize();
-            glBlitNamedFramebuffer(target.framebuffer(), 0, 0, 0, o.width, o.height, 0, 0, size.x,
-                                   size.y, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-            gl->swapBuffers();
-        }
-    }
-    return 0;
+    if (gl->headless()) return runHeadless(o, *gl, *scene);
+    std::fprintf(stderr, "hfx-demo: window, %s\n", gl->description().c_str());
+    WindowLoop loop({.width = o.width,
+                     .height = o.height,
+                     .frames = o.frames,
+                     .out = o.out,
+                     .exportMaps = o.exportMaps,
+                     .background = background(o.scene)});
+    return loop.run(*gl, *scene);
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"HFX demo: dynamic height fields rendered with parallax occlusion mapping"};
+    CLI::App app{"HFX demo: dynamic height fields rendered with parallax occlusion mapping.\n"
+                 "Window controls: right-drag orbits, wheel zooms, left click shoots (decals), E explodes,\n"
+                 "C clears the damage, F12 saves a screenshot, Esc quits; the panel edits every parameter."};
     Options o;
+    SceneOptions& s = o.sceneOptions;
     app.add_option("scene", o.scene,
-                   "scene to show: water, maps (a surface from image files), or bench (frame-time "
-                   "benchmark)")
+                   "scene: water (FFT ocean), decals (damage on a wall), planet (gas giant), maps "
+                   "(a surface from image files), or bench (frame-time benchmark)")
         ->capture_default_str();
     app.add_flag("--headless", o.headless, "render off screen even when a display exists");
     app.add_option("--frames", o.frames, "frames to render (headless default 1; window: until closed)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, 1000000));
     app.add_option("--out", o.out, "folder for PNG frames (headless default: frames)");
+    app.add_option("--video", o.video, "also encode the frames into this video file (needs ffmpeg)");
+    app.add_option("--export-maps", o.exportMaps,
+                   "after the last frame, write the field's height, normal and albedo maps (EXR and PNG) to this folder");
     app.add_option("--width", o.width, "image width in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
     app.add_option("--height", o.height, "image height in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
     app.add_option("--dt", o.dt, "seconds between frames")->check(CLI::Range(1e-6, 10.0))->capture_default_str();
-    app.add_option("--field", o.sceneOptions.fieldSize, "height-field texels per edge")
-        ->check(CLI::Range(2, 8192))->capture_default_str();
+    app.add_option("--field", s.fieldSize, "height-field texels per edge (default: the scene's; ocean: a power of two)")
+        ->check(CLI::Range(8, 8192));
     app.add_option("--technique", o.technique, "pom or nm (normal mapping)")
         ->check(CLI::IsMember({"pom", "nm"}))->capture_default_str();
-    app.add_option("--samples-min", o.sceneOptions.minSamples, "POM steps seen head-on")
-        ->check(CLI::Range(1, 256))->capture_default_str();
-    app.add_option("--samples-max", o.sceneOptions.maxSamples, "POM steps at grazing angles")
-        ->check(CLI::Range(1, 256))->capture_default_str();
-    app.add_option("--depth-scale", o.sceneOptions.depthScale, "relief depth in texture units")
-        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
-    app.add_option("--seed", o.sceneOptions.seed, "random seed of the field")->capture_default_str();
-    app.add_option("--height-map", o.sceneOptions.heightMap, "maps scene: height map image (h in [0,1])");
-    app.add_option("--normal-map", o.sceneOptions.normalMap,
-                   "maps scene: tangent-space normal map (default: Sobel of the heights)");
-    app.add_option("--color-map", o.sceneOptions.colorMap, "maps scene: colour map");
+    app.add_option("--samples-min", s.minSamples, "POM steps seen head-on (default: the scene's)")
+        ->check(CLI::Range(1, 256));
+    app.add_option("--samples-max", s.maxSamples, "POM steps at grazing angles (default: the scene's)")
+        ->check(CLI::Range(1, 256));
+    app.add_option("--depth-scale", s.depthScale, "relief depth in texture units (default: the scene's)")
+        ->check(CLI::Range(0.0001, 1.0));
+    app.add_option("--lod-threshold", s.lodThreshold, "mip level where POM has faded to normal mapping")
+        ->check(CLI::Range(0.0, 16.0))->capture_default_str();
+    app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
+    app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")
+        ->check(CLI::IsMember({"fft", "sine"}))->capture_default_str();
+    app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(CLI::Range(0.5, 100.0))->capture_default_str();
+    app.add_option("--wind-dir", s.windDirection, "water: wind direction in radians")
+        ->check(CLI::Range(-10.0, 10.0))->capture_default_str();
+    app.add_option("--environment", s.environment, "water: equirectangular sky image to reflect");
+    app.add_option("--shots", s.shots, "decals: shot list to replay (lines 'bullet|explosion|click FRAME A B')");
+    app.add_option("--height-map", s.heightMap, "maps, decals: height map image (h in [0,1])");
+    app.add_option("--normal-map", s.normalMap, "maps: tangent-space normal map (default: Sobel of the heights)");
+    app.add_option("--color-map", s.colorMap, "maps, decals: colour map");
+    app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
-    o.sceneOptions.shadows = !noShadows;
-    if (o.sceneOptions.maxSamples < o.sceneOptions.minSamples) {
-        std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n",
-                     o.sceneOptions.maxSamples, o.sceneOptions.minSamples);
+    s.shadows = !noShadows;
+    if (s.maxSamples > 0 && s.minSamples > 0 && s.maxSamples < s.minSamples) {
+        std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n", s.maxSamples,
+                     s.minSamples);
         return 2;
     }
     try {

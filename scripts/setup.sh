@@ -8,7 +8,7 @@ packages=(
     libglm-dev libglfw3-dev libosmesa6-dev libgl-dev
     ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
     libopenimageio-dev libclfft-dev
-    libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev xvfb xauth
+    libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libimgui-dev ffmpeg xvfb xauth
 )
 
 missing=()

@@ -1,0 +1,143 @@
+// The decal-damage user: a brick wall (or the user's maps) seen at a grazing angle, shot at by
+// clicks (picked on the displaced surface), a key's explosions, or a replayed shot list. A flat
+// shelf stands half sunk into the wall, so the depth output's clipping by the damage shows.
+
+#include "Scene.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Random.h"
+#include "hfx/effects/DecalWall.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <imgui.h>
+
+#include <cstdio>
+
+namespace hfx::demo {
+namespace {
+
+constexpr PlaneConfig kWall{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};
+
+class DecalScene final : public Scene {
+public:
+    DecalScene(ClContext& cl, const SceneOptions& o)
+        : wall_(cl, config(o)), plane_(makePlane(kWall)),
+          post_(makePlane({.size = 0.5f, .texcoordScale = 1.0f, .subdivisions = 1})), random_(o.seed),
+          width_(o.width), height_(o.height) {
+        setMaterial(wall_.material(), o);
+        applyMaterial();
+        if (!o.shots.empty()) {
+            shots_ = readShotList(o.shots);
+            replaying_ = true;
+        }
+        // The wall stands in the XY plane facing +Z; the camera looks along it from the side.
+        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.6f, 1.0f, 0.2f);
+        camera_.aspect = o.aspect;
+        light_.direction = {-0.8f, 0.55f, 0.45f};
+        light_.ambient = {0.22f, 0.22f, 0.25f};
+    }
+
+    void update(double dt) override {
+        // Shots for this frame: the list's, or a seeded volley when none was given.
+        if (replaying_) {
+            for (const Shot& shot : shots_)
+                if (shot.frame == frame_) apply(shot);
+        } else if (autoFire) {
+            volley();
+        }
+        ++frame_;
+        wall_.update(dt);
+    }
+    void draw() override {
+        drawSurface(renderer_, light_);
+        // A shelf half sunk into the wall: clipped where the relief is, by POM's depth output.
+        const glm::mat4 post = glm::translate(glm::mat4(1.0f), {0.9f, -0.6f, 0.0f});
+        renderer_.drawFlat(post_, post, camera_, {0.75f, 0.72f, 0.2f, 1.0f});
+    }
+    Effect& effect() override { return wall_; }
+    const char* name() const override { return "decals"; }
+    const Mesh& mesh() const override { return plane_; }
+    glm::mat4 model() const override {
+        return glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+    }
+
+    void click(double x, double y, int width, int height) override {
+        if (const auto hit = pick(x, y, width, height)) {
+            wall_.shoot(hit->uv.x, hit->uv.y);
+            record({.kind = Shot::Kind::Bullet, .frame = frame_, .a = hit->uv.x, .b = hit->uv.y});
+        }
+    }
+    void explode(double x, double y, int width, int height) override {
+        if (const auto hit = pick(x, y, width, height)) {
+            const std::uint64_t seed = random_.nextBits() & 0xffffffu;
+            wall_.explode(hit->uv.x, hit->uv.y, seed);
+            record({.kind = Shot::Kind::Explosion, .frame = frame_, .a = hit->uv.x, .b = hit->uv.y, .seed = seed});
+        }
+    }
+    void clear() override { wall_.decals().clear(); }
+    void panel() override {
+        ImGui::Checkbox("automatic volley", &autoFire);
+        ImGui::Text("click: bullet hole, E: explosion, C: clear damage");
+        ImGui::Text("pending stamps %zu", wall_.decals().pendingStamps());
+        if (ImGui::Button("clear damage")) wall_.decals().clear();
+    }
+
+    bool autoFire = true;
+
+private:
+    static DecalWallConfig config(const SceneOptions& o) {
+        DecalWallConfig c;
+        c.heightMap = o.heightMap;
+        c.colorMap = o.colorMap;
+        if (!o.normalMap.empty())
+            throw Error("the decals scene derives its normals from the damaged heights every frame; "
+                        "--normal-map is not used there (give --height-map and --color-map)");
+        if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
+        c.bricks.seed = o.seed;
+        return c;
+    }
+
+    std::optional<SurfacePick> pick(double x, double y, int width, int height) {
+        const Ray ray = camera_.rayThroughPixel(x, height - y, width, height);
+        return wall_.pick(ray, SurfaceFrame::ofPlane(kWall, model()));
+    }
+
+    void apply(const Shot& shot) {
+        switch (shot.kind) {
+        case Shot::Kind::Bullet: wall_.shoot(shot.a, shot.b); break;
+        case Shot::Kind::Explosion: wall_.explode(shot.a, shot.b, shot.seed); break;
+        case Shot::Kind::Click:
+            if (shot.a < 0 || shot.b < 0 || shot.a >= width_ || shot.b >= height_)
+                throw Error(str("shot list line ", shot.line, ": click at (", shot.a, ", ", shot.b,
+                                ") is outside the ", width_, "x", height_, " image"));
+            if (const auto hit = pick(shot.a, shot.b, width_, height_)) wall_.shoot(hit->uv.x, hit->uv.y);
+            break;
+        }
+    }
+
+    /// A seeded burst: a few bullets every frame and an explosion every twelfth.
+    void volley() {
+        for (int i = 0; i < 4; ++i) wall_.shoot(random_.uniform(0.1, 1.9), random_.uniform(0.1, 1.9));
+        if (frame_ % 12 == 1) wall_.explode(random_.uniform(0.2, 1.8), random_.uniform(0.2, 1.8), random_.nextBits() & 0xffff);
+    }
+
+    void record(const Shot& shot) { std::printf("shot: %s\n", formatShot(shot).c_str()); }
+
+    DecalWallEffect wall_;
+    Mesh plane_, post_;
+    DirectionalLight light_;
+    SurfaceRenderer renderer_;
+    SplitMix64 random_;
+    std::vector<Shot> shots_;
+    bool replaying_ = false;
+    int frame_ = 0;
+    int width_, height_;
+};
+
+} // namespace
+
+std::unique_ptr<Scene> makeDecalScene(ClContext& cl, const SceneOptions& options) {
+    return std::make_unique<DecalScene>(cl, options);
+}
+
+} // namespace hfx::demo

@@ -1,0 +1,190 @@
+#include "Window.h"
+
+#include "Frames.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/core/RenderTarget.h"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace hfx::demo {
+namespace {
+
+double nowMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Owns the ImGui context and its GLFW and OpenGL back-ends for the loop's lifetime.
+class ImGuiSession {
+public:
+    explicit ImGuiSession(GLFWwindow* window) {
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr; // no imgui.ini left in the working directory
+        if (!ImGui_ImplGlfw_InitForOpenGL(window, true) || !ImGui_ImplOpenGL3_Init("#version 450")) {
+            ImGui::DestroyContext();
+            throw Error("Dear ImGui could not initialise its GLFW/OpenGL back-ends");
+        }
+    }
+    ~ImGuiSession() {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    ImGuiSession(const ImGuiSession&) = delete;
+    ImGuiSession& operator=(const ImGuiSession&) = delete;
+};
+
+/// Orbit state around the camera's target, read from where the scene put the camera.
+struct Orbit {
+    explicit Orbit(const Camera& c) {
+        const glm::vec3 d = c.position - c.target;
+        distance = glm::length(d);
+        elevation = std::asin(std::clamp(d.y / distance, -1.0f, 1.0f));
+        azimuth = std::atan2(d.x, d.z);
+    }
+    void apply(Camera& c) const {
+        const Camera o = Camera::orbit(c.target, distance, azimuth, elevation);
+        c.position = o.position;
+    }
+    float distance, azimuth, elevation;
+};
+
+/// True once per press.
+class KeyEdge {
+public:
+    explicit KeyEdge(int key) : key_(key) {}
+    bool pressed(GLFWwindow* w) {
+        const bool down = glfwGetKey(w, key_) == GLFW_PRESS;
+        const bool edge = down && !was_;
+        was_ = down;
+        return edge;
+    }
+
+private:
+    int key_;
+    bool was_ = false;
+};
+
+} // namespace
+
+int WindowLoop::run(GlContext& gl, Scene& scene) {
+    GLFWwindow* window = glfwGetCurrentContext();
+    if (gl.headless() || !window) throw Error("WindowLoop needs a GLFW window context");
+    ImGuiSession imgui(window);
+    RenderTarget target(options_.width, options_.height);
+    Orbit orbit(scene.camera());
+    KeyEdge explodeKey(GLFW_KEY_E), clearKey(GLFW_KEY_C), screenshotKey(GLFW_KEY_F12), escapeKey(GLFW_KEY_ESCAPE);
+    if (!options_.out.empty()) std::filesystem::create_directories(options_.out);
+    int screenshots = 0;
+    double drawMs = 0.0, frameMs = 0.0, last = nowMs();
+    int techniqueIndex = scene.technique == Technique::ParallaxOcclusion ? 0 : 1;
+
+    for (int frame = 0; options_.frames == 0 || frame < options_.frames; ++frame) {
+        if (!gl.pollEvents() || escapeKey.pressed(window)) break;
+        const double now = nowMs();
+        const double dt = frame == 0 ? 0.0 : std::clamp((now - last) / 1000.0, 1e-4, 0.25);
+        frameMs = now - last;
+        last = now;
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        ImGuiIO& io = ImGui::GetIO();
+
+        // Mouse: right-drag orbits, the wheel zooms, a left click (not a drag) shoots.
+        const auto toImage = [&](ImVec2 p) {
+            return ImVec2(p.x / std::max(io.DisplaySize.x, 1.0f) * options_.width,
+                          p.y / std::max(io.DisplaySize.y, 1.0f) * options_.height);
+        };
+        if (!io.WantCaptureMouse) {
+            if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
+                orbit.azimuth -= io.MouseDelta.x * 0.008f;
+                orbit.elevation = std::clamp(orbit.elevation + io.MouseDelta.y * 0.008f, -1.5f, 1.5f);
+            }
+            if (io.MouseWheel != 0.0f) orbit.distance = std::clamp(orbit.distance * std::pow(0.9f, io.MouseWheel), 0.3f, 80.0f);
+            if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < io.MouseDragThreshold * io.MouseDragThreshold) {
+                const ImVec2 p = toImage(io.MousePos);
+                scene.click(p.x, p.y, options_.width, options_.height);
+            }
+        }
+        orbit.apply(scene.camera());
+        if (!io.WantCaptureKeyboard) {
+            if (explodeKey.pressed(window)) {
+                const ImVec2 p = toImage(io.MousePos);
+                scene.explode(p.x, p.y, options_.width, options_.height);
+            }
+            if (clearKey.pressed(window)) scene.clear();
+        }
+        const bool screenshot = screenshotKey.pressed(window);
+
+        // The panel: every parameter of the draw, the scene's own, and the frame's breakdown.
+        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+        ImGui::Begin("HFX");
+        ImGui::Text("%s scene", scene.name());
+        SurfaceMaterial& m = scene.material();
+        const SurfaceMaterial before = m;
+        const char* techniques[] = {"parallax occlusion", "normal mapping"};
+        if (ImGui::Combo("technique", &techniqueIndex, techniques, 2))
+            scene.technique = techniqueIndex == 0 ? Technique::ParallaxOcclusion : Technique::NormalMapping;
+        ImGui::SliderInt("samples min", &m.minSamples, 1, 128);
+        ImGui::SliderInt("samples max", &m.maxSamples, 1, 256);
+        m.maxSamples = std::max(m.maxSamples, m.minSamples);
+        ImGui::SliderFloat("depth scale", &m.depthScale, 0.001f, 0.3f, "%.4f", ImGuiSliderFlags_Logarithmic);
+        ImGui::Checkbox("soft shadows", &m.shadows);
+        ImGui::SliderInt("shadow samples", &m.shadowSamples, 1, 32);
+        ImGui::SliderFloat("LOD threshold", &m.lodThreshold, 0.0f, 12.0f);
+        ImGui::Checkbox("wireframe of the base mesh", &scene.wireframe);
+        scene.panel();
+        if (!(before == m)) scene.applyMaterial();
+        const StageTimes stages = scene.effect().lastTimes();
+        ImGui::Separator();
+        ImGui::Text("compute %.2f ms  upload %.2f ms", stages.compute, stages.upload);
+        ImGui::Text("draw %.2f ms  frame %.1f ms (%.1f fps)", drawMs, frameMs, frameMs > 0 ? 1000.0 / frameMs : 0.0);
+        ImGui::Text("right-drag orbit, wheel zoom, F12 screenshot");
+        ImGui::End();
+
+        if (frame > 0) scene.update(dt);
+        target.bind();
+        target.clear(options_.background);
+        glFinish();
+        const double drawStart = nowMs();
+        scene.draw();
+        glFinish();
+        drawMs = nowMs() - drawStart;
+
+        const bool saveFrame = !options_.out.empty() && options_.frames > 0;
+        if (screenshot || saveFrame) {
+            const std::string dir = options_.out.empty() ? "." : options_.out;
+            const std::string path = screenshot ? framePath(dir, std::string(scene.name()) + "_shot", screenshots++)
+                                                : framePath(dir, scene.name(), frame);
+            writeImage(path, target.readColor());
+            std::printf("wrote %s\n", path.c_str());
+        }
+
+        const glm::ivec2 size = gl.framebufferSize();
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBlitNamedFramebuffer(target.framebuffer(), 0, 0, 0, options_.width, options_.height, 0, 0, size.x, size.y,
+                               GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        glViewport(0, 0, size.x, size.y);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        gl.swapBuffers();
+    }
+    if (!options_.exportMaps.empty()) exportMaps(options_.exportMaps, scene.effect().textures());
+    return 0;
+}
+
+} // namespace hfx::demo
