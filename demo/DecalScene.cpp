@@ -38,14 +38,15 @@ public:
     }
 
     void update(double dt) override {
-        // Shots for this frame: the list's, or a seeded volley when none was given.
+        // Shots for the frame this update makes: the list's, or a seeded volley when none was
+        // given. Frame 0 is the wall before any update, so shots listed at 0 land with frame 1.
+        ++frame_;
         if (replaying_) {
             for (const Shot& shot : shots_)
-                if (shot.frame == frame_) apply(shot);
+                if (shot.frame == frame_ || (frame_ == 1 && shot.frame == 0)) apply(shot);
         } else if (autoFire) {
             volley();
         }
-        ++frame_;
         wall_.update(dt);
     }
     void draw() override {
@@ -64,14 +65,14 @@ public:
     void click(double x, double y, int width, int height) override {
         if (const auto hit = pick(x, y, width, height)) {
             wall_.shoot(hit->uv.x, hit->uv.y);
-            record({.kind = Shot::Kind::Bullet, .frame = frame_, .a = hit->uv.x, .b = hit->uv.y});
+            record({.kind = Shot::Kind::Bullet, .frame = frame_ + 1, .a = hit->uv.x, .b = hit->uv.y});
         }
     }
     void explode(double x, double y, int width, int height) override {
         if (const auto hit = pick(x, y, width, height)) {
             const std::uint64_t seed = random_.nextBits() & 0xffffffu;
             wall_.explode(hit->uv.x, hit->uv.y, seed);
-            record({.kind = Shot::Kind::Explosion, .frame = frame_, .a = hit->uv.x, .b = hit->uv.y, .seed = seed});
+            record({.kind = Shot::Kind::Explosion, .frame = frame_ + 1, .a = hit->uv.x, .b = hit->uv.y, .seed = seed});
         }
     }
     void clear() override { wall_.decals().clear(); }

@@ -6,6 +6,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,9 +24,9 @@ struct Result {
 Result runDemo(const std::string& arguments, const std::string& prefix = "env -u DISPLAY -u WAYLAND_DISPLAY") {
     // One log per test and call: CTest runs the tests of this file in parallel processes.
     static int call = 0;
-    const std::string log = outputPath(std::string("demo_") +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name() +
-                                       "_" + std::to_string(call++) + ".txt");
+    std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    std::replace(test.begin(), test.end(), '/', '_'); // parameterised names
+    const std::string log = outputPath("demo_" + test + "_" + std::to_string(call++) + ".txt");
     // By default no DISPLAY: the demo must fall back to headless by itself.
     const std::string command =
         prefix + " '" HFX_DEMO_EXECUTABLE "' " + arguments + " > '" + log + "' 2>&1";
@@ -55,25 +56,96 @@ double luminanceStdDev(const Image& image) {
     return std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
 }
 
-TEST(Demo, HeadlessRunsAreDeterministicAndNotFlat) {
-    const std::string args = "water --headless --frames 3 --width 320 --height 180 --field 128 --out ";
-    const std::string a = outputPath("demo_a"), b = outputPath("demo_b");
-    std::filesystem::remove_all(a);
-    std::filesystem::remove_all(b);
+class DemoScenes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(DemoScenes, HeadlessRunsAreDeterministicDynamicAndFinite) {
+    const std::string scene = GetParam();
+    const std::string args = scene + " --headless --frames 3 --width 320 --height 180 --field 128 --out ";
+    const std::string a = outputPath("demo_" + scene + "_a"), b = outputPath("demo_" + scene + "_b");
+    const std::string maps = outputPath("demo_" + scene + "_maps");
+    for (const auto& dir : {a, b, maps}) std::filesystem::remove_all(dir);
     const Result first = runDemo(args + a);
     ASSERT_EQ(first.exitCode, 0) << first.output;
-    const Result second = runDemo(args + b);
+    const Result second = runDemo(args + b + " --export-maps " + maps);
     ASSERT_EQ(second.exitCode, 0) << second.output;
-    for (const char* frame : {"water_0000.png", "water_0001.png", "water_0002.png"}) {
-        const std::string pa = a + "/" + frame, pb = b + "/" + frame;
+    for (int frame = 0; frame < 3; ++frame) {
+        const std::string name = scene + "_000" + std::to_string(frame) + ".png";
+        const std::string pa = a + "/" + name, pb = b + "/" + name;
         ASSERT_TRUE(std::filesystem::exists(pa)) << pa << "\n" << first.output;
-        EXPECT_EQ(readBytes(pa), readBytes(pb)) << frame << " differs between identical runs";
+        EXPECT_EQ(readBytes(pa), readBytes(pb)) << name << " differs between identical runs";
         const Image image = readImage(pa);
         EXPECT_EQ(image.width, 320);
-        EXPECT_GT(luminanceStdDev(image), 0.02) << frame << " is flat";
+        EXPECT_GT(luminanceStdDev(image), 0.02) << name << " is flat";
     }
     // The field is dynamic: frames differ.
-    EXPECT_NE(readBytes(a + "/water_0000.png"), readBytes(a + "/water_0002.png"));
+    EXPECT_NE(readBytes(a + "/" + scene + "_0000.png"), readBytes(a + "/" + scene + "_0002.png"));
+    // The exported field: heights in [0,1] and unit normals, no NaN, as the renderer saw them.
+    const Image height = readImage(maps + "/height.exr");
+    const Image normal = readImage(maps + "/normal.exr");
+    ASSERT_EQ(height.width, normal.width);
+    double lo = 1.0, hi = 0.0;
+    for (float h : height.pixels) {
+        ASSERT_TRUE(h >= 0.0f && h <= 1.0f) << h;
+        lo = std::min(lo, double(h));
+        hi = std::max(hi, double(h));
+    }
+    EXPECT_GT(hi - lo, 0.05) << "the exported height field is flat";
+    for (int y = 0; y < normal.height; ++y)
+        for (int x = 0; x < normal.width; ++x) {
+            const double len = std::hypot(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
+            ASSERT_NEAR(len, 1.0, 1e-3) << x << "," << y;
+        }
+    for (const char* file : {"height.png", "normal.png", "albedo.png"})
+        EXPECT_TRUE(std::filesystem::exists(maps + "/" + file)) << file;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, DemoScenes, ::testing::Values("water", "decals", "planet"));
+
+TEST(Demo, SineWavesStillRender) {
+    const std::string out = outputPath("demo_sine");
+    const Result r = runDemo("water --waves sine --headless --width 160 --height 90 --field 64 --out " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_GT(luminanceStdDev(readImage(out + "/water_0000.png")), 0.02);
+}
+
+TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
+    const std::string shots = outputPath("demo_shots.txt");
+    std::ofstream(shots) << "# two bullets and a click, then an explosion\n"
+                            "bullet 1 0.5 0.5\nbullet 1 1.5 1.5\nclick 2 160 90\nexplosion 2 1.0 1.0 5\n";
+    const std::string a = outputPath("demo_shots_a"), none = outputPath("demo_shots_none");
+    const std::string args = "decals --headless --frames 3 --width 320 --height 180 --field 128 --out ";
+    const Result r = runDemo(args + a + " --shots " + shots);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    // An empty list: the undamaged wall. The shots change what is drawn.
+    const std::string empty = outputPath("demo_shots_empty.txt");
+    std::ofstream(empty) << "# nothing\n";
+    const Result clean = runDemo(args + none + " --shots " + empty);
+    ASSERT_EQ(clean.exitCode, 0) << clean.output;
+    EXPECT_EQ(readBytes(a + "/decals_0000.png"), readBytes(none + "/decals_0000.png")) << "frame 0 precedes any shot";
+    EXPECT_NE(readBytes(a + "/decals_0002.png"), readBytes(none + "/decals_0002.png")) << "the shots left no mark";
+
+    const std::string bad = outputPath("demo_shots_bad.txt");
+    std::ofstream(bad) << "bullet 1 0.5 0.5\nbullet one 0.5 0.5\n";
+    const Result refused = runDemo("decals --headless --shots " + bad);
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_NE(refused.output.find(bad + ":2:"), std::string::npos) << refused.output;
+    const std::string outside = outputPath("demo_shots_outside.txt");
+    std::ofstream(outside) << "click 1 5000 10\n";
+    const Result off = runDemo("decals --headless --frames 2 --width 320 --height 180 --field 128 --out " + a +
+                               " --shots " + outside);
+    EXPECT_NE(off.exitCode, 0);
+    EXPECT_NE(off.output.find("outside the 320x180 image"), std::string::npos) << off.output;
+}
+
+TEST(Demo, WritesAVideoWhenFfmpegIsThere) {
+    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg)";
+    const std::string video = outputPath("demo_video/water.mp4");
+    std::filesystem::remove_all(outputPath("demo_video"));
+    const Result r = runDemo("water --headless --frames 4 --width 160 --height 90 --field 64 --video " + video);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_TRUE(std::filesystem::exists(video)) << r.output;
+    EXPECT_GT(std::filesystem::file_size(video), 1000u);
 }
 
 TEST(Demo, OpensAWindowUnderXvfb) {
@@ -86,6 +158,11 @@ TEST(Demo, OpensAWindowUnderXvfb) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("hfx-demo: window"), std::string::npos) << r.output;
     EXPECT_GT(luminanceStdDev(readImage(out + "/water_0002.png")), 0.02);
+    // The decal scene with its panel, closed by the frame count.
+    const Result decals = runDemo("decals --frames 3 --width 320 --height 180 --field 128 --out " + out,
+                                  "xvfb-run -a -s '-screen 0 640x480x24'");
+    ASSERT_EQ(decals.exitCode, 0) << decals.output;
+    EXPECT_GT(luminanceStdDev(readImage(out + "/decals_0002.png")), 0.02);
 }
 
 TEST(Demo, UnknownSceneIsAClearError) {
@@ -125,7 +202,11 @@ TEST(Demo, MapsSceneRendersAFileAndRefusesBadOnes) {
 
 TEST(Demo, BadOptionValuesAreClearErrors) {
     for (const char* args : {"water --field 0", "water --technique raytrace", "water --frames -3",
-                             "water --samples-min 40 --samples-max 10", "water --width abc"}) {
+                             "water --samples-min 40 --samples-max 10", "water --width abc", "water --waves tidal",
+                             "water --wind-speed -4", "water --depth-scale 2", "water --lod-threshold -1",
+                             "water --dt 0", "water --field 100", "decals --shots /no/such/shots.txt",
+                             "decals --normal-map n.png", "water --environment /no/such/sky.exr",
+                             "planet --field 4", "water --height 9"}) {
         const Result r = runDemo(std::string(args) + " --headless");
         EXPECT_NE(r.exitCode, 0) << args;
         EXPECT_FALSE(r.output.empty()) << args << " printed nothing";
@@ -137,8 +218,12 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
 TEST(Demo, HelpListsTheOptions) {
     const Result r = runDemo("--help");
     EXPECT_EQ(r.exitCode, 0);
-    for (const char* option : {"--headless", "--frames", "--out", "--field", "--technique",
-                               "--samples-min", "--samples-max", "--depth-scale", "--seed"})
+    for (const char* option : {"--headless", "--frames", "--out", "--video", "--export-maps", "--width",
+                               "--height", "--dt", "--field", "--technique", "--samples-min", "--samples-max",
+                               "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
+                               "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
+                               "--normal-map", "--color-map", "--no-progress", "water", "decals", "planet",
+                               "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }
 

@@ -7,8 +7,10 @@
 //   click     FRAME X Y          a click at pixel (X, Y) from the image's top-left: picked
 //                                through the camera onto the displaced surface, then a bullet
 //
-// FRAME counts from 0; shots apply before that frame's update. Texcoords may lie outside [0,1)
-// (they wrap); pixels must lie inside the image, which only the scene can check.
+// FRAME counts rendered frames: a shot at frame F is stamped by the update that makes frame F
+// and shows from F on (frame 0 is the wall before any update, so shots at 0 land with frame 1).
+// Texcoords may lie outside [0,1) (they wrap); pixels must lie inside the image, which only the
+// scene can check.
 
 #include <cstdint>
 #include <string>

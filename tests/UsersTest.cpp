@@ -1,0 +1,216 @@
+// The three users as a game would use them: picking on the displaced wall against the analytic
+// hit, the stamp landing where the pick said, the ocean's live wind, the planet's colours from
+// the gas, and the procedural wall's tiling.
+
+#include "support/Fixtures.h"
+
+#include "hfx/compute/ColorRamp.h"
+#include "hfx/compute/shared/ColorMath.h"
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/effects/BrickWall.h"
+#include "hfx/effects/DecalWall.h"
+#include "hfx/effects/GasPlanet.h"
+#include "hfx/effects/OceanEffect.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace hfx::test {
+namespace {
+
+class Users : public DeviceTest {};
+
+std::vector<float> readSurface(const SurfaceTextures& textures) {
+    std::vector<float> texels(size_t(textures.config().width) * textures.config().height * 4);
+    glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    return texels;
+}
+
+/// A wall like the decals scene's: 4 x 4 world units, texcoords 0..2, standing in the XY plane
+/// facing +Z (the plane rotated 90 degrees about X), so u = (x + 2) / 2 and v = (y + 2) / 2.
+constexpr PlaneConfig kWall{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};
+const glm::mat4 kWallModel = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0));
+
+TEST_F(Users, PickingHitsTheDisplacedSurfaceAndTheStampLandsThere) {
+    constexpr int N = 256;
+    constexpr float level = 0.6f, depthScale = 0.06f;
+    const std::string heightMap = outputPath("users_flat_wall.exr");
+    writeImage(heightMap, Image{N, N, 1, std::vector<float>(N * N, level)});
+    DecalWallConfig config{.heightMap = heightMap};
+    config.material.depthScale = depthScale;
+    DecalWallEffect wall(cl(), config);
+
+    const Camera camera = [] {
+        Camera c = Camera::orbit({0.2f, -0.1f, 0.0f}, 3.0f, 0.9f, 0.35f);
+        c.aspect = 16.0f / 9.0f;
+        return c;
+    }();
+    // The surface lies (1 - h) * depthScale texture units = 2 world units each, below the wall.
+    const double sunk = (1.0 - level) * depthScale * 2.0;
+    const SurfaceFrame frame = SurfaceFrame::ofPlane(kWall, kWallModel);
+    for (const auto& pixel : {glm::dvec2(640.5, 360.5), glm::dvec2(300.5, 500.5), glm::dvec2(1000.5, 200.5)}) {
+        const Ray ray = camera.rayThroughPixel(pixel.x, pixel.y, 1280, 720);
+        const double t = (-sunk - ray.origin.z) / ray.direction.z;
+        const glm::dvec3 p = ray.origin + t * ray.direction;
+        const glm::dvec2 expected((p.x + 2.0) / 2.0, (p.y + 2.0) / 2.0);
+        const auto hit = wall.pick(ray, frame);
+        ASSERT_TRUE(hit.has_value()) << pixel.x << "," << pixel.y;
+        EXPECT_LT(glm::length(hit->uv - expected) * N, 1.0) << "pick off by more than a texel at pixel " << pixel.x
+                                                            << "," << pixel.y;
+        EXPECT_NEAR(hit->height, level, 1e-6);
+        // The flat polygon would be far off: the relief matters at this angle.
+        const double tFlat = -ray.origin.z / ray.direction.z;
+        const glm::dvec3 q = ray.origin + tFlat * ray.direction;
+        EXPECT_GT(glm::length(glm::dvec2((q.x + 2.0) / 2.0, (q.y + 2.0) / 2.0) - expected) * N, 2.0);
+    }
+
+    // Shoot where the centre pixel picked; the crater's deepest texel is there, within a texel.
+    const auto hit = wall.pick(camera.rayThroughPixel(640.5, 360.5, 1280, 720), frame);
+    ASSERT_TRUE(hit);
+    wall.shoot(hit->uv.x, hit->uv.y);
+    wall.update(1.0 / 30.0);
+    const std::vector<float> heights = wall.readHeights();
+    int deepest = 0;
+    for (int i = 1; i < N * N; ++i)
+        if (heights[i] < heights[deepest]) deepest = i;
+    ASSERT_LT(heights[deepest], level - 0.1f) << "no crater was stamped";
+    const glm::dvec2 landed((deepest % N + 0.5) / N, (deepest / N + 0.5) / N);
+    glm::dvec2 aimed = hit->uv - glm::floor(hit->uv);
+    EXPECT_LT(glm::length(landed - aimed) * N, 1.0) << "stamp landed at " << landed.x << "," << landed.y
+                                                    << ", aimed at " << aimed.x << "," << aimed.y;
+    // The textures follow the damage the same update: the crater's texel in the GL surface.
+    const std::vector<float> texels = readSurface(wall.textures());
+    EXPECT_FLOAT_EQ(texels[size_t(deepest) * 4 + 3], heights[deepest]);
+}
+
+TEST_F(Users, PickingMissesOutsideThePatchAndLookingAway) {
+    DecalWallEffect wall(cl(), {.bricks = {.size = 128}});
+    const SurfaceFrame frame = SurfaceFrame::ofPlane(kWall, kWallModel);
+    // Behind the wall, looking away from it.
+    EXPECT_FALSE(wall.pick({{0, 0, 3}, {0, 0, 1}}, frame));
+    // Parallel to the wall.
+    EXPECT_FALSE(wall.pick({{0, 0, 3}, {1, 0, 0}}, frame));
+    const HeightFieldTracer flat(std::vector<float>(64, 1.0f), 8, 8, EdgeMode::Wrap);
+    EXPECT_FALSE(pickSurface({{10, 0, 3}, {0, 0, -1}}, frame, flat, 0.05, {0, 0, 2, 2}));
+    EXPECT_TRUE(pickSurface({{0, 0, 3}, {0, 0, -1}}, frame, flat, 0.05, {0, 0, 2, 2}));
+    EXPECT_THROW(wall.shoot(std::nan(""), 0.5), Error);
+}
+
+TEST_F(Users, DecalWallRefusesBadMapsAndKeepsNoHalfState) {
+    const std::string bad = outputPath("users_missing_wall.png");
+    try {
+        DecalWallEffect wall(cl(), {.heightMap = bad});
+        FAIL() << "a missing height map was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(DecalWallEffect(cl(), {.colorMap = "colour-without-height.png"}), Error);
+    EXPECT_THROW(DecalWallEffect(cl(), {.bricks = {.size = 100, .rows = 7}}), Error);
+}
+
+TEST_F(Users, OceanWindChangesTheSeaAndItsDepthAndBadWindChangesNothing) {
+    OceanEffectConfig config;
+    config.ocean.size = 64;
+    OceanEffect ocean(cl(), config);
+    const float calmDepth = ocean.material().depthScale;
+    EXPECT_NEAR(calmDepth, 8.0f * ocean.ocean().sigmaMeters() / config.ocean.patchMeters, 1e-6f);
+    const std::vector<float> before = readSurface(ocean.textures());
+    ocean.setWind(4.0f, 1.2f);
+    // A light wind raises a much lower sea (the spectrum's energy grows steeply with the wind
+    // while its peak fits in the patch): shallower relief.
+    EXPECT_LT(ocean.material().depthScale, calmDepth / 4.0f);
+    EXPECT_NE(readSurface(ocean.textures()), before);
+    const float stormDepth = ocean.material().depthScale;
+    EXPECT_THROW(ocean.setWind(-3.0f, 0.0f), Error);
+    EXPECT_THROW(ocean.setWind(10.0f, std::nanf("")), Error);
+    EXPECT_EQ(ocean.material().depthScale, stormDepth);
+    EXPECT_EQ(ocean.ocean().config().windSpeed, 4.0f);
+    // The spectrum is the one a fresh ocean with that wind would draw.
+    OceanConfig same = config.ocean;
+    same.windSpeed = 4.0f;
+    same.windDirection = 1.2f;
+    EXPECT_EQ(ocean.ocean().amplitudes(), OceanField::spectrumAmplitudes(same));
+}
+
+TEST_F(Users, PlanetColoursComeFromTheGasThroughTheRamp) {
+    GasPlanetConfig config;
+    config.gas.width = 64;
+    config.gas.height = 32;
+    config.gas.initialBands = 4.0f;
+    config.stormsPerSecond = 5.0f;
+    GasPlanetEffect planet(cl(), config);
+    for (int i = 0; i < 3; ++i) planet.update(1.0 / 30.0);
+    const std::vector<float> surface = readSurface(planet.textures());
+    std::vector<unsigned char> albedo(64 * 32 * 4);
+    glGetTextureImage(planet.textures().albedo(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(albedo.size()), albedo.data());
+    const std::vector<float> stops = ColorRamp::pack(config.palette);
+    int distinct = 0;
+    for (int i = 0; i < 64 * 32; ++i) {
+        ASSERT_TRUE(std::isfinite(surface[i * 4 + 3]));
+        unsigned char expected[4];
+        hfx_ramp_rgba8(surface[i * 4 + 3], stops.data(), int(config.palette.size()), expected);
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(albedo[i * 4 + c], expected[c]) << "texel " << i << " channel " << c;
+        distinct += albedo[i * 4] != albedo[0];
+    }
+    EXPECT_GT(distinct, 64) << "the planet is one colour";
+    // The longitude wraps and the poles clamp.
+    GLint wrapS = 0, wrapT = 0;
+    glGetTextureParameteriv(planet.textures().surface(), GL_TEXTURE_WRAP_S, &wrapS);
+    glGetTextureParameteriv(planet.textures().surface(), GL_TEXTURE_WRAP_T, &wrapT);
+    EXPECT_EQ(wrapS, GL_REPEAT);
+    EXPECT_EQ(wrapT, GL_CLAMP_TO_EDGE);
+    EXPECT_THROW(GasPlanetEffect(cl(), {.gas = {.width = 64, .height = 32, .periodicY = true}}), Error);
+}
+
+TEST_F(Users, ColorRampKernelMatchesTheSharedMathIncludingNaN) {
+    const std::vector<ColorStop> stops = {{0.1f, {0, 0, 0}}, {0.5f, {1, 0.5f, 0}}, {0.9f, {0.2f, 0.4f, 1}}};
+    constexpr int W = 40, H = 10;
+    std::vector<float> field(W * H);
+    for (int i = 0; i < W * H; ++i) field[i] = -0.2f + 1.4f * float(i) / (W * H);
+    field[7] = std::nanf("");
+    cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, field.size() * sizeof(float), field.data());
+    ColorRamp ramp(cl(), W, H, stops);
+    ramp.run(input);
+    std::vector<cl_uchar4> out(W * H);
+    cl().queue().enqueueReadBuffer(ramp.output(), CL_TRUE, 0, out.size() * sizeof(cl_uchar4), out.data());
+    const std::vector<float> packed = ColorRamp::pack(stops);
+    for (int i = 0; i < W * H; ++i) {
+        unsigned char expected[4];
+        hfx_ramp_rgba8(field[i], packed.data(), 3, expected);
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(out[i].s[c], expected[c]) << i;
+    }
+    // Analytic points: the middle stop exactly, halfway between the first two, below and above.
+    unsigned char mid[4], half[4], below[4], above[4];
+    hfx_ramp_rgba8(0.5f, packed.data(), 3, mid);
+    hfx_ramp_rgba8(0.3f, packed.data(), 3, half);
+    hfx_ramp_rgba8(-5.0f, packed.data(), 3, below);
+    hfx_ramp_rgba8(5.0f, packed.data(), 3, above);
+    EXPECT_EQ(mid[0], 255);
+    EXPECT_EQ(mid[1], 128);
+    EXPECT_EQ(half[0], 128);
+    EXPECT_EQ(below[0], 0);
+    EXPECT_EQ(above[2], 255);
+    EXPECT_EQ(out[7].s[0], 0) << "NaN takes the first colour";
+    EXPECT_THROW(ColorRamp(cl(), W, H, {{0.5f, {0, 0, 0}}, {0.4f, {1, 1, 1}}}), Error);
+    EXPECT_THROW(ColorRamp(cl(), W, H, {{0.5f, {0, 0, 0}}}), Error);
+    EXPECT_THROW(ColorRamp(cl(), W, H, {{0.0f, {0, 0, 2}}, {1.0f, {1, 1, 1}}}), Error);
+}
+
+TEST(BrickWall, TilesAndStaysInRange) {
+    const BrickWallMaps wall = makeBrickWall({.size = 128});
+    double jumpAcross = 0.0, jumpInside = 0.0;
+    for (int y = 0; y < 128; ++y) {
+        jumpAcross = std::max(jumpAcross, double(std::abs(wall.heights[y * 128 + 127] - wall.heights[y * 128])));
+        jumpInside = std::max(jumpInside, double(std::abs(wall.heights[y * 128 + 64] - wall.heights[y * 128 + 63])));
+    }
+    for (float h : wall.heights) ASSERT_TRUE(h >= 0.0f && h <= 1.0f);
+    // Across the wrap the wall is as continuous as anywhere inside it.
+    EXPECT_LE(jumpAcross, std::max(jumpInside, 0.45) + 1e-6);
+    EXPECT_THROW(makeBrickWall({.size = 32}), Error);
+}
+
+} // namespace
+} // namespace hfx::test
