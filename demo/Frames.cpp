@@ -11,9 +11,9 @@
 
 namespace hfx::demo {
 
-std::string framePath(const std::string& dir, const std::string& scene, int frame) {
+std::string framePath(const std::string& dir, const std::string& scene, int frame, const std::string& ext) {
     char name[96];
-    std::snprintf(name, sizeof name, "%s_%04d.png", scene.c_str(), frame);
+    std::snprintf(name, sizeof name, "%s_%04d.%s", scene.c_str(), frame, ext.c_str());
     return (std::filesystem::path(dir) / name).string();
 }
 

@@ -11,8 +11,8 @@
 
 namespace hfx::demo {
 
-/// DIR/SCENE_0007.png
-std::string framePath(const std::string& dir, const std::string& scene, int frame);
+/// DIR/SCENE_0007.EXT (png, jpg or exr: writeImage picks the format by extension)
+std::string framePath(const std::string& dir, const std::string& scene, int frame, const std::string& ext = "png");
 
 /// "[#####.....]  12/30 frames  3.2 fps  ETA 6 s" on stderr, redrawn in place.
 class Progress {

@@ -37,6 +37,7 @@ struct Options {
     int width = 1280, height = 720;
     double dt = 1.0 / 30.0;
     std::string technique = "pom";
+    std::string format = "png";
     bool noProgress = false;
     SceneOptions sceneOptions;
 };
@@ -65,7 +66,7 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
         scene.draw();
         const Image image = target.readColor();
         if (!outDir.empty()) {
-            const std::string path = framePath(outDir, o.scene, frame);
+            const std::string path = framePath(outDir, o.scene, frame, o.format);
             writeImage(path, image);
             if (!progress.enabled()) std::printf("wrote %s\n", path.c_str());
         }
@@ -121,6 +122,8 @@ int main(int argc, char** argv) {
     app.add_option("--frames", o.frames, "frames to render (headless default 1; window: until closed)")
         ->check(CLI::Range(0, 1000000));
     app.add_option("--out", o.out, "folder for PNG frames (headless default: frames)");
+    app.add_option("--format", o.format, "image format of the frames: png, jpg or exr")
+        ->check(CLI::IsMember({"png", "jpg", "exr"}))->capture_default_str();
     app.add_option("--video", o.video, "also encode the frames into this video file (needs ffmpeg)");
     app.add_option("--export-maps", o.exportMaps,
                    "after the last frame, write the field's height, normal and albedo maps (EXR and PNG) to this folder");

@@ -204,7 +204,10 @@ void main() {
             fetches += 1.0;
             occlusion = max(occlusion, blocker / (f * (1.0 - h0)));
         }
-        lit = 1.0 - clamp(occlusion * u_shadowSharpness, 0.0, 1.0);
+        // Fade in from the geometric terminator, where the N.L skip above would otherwise cut
+        // from fully shadowed (grazing light) to unshadowed in one pixel.
+        lit = 1.0 - clamp(occlusion * u_shadowSharpness, 0.0, 1.0) *
+                        smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
     }
 #endif
 
@@ -229,7 +232,7 @@ void main() {
 #elif HFX_SHADING == 2
     // Planet: the sphere's own normal sets day and night (a soft terminator), the relief's
     // normal the detail; an atmosphere brightens the lit limb.
-    const float day = smoothstep(-0.15, 0.3, dot(geometricNormal, lightDir));
+    const float day = smoothstep(-0.05, 0.3, dot(geometricNormal, lightDir));
     const float rim = 0.5 * pow(1.0 - cosView, 3.0) * day;
     vec3 color = albedo * u_ambient +
                  day * lit * u_lightColor * (albedo * diffuse + u_specularStrength * specular) +

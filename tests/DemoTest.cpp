@@ -222,7 +222,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--height", "--dt", "--field", "--technique", "--samples-min", "--samples-max",
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
-                               "--normal-map", "--color-map", "--no-progress", "water", "decals", "planet",
+                               "--normal-map", "--color-map", "--no-progress", "--format", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }

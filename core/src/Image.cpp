@@ -46,6 +46,7 @@ void writeImage(const std::string& path, const Image& image) {
     if (!out) throw Error(str("cannot write '", path, "': ", OIIO::geterror()));
     OIIO::ImageSpec spec(image.width, image.height, image.channels,
                          format == OIIO::TypeDesc::UNKNOWN ? OIIO::TypeDesc::UINT8 : format);
+    if (ext == ".jpg" || ext == ".jpeg" || ext == ".JPG") spec.attribute("Compression", "jpeg:85");
     if (!out->open(path, spec))
         throw Error(str("cannot write '", path, "': ", out->geterror()));
     if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
