@@ -90,9 +90,7 @@ private:
         DecalWallConfig c;
         c.heightMap = o.heightMap;
         c.colorMap = o.colorMap;
-        if (!o.normalMap.empty())
-            throw Error("the decals scene derives its normals from the damaged heights every frame; "
-                        "--normal-map is not used there (give --height-map and --color-map)");
+        c.normalMap = o.normalMap;
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
         return c;

@@ -153,7 +153,8 @@ int main(int argc, char** argv) {
     app.add_option("--environment", s.environment, "water: equirectangular sky image to reflect");
     app.add_option("--shots", s.shots, "decals: shot list to replay (lines 'bullet|explosion|click FRAME A B')");
     app.add_option("--height-map", s.heightMap, "maps, decals: height map image (h in [0,1])");
-    app.add_option("--normal-map", s.normalMap, "maps: tangent-space normal map (default: Sobel of the heights)");
+    app.add_option("--normal-map", s.normalMap,
+                   "maps, decals: tangent-space normal map (default: Sobel of the heights)");
     app.add_option("--color-map", s.colorMap, "maps, decals: colour map");
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);

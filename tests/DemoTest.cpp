@@ -205,7 +205,7 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
                              "water --samples-min 40 --samples-max 10", "water --width abc", "water --waves tidal",
                              "water --wind-speed -4", "water --depth-scale 2", "water --lod-threshold -1",
                              "water --dt 0", "water --field 100", "decals --shots /no/such/shots.txt",
-                             "decals --normal-map n.png", "water --environment /no/such/sky.exr",
+                             "decals --normal-map n.png",  /* a normal map without a height map */ "water --environment /no/such/sky.exr",
                              "planet --field 4", "water --height 9"}) {
         const Result r = runDemo(std::string(args) + " --headless");
         EXPECT_NE(r.exitCode, 0) << args;

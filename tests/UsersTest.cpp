@@ -86,6 +86,55 @@ TEST_F(Users, PickingHitsTheDisplacedSurfaceAndTheStampLandsThere) {
     EXPECT_FLOAT_EQ(texels[size_t(deepest) * 4 + 3], heights[deepest]);
 }
 
+TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
+    constexpr int N = 256; // the bullet's radius, 0.012 widths, spans 3 texels
+    const std::string heightMap = outputPath("users_nm_height.exr"), normalMap = outputPath("users_nm_normal.png");
+    writeImage(heightMap, Image{N, N, 1, std::vector<float>(N * N, 0.7f)});
+    // A tilted normal everywhere: (0.3, -0.2, ~0.93), stored as 0.5 + 0.5 n in 8 bits.
+    Image normals{N, N, 3, std::vector<float>(N * N * 3)};
+    for (int i = 0; i < N * N; ++i) {
+        normals.pixels[i * 3 + 0] = 0.5f + 0.5f * 0.3f;
+        normals.pixels[i * 3 + 1] = 0.5f - 0.5f * 0.2f;
+        normals.pixels[i * 3 + 2] = 0.5f + 0.5f * 0.933f;
+    }
+    writeImage(normalMap, normals);
+    const Image stored = readImage(normalMap); // the 8-bit values the wall will see
+    glm::vec3 expected(2.0f * stored.at(0, 0, 0) - 1.0f, 2.0f * stored.at(0, 0, 1) - 1.0f, 2.0f * stored.at(0, 0, 2) - 1.0f);
+    expected = glm::normalize(expected);
+
+    DecalWallEffect wall(cl(), {.heightMap = heightMap, .normalMap = normalMap});
+    std::vector<float> texels = readSurface(wall.textures());
+    for (int i = 0; i < N * N; ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(texels[i * 4 + c], expected[c], 1e-6f) << "texel " << i;
+
+    wall.shoot(0.5, 0.5);
+    wall.update(1.0 / 30.0);
+    texels = readSurface(wall.textures());
+    const auto at = [&](int x, int y) { return glm::vec3(texels[(y * N + x) * 4], texels[(y * N + x) * 4 + 1], texels[(y * N + x) * 4 + 2]); };
+    // Far from the crater: the map exactly. On its flanks: bent, still unit length; the flank
+    // towards +u tilts the normal towards -u relative to the map (the bowl rises to the right).
+    EXPECT_LT(glm::length(at(5, 5) - expected), 1e-6f);
+    const glm::vec3 flank = at(N / 2 + 1, N / 2);
+    EXPECT_NEAR(glm::length(flank), 1.0f, 1e-5f);
+    EXPECT_LT(flank.x / flank.z, expected.x / expected.z - 0.05f);
+
+    // A depth-scale change re-derives the base normals: undamaged texels keep the map.
+    wall.setDepthScale(0.12f);
+    wall.update(1.0 / 30.0);
+    texels = readSurface(wall.textures());
+    EXPECT_LT(glm::length(at(5, 5) - expected), 1e-6f);
+
+    // A normal map that does not match the heights is refused, naming it.
+    const std::string small = outputPath("users_nm_small.png");
+    writeImage(small, Image{16, 16, 3, std::vector<float>(16 * 16 * 3, 0.5f)});
+    try {
+        DecalWallEffect bad(cl(), {.heightMap = heightMap, .normalMap = small});
+        FAIL() << "a mismatched normal map was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(small), std::string::npos) << e.what();
+    }
+}
+
 TEST_F(Users, PickingMissesOutsideThePatchAndLookingAway) {
     DecalWallEffect wall(cl(), {.bricks = {.size = 128}});
     const SurfaceFrame frame = SurfaceFrame::ofPlane(kWall, kWallModel);

@@ -10,8 +10,9 @@ namespace hfx {
 void DecalWallConfig::validate() const {
     if (heightMap.empty()) {
         bricks.validate();
-        if (!colorMap.empty())
-            throw Error(str("DecalWallConfig.colorMap '", colorMap, "' needs a heightMap to go with it"));
+        if (!colorMap.empty() || !normalMap.empty())
+            throw Error(str("DecalWallConfig: a colour or normal map ('", colorMap.empty() ? normalMap : colorMap,
+                            "') needs a heightMap to go with it"));
     }
     if (!(healRate >= 0.0f) || !std::isfinite(healRate))
         throw Error(str("DecalWallConfig.healRate must be >= 0 and finite, got ", healRate));
@@ -27,6 +28,7 @@ struct WallMaps {
     int width = 0, height = 0;
     std::vector<float> heights;
     Image albedo;
+    std::vector<float> normals; ///< packed float4 from the normal map, or empty
 };
 
 WallMaps loadWall(const DecalWallConfig& config) {
@@ -43,6 +45,8 @@ WallMaps loadWall(const DecalWallConfig& config) {
     maps.width = height.width;
     maps.height = height.height;
     maps.heights = heightsFromImage(height, config.heightMap);
+    if (!config.normalMap.empty())
+        maps.normals = packNormalMap(readImage(config.normalMap, config.limits), config.normalMap, maps.heights);
     if (!config.colorMap.empty()) {
         maps.albedo = readImage(config.colorMap, config.limits);
         if (maps.albedo.width != height.width || maps.albedo.height != height.height)
@@ -57,6 +61,7 @@ WallMaps loadWall(const DecalWallConfig& config) {
 struct DecalWallEffect::Made {
     std::unique_ptr<HeightSource> source;
     Image albedo;
+    std::vector<float> heights, normals; ///< kept only with a normal map
 };
 
 DecalWallEffect::Made DecalWallEffect::make(ClContext& cl, const DecalWallConfig& config) {
@@ -66,7 +71,12 @@ DecalWallEffect::Made DecalWallEffect::make(ClContext& cl, const DecalWallConfig
                        .periodic = true,
                        .healRate = config.healRate,
                        .maxStampsPerBatch = config.maxStampsPerBatch};
-    return {std::make_unique<DecalMap>(cl, decals, maps.heights), std::move(maps.albedo)};
+    Made made{std::make_unique<DecalMap>(cl, decals, maps.heights), std::move(maps.albedo), {}, {}};
+    if (!maps.normals.empty()) {
+        made.heights = std::move(maps.heights);
+        made.normals = std::move(maps.normals);
+    }
+    return made;
 }
 
 namespace {
@@ -85,6 +95,36 @@ DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, M
     : FieldEffect(cl, std::move(made.source), config.material, config.mipmaps), config_(config),
       decals_(static_cast<DecalMap&>(source())) {
     if (!made.albedo.empty()) mutableTextures().setAlbedo(made.albedo);
+    if (!made.normals.empty()) {
+        const int w = decals_.width(), h = decals_.height();
+        clGuard("uploading the wall's normal map", [&] {
+            baseHeights_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                      made.heights.size() * sizeof(float), made.heights.data());
+            detail_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                 made.normals.size() * sizeof(float), made.normals.data());
+            addDetail_ = cl.kernel("sobel.cl", "sobel_add_detail");
+        });
+        baseNormals_ = std::make_unique<SobelNormals>(
+            cl, SobelConfig{.width = w, .height = h, .depthScale = material().depthScale, .wrapEdges = true});
+        refresh(nowMs()); // again, now with the normal map
+    }
+}
+
+void DecalWallEffect::enqueueExtra() {
+    if (!baseNormals_) return;
+    if (baseDepthScale_ != material().depthScale) {
+        baseNormals_->setDepthScale(material().depthScale);
+        baseNormals_->run(baseHeights_);
+        baseDepthScale_ = material().depthScale;
+    }
+    const int n = decals_.width() * decals_.height();
+    clGuard("adding the wall's normal map", [&] {
+        addDetail_.setArg(0, normals().output());
+        addDetail_.setArg(1, baseNormals_->output());
+        addDetail_.setArg(2, detail_);
+        addDetail_.setArg(3, n);
+        cl().queue().enqueueNDRangeKernel(addDetail_, cl::NullRange, cl::NDRange(size_t(n)));
+    });
 }
 
 void DecalWallEffect::shoot(double u, double v) {

@@ -3,17 +3,19 @@
 // when none are given) carrying a persistent DecalMap. Shots and explosions are queued by
 // texcoord and stamped on the device in the next update(); pick() turns a camera ray into the
 // texcoord the user sees on the displaced surface. Normals are re-derived from the damaged
-// heights every update, so craters shade, cast soft self-shadows and clip geometry (POM's depth
-// output) from the frame they appear in.
+// heights every update (and added to the normal map's, when one is given), so craters shade,
+// cast soft self-shadows and clip geometry (POM's depth output) from the frame they appear in.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
 #include "hfx/compute/DecalMap.h"
+#include "hfx/compute/SobelNormals.h"
 #include "hfx/core/Image.h"
 #include "hfx/effects/BrickWall.h"
 #include "hfx/effects/FieldEffect.h"
 #include "hfx/effects/Picking.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +25,10 @@ namespace hfx {
 struct DecalWallConfig {
     std::string heightMap;      ///< optional: a procedural brick wall when empty
     std::string colorMap;       ///< optional: with a height map, light grey when empty
+    /// optional, with a height map: the artist's tangent-space normals (OpenGL convention). The
+    /// damage's relief is added to them in slope space each update, so undamaged texels show
+    /// the map exactly and craters bend it.
+    std::string normalMap;
     BrickWallConfig bricks;     ///< the procedural wall (its size sets the map's)
     float healRate = 0.0f;      ///< damage decays as exp(-healRate t); 0 = permanent
     int maxStampsPerBatch = 65536;
@@ -56,8 +62,16 @@ private:
     struct Made;
     static Made make(ClContext& cl, const DecalWallConfig& config);
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config, Made made);
+    void enqueueExtra() override;
+
     DecalWallConfig config_;
     DecalMap& decals_;
+    // With a normal map: the base heights' own Sobel normals (redone when the depth scale
+    // changes) and the map, on the device.
+    std::unique_ptr<SobelNormals> baseNormals_;
+    cl::Buffer baseHeights_, detail_;
+    cl::Kernel addDetail_;
+    float baseDepthScale_ = -1.0f;
 };
 
 } // namespace hfx
