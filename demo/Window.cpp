@@ -78,6 +78,21 @@ private:
     bool was_ = false;
 };
 
+/// The default framebuffer's back buffer as the user will see it after the swap.
+void saveWindow(const std::string& path, glm::ivec2 size) {
+    std::vector<unsigned char> rgba(size_t(size.x) * size.y * 4);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    Image image{size.x, size.y, 3, std::vector<float>(size_t(size.x) * size.y * 3)};
+    for (int y = 0; y < size.y; ++y)
+        for (int x = 0; x < size.x; ++x)
+            for (int c = 0; c < 3; ++c)
+                image.at(x, size.y - 1 - y, c) = rgba[(size_t(y) * size.x + x) * 4 + c] / 255.0f;
+    writeImage(path, image);
+    std::printf("wrote %s (the window)\n", path.c_str());
+}
+
 } // namespace
 
 int WindowLoop::run(GlContext& gl, Scene& scene) {
@@ -181,6 +196,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         glViewport(0, 0, size.x, size.y);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (!options_.windowShot.empty() && frame + 1 == options_.frames) saveWindow(options_.windowShot, size);
         gl.swapBuffers();
     }
     if (!options_.exportMaps.empty()) exportMaps(options_.exportMaps, scene.effect().textures());

@@ -17,6 +17,7 @@ struct WindowOptions {
     int frames = 0;                 ///< close after this many frames (0: when the user closes)
     std::string out;                ///< screenshots and, with frames, every frame go here
     std::string exportMaps;         ///< on close, export the field's maps here
+    std::string windowShot;         ///< with frames: save the last frame as the window shows it (panel too)
     glm::vec4 background{0, 0, 0, 1};
 };
 

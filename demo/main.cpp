@@ -33,7 +33,7 @@ struct Options {
     std::string scene = "water";
     bool headless = false;
     int frames = 0; // 0: headless 1 frame, window until closed
-    std::string out, video, exportMaps;
+    std::string out, video, exportMaps, windowShot;
     int width = 1280, height = 720;
     double dt = 1.0 / 30.0;
     std::string technique = "pom";
@@ -102,6 +102,7 @@ int run(const Options& o) {
                      .frames = o.frames,
                      .out = o.out,
                      .exportMaps = o.exportMaps,
+                     .windowShot = o.windowShot,
                      .background = background(o.scene)});
     return loop.run(*gl, *scene);
 }
@@ -156,6 +157,8 @@ int main(int argc, char** argv) {
     app.add_option("--normal-map", s.normalMap,
                    "maps, decals: tangent-space normal map (default: Sobel of the heights)");
     app.add_option("--color-map", s.colorMap, "maps, decals: colour map");
+    app.add_option("--window-shot", o.windowShot,
+                   "window runs with --frames: save the last frame as the window shows it, panel included");
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
     s.shadows = !noShadows;

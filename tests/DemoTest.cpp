@@ -158,11 +158,23 @@ TEST(Demo, OpensAWindowUnderXvfb) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("hfx-demo: window"), std::string::npos) << r.output;
     EXPECT_GT(luminanceStdDev(readImage(out + "/water_0002.png")), 0.02);
-    // The decal scene with its panel, closed by the frame count.
-    const Result decals = runDemo("decals --frames 3 --width 320 --height 180 --field 128 --out " + out,
+    // The decal scene with its panel, closed by the frame count. The window's last frame holds
+    // the rendered image scaled to the window plus the panel: its top-left corner (where the
+    // panel opens) differs from the rendered frame's.
+    const std::string shot = out + "/window.png";
+    const Result decals = runDemo("decals --frames 3 --width 320 --height 180 --field 128 --out " + out +
+                                      " --window-shot " + shot,
                                   "xvfb-run -a -s '-screen 0 640x480x24'");
     ASSERT_EQ(decals.exitCode, 0) << decals.output;
-    EXPECT_GT(luminanceStdDev(readImage(out + "/decals_0002.png")), 0.02);
+    const Image frame = readImage(out + "/decals_0002.png");
+    EXPECT_GT(luminanceStdDev(frame), 0.02);
+    const Image window = readImage(shot);
+    ASSERT_EQ(window.width, 320) << "the window opens at --width x --height";
+    double panel = 0.0;
+    for (int y = 10; y < 40; ++y)
+        for (int x = 10; x < 100; ++x)
+            for (int c = 0; c < 3; ++c) panel += std::abs(window.at(x, y, c) - frame.at(x, y, c));
+    EXPECT_GT(panel / (30 * 90 * 3), 0.05) << "no panel drawn over the frame";
 }
 
 TEST(Demo, UnknownSceneIsAClearError) {
@@ -222,7 +234,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--height", "--dt", "--field", "--technique", "--samples-min", "--samples-max",
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
-                               "--normal-map", "--color-map", "--no-progress", "--format", "water", "decals", "planet",
+                               "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }
