@@ -93,6 +93,7 @@ private:
         c.normalMap = o.normalMap;
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
+        c.pyramid = o.technique == Technique::Hierarchical;
         return c;
     }
 

@@ -27,6 +27,8 @@ public:
 private:
     static ImageSurfaceConfig config(const SceneOptions& o) {
         if (o.heightMap.empty()) throw Error("the maps scene needs --height-map FILE");
+        if (o.technique == Technique::Hierarchical)
+            throw Error("the maps scene has no height pyramid; --technique hier works with water, decals and planet");
         ImageSurfaceConfig c{.heightMap = o.heightMap, .normalMap = o.normalMap, .colorMap = o.colorMap};
         if (o.depthScale > 0.0f) c.material.depthScale = o.depthScale;
         return c;

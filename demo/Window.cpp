@@ -105,7 +105,10 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     if (!options_.out.empty()) std::filesystem::create_directories(options_.out);
     int screenshots = 0;
     double drawMs = 0.0, frameMs = 0.0, last = nowMs();
-    int techniqueIndex = scene.technique == Technique::ParallaxOcclusion ? 0 : 1;
+    int techniqueIndex = 0;
+    for (int i = 0; i < int(std::size(kTechniques)); ++i)
+        if (kTechniques[i] == scene.technique) techniqueIndex = i;
+    const bool hasPyramid = scene.effect().textures().pyramid() != 0;
 
     for (int frame = 0; options_.frames == 0 || frame < options_.frames; ++frame) {
         if (!gl.pollEvents() || escapeKey.pressed(window)) break;
@@ -151,9 +154,14 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         ImGui::Text("%s scene", scene.name());
         SurfaceMaterial& m = scene.material();
         const SurfaceMaterial before = m;
-        const char* techniques[] = {"parallax occlusion", "normal mapping"};
-        if (ImGui::Combo("technique", &techniqueIndex, techniques, 2))
-            scene.technique = techniqueIndex == 0 ? Technique::ParallaxOcclusion : Technique::NormalMapping;
+        // The hierarchical tracer is offered when the scene was started with it (it needs the
+        // per-frame pyramid, --technique hier).
+        const int shown = int(std::size(kTechniques)) - (hasPyramid ? 0 : 1);
+        if (ImGui::Combo("technique", &techniqueIndex, [](void*, int i, const char** out) {
+                *out = techniqueName(kTechniques[i]);
+                return true;
+            }, nullptr, shown))
+            scene.technique = kTechniques[techniqueIndex];
         ImGui::SliderInt("samples min", &m.minSamples, 1, 128);
         ImGui::SliderInt("samples max", &m.maxSamples, 1, 256);
         m.maxSamples = std::max(m.maxSamples, m.minSamples);

@@ -22,6 +22,7 @@
 
 namespace hfx::demo {
 int runBench(const SceneOptions& scene, int width, int height, int frames);
+int runBenchAccuracy(const std::string& outDir, int field);
 }
 
 namespace {
@@ -88,6 +89,11 @@ int run(const Options& o) {
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
+    if (o.scene == "bench-accuracy") {
+        const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
+        if (field & (field - 1)) throw Error(str("bench-accuracy needs a power-of-two --field, got ", field));
+        return runBenchAccuracy(o.out.empty() ? "docs" : o.out, field);
+    }
     if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet")
         throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));
     if (!o.video.empty()) checkVideoEncoder();
@@ -117,7 +123,8 @@ int main(int argc, char** argv) {
     SceneOptions& s = o.sceneOptions;
     app.add_option("scene", o.scene,
                    "scene: water (FFT ocean), decals (damage on a wall), planet (gas giant), maps "
-                   "(a surface from image files), or bench (frame-time benchmark)")
+                   "(a surface from image files), bench (frame-time benchmark) or bench-accuracy (every technique "
+                   "against the exact intersection; writes --out/ACCURACY.md, default docs)")
         ->capture_default_str();
     app.add_flag("--headless", o.headless, "render off screen even when a display exists");
     app.add_option("--frames", o.frames, "frames to render (headless default 1; window: until closed)")
@@ -133,8 +140,10 @@ int main(int argc, char** argv) {
     app.add_option("--dt", o.dt, "seconds between frames")->check(CLI::Range(1e-6, 10.0))->capture_default_str();
     app.add_option("--field", s.fieldSize, "height-field texels per edge (default: the scene's; ocean: a power of two)")
         ->check(CLI::Range(8, 8192));
-    app.add_option("--technique", o.technique, "pom or nm (normal mapping)")
-        ->check(CLI::IsMember({"pom", "nm"}))->capture_default_str();
+    app.add_option("--technique", o.technique,
+                   "pom, nm (normal mapping), parallax (offset limiting), steep, relief, secant, or hier "
+                   "(hierarchical tracer over the per-frame height pyramid)")
+        ->check(CLI::IsMember({"pom", "nm", "parallax", "steep", "relief", "secant", "hier"}))->capture_default_str();
     app.add_option("--samples-min", s.minSamples, "POM steps seen head-on (default: the scene's)")
         ->check(CLI::Range(1, 256));
     app.add_option("--samples-max", s.maxSamples, "POM steps at grazing angles (default: the scene's)")

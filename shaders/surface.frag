@@ -3,8 +3,14 @@
 // "Dynamic Parallax Occlusion Mapping with Approximate Soft Shadows"), or plain normal mapping.
 //
 // Variants (prepended #defines):
-//   HFX_TECHNIQUE     0 = normal mapping, 1 = parallax occlusion mapping
-//   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, height fetches) of the hit to output 1
+//   HFX_TECHNIQUE     0 = normal mapping, 1 = parallax occlusion mapping (Tatarchuk 2006),
+//                     2 = parallax mapping with offset limiting (Welsh 2004), 3 = steep parallax
+//                     (McGuire 2005), 4 = relief mapping, linear then binary search (Policarpo
+//                     2005), 5 = linear search refined by 3 secant steps, 6 = hierarchical tracer
+//                     over the per-frame maximum-height pyramid down to the exact bilinear hit
+//   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
+//                     output 1: the height fetches counted in the integer part, the self-shadow
+//                     light factor (0 = shadowed) as twice the fraction
 //   HFX_SHADING       0 = Blinn-Phong, 1 = water (Fresnel sky reflection, sun glint, body colour
 //                     by depth, haze), 2 = planet (Blinn-Phong, soft terminator, atmosphere rim)
 //
@@ -35,6 +41,11 @@ layout(location = 1) out vec4 o_trace;
 
 uniform sampler2D s_surface;
 uniform sampler2D s_albedo;
+#if HFX_TECHNIQUE == 6
+uniform sampler2D s_pyramid;     // R32F, level k texel bounds the bilinear cells it covers
+uniform int u_pyramidLevels;
+uniform bool u_pyramidWrap;      // the field tiles: cell indices wrap (else they clamp)
+#endif
 
 uniform mat4 u_viewProj;
 uniform vec3 u_cameraPos;
@@ -85,7 +96,107 @@ const int MAX_SHADOW_SAMPLES = 32;
 // traced texcoords jump (silhouettes of the relief), and one level means the ray meets one
 // bilinear surface, at about 60% of the cost of a trilinear textureGrad fetch on llvmpipe.
 // Shading fetches keep trilinear filtering.
-float heightAt(vec2 uv, float searchLevel) { return textureLod(s_surface, uv, searchLevel).w; }
+float g_fetches = 0.0; // height fetches of this pixel, reported by the trace output
+float heightAt(vec2 uv, float searchLevel) {
+    g_fetches += 1.0;
+    return textureLod(s_surface, uv, searchLevel).w;
+}
+
+#if HFX_TECHNIQUE >= 1 && HFX_TECHNIQUE != 2 && HFX_TECHNIQUE != 6
+// Linear search in depth fraction t (ray height 1 - t): the first of `steps` equal steps whose
+// sample is at or above the ray. On a hit, [t0, t1] brackets it with d = surface - ray heights
+// d0 < 0 <= d1; t0 == t1 == 0 when the ray starts inside the relief.
+bool linearSearch(vec2 uv0, vec2 parallax, int steps, float level, out float t0, out float t1,
+                  out float d0, out float d1) {
+    const float stepSize = 1.0 / float(steps);
+    t0 = 0.0;
+    d0 = heightAt(uv0, level) - 1.0;
+    t1 = 0.0;
+    d1 = d0;
+    if (d0 >= 0.0) return true;
+    for (int i = 1; i <= MAX_SAMPLES; ++i) {
+        if (i > steps) break;
+        t1 = float(i) * stepSize;
+        d1 = heightAt(uv0 - parallax * t1, level) - (1.0 - t1);
+        if (d1 >= 0.0) return true;
+        t0 = t1;
+        d0 = d1;
+    }
+    return false;
+}
+#endif
+
+#if HFX_TECHNIQUE == 6
+const int MAX_TRACE_STEPS = 512;
+
+// Exact first hit of the ray with the bilinear surface, walking the maximum-height pyramid:
+// a cell whose bound the ray passes above is skipped whole (and the walk climbs a level), one
+// the ray dips into is opened a level down; at level 0 the bilinear patch between four samples
+// is intersected in closed form (the height along the ray is quadratic in t). Cell space: x =
+// u * width - 0.5, so cell i spans the samples i and i + 1.
+float traceHierarchical(vec2 uv0, vec2 parallax) {
+    const ivec2 size = textureSize(s_surface, 0);
+    const vec2 p0 = uv0 * vec2(size) - 0.5;
+    const vec2 dir = -parallax * vec2(size);
+    const vec2 nudge = sign(dir) * 1e-4; // puts a point on a cell boundary into the next cell
+    const vec2 invDir = vec2(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30);
+    const int maxLevel = u_pyramidLevels - 1;
+    int level = maxLevel;
+    float t = 0.0;
+    for (int iter = 0; iter < MAX_TRACE_STEPS; ++iter) {
+        if (t >= 1.0) return 1.0;
+        const vec2 p = p0 + dir * t;
+        const float cellSize = float(1 << level);
+        const vec2 cell = floor((p + nudge) / cellSize);
+        const vec2 bound = (cell + step(0.0, dir)) * cellSize;
+        const vec2 tCross = (bound - p0) * invDir;
+        const float tExit = min(min(dir.x != 0.0 ? tCross.x : 1e30, dir.y != 0.0 ? tCross.y : 1e30), 1.0);
+        const ivec2 levelSize = max(size >> level, ivec2(1));
+        ivec2 index = ivec2(cell);
+        index = u_pyramidWrap ? (index % levelSize + levelSize) % levelSize : clamp(index, ivec2(0), levelSize - 1);
+        const float bound_h = texelFetch(s_pyramid, index, level).r;
+        g_fetches += 1.0;
+        const float tDown = 1.0 - bound_h; // where the ray has come down to the cell's bound
+        if (tDown >= tExit) {
+            t = tExit;
+            level = min(level + 1, maxLevel);
+            continue;
+        }
+        const float tIn = max(t, tDown);
+        if (level > 0) {
+            t = tIn;
+            --level;
+            continue;
+        }
+        // Level 0: the four samples of the cell in one gather (x: (i, j+1), y: (i+1, j+1),
+        // z: (i+1, j), w: (i, j)), at the point all four texels share.
+        const vec4 q = textureGather(s_surface, (cell + 1.0) / vec2(size), 3);
+        g_fetches += 1.0;
+        const float a = q.w, b = q.z - q.w, c = q.x - q.w, e = q.y - q.x - q.z + q.w;
+        const vec2 local = p0 + dir * tIn - cell;
+        const float A = e * dir.x * dir.y;
+        const float B = b * dir.x + c * dir.y + e * (local.x * dir.y + local.y * dir.x) + 1.0;
+        const float C = a + b * local.x + c * local.y + e * local.x * local.y - (1.0 - tIn);
+        const float len = tExit - tIn;
+        if (C >= 0.0) return tIn;
+        float root = 1e30;
+        if (abs(A) < 1e-9) {
+            if (B > 0.0) root = -C / B;
+        } else {
+            const float disc = B * B - 4.0 * A * C;
+            if (disc >= 0.0) {
+                const float qq = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+                const float r1 = qq / A, r2 = qq != 0.0 ? C / qq : 1e30;
+                root = min(r1 >= 0.0 ? r1 : 1e30, r2 >= 0.0 ? r2 : 1e30);
+            }
+        }
+        if (root <= len) return tIn + root;
+        t = tExit;
+        level = min(level + 1, maxLevel);
+    }
+    return t;
+}
+#endif
 
 void main() {
     const vec3 geometricNormal = normalize(v_normal);
@@ -101,7 +212,7 @@ void main() {
     const float depthScale =
         frameOk ? u_depthScale * (u_silhouetteFade > 0.0 ? smoothstep(0.0, u_silhouetteFade, cosView) : 1.0)
                 : 0.0;
-#if HFX_TECHNIQUE == 1
+#if HFX_TECHNIQUE >= 1
     const mat3 textureFromWorld = frameOk ? inverse(worldFromTexture) : mat3(1.0);
     const vec3 viewTS = textureFromWorld * toEye;
 #endif
@@ -115,48 +226,60 @@ void main() {
 
     vec2 uv = uv0;
     float depthFraction = 0.0; // of u_depthScale, along the view ray, at the hit
-    float fetches = 0.0;
 
-#if HFX_TECHNIQUE == 1
+#if HFX_TECHNIQUE >= 1
     if (mipLevel <= u_lodThreshold && viewTS.z > 0.0 && depthScale > 0.0) {
         // Parallax offset vector: where the ray has moved in uv when it reaches h = 0.
         const vec2 parallax = viewTS.xy / viewTS.z * depthScale;
         // Dynamic sample rate: more steps the more grazing the view.
         const int steps = clamp(int(mix(float(u_maxSamples), float(u_minSamples), cosView)), 1,
                                 MAX_SAMPLES);
-        const float stepSize = 1.0 / float(steps);
-
-        // Linear search in height: stop at the first sample at or above the ray.
-        float rayHeight = 1.0;
-        float surface = heightAt(uv0, searchLevel);
-        fetches += 1.0;
-        float prevRay = 1.0, prevSurface = surface;
-        bool hit = surface >= rayHeight;
-        for (int i = 1; i <= MAX_SAMPLES && !hit; ++i) {
-            if (i > steps) break;
-            prevRay = rayHeight;
-            prevSurface = surface;
-            rayHeight = 1.0 - float(i) * stepSize;
-            surface = heightAt(uv0 - parallax * (float(i) * stepSize), searchLevel);
-            fetches += 1.0;
-            hit = surface >= rayHeight;
-        }
-        if (hit && rayHeight < 1.0) {
+#if HFX_TECHNIQUE == 2
+        // Welsh: one fetch, the offset the height there would give, limited to the height (the
+        // view vector's xy unscaled by 1/z), so grazing views do not swim.
+        depthFraction = 1.0 - heightAt(uv0, searchLevel);
+        const vec2 uvHit = uv0 - normalize(viewTS).xy * depthScale * depthFraction;
+#elif HFX_TECHNIQUE == 6
+        depthFraction = traceHierarchical(uv0, parallax);
+        const vec2 uvHit = uv0 - parallax * depthFraction;
+#else
+        float t0, t1, d0, d1;
+        const bool hit = linearSearch(uv0, parallax, steps, searchLevel, t0, t1, d0, d1);
+        if (!hit) {
+            depthFraction = 1.0;
+        } else if (t1 == 0.0) {
+            depthFraction = 0.0;
+        } else {
+#if HFX_TECHNIQUE == 1
             // Intersect the ray with the segment between the last two samples (piecewise-linear
             // height profile) rather than taking the nearest sample.
-            const float before = prevSurface - prevRay; // < 0: ray above the surface
-            const float after = surface - rayHeight;    // >= 0: ray at or below it
-            const float w = before / (before - after);
-            depthFraction = (1.0 - prevRay) + w * stepSize;
-        } else {
-            depthFraction = hit ? 0.0 : 1.0;
+            depthFraction = t0 + (t1 - t0) * d0 / (d0 - d1);
+#elif HFX_TECHNIQUE == 3
+            depthFraction = t1; // steep parallax: the first sample under the surface
+#elif HFX_TECHNIQUE == 4
+            // Relief mapping: halve the bracket 6 times, keep its middle.
+            for (int i = 0; i < 6; ++i) {
+                const float mid = 0.5 * (t0 + t1);
+                if (heightAt(uv0 - parallax * mid, searchLevel) >= 1.0 - mid) t1 = mid;
+                else t0 = mid;
+            }
+            depthFraction = 0.5 * (t0 + t1);
+#elif HFX_TECHNIQUE == 5
+            // Three secant steps inside the bracket, then the last secant estimate.
+            for (int i = 0; i < 3; ++i) {
+                const float tm = t0 + (t1 - t0) * d0 / (d0 - d1);
+                const float dm = heightAt(uv0 - parallax * tm, searchLevel) - (1.0 - tm);
+                if (dm >= 0.0) { t1 = tm; d1 = dm; } else { t0 = tm; d0 = dm; }
+            }
+            depthFraction = t0 + (t1 - t0) * d0 / (d0 - d1);
+#endif
         }
-        const vec2 uvPom = uv0 - parallax * depthFraction;
-
+        const vec2 uvHit = uv0 - parallax * depthFraction;
+#endif
         // Level of detail: within one mip level of the threshold, fade the parallax out so the
         // change to normal mapping is not seen as a seam.
         const float blend = clamp(mipLevel - (u_lodThreshold - 1.0), 0.0, 1.0);
-        uv = mix(uvPom, uv0, blend);
+        uv = mix(uvHit, uv0, blend);
         depthFraction = mix(depthFraction, 0.0, blend);
     }
 #endif
@@ -167,7 +290,7 @@ void main() {
 
     const vec3 displacedTS = vec3(uv - uv0, -depthFraction * depthScale);
     const vec3 displacedWorld = v_worldPos + worldFromTexture * displacedTS;
-#if HFX_TECHNIQUE == 1
+#if HFX_TECHNIQUE >= 1
     // Depth of the displaced point, so geometry crossing the relief is clipped at the relief.
     // (Normal mapping keeps the polygon's depth and with it early depth testing.)
     const vec4 clip = u_viewProj * vec4(displacedWorld, 1.0);
@@ -186,9 +309,10 @@ void main() {
 
     // Soft self-shadows: heights along the light ray from the displaced point; a blocker's
     // occlusion is its rise above the ray relative to the ray's own climb there, so a close
-    // blocker (small climb) darkens sharply and a far one softly. Skipped facing away.
+    // blocker (small climb) darkens sharply and a far one softly. Skipped facing away. Steep
+    // parallax and relief mapping take the same samples as hard shadows (any blocker: dark).
     float lit = 1.0;
-#if HFX_TECHNIQUE == 1
+#if HFX_TECHNIQUE != 0 && HFX_TECHNIQUE != 2
     const vec3 lightTS = textureFromWorld * lightDir;
     const float h0 = 1.0 - depthFraction;
     if (u_shadows && lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && nDotL > 0.0 &&
@@ -201,13 +325,16 @@ void main() {
             const float f = float(i) / float(samples + 1);
             const float rayHeight = h0 + f * (1.0 - h0);
             const float blocker = heightAt(uv + lightSpan * f, searchLevel) - rayHeight;
-            fetches += 1.0;
             occlusion = max(occlusion, blocker / (f * (1.0 - h0)));
         }
         // Fade in from the geometric terminator, where the N.L skip above would otherwise cut
         // from fully shadowed (grazing light) to unshadowed in one pixel.
-        lit = 1.0 - clamp(occlusion * u_shadowSharpness, 0.0, 1.0) *
-                        smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
+#if HFX_TECHNIQUE == 3 || HFX_TECHNIQUE == 4
+        const float shadow = occlusion > 0.0 ? 1.0 : 0.0;
+#else
+        const float shadow = clamp(occlusion * u_shadowSharpness, 0.0, 1.0);
+#endif
+        lit = 1.0 - shadow * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
     }
 #endif
 
@@ -243,6 +370,7 @@ void main() {
 #endif
     o_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 #if HFX_TRACE_OUTPUT
-    o_trace = vec4(uv, depthFraction, fetches);
+    // w: the fetch count in its integer part, the light (0..1) in half of its fraction.
+    o_trace = vec4(uv, depthFraction, g_fetches + 0.5 * clamp(lit, 0.0, 0.998));
 #endif
 }

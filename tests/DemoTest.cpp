@@ -108,6 +108,18 @@ TEST(Demo, SineWavesStillRender) {
     EXPECT_GT(luminanceStdDev(readImage(out + "/water_0000.png")), 0.02);
 }
 
+TEST(Demo, EveryTechniqueDrawsTheDecalWall) {
+    for (const char* technique : {"nm", "parallax", "steep", "relief", "secant", "pom", "hier"}) {
+        const std::string out = outputPath(std::string("demo_technique_") + technique);
+        const Result r = runDemo(std::string("decals --headless --frames 2 --width 160 --height 90 --field 128 --technique ") +
+                                 technique + " --out " + out);
+        ASSERT_EQ(r.exitCode, 0) << technique << "\n" << r.output;
+        EXPECT_GT(luminanceStdDev(readImage(out + "/decals_0001.png")), 0.02) << technique;
+    }
+    const Result maps = runDemo("maps --headless --technique hier --height-map x.png");
+    EXPECT_NE(maps.exitCode, 0);
+}
+
 TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
     const std::string shots = outputPath("demo_shots.txt");
     std::ofstream(shots) << "# two bullets and a click, then an explosion\n"

@@ -11,6 +11,8 @@ namespace hfx {
 void SurfaceTexturesConfig::validate() const {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         throw Error(str("surface size must be in 1..16384, got ", width, "x", height));
+    if (pyramid && (!std::has_single_bit(unsigned(width)) || !std::has_single_bit(unsigned(height))))
+        throw Error(str("a surface with a height pyramid needs power-of-two sizes, got ", width, "x", height));
 }
 
 SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
@@ -35,6 +37,27 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     std::vector<float> flat(static_cast<size_t>(config.width) * config.height * 4, 0.0f);
     for (size_t i = 0; i < flat.size(); i += 4) flat[i + 2] = flat[i + 3] = 1.0f;
     upload(flat.data());
+    if (config.pyramid) {
+        pyramid_ = GlTexture::create();
+        pyramidLevels_ = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(config.width, config.height))));
+        glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_R32F, config.width, config.height);
+        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAX_LEVEL, pyramidLevels_ - 1);
+        std::vector<float> top(static_cast<size_t>(config.width) * config.height * 2, 1.0f);
+        uploadPyramid(top.data()); // conservative until the first real upload
+    }
+}
+
+void SurfaceTextures::uploadPyramid(const float* levels) {
+    if (!pyramid_.id()) throw Error("uploadPyramid: these surface textures were made without a pyramid");
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    size_t offset = 0;
+    for (int level = 0; level < pyramidLevels_; ++level) {
+        const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
+        glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RED, GL_FLOAT, levels + offset);
+        offset += static_cast<size_t>(w) * h;
+    }
 }
 
 void SurfaceTextures::upload(const float* normalHeight) {

@@ -20,7 +20,7 @@ double FieldEffect::nowMs() {
 }
 
 FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
-                         const SurfaceMaterial& material, bool mipmaps)
+                         const SurfaceMaterial& material, bool mipmaps, bool pyramid)
     : cl_(cl), material_((material.validate(), material)),
       normals_(cl, SobelConfig{.width = checked(source).width(),
                                .height = source->height(),
@@ -32,8 +32,11 @@ FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
                                       .mipmaps = mipmaps,
                                       .edges = source->periodic()    ? EdgeMode::Wrap
                                                : source->periodicU() ? EdgeMode::WrapU
-                                                                     : EdgeMode::Clamp}) {
+                                                                     : EdgeMode::Clamp,
+                                      .pyramid = pyramid}) {
     source_ = std::move(source);
+    if (pyramid)
+        pyramid_ = std::make_unique<MaxPyramid>(cl, source_->width(), source_->height(), source_->periodic());
     refresh(nowMs());
 }
 
@@ -53,10 +56,12 @@ void FieldEffect::setDepthScale(float depthScale) {
 
 void FieldEffect::refresh(double computeStartMs) {
     normals_.run(source_->buffer());
+    if (pyramid_) pyramid_->build(source_->buffer());
     enqueueExtra();
     clGuard("FieldEffect::update", [&] { cl_.queue().finish(); });
     const double computed = nowMs();
     uploadField(cl_, normals_.output(), textures_);
+    if (pyramid_) uploadPyramid(cl_, *pyramid_, textures_);
     uploadExtra();
     times_ = {computed - computeStartMs, nowMs() - computed};
 }

@@ -33,6 +33,28 @@ void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures&
                  [&](const void* mapped) { textures.upload(static_cast<const float*>(mapped)); });
 }
 
+void uploadPyramid(ClContext& cl, const MaxPyramid& pyramid, SurfaceTextures& textures) {
+    if (!textures.pyramid()) throw Error("uploadPyramid: the surface textures have no pyramid");
+    const PyramidLevel& base = pyramid.levels().front();
+    if (base.width != textures.config().width || base.height != textures.config().height ||
+        int(pyramid.levels().size()) != textures.pyramidLevels())
+        throw Error(str("uploadPyramid: a ", base.width, "x", base.height, " pyramid of ", pyramid.levels().size(),
+                        " levels does not fit the ", textures.config().width, "x", textures.config().height,
+                        " surface's ", textures.pyramidLevels()));
+    cl::CommandQueue& q = cl.queue();
+    const size_t bytes = pyramid.totalFloats() * sizeof(float);
+    void* mapped = clGuard("mapping the pyramid", [&] {
+        return q.enqueueMapBuffer(pyramid.buffer(), CL_TRUE, CL_MAP_READ, 0, bytes);
+    });
+    try {
+        textures.uploadPyramid(static_cast<const float*>(mapped));
+    } catch (...) {
+        q.enqueueUnmapMemObject(pyramid.buffer(), mapped);
+        throw;
+    }
+    clGuard("unmapping the pyramid", [&] { q.enqueueUnmapMemObject(pyramid.buffer(), mapped); });
+}
+
 void uploadAlbedo(ClContext& cl, const cl::Buffer& rgba, SurfaceTextures& textures) {
     mapAndUpload(cl, rgba, sizeof(cl_uchar4), textures, "uploadAlbedo",
                  [&](const void* mapped) { textures.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });

@@ -27,7 +27,7 @@ public:
         glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
         glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
         glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
-        for (int unit = 0; unit < 3; ++unit) {
+        for (int unit = 0; unit < 4; ++unit) {
             glActiveTexture(GL_TEXTURE0 + unit);
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
         }
@@ -37,7 +37,7 @@ public:
         glDepthFunc(static_cast<GLenum>(depthFunc_));
         glUseProgram(static_cast<GLuint>(program_));
         glBindVertexArray(static_cast<GLuint>(vao_));
-        for (int unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
+        for (int unit = 0; unit < 4; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
     }
     GlStateGuard(const GlStateGuard&) = delete;
@@ -45,7 +45,7 @@ public:
 
 private:
     GLboolean depthTest_;
-    GLint depthFunc_, program_, vao_, activeTexture_, textures_[3];
+    GLint depthFunc_, program_, vao_, activeTexture_, textures_[4];
 };
 
 void setTransforms(const ShaderProgram& p, const glm::mat4& model, const Camera& camera) {
@@ -57,14 +57,29 @@ void setTransforms(const ShaderProgram& p, const glm::mat4& model, const Camera&
 
 } // namespace
 
-Technique parseTechnique(const std::string& name) {
-    if (name == "pom") return Technique::ParallaxOcclusion;
-    if (name == "nm") return Technique::NormalMapping;
-    throw Error(str("unknown technique '", name, "' (expected pom or nm)"));
+const char* techniqueName(Technique technique) {
+    switch (technique) {
+    case Technique::NormalMapping: return "nm";
+    case Technique::ParallaxOcclusion: return "pom";
+    case Technique::ParallaxOffset: return "parallax";
+    case Technique::SteepParallax: return "steep";
+    case Technique::Relief: return "relief";
+    case Technique::Secant: return "secant";
+    case Technique::Hierarchical: return "hier";
+    }
+    return "?";
 }
 
-const char* techniqueName(Technique technique) {
-    return technique == Technique::ParallaxOcclusion ? "pom" : "nm";
+std::string techniqueNames() {
+    std::string names;
+    for (Technique t : kTechniques) names += (names.empty() ? "" : ", ") + std::string(techniqueName(t));
+    return names;
+}
+
+Technique parseTechnique(const std::string& name) {
+    for (Technique t : kTechniques)
+        if (name == techniqueName(t)) return t;
+    throw Error(str("unknown technique '", name, "' (expected one of ", techniqueNames(), ")"));
 }
 
 void SurfaceMaterial::validate() const {
@@ -105,13 +120,14 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shadin
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         const std::vector<ShaderDefine> defines = {
-            {"HFX_TECHNIQUE", options.technique == Technique::ParallaxOcclusion ? "1" : "0"},
+            {"HFX_TECHNIQUE", std::to_string(static_cast<int>(options.technique))},
             {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"},
             {"HFX_SHADING", std::to_string(static_cast<int>(shading))}};
         ShaderProgram p(shader("surface.vert"), shader("surface.frag"), defines);
         p.set("s_surface", 0);
         p.set("s_albedo", 1);
         p.set("s_environment", 2);
+        p.set("s_pyramid", 3);
         it = programs_.emplace(key, std::move(p)).first;
     }
     return it->second;
@@ -121,6 +137,9 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
                            const SurfaceMaterial& material, const Camera& camera,
                            const DirectionalLight& light, const DrawOptions& options) {
     material.validate();
+    if (options.technique == Technique::Hierarchical && !textures.pyramid())
+        throw Error("the hierarchical technique needs surface textures with a height pyramid "
+                    "(SurfaceTexturesConfig::pyramid, refreshed by uploadPyramid)");
     const ShaderProgram& p = program(options, material.shading);
     GlStateGuard guard;
     setTransforms(p, model, camera);
@@ -155,6 +174,11 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(1, textures.albedo());
     if (material.shading == Shading::Water) glBindTextureUnit(2, material.water.environment);
+    if (options.technique == Technique::Hierarchical) {
+        p.set("u_pyramidLevels", textures.pyramidLevels());
+        p.set("u_pyramidWrap", textures.config().edges == EdgeMode::Wrap ? 1 : 0);
+        glBindTextureUnit(3, textures.pyramid());
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();

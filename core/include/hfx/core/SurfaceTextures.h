@@ -17,6 +17,9 @@ struct SurfaceTexturesConfig {
     int height = 512;
     bool mipmaps = true; ///< POM's level-of-detail switch needs them; tests of the search don't
     EdgeMode edges = EdgeMode::Wrap;
+    /// Also a maximum-height pyramid texture (R32F, full mip chain) for the hierarchical tracer;
+    /// needs power-of-two sizes.
+    bool pyramid = false;
     void validate() const;
 };
 
@@ -33,7 +36,13 @@ public:
     /// field), and regenerates its mip chain.
     void uploadAlbedo(const unsigned char* rgba);
 
+    /// Replaces the pyramid: every level back to back, level 0 (width x height) first, each
+    /// level half the one before, as MaxPyramid lays them out.
+    void uploadPyramid(const float* levels);
+
     GLuint surface() const { return surface_.id(); }
+    GLuint pyramid() const { return pyramid_.id(); } ///< 0 without a pyramid
+    int pyramidLevels() const { return pyramidLevels_; }
     GLuint albedo() const { return albedo_.id(); }
     const SurfaceTexturesConfig& config() const { return config_; }
     int levels() const { return levels_; }
@@ -41,7 +50,8 @@ public:
 private:
     SurfaceTexturesConfig config_;
     int levels_ = 1;
-    GlTexture surface_, albedo_;
+    int pyramidLevels_ = 0;
+    GlTexture surface_, albedo_, pyramid_;
 };
 
 } // namespace hfx

@@ -37,6 +37,7 @@ struct DecalWallConfig {
     SurfaceMaterial material{.depthScale = 0.06f, .maxSamples = 48, .shadowSharpness = 3.0f};
     ImageReadLimits limits;
     bool mipmaps = true;
+    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
     void validate() const;
 };
 

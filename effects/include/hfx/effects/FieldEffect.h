@@ -5,6 +5,7 @@
 // Thread: the thread that owns both the ClContext and the current GL context.
 
 #include "hfx/compute/HeightSource.h"
+#include "hfx/compute/MaxPyramid.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/effects/Effect.h"
 
@@ -14,8 +15,10 @@ namespace hfx {
 
 class FieldEffect : public Effect {
 public:
+    /// pyramid: also build the maximum-height pyramid each update (for Technique::Hierarchical;
+    /// the field's sizes must be powers of two).
     FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source, const SurfaceMaterial& material,
-                bool mipmaps = true);
+                bool mipmaps = true, bool pyramid = false);
 
     void update(double dt) override;
     const SurfaceTextures& textures() const override { return textures_; }
@@ -44,6 +47,7 @@ private:
     SurfaceMaterial material_;
     SobelNormals normals_;
     SurfaceTextures textures_;
+    std::unique_ptr<MaxPyramid> pyramid_;
     StageTimes times_;
 };
 

@@ -3,6 +3,7 @@
 // host-visible buffer (no read into fresh memory) and uploads from the mapping.
 
 #include "hfx/compute/ClContext.h"
+#include "hfx/compute/MaxPyramid.h"
 #include "hfx/core/SurfaceTextures.h"
 
 namespace hfx {
@@ -10,6 +11,10 @@ namespace hfx {
 /// Waits for the queue's work on `normalHeight`, then uploads it. The buffer must hold
 /// textures.config().width * height float4.
 void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures);
+
+/// Waits for the queue's work on the pyramid, then uploads all its levels into the textures'
+/// pyramid (which must exist and match its size).
+void uploadPyramid(ClContext& cl, const MaxPyramid& pyramid, SurfaceTextures& textures);
 
 /// Waits for the queue's work on `rgba`, then uploads it as the albedo: width * height RGBA8.
 void uploadAlbedo(ClContext& cl, const cl::Buffer& rgba, SurfaceTextures& textures);

@@ -35,6 +35,7 @@ struct GasPlanetConfig {
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
                              .shading = Shading::Planet, .silhouetteFade = 0.25f};
     bool mipmaps = true;
+    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
     void validate() const;
 };
 

@@ -18,6 +18,7 @@ struct OceanEffectConfig {
                              .specularStrength = 0.0f, .shading = Shading::Water};
     float reliefExaggeration = 1.0f; ///< multiplies the physical depth scale
     bool mipmaps = true;
+    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
     void validate() const;
 };
 

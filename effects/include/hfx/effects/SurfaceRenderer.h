@@ -1,7 +1,7 @@
 #pragma once
 // Draws a mesh with a height-field surface: parallax occlusion mapping (shaders/surface.frag) or
 // plain normal mapping. It draws into whatever framebuffer and context the caller has bound and
-// restores the GL state it changes (program, vertex array, depth test, texture units 0-2).
+// restores the GL state it changes (program, vertex array, depth test, texture units 0-3).
 //
 // Thread: the thread whose GL context is current; shader programs are built per variant on
 // first use and kept.
@@ -21,10 +21,27 @@
 
 namespace hfx {
 
-enum class Technique { NormalMapping, ParallaxOcclusion };
-/// "nm" / "pom"; throws hfx::Error naming the value otherwise.
+/// The surface techniques, one shader variant each, same inputs and outputs. The numbers are
+/// the shader's HFX_TECHNIQUE.
+enum class Technique {
+    NormalMapping = 0,     ///< "nm": no parallax
+    ParallaxOcclusion = 1, ///< "pom": linear search + piecewise-linear hit, soft shadows (Tatarchuk 2006)
+    ParallaxOffset = 2,    ///< "parallax": one offset with offset limiting (Welsh 2004)
+    SteepParallax = 3,     ///< "steep": linear search, first sample under, hard shadows (McGuire 2005)
+    Relief = 4,            ///< "relief": linear then 6 binary steps, hard shadows (Policarpo 2005)
+    Secant = 5,            ///< "secant": linear search refined by 3 secant steps, soft shadows
+    Hierarchical = 6,      ///< "hier": max-height pyramid walk to the exact bilinear hit, soft shadows
+};
+inline constexpr Technique kTechniques[] = {Technique::NormalMapping, Technique::ParallaxOffset,
+                                            Technique::SteepParallax, Technique::Relief,
+                                            Technique::Secant,        Technique::ParallaxOcclusion,
+                                            Technique::Hierarchical};
+/// "nm", "pom", "parallax", "steep", "relief", "secant", "hier"; throws hfx::Error naming the
+/// value and the known names otherwise.
 Technique parseTechnique(const std::string& name);
 const char* techniqueName(Technique technique);
+/// "nm, parallax, steep, relief, secant, pom, hier" (for help texts).
+std::string techniqueNames();
 
 /// How the surface is lit once the relief is traced.
 enum class Shading {

@@ -14,6 +14,7 @@ struct WaterConfig {
     SurfaceMaterial material{.depthScale = 0.04f, .shadowSharpness = 1.0f,
                              .specularStrength = 0.8f, .specularPower = 96.0f};
     bool mipmaps = true;
+    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
     void validate() const;
 };
 

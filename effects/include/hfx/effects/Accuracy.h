@@ -1,0 +1,70 @@
+#pragma once
+// How right a surface technique is, per pixel: renders a height field on a plane with the
+// technique's trace output (hit texcoords, depth fraction, fetch count, self-shadow) and
+// compares every pixel with the exact intersection of the bilinear surface (HeightFieldTracer,
+// double precision) and with exact shadow rays towards the light. The numbers of docs/ACCURACY.md
+// and of the accuracy tests come from here.
+//
+// Thread: the thread that owns both the ClContext and the current GL context.
+
+#include "hfx/compute/ClContext.h"
+#include "hfx/core/HeightFieldTracer.h"
+#include "hfx/core/Image.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+#include <memory>
+#include <vector>
+
+namespace hfx {
+
+struct AccuracyConfig {
+    double angleDegrees = 45.0;  ///< view angle from the plane's normal
+    int image = 192;             ///< square render, pixels per edge
+    float depthScale = 0.1f;     ///< texture widths (the plane spans one texture)
+    int minSamples = 8, maxSamples = 32;
+    bool shadows = false;        ///< compare the self-shadow with exact shadow rays
+    glm::vec3 light{0.6f, 0.55f, 0.3f}; ///< world direction towards the light (plane normal +Y)
+    /// Shadow comparison skips points whose exact shadow changes within this many texels
+    /// (the penumbra band of soft shadows, and the texel the boundary falls in).
+    double penumbraTexels = 1.5;
+};
+
+struct AccuracyResult {
+    size_t pixels = 0;              ///< pixels on the plane compared
+    double mean = 0, p95 = 0, max = 0; ///< texcoord error in texels
+    double over4 = 0;               ///< fraction of pixels more than 4 texels off
+    double depthMean = 0;           ///< |depth fraction - exact| (what gl_FragDepth is made of)
+    double fetches = 0;             ///< mean height fetches per pixel, counted in the shader
+    double shadowAgreement = 1.0;   ///< fraction of compared points whose shadow state agrees
+    size_t shadowPixels = 0;        ///< points compared for the shadow
+};
+
+class AccuracyProbe {
+public:
+    /// heights: size x size in [0,1], row 0 at v = 0, tiling (edges wrap); size a power of two.
+    /// Normals and the pyramid are made on the device, as a frame would make them.
+    AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale);
+
+    AccuracyResult measure(Technique technique, const AccuracyConfig& config);
+    /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
+    /// config's angle (the plane fills the view; clear and glFinish included).
+    double timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats);
+    /// The colour image of the last timeDraw() (top row first).
+    const Image& lastFrame() const { return lastFrame_; }
+    /// The colour image of the last measure() (top row first), for crops and failures.
+    Image lastImage() const;
+    const HeightFieldTracer& exact() const { return exact_; }
+
+private:
+    int size_;
+    float depthScale_;
+    HeightFieldTracer exact_;
+    SurfaceTextures textures_;
+    SurfaceRenderer renderer_;
+    std::unique_ptr<RenderTarget> target_;
+    Image lastFrame_;
+};
+
+} // namespace hfx

@@ -1,0 +1,204 @@
+#include "hfx/effects/Accuracy.h"
+
+#include "hfx/compute/MaxPyramid.h"
+#include "hfx/compute/SobelNormals.h"
+#include "hfx/core/Error.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/effects/FieldUpload.h"
+
+#include <glm/geometric.hpp>
+
+#include "hfx/core/Gl.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+namespace hfx {
+namespace {
+
+constexpr float kPlaneSize = 2.0f;
+constexpr float kDistance = 8.0f;
+
+Camera cameraAt(double angleDegrees) {
+    const float elevation = float((90.0 - angleDegrees) * std::numbers::pi / 180.0);
+    Camera c = Camera::orbit({0, 0, 0}, kDistance, 0.3f, elevation);
+    if (angleDegrees < 1.0) c.up = {0, 0, -1}; // looking straight down
+    c.aspect = 1.0f;
+    c.fovY = 0.35f;
+    c.nearPlane = 0.05f;
+    c.farPlane = 50.0f;
+    return c;
+}
+
+/// The entry texcoords and texture-space vector to the eye of a pixel's ray on the plane
+/// (makePlane: u along +X, v along -Z, normal +Y), or false when it misses the plane.
+bool pixelRay(const Camera& camera, int x, int y, int size, glm::dvec2& uv0, glm::dvec3& toEye) {
+    const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, size, size);
+    if (ray.direction.y >= 0) return false;
+    const double t = -ray.origin.y / ray.direction.y;
+    const glm::dvec3 p = ray.origin + t * ray.direction;
+    const double half = kPlaneSize / 2.0;
+    if (std::abs(p.x) > half || std::abs(p.z) > half) return false;
+    uv0 = {p.x / kPlaneSize + 0.5, 0.5 - p.z / kPlaneSize};
+    const glm::dvec3 e = -ray.direction;
+    toEye = glm::dvec3(e.x, -e.z, e.y) / double(kPlaneSize);
+    return true;
+}
+
+SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, int size, float depthScale) {
+    if (heights.size() != size_t(size) * size)
+        throw Error(str("AccuracyProbe: ", heights.size(), " heights do not make a ", size, "x", size, " field"));
+    SurfaceTextures textures({.width = size, .height = size, .mipmaps = false, .edges = EdgeMode::Wrap, .pyramid = true});
+    cl::Buffer buffer = clGuard("AccuracyProbe: uploading the heights", [&] {
+        return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * sizeof(float),
+                          const_cast<float*>(heights.data()));
+    });
+    SobelNormals sobel(cl, {.width = size, .height = size, .depthScale = depthScale});
+    MaxPyramid pyramid(cl, size, size, true);
+    sobel.run(buffer);
+    pyramid.build(buffer);
+    uploadField(cl, sobel.output(), textures);
+    uploadPyramid(cl, pyramid, textures);
+    return textures;
+}
+
+} // namespace
+
+AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale)
+    : size_(size), depthScale_(depthScale), exact_(heights, size, size, EdgeMode::Wrap),
+      textures_(makeTextures(cl, heights, size, depthScale)) {}
+
+AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
+    if (config.depthScale != depthScale_)
+        throw Error(str("AccuracyProbe: the normals were made for depth scale ", depthScale_, ", asked for ",
+                        config.depthScale));
+    const int n = config.image;
+    if (!target_ || target_->width() != n) target_ = std::make_unique<RenderTarget>(n, n, true);
+    const Camera camera = cameraAt(config.angleDegrees);
+    static const Mesh plane(makePlane({.size = kPlaneSize}));
+    SurfaceMaterial material{.depthScale = config.depthScale,
+                             .minSamples = config.minSamples,
+                             .maxSamples = config.maxSamples,
+                             .lodThreshold = 100.0f,
+                             .shadows = config.shadows};
+    DirectionalLight light;
+    light.direction = config.light;
+    target_->bind();
+    target_->clear();
+    renderer_.draw(plane, glm::mat4(1.0f), textures_, material, camera, light,
+                   {.technique = technique, .traceOutput = true});
+    const std::vector<glm::vec4> trace = target_->readTrace();
+
+    // The light in texture space, in (u, v, h) units: h spans depthScale texture units.
+    const glm::dvec3 l = glm::normalize(glm::dvec3(config.light));
+    const glm::dvec3 lightUVH(l.x / kPlaneSize, -l.z / kPlaneSize, l.y / kPlaneSize / config.depthScale);
+    auto shadowed = [&](glm::dvec2 uv, double h) {
+        if (lightUVH.z <= 0.0) return true;
+        const glm::dvec3 origin(uv, h + 1e-7);
+        const double tMax = (1.0 - origin.z) / lightUVH.z;
+        return exact_.intersect(origin, lightUVH, tMax).has_value();
+    };
+
+    AccuracyResult r;
+    std::vector<double> errors;
+    double depthSum = 0.0, fetchSum = 0.0;
+    size_t over4 = 0, agree = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const glm::vec4 t = trace[size_t(y) * n + x];
+            if (t.w == 0.0f) continue; // not drawn
+            glm::dvec2 uv0;
+            glm::dvec3 toEye;
+            // Pixels whose centre is within half a pixel of the plane's edge may be drawn by GL
+            // and missed by the CPU ray, or the other way round.
+            if (!pixelRay(camera, x, y, n, uv0, toEye)) continue;
+            const auto hit = exact_.traceView(uv0, toEye, config.depthScale);
+            if (!hit) continue;
+            const double error = glm::length(glm::dvec2(t.x, t.y) - hit->uv) * size_;
+            errors.push_back(error);
+            over4 += error > 4.0;
+            depthSum += std::abs(double(t.z) - hit->t);
+            const double fetches = std::floor(double(t.w));
+            fetchSum += fetches;
+            if (config.shadows) {
+                // Compare where the exact state is stable around the point and the surface
+                // faces the light (elsewhere shading is dark whatever the shadow says).
+                const double h = hit->height, e = 1e-3;
+                const glm::dvec3 normal = glm::normalize(glm::dvec3(
+                    -(exact_.heightAt(hit->uv + glm::dvec2(e, 0)) - exact_.heightAt(hit->uv - glm::dvec2(e, 0))) /
+                        (2 * e) * config.depthScale,
+                    -(exact_.heightAt(hit->uv + glm::dvec2(0, e)) - exact_.heightAt(hit->uv - glm::dvec2(0, e))) /
+                        (2 * e) * config.depthScale,
+                    1.0));
+                const glm::dvec3 lightTS = glm::normalize(glm::dvec3(l.x, -l.z, l.y));
+                if (glm::dot(normal, lightTS) < 0.2) continue;
+                const bool state = shadowed(hit->uv, h);
+                const double band = config.penumbraTexels / size_;
+                bool stable = true;
+                for (const glm::dvec2 d : {glm::dvec2(band, 0), glm::dvec2(-band, 0), glm::dvec2(0, band), glm::dvec2(0, -band)}) {
+                    const glm::dvec2 q = hit->uv + d;
+                    if (shadowed(q, exact_.heightAt(q)) != state) {
+                        stable = false;
+                        break;
+                    }
+                }
+                if (!stable) continue;
+                const double lit = 2.0 * (double(t.w) - fetches);
+                ++r.shadowPixels;
+                agree += (lit < 0.5) == state;
+            }
+        }
+    r.pixels = errors.size();
+    if (!errors.empty()) {
+        std::sort(errors.begin(), errors.end());
+        double sum = 0.0;
+        for (double e : errors) sum += e;
+        r.mean = sum / errors.size();
+        r.p95 = errors[std::min(errors.size() - 1, size_t(0.95 * errors.size()))];
+        r.max = errors.back();
+        r.over4 = double(over4) / errors.size();
+        r.depthMean = depthSum / errors.size();
+        r.fetches = fetchSum / errors.size();
+    }
+    r.shadowAgreement = r.shadowPixels ? double(agree) / r.shadowPixels : 1.0;
+    return r;
+}
+
+double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats) {
+    RenderTarget target(width, height);
+    // Closer than measure()'s camera, so the plane covers the frame at every angle up to 80.
+    Camera camera = cameraAt(config.angleDegrees);
+    camera.aspect = float(width) / float(height);
+    camera.position = camera.target + (camera.position - camera.target) * 0.22f;
+    static const Mesh plane(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f}));
+    SurfaceMaterial material{.depthScale = config.depthScale,
+                             .minSamples = config.minSamples,
+                             .maxSamples = config.maxSamples,
+                             .lodThreshold = 100.0f,
+                             .shadows = config.shadows};
+    DirectionalLight light;
+    light.direction = config.light;
+    std::vector<double> times;
+    for (int i = -1; i < repeats; ++i) { // one warm-up draw builds the shader
+        target.bind();
+        glFinish();
+        const auto start = std::chrono::steady_clock::now();
+        target.clear();
+        renderer_.draw(plane, glm::mat4(1.0f), textures_, material, camera, light, {.technique = technique});
+        glFinish();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (i >= 0) times.push_back(ms);
+    }
+    lastFrame_ = target.readColor();
+    std::sort(times.begin(), times.end());
+    return times[times.size() / 2];
+}
+
+Image AccuracyProbe::lastImage() const {
+    if (!target_) throw Error("AccuracyProbe::lastImage: nothing measured yet");
+    return target_->readColor();
+}
+
+} // namespace hfx

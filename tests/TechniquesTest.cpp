@@ -1,0 +1,147 @@
+// The surface techniques against ground truth: every pixel's hit against the exact bilinear
+// intersection, per view angle, on a smooth and a sharp map (issue targets at depth scale 0.1,
+// mip level 0), the ranking at 80 degrees, and the self-shadow against exact shadow rays.
+
+#include "support/Fields.h"
+#include "support/Fixtures.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/effects/Accuracy.h"
+
+#include <cstdio>
+#include <map>
+
+namespace hfx::test {
+namespace {
+
+constexpr int kField = 128;
+
+class Techniques : public DeviceTest {
+protected:
+    std::vector<float> smooth() {
+        return sumOfSines(kField, {{0.22, 3, 1, 0.3}, {0.13, -2, 5, 1.1}, {0.07, 7, 4, 2.0}});
+    }
+    AccuracyResult run(AccuracyProbe& probe, Technique t, double angle, const char* map, int maxSamples = 32) {
+        const AccuracyResult r = probe.measure(t, {.angleDegrees = angle, .maxSamples = maxSamples});
+        std::printf("[%-6s %-8s %2.0f deg] %5zu px  mean %.3f  p95 %.3f  >4 texels %.3f%%  fetches %.1f\n", map,
+                    techniqueName(t), angle, r.pixels, r.mean, r.p95, 100.0 * r.over4, r.fetches);
+        return r;
+    }
+};
+
+TEST_F(Techniques, PomOnTheSmoothMapMeetsItsTargetsAndBeatsSteepParallax) {
+    AccuracyProbe probe(cl(), smooth(), kField, 0.1f);
+    const AccuracyResult pom70 = run(probe, Technique::ParallaxOcclusion, 70, "smooth");
+    ASSERT_GT(pom70.pixels, 3000u);
+    EXPECT_LT(pom70.mean, 0.25);
+    EXPECT_LT(pom70.p95, 0.5);
+    for (double angle : {45.0, 70.0}) {
+        const AccuracyResult pom = run(probe, Technique::ParallaxOcclusion, angle, "smooth");
+        const AccuracyResult steep = run(probe, Technique::SteepParallax, angle, "smooth");
+        EXPECT_LT(5.0 * pom.mean, steep.mean) << "at " << angle << " degrees";
+    }
+    EXPECT_LT(run(probe, Technique::ParallaxOcclusion, 80, "smooth").mean,
+              run(probe, Technique::SteepParallax, 80, "smooth").mean);
+}
+
+TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
+    for (const auto& [name, heights] : {std::pair{"smooth", smooth()}, std::pair{"blocks", blocks(kField, 4)}}) {
+        AccuracyProbe probe(cl(), heights, kField, 0.1f);
+        for (double angle : {0.0, 45.0, 70.0, 80.0, 85.0}) {
+            const AccuracyResult r = run(probe, Technique::Hierarchical, angle, name);
+            ASSERT_GT(r.pixels, 500u);
+            EXPECT_LT(r.mean, 0.05) << name << " at " << angle;
+            EXPECT_LT(r.over4, 0.0005) << name << " at " << angle;
+            EXPECT_LT(r.depthMean, 0.01) << name << " at " << angle;
+        }
+    }
+}
+
+TEST_F(Techniques, RankingByErrorAt80Degrees) {
+    AccuracyProbe probe(cl(), blocks(kField, 4), kField, 0.1f);
+    std::map<Technique, double> mean;
+    for (Technique t : kTechniques) mean[t] = run(probe, t, 80, "blocks").mean;
+    // The exact tracer first; the refined searches (relief, secant) and POM's segment
+    // intersection ahead of steep parallax's first sample under; any search far ahead of a
+    // single offset; normal mapping (no parallax at all) last.
+    EXPECT_LT(mean[Technique::Hierarchical], mean[Technique::ParallaxOcclusion]);
+    EXPECT_LT(mean[Technique::Hierarchical], mean[Technique::Relief]);
+    EXPECT_LT(mean[Technique::Hierarchical], mean[Technique::Secant]);
+    EXPECT_LT(mean[Technique::ParallaxOcclusion], mean[Technique::SteepParallax]);
+    EXPECT_LT(mean[Technique::Relief], mean[Technique::SteepParallax]);
+    EXPECT_LT(mean[Technique::Secant], mean[Technique::SteepParallax]);
+    EXPECT_LT(mean[Technique::SteepParallax], mean[Technique::ParallaxOffset]);
+    EXPECT_LT(mean[Technique::ParallaxOffset], mean[Technique::NormalMapping]);
+}
+
+TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {
+    // One box-shaped bump on a floor, lit from 60 degrees off the normal.
+    std::vector<float> box(kField * kField, 0.2f);
+    for (int y = 48; y < 80; ++y)
+        for (int x = 48; x < 80; ++x) box[y * kField + x] = 0.9f;
+    AccuracyProbe probe(cl(), box, kField, 0.1f);
+    const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f);
+    for (Technique t : {Technique::ParallaxOcclusion, Technique::Relief, Technique::Hierarchical}) {
+        const AccuracyResult r = probe.measure(t, {.angleDegrees = 30, .shadows = true, .light = light});
+        std::printf("[box %-8s] shadow agreement %.2f%% over %zu points\n", techniqueName(t), 100.0 * r.shadowAgreement,
+                    r.shadowPixels);
+        EXPECT_GT(r.shadowPixels, 2000u);
+        EXPECT_GE(r.shadowAgreement, 0.95) << techniqueName(t);
+    }
+}
+
+TEST_F(Techniques, FinitePatchSilhouettesDiscardRaysThatLeaveThePatch) {
+    // A raised plateau up to the patch's edges, seen at 80 degrees: near the far edge the view
+    // rays run out of the patch's side before they reach the relief.
+    constexpr int N = 64;
+    std::vector<float> heights(N * N, 0.3f);
+    SurfaceTextures textures({.width = N, .height = N, .mipmaps = false, .edges = EdgeMode::Clamp});
+    std::vector<float> packed(N * N * 4, 0.0f);
+    for (int i = 0; i < N * N; ++i) {
+        packed[i * 4 + 2] = 1.0f;
+        packed[i * 4 + 3] = heights[i];
+    }
+    textures.upload(packed.data());
+    const Mesh plane(makePlane({.size = 2.0f}));
+    Camera camera = Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.2f);
+    camera.aspect = 1.0f;
+    SurfaceRenderer renderer;
+    auto render = [&](bool clip) {
+        RenderTarget target(160, 160, true);
+        target.bind();
+        target.clear();
+        const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f, .shadows = false, .clipToPatch = clip};
+        renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, {}, {.traceOutput = true});
+        size_t drawn = 0, outside = 0;
+        for (const glm::vec4& t : target.readTrace()) {
+            if (t.w == 0.0f) continue;
+            ++drawn;
+            outside += t.x < 0.0f || t.x > 1.0f || t.y < 0.0f || t.y > 1.0f;
+        }
+        return std::pair{drawn, outside};
+    };
+    const auto [drawnFree, outsideFree] = render(false);
+    const auto [drawnClipped, outsideClipped] = render(true);
+    EXPECT_GT(outsideFree, 100u) << "the view should leave the patch through its side somewhere";
+    EXPECT_EQ(outsideClipped, 0u) << "a ray that left the patch was drawn";
+    EXPECT_EQ(drawnClipped + outsideFree, drawnFree) << "clipping discarded more than the rays that left";
+}
+
+TEST_F(Techniques, HierarchicalNeedsAPyramidAndNamesIt) {
+    SurfaceTextures plain({.width = 16, .height = 16, .mipmaps = false});
+    SurfaceRenderer renderer;
+    const Mesh plane(makePlane({}));
+    try {
+        renderer.draw(plane, glm::mat4(1.0f), plain, {}, Camera{}, {}, {.technique = Technique::Hierarchical});
+        FAIL() << "drew the hierarchical technique without a pyramid";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("pyramid"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(SurfaceTextures({.width = 48, .height = 32, .pyramid = true}), Error);
+    EXPECT_THROW(parseTechnique("cone"), Error);
+    for (Technique t : kTechniques) EXPECT_EQ(parseTechnique(techniqueName(t)), t);
+}
+
+} // namespace
+} // namespace hfx::test
