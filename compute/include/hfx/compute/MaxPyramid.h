@@ -4,6 +4,8 @@
 // holds, per bilinear cell (between texel centres i..i+1, j..j+1), the max of its four corner
 // samples; level k texel (I, J) bounds cells [I 2^k, (I+1) 2^k) x [J 2^k, (J+1) 2^k).
 // All levels live in one buffer, level after level.
+//
+// Owns its buffer and kernels. Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/ClContext.h"
 

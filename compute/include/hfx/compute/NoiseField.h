@@ -3,6 +3,8 @@
 // (periodic, with rotating gradients); as fBm, ridged or turbulence octave sums, optionally
 // domain-warped, optionally tileable. Time moves Perlin and simplex through their third
 // dimension and turns psrdnoise's gradients (the flow look).
+//
+// Owns its buffers and kernels. Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/HeightSource.h"
 #include "hfx/compute/shared/NoiseMath.h"

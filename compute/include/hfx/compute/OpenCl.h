@@ -1,6 +1,8 @@
 #pragma once
 // The Khronos C++ bindings, configured once by hfx::compute's compile definitions
 // (exceptions enabled, OpenCL 1.2 API).
+//
+// Thread: any (configuration of the C++ bindings only).
 
 #include <CL/opencl.hpp>
 

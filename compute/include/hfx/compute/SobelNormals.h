@@ -2,6 +2,8 @@
 // Tangent-space normals of any float height buffer by a 3x3 Sobel filter, written as float4
 // (normal.xyz, height) per texel: the layout hfx::SurfaceTextures uploads. The output buffer is
 // allocated host-visible (CL_MEM_ALLOC_HOST_PTR) so mapping it for the GL upload costs no copy.
+//
+// Owns its output buffer and kernel. Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/ClContext.h"
 

@@ -3,6 +3,8 @@
 // the deep-water dispersion relation omega^2 = g k. Each wave has whole cycles across the patch
 // (wave vectors on the patch's lattice), so the field tiles exactly at every time.
 // Writes h in [0,1] into a float buffer of size x size, row y at v = (y + 0.5) / size.
+//
+// Owns its buffers and kernel. Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/HeightSource.h"
 

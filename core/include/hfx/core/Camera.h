@@ -1,5 +1,7 @@
 #pragma once
 // A perspective look-at camera (right-handed, OpenGL clip space).
+//
+// Owns nothing (a value type). Thread: any; no GL calls.
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

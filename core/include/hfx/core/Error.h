@@ -2,6 +2,8 @@
 // Errors: a failure of the environment or of input (missing file, no OpenCL platform, a shader
 // or kernel that does not build, a bad parameter) throws hfx::Error carrying the whole story.
 // A programmer's contract violation is HFX_CHECK: always on, prints the values, aborts.
+//
+// Thread: any. Every HFX failure is an hfx::Error carrying its message.
 
 #include <sstream>
 #include <stdexcept>

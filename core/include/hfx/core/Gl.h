@@ -1,5 +1,7 @@
 #pragma once
 // The one include for OpenGL: the glad loader generated at build time (GL 4.5 core).
+//
+// Thread: GL calls only on the thread whose context is current.
 
 #include <glad/gl.h>
 

@@ -1,6 +1,8 @@
 #pragma once
 // Loading GL entry points, without including any GL header (so it can sit beside a platform's
 // own GL/gl.h, as OSMesa's header brings in).
+//
+// Thread: load on the thread whose context is current, once per process.
 
 namespace hfx {
 

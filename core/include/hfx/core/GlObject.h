@@ -2,6 +2,9 @@
 // Move-only owners of GL object names. Each owns exactly one name, deletes it in the destructor
 // (which never throws), and is empty (id() == 0) after a move or release(). They must be
 // destroyed while the context that created them is current.
+//
+// Owns one GL object name each (deleted on destruction). Thread: the thread whose context
+// made the object, with that context current.
 
 #include "hfx/core/Gl.h"
 

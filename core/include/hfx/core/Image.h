@@ -2,6 +2,8 @@
 // Images on the host: float pixels, 1 to 4 interleaved channels, row 0 at the top as files store
 // them. Reading goes through OpenImageIO, so any format it reads (PNG, JPEG, TIFF, EXR, HDR, ...)
 // at 8, 16 or 32 bits works; 8/16-bit integer data arrive normalised to [0,1].
+//
+// Owns its pixels (a value type). Thread: any; reads and writes touch only the named file.
 
 #include <cstddef>
 #include <string>

@@ -3,6 +3,9 @@
 // derivatives of position with respect to the texcoords (world units per texcoord unit), not unit
 // vectors: with them the shader converts the view ray into texture space exactly, whatever the
 // mesh's size and texture repeat.
+//
+// MeshData is a value; Mesh owns its GL buffers and vertex array. Thread: Mesh on the thread
+// whose GL context is current; makePlane/makeSphere anywhere.
 
 #include "hfx/core/GlObject.h"
 

@@ -1,6 +1,8 @@
 #pragma once
 // SplitMix64: a fully specified generator, so a seed gives the same numbers with every standard
 // library and platform (std::uniform_real_distribution does not promise that).
+//
+// Owns its state. Thread: one generator per thread.
 
 #include <cstdint>
 

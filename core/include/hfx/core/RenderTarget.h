@@ -2,6 +2,8 @@
 // An off-screen framebuffer: RGBA8 colour (fragment output 0), a 32-bit float depth texture, and
 // optionally an RGBA32F "trace" attachment (output 1) where debug shader variants write values
 // such as the final texcoords of a ray, for tests and accuracy benchmarks.
+//
+// Owns its framebuffer and attachments. Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"

@@ -2,6 +2,8 @@
 // A linked GLSL program built from named sources. Variants come from #define lines placed after
 // the #version line; a #line directive keeps the info log's line numbers equal to the file's.
 // Compile and link failures throw hfx::Error with the file name, line and the driver's log.
+//
+// Owns one GL program. Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Source.h"

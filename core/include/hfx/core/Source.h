@@ -1,6 +1,8 @@
 #pragma once
 // Text sources (GLSL, OpenCL C) are embedded in the libraries at build time. For live editing,
 // an environment variable may name a folder whose file of the same name wins over the copy.
+//
+// Owns the loaded text. Thread: any.
 
 #include <string>
 #include <string_view>

@@ -2,6 +2,8 @@
 // Turning image files into the surface layout: heights and tangent-space normals as the compute
 // kernels lay them out (row 0 at v = 0, the bottom of the image), refused with the file's name
 // when they do not fit.
+//
+// Returns owned vectors. Thread: any; no GL calls.
 
 #include "hfx/core/Image.h"
 

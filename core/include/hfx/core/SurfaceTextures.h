@@ -2,6 +2,8 @@
 // The GL side of a height field: one RGBA32F texture holding the tangent-space normal in xyz and
 // the height in w (h in [0,1], 1 = the polygon surface), so a POM step costs one fetch, plus an
 // RGBA8 albedo texture. Storage is allocated once; upload() refreshes it in place every frame.
+//
+// Owns its textures. Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"

@@ -2,6 +2,8 @@
 // A procedural brick wall for the decal user when no maps are given: running-bond bricks with
 // bevelled edges, per-brick tilt and colour, a rough face and recessed mortar. Tileable: the
 // pattern repeats exactly across the map's edges, so stamps and texcoords may wrap.
+//
+// Returns owned maps. Thread: any; no GL or CL calls.
 
 #include "hfx/core/Image.h"
 

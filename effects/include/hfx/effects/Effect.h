@@ -2,6 +2,9 @@
 // What a user of the module drives each frame: update(dt) produces this frame's height field on
 // the compute device, derives its normals and hands both to GL; the caller then draws with a
 // SurfaceRenderer using textures() and material().
+//
+// An effect owns its source, compute buffers and textures. Thread: the thread that owns both
+// the ClContext and the current GL context.
 
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/SurfaceRenderer.h"

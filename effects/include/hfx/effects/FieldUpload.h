@@ -1,6 +1,9 @@
 #pragma once
 // Moves a compute buffer of float4 (normal.xyz, height) into SurfaceTextures: maps the
 // host-visible buffer (no read into fresh memory) and uploads from the mapping.
+//
+// Owns nothing; maps and unmaps the buffer around the upload. Thread: the thread that owns
+// both the ClContext and the current GL context.
 
 #include "hfx/compute/ClContext.h"
 #include "hfx/compute/MaxPyramid.h"

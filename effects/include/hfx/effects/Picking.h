@@ -2,6 +2,8 @@
 // Picking on a displaced surface: a world-space ray (the camera's ray through the cursor) meets
 // the height field that POM draws, found exactly by the bilinear ray/height-field intersection
 // (HeightFieldTracer), so a click lands on the texel the user sees, not on the flat polygon.
+//
+// Owns nothing. Thread: any; pure CPU work.
 
 #include "hfx/core/Camera.h"
 #include "hfx/core/HeightFieldTracer.h"

@@ -11,6 +11,8 @@
 // and shows from F on (frame 0 is the wall before any update, so shots at 0 land with frame 1).
 // Texcoords may lie outside [0,1) (they wrap); pixels must lie inside the image, which only the
 // scene can check.
+//
+// Returns owned values. Thread: any.
 
 #include <cstdint>
 #include <string>
