@@ -1,0 +1,160 @@
+// Bad input at the module's entry points: each call is refused with a message naming the
+// problem, and the object it was made on is left exactly as it was.
+
+#include "support/Fixtures.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/DecalWall.h"
+#include "hfx/effects/GasPlanet.h"
+#include "hfx/effects/ImageSurface.h"
+#include "hfx/effects/OceanEffect.h"
+#include "hfx/effects/WaterEffect.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <fstream>
+#include <limits>
+
+namespace hfx::test {
+namespace {
+
+class Robustness : public DeviceTest {};
+
+std::vector<float> readSurface(const SurfaceTextures& textures) {
+    std::vector<float> texels(size_t(textures.config().width) * textures.config().height * 4);
+    glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    return texels;
+}
+
+std::string messageOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    WaterEffect water(cl(), {.waves = {.size = 64}});
+    OceanEffect ocean(cl(), {.ocean = {.size = 64}});
+    DecalWallEffect wall(cl(), {.bricks = {.size = 64}});
+    GasPlanetEffect planet(cl(), {.gas = {.width = 32, .height = 16, .initialBands = 2.0f}});
+    for (FieldEffect* effect : std::initializer_list<FieldEffect*>{&water, &ocean, &wall, &planet}) {
+        effect->update(0.02);
+        const std::vector<float> before = readSurface(effect->textures());
+        const SurfaceMaterial material = effect->material();
+        for (double dt : {0.0, -0.1, nan, inf}) {
+            const std::string m = messageOf([&] { effect->update(dt); });
+            EXPECT_NE(m.find("dt"), std::string::npos) << m;
+        }
+        for (float depth : {-0.1f, 2.0f, float(nan)}) {
+            const std::string m = messageOf([&] { effect->setDepthScale(depth); });
+            EXPECT_NE(m.find("depthScale"), std::string::npos) << m;
+        }
+        EXPECT_EQ(readSurface(effect->textures()), before);
+        EXPECT_EQ(effect->material(), material);
+    }
+    EXPECT_EQ(water.time(), 0.02);
+}
+
+TEST_F(Robustness, BadMaterialsDrawNothing) {
+    WaterEffect water(cl(), {.waves = {.size = 64}});
+    RenderTarget target(64, 64);
+    target.bind();
+    target.clear({0.25f, 0.5f, 0.75f, 1.0f});
+    const Image before = target.readColor();
+    SurfaceRenderer renderer;
+    const Mesh plane(makePlane({}));
+    const Camera camera = Camera::orbit({0, 0, 0}, 3.0f, 0.3f, 0.6f);
+    for (const auto& [material, field] :
+         {std::pair{SurfaceMaterial{.minSamples = 0}, "minSamples"}, std::pair{SurfaceMaterial{.maxSamples = 300}, "maxSamples"},
+          std::pair{SurfaceMaterial{.depthScale = -0.01f}, "depthScale"},
+          std::pair{SurfaceMaterial{.shadowSamples = 0}, "shadowSamples"},
+          std::pair{SurfaceMaterial{.specularPower = std::nanf("")}, "specularPower"},
+          std::pair{SurfaceMaterial{.silhouetteFade = 1.5f}, "silhouetteFade"}}) {
+        const std::string m = messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), material, camera, {}); });
+        EXPECT_NE(m.find(field), std::string::npos) << m;
+    }
+    EXPECT_EQ(target.readColor().pixels, before.pixels) << "a refused draw left pixels behind";
+}
+
+TEST_F(Robustness, HugeStampBatchesAreRefusedWhole) {
+    DecalWallEffect wall(cl(), {.bricks = {.size = 64}, .maxStampsPerBatch = 1000});
+    std::vector<BulletHole> storm(1001, BulletHole{.u = 0.5f, .v = 0.5f, .radius = 0.02f});
+    const std::string m = messageOf([&] { wall.decals().addBulletHoles(storm); });
+    EXPECT_NE(m.find("1000"), std::string::npos) << m;
+    EXPECT_EQ(wall.decals().pendingStamps(), 0u);
+    storm.resize(1000);
+    wall.decals().addBulletHoles(storm);
+    EXPECT_EQ(wall.decals().pendingStamps(), 1000u);
+    EXPECT_NE(messageOf([&] { wall.shoot(std::numeric_limits<double>::infinity(), 0.5); }).find("finite"),
+              std::string::npos);
+}
+
+TEST_F(Robustness, MapsOfEveryFormatLoadAndNonSquareSizesKeepTheirShape) {
+    // A 16-bit, two-channel, non-square, non-power-of-two height map: the first channel is h.
+    constexpr int W = 48, H = 30;
+    Image map{W, H, 2, std::vector<float>(W * H * 2)};
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            map.at(x, y, 0) = float(x) / W;
+            map.at(x, y, 1) = 1.0f;
+        }
+    const std::string path = outputPath("robust_height16.tif");
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(W, H, 2, OIIO::TypeDesc::UINT16);
+    ASSERT_TRUE(out->open(path, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, map.pixels.data()));
+    out->close();
+    ImageSurface surface(cl(), {.heightMap = path, .wrapEdges = false});
+    EXPECT_EQ(surface.textures().config().width, W);
+    EXPECT_EQ(surface.textures().config().height, H);
+    const std::vector<float> texels = readSurface(surface.textures());
+    EXPECT_NEAR(texels[(5 * W + 24) * 4 + 3], 24.0f / W, 1.0f / 65535.0f + 1e-6f);
+}
+
+TEST_F(Robustness, ZeroSizedAndEmptyFilesAreRefusedByName) {
+    // A PNG whose header claims 0 x 0 pixels.
+    const std::string zero = outputPath("robust_zero.png");
+    {
+        std::ofstream f(zero, std::ios::binary);
+        const unsigned char png[] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                     0,    0,   0,   0,   0,    0,    0,    0,    8, 0, 0, 0,  0,   0x1e, 0xe0, 0x23, 0xce};
+        f.write(reinterpret_cast<const char*>(png), sizeof png);
+    }
+    const std::string empty = outputPath("robust_empty.exr");
+    std::ofstream(empty, std::ios::binary).close();
+    for (const std::string& path : {zero, empty}) {
+        const std::string m = messageOf([&] { ImageSurface(cl(), {.heightMap = path}); });
+        EXPECT_NE(m.find(path), std::string::npos) << m;
+        EXPECT_EQ(m.find("(no error)"), std::string::npos);
+    }
+}
+
+TEST_F(Robustness, KernelThatFailsToBuildFromAnOverrideNamesTheLogAndLine) {
+    const std::string dir = outputPath("robust_kernels");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/colorize.cl") << "__kernel void colorize(__global float* x) {\n  x[0] = undefined_name;\n}\n";
+    setenv("HFX_KERNEL_DIR", dir.c_str(), 1);
+    std::string m;
+    {
+        ClContext fresh;
+        m = messageOf([&] { ColorRamp(fresh, 4, 4, gasGiantPalette()); });
+    }
+    unsetenv("HFX_KERNEL_DIR");
+    EXPECT_NE(m.find("colorize"), std::string::npos) << m;
+    EXPECT_NE(m.find("undefined_name"), std::string::npos) << "the build log is missing: " << m;
+}
+
+} // namespace
+} // namespace hfx::test
