@@ -4,13 +4,29 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 namespace hfx {
 
+namespace {
+
+/// Tells OpenImageIO the same limits before it parses a header, so a file that claims a huge
+/// size is refused by the reader instead of allocating for it; EXR files go through OpenEXR's
+/// C core, which validates headers before allocating from them.
+void limitReaders(const ImageReadLimits& limits) {
+    const long long megabytes = std::max(1LL, limits.maxPixels * 4 * 4 / (1024 * 1024));
+    OIIO::attribute("limits:imagesize_MB", int(std::min(megabytes, 1LL << 30)));
+    OIIO::attribute("limits:channels", 64);
+    OIIO::attribute("openexr:core", 1);
+}
+
+} // namespace
+
 Image readImage(const std::string& path, const ImageReadLimits& limits) {
     if (!std::filesystem::exists(path)) throw Error(str("image '", path, "' does not exist"));
+    limitReaders(limits);
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error(str("cannot read image '", path, "': ", OIIO::geterror()));
     const OIIO::ImageSpec& spec = in->spec();

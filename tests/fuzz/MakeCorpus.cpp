@@ -1,0 +1,57 @@
+// Writes the fuzzers' seed corpus: small valid height maps in the formats the loader meets
+// (8/16-bit PNG and TIFF, float EXR and HDR, 1-4 channels), prefixed with the byte that picks
+// their extension in FuzzHeightMap, and a few shot lists.
+//   hfx-fuzz-corpus DIR   ->  DIR/heightmap/*, DIR/shots/*
+#include "hfx/core/Image.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: hfx-fuzz-corpus DIR\n");
+        return 2;
+    }
+    const std::filesystem::path dir = argv[1];
+    std::filesystem::create_directories(dir / "heightmap");
+    std::filesystem::create_directories(dir / "shots");
+    struct Seed {
+        const char* ext;
+        int index, channels;
+        OIIO::TypeDesc type;
+    };
+    const Seed seeds[] = {{".png", 0, 1, OIIO::TypeDesc::UINT8}, {".png", 0, 3, OIIO::TypeDesc::UINT16},
+                          {".tif", 1, 2, OIIO::TypeDesc::UINT16}, {".tif", 1, 4, OIIO::TypeDesc::FLOAT},
+                          {".hdr", 2, 3, OIIO::TypeDesc::FLOAT},  {".exr", 3, 1, OIIO::TypeDesc::HALF},
+                          {".pnm", 4, 1, OIIO::TypeDesc::UINT8},  {".bmp", 5, 3, OIIO::TypeDesc::UINT8}};
+    int n = 0;
+    for (const Seed& s : seeds) {
+        const int w = 5 + n, h = 4 + n % 3;
+        std::vector<float> pixels(size_t(w) * h * s.channels);
+        for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = float(0.5 + 0.4 * std::sin(double(i) * 0.7));
+        const std::string tmp = (dir / ("tmp" + std::string(s.ext))).string();
+        auto out = OIIO::ImageOutput::create(tmp);
+        if (!out || !out->open(tmp, OIIO::ImageSpec(w, h, s.channels, s.type)) ||
+            !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close()) {
+            std::fprintf(stderr, "hfx-fuzz-corpus: could not write %s\n", tmp.c_str());
+            continue;
+        }
+        std::ifstream in(tmp, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+        std::ofstream seed(dir / "heightmap" / ("seed" + std::to_string(n++)), std::ios::binary);
+        seed.put(char(s.index));
+        seed << bytes;
+        std::filesystem::remove(tmp);
+    }
+    const char* lists[] = {"bullet 0 0.5 0.5\n", "# volley\nbullet 1 0.25 0.75\nexplosion 2 1.5 -0.5 42\nclick 3 640 360\n",
+                           "explosion 10 0.1 0.9\n\n\nbullet 11 1e-3 0.999\n"};
+    for (int i = 0; i < 3; ++i) std::ofstream(dir / "shots" / ("seed" + std::to_string(i))) << lists[i];
+    std::printf("hfx-fuzz-corpus: wrote %d height maps and 3 shot lists to %s\n", n, dir.c_str());
+    return 0;
+}
