@@ -1,17 +1,20 @@
-// hfx-demo bench: one run measuring the frame at width x height, POM against normal mapping,
-// and the share of compute + upload of the field. Medians of interleaved frames, so a noisy
-// neighbour on the machine hits both techniques alike.
+// hfx-demo bench: the frame budget of every scene, measured in one run. For each scene at two
+// field sizes: per-stage medians (field step, normals, pyramid/colours, transfer to GL, draw with
+// POM, POM without shadows and normal mapping, interleaved frame by frame so a noisy neighbour
+// hits them alike), frames per second, the ratios issue 7 asks for, and the process's peak
+// resident memory. Then the scaling of the water frame with field size and output resolution.
 
 #include "Scene.h"
 
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlContext.h"
-#include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <string>
 #include <vector>
 
 namespace hfx::demo {
@@ -19,7 +22,7 @@ namespace {
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
+    return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 template <typename F>
@@ -31,53 +34,97 @@ double timeMs(F&& f) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+long peakResidentMiB() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6)) / 1024;
+    return -1;
+}
+
+struct Budget {
+    double field, normals, extra, upload, pom, unshadowed, nm;
+    double compute() const { return field + normals + extra; }
+    double frame() const { return compute() + upload + pom; }
+};
+
+/// Medians over `frames` frames after two warm-up frames; the scene's own material and POM.
+Budget measure(Scene& scene, RenderTarget& target, int frames) {
+    std::vector<double> field, normals, extra, upload, pom, unshadowed, nm;
+    const SurfaceMaterial material = scene.material();
+    for (int frame = -2; frame < frames; ++frame) {
+        const double u = timeMs([&] { scene.update(1.0 / 30.0); });
+        const StageTimes s = scene.effect().lastTimes();
+        auto draw = [&](Technique t, bool shadows) {
+            scene.technique = t;
+            scene.material().shadows = shadows;
+            return timeMs([&] {
+                target.clear();
+                scene.draw();
+            });
+        };
+        const double p = draw(Technique::ParallaxOcclusion, true);
+        const double q = draw(Technique::ParallaxOcclusion, false);
+        const double n = draw(Technique::NormalMapping, true);
+        scene.material() = material;
+        if (frame < 0) continue;
+        field.push_back(s.field);
+        normals.push_back(s.normals);
+        extra.push_back(s.extra);
+        upload.push_back(u - s.compute); // everything update() did besides the device work
+        pom.push_back(p);
+        unshadowed.push_back(q);
+        nm.push_back(n);
+    }
+    return {median(field), median(normals), median(extra), median(upload), median(pom), median(unshadowed), median(nm)};
+}
+
 } // namespace
 
 int runBench(const SceneOptions& options, int width, int height, int frames) {
     auto gl = createHeadlessContext({.width = width, .height = height});
     ClContext cl;
-    SceneOptions pomOptions = options;
-    pomOptions.technique = Technique::ParallaxOcclusion;
-    SceneOptions nmOptions = options;
-    nmOptions.technique = Technique::NormalMapping;
-    SceneOptions unshadowedOptions = pomOptions;
-    unshadowedOptions.shadows = false;
-    auto pom = makeWaterScene(cl, pomOptions);
-    auto unshadowed = makeWaterScene(cl, unshadowedOptions);
-    auto nm = makeWaterScene(cl, nmOptions);
+    std::printf("hfx-demo bench: %dx%d, %d frames per case (medians), %s\n", width, height, frames,
+                gl->description().c_str());
+    std::printf("OpenCL: %s\n\n", cl.description().c_str());
+
+    std::printf("| scene | field | step | normals | pyramid/extra | upload | POM draw | POM no shadows | NM draw | "
+                "frame | fps | POM/NM | compute+upload share | peak RSS MiB |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     RenderTarget target(width, height);
     target.bind();
+    for (const char* name : {"water", "decals", "planet"})
+        for (int size : {512, 1024}) {
+            SceneOptions o = options;
+            o.fieldSize = size;
+            o.technique = Technique::Hierarchical; // builds the height pyramid each frame, so its cost shows
+            o.aspect = float(width) / float(height);
+            o.width = width;
+            o.height = height;
+            auto scene = makeScene(name, cl, o);
+            const Budget b = measure(*scene, target, frames);
+            const auto& config = scene->effect().textures().config();
+            std::printf("| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2fx | %.1f%% | %ld |\n",
+                        name, config.width, config.height, b.field, b.normals, b.extra, b.upload, b.pom,
+                        b.unshadowed, b.nm, b.frame(), 1000.0 / b.frame(), b.pom / b.nm,
+                        100.0 * (b.compute() + b.upload) / b.frame(), peakResidentMiB());
+            std::fflush(stdout);
+        }
 
-    std::vector<double> compute, upload, drawPom, drawUnshadowed, drawNm;
-    for (int frame = -2; frame < frames; ++frame) { // two warm-up frames build and settle
-        const double u = timeMs([&] { pom->update(1.0 / 30.0); });
-        const StageTimes stages = pom->effect().lastTimes();
-        const double p = timeMs([&] { target.clear(); pom->draw(); });
-        const double s = timeMs([&] { target.clear(); unshadowed->draw(); });
-        const double n = timeMs([&] { target.clear(); nm->draw(); });
-        if (frame < 0) continue;
-        drawUnshadowed.push_back(s);
-        compute.push_back(stages.compute);
-        upload.push_back(u - stages.compute);
-        drawPom.push_back(p);
-        drawNm.push_back(n);
-    }
-    const double c = median(compute), up = median(upload), dp = median(drawPom), dn = median(drawNm);
-    const double ds = median(drawUnshadowed);
-    const int field = pom->effect().textures().config().width;
-    std::printf("hfx-demo bench: %dx%d, field %dx%d, %d frames (medians), %s\n", width, height, field, field,
-                frames, gl->description().c_str());
-    std::printf("OpenCL: %s\n", cl.description().c_str());
-    std::printf("| stage | ms |\n|---|---|\n");
-    std::printf("| field compute (%s waves + Sobel) | %.2f |\n", options.waves.c_str(), c);
-    std::printf("| upload (map + texture + mips) | %.2f |\n", up);
-    std::printf("| draw, normal mapping | %.2f |\n", dn);
-    const SurfaceMaterial& m = pom->material();
-    std::printf("| draw, POM %d..%d samples + %d-sample soft shadows | %.2f |\n", m.minSamples, m.maxSamples,
-                m.shadowSamples, dp);
-    std::printf("| draw, POM %d..%d samples, no shadows | %.2f |\n", m.minSamples, m.maxSamples, ds);
-    std::printf("POM / normal mapping draw: %.2fx (without shadows %.2fx)\n", dp / dn, ds / dn);
-    std::printf("compute + upload share of the POM frame: %.1f%%\n", 100.0 * (c + up) / (c + up + dp));
+    std::printf("\nScaling of the water frame (POM with shadows):\n\n| field | output | compute | upload | POM draw | frame ms |\n|---|---|---|---|---|---|\n");
+    auto scaling = [&](int size, int w, int h) {
+        SceneOptions o = options;
+        o.fieldSize = size;
+        o.aspect = float(w) / float(h);
+        RenderTarget t(w, h);
+        t.bind();
+        auto scene = makeScene("water", cl, o);
+        const Budget b = measure(*scene, t, std::max(5, frames / 2));
+        std::printf("| %d² | %dx%d | %.2f | %.2f | %.2f | %.1f |\n", size, w, h, b.compute(), b.upload, b.pom, b.frame());
+        std::fflush(stdout);
+    };
+    for (int size : {256, 512, 1024, 2048}) scaling(size, width, height);
+    for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1920, 1080}}) scaling(512, w, h);
     return 0;
 }
 

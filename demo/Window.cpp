@@ -174,6 +174,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         if (!(before == m)) scene.applyMaterial();
         const StageTimes stages = scene.effect().lastTimes();
         ImGui::Separator();
+        ImGui::Text("field %.2f  normals %.2f  extra %.2f ms", stages.field, stages.normals, stages.extra);
         ImGui::Text("compute %.2f ms  upload %.2f ms", stages.compute, stages.upload);
         ImGui::Text("draw %.2f ms  frame %.1f ms (%.1f fps)", drawMs, frameMs, frameMs > 0 ? 1000.0 / frameMs : 0.0);
         ImGui::Text("right-drag orbit, wheel zoom, F12 screenshot");

@@ -46,6 +46,13 @@ void FieldEffect::update(double dt) {
     refresh(start);
 }
 
+namespace {
+double finishedMs(ClContext& cl) {
+    clGuard("FieldEffect::update", [&] { cl.queue().finish(); });
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+} // namespace
+
 void FieldEffect::setDepthScale(float depthScale) {
     SurfaceMaterial next = material_;
     next.depthScale = depthScale;
@@ -55,15 +62,22 @@ void FieldEffect::setDepthScale(float depthScale) {
 }
 
 void FieldEffect::refresh(double computeStartMs) {
+    // Each stage is waited for, so the frame's budget can be read stage by stage; the queue is
+    // in order and the CPU device runs one kernel at a time, so the waits cost no overlap.
+    const double stepped = finishedMs(cl_);
     normals_.run(source_->buffer());
+    const double normalised = finishedMs(cl_);
     if (pyramid_) pyramid_->build(source_->buffer());
     enqueueExtra();
-    clGuard("FieldEffect::update", [&] { cl_.queue().finish(); });
-    const double computed = nowMs();
+    const double computed = finishedMs(cl_);
     uploadField(cl_, normals_.output(), textures_);
     if (pyramid_) uploadPyramid(cl_, *pyramid_, textures_);
     uploadExtra();
-    times_ = {computed - computeStartMs, nowMs() - computed};
+    times_ = {.compute = computed - computeStartMs,
+              .upload = nowMs() - computed,
+              .field = stepped - computeStartMs,
+              .normals = normalised - stepped,
+              .extra = computed - normalised};
 }
 
 } // namespace hfx

@@ -13,8 +13,12 @@ namespace hfx {
 
 /// Wall-clock milliseconds of the last update, by stage (measured on the host around waits).
 struct StageTimes {
-    double compute = 0.0; ///< field step + normals, enqueue to finish
+    double compute = 0.0; ///< field step + normals (+ pyramid, colours), enqueue to finish
     double upload = 0.0;  ///< map, GL upload, mip generation
+    // The parts of compute, each waited for on its own (so they add up to compute):
+    double field = 0.0;   ///< the source's step
+    double normals = 0.0; ///< Sobel
+    double extra = 0.0;   ///< the height pyramid and effect-specific work (colours, normal map)
 };
 
 class Effect {
