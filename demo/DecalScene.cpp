@@ -37,7 +37,7 @@ public:
         light_.ambient = {0.22f, 0.22f, 0.25f};
     }
 
-    void update(double dt) override {
+    void prepare(double /*dt*/) override {
         // Shots for the frame this update makes: the list's, or a seeded volley when none was
         // given. Frame 0 is the wall before any update, so shots listed at 0 land with frame 1.
         ++frame_;
@@ -47,7 +47,6 @@ public:
         } else if (autoFire) {
             volley();
         }
-        wall_.update(dt);
     }
     void draw() override {
         drawSurface(renderer_, light_);

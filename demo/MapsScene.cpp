@@ -18,7 +18,6 @@ public:
         light_.direction = {-1.0f, 0.45f, -0.3f};
     }
 
-    void update(double dt) override { surface_.update(dt); }
     void draw() override { drawSurface(renderer_, light_); }
     Effect& effect() override { return surface_; }
     const char* name() const override { return "maps"; }

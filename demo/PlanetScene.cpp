@@ -24,7 +24,6 @@ public:
         light_.ambient = {0.03f, 0.03f, 0.04f};
     }
 
-    void update(double dt) override { planet_.update(dt); }
     void draw() override { drawSurface(renderer_, light_); }
     Effect& effect() override { return planet_; }
     const char* name() const override { return "planet"; }

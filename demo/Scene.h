@@ -37,11 +37,24 @@ struct SceneOptions {
 class Scene {
 public:
     virtual ~Scene() = default;
-    virtual void update(double dt) = 0;
+    /// Sequential: the next field, computed and uploaded before this returns.
+    void update(double dt) {
+        beginUpdate(dt);
+        endUpdate();
+    }
+    /// Overlapped: start the next field on the compute device (after the scene's own per-frame
+    /// work, prepare()), draw the current one, then endUpdate() to take the new one to GL.
+    void beginUpdate(double dt) {
+        prepare(dt);
+        effect().beginUpdate(dt);
+    }
+    void endUpdate() { effect().endUpdate(); }
     /// Draws into the bound framebuffer with material() and technique.
     virtual void draw() = 0;
     virtual Effect& effect() = 0;
     virtual const char* name() const = 0;
+    /// What the scene does before each field step (decals: this frame's shots).
+    virtual void prepare(double /*dt*/) {}
     /// Scene-specific controls in the UI panel (ImGui), if any.
     virtual void panel() {}
     /// A click at pixel (x, y) from the top-left of a width x height image (decals: a shot).

@@ -61,7 +61,6 @@ public:
         light_.ambient = {0.35f, 0.42f, 0.5f};
     }
 
-    void update(double dt) override { effect().update(dt); }
     void draw() override { drawSurface(renderer_, light_); }
     Effect& effect() override { return ocean_ ? static_cast<Effect&>(*ocean_) : *sine_; }
     const char* name() const override { return "water"; }

@@ -60,11 +60,13 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
     Progress progress(frames, !o.noProgress && frames > 1);
     std::fprintf(stderr, "hfx-demo: headless, %s\n", gl.description().c_str());
     for (int frame = 0; frame < frames; ++frame) {
-        // Headless runs advance by the fixed dt so two runs write identical frames.
-        if (frame > 0) scene.update(o.dt);
+        // Headless runs advance by the fixed dt so two runs write identical frames. The next
+        // field is computed while this one draws (begin after the draw, end before the next).
+        if (frame > 0) scene.endUpdate();
         target.bind();
         target.clear(background(o.scene));
         scene.draw();
+        if (frame + 1 < frames) scene.beginUpdate(o.dt);
         const Image image = target.readColor();
         if (!outDir.empty()) {
             const std::string path = framePath(outDir, o.scene, frame, o.format);

@@ -12,6 +12,7 @@
 #include "hfx/effects/DecalWall.h"
 #include "hfx/effects/GasPlanet.h"
 #include "hfx/effects/OceanEffect.h"
+#include "hfx/effects/WaterEffect.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -212,6 +213,33 @@ TEST_F(Users, PlanetColoursComeFromTheGasThroughTheRamp) {
     EXPECT_EQ(wrapS, GL_REPEAT);
     EXPECT_EQ(wrapT, GL_CLAMP_TO_EDGE);
     EXPECT_THROW(GasPlanetEffect(cl(), {.gas = {.width = 64, .height = 32, .periodicY = true}}), Error);
+}
+
+TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {
+    WaterEffect sequential(cl(), {.waves = {.size = 64}});
+    WaterEffect overlapped(cl(), {.waves = {.size = 64}});
+    for (int frame = 0; frame < 3; ++frame) {
+        const GLuint drawn = overlapped.textures().surface();
+        const std::vector<float> drawnTexels = readSurface(overlapped.textures());
+        overlapped.beginUpdate(1.0 / 30.0); // a draw of `drawn` would go here
+        overlapped.endUpdate();
+        sequential.update(1.0 / 30.0);
+        // Double buffered: the new field went into the other texture; the drawn one is intact.
+        EXPECT_NE(overlapped.textures().surface(), drawn);
+        std::vector<float> still(drawnTexels.size());
+        glGetTextureImage(drawn, 0, GL_RGBA, GL_FLOAT, GLsizei(still.size() * sizeof(float)), still.data());
+        EXPECT_EQ(still, drawnTexels) << "frame " << frame;
+        EXPECT_EQ(readSurface(overlapped.textures()), readSurface(sequential.textures())) << "frame " << frame;
+    }
+    // A begin without its end is finished by the next update; two begins never overlap.
+    overlapped.beginUpdate(1.0 / 30.0);
+    overlapped.beginUpdate(1.0 / 30.0);
+    overlapped.update(1.0 / 30.0);
+    sequential.update(1.0 / 30.0);
+    sequential.update(1.0 / 30.0);
+    sequential.update(1.0 / 30.0);
+    EXPECT_EQ(readSurface(overlapped.textures()), readSurface(sequential.textures()));
+    EXPECT_DOUBLE_EQ(overlapped.time(), sequential.time());
 }
 
 TEST_F(Users, ColorRampKernelMatchesTheSharedMathIncludingNaN) {

@@ -94,7 +94,7 @@ DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config)
 DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, Made made)
     : FieldEffect(cl, std::move(made.source), config.material, config.mipmaps, config.pyramid), config_(config),
       decals_(static_cast<DecalMap&>(source())) {
-    if (!made.albedo.empty()) mutableTextures().setAlbedo(made.albedo);
+    if (!made.albedo.empty()) setAlbedo(made.albedo);
     if (!made.normals.empty()) {
         const int w = decals_.width(), h = decals_.height();
         clGuard("uploading the wall's normal map", [&] {

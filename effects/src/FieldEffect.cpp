@@ -11,6 +11,16 @@ const HeightSource& checked(const std::unique_ptr<HeightSource>& source) {
     if (!source) throw Error("FieldEffect needs a height source, got none");
     return *source;
 }
+SurfaceTexturesConfig texturesConfig(const HeightSource& source, bool mipmaps, bool pyramid) {
+    return {.width = source.width(),
+            .height = source.height(),
+            .mipmaps = mipmaps,
+            .edges = source.periodic()    ? EdgeMode::Wrap
+                     : source.periodicU() ? EdgeMode::WrapU
+                                          : EdgeMode::Clamp,
+            .pyramid = pyramid};
+}
+
 } // namespace
 
 double FieldEffect::nowMs() {
@@ -27,23 +37,58 @@ FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
                                .depthScale = material.depthScale,
                                .wrapEdges = source->periodicU(),
                                .clampV = !source->periodic()}),
-      textures_(SurfaceTexturesConfig{.width = source->width(),
-                                      .height = source->height(),
-                                      .mipmaps = mipmaps,
-                                      .edges = source->periodic()    ? EdgeMode::Wrap
-                                               : source->periodicU() ? EdgeMode::WrapU
-                                                                     : EdgeMode::Clamp,
-                                      .pyramid = pyramid}) {
+      textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid)),
+                std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid))} {
     source_ = std::move(source);
     if (pyramid)
         pyramid_ = std::make_unique<MaxPyramid>(cl, source_->width(), source_->height(), source_->periodic());
     refresh(nowMs());
 }
 
+void FieldEffect::stepSource(double dt) { source_->step(dt); }
+
+void FieldEffect::setAlbedo(const Image& albedo) {
+    for (auto& t : textures_) t->setAlbedo(albedo);
+}
+
 void FieldEffect::update(double dt) {
+    if (pending_) endUpdate();
     const double start = nowMs();
-    source_->step(dt);
+    stepSource(dt);
     refresh(start);
+}
+
+void FieldEffect::beginUpdate(double dt) {
+    if (pending_) endUpdate(); // never two in flight
+    const double start = nowMs();
+    stepSource(dt);
+    normals_.run(source_->buffer());
+    if (pyramid_) pyramid_->build(source_->buffer());
+    enqueueExtra();
+    clGuard("FieldEffect::beginUpdate", [&] {
+        cl_.queue().enqueueMarkerWithWaitList(nullptr, &pendingDone_);
+        cl_.queue().flush(); // start now, not at the wait
+    });
+    pending_ = true;
+    pendingStart_ = start;
+}
+
+void FieldEffect::endUpdate() {
+    if (!pending_) return;
+    pending_ = false;
+    const double waitStart = nowMs();
+    clGuard("FieldEffect::endUpdate", [&] { pendingDone_.wait(); });
+    const double computed = nowMs();
+    upload();
+    times_ = {.compute = computed - waitStart, .upload = nowMs() - computed, .field = 0, .normals = 0, .extra = 0};
+}
+
+void FieldEffect::upload() {
+    SurfaceTextures& back = uploadTarget();
+    uploadField(cl_, normals_.output(), back);
+    if (pyramid_) uploadPyramid(cl_, *pyramid_, back);
+    uploadExtra();
+    front_ = 1 - front_;
 }
 
 namespace {
@@ -62,6 +107,7 @@ void FieldEffect::setDepthScale(float depthScale) {
 }
 
 void FieldEffect::refresh(double computeStartMs) {
+    pending_ = false; // an overlapped update in flight is part of what this waits for
     // Each stage is waited for, so the frame's budget can be read stage by stage; the queue is
     // in order and the CPU device runs one kernel at a time, so the waits cost no overlap.
     const double stepped = finishedMs(cl_);
@@ -70,9 +116,7 @@ void FieldEffect::refresh(double computeStartMs) {
     if (pyramid_) pyramid_->build(source_->buffer());
     enqueueExtra();
     const double computed = finishedMs(cl_);
-    uploadField(cl_, normals_.output(), textures_);
-    if (pyramid_) uploadPyramid(cl_, *pyramid_, textures_);
-    uploadExtra();
+    upload();
     times_ = {.compute = computed - computeStartMs,
               .upload = nowMs() - computed,
               .field = stepped - computeStartMs,

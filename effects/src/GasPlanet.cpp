@@ -51,10 +51,9 @@ void GasPlanetEffect::addStorm(float u, float v, bool clockwise) {
     gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r, .dye = clockwise ? 1.0f : 0.05f});
 }
 
-void GasPlanetEffect::update(double dt) {
+void GasPlanetEffect::stepSource(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error(str("GasPlanetEffect::update: dt must be positive and finite, got ", dt));
-    const double start = nowMs();
     time_ += dt;
     stormClock_ += dt * config_.stormsPerSecond;
     for (int storms = 0; stormClock_ >= 1.0 && storms < 8; ++storms) {
@@ -64,12 +63,11 @@ void GasPlanetEffect::update(double dt) {
         addStorm(u, v, random_.next() < 0.5);
     }
     gas_.step(dt);
-    refresh(start);
 }
 
 void GasPlanetEffect::enqueueExtra() { colors_.run(gas_.buffer()); }
 
-void GasPlanetEffect::uploadExtra() { uploadAlbedo(cl(), colors_.output(), mutableTextures()); }
+void GasPlanetEffect::uploadExtra() { uploadAlbedo(cl(), colors_.output(), uploadTarget()); }
 
 glm::mat4 GasPlanetEffect::modelMatrix() const {
     return glm::rotate(glm::mat4(1.0f), float(std::fmod(time_ * config_.rotationSpeed, 6.283185307179586)),

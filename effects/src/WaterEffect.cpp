@@ -17,7 +17,7 @@ std::unique_ptr<HeightSource> makeWaves(ClContext& cl, const WaterConfig& config
 WaterEffect::WaterEffect(ClContext& cl, const WaterConfig& config)
     : FieldEffect(cl, makeWaves(cl, config), config.material, config.mipmaps, config.pyramid),
       waves_(static_cast<WaveField&>(source())) {
-    mutableTextures().setAlbedo(Image{1, 1, 3, {0.05f, 0.22f, 0.30f}});
+    setAlbedo(Image{1, 1, 3, {0.05f, 0.22f, 0.30f}});
 }
 
 void WaterEffect::setTime(double seconds) {

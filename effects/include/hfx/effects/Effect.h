@@ -19,6 +19,8 @@ struct StageTimes {
     double field = 0.0;   ///< the source's step
     double normals = 0.0; ///< Sobel
     double extra = 0.0;   ///< the height pyramid and effect-specific work (colours, normal map)
+    // After beginUpdate/endUpdate (overlapped), the parts are not waited for one by one: compute
+    // is then the time endUpdate() still had to wait, the part the draw did not hide.
 };
 
 class Effect {
@@ -26,6 +28,11 @@ public:
     virtual ~Effect() = default;
     /// Advances the effect by dt seconds (> 0) and refreshes its textures.
     virtual void update(double dt) = 0;
+    /// Overlapped frames: beginUpdate(dt) enqueues the next field on the compute device and
+    /// returns at once; endUpdate() waits for it and hands it to GL. Draw the current textures()
+    /// between the two and the compute hides behind the draw. update(dt) is the two in a row.
+    virtual void beginUpdate(double dt) { update(dt); }
+    virtual void endUpdate() {}
     virtual const SurfaceTextures& textures() const = 0;
     virtual const SurfaceMaterial& material() const = 0;
     virtual StageTimes lastTimes() const = 0;

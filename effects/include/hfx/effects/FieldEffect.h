@@ -1,6 +1,8 @@
 #pragma once
 // The frame of any generated field: source.step(dt) -> Sobel normals -> GL upload, every update.
-// Draw it with SurfaceRenderer using textures() and material().
+// Draw it with SurfaceRenderer using textures() and material(). The textures are double
+// buffered: endUpdate() uploads into the pair the last draw did not read, then swaps, so a GPU
+// never waits for an in-flight draw to release the texture being refreshed.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
@@ -21,7 +23,10 @@ public:
                 bool mipmaps = true, bool pyramid = false);
 
     void update(double dt) override;
-    const SurfaceTextures& textures() const override { return textures_; }
+    void beginUpdate(double dt) override;
+    void endUpdate() override;
+    /// The textures to draw now (they change after each update: ask every frame).
+    const SurfaceTextures& textures() const override { return *textures_[front_]; }
     const SurfaceMaterial& material() const override { return material_; }
     StageTimes lastTimes() const override { return times_; }
 
@@ -33,22 +38,33 @@ public:
 protected:
     /// Runs the normals and the upload for whatever the source holds now.
     void refresh(double computeStartMs);
-    /// Hooks for derived effects: enqueue more device work after the normals (timed as
-    /// compute), and upload more after the field (timed as upload).
+    /// Hooks for derived effects: advance the source (default: source().step(dt)), enqueue more
+    /// device work after the normals (timed as compute), and upload more after the field (into
+    /// uploadTarget(), timed as upload).
+    virtual void stepSource(double dt);
     virtual void enqueueExtra() {}
     virtual void uploadExtra() {}
     ClContext& cl() { return cl_; }
     static double nowMs();
-    SurfaceTextures& mutableTextures() { return textures_; }
+    /// The textures the running update uploads into (the back pair until it swaps).
+    SurfaceTextures& uploadTarget() { return *textures_[1 - front_]; }
+    /// A fixed albedo for both pairs.
+    void setAlbedo(const Image& albedo);
 
 private:
     ClContext& cl_;
     std::unique_ptr<HeightSource> source_;
     SurfaceMaterial material_;
     SobelNormals normals_;
-    SurfaceTextures textures_;
+    std::unique_ptr<SurfaceTextures> textures_[2];
+    int front_ = 0;
     std::unique_ptr<MaxPyramid> pyramid_;
     StageTimes times_;
+    // The overlapped update in flight: when it started, and the marker its wait is for.
+    bool pending_ = false;
+    double pendingStart_ = 0.0;
+    cl::Event pendingDone_;
+    void upload();
 };
 
 } // namespace hfx

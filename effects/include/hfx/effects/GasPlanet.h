@@ -43,7 +43,6 @@ class GasPlanetEffect final : public FieldEffect {
 public:
     explicit GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config = {});
 
-    void update(double dt) override;
     /// A storm now: a vortex of the configured size at texcoords (u in [0,1), v in [0,1)).
     void addStorm(float u, float v, bool clockwise);
     GasField& gas() { return gas_; }
@@ -53,6 +52,7 @@ public:
     glm::mat4 modelMatrix() const;
 
 private:
+    void stepSource(double dt) override;
     void enqueueExtra() override;
     void uploadExtra() override;
 
