@@ -37,10 +37,11 @@ struct SceneOptions {
 class Scene {
 public:
     virtual ~Scene() = default;
-    /// Sequential: the next field, computed and uploaded before this returns.
+    /// Sequential: the next field, computed (stage by stage, see Effect::lastTimes) and
+    /// uploaded before this returns.
     void update(double dt) {
-        beginUpdate(dt);
-        endUpdate();
+        prepare(dt);
+        effect().update(dt);
     }
     /// Overlapped: start the next field on the compute device (after the scene's own per-frame
     /// work, prepare()), draw the current one, then endUpdate() to take the new one to GL.
