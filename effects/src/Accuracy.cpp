@@ -21,30 +21,12 @@ namespace {
 constexpr float kPlaneSize = 2.0f;
 constexpr float kDistance = 8.0f;
 
-Camera cameraAt(double angleDegrees) {
-    const float elevation = float((90.0 - angleDegrees) * std::numbers::pi / 180.0);
-    Camera c = Camera::orbit({0, 0, 0}, kDistance, 0.3f, elevation);
-    if (angleDegrees < 1.0) c.up = {0, 0, -1}; // looking straight down
-    c.aspect = 1.0f;
-    c.fovY = 0.35f;
-    c.nearPlane = 0.05f;
-    c.farPlane = 50.0f;
-    return c;
-}
-
-/// The entry texcoords and texture-space vector to the eye of a pixel's ray on the plane
-/// (makePlane: u along +X, v along -Z, normal +Y), or false when it misses the plane.
-bool pixelRay(const Camera& camera, int x, int y, int size, glm::dvec2& uv0, glm::dvec3& toEye) {
-    const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, size, size);
-    if (ray.direction.y >= 0) return false;
-    const double t = -ray.origin.y / ray.direction.y;
-    const glm::dvec3 p = ray.origin + t * ray.direction;
-    const double half = kPlaneSize / 2.0;
-    if (std::abs(p.x) > half || std::abs(p.z) > half) return false;
-    uv0 = {p.x / kPlaneSize + 0.5, 0.5 - p.z / kPlaneSize};
-    const glm::dvec3 e = -ray.direction;
-    toEye = glm::dvec3(e.x, -e.z, e.y) / double(kPlaneSize);
-    return true;
+SurfaceMaterial materialOf(const AccuracyConfig& config) {
+    return {.depthScale = config.depthScale,
+            .minSamples = config.minSamples,
+            .maxSamples = config.maxSamples,
+            .lodThreshold = 100.0f, // mip level 0: the figures speak of the search, not the filter
+            .shadows = config.shadows};
 }
 
 SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, int size, float depthScale) {
@@ -66,9 +48,36 @@ SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, i
 
 } // namespace
 
+Camera accuracyCamera(double angleDegrees, float distance, float aspect) {
+    const float elevation = float((90.0 - angleDegrees) * std::numbers::pi / 180.0);
+    Camera c = Camera::orbit({0, 0, 0}, distance, 0.3f, elevation);
+    if (angleDegrees < 1.0) c.up = {0, 0, -1}; // looking straight down
+    c.aspect = aspect;
+    c.fovY = 0.35f;
+    c.nearPlane = 0.05f;
+    c.farPlane = 50.0f;
+    return c;
+}
+
+bool planePixelRay(const Camera& camera, float planeSize, int x, int y, int width, int height, glm::dvec2& uv0,
+                   glm::dvec3& toEye) {
+    const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, width, height);
+    if (ray.direction.y >= 0) return false;
+    const double t = -ray.origin.y / ray.direction.y;
+    const glm::dvec3 p = ray.origin + t * ray.direction;
+    const double half = planeSize / 2.0;
+    if (std::abs(p.x) > half || std::abs(p.z) > half) return false;
+    uv0 = {p.x / planeSize + 0.5, 0.5 - p.z / planeSize};
+    // Texture space of makePlane: u along +X, v along -Z, normal +Y, all scaled by planeSize.
+    const glm::dvec3 e = -ray.direction;
+    toEye = glm::dvec3(e.x, -e.z, e.y) / double(planeSize);
+    return true;
+}
+
 AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale)
     : size_(size), depthScale_(depthScale), exact_(heights, size, size, EdgeMode::Wrap),
-      textures_(makeTextures(cl, heights, size, depthScale)) {}
+      textures_(makeTextures(cl, heights, size, depthScale)), plane_(makePlane({.size = kPlaneSize})),
+      timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})) {}
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
     if (config.depthScale != depthScale_)
@@ -76,18 +85,13 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
                         config.depthScale));
     const int n = config.image;
     if (!target_ || target_->width() != n) target_ = std::make_unique<RenderTarget>(n, n, true);
-    const Camera camera = cameraAt(config.angleDegrees);
-    static const Mesh plane(makePlane({.size = kPlaneSize}));
-    SurfaceMaterial material{.depthScale = config.depthScale,
-                             .minSamples = config.minSamples,
-                             .maxSamples = config.maxSamples,
-                             .lodThreshold = 100.0f,
-                             .shadows = config.shadows};
+    const Camera camera = accuracyCamera(config.angleDegrees, kDistance);
+    const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
     target_->bind();
     target_->clear();
-    renderer_.draw(plane, glm::mat4(1.0f), textures_, material, camera, light,
+    renderer_.draw(plane_, glm::mat4(1.0f), textures_, material, camera, light,
                    {.technique = technique, .traceOutput = true});
     const std::vector<glm::vec4> trace = target_->readTrace();
 
@@ -113,7 +117,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
             glm::dvec3 toEye;
             // Pixels whose centre is within half a pixel of the plane's edge may be drawn by GL
             // and missed by the CPU ray, or the other way round.
-            if (!pixelRay(camera, x, y, n, uv0, toEye)) continue;
+            if (!planePixelRay(camera, kPlaneSize, x, y, n, n, uv0, toEye)) continue;
             const auto hit = exact_.traceView(uv0, toEye, config.depthScale);
             if (!hit) continue;
             const double error = glm::length(glm::dvec2(t.x, t.y) - hit->uv) * size_;
@@ -169,15 +173,8 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
 double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats) {
     RenderTarget target(width, height);
     // Closer than measure()'s camera, so the plane covers the frame at every angle up to 80.
-    Camera camera = cameraAt(config.angleDegrees);
-    camera.aspect = float(width) / float(height);
-    camera.position = camera.target + (camera.position - camera.target) * 0.22f;
-    static const Mesh plane(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f}));
-    SurfaceMaterial material{.depthScale = config.depthScale,
-                             .minSamples = config.minSamples,
-                             .maxSamples = config.maxSamples,
-                             .lodThreshold = 100.0f,
-                             .shadows = config.shadows};
+    Camera camera = accuracyCamera(config.angleDegrees, kDistance * 0.22f, float(width) / float(height));
+    const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
     std::vector<double> times;
@@ -186,7 +183,7 @@ double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
         glFinish();
         const auto start = std::chrono::steady_clock::now();
         target.clear();
-        renderer_.draw(plane, glm::mat4(1.0f), textures_, material, camera, light, {.technique = technique});
+        renderer_.draw(timedPlane_, glm::mat4(1.0f), textures_, material, camera, light, {.technique = technique});
         glFinish();
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (i >= 0) times.push_back(ms);

@@ -1,5 +1,6 @@
 #include "support/Fields.h"
 
+#include "hfx/effects/Accuracy.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,28 +34,11 @@ std::vector<float> blocks(int size, int blocksPerEdge) {
 
 bool PlaneView::pixelRay(int x, int y, int width, int height, glm::dvec2& uv0,
                          glm::dvec3& toEye) const {
-    const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, width, height);
-    if (ray.direction.y >= 0) return false;
-    const double t = -ray.origin.y / ray.direction.y;
-    const glm::dvec3 p = ray.origin + t * ray.direction;
-    const double half = planeSize / 2.0;
-    if (std::abs(p.x) > half || std::abs(p.z) > half) return false;
-    uv0 = {p.x / planeSize + 0.5, 0.5 - p.z / planeSize};
-    // Texture space of makePlane: u along +X, v along -Z, normal +Y, all scaled by planeSize.
-    const glm::dvec3 e = -ray.direction;
-    toEye = glm::dvec3(e.x, -e.z, e.y) / double(planeSize);
-    return true;
+    return planePixelRay(camera, planeSize, x, y, width, height, uv0, toEye);
 }
 
 Camera cameraAtAngle(double angleDegrees, float distance, float aspect) {
-    const float elevation = float((90.0 - angleDegrees) * std::numbers::pi / 180.0);
-    Camera c = Camera::orbit({0, 0, 0}, distance, 0.3f, elevation);
-    if (angleDegrees < 1.0) c.up = {0, 0, -1}; // looking straight down
-    c.aspect = aspect;
-    c.fovY = 0.35f;
-    c.nearPlane = 0.05f;
-    c.farPlane = 50.0f;
-    return c;
+    return accuracyCamera(angleDegrees, distance, aspect);
 }
 
 ErrorStats statistics(std::vector<double> errors) {

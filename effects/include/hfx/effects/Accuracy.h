@@ -10,6 +10,7 @@
 #include "hfx/compute/ClContext.h"
 #include "hfx/core/HeightFieldTracer.h"
 #include "hfx/core/Image.h"
+#include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/SurfaceRenderer.h"
@@ -18,6 +19,16 @@
 #include <vector>
 
 namespace hfx {
+
+/// The accuracy renders' camera: looking at the origin from `angleDegrees` off +Y (the plane's
+/// normal), `distance` away, a narrow field of view.
+Camera accuracyCamera(double angleDegrees, float distance = 8.0f, float aspect = 1.0f);
+
+/// The ray of pixel (x, y) (from the bottom-left) on a makePlane of edge `planeSize` (texcoords
+/// 0..1): its entry texcoords and its texture-space vector towards the eye, or false when the ray
+/// misses the plane.
+bool planePixelRay(const Camera& camera, float planeSize, int x, int y, int width, int height, glm::dvec2& uv0,
+                   glm::dvec3& toEye);
 
 struct AccuracyConfig {
     double angleDegrees = 45.0;  ///< view angle from the plane's normal
@@ -65,6 +76,7 @@ private:
     SurfaceRenderer renderer_;
     std::unique_ptr<RenderTarget> target_;
     Image lastFrame_;
+    Mesh plane_, timedPlane_;
 };
 
 } // namespace hfx
