@@ -23,6 +23,7 @@
 namespace hfx::demo {
 int runBench(const SceneOptions& scene, int width, int height, int frames);
 int runBenchAccuracy(const std::string& outDir, int field);
+int runBenchMesh(int width, int height, int frames);
 }
 
 namespace {
@@ -91,6 +92,7 @@ int run(const Options& o) {
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
+    if (o.scene == "bench-mesh") return runBenchMesh(o.width, o.height, o.frames > 0 ? o.frames : 10);
     if (o.scene == "bench-accuracy") {
         const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
         if (field & (field - 1)) throw Error(str("bench-accuracy needs a power-of-two --field, got ", field));
@@ -125,8 +127,9 @@ int main(int argc, char** argv) {
     SceneOptions& s = o.sceneOptions;
     app.add_option("scene", o.scene,
                    "scene: water (FFT ocean), decals (damage on a wall), planet (gas giant), maps "
-                   "(a surface from image files), bench (frame-time benchmark) or bench-accuracy (every technique "
-                   "against the exact intersection; writes --out/ACCURACY.md, default docs)")
+                   "(a surface from image files), bench (frame-time benchmark), bench-accuracy (every technique "
+                   "against the exact intersection; writes --out/ACCURACY.md, default docs) or bench-mesh (a POM "
+                   "quad against a tessellated mesh of the same 1024² heights)")
         ->capture_default_str();
     app.add_flag("--headless", o.headless, "render off screen even when a display exists");
     app.add_option("--frames", o.frames, "frames to render (headless default 1; window: until closed)")

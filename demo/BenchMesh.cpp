@@ -1,0 +1,163 @@
+// hfx-demo bench-mesh: a POM quad against a displaced, tessellated mesh carrying the same 1024²
+// height samples (one vertex per sample, two triangles per cell), drawn in the same run at the
+// same view: median draw times and the memory each side needs (textures with their mips for
+// POM; vertex and index buffers for the mesh, with only what it needs: position and normal).
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/core/GlContext.h"
+#include "hfx/core/GlObject.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/core/ShaderProgram.h"
+#include "hfx/effects/OceanEffect.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+namespace hfx::demo {
+namespace {
+
+const char* kVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_viewProj;
+out vec3 v_normal;
+void main() {
+    v_normal = a_normal;
+    gl_Position = u_viewProj * vec4(a_position, 1.0);
+}
+)";
+
+const char* kFragment = R"(#version 450 core
+in vec3 v_normal;
+uniform vec3 u_lightDir;
+uniform vec3 u_albedo;
+out vec4 o_color;
+void main() {
+    const float diffuse = max(dot(normalize(v_normal), u_lightDir), 0.0);
+    o_color = vec4(pow(u_albedo * (0.25 + diffuse), vec3(1.0 / 2.2)), 1.0);
+}
+)";
+
+struct MeshVertex {
+    glm::vec3 position, normal;
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+template <typename F>
+double timeMs(F&& f) {
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    glFinish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
+
+} // namespace
+
+int runBenchMesh(int width, int height, int frames) {
+    auto gl = createHeadlessContext({.width = width, .height = height});
+    ClContext cl;
+    constexpr int N = 1024;
+    constexpr float kSize = 8.0f;
+    OceanEffect ocean(cl, {.ocean = {.size = N}});
+    const SurfaceTextures& textures = ocean.textures();
+    const float depthScale = ocean.material().depthScale;
+
+    // The same samples as vertices: texel (i, j) at its centre, pushed down by (1 - h) depth units
+    // (the plane's texture unit is kSize world units), normal turned from tangent to world space.
+    std::vector<float> texels(size_t(N) * N * 4);
+    glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    std::vector<MeshVertex> vertices(size_t(N) * N);
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) {
+            const float* t = &texels[(size_t(j) * N + i) * 4];
+            const float u = (i + 0.5f) / N, v = (j + 0.5f) / N;
+            vertices[size_t(j) * N + i] = {{(u - 0.5f) * kSize, -(1.0f - t[3]) * depthScale * kSize, (0.5f - v) * kSize},
+                                           {t[0], t[2], -t[1]}};
+        }
+    std::vector<uint32_t> indices;
+    indices.reserve(size_t(N - 1) * (N - 1) * 6);
+    for (int j = 0; j + 1 < N; ++j)
+        for (int i = 0; i + 1 < N; ++i) {
+            const uint32_t a = j * N + i, b = a + 1, c = a + N, d = c + 1;
+            indices.insert(indices.end(), {a, b, d, a, d, c});
+        }
+    GlBuffer vbo = GlBuffer::create(), ibo = GlBuffer::create();
+    GlVertexArray vao = GlVertexArray::create();
+    glNamedBufferStorage(vbo.id(), GLsizeiptr(vertices.size() * sizeof(MeshVertex)), vertices.data(), 0);
+    glNamedBufferStorage(ibo.id(), GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);
+    glVertexArrayVertexBuffer(vao.id(), 0, vbo.id(), 0, sizeof(MeshVertex));
+    glVertexArrayElementBuffer(vao.id(), ibo.id());
+    for (GLuint a = 0; a < 2; ++a) {
+        glEnableVertexArrayAttrib(vao.id(), a);
+        glVertexArrayAttribFormat(vao.id(), a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
+        glVertexArrayAttribBinding(vao.id(), a, 0);
+    }
+    ShaderProgram meshProgram({"bench-mesh.vert", kVertex, "embedded"}, {"bench-mesh.frag", kFragment, "embedded"});
+
+    const Mesh quad(makePlane({.size = kSize}));
+    Camera camera = Camera::orbit({0, 0, 0}, 7.0f, 0.5f, 0.52f); // 60 degrees from the normal
+    camera.aspect = float(width) / float(height);
+    DirectionalLight light;
+    light.direction = {-0.35f, 0.5f, -0.8f};
+    SurfaceRenderer renderer;
+    SurfaceMaterial pom = ocean.material();
+    SurfaceMaterial unshadowed = pom;
+    unshadowed.shadows = false;
+    RenderTarget target(width, height);
+    target.bind();
+    std::vector<double> pomMs, plainMs, meshMs;
+    for (int frame = -2; frame < frames; ++frame) {
+        const double p = timeMs([&] {
+            target.clear();
+            renderer.draw(quad, glm::mat4(1.0f), textures, pom, camera, light);
+        });
+        const double q = timeMs([&] {
+            target.clear();
+            renderer.draw(quad, glm::mat4(1.0f), textures, unshadowed, camera, light);
+        });
+        const double m = timeMs([&] {
+            target.clear();
+            glEnable(GL_DEPTH_TEST);
+            meshProgram.set("u_viewProj", camera.viewProjection());
+            meshProgram.set("u_lightDir", glm::normalize(light.direction));
+            meshProgram.set("u_albedo", glm::vec3(0.05f, 0.22f, 0.30f));
+            meshProgram.use();
+            glBindVertexArray(vao.id());
+            glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+            glBindVertexArray(0);
+        });
+        if (frame < 0) continue;
+        pomMs.push_back(p);
+        plainMs.push_back(q);
+        meshMs.push_back(m);
+    }
+    // Memory each side needs on the GPU: the surface texture (RGBA32F) and the albedo (RGBA8)
+    // with their mip chains and the quad for POM; positions, normals and indices for the mesh.
+    const double mipFactor = 4.0 / 3.0;
+    const double pomBytes = double(N) * N * (16 + 4) * mipFactor + 4 * sizeof(Vertex) + 6 * sizeof(uint32_t);
+    const double meshBytes = double(vertices.size()) * sizeof(MeshVertex) + double(indices.size()) * sizeof(uint32_t);
+    const double pt = median(pomMs), qt = median(plainMs), mt = median(meshMs);
+    std::printf("hfx-demo bench-mesh: %dx%d, %d frames (medians), %s\n", width, height, frames, gl->description().c_str());
+    std::printf("| side | draw ms | memory MiB |\n|---|---|---|\n");
+    std::printf("| POM quad, soft shadows | %.1f | %.1f |\n", pt, mib(pomBytes));
+    std::printf("| POM quad, no shadows | %.1f | %.1f |\n", qt, mib(pomBytes));
+    std::printf("| mesh, %zu triangles | %.1f | %.1f |\n", indices.size() / 3, mt, mib(meshBytes));
+    std::printf("mesh / POM draw time: %.2fx (%.2fx against POM without shadows); mesh / POM memory: %.2fx\n",
+                mt / pt, mt / qt, meshBytes / pomBytes);
+    return 0;
+}
+
+} // namespace hfx::demo
