@@ -173,6 +173,24 @@ int runBenchAccuracy(const std::string& outDir, int field) {
         md << "\n";
         std::fprintf(stderr, "bench-accuracy: %s done\n", map.name.c_str());
     }
+    // What a half-float surface texture (RGBA16F, half the memory) costs in accuracy.
+    md << "## Half-float surface\n\nThe same renders with the surface stored as RGBA16F instead of RGBA32F "
+          "(half the memory and texture bandwidth): mean texel error, float then half.\n\n"
+       << "| map | angle | pom float | pom half | hier float | hier half |\n|---|---|---|---|---|---|\n";
+    for (const Map& map : maps) {
+        AccuracyProbe full(cl, map.heights, field, 0.1f);
+        AccuracyProbe half(cl, map.heights, field, 0.1f, true);
+        for (double angle : {70.0, 85.0}) {
+            char line[200];
+            std::snprintf(line, sizeof line, "| %s | %.0f | %.4f | %.4f | %.4f | %.4f |\n", map.name.c_str(), angle,
+                          full.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle}).mean,
+                          half.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle}).mean,
+                          full.measure(Technique::Hierarchical, {.angleDegrees = angle}).mean,
+                          half.measure(Technique::Hierarchical, {.angleDegrees = angle}).mean);
+            md << line;
+        }
+    }
+    md << "\n";
     md << "## Plot and crops\n\n![error against fetches](accuracy/plot.png)\n\n"
        << "Mean error (texels, log scale, 1e-4 to 100; grid lines per decade, the darker one at 1 texel)\n"
        << "against mean fetches per pixel (grid every 10), one point per map and angle. Colours: ";

@@ -10,6 +10,7 @@
 #include "hfx/core/Mesh.h"
 #include "hfx/effects/Accuracy.h"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -66,6 +67,17 @@ TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
                 EXPECT_GT(pom.fetches, r.fetches) << name << " at " << angle;
             }
         }
+    }
+}
+
+TEST_F(Techniques, HalfFloatSurfaceCostsLittleAccuracy) {
+    AccuracyProbe full(cl(), smooth(), kField, 0.1f);
+    AccuracyProbe half(cl(), smooth(), kField, 0.1f, true);
+    for (Technique t : {Technique::ParallaxOcclusion, Technique::Hierarchical}) {
+        const AccuracyResult f = run(full, t, 80, "float");
+        const AccuracyResult h = run(half, t, 80, "half");
+        EXPECT_LT(std::abs(h.mean - f.mean), 0.02) << techniqueName(t);
+        EXPECT_LE(h.over4, f.over4 + 0.001) << techniqueName(t);
     }
 }
 

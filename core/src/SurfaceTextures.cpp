@@ -31,7 +31,7 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER,
                             levels_ > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     }
-    glTextureStorage2D(surface_.id(), levels_, GL_RGBA32F, config.width, config.height);
+    glTextureStorage2D(surface_.id(), levels_, config.halfFloat ? GL_RGBA16F : GL_RGBA32F, config.width, config.height);
     glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height);
     setAlbedo(Image{1, 1, 3, {0.8f, 0.8f, 0.8f}});
     std::vector<float> flat(static_cast<size_t>(config.width) * config.height * 4, 0.0f);

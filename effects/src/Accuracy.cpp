@@ -29,10 +29,11 @@ SurfaceMaterial materialOf(const AccuracyConfig& config) {
             .shadows = config.shadows};
 }
 
-SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, int size, float depthScale) {
+SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, int size, float depthScale, bool halfFloat) {
     if (heights.size() != size_t(size) * size)
         throw Error(str("AccuracyProbe: ", heights.size(), " heights do not make a ", size, "x", size, " field"));
-    SurfaceTextures textures({.width = size, .height = size, .mipmaps = false, .edges = EdgeMode::Wrap, .pyramid = true});
+    SurfaceTextures textures(
+        {.width = size, .height = size, .mipmaps = false, .edges = EdgeMode::Wrap, .pyramid = true, .halfFloat = halfFloat});
     cl::Buffer buffer = clGuard("AccuracyProbe: uploading the heights", [&] {
         return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * sizeof(float),
                           const_cast<float*>(heights.data()));
@@ -74,9 +75,9 @@ bool planePixelRay(const Camera& camera, float planeSize, int x, int y, int widt
     return true;
 }
 
-AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale)
+AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale, bool halfFloat)
     : size_(size), depthScale_(depthScale), exact_(heights, size, size, EdgeMode::Wrap),
-      textures_(makeTextures(cl, heights, size, depthScale)), plane_(makePlane({.size = kPlaneSize})),
+      textures_(makeTextures(cl, heights, size, depthScale, halfFloat)), plane_(makePlane({.size = kPlaneSize})),
       timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})) {}
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {

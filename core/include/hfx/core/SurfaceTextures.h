@@ -22,6 +22,9 @@ struct SurfaceTexturesConfig {
     /// Also a maximum-height pyramid texture (R32F, full mip chain) for the hierarchical tracer;
     /// needs power-of-two sizes.
     bool pyramid = false;
+    /// Store normal + height as RGBA16F instead of RGBA32F: half the memory and bandwidth, at the
+    /// precision of a half float (heights to about 5e-4; docs/ACCURACY.md measures what it costs).
+    bool halfFloat = false;
     void validate() const;
 };
 

@@ -56,7 +56,8 @@ class AccuracyProbe {
 public:
     /// heights: size x size in [0,1], row 0 at v = 0, tiling (edges wrap); size a power of two.
     /// Normals and the pyramid are made on the device, as a frame would make them.
-    AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale);
+    /// halfFloat: store the surface as RGBA16F (to measure what the smaller format costs).
+    AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale, bool halfFloat = false);
 
     AccuracyResult measure(Technique technique, const AccuracyConfig& config);
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
