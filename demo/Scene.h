@@ -27,6 +27,7 @@ struct SceneOptions {
     std::uint32_t seed = 1;
     float aspect = 16.0f / 9.0f;
     int width = 1280, height = 720;    ///< the image, for pixel shots
+    bool halfFloat = false;            ///< RGBA16F surface textures
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
     float windSpeed = 12.0f, windDirection = 0.6f;
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)

@@ -35,6 +35,7 @@ public:
             c.ocean.windSpeed = o.windSpeed;
             c.ocean.windDirection = o.windDirection;
             c.pyramid = o.technique == Technique::Hierarchical;
+        c.halfFloat = o.halfFloat;
             ocean_ = std::make_unique<OceanEffect>(cl, c);
             base = ocean_->material();
         } else {
@@ -46,6 +47,7 @@ public:
             c.material.shading = Shading::Water;
             c.material.specularStrength = 0.0f;
             c.pyramid = o.technique == Technique::Hierarchical;
+            c.halfFloat = o.halfFloat;
             sine_ = std::make_unique<WaterEffect>(cl, c);
             base = sine_->material();
         }

@@ -160,6 +160,7 @@ int main(int argc, char** argv) {
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
+    app.add_flag("--half-float", s.halfFloat, "store the surface as RGBA16F (half the memory; see docs/ACCURACY.md)");
     app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")
         ->check(CLI::IsMember({"fft", "sine"}))->capture_default_str();
     app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(CLI::Range(0.5, 100.0))->capture_default_str();

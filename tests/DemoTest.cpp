@@ -246,7 +246,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--height", "--dt", "--field", "--technique", "--samples-min", "--samples-max",
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
-                               "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "water", "decals", "planet",
+                               "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--half-float", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }

@@ -242,6 +242,21 @@ TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {
     EXPECT_DOUBLE_EQ(overlapped.time(), sequential.time());
 }
 
+TEST_F(Users, HalfFloatFieldsStoreRgba16fAndStayCloseToFloat) {
+    WaterEffect full(cl(), {.waves = {.size = 64}});
+    WaterEffect half(cl(), {.waves = {.size = 64}, .halfFloat = true});
+    full.update(0.1);
+    half.update(0.1);
+    GLint format = 0;
+    glGetTextureLevelParameteriv(half.textures().surface(), 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    EXPECT_EQ(format, GL_RGBA16F);
+    const std::vector<float> a = readSurface(full.textures()), b = readSurface(half.textures());
+    double worst = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(std::abs(a[i] - b[i])));
+    EXPECT_GT(worst, 0.0) << "no rounding at all: the texture is not half float";
+    EXPECT_LT(worst, 1e-3) << "half floats hold [0,1] values to 2^-11";
+}
+
 TEST_F(Users, ColorRampKernelMatchesTheSharedMathIncludingNaN) {
     const std::vector<ColorStop> stops = {{0.1f, {0, 0, 0}}, {0.5f, {1, 0.5f, 0}}, {0.9f, {0.2f, 0.4f, 1}}};
     constexpr int W = 40, H = 10;

@@ -11,14 +11,15 @@ const HeightSource& checked(const std::unique_ptr<HeightSource>& source) {
     if (!source) throw Error("FieldEffect needs a height source, got none");
     return *source;
 }
-SurfaceTexturesConfig texturesConfig(const HeightSource& source, bool mipmaps, bool pyramid) {
+SurfaceTexturesConfig texturesConfig(const HeightSource& source, bool mipmaps, bool pyramid, bool halfFloat) {
     return {.width = source.width(),
             .height = source.height(),
             .mipmaps = mipmaps,
             .edges = source.periodic()    ? EdgeMode::Wrap
                      : source.periodicU() ? EdgeMode::WrapU
                                           : EdgeMode::Clamp,
-            .pyramid = pyramid};
+            .pyramid = pyramid,
+            .halfFloat = halfFloat};
 }
 
 } // namespace
@@ -30,15 +31,15 @@ double FieldEffect::nowMs() {
 }
 
 FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
-                         const SurfaceMaterial& material, bool mipmaps, bool pyramid)
+                         const SurfaceMaterial& material, bool mipmaps, bool pyramid, bool halfFloat)
     : cl_(cl), material_((material.validate(), material)),
       normals_(cl, SobelConfig{.width = checked(source).width(),
                                .height = source->height(),
                                .depthScale = material.depthScale,
                                .wrapEdges = source->periodicU(),
                                .clampV = !source->periodic()}),
-      textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid)),
-                std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid))} {
+      textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, halfFloat)),
+                std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, halfFloat))} {
     source_ = std::move(source);
     if (pyramid)
         pyramid_ = std::make_unique<MaxPyramid>(cl, source_->width(), source_->height(), source_->periodic());

@@ -38,6 +38,7 @@ struct DecalWallConfig {
     ImageReadLimits limits;
     bool mipmaps = true;
     bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
+    bool halfFloat = false; ///< RGBA16F surface textures: half the memory (docs/ACCURACY.md: its cost)
     void validate() const;
 };
 

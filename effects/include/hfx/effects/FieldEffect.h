@@ -18,9 +18,9 @@ namespace hfx {
 class FieldEffect : public Effect {
 public:
     /// pyramid: also build the maximum-height pyramid each update (for Technique::Hierarchical;
-    /// the field's sizes must be powers of two).
+    /// the field's sizes must be powers of two). halfFloat: RGBA16F surface textures.
     FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source, const SurfaceMaterial& material,
-                bool mipmaps = true, bool pyramid = false);
+                bool mipmaps = true, bool pyramid = false, bool halfFloat = false);
 
     void update(double dt) override;
     void beginUpdate(double dt) override;

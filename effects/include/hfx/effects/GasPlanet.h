@@ -36,6 +36,7 @@ struct GasPlanetConfig {
                              .shading = Shading::Planet, .silhouetteFade = 0.25f};
     bool mipmaps = true;
     bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
+    bool halfFloat = false; ///< RGBA16F surface textures: half the memory (docs/ACCURACY.md: its cost)
     void validate() const;
 };
 

@@ -19,6 +19,7 @@ struct OceanEffectConfig {
     float reliefExaggeration = 1.0f; ///< multiplies the physical depth scale
     bool mipmaps = true;
     bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
+    bool halfFloat = false; ///< RGBA16F surface textures: half the memory (docs/ACCURACY.md: its cost)
     void validate() const;
 };
 

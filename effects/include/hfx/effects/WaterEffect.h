@@ -15,6 +15,7 @@ struct WaterConfig {
                              .specularStrength = 0.8f, .specularPower = 96.0f};
     bool mipmaps = true;
     bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
+    bool halfFloat = false; ///< RGBA16F surface textures: half the memory (docs/ACCURACY.md: its cost)
     void validate() const;
 };
 
