@@ -189,6 +189,18 @@ TEST(Demo, OpensAWindowUnderXvfb) {
     EXPECT_GT(panel / (30 * 90 * 3), 0.05) << "no panel drawn over the frame";
 }
 
+TEST(Demo, NoOpenClPlatformSaysWhatToInstall) {
+    // The ICD loader reads its drivers from OCL_ICD_VENDORS: an empty folder means no platform.
+    const std::string empty = outputPath("demo_no_icd");
+    std::filesystem::create_directories(empty);
+    const Result r = runDemo("water --headless --frames 1 --out " + outputPath("demo_no_icd_frames"),
+                             "env -u DISPLAY -u WAYLAND_DISPLAY OCL_ICD_VENDORS='" + empty + "'");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("no OpenCL platform"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("apt-get install pocl-opencl-icd"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
+}
+
 TEST(Demo, UnknownSceneIsAClearError) {
     const Result r = runDemo("volcano --headless");
     EXPECT_NE(r.exitCode, 0);
