@@ -27,12 +27,6 @@ namespace {
 
 class Robustness : public DeviceTest {};
 
-std::vector<float> readSurface(const SurfaceTextures& textures) {
-    std::vector<float> texels(size_t(textures.config().width) * textures.config().height * 4);
-    glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
-    return texels;
-}
-
 std::string messageOf(const std::function<void()>& f) {
     try {
         f();

@@ -37,8 +37,7 @@ int soakSteps() {
 
 /// Every texel finite, heights in [0,1], normals unit length.
 void checkField(const SurfaceTextures& textures, const char* what, int step) {
-    std::vector<float> texels(size_t(textures.config().width) * textures.config().height * 4);
-    glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    const std::vector<float> texels = readSurface(textures);
     for (size_t i = 0; i < texels.size(); i += 4) {
         const float h = texels[i + 3];
         const double n = std::sqrt(double(texels[i]) * texels[i] + double(texels[i + 1]) * texels[i + 1] +

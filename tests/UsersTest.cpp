@@ -24,12 +24,6 @@ namespace {
 
 class Users : public DeviceTest {};
 
-std::vector<float> readSurface(const SurfaceTextures& textures) {
-    std::vector<float> texels(size_t(textures.config().width) * textures.config().height * 4);
-    glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
-    return texels;
-}
-
 /// A wall like the decals scene's: 4 x 4 world units, texcoords 0..2, standing in the XY plane
 /// facing +Z (the plane rotated 90 degrees about X), so u = (x + 2) / 2 and v = (y + 2) / 2.
 constexpr PlaneConfig kWall{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};

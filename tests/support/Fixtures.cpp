@@ -1,6 +1,7 @@
 #include "support/Fixtures.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
 
 #include <filesystem>
 
@@ -74,6 +75,12 @@ void DeviceTest::SetUp() {
 std::string outputPath(const std::string& fileName) {
     std::filesystem::create_directories(HFX_TEST_OUTPUT_DIR);
     return (std::filesystem::path(HFX_TEST_OUTPUT_DIR) / fileName).string();
+}
+
+std::vector<float> readSurface(const SurfaceTextures& textures) {
+    std::vector<float> texels(size_t(textures.config().width) * textures.config().height * 4);
+    glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    return texels;
 }
 
 } // namespace hfx::test

@@ -5,11 +5,13 @@
 #include "hfx/compute/ClContext.h"
 #include "hfx/core/GlContext.h"
 #include "hfx/core/Image.h"
+#include "hfx/core/SurfaceTextures.h"
 
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace hfx::test {
 
@@ -32,6 +34,10 @@ protected:
     void TearDown() override;
     ClContext& cl();
 };
+
+/// Level 0 of a surface texture as GL holds it: width*height float4 (normal.xyz, height), row 0
+/// at v = 0. Needs the texture's context current.
+std::vector<float> readSurface(const SurfaceTextures& textures);
 
 /// Folder for images a failing test leaves behind (actual, expected, diff).
 std::string outputPath(const std::string& fileName);
