@@ -6,15 +6,10 @@ namespace hfx {
 
 namespace {
 
-/// Maps `buffer` for reading (waiting for the queue's work on it), hands the mapping to
-/// `upload`, and unmaps whatever happens.
+/// Maps the first `bytes` of `buffer` for reading (waiting for the queue's work on it), hands
+/// the mapping to `upload`, and unmaps whatever happens.
 template <typename Upload>
-void mapAndUpload(ClContext& cl, const cl::Buffer& buffer, size_t texelBytes, const SurfaceTextures& textures,
-                  const char* what, Upload&& upload) {
-    const size_t bytes = texelBytes * size_t(textures.config().width) * textures.config().height;
-    if (buffer.getInfo<CL_MEM_SIZE>() < bytes)
-        throw Error(str(what, ": buffer of ", buffer.getInfo<CL_MEM_SIZE>(), " bytes is smaller than the ",
-                        textures.config().width, "x", textures.config().height, " surface (", bytes, " bytes)"));
+void mapAndUpload(ClContext& cl, const cl::Buffer& buffer, size_t bytes, const char* what, Upload&& upload) {
     cl::CommandQueue& q = cl.queue();
     void* mapped = clGuard(what, [&] { return q.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes); });
     try {
@@ -26,10 +21,19 @@ void mapAndUpload(ClContext& cl, const cl::Buffer& buffer, size_t texelBytes, co
     clGuard(what, [&] { q.enqueueUnmapMemObject(buffer, mapped); });
 }
 
+/// Bytes of a buffer of `texelBytes` per texel covering the surface; refuses a smaller buffer.
+size_t surfaceBytes(const cl::Buffer& buffer, size_t texelBytes, const SurfaceTextures& textures, const char* what) {
+    const size_t bytes = texelBytes * size_t(textures.config().width) * textures.config().height;
+    if (buffer.getInfo<CL_MEM_SIZE>() < bytes)
+        throw Error(str(what, ": buffer of ", buffer.getInfo<CL_MEM_SIZE>(), " bytes is smaller than the ",
+                        textures.config().width, "x", textures.config().height, " surface (", bytes, " bytes)"));
+    return bytes;
+}
+
 } // namespace
 
 void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures) {
-    mapAndUpload(cl, normalHeight, sizeof(cl_float4), textures, "uploadField",
+    mapAndUpload(cl, normalHeight, surfaceBytes(normalHeight, sizeof(cl_float4), textures, "uploadField"), "uploadField",
                  [&](const void* mapped) { textures.upload(static_cast<const float*>(mapped)); });
 }
 
@@ -41,22 +45,12 @@ void uploadPyramid(ClContext& cl, const MaxPyramid& pyramid, SurfaceTextures& te
         throw Error(str("uploadPyramid: a ", base.width, "x", base.height, " pyramid of ", pyramid.levels().size(),
                         " levels does not fit the ", textures.config().width, "x", textures.config().height,
                         " surface's ", textures.pyramidLevels()));
-    cl::CommandQueue& q = cl.queue();
-    const size_t bytes = pyramid.totalFloats() * sizeof(float);
-    void* mapped = clGuard("mapping the pyramid", [&] {
-        return q.enqueueMapBuffer(pyramid.buffer(), CL_TRUE, CL_MAP_READ, 0, bytes);
-    });
-    try {
-        textures.uploadPyramid(static_cast<const float*>(mapped));
-    } catch (...) {
-        q.enqueueUnmapMemObject(pyramid.buffer(), mapped);
-        throw;
-    }
-    clGuard("unmapping the pyramid", [&] { q.enqueueUnmapMemObject(pyramid.buffer(), mapped); });
+    mapAndUpload(cl, pyramid.buffer(), pyramid.totalFloats() * sizeof(float), "uploadPyramid",
+                 [&](const void* mapped) { textures.uploadPyramid(static_cast<const float*>(mapped)); });
 }
 
 void uploadAlbedo(ClContext& cl, const cl::Buffer& rgba, SurfaceTextures& textures) {
-    mapAndUpload(cl, rgba, sizeof(cl_uchar4), textures, "uploadAlbedo",
+    mapAndUpload(cl, rgba, surfaceBytes(rgba, sizeof(cl_uchar4), textures, "uploadAlbedo"), "uploadAlbedo",
                  [&](const void* mapped) { textures.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });
 }
 
