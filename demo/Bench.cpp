@@ -5,6 +5,7 @@
 // resident memory. Then the scaling of the water frame with field size and output resolution.
 
 #include "Scene.h"
+#include "Timing.h"
 
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlContext.h"
@@ -19,20 +20,6 @@
 
 namespace hfx::demo {
 namespace {
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-template <typename F>
-double timeMs(F&& f) {
-    glFinish();
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    glFinish();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 long peakResidentMiB() {
     std::ifstream status("/proc/self/status");
@@ -125,7 +112,6 @@ int runBench(const SceneOptions& options, int width, int height, int frames) {
             SceneOptions o = options;
             o.fieldSize = size;
             o.technique = Technique::Hierarchical; // builds the height pyramid each frame, so its cost shows
-            o.aspect = float(width) / float(height);
             o.width = width;
             o.height = height;
             auto scene = makeScene(name, cl, o);
@@ -144,7 +130,8 @@ int runBench(const SceneOptions& options, int width, int height, int frames) {
     auto scaling = [&](int size, int w, int h) {
         SceneOptions o = options;
         o.fieldSize = size;
-        o.aspect = float(w) / float(h);
+        o.width = w;
+        o.height = h;
         RenderTarget t(w, h);
         t.bind();
         auto scene = makeScene("water", cl, o);

@@ -3,6 +3,8 @@
 // same view: median draw times and the memory each side needs (textures with their mips for
 // POM; vertex and index buffers for the mesh, with only what it needs: position and normal).
 
+#include "Timing.h"
+
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlContext.h"
@@ -47,20 +49,6 @@ void main() {
 struct MeshVertex {
     glm::vec3 position, normal;
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
-template <typename F>
-double timeMs(F&& f) {
-    glFinish();
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    glFinish();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
