@@ -32,7 +32,7 @@ public:
         }
         // The wall stands in the XY plane facing +Z; the camera looks along it from the side.
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.4f, 1.15f, 0.15f);
-        camera_.aspect = o.aspect;
+        camera_.aspect = o.aspect();
         light_.direction = {-0.8f, 0.55f, 0.45f};
         light_.ambient = {0.22f, 0.22f, 0.25f};
     }

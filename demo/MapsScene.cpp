@@ -14,7 +14,7 @@ public:
         : surface_(cl, config(o)), plane_(makePlane({.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1})) {
         setMaterial(surface_.material(), o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.2f, 0.5f, 0.55f);
-        camera_.aspect = o.aspect;
+        camera_.aspect = o.aspect();
         light_.direction = {-1.0f, 0.45f, -0.3f};
     }
 

@@ -18,7 +18,7 @@ public:
         setMaterial(planet_.material(), o);
         applyMaterial();
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.3f, 0.25f);
-        camera_.aspect = o.aspect;
+        camera_.aspect = o.aspect();
         light_.direction = {1.0f, 0.2f, 0.1f};
         light_.color = {1.0f, 0.97f, 0.92f};
         light_.ambient = {0.03f, 0.03f, 0.04f};

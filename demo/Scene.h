@@ -25,8 +25,8 @@ struct SceneOptions {
     bool shadows = true;
     float lodThreshold = 4.0f;
     std::uint32_t seed = 1;
-    float aspect = 16.0f / 9.0f;
-    int width = 1280, height = 720;    ///< the image, for pixel shots
+    int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
+    float aspect() const { return float(width) / float(height); }
     bool halfFloat = false;            ///< RGBA16F surface textures
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
     float windSpeed = 12.0f, windDirection = 0.6f;

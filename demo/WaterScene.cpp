@@ -56,7 +56,7 @@ public:
         applyMaterial();
         camera_.position = {0.0f, 2.4f, 6.0f};
         camera_.target = {0.0f, 0.0f, -4.0f};
-        camera_.aspect = o.aspect;
+        camera_.aspect = o.aspect();
         camera_.farPlane = 200.0f;
         light_.direction = {-0.35f, 0.22f, -1.0f};
         light_.color = {1.0f, 0.9f, 0.75f};

@@ -88,7 +88,6 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
 int run(const Options& o) {
     SceneOptions sceneOptions = o.sceneOptions;
     sceneOptions.technique = parseTechnique(o.technique);
-    sceneOptions.aspect = float(o.width) / float(o.height);
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
