@@ -74,10 +74,10 @@ void VideoWriter::write(const Image& frame) {
     if (frame.width != width_ || frame.height != height_ || frame.channels != 3)
         throw Error(str("video frame is ", frame.width, "x", frame.height, "x", frame.channels, ", expected ", width_,
                         "x", height_, "x3"));
-    std::vector<unsigned char> rgb(frame.pixels.size());
-    for (size_t i = 0; i < rgb.size(); ++i)
-        rgb[i] = static_cast<unsigned char>(std::clamp(frame.pixels[i], 0.0f, 1.0f) * 255.0f + 0.5f);
-    if (std::fwrite(rgb.data(), 1, rgb.size(), pipe_) != rgb.size())
+    rgb_.resize(frame.pixels.size());
+    for (size_t i = 0; i < rgb_.size(); ++i)
+        rgb_[i] = static_cast<unsigned char>(std::clamp(frame.pixels[i], 0.0f, 1.0f) * 255.0f + 0.5f);
+    if (std::fwrite(rgb_.data(), 1, rgb_.size(), pipe_) != rgb_.size())
         throw Error(str("ffmpeg stopped taking frames for '", path_, "'"));
 }
 

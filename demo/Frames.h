@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace hfx::demo {
 
@@ -46,6 +47,7 @@ private:
     std::string path_;
     int width_, height_;
     std::FILE* pipe_ = nullptr;
+    std::vector<unsigned char> rgb_; ///< one frame's bytes, reused frame after frame
 };
 
 /// Writes height.exr (float), height.png (8-bit), normal.exr (tangent-space xyz), normal.png

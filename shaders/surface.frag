@@ -231,9 +231,6 @@ void main() {
     if (mipLevel <= u_lodThreshold && viewTS.z > 0.0 && depthScale > 0.0) {
         // Parallax offset vector: where the ray has moved in uv when it reaches h = 0.
         const vec2 parallax = viewTS.xy / viewTS.z * depthScale;
-        // Dynamic sample rate: more steps the more grazing the view.
-        const int steps = clamp(int(mix(float(u_maxSamples), float(u_minSamples), cosView)), 1,
-                                MAX_SAMPLES);
 #if HFX_TECHNIQUE == 2
         // Welsh: one fetch, the offset the height there would give, limited to the height (the
         // view vector's xy unscaled by 1/z), so grazing views do not swim.
@@ -243,6 +240,9 @@ void main() {
         depthFraction = traceHierarchical(uv0, parallax);
         const vec2 uvHit = uv0 - parallax * depthFraction;
 #else
+        // Dynamic sample rate: more steps the more grazing the view.
+        const int steps = clamp(int(mix(float(u_maxSamples), float(u_minSamples), cosView)), 1,
+                                MAX_SAMPLES);
         float t0, t1, d0, d1;
         const bool hit = linearSearch(uv0, parallax, steps, searchLevel, t0, t1, d0, d1);
         if (!hit) {

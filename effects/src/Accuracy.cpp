@@ -194,9 +194,4 @@ double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
     return times[times.size() / 2];
 }
 
-Image AccuracyProbe::lastImage() const {
-    if (!target_) throw Error("AccuracyProbe::lastImage: nothing measured yet");
-    return target_->readColor();
-}
-
 } // namespace hfx

@@ -65,8 +65,6 @@ public:
     double timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats);
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
-    /// The colour image of the last measure() (top row first), for crops and failures.
-    Image lastImage() const;
     const HeightFieldTracer& exact() const { return exact_; }
 
 private:
