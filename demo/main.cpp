@@ -104,6 +104,7 @@ int run(const Options& o) {
     auto gl = createContext({.width = o.width, .height = o.height, .title = "HFX " + o.scene}, !o.headless);
     ClContext cl;
     auto scene = makeScene(o.scene, cl, sceneOptions);
+    std::fprintf(stderr, "hfx: kernels: %s\n", cl.programReport().c_str());
     if (gl->headless()) return runHeadless(o, *gl, *scene);
     std::fprintf(stderr, "hfx-demo: window, %s\n", gl->description().c_str());
     WindowLoop loop({.width = o.width,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <regex>
@@ -140,7 +141,17 @@ ClContext::ClContext(const ClContextConfig& config) {
         context_ = cl::Context(device_);
         queue_ = cl::CommandQueue(context_, device_);
     });
-    if (config.log) std::fprintf(stderr, "hfx: OpenCL device %s\n", description().c_str());
+    cache_ = ProgramCache(config.kernelCache == "off" ? std::filesystem::path()
+                          : config.kernelCache.empty() ? ProgramCache::defaultFolder()
+                                                       : std::filesystem::path(config.kernelCache));
+    // A binary is only valid for the driver that made it: its identity leads every key.
+    cacheKeyPrefix_ = str("hfx program binary\nplatform ", platform_.getInfo<CL_PLATFORM_NAME>(), " ",
+                          platform_.getInfo<CL_PLATFORM_VERSION>(), "\ndevice ", device_.getInfo<CL_DEVICE_NAME>(),
+                          " ", device_.getInfo<CL_DEVICE_VERSION>(), "\ndriver ",
+                          device_.getInfo<CL_DRIVER_VERSION>(), "\n");
+    if (config.log)
+        std::fprintf(stderr, "hfx: OpenCL device %s, kernel cache %s\n", description().c_str(),
+                     cache_.enabled() ? cache_.folder().c_str() : "off");
 }
 
 ClContext::~ClContext() {
@@ -167,11 +178,49 @@ const cl::Program& ClContext::programFromSource(const std::string& name, const s
                                                 const std::string& options) {
     const auto key = std::make_pair(name, options);
     if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+    const auto start = std::chrono::steady_clock::now();
     std::vector<std::string> seen;
     const std::string text = resolveIncludes(source, seen);
-    cl::Program program = clGuard("creating an OpenCL program", [&] {
-        return cl::Program(context_, text);
-    });
+    const std::string cacheKey = str(cacheKeyPrefix_, "options ", options, "\nsource\n", text);
+    cl::Program program = buildFromCache(cacheKey, options);
+    if (!program()) {
+        program = buildFromSource(name, text, options);
+        ++stats_.built;
+        if (cache_.enabled()) {
+            bool saved = false;
+            try {
+                const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+                saved = binaries.size() == 1 && cache_.store(cacheKey, binaries[0]);
+            } catch (const cl::Error&) {
+                saved = false; // a driver without binaries still has its program
+            }
+            if (!saved) ++stats_.unsaved;
+        }
+    }
+    stats_.milliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return programs_.emplace(key, std::move(program)).first->second;
+}
+
+cl::Program ClContext::buildFromCache(const std::string& key, const std::string& options) {
+    bool damaged = false;
+    const std::optional<ProgramCache::Binary> binary = cache_.load(key, &damaged);
+    if (damaged) ++stats_.rejected;
+    if (!binary) return {};
+    try {
+        cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
+        program.build({device_}, options.c_str());
+        ++stats_.loaded;
+        return program;
+    } catch (const cl::Error&) {
+        // A binary the driver refuses (an update it could not detect from its version) is
+        // rebuilt from source, and the fresh binary replaces it.
+        ++stats_.rejected;
+        return {};
+    }
+}
+
+cl::Program ClContext::buildFromSource(const std::string& name, const std::string& text, const std::string& options) {
+    cl::Program program = clGuard("creating an OpenCL program", [&] { return cl::Program(context_, text); });
     try {
         program.build({device_}, options.c_str());
     } catch (const cl::Error& e) {
@@ -185,7 +234,17 @@ const cl::Program& ClContext::programFromSource(const std::string& name, const s
                         ") with options '", options, "' on ", description(), ":\n", log,
                         "\nsource after includes:\n", numbered(text)));
     }
-    return programs_.emplace(key, std::move(program)).first->second;
+    return program;
+}
+
+std::string ClContext::programReport() const {
+    const ClProgramStats& s = stats_;
+    std::string report = str(s.built + s.loaded, " programs in ", int(s.milliseconds + 0.5), " ms: ");
+    if (!cache_.enabled()) return report + str(s.built, " compiled, no kernel cache");
+    report += str(s.loaded, " from the cache ", cache_.folder().string(), ", ", s.built, " compiled");
+    if (s.rejected) report += str(", ", s.rejected, " cache entries rebuilt");
+    if (s.unsaved) report += str(", ", s.unsaved, " not saved");
+    return report;
 }
 
 cl::Kernel ClContext::kernel(std::string_view file, const char* name, const std::string& options) {

@@ -6,6 +6,8 @@
 #include <clFFT.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <mutex>
 #include <numbers>
 
@@ -24,9 +26,20 @@ void checkFft(clfftStatus status, const char* what) {
 std::mutex libraryMutex;
 int libraryUsers = 0;
 
-void acquireLibrary() {
+/// clFFT compiles its kernels at every start unless CLFFT_CACHE_PATH names a folder for their
+/// binaries; unless the user set it, it points into HFX's kernel cache. clFFT reads it in clfftSetup.
+void shareKernelCache(const ProgramCache& cache) {
+    if (!cache.enabled() || std::getenv("CLFFT_CACHE_PATH")) return;
+    const std::filesystem::path folder = cache.folder() / "clfft";
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (!ec) setenv("CLFFT_CACHE_PATH", folder.c_str(), 0);
+}
+
+void acquireLibrary(const ProgramCache& cache) {
     std::lock_guard<std::mutex> lock(libraryMutex);
     if (libraryUsers++ == 0) {
+        shareKernelCache(cache);
         clfftSetupData setup;
         checkFft(clfftInitSetupData(&setup), "clfftInitSetupData");
         const clfftStatus status = clfftSetup(&setup);
@@ -158,7 +171,7 @@ OceanField::OceanField(ClContext& cl, const OceanConfig& config)
         heightKernel_ = cl.kernel("ocean.cl", "ocean_height");
         cl.queue().enqueueWriteBuffer(omegaBuffer_, CL_TRUE, 0, n * sizeof(float), omega_.data());
     });
-    acquireLibrary();
+    acquireLibrary(cl.programCache());
     try {
         // An out-of-place complex 2D inverse transform without the 1/N^2 scale: the height is
         // the plain sum of the modes. Baked now, so no frame pays for compiling it.

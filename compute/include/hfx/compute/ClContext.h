@@ -1,5 +1,6 @@
 #pragma once
-// The OpenCL device, its context and in-order queue, and a cache of built programs.
+// The OpenCL device, its context and in-order queue, and a cache of built programs: in memory
+// for the process, and on disk as program binaries (ProgramCache) for the next start.
 //
 // Device choice: HFX_CL_PLATFORM and HFX_CL_DEVICE, case-insensitive substrings of the platform
 // and device names ("portable", "cpu", "nvidia"); by default PoCL's CPU device when present,
@@ -9,6 +10,7 @@
 // shared across threads.
 
 #include "hfx/compute/OpenCl.h"
+#include "hfx/compute/ProgramCache.h"
 
 #include <map>
 #include <string>
@@ -21,6 +23,18 @@ struct ClContextConfig {
     std::string platform; ///< substring of the platform name; empty: HFX_CL_PLATFORM
     std::string device;   ///< substring of the device name; empty: HFX_CL_DEVICE
     bool log = true;      ///< print the chosen device to stderr
+    /// Folder of program binaries; empty: ProgramCache::defaultFolder() (HFX_KERNEL_CACHE,
+    /// else $XDG_CACHE_HOME/hfx/kernels); "off": build every program from source.
+    std::string kernelCache;
+};
+
+/// How the programs of a context came to be, for start-up reports.
+struct ClProgramStats {
+    int built = 0;      ///< compiled from OpenCL C
+    int loaded = 0;     ///< created from a cached binary
+    int rejected = 0;   ///< cache entries damaged, stale or refused by the driver (rebuilt instead)
+    int unsaved = 0;    ///< binaries the cache could not store
+    double milliseconds = 0; ///< wall time spent creating and building programs
 };
 
 class ClContext {
@@ -46,12 +60,23 @@ public:
                                          const std::string& options = {});
     cl::Kernel kernel(std::string_view file, const char* name, const std::string& options = {});
 
+    const ProgramCache& programCache() const { return cache_; }
+    const ClProgramStats& programStats() const { return stats_; }
+    /// "9 programs in 41 ms: 9 from the cache /home/u/.cache/hfx/kernels, 0 compiled"
+    std::string programReport() const;
+
 private:
+    cl::Program buildFromSource(const std::string& name, const std::string& text, const std::string& options);
+    cl::Program buildFromCache(const std::string& key, const std::string& options);
+
     cl::Platform platform_;
     cl::Device device_;
     cl::Context context_;
     cl::CommandQueue queue_;
     std::map<std::pair<std::string, std::string>, cl::Program> programs_;
+    ProgramCache cache_;
+    std::string cacheKeyPrefix_; ///< platform, device and driver identity
+    ClProgramStats stats_;
 };
 
 /// Runs f, turning an OpenCL exception into hfx::Error that says what was being done.
