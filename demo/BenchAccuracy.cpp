@@ -173,19 +173,25 @@ int runBenchAccuracy(const std::string& outDir, int field) {
         md << "\n";
         std::fprintf(stderr, "bench-accuracy: %s done\n", map.name.c_str());
     }
-    // What a half-float surface texture (RGBA16F, half the memory) costs in accuracy.
-    md << "## Half-float surface\n\nThe same renders with the surface stored as RGBA16F instead of RGBA32F "
-          "(half the memory and texture bandwidth): mean texel error, float then half.\n\n"
-       << "| map | angle | pom float | pom half | hier float | hier half |\n|---|---|---|---|---|---|\n";
+    // What the smaller surface formats (packed on the device, SurfacePacker) cost in accuracy.
+    md << "## Surface formats\n\nThe same renders with the surface stored as RGBA32F (float32), RGBA16F "
+          "(float16: half the memory and transfer) and RGBA8 (unorm8: a quarter; normal as n/2 + 1/2, "
+          "heights in steps of 1/255, no pyramid and so no hier), packed on the device as the effects do: "
+          "mean texel error, and POM's p95.\n\n"
+       << "| map | angle | pom float32 | pom float16 | pom unorm8 | pom p95 float32 / unorm8 | hier float32 | "
+          "hier float16 |\n|---|---|---|---|---|---|---|---|\n";
     for (const Map& map : maps) {
         AccuracyProbe full(cl, map.heights, field, 0.1f);
-        AccuracyProbe half(cl, map.heights, field, 0.1f, true);
+        AccuracyProbe half(cl, map.heights, field, 0.1f, SurfaceFormat::Float16);
+        AccuracyProbe bytes(cl, map.heights, field, 0.1f, SurfaceFormat::Unorm8);
         for (double angle : {70.0, 85.0}) {
-            char line[200];
-            std::snprintf(line, sizeof line, "| %s | %.0f | %.4f | %.4f | %.4f | %.4f |\n", map.name.c_str(), angle,
-                          full.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle}).mean,
-                          half.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle}).mean,
-                          full.measure(Technique::Hierarchical, {.angleDegrees = angle}).mean,
+            const AccuracyResult pf = full.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle});
+            const AccuracyResult pb = bytes.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle});
+            char line[240];
+            std::snprintf(line, sizeof line, "| %s | %.0f | %.4f | %.4f | %.4f | %.3f / %.3f | %.4f | %.4f |\n",
+                          map.name.c_str(), angle, pf.mean,
+                          half.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle}).mean, pb.mean, pf.p95,
+                          pb.p95, full.measure(Technique::Hierarchical, {.angleDegrees = angle}).mean,
                           half.measure(Technique::Hierarchical, {.angleDegrees = angle}).mean);
             md << line;
         }

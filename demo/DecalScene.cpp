@@ -93,7 +93,7 @@ private:
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
         c.pyramid = o.technique == Technique::Hierarchical;
-        c.halfFloat = o.halfFloat;
+        c.format = o.surfaceFormat;
         return c;
     }
 

@@ -44,7 +44,7 @@ private:
         c.gas.seed = o.seed;
         c.seed = o.seed;
         c.pyramid = o.technique == Technique::Hierarchical;
-        c.halfFloat = o.halfFloat;
+        c.format = o.surfaceFormat;
         return c;
     }
 

@@ -27,7 +27,7 @@ struct SceneOptions {
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
-    bool halfFloat = false;            ///< RGBA16F surface textures
+    SurfaceFormat surfaceFormat = SurfaceFormat::Float32; ///< storage of the surface textures
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
     float windSpeed = 12.0f, windDirection = 0.6f;
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)

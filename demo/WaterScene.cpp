@@ -35,7 +35,7 @@ public:
             c.ocean.windSpeed = o.windSpeed;
             c.ocean.windDirection = o.windDirection;
             c.pyramid = o.technique == Technique::Hierarchical;
-        c.halfFloat = o.halfFloat;
+        c.format = o.surfaceFormat;
             ocean_ = std::make_unique<OceanEffect>(cl, c);
             base = ocean_->material();
         } else {
@@ -47,7 +47,7 @@ public:
             c.material.shading = Shading::Water;
             c.material.specularStrength = 0.0f;
             c.pyramid = o.technique == Technique::Hierarchical;
-            c.halfFloat = o.halfFloat;
+            c.format = o.surfaceFormat;
             sine_ = std::make_unique<WaterEffect>(cl, c);
             base = sine_->material();
         }

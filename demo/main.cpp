@@ -39,6 +39,7 @@ struct Options {
     int width = 1280, height = 720;
     double dt = 1.0 / 30.0;
     std::string technique = "pom";
+    std::string surfaceFormat = "float32";
     std::string format = "png";
     bool noProgress = false;
     SceneOptions sceneOptions;
@@ -88,6 +89,7 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
 int run(const Options& o) {
     SceneOptions sceneOptions = o.sceneOptions;
     sceneOptions.technique = parseTechnique(o.technique);
+    sceneOptions.surfaceFormat = parseSurfaceFormat(o.surfaceFormat);
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
@@ -160,7 +162,10 @@ int main(int argc, char** argv) {
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
-    app.add_flag("--half-float", s.halfFloat, "store the surface as RGBA16F (half the memory; see docs/ACCURACY.md)");
+    app.add_option("--surface-format", o.surfaceFormat,
+                   "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
+                   "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
+        ->check(CLI::IsMember({"float32", "float16", "unorm8"}))->capture_default_str();
     app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")
         ->check(CLI::IsMember({"fft", "sine"}))->capture_default_str();
     app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(CLI::Range(0.5, 100.0))->capture_default_str();

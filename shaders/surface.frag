@@ -50,6 +50,7 @@ uniform bool u_pyramidWrap;      // the field tiles: cell indices wrap (else the
 uniform mat4 u_viewProj;
 uniform vec3 u_cameraPos;
 uniform float u_depthScale;      // texture units between h = 1 and h = 0
+uniform vec2 u_normalDecode;     // stored normal * x + y: (1, 0) for float formats, (2, -1) for unorm8
 uniform int u_minSamples;        // linear-search steps looking straight down
 uniform int u_maxSamples;        // ... and at grazing angles
 uniform float u_lodThreshold;    // mip level from which on only normal mapping is done
@@ -302,8 +303,9 @@ void main() {
     const vec3 albedo = textureLod(s_albedo, uv, mipLevel).rgb;
     const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
     const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
-    const vec3 normal = normalize(tangentUnit * surfaceSample.x + bitangentUnit * surfaceSample.y +
-                                  geometricNormal * surfaceSample.z);
+    const vec3 storedNormal = surfaceSample.xyz * u_normalDecode.x + u_normalDecode.y;
+    const vec3 normal = normalize(tangentUnit * storedNormal.x + bitangentUnit * storedNormal.y +
+                                  geometricNormal * storedNormal.z);
     const vec3 lightDir = normalize(u_lightDir);
     const float nDotL = dot(normal, lightDir);
 

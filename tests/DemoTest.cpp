@@ -122,6 +122,20 @@ TEST(Demo, EveryTechniqueDrawsTheDecalWall) {
     EXPECT_NE(maps.output.find("no height pyramid"), std::string::npos) << maps.output;
 }
 
+TEST(Demo, EverySurfaceFormatRendersAndUnorm8RefusesTheTracer) {
+    for (const char* scene : {"water", "decals", "planet"})
+        for (const char* format : {"float16", "unorm8"}) {
+            const std::string out = outputPath(std::string("demo_format_") + scene + "_" + format);
+            const Result r = runDemo(std::string(scene) + " --headless --frames 2 --width 160 --height 90 --field 64 " +
+                                     "--surface-format " + format + " --out " + out);
+            ASSERT_EQ(r.exitCode, 0) << scene << " " << format << "\n" << r.output;
+            EXPECT_GT(luminanceStdDev(readImage(out + "/" + scene + "_0001.png")), 0.02) << scene << " " << format;
+        }
+    const Result r = runDemo("decals --headless --field 64 --technique hier --surface-format unorm8");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("float format"), std::string::npos) << r.output;
+}
+
 TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
     const std::string shots = outputPath("demo_shots.txt");
     std::ofstream(shots) << "# two bullets and a click, then an explosion\n"
@@ -260,7 +274,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--height", "--dt", "--field", "--technique", "--samples-min", "--samples-max",
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
-                               "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--half-float", "water", "decals", "planet",
+                               "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }

@@ -88,8 +88,9 @@ TEST(ProgramCache, DefaultFolderFollowsTheEnvironment) {
     setenv("HFX_KERNEL_CACHE", "off", 1);
     EXPECT_TRUE(ProgramCache::defaultFolder().empty());
     unsetenv("HFX_KERNEL_CACHE");
-    if (std::getenv("XDG_CACHE_HOME") || std::getenv("HOME"))
+    if (std::getenv("XDG_CACHE_HOME") || std::getenv("HOME")) {
         EXPECT_EQ(ProgramCache::defaultFolder().filename(), "kernels");
+    }
     if (saved) setenv("HFX_KERNEL_CACHE", savedValue.c_str(), 1);
 }
 

@@ -236,19 +236,38 @@ TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {
     EXPECT_DOUBLE_EQ(overlapped.time(), sequential.time());
 }
 
-TEST_F(Users, HalfFloatFieldsStoreRgba16fAndStayCloseToFloat) {
+TEST_F(Users, SmallerFormatsStoreWhatTheyNameAndStayCloseToFloat) {
     WaterEffect full(cl(), {.waves = {.size = 64}});
-    WaterEffect half(cl(), {.waves = {.size = 64}, .halfFloat = true});
-    full.update(0.1);
-    half.update(0.1);
-    GLint format = 0;
-    glGetTextureLevelParameteriv(half.textures().surface(), 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    EXPECT_EQ(format, GL_RGBA16F);
-    const std::vector<float> a = readSurface(full.textures()), b = readSurface(half.textures());
-    double worst = 0.0;
-    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(std::abs(a[i] - b[i])));
-    EXPECT_GT(worst, 0.0) << "no rounding at all: the texture is not half float";
-    EXPECT_LT(worst, 1e-3) << "half floats hold [0,1] values to 2^-11";
+    WaterEffect half(cl(), {.waves = {.size = 64}, .format = SurfaceFormat::Float16});
+    WaterEffect bytes(cl(), {.waves = {.size = 64}, .format = SurfaceFormat::Unorm8});
+    for (int i = 0; i < 3; ++i) { // the second and third go through the other texture pair
+        full.update(0.1);
+        half.update(0.1);
+        bytes.update(0.1);
+    }
+    auto internalFormat = [](const SurfaceTextures& t) {
+        GLint format = 0;
+        glGetTextureLevelParameteriv(t.surface(), 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+        return format;
+    };
+    EXPECT_EQ(internalFormat(half.textures()), GL_RGBA16F);
+    EXPECT_EQ(internalFormat(bytes.textures()), GL_RGBA8);
+    const std::vector<float> a = readSurface(full.textures()), h = readSurface(half.textures()),
+                             b = readSurface(bytes.textures());
+    double worstHalf = 0.0, worstNormal = 0.0, worstHeight = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        worstHalf = std::max(worstHalf, double(std::abs(a[i] - h[i])));
+        // unorm8 stores n/2 + 1/2: decode as the shader does.
+        const double decoded = i % 4 == 3 ? b[i] : b[i] * 2.0 - 1.0;
+        (i % 4 == 3 ? worstHeight : worstNormal) =
+            std::max(i % 4 == 3 ? worstHeight : worstNormal, std::abs(a[i] - decoded));
+    }
+    EXPECT_GT(worstHalf, 0.0) << "no rounding at all: the texture is not half float";
+    EXPECT_LT(worstHalf, 1e-3) << "half floats hold [0,1] values to 2^-11";
+    // Rounding to nearest: half a step of 1/255, doubled for the normal's n/2 + 1/2.
+    EXPECT_GT(worstHeight, 0.0) << "no rounding at all: the texture is not 8-bit";
+    EXPECT_LE(worstHeight, 0.5 / 255 + 1e-6);
+    EXPECT_LE(worstNormal, 1.0 / 255 + 1e-6);
 }
 
 TEST_F(Users, ColorRampKernelMatchesTheSharedMathIncludingNaN) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <vector>
 
 namespace hfx {
@@ -13,7 +14,19 @@ void SurfaceTexturesConfig::validate() const {
         throw Error(str("surface size must be in 1..16384, got ", width, "x", height));
     if (pyramid && (!std::has_single_bit(unsigned(width)) || !std::has_single_bit(unsigned(height))))
         throw Error(str("a surface with a height pyramid needs power-of-two sizes, got ", width, "x", height));
+    if (pyramid && format == SurfaceFormat::Unorm8)
+        throw Error("a surface with a height pyramid needs a float format (float32 or float16): unorm8 "
+                    "heights round up to 1/510 above the pyramid's bound and the hierarchical tracer would miss");
 }
+
+namespace {
+GLenum internalFormat(SurfaceFormat f) {
+    return f == SurfaceFormat::Float32 ? GL_RGBA32F : f == SurfaceFormat::Float16 ? GL_RGBA16F : GL_RGBA8;
+}
+GLenum packedType(SurfaceFormat f) {
+    return f == SurfaceFormat::Float32 ? GL_FLOAT : f == SurfaceFormat::Float16 ? GL_HALF_FLOAT : GL_UNSIGNED_BYTE;
+}
+} // namespace
 
 SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     : config_(config), surface_(GlTexture::create()), albedo_(GlTexture::create()) {
@@ -31,7 +44,7 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER,
                             levels_ > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     }
-    glTextureStorage2D(surface_.id(), levels_, config.halfFloat ? GL_RGBA16F : GL_RGBA32F, config.width, config.height);
+    glTextureStorage2D(surface_.id(), levels_, internalFormat(config.format), config.width, config.height);
     glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height);
     setAlbedo(Image{1, 1, 3, {0.8f, 0.8f, 0.8f}});
     std::vector<float> flat(static_cast<size_t>(config.width) * config.height * 4, 0.0f);
@@ -61,9 +74,29 @@ void SurfaceTextures::uploadPyramid(const float* levels) {
 }
 
 void SurfaceTextures::upload(const float* normalHeight) {
+    if (config_.format != SurfaceFormat::Unorm8) {
+        // The driver converts float to the storage format (GL's float-to-half rounds to nearest).
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA, GL_FLOAT,
+                            normalHeight);
+        if (levels_ > 1) glGenerateTextureMipmap(surface_.id());
+        return;
+    }
+    // GL would clamp a negative normal component to 0: encode n/2 + 1/2 here, as the kernel does.
+    const size_t n = static_cast<size_t>(config_.width) * config_.height * 4;
+    staging_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        const float v = (i % 4 == 3) ? normalHeight[i] : normalHeight[i] * 0.5f + 0.5f;
+        // fmin/fmax map NaN to 0, as the kernel's saturating conversion does.
+        staging_[i] = static_cast<unsigned char>(std::fmin(std::fmax(v, 0.0f), 1.0f) * 255.0f + 0.5f);
+    }
+    uploadPacked(staging_.data());
+}
+
+void SurfaceTextures::uploadPacked(const void* texels) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA, GL_FLOAT,
-                        normalHeight);
+    glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
+                        packedType(config_.format), texels);
     if (levels_ > 1) glGenerateTextureMipmap(surface_.id());
 }
 

@@ -29,11 +29,15 @@ SurfaceMaterial materialOf(const AccuracyConfig& config) {
             .shadows = config.shadows};
 }
 
-SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, int size, float depthScale, bool halfFloat) {
+SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, int size, float depthScale, SurfaceFormat format) {
     if (heights.size() != size_t(size) * size)
         throw Error(str("AccuracyProbe: ", heights.size(), " heights do not make a ", size, "x", size, " field"));
-    SurfaceTextures textures(
-        {.width = size, .height = size, .mipmaps = false, .edges = EdgeMode::Wrap, .pyramid = true, .halfFloat = halfFloat});
+    SurfaceTextures textures({.width = size,
+                              .height = size,
+                              .mipmaps = false,
+                              .edges = EdgeMode::Wrap,
+                              .pyramid = format != SurfaceFormat::Unorm8,
+                              .format = format});
     cl::Buffer buffer = clGuard("AccuracyProbe: uploading the heights", [&] {
         return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * sizeof(float),
                           const_cast<float*>(heights.data()));
@@ -42,8 +46,15 @@ SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, i
     MaxPyramid pyramid(cl, size, size, true);
     sobel.run(buffer);
     pyramid.build(buffer);
-    uploadField(cl, sobel.output(), textures);
-    uploadPyramid(cl, pyramid, textures);
+    if (format == SurfaceFormat::Float32) {
+        uploadField(cl, sobel.output(), textures);
+    } else {
+        // The packing the effects use, so the figures are those of the shipped path.
+        SurfacePacker packer(cl, size, size, format);
+        packer.run(sobel.output());
+        uploadPacked(cl, packer, textures);
+    }
+    if (textures.pyramid()) uploadPyramid(cl, pyramid, textures);
     return textures;
 }
 
@@ -75,9 +86,9 @@ bool planePixelRay(const Camera& camera, float planeSize, int x, int y, int widt
     return true;
 }
 
-AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale, bool halfFloat)
+AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale, SurfaceFormat format)
     : size_(size), depthScale_(depthScale), exact_(heights, size, size, EdgeMode::Wrap),
-      textures_(makeTextures(cl, heights, size, depthScale, halfFloat)), plane_(makePlane({.size = kPlaneSize})),
+      textures_(makeTextures(cl, heights, size, depthScale, format)), plane_(makePlane({.size = kPlaneSize})),
       timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})) {}
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {

@@ -11,7 +11,7 @@ const HeightSource& checked(const std::unique_ptr<HeightSource>& source) {
     if (!source) throw Error("FieldEffect needs a height source, got none");
     return *source;
 }
-SurfaceTexturesConfig texturesConfig(const HeightSource& source, bool mipmaps, bool pyramid, bool halfFloat) {
+SurfaceTexturesConfig texturesConfig(const HeightSource& source, bool mipmaps, bool pyramid, SurfaceFormat format) {
     return {.width = source.width(),
             .height = source.height(),
             .mipmaps = mipmaps,
@@ -19,7 +19,7 @@ SurfaceTexturesConfig texturesConfig(const HeightSource& source, bool mipmaps, b
                      : source.periodicU() ? EdgeMode::WrapU
                                           : EdgeMode::Clamp,
             .pyramid = pyramid,
-            .halfFloat = halfFloat};
+            .format = format};
 }
 
 } // namespace
@@ -31,18 +31,20 @@ double FieldEffect::nowMs() {
 }
 
 FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
-                         const SurfaceMaterial& material, bool mipmaps, bool pyramid, bool halfFloat)
+                         const SurfaceMaterial& material, bool mipmaps, bool pyramid, SurfaceFormat format)
     : cl_(cl), material_((material.validate(), material)),
       normals_(cl, SobelConfig{.width = checked(source).width(),
                                .height = source->height(),
                                .depthScale = material.depthScale,
                                .wrapEdges = source->periodicU(),
                                .clampV = !source->periodic()}),
-      textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, halfFloat)),
-                std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, halfFloat))} {
+      textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, format)),
+                std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, format))} {
     source_ = std::move(source);
     if (pyramid)
         pyramid_ = std::make_unique<MaxPyramid>(cl, source_->width(), source_->height(), source_->periodic());
+    if (format != SurfaceFormat::Float32)
+        packer_ = std::make_unique<SurfacePacker>(cl, source_->width(), source_->height(), format);
     refresh(nowMs());
 }
 
@@ -66,6 +68,7 @@ void FieldEffect::beginUpdate(double dt) {
     normals_.run(source_->buffer());
     if (pyramid_) pyramid_->build(source_->buffer());
     enqueueExtra();
+    if (packer_) packer_->run(normals_.output());
     clGuard("FieldEffect::beginUpdate", [&] {
         cl_.queue().enqueueMarkerWithWaitList(nullptr, &pendingDone_);
         cl_.queue().flush(); // start now, not at the wait
@@ -86,7 +89,10 @@ void FieldEffect::endUpdate() {
 
 void FieldEffect::upload() {
     SurfaceTextures& back = uploadTarget();
-    uploadField(cl_, normals_.output(), back);
+    if (packer_)
+        uploadPacked(cl_, *packer_, back);
+    else
+        uploadField(cl_, normals_.output(), back);
     if (pyramid_) uploadPyramid(cl_, *pyramid_, back);
     uploadExtra();
     front_ = 1 - front_;
@@ -116,6 +122,7 @@ void FieldEffect::refresh(double computeStartMs) {
     const double normalised = finishedMs(cl_);
     if (pyramid_) pyramid_->build(source_->buffer());
     enqueueExtra();
+    if (packer_) packer_->run(normals_.output());
     const double computed = finishedMs(cl_);
     upload();
     times_ = {.compute = computed - computeStartMs,

@@ -37,6 +37,15 @@ void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures&
                  [&](const void* mapped) { textures.upload(static_cast<const float*>(mapped)); });
 }
 
+void uploadPacked(ClContext& cl, const SurfacePacker& packer, SurfaceTextures& textures) {
+    if (packer.format() != textures.config().format)
+        throw Error(str("uploadPacked: ", surfaceFormatName(packer.format()), " texels for a ",
+                        surfaceFormatName(textures.config().format), " surface"));
+    mapAndUpload(cl, packer.output(),
+                 surfaceBytes(packer.output(), texelBytes(packer.format()), textures, "uploadPacked"), "uploadPacked",
+                 [&](const void* mapped) { textures.uploadPacked(mapped); });
+}
+
 void uploadPyramid(ClContext& cl, const MaxPyramid& pyramid, SurfaceTextures& textures) {
     if (!textures.pyramid()) throw Error("uploadPyramid: the surface textures have no pyramid");
     const PyramidLevel& base = pyramid.levels().front();

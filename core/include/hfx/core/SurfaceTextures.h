@@ -1,12 +1,16 @@
 #pragma once
-// The GL side of a height field: one RGBA32F texture holding the tangent-space normal in xyz and
-// the height in w (h in [0,1], 1 = the polygon surface), so a POM step costs one fetch, plus an
-// RGBA8 albedo texture. Storage is allocated once; upload() refreshes it in place every frame.
+// The GL side of a height field: one texture holding the tangent-space normal in xyz and the
+// height in w (h in [0,1], 1 = the polygon surface), so a POM step costs one fetch — RGBA32F,
+// RGBA16F or RGBA8 (SurfaceFormat) — plus an RGBA8 albedo texture. Storage is allocated once;
+// upload() / uploadPacked() refresh it in place every frame.
 //
 // Owns its textures. Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"
+#include "hfx/core/SurfaceFormat.h"
+
+#include <vector>
 
 namespace hfx {
 
@@ -22,9 +26,9 @@ struct SurfaceTexturesConfig {
     /// Also a maximum-height pyramid texture (R32F, full mip chain) for the hierarchical tracer;
     /// needs power-of-two sizes.
     bool pyramid = false;
-    /// Store normal + height as RGBA16F instead of RGBA32F: half the memory and bandwidth, at the
-    /// precision of a half float (heights to about 5e-4; docs/ACCURACY.md measures what it costs).
-    bool halfFloat = false;
+    /// Storage of normal + height: Float16 halves the memory and the transfer, Unorm8 quarters
+    /// them (docs/ACCURACY.md measures what each costs against the exact intersection).
+    SurfaceFormat format = SurfaceFormat::Float32;
     void validate() const;
 };
 
@@ -34,7 +38,12 @@ public:
 
     /// Replaces the normal+height texels: `normalHeight` is width*height float4, row 0 at v = 0
     /// (the first row of a compute buffer), and regenerates the mip chain when there is one.
+    /// Converts to the storage format on the way (in the driver, or here for Unorm8).
     void upload(const float* normalHeight);
+    /// The same from texels already in the storage format's layout (SurfaceFormat), as
+    /// SurfacePacker writes them: a plain copy. With a buffer bound to GL_PIXEL_UNPACK_BUFFER,
+    /// `texels` is the offset into it, as GL defines.
+    void uploadPacked(const void* texels);
     /// Replaces the albedo; the image must match the surface size or be 1x1 (a solid colour).
     void setAlbedo(const Image& albedo);
     /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
@@ -57,6 +66,7 @@ private:
     int levels_ = 1;
     int pyramidLevels_ = 0;
     GlTexture surface_, albedo_, pyramid_;
+    std::vector<unsigned char> staging_; ///< Unorm8 texels encoded by upload()
 };
 
 } // namespace hfx

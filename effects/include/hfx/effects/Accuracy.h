@@ -56,8 +56,10 @@ class AccuracyProbe {
 public:
     /// heights: size x size in [0,1], row 0 at v = 0, tiling (edges wrap); size a power of two.
     /// Normals and the pyramid are made on the device, as a frame would make them.
-    /// halfFloat: store the surface as RGBA16F (to measure what the smaller format costs).
-    AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale, bool halfFloat = false);
+    /// format: the surface's storage (to measure what a smaller format costs); unorm8 takes no
+    /// pyramid, so it cannot measure the hierarchical technique.
+    AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale,
+                  SurfaceFormat format = SurfaceFormat::Float32);
 
     AccuracyResult measure(Technique technique, const AccuracyConfig& config);
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at

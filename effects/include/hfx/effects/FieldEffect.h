@@ -9,6 +9,7 @@
 #include "hfx/compute/HeightSource.h"
 #include "hfx/compute/MaxPyramid.h"
 #include "hfx/compute/SobelNormals.h"
+#include "hfx/compute/SurfacePacker.h"
 #include "hfx/effects/Effect.h"
 
 #include <memory>
@@ -18,9 +19,11 @@ namespace hfx {
 class FieldEffect : public Effect {
 public:
     /// pyramid: also build the maximum-height pyramid each update (for Technique::Hierarchical;
-    /// the field's sizes must be powers of two). halfFloat: RGBA16F surface textures.
+    /// the field's sizes must be powers of two). format: the surface textures' storage; other
+    /// than Float32, a SurfacePacker packs the texels on the device before the transfer.
     FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source, const SurfaceMaterial& material,
-                bool mipmaps = true, bool pyramid = false, bool halfFloat = false);
+                bool mipmaps = true, bool pyramid = false,
+                SurfaceFormat format = SurfaceFormat::Float32);
 
     void update(double dt) override;
     void beginUpdate(double dt) override;
@@ -59,6 +62,7 @@ private:
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;
     std::unique_ptr<MaxPyramid> pyramid_;
+    std::unique_ptr<SurfacePacker> packer_; ///< null for Float32
     StageTimes times_;
     // The overlapped update in flight: when it started, and the marker its wait is for.
     bool pending_ = false;

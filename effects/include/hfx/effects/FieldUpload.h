@@ -7,6 +7,7 @@
 
 #include "hfx/compute/ClContext.h"
 #include "hfx/compute/MaxPyramid.h"
+#include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/SurfaceTextures.h"
 
 namespace hfx {
@@ -14,6 +15,10 @@ namespace hfx {
 /// Waits for the queue's work on `normalHeight`, then uploads it. The buffer must hold
 /// textures.config().width * height float4.
 void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures);
+
+/// Waits for the queue's work on the packer's output, then uploads it as it is (a plain copy).
+/// The packer's format and size must be the textures'.
+void uploadPacked(ClContext& cl, const SurfacePacker& packer, SurfaceTextures& textures);
 
 /// Waits for the queue's work on the pyramid, then uploads all its levels into the textures'
 /// pyramid (which must exist and match its size).

@@ -36,7 +36,9 @@ struct GasPlanetConfig {
                              .shading = Shading::Planet, .silhouetteFade = 0.25f};
     bool mipmaps = true;
     bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
-    bool halfFloat = false; ///< RGBA16F surface textures: half the memory (docs/ACCURACY.md: its cost)
+    /// Storage of the surface: float16 halves its memory and transfer, unorm8 quarters them
+    /// (docs/ACCURACY.md: what each costs). The packing runs on the device.
+    SurfaceFormat format = SurfaceFormat::Float32;
     void validate() const;
 };
 
