@@ -126,6 +126,28 @@ int runBench(const SceneOptions& options, int width, int height, int frames) {
             std::fflush(stdout);
         }
 
+    std::printf("\nTransfer of the water field by surface format and path (POM with shadows; extra = packing on "
+                "the device):\n\n| field | format | path | bytes / frame | normals | extra | upload | compute+upload | "
+                "POM draw | compute+upload share |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int size : {512, 1024})
+        for (SurfaceFormat format : kSurfaceFormats)
+            for (TransferPath path : {TransferPath::Map, TransferPath::PixelBuffer}) {
+                SceneOptions o = options;
+                o.fieldSize = size;
+                o.technique = Technique::ParallaxOcclusion;
+                o.surfaceFormat = format;
+                o.transfer = path;
+                o.width = width;
+                o.height = height;
+                auto scene = makeScene("water", cl, o);
+                const Budget b = measure(*scene, target, frames);
+                std::printf("| %d² | %s | %s | %.1f MiB | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f%% |\n", size,
+                            surfaceFormatName(format), transferPathName(path),
+                            double(texelBytes(format)) * size * size / (1024.0 * 1024.0), b.normals, b.extra, b.upload,
+                            b.compute() + b.upload, b.pom, 100.0 * (b.compute() + b.upload) / b.frame());
+                std::fflush(stdout);
+            }
+
     std::printf("\nScaling of the water frame (POM with shadows):\n\n| field | output | compute | upload | POM draw | frame ms |\n|---|---|---|---|---|---|\n");
     auto scaling = [&](int size, int w, int h) {
         SceneOptions o = options;

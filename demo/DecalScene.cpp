@@ -94,6 +94,7 @@ private:
         c.bricks.seed = o.seed;
         c.pyramid = o.technique == Technique::Hierarchical;
         c.format = o.surfaceFormat;
+        c.transfer = o.transfer;
         return c;
     }
 

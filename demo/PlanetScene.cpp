@@ -45,6 +45,7 @@ private:
         c.seed = o.seed;
         c.pyramid = o.technique == Technique::Hierarchical;
         c.format = o.surfaceFormat;
+        c.transfer = o.transfer;
         return c;
     }
 

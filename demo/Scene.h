@@ -7,6 +7,7 @@
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/effects/Effect.h"
+#include "hfx/effects/FieldUpload.h"
 #include "hfx/effects/ShotList.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
@@ -28,6 +29,7 @@ struct SceneOptions {
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
     SurfaceFormat surfaceFormat = SurfaceFormat::Float32; ///< storage of the surface textures
+    TransferPath transfer = TransferPath::Auto;           ///< how the surface reaches GL
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
     float windSpeed = 12.0f, windDirection = 0.6f;
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)

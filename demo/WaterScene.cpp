@@ -35,7 +35,8 @@ public:
             c.ocean.windSpeed = o.windSpeed;
             c.ocean.windDirection = o.windDirection;
             c.pyramid = o.technique == Technique::Hierarchical;
-        c.format = o.surfaceFormat;
+            c.format = o.surfaceFormat;
+            c.transfer = o.transfer;
             ocean_ = std::make_unique<OceanEffect>(cl, c);
             base = ocean_->material();
         } else {
@@ -48,6 +49,7 @@ public:
             c.material.specularStrength = 0.0f;
             c.pyramid = o.technique == Technique::Hierarchical;
             c.format = o.surfaceFormat;
+            c.transfer = o.transfer;
             sine_ = std::make_unique<WaterEffect>(cl, c);
             base = sine_->material();
         }

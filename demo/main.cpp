@@ -40,6 +40,7 @@ struct Options {
     double dt = 1.0 / 30.0;
     std::string technique = "pom";
     std::string surfaceFormat = "float32";
+    std::string transfer = "auto";
     std::string format = "png";
     bool noProgress = false;
     SceneOptions sceneOptions;
@@ -90,6 +91,7 @@ int run(const Options& o) {
     SceneOptions sceneOptions = o.sceneOptions;
     sceneOptions.technique = parseTechnique(o.technique);
     sceneOptions.surfaceFormat = parseSurfaceFormat(o.surfaceFormat);
+    sceneOptions.transfer = parseTransferPath(o.transfer);
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
@@ -106,7 +108,8 @@ int run(const Options& o) {
     auto gl = createContext({.width = o.width, .height = o.height, .title = "HFX " + o.scene}, !o.headless);
     ClContext cl;
     auto scene = makeScene(o.scene, cl, sceneOptions);
-    std::fprintf(stderr, "hfx: kernels: %s\n", cl.programReport().c_str());
+    std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\n", cl.programReport().c_str(),
+                 scene->effect().transferDescription().c_str());
     if (gl->headless()) return runHeadless(o, *gl, *scene);
     std::fprintf(stderr, "hfx-demo: window, %s\n", gl->description().c_str());
     WindowLoop loop({.width = o.width,
@@ -166,6 +169,10 @@ int main(int argc, char** argv) {
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
         ->check(CLI::IsMember({"float32", "float16", "unorm8"}))->capture_default_str();
+    app.add_option("--transfer", o.transfer,
+                   "how the surface reaches GL: map (from the mapped device buffer), pixel-buffer (the device "
+                   "writes a GL pixel buffer) or auto (pixel-buffer where the device shares host memory)")
+        ->check(CLI::IsMember({"auto", "map", "pixel-buffer"}))->capture_default_str();
     app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")
         ->check(CLI::IsMember({"fft", "sine"}))->capture_default_str();
     app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(CLI::Range(0.5, 100.0))->capture_default_str();

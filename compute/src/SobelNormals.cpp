@@ -13,11 +13,12 @@ void SobelConfig::validate() const {
         throw Error(str("SobelConfig.depthScale must be >= 0 and finite, got ", depthScale));
 }
 
-SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config) : cl_(cl), config_(config) {
+SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config, void* hostMemory) : cl_(cl), config_(config) {
     config.validate();
     clGuard("creating the Sobel normals", [&] {
-        output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
-                             sizeof(cl_float4) * size_t(config.width) * config.height);
+        const size_t bytes = sizeof(cl_float4) * size_t(config.width) * config.height;
+        output_ = hostMemory ? cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes, hostMemory)
+                             : cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, bytes);
         kernel_ = cl.kernel("sobel.cl", "sobel", !config.wrapEdges ? "-DCLAMP_EDGES" : (config.clampV ? "-DCLAMP_Y" : ""));
     });
 }

@@ -92,7 +92,8 @@ DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config)
     : DecalWallEffect(cl, config, make(cl, config)) {}
 
 DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, Made made)
-    : FieldEffect(cl, std::move(made.source), config.material, config.mipmaps, config.pyramid, config.format), config_(config),
+    : FieldEffect(cl, std::move(made.source), config.material,
+                  {.mipmaps = config.mipmaps, .pyramid = config.pyramid, .format = config.format, .transfer = config.transfer}), config_(config),
       decals_(static_cast<DecalMap&>(source())) {
     if (!made.albedo.empty()) setAlbedo(made.albedo);
     if (!made.normals.empty()) {

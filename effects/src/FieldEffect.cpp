@@ -11,15 +11,20 @@ const HeightSource& checked(const std::unique_ptr<HeightSource>& source) {
     if (!source) throw Error("FieldEffect needs a height source, got none");
     return *source;
 }
-SurfaceTexturesConfig texturesConfig(const HeightSource& source, bool mipmaps, bool pyramid, SurfaceFormat format) {
+SurfaceTexturesConfig texturesConfig(const HeightSource& source, const FieldOptions& o) {
     return {.width = source.width(),
             .height = source.height(),
-            .mipmaps = mipmaps,
+            .mipmaps = o.mipmaps,
             .edges = source.periodic()    ? EdgeMode::Wrap
                      : source.periodicU() ? EdgeMode::WrapU
                                           : EdgeMode::Clamp,
-            .pyramid = pyramid,
-            .format = format};
+            .pyramid = o.pyramid,
+            .format = o.format};
+}
+
+std::unique_ptr<PixelBuffer> makePixels(TransferPath path, const HeightSource& source, SurfaceFormat format) {
+    if (path != TransferPath::PixelBuffer) return nullptr;
+    return std::make_unique<PixelBuffer>(texelBytes(format) * size_t(source.width()) * source.height());
 }
 
 } // namespace
@@ -31,21 +36,31 @@ double FieldEffect::nowMs() {
 }
 
 FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
-                         const SurfaceMaterial& material, bool mipmaps, bool pyramid, SurfaceFormat format)
-    : cl_(cl), material_((material.validate(), material)),
-      normals_(cl, SobelConfig{.width = checked(source).width(),
-                               .height = source->height(),
-                               .depthScale = material.depthScale,
-                               .wrapEdges = source->periodicU(),
-                               .clampV = !source->periodic()}),
-      textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, format)),
-                std::make_unique<SurfaceTextures>(texturesConfig(*source, mipmaps, pyramid, format))} {
+                         const SurfaceMaterial& material, const FieldOptions& options)
+    : cl_(cl), material_((material.validate(), material)), transfer_(chooseTransferPath(cl, options.transfer)),
+      pixels_(makePixels(transfer_, checked(source), options.format)),
+      // A float32 surface's texels are the normals themselves: with a pixel buffer, they lie in it.
+      normals_(cl,
+               SobelConfig{.width = source->width(),
+                           .height = source->height(),
+                           .depthScale = material.depthScale,
+                           .wrapEdges = source->periodicU(),
+                           .clampV = !source->periodic()},
+               pixels_ && options.format == SurfaceFormat::Float32 ? pixels_->memory() : nullptr),
+      textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, options)),
+                std::make_unique<SurfaceTextures>(texturesConfig(*source, options))} {
     source_ = std::move(source);
-    if (pyramid)
+    if (options.pyramid)
         pyramid_ = std::make_unique<MaxPyramid>(cl, source_->width(), source_->height(), source_->periodic());
-    if (format != SurfaceFormat::Float32)
-        packer_ = std::make_unique<SurfacePacker>(cl, source_->width(), source_->height(), format);
+    if (options.format != SurfaceFormat::Float32)
+        packer_ = std::make_unique<SurfacePacker>(cl, source_->width(), source_->height(), options.format,
+                                                  pixels_ ? pixels_->memory() : nullptr);
     refresh(nowMs());
+}
+
+std::string FieldEffect::transferDescription() const {
+    return str(surfaceFormatName(textures_[0]->config().format), " texels", packer_ ? " packed on the device" : "",
+               ", ", transferPathName(transfer_), " path");
 }
 
 void FieldEffect::stepSource(double dt) { source_->step(dt); }
@@ -65,6 +80,7 @@ void FieldEffect::beginUpdate(double dt) {
     if (pending_) endUpdate(); // never two in flight
     const double start = nowMs();
     stepSource(dt);
+    if (pixels_) pixels_->waitUntilRead(); // the normals or the packing write the pixel buffer
     normals_.run(source_->buffer());
     if (pyramid_) pyramid_->build(source_->buffer());
     enqueueExtra();
@@ -89,7 +105,9 @@ void FieldEffect::endUpdate() {
 
 void FieldEffect::upload() {
     SurfaceTextures& back = uploadTarget();
-    if (packer_)
+    if (pixels_)
+        uploadFromPixelBuffer(cl_, packer_ ? packer_->output() : normals_.output(), *pixels_, back);
+    else if (packer_)
         uploadPacked(cl_, *packer_, back);
     else
         uploadField(cl_, normals_.output(), back);
@@ -118,6 +136,7 @@ void FieldEffect::refresh(double computeStartMs) {
     // Each stage is waited for, so the frame's budget can be read stage by stage; the queue is
     // in order and the CPU device runs one kernel at a time, so the waits cost no overlap.
     const double stepped = finishedMs(cl_);
+    if (pixels_) pixels_->waitUntilRead();
     normals_.run(source_->buffer());
     const double normalised = finishedMs(cl_);
     if (pyramid_) pyramid_->build(source_->buffer());

@@ -37,6 +37,42 @@ void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures&
                  [&](const void* mapped) { textures.upload(static_cast<const float*>(mapped)); });
 }
 
+const char* transferPathName(TransferPath path) {
+    switch (path) {
+    case TransferPath::Auto: return "auto";
+    case TransferPath::Map: return "map";
+    case TransferPath::PixelBuffer: return "pixel-buffer";
+    }
+    return "unknown";
+}
+
+TransferPath parseTransferPath(std::string_view name) {
+    for (TransferPath p : {TransferPath::Auto, TransferPath::Map, TransferPath::PixelBuffer})
+        if (name == transferPathName(p)) return p;
+    throw Error(str("unknown transfer path '", name, "' (known: auto, map, pixel-buffer)"));
+}
+
+TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested) {
+    if (requested != TransferPath::Auto) return requested;
+    const cl_bool unified = clGuard("asking the device about host memory", [&] {
+        return cl.device().getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
+    });
+    return unified ? TransferPath::PixelBuffer : TransferPath::Map;
+}
+
+void uploadFromPixelBuffer(ClContext& cl, const cl::Buffer& texels, PixelBuffer& pixels, SurfaceTextures& textures) {
+    const size_t bytes = surfaceBytes(texels, texelBytes(textures.config().format), textures, "uploadFromPixelBuffer");
+    if (bytes > pixels.bytes())
+        throw Error(str("uploadFromPixelBuffer: the pixel buffer holds ", pixels.bytes(), " bytes, the surface needs ", bytes));
+    // Mapping a buffer over host memory waits for its writers and makes that memory current
+    // (on a device sharing host memory it copies nothing); GL then reads it where it lies.
+    mapAndUpload(cl, texels, bytes, "uploadFromPixelBuffer", [&](const void* mapped) {
+        if (mapped != pixels.memory())
+            throw Error("uploadFromPixelBuffer: the device buffer does not lie over the pixel buffer's memory");
+        pixels.uploadSurface(textures);
+    });
+}
+
 void uploadPacked(ClContext& cl, const SurfacePacker& packer, SurfaceTextures& textures) {
     if (packer.format() != textures.config().format)
         throw Error(str("uploadPacked: ", surfaceFormatName(packer.format()), " texels for a ",

@@ -35,7 +35,8 @@ std::unique_ptr<HeightSource> makeGas(ClContext& cl, const GasPlanetConfig& conf
 } // namespace
 
 GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
-    : FieldEffect(cl, makeGas(cl, config), config.material, config.mipmaps, config.pyramid, config.format), config_(config),
+    : FieldEffect(cl, makeGas(cl, config), config.material,
+                  {.mipmaps = config.mipmaps, .pyramid = config.pyramid, .format = config.format, .transfer = config.transfer}), config_(config),
       gas_(static_cast<GasField&>(source())),
       colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed) {
     refresh(nowMs()); // again, now with the colours

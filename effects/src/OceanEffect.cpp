@@ -22,7 +22,8 @@ std::unique_ptr<HeightSource> makeOcean(ClContext& cl, const OceanEffectConfig& 
 } // namespace
 
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
-    : FieldEffect(cl, makeOcean(cl, config), config.material, config.mipmaps, config.pyramid, config.format),
+    : FieldEffect(cl, makeOcean(cl, config), config.material,
+                  {.mipmaps = config.mipmaps, .pyramid = config.pyramid, .format = config.format, .transfer = config.transfer}),
       ocean_(static_cast<OceanField&>(source())), exaggeration_(config.reliefExaggeration) {
     setDepthScale(physicalDepthScale());
     refresh(nowMs());

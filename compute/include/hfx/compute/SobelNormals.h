@@ -22,7 +22,9 @@ struct SobelConfig {
 
 class SobelNormals {
 public:
-    SobelNormals(ClContext& cl, const SobelConfig& config);
+    /// hostMemory: where the output lives (width * height float4 that outlive this object, e.g. a
+    /// persistently mapped GL pixel buffer), or null for a host-visible buffer of its own.
+    SobelNormals(ClContext& cl, const SobelConfig& config, void* hostMemory = nullptr);
 
     /// Enqueues the filter over `height` (width x height floats); does not wait.
     void run(const cl::Buffer& height);

@@ -9,6 +9,8 @@
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
+#include <string>
+
 namespace hfx {
 
 /// Wall-clock milliseconds of the last update, by stage (measured on the host around waits).
@@ -36,6 +38,8 @@ public:
     virtual const SurfaceTextures& textures() const = 0;
     virtual const SurfaceMaterial& material() const = 0;
     virtual StageTimes lastTimes() const = 0;
+    /// How the surface reaches GL, for start-up reports: "float16 texels, pixel-buffer path".
+    virtual std::string transferDescription() const = 0;
 };
 
 } // namespace hfx

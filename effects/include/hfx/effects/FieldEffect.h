@@ -11,19 +11,28 @@
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/SurfacePacker.h"
 #include "hfx/effects/Effect.h"
+#include "hfx/effects/FieldUpload.h"
 
 #include <memory>
 
 namespace hfx {
 
+/// How a field effect stores and moves its surface; each effect's configuration carries these.
+struct FieldOptions {
+    bool mipmaps = true;
+    /// Also build the maximum-height pyramid each update (for Technique::Hierarchical; the
+    /// field's sizes must be powers of two).
+    bool pyramid = false;
+    /// The surface textures' storage; other than Float32, a SurfacePacker packs the texels on
+    /// the device before the transfer.
+    SurfaceFormat format = SurfaceFormat::Float32;
+    TransferPath transfer = TransferPath::Auto; ///< resolved by chooseTransferPath
+};
+
 class FieldEffect : public Effect {
 public:
-    /// pyramid: also build the maximum-height pyramid each update (for Technique::Hierarchical;
-    /// the field's sizes must be powers of two). format: the surface textures' storage; other
-    /// than Float32, a SurfacePacker packs the texels on the device before the transfer.
     FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source, const SurfaceMaterial& material,
-                bool mipmaps = true, bool pyramid = false,
-                SurfaceFormat format = SurfaceFormat::Float32);
+                const FieldOptions& options = {});
 
     void update(double dt) override;
     void beginUpdate(double dt) override;
@@ -32,11 +41,14 @@ public:
     const SurfaceTextures& textures() const override { return *textures_[front_]; }
     const SurfaceMaterial& material() const override { return material_; }
     StageTimes lastTimes() const override { return times_; }
+    std::string transferDescription() const override;
 
     HeightSource& source() { return *source_; }
     const SobelNormals& normals() const { return normals_; }
     /// Changes the relief depth; the normals follow from the next update.
     void setDepthScale(float depthScale);
+    /// The path the surface takes to GL (never Auto: what Auto chose).
+    TransferPath transferPath() const { return transfer_; }
 
 protected:
     /// Runs the normals and the upload for whatever the source holds now.
@@ -58,6 +70,8 @@ private:
     ClContext& cl_;
     std::unique_ptr<HeightSource> source_;
     SurfaceMaterial material_;
+    TransferPath transfer_;
+    std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
     SobelNormals normals_;
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;

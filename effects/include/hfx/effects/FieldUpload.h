@@ -1,6 +1,11 @@
 #pragma once
-// Moves a compute buffer of float4 (normal.xyz, height) into SurfaceTextures: maps the
-// host-visible buffer (no read into fresh memory) and uploads from the mapping.
+// Moves a compute buffer of surface texels into SurfaceTextures, by one of two paths:
+// - Map: maps the host-visible buffer (no read into fresh memory) and uploads from the mapping;
+// - PixelBuffer: the device's buffer lies over a persistently mapped GL pixel buffer's memory
+//   (CL_MEM_USE_HOST_PTR), so its kernels write the GL buffer itself and the upload reads it
+//   with no copy of HFX's; a fence keeps the next frame's kernels from writing it while GL reads.
+// (A third path, cl_khr_gl_sharing with no host copy at all, needs a device that offers it
+// and a GL context shared with it; the devices HFX is tested on have none.)
 //
 // Owns nothing; maps and unmaps the buffer around the upload. Thread: the thread that owns
 // both the ClContext and the current GL context.
@@ -8,9 +13,30 @@
 #include "hfx/compute/ClContext.h"
 #include "hfx/compute/MaxPyramid.h"
 #include "hfx/compute/SurfacePacker.h"
+#include "hfx/core/PixelBuffer.h"
 #include "hfx/core/SurfaceTextures.h"
 
+#include <string_view>
+
 namespace hfx {
+
+enum class TransferPath {
+    Auto,        ///< PixelBuffer where the device shares host memory with the CPU, else Map
+    Map,         ///< device buffer mapped, GL uploads from the mapping (client memory)
+    PixelBuffer, ///< device writes a persistently mapped GL pixel buffer, GL uploads from it
+};
+/// "auto", "map", "pixel-buffer".
+const char* transferPathName(TransferPath path);
+/// The inverse of transferPathName; throws hfx::Error naming the known paths.
+TransferPath parseTransferPath(std::string_view name);
+/// The path `requested` resolves to on this device: Auto picks PixelBuffer when the device
+/// reports host-unified memory (CPU devices, integrated GPUs: the kernels' writes land in the GL
+/// buffer directly), else Map (a discrete GPU writing system memory over the bus would be slow).
+TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested);
+
+/// PixelBuffer path: waits for the queue's work on `texels` — a buffer created over
+/// `pixels.memory()`, in the textures' format's layout — then uploads from the pixel buffer.
+void uploadFromPixelBuffer(ClContext& cl, const cl::Buffer& texels, PixelBuffer& pixels, SurfaceTextures& textures);
 
 /// Waits for the queue's work on `normalHeight`, then uploads it. The buffer must hold
 /// textures.config().width * height float4.

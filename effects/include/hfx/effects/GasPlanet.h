@@ -39,6 +39,7 @@ struct GasPlanetConfig {
     /// Storage of the surface: float16 halves its memory and transfer, unorm8 quarters them
     /// (docs/ACCURACY.md: what each costs). The packing runs on the device.
     SurfaceFormat format = SurfaceFormat::Float32;
+    TransferPath transfer = TransferPath::Auto; ///< how the surface reaches GL (FieldUpload.h)
     void validate() const;
 };
 

@@ -33,6 +33,9 @@ public:
     void update(double dt) override;
     const SurfaceTextures& textures() const override { return textures_; }
     const SurfaceMaterial& material() const override { return config_.material; }
+    std::string transferDescription() const override {
+        return std::string(surfaceFormatName(textures_.config().format)) + " texels, uploaded once";
+    }
     StageTimes lastTimes() const override { return {}; }
 
 private:
