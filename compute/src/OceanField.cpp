@@ -164,8 +164,8 @@ OceanField::OceanField(ClContext& cl, const OceanConfig& config)
     clGuard("creating the ocean", [&] {
         h0Buffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, n * sizeof(cl_float2));
         omegaBuffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, n * sizeof(float));
-        spectrum_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, n * sizeof(cl_float2));
-        field_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, n * sizeof(cl_float2));
+        spectrum_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, size_t(N / 2 + 1) * N * sizeof(cl_float2));
+        field_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, n * sizeof(float));
         height_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, n * sizeof(float));
         spectrumKernel_ = cl.kernel("ocean.cl", "ocean_spectrum");
         heightKernel_ = cl.kernel("ocean.cl", "ocean_height");
@@ -173,13 +173,18 @@ OceanField::OceanField(ClContext& cl, const OceanConfig& config)
     });
     acquireLibrary(cl.programCache());
     try {
-        // An out-of-place complex 2D inverse transform without the 1/N^2 scale: the height is
-        // the plain sum of the modes. Baked now, so no frame pays for compiling it.
+        // An out-of-place 2D inverse transform from the Hermitian half spectrum (kx index
+        // 0..N/2, rows of N/2 + 1) to real heights, without the 1/N^2 scale: the height is the
+        // plain sum of the modes. Baked now, so no frame pays for compiling it.
         const size_t lengths[2] = {size_t(N), size_t(N)};
+        size_t inStrides[2] = {1, size_t(N / 2 + 1)}, outStrides[2] = {1, size_t(N)};
         checkFft(clfftCreateDefaultPlan(&plan_->handle, cl.context()(), CLFFT_2D, lengths), "creating the plan");
         checkFft(clfftSetPlanPrecision(plan_->handle, CLFFT_SINGLE), "setting the precision");
-        checkFft(clfftSetLayout(plan_->handle, CLFFT_COMPLEX_INTERLEAVED, CLFFT_COMPLEX_INTERLEAVED), "setting the layout");
+        checkFft(clfftSetLayout(plan_->handle, CLFFT_HERMITIAN_INTERLEAVED, CLFFT_REAL), "setting the layout");
         checkFft(clfftSetResultLocation(plan_->handle, CLFFT_OUTOFPLACE), "setting out-of-place");
+        checkFft(clfftSetPlanInStride(plan_->handle, CLFFT_2D, inStrides), "setting the input strides");
+        checkFft(clfftSetPlanOutStride(plan_->handle, CLFFT_2D, outStrides), "setting the output strides");
+        checkFft(clfftSetPlanDistance(plan_->handle, size_t(N / 2 + 1) * N, size_t(N) * N), "setting the distances");
         checkFft(clfftSetPlanScale(plan_->handle, CLFFT_BACKWARD, 1.0f), "setting the scale");
         cl_command_queue queue = cl.queue()();
         checkFft(clfftBakePlan(plan_->handle, 1, &queue, nullptr, nullptr), "baking the plan");
@@ -243,7 +248,7 @@ void OceanField::compute() {
         spectrumKernel_.setArg(2, spectrum_);
         spectrumKernel_.setArg(3, N);
         spectrumKernel_.setArg(4, t);
-        q.enqueueNDRangeKernel(spectrumKernel_, cl::NullRange, cl::NDRange(N, N));
+        q.enqueueNDRangeKernel(spectrumKernel_, cl::NullRange, cl::NDRange(N / 2 + 1, N));
         cl_command_queue queue = q();
         cl_mem in = spectrum_(), out = field_();
         checkFft(clfftEnqueueTransform(plan_->handle, CLFFT_BACKWARD, 1, &queue, 0, nullptr, nullptr, &in, &out,

@@ -51,9 +51,9 @@ public:
     double time() const { return time_; }
 
     const cl::Buffer& buffer() const override { return height_; }
-    /// The complex field after the inverse FFT: real part = height in metres-ish units of the
-    /// spectrum, imaginary part ~ 0 (a check of the Hermitian symmetry).
-    const cl::Buffer& complexField() const { return field_; }
+    /// The inverse transform's sum of the modes, N x N floats (height in the spectrum's units,
+    /// before heightScale() maps it into [0,1]).
+    const cl::Buffer& rawHeight() const { return field_; }
     int width() const override { return config_.size; }
     int height() const override { return config_.size; }
     bool periodic() const override { return true; }
