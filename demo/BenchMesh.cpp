@@ -59,9 +59,12 @@ int runBenchMesh(int width, int height, int frames) {
     ClContext cl;
     constexpr int N = 1024;
     constexpr float kSize = 8.0f;
-    OceanEffect ocean(cl, {.ocean = {.size = N}});
-    const SurfaceTextures& textures = ocean.textures();
-    const float depthScale = ocean.material().depthScale;
+    // One ocean per surface format, all from the same seed: the same heights, stored three ways.
+    std::vector<std::unique_ptr<OceanEffect>> oceans;
+    for (SurfaceFormat format : kSurfaceFormats)
+        oceans.push_back(std::make_unique<OceanEffect>(cl, OceanEffectConfig{.ocean = {.size = N}, .format = format}));
+    const SurfaceTextures& textures = oceans.front()->textures();
+    const float depthScale = oceans.front()->material().depthScale;
 
     // The same samples as vertices: texel (i, j) at its centre, pushed down by (1 - h) depth units
     // (the plane's texture unit is kSize world units), normal turned from tangent to world space.
@@ -101,21 +104,30 @@ int runBenchMesh(int width, int height, int frames) {
     DirectionalLight light;
     light.direction = {-0.35f, 0.5f, -0.8f};
     SurfaceRenderer renderer;
-    SurfaceMaterial pom = ocean.material();
+    SurfaceMaterial pom = oceans.front()->material();
     SurfaceMaterial unshadowed = pom;
     unshadowed.shadows = false;
     RenderTarget target(width, height);
     target.bind();
-    std::vector<double> pomMs, plainMs, meshMs;
+    // Per format: POM with and without shadows; then the mesh. Interleaved frame by frame, so a
+    // noisy neighbour hits every side alike.
+    std::vector<std::vector<double>> pomMs(oceans.size()), plainMs(oceans.size());
+    std::vector<double> meshMs;
     for (int frame = -2; frame < frames; ++frame) {
-        const double p = timeMs([&] {
-            target.clear();
-            renderer.draw(quad, glm::mat4(1.0f), textures, pom, camera, light);
-        });
-        const double q = timeMs([&] {
-            target.clear();
-            renderer.draw(quad, glm::mat4(1.0f), textures, unshadowed, camera, light);
-        });
+        for (size_t f = 0; f < oceans.size(); ++f) {
+            const double p = timeMs([&] {
+                target.clear();
+                renderer.draw(quad, glm::mat4(1.0f), oceans[f]->textures(), pom, camera, light);
+            });
+            const double q = timeMs([&] {
+                target.clear();
+                renderer.draw(quad, glm::mat4(1.0f), oceans[f]->textures(), unshadowed, camera, light);
+            });
+            if (frame >= 0) {
+                pomMs[f].push_back(p);
+                plainMs[f].push_back(q);
+            }
+        }
         const double m = timeMs([&] {
             target.clear();
             glEnable(GL_DEPTH_TEST);
@@ -127,27 +139,26 @@ int runBenchMesh(int width, int height, int frames) {
             glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
             glBindVertexArray(0);
         });
-        if (frame < 0) continue;
-        pomMs.push_back(p);
-        plainMs.push_back(q);
-        meshMs.push_back(m);
+        if (frame >= 0) meshMs.push_back(m);
     }
-    // Memory each side needs on the GPU: the surface texture (RGBA32F) and the albedo (RGBA8)
-    // with their mip chains and the quad for POM; positions, normals and indices for the mesh.
+    // Memory each side needs on the GPU: the surface texture and the albedo (RGBA8) with their
+    // mip chains and the quad for POM; positions, normals and indices for the mesh.
     const double mipFactor = 4.0 / 3.0;
-    const double pomBytes = double(N) * N * (16 + 4) * mipFactor + 4 * sizeof(Vertex) + 6 * sizeof(uint32_t);
+    auto pomBytes = [&](SurfaceFormat f) {
+        return double(N) * N * double(texelBytes(f) + 4) * mipFactor + 4 * sizeof(Vertex) + 6 * sizeof(uint32_t);
+    };
     const double meshBytes = double(vertices.size()) * sizeof(MeshVertex) + double(indices.size()) * sizeof(uint32_t);
-    const double pt = median(pomMs), qt = median(plainMs), mt = median(meshMs);
+    const double mt = median(meshMs);
     std::printf("hfx-demo bench-mesh: %dx%d, %d frames (medians), %s\n", width, height, frames, gl->description().c_str());
-    std::printf("| side | draw ms | memory MiB |\n|---|---|---|\n");
-    std::printf("| POM quad, soft shadows | %.1f | %.1f |\n", pt, mib(pomBytes));
-    std::printf("| POM quad, no shadows | %.1f | %.1f |\n", qt, mib(pomBytes));
-    const double halfBytes = double(N) * N * (8 + 4) * mipFactor + 4 * sizeof(Vertex) + 6 * sizeof(uint32_t);
-    std::printf("| (POM with a half-float surface: memory) | | %.1f |\n", mib(halfBytes));
-    std::printf("| mesh, %zu triangles | %.1f | %.1f |\n", indices.size() / 3, mt, mib(meshBytes));
-    std::printf("mesh / POM draw time: %.2fx (%.2fx against POM without shadows); mesh / POM memory: %.2fx "
-                "(%.2fx with a half-float surface)\n",
-                mt / pt, mt / qt, meshBytes / pomBytes, meshBytes / halfBytes);
+    std::printf("| side | draw ms (soft shadows / none) | memory MiB | mesh / side: time (shadows / none) | mesh / side: "
+                "memory |\n|---|---|---|---|---|\n");
+    for (size_t f = 0; f < oceans.size(); ++f) {
+        const SurfaceFormat format = kSurfaceFormats[f];
+        const double pt = median(pomMs[f]), qt = median(plainMs[f]);
+        std::printf("| POM quad, %s surface | %.1f / %.1f | %.1f | %.2fx / %.2fx | %.2fx |\n", surfaceFormatName(format), pt,
+                    qt, mib(pomBytes(format)), mt / pt, mt / qt, meshBytes / pomBytes(format));
+    }
+    std::printf("| mesh, %zu triangles | %.1f | %.1f | | |\n", indices.size() / 3, mt, mib(meshBytes));
     return 0;
 }
 
