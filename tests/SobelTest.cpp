@@ -103,22 +103,37 @@ TEST_F(Sobel, ClampedEdgesOfARampKeepTheInteriorExact) {
 }
 
 TEST_F(Sobel, KernelMatchesSharedCpuMath) {
-    constexpr int N = 32;
-    std::vector<float> heights(N * N);
-    for (int i = 0; i < N * N; ++i) heights[i] = float((i * 7919) % 101) / 100.0f; // rough field
-    const auto out = run(heights, {.width = N, .height = N, .depthScale = 0.03f});
-    auto at = [&](int x, int y) { return heights[((y + N) % N) * N + (x + N) % N]; };
-    for (int y = 0; y < N; ++y)
-        for (int x = 0; x < N; ++x) {
-            float expected[3];
-            hfx_normal_from_slopes(
-                hfx_sobel_dx(at(x - 1, y - 1), at(x + 1, y - 1), at(x - 1, y), at(x + 1, y),
-                             at(x - 1, y + 1), at(x + 1, y + 1)),
-                hfx_sobel_dy(at(x - 1, y - 1), at(x, y - 1), at(x + 1, y - 1), at(x - 1, y + 1),
-                             at(x, y + 1), at(x + 1, y + 1)),
-                0.03f * N, 0.03f * N, expected);
-            for (int c = 0; c < 3; ++c) ASSERT_NEAR(out[y * N + x].s[c], expected[c], 1e-6);
-        }
+    // Widths that are a multiple of 4 run the four-texels-per-item kernel, others the one-texel
+    // kernel: both, in every edge mode, against the same host math.
+    struct Case {
+        int W, H;
+        bool wrap, clampV;
+    };
+    for (const Case k : {Case{32, 32, true, false}, Case{30, 17, true, false}, Case{36, 12, false, false},
+                         Case{22, 9, false, false}, Case{40, 10, true, true}, Case{26, 11, true, true}}) {
+        const int W = k.W, H = k.H;
+        std::vector<float> heights(W * H);
+        for (int i = 0; i < W * H; ++i) heights[i] = float((i * 7919) % 101) / 100.0f; // rough field
+        const auto out = run(heights, {.width = W, .height = H, .depthScale = 0.03f, .wrapEdges = k.wrap, .clampV = k.clampV});
+        auto at = [&](int x, int y) {
+            x = k.wrap ? (x + W) % W : std::clamp(x, 0, W - 1);
+            y = k.wrap && !k.clampV ? (y + H) % H : std::clamp(y, 0, H - 1);
+            return heights[y * W + x];
+        };
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                float expected[3];
+                hfx_normal_from_slopes(
+                    hfx_sobel_dx(at(x - 1, y - 1), at(x + 1, y - 1), at(x - 1, y), at(x + 1, y),
+                                 at(x - 1, y + 1), at(x + 1, y + 1)),
+                    hfx_sobel_dy(at(x - 1, y - 1), at(x, y - 1), at(x + 1, y - 1), at(x - 1, y + 1),
+                                 at(x, y + 1), at(x + 1, y + 1)),
+                    0.03f * W, 0.03f * H, expected);
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(out[y * W + x].s[c], expected[c], 1e-6) << W << "x" << H << " at " << x << "," << y;
+                ASSERT_EQ(out[y * W + x].s[3], heights[y * W + x]) << W << "x" << H;
+            }
+    }
 }
 
 TEST_F(Sobel, LongitudeLatitudeGridWrapsUAndClampsV) {

@@ -102,6 +102,25 @@ void BM_Sobel(benchmark::State& state) {
             [&] { benchmark::DoNotOptimize(sobelReference(heights, n, 0.05f)); });
 }
 
+/// The two Sobel kernels side by side on the same input: one texel per work-item (what widths
+/// that are not a multiple of 4 run) and four (SobelNormals' choice otherwise).
+void BM_SobelKernel(benchmark::State& state) {
+    const int n = int(state.range(0)), perItem = int(state.range(1));
+    const auto heights = randomHeights(n);
+    cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
+                     const_cast<float*>(heights.data()));
+    cl::Buffer output(cl().context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, heights.size() * 16);
+    cl::Kernel kernel = cl().kernel("sobel.cl", perItem == 4 ? "sobel4" : "sobel");
+    kernel.setArg(0, input);
+    kernel.setArg(1, output);
+    kernel.setArg(2, n);
+    kernel.setArg(3, n);
+    kernel.setArg(4, 0.05f * n);
+    kernel.setArg(5, 0.05f * n);
+    measure(state, [&] { cl().queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n / perItem, n)); },
+            20.0 * n * n, nullptr);
+}
+
 void BM_Waves(benchmark::State& state) {
     const int n = int(state.range(0));
     WaveField waves(cl(), {.size = n});
@@ -181,6 +200,7 @@ void BM_Ocean(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Sobel)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SobelKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Decals)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
