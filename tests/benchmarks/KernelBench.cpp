@@ -121,6 +121,24 @@ void BM_SobelKernel(benchmark::State& state) {
             20.0 * n * n, nullptr);
 }
 
+/// The gas's pressure sweep (walls in y) side by side: one cell per work-item and four.
+void BM_GasPressureKernel(benchmark::State& state) {
+    const int n = int(state.range(0)), perItem = int(state.range(1));
+    const auto p0 = randomHeights(n, 2), div = randomHeights(n, 3);
+    auto buffer = [&](const std::vector<float>& v) {
+        return cl::Buffer(cl().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, v.size() * 4, const_cast<float*>(v.data()));
+    };
+    cl::Buffer p = buffer(p0), d = buffer(div), out = buffer(p0);
+    cl::Kernel kernel = cl().kernel("gas.cl", perItem == 4 ? "pressure4" : "pressure", "-DSOLID_Y=1");
+    kernel.setArg(0, p);
+    kernel.setArg(1, d);
+    kernel.setArg(2, out);
+    kernel.setArg(3, n);
+    kernel.setArg(4, n);
+    measure(state, [&] { cl().queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n / perItem, n)); },
+            12.0 * n * n, nullptr);
+}
+
 void BM_Waves(benchmark::State& state) {
     const int n = int(state.range(0));
     WaveField waves(cl(), {.size = n});
@@ -206,6 +224,7 @@ BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMill
 BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Noise)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Ocean)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 
 } // namespace

@@ -10,19 +10,19 @@
    x is periodic. y is periodic, or solid: a wall lies on the y-faces of row 0 (which, on the
    wrapped grid, is also the top edge of row H-1), where v = 0 and pressure is Neumann. */
 
-HFX_FN int hfx_gas_wrap(int i, int n) {
+HFX_FN_INLINE int hfx_gas_wrap(int i, int n) {
     if (i >= 0 && i < n) return i; /* the common case costs no integer division */
     int m = i % n;
     return m < 0 ? m + n : m;
 }
 
 /* A neighbour's index, at most one step outside [0, n): a select, not an integer division. */
-HFX_FN int hfx_gas_step(int i, int n) { return i < 0 ? i + n : (i >= n ? i - n : i); }
+HFX_FN_INLINE int hfx_gas_step(int i, int n) { return i < 0 ? i + n : (i >= n ? i - n : i); }
 
 /* The sampling position of a field stored at (i + ox, j + oy), for a point (x, y). Solid in y:
    y is clamped to the stored rows inside the walls, so nothing is read across them (rows of v
    reach the top wall, row H, which wraps to the wall row 0; other fields stop at H-1). */
-HFX_FN void hfx_gas_position(int H, float x, float y, float ox, float oy, int solidY, float* fx,
+HFX_FN_INLINE void hfx_gas_position(int H, float x, float y, float ox, float oy, int solidY, float* fx,
                              float* fy) {
     *fx = x - ox;
     *fy = y - oy;
@@ -30,7 +30,7 @@ HFX_FN void hfx_gas_position(int H, float x, float y, float ox, float oy, int so
 }
 
 /* Bilinear sample of a field stored at (i + ox, j + oy), at point (x, y). */
-HFX_FN float hfx_gas_sample(HFX_GLOBAL const float* f, int W, int H, float x, float y, float ox,
+HFX_FN_INLINE float hfx_gas_sample(HFX_GLOBAL const float* f, int W, int H, float x, float y, float ox,
                             float oy, int solidY) {
     float fx, fy;
     hfx_gas_position(H, x, y, ox, oy, solidY, &fx, &fy);
@@ -43,7 +43,7 @@ HFX_FN float hfx_gas_sample(HFX_GLOBAL const float* f, int W, int H, float x, fl
 }
 
 /* Smallest and largest of the 4 stored values around (x, y): MacCormack's limiter. */
-HFX_FN void hfx_gas_bounds(HFX_GLOBAL const float* f, int W, int H, float x, float y, float ox,
+HFX_FN_INLINE void hfx_gas_bounds(HFX_GLOBAL const float* f, int W, int H, float x, float y, float ox,
                            float oy, int solidY, float* lo, float* hi) {
     float fx, fy;
     hfx_gas_position(H, x, y, ox, oy, solidY, &fx, &fy);
@@ -56,7 +56,7 @@ HFX_FN void hfx_gas_bounds(HFX_GLOBAL const float* f, int W, int H, float x, flo
 
 /* Where the value now at grid point (i + ox, j + oy) came from dt ago: traced back along the
    velocity with the midpoint rule. */
-HFX_FN void hfx_gas_departure(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H,
+HFX_FN_INLINE void hfx_gas_departure(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H,
                               int i, int j, float ox, float oy, float dt, int solidY, float* px,
                               float* py) {
     float x = (float)i + ox, y = (float)j + oy;
@@ -70,7 +70,7 @@ HFX_FN void hfx_gas_departure(HFX_GLOBAL const float* u, HFX_GLOBAL const float*
 }
 
 /* Semi-Lagrangian advection of the field stored at (i + ox, j + oy). */
-HFX_FN float hfx_gas_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
+HFX_FN_INLINE float hfx_gas_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
                             HFX_GLOBAL const float* src, int W, int H, int i, int j, float ox,
                             float oy, float dt, int solidY) {
     float px, py;
@@ -81,7 +81,7 @@ HFX_FN float hfx_gas_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v
 /* MacCormack's correction (Selle et al. 2008): forward = advect(src, dt), backward =
    advect(forward, -dt); the estimate forward + (src - backward) / 2 is second order, and is
    clamped to the values around the departure point so it adds no new extrema. */
-HFX_FN float hfx_gas_maccormack(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
+HFX_FN_INLINE float hfx_gas_maccormack(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
                                 HFX_GLOBAL const float* src, HFX_GLOBAL const float* forward,
                                 HFX_GLOBAL const float* backward, int W, int H, int i, int j,
                                 float ox, float oy, float dt, int solidY) {
@@ -94,7 +94,7 @@ HFX_FN float hfx_gas_maccormack(HFX_GLOBAL const float* u, HFX_GLOBAL const floa
 }
 
 /* Divergence of cell (i, j): outflow through its four faces. */
-HFX_FN float hfx_gas_divergence(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H,
+HFX_FN_INLINE float hfx_gas_divergence(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H,
                                 int i, int j) {
     int ir = hfx_gas_step(i + 1, W), jt = hfx_gas_step(j + 1, H);
     return (u[j * W + ir] - u[j * W + i]) + (v[jt * W + i] - v[j * W + i]);
@@ -102,7 +102,7 @@ HFX_FN float hfx_gas_divergence(HFX_GLOBAL const float* u, HFX_GLOBAL const floa
 
 /* One Jacobi sweep of the pressure Poisson equation sum(p_n - p) = div at cell (i, j);
    across a wall the neighbour is left out (Neumann). */
-HFX_FN float hfx_gas_pressure_jacobi(HFX_GLOBAL const float* p, HFX_GLOBAL const float* div, int W,
+HFX_FN_INLINE float hfx_gas_pressure_jacobi(HFX_GLOBAL const float* p, HFX_GLOBAL const float* div, int W,
                                      int H, int i, int j, int solidY) {
     int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
     int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
@@ -115,7 +115,7 @@ HFX_FN float hfx_gas_pressure_jacobi(HFX_GLOBAL const float* p, HFX_GLOBAL const
 
 /* One Jacobi sweep of implicit viscosity (1 - a L) x = x0 on a face field (periodic stencil;
    solid walls keep v = 0 on row 0, handled by the caller). */
-HFX_FN float hfx_gas_diffuse_jacobi(HFX_GLOBAL const float* x, HFX_GLOBAL const float* x0, int W,
+HFX_FN_INLINE float hfx_gas_diffuse_jacobi(HFX_GLOBAL const float* x, HFX_GLOBAL const float* x0, int W,
                                     int H, int i, int j, float a) {
     int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
     int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
@@ -124,7 +124,7 @@ HFX_FN float hfx_gas_diffuse_jacobi(HFX_GLOBAL const float* x, HFX_GLOBAL const 
 }
 
 /* Cell-centred vorticity dv/dx - du/dy from the face velocities around cell (i, j). */
-HFX_FN float hfx_gas_curl(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H, int i,
+HFX_FN_INLINE float hfx_gas_curl(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H, int i,
                           int j) {
     int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
     int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
@@ -135,7 +135,7 @@ HFX_FN float hfx_gas_curl(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, 
 
 /* Vorticity confinement (Fedkiw et al. 2001) at cell (i, j): eps * (N x w), N = grad|w| / |grad|w||.
    Writes the force's x and y. */
-HFX_FN void hfx_gas_confinement(HFX_GLOBAL const float* curl, int W, int H, int i, int j, float eps,
+HFX_FN_INLINE void hfx_gas_confinement(HFX_GLOBAL const float* curl, int W, int H, int i, int j, float eps,
                                 float* force) {
     int il = hfx_gas_step(i - 1, W), ir = hfx_gas_step(i + 1, W);
     int jb = hfx_gas_step(j - 1, H), jt = hfx_gas_step(j + 1, H);
