@@ -2,6 +2,7 @@
 
 #include "hfx/compute/ProgramCache.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -78,6 +79,32 @@ TEST(ProgramCache, DisabledOrUnwritableCachesStoreNothingAndNeverThrow) {
     EXPECT_FALSE(blocked.store("key", kBinary));
     EXPECT_FALSE(blocked.load("key").has_value());
     fs::remove(blocker);
+}
+
+TEST(ProgramCache, KeepsUnderItsSizeByDroppingTheLeastRecentlyUsed) {
+    const ProgramCache::Binary binary(1000, 7);
+    const fs::path folder = freshFolder("pruned");
+    const std::uintmax_t entryBytes = [&] {
+        const ProgramCache probe(freshFolder("pruned_probe"));
+        probe.store("k0", binary);
+        return fs::file_size(probe.entryPath("k0"));
+    }();
+    const ProgramCache cache(folder, 3 * entryBytes); // room for three entries
+    // Modification times an hour apart, oldest first, so the order does not rest on the clock's
+    // resolution. Then k0, the oldest, is loaded: that makes it the most recently used.
+    const auto start = fs::file_time_type::clock::now() - std::chrono::hours(10);
+    for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(cache.store("k" + std::to_string(k), binary));
+        fs::last_write_time(cache.entryPath("k" + std::to_string(k)), start + std::chrono::hours(k));
+    }
+    ASSERT_TRUE(cache.load("k0").has_value());
+    ASSERT_TRUE(cache.store("k3", binary)); // four entries: the least recently used, k1, goes
+    EXPECT_FALSE(fs::exists(cache.entryPath("k1"))) << "the least recently used entry was kept";
+    for (const char* kept : {"k0", "k2", "k3"}) EXPECT_TRUE(fs::exists(cache.entryPath(kept))) << kept;
+    // An entry larger than the whole cache is still kept alone rather than refused.
+    const ProgramCache tiny(freshFolder("pruned_tiny"), 10);
+    ASSERT_TRUE(tiny.store("big", binary));
+    EXPECT_TRUE(tiny.load("big").has_value());
 }
 
 TEST(ProgramCache, DefaultFolderFollowsTheEnvironment) {

@@ -1,5 +1,6 @@
 #include "hfx/compute/ProgramCache.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -37,7 +38,8 @@ bool getU64(std::string_view& in, std::uint64_t& v) {
 
 } // namespace
 
-ProgramCache::ProgramCache(std::filesystem::path folder) : folder_(std::move(folder)) {}
+ProgramCache::ProgramCache(std::filesystem::path folder, std::uintmax_t maxBytes)
+    : folder_(std::move(folder)), maxBytes_(maxBytes) {}
 
 std::filesystem::path ProgramCache::defaultFolder() {
     if (const char* env = std::getenv("HFX_KERNEL_CACHE"); env && *env) {
@@ -80,6 +82,8 @@ std::optional<ProgramCache::Binary> ProgramCache::load(const std::string& key, b
     Binary binary(in.begin(), in.begin() + binarySize);
     in.remove_prefix(binarySize);
     if (!getU64(in, checksum) || !in.empty() || checksum != fnv1a(binary.data(), binary.size())) return reject();
+    std::error_code ec; // marks the entry as used, for prune(); a read-only cache still loads
+    std::filesystem::last_write_time(entryPath(key), std::filesystem::file_time_type::clock::now(), ec);
     return binary;
 }
 
@@ -114,7 +118,36 @@ bool ProgramCache::store(const std::string& key, const Binary& binary) const {
         std::filesystem::remove(temp, ec);
         return false;
     }
+    prune(final);
     return true;
+}
+
+void ProgramCache::prune(const std::filesystem::path& keep) const {
+    struct Entry {
+        std::filesystem::path path;
+        std::filesystem::file_time_type used;
+        std::uintmax_t bytes;
+    };
+    std::vector<Entry> entries;
+    std::uintmax_t total = 0;
+    std::error_code ec;
+    for (std::filesystem::directory_iterator it(folder_, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::filesystem::path& p = it->path();
+        if (p.extension() != ".clbin" || !it->is_regular_file(ec)) continue;
+        std::error_code e1, e2;
+        const auto bytes = it->file_size(e1);
+        const auto used = it->last_write_time(e2);
+        if (e1 || e2) continue;
+        entries.push_back({p, used, bytes});
+        total += bytes;
+    }
+    if (total <= maxBytes_) return;
+    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.used < b.used; });
+    for (const Entry& e : entries) {
+        if (total <= maxBytes_) break;
+        if (e.path == keep) continue;
+        if (std::filesystem::remove(e.path, ec)) total -= e.bytes;
+    }
 }
 
 } // namespace hfx

@@ -8,6 +8,8 @@
 // stale or colliding entry is never mistaken for a match. Entries are written to a temporary
 // file and renamed into place, so concurrent processes never see half an entry.
 // A cache never throws: an unreadable folder or entry is a miss, an unwritable one a lost save.
+// It stays under a size: after a save, the least recently used entries (by modification time,
+// which a load refreshes) go until the rest fit — every edit of a kernel makes a new entry.
 //
 // Thread: one ProgramCache per ClContext; two processes may share a folder.
 
@@ -23,8 +25,11 @@ class ProgramCache {
 public:
     using Binary = std::vector<unsigned char>;
 
+    static constexpr std::uintmax_t kDefaultMaxBytes = 64u << 20;
+
     /// A cache in `folder`, created on the first save; an empty folder is a disabled cache.
-    explicit ProgramCache(std::filesystem::path folder = {});
+    /// maxBytes: the entries' total size it keeps after a save (at least the newest entry).
+    explicit ProgramCache(std::filesystem::path folder = {}, std::uintmax_t maxBytes = kDefaultMaxBytes);
 
     /// The folder named by HFX_KERNEL_CACHE, else $XDG_CACHE_HOME/hfx/kernels, else
     /// $HOME/.cache/hfx/kernels; empty (no cache) when HFX_KERNEL_CACHE is "off" or "0" or no
@@ -35,7 +40,7 @@ public:
     const std::filesystem::path& folder() const { return folder_; }
 
     /// The binary stored under `key`, or nothing when there is none or the entry is damaged or
-    /// belongs to another key (`damaged` is then set).
+    /// belongs to another key (`damaged` is then set). A hit marks the entry as just used.
     std::optional<Binary> load(const std::string& key, bool* damaged = nullptr) const;
     /// Stores `binary` under `key`; false when the folder or file cannot be written.
     bool store(const std::string& key, const Binary& binary) const;
@@ -43,7 +48,9 @@ public:
     std::filesystem::path entryPath(const std::string& key) const;
 
 private:
+    void prune(const std::filesystem::path& keep) const;
     std::filesystem::path folder_;
+    std::uintmax_t maxBytes_;
 };
 
 } // namespace hfx
