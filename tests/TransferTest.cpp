@@ -64,6 +64,21 @@ TEST_F(Transfer, AutoPicksThePixelBufferWhereTheDeviceSharesHostMemory) {
     EXPECT_NE(messageOf([] { parseTransferPath("dma"); }).find("known: auto, map, pixel-buffer"), std::string::npos);
 }
 
+TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {
+    // The kernels of an overlapped update write the pixel buffer's memory, which GL frees with
+    // the effect: the destructor must wait for them. A marker enqueued behind the update's
+    // kernels (in-order queue) is complete the moment the destructor returns only if it waited;
+    // a 1024² step takes milliseconds, the destructor alone microseconds.
+    cl::Event marker;
+    {
+        WaterEffect water(cl(), {.waves = {.size = 1024}, .transfer = TransferPath::PixelBuffer});
+        water.beginUpdate(0.1);
+        cl().queue().enqueueMarkerWithWaitList(nullptr, &marker);
+    }
+    EXPECT_EQ(marker.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE)
+        << "the effect's memory went while its kernels still ran";
+}
+
 TEST_F(Transfer, PixelBufferUploadsWhatIsWrittenIntoItsMemory) {
     SurfaceTextures textures({.width = 4, .height = 2, .mipmaps = false, .format = SurfaceFormat::Unorm8});
     PixelBuffer pixels(4 * 2 * 4);

@@ -58,6 +58,15 @@ FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
     refresh(nowMs());
 }
 
+FieldEffect::~FieldEffect() {
+    if (!pixels_) return; // device buffers of their own outlive their kernels by reference counts
+    try {
+        cl_.queue().finish();
+    } catch (...) {
+        // Destructors never throw; a failed finish leaves nothing running to wait for.
+    }
+}
+
 std::string FieldEffect::transferDescription() const {
     return str(surfaceFormatName(textures_[0]->config().format), " texels", packer_ ? " packed on the device" : "",
                ", ", transferPathName(transfer_), " path");

@@ -33,6 +33,9 @@ class FieldEffect : public Effect {
 public:
     FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source, const SurfaceMaterial& material,
                 const FieldOptions& options = {});
+    /// Waits for device work still writing the pixel buffer (an overlapped update in flight)
+    /// before the buffer's memory goes.
+    ~FieldEffect() override;
 
     void update(double dt) override;
     void beginUpdate(double dt) override;
