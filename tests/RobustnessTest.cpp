@@ -27,15 +27,6 @@ namespace {
 
 class Robustness : public DeviceTest {};
 
-std::string messageOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
-
 TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
     WaterEffect water(cl(), {.waves = {.size = 64}});

@@ -1,3 +1,5 @@
+#include "support/Fixtures.h"
+
 #include "hfx/core/Error.h"
 #include "hfx/core/SurfaceMaps.h"
 
@@ -5,17 +7,8 @@
 
 #include <cmath>
 
-namespace hfx {
+namespace hfx::test {
 namespace {
-
-std::string messageOf(auto&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 TEST(SurfaceMaps, HeightsAreFlippedSoRowZeroIsTheBottom) {
     const Image image{2, 3, 1, {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f}}; // top row first
@@ -59,4 +52,4 @@ TEST(SurfaceMaps, BadNormalMapsAreRefused) {
 }
 
 } // namespace
-} // namespace hfx
+} // namespace hfx::test

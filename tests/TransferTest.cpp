@@ -15,15 +15,6 @@ namespace {
 
 class Transfer : public DeviceTest {};
 
-std::string messageOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
-
 TEST_F(Transfer, PixelBufferAndMapPathsGiveTheSameTexturesInEveryFormat) {
     for (SurfaceFormat format : kSurfaceFormats) {
         WaterEffect mapped(cl(), {.waves = {.size = 64}, .format = format, .transfer = TransferPath::Map});

@@ -43,6 +43,15 @@ GlContext* acquireGl() {
 } // namespace
 
 
+std::string messageOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
 void ClTest::SetUp() {
     if (!acquireCl()) GTEST_SKIP() << "no OpenCL device: " << clError;
 }

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +39,9 @@ protected:
 /// Level 0 of a surface texture as GL holds it: width*height float4 (normal.xyz, height), row 0
 /// at v = 0. Needs the texture's context current.
 std::vector<float> readSurface(const SurfaceTextures& textures);
+
+/// The message of the hfx::Error that `f` throws, or "(no error)".
+std::string messageOf(const std::function<void()>& f);
 
 /// Folder for images a failing test leaves behind (actual, expected, diff).
 std::string outputPath(const std::string& fileName);
