@@ -36,7 +36,7 @@ __kernel void sobel(__global const float* height, __global float4* out, int widt
 
 /* The same filter, four texels along x per work-item (width a multiple of 4): each row's six
    values are loaded once (one vload4 and the two neighbours) for four outputs instead of nine
-   loads per output. Measured on PoCL (docs/BENCHMARKS.md, BM_SobelKernel): 1.25-1.35x the one-texel kernel, same
+   loads per output. Measured on PoCL (docs/BENCHMARKS.md, BM_SobelKernel): 1.03-1.50x the one-texel kernel, same
    results bit for bit. */
 __kernel void sobel4(__global const float* height, __global float4* out, int width, int height_,
                      float scaleX, float scaleY) {
