@@ -92,9 +92,7 @@ private:
         c.normalMap = o.normalMap;
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
-        c.pyramid = o.technique == Technique::Hierarchical;
-        c.format = o.surfaceFormat;
-        c.transfer = o.transfer;
+        c.surface = o.fieldOptions();
         return c;
     }
 

@@ -43,9 +43,7 @@ private:
         }
         c.gas.seed = o.seed;
         c.seed = o.seed;
-        c.pyramid = o.technique == Technique::Hierarchical;
-        c.format = o.surfaceFormat;
-        c.transfer = o.transfer;
+        c.surface = o.fieldOptions();
         return c;
     }
 

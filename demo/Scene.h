@@ -7,7 +7,7 @@
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/effects/Effect.h"
-#include "hfx/effects/FieldUpload.h"
+#include "hfx/effects/FieldEffect.h"
 #include "hfx/effects/ShotList.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
@@ -30,6 +30,10 @@ struct SceneOptions {
     float aspect() const { return float(width) / float(height); }
     SurfaceFormat surfaceFormat = SurfaceFormat::Float32; ///< storage of the surface textures
     TransferPath transfer = TransferPath::Auto;           ///< how the surface reaches GL
+    /// A field effect's surface options: the height pyramid exactly when the technique needs it.
+    FieldOptions fieldOptions() const {
+        return {.pyramid = technique == Technique::Hierarchical, .format = surfaceFormat, .transfer = transfer};
+    }
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
     float windSpeed = 12.0f, windDirection = 0.6f;
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)

@@ -34,9 +34,7 @@ public:
             c.ocean.seed = o.seed;
             c.ocean.windSpeed = o.windSpeed;
             c.ocean.windDirection = o.windDirection;
-            c.pyramid = o.technique == Technique::Hierarchical;
-            c.format = o.surfaceFormat;
-            c.transfer = o.transfer;
+            c.surface = o.fieldOptions();
             ocean_ = std::make_unique<OceanEffect>(cl, c);
             base = ocean_->material();
         } else {
@@ -47,9 +45,7 @@ public:
             c.waves.minCycles = std::min(c.waves.minCycles, c.waves.maxCycles);
             c.material.shading = Shading::Water;
             c.material.specularStrength = 0.0f;
-            c.pyramid = o.technique == Technique::Hierarchical;
-            c.format = o.surfaceFormat;
-            c.transfer = o.transfer;
+            c.surface = o.fieldOptions();
             sine_ = std::make_unique<WaterEffect>(cl, c);
             base = sine_->material();
         }

@@ -17,8 +17,8 @@ class Transfer : public DeviceTest {};
 
 TEST_F(Transfer, PixelBufferAndMapPathsGiveTheSameTexturesInEveryFormat) {
     for (SurfaceFormat format : kSurfaceFormats) {
-        WaterEffect mapped(cl(), {.waves = {.size = 64}, .format = format, .transfer = TransferPath::Map});
-        WaterEffect pixels(cl(), {.waves = {.size = 64}, .format = format, .transfer = TransferPath::PixelBuffer});
+        WaterEffect mapped(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::Map}});
+        WaterEffect pixels(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::PixelBuffer}});
         EXPECT_EQ(mapped.transferPath(), TransferPath::Map);
         EXPECT_EQ(pixels.transferPath(), TransferPath::PixelBuffer);
         for (int frame = 0; frame < 3; ++frame) {
@@ -62,7 +62,7 @@ TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {
     // a 1024² step takes milliseconds, the destructor alone microseconds.
     cl::Event marker;
     {
-        WaterEffect water(cl(), {.waves = {.size = 1024}, .transfer = TransferPath::PixelBuffer});
+        WaterEffect water(cl(), {.waves = {.size = 1024}, .surface = {.transfer = TransferPath::PixelBuffer}});
         water.beginUpdate(0.1);
         cl().queue().enqueueMarkerWithWaitList(nullptr, &marker);
     }

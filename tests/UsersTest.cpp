@@ -238,8 +238,8 @@ TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {
 
 TEST_F(Users, SmallerFormatsStoreWhatTheyNameAndStayCloseToFloat) {
     WaterEffect full(cl(), {.waves = {.size = 64}});
-    WaterEffect half(cl(), {.waves = {.size = 64}, .format = SurfaceFormat::Float16});
-    WaterEffect bytes(cl(), {.waves = {.size = 64}, .format = SurfaceFormat::Unorm8});
+    WaterEffect half(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Float16}});
+    WaterEffect bytes(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Unorm8}});
     for (int i = 0; i < 3; ++i) { // the second and third go through the other texture pair
         full.update(0.1);
         half.update(0.1);

@@ -93,7 +93,7 @@ DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config)
 
 DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, Made made)
     : FieldEffect(cl, std::move(made.source), config.material,
-                  {.mipmaps = config.mipmaps, .pyramid = config.pyramid, .format = config.format, .transfer = config.transfer}), config_(config),
+                  config.surface), config_(config),
       decals_(static_cast<DecalMap&>(source())) {
     if (!made.albedo.empty()) setAlbedo(made.albedo);
     if (!made.normals.empty()) {

@@ -36,7 +36,7 @@ std::unique_ptr<HeightSource> makeGas(ClContext& cl, const GasPlanetConfig& conf
 
 GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
     : FieldEffect(cl, makeGas(cl, config), config.material,
-                  {.mipmaps = config.mipmaps, .pyramid = config.pyramid, .format = config.format, .transfer = config.transfer}), config_(config),
+                  config.surface), config_(config),
       gas_(static_cast<GasField&>(source())),
       colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed) {
     refresh(nowMs()); // again, now with the colours

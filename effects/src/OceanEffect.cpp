@@ -23,7 +23,7 @@ std::unique_ptr<HeightSource> makeOcean(ClContext& cl, const OceanEffectConfig& 
 
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
     : FieldEffect(cl, makeOcean(cl, config), config.material,
-                  {.mipmaps = config.mipmaps, .pyramid = config.pyramid, .format = config.format, .transfer = config.transfer}),
+                  config.surface),
       ocean_(static_cast<OceanField&>(source())), exaggeration_(config.reliefExaggeration) {
     setDepthScale(physicalDepthScale());
     refresh(nowMs());

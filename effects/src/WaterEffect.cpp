@@ -16,7 +16,7 @@ std::unique_ptr<HeightSource> makeWaves(ClContext& cl, const WaterConfig& config
 
 WaterEffect::WaterEffect(ClContext& cl, const WaterConfig& config)
     : FieldEffect(cl, makeWaves(cl, config), config.material,
-                  {.mipmaps = config.mipmaps, .pyramid = config.pyramid, .format = config.format, .transfer = config.transfer}),
+                  config.surface),
       waves_(static_cast<WaveField&>(source())) {
     setAlbedo(Image{1, 1, 3, {0.05f, 0.22f, 0.30f}});
 }

@@ -36,12 +36,7 @@ struct DecalWallConfig {
     Explosion explosion{.radius = 0.05f, .depth = 0.6f, .debris = 40};
     SurfaceMaterial material{.depthScale = 0.06f, .maxSamples = 48, .shadowSharpness = 3.0f};
     ImageReadLimits limits;
-    bool mipmaps = true;
-    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
-    /// Storage of the surface: float16 halves its memory and transfer, unorm8 quarters them
-    /// (docs/ACCURACY.md: what each costs). The packing runs on the device.
-    SurfaceFormat format = SurfaceFormat::Float32;
-    TransferPath transfer = TransferPath::Auto; ///< how the surface reaches GL (FieldUpload.h)
+    FieldOptions surface; ///< mip maps, height pyramid, storage format, path to GL
     void validate() const;
 };
 

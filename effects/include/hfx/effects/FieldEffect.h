@@ -17,7 +17,7 @@
 
 namespace hfx {
 
-/// How a field effect stores and moves its surface; each effect's configuration carries these.
+/// How a field effect stores and moves its surface; each effect's configuration holds one as `surface`.
 struct FieldOptions {
     bool mipmaps = true;
     /// Also build the maximum-height pyramid each update (for Technique::Hierarchical; the

@@ -34,12 +34,7 @@ struct GasPlanetConfig {
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
                              .shading = Shading::Planet, .silhouetteFade = 0.25f};
-    bool mipmaps = true;
-    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
-    /// Storage of the surface: float16 halves its memory and transfer, unorm8 quarters them
-    /// (docs/ACCURACY.md: what each costs). The packing runs on the device.
-    SurfaceFormat format = SurfaceFormat::Float32;
-    TransferPath transfer = TransferPath::Auto; ///< how the surface reaches GL (FieldUpload.h)
+    FieldOptions surface; ///< mip maps, height pyramid, storage format, path to GL
     void validate() const;
 };
 

@@ -17,12 +17,7 @@ struct OceanEffectConfig {
     SurfaceMaterial material{.minSamples = 8, .maxSamples = 40, .shadowSharpness = 1.0f,
                              .specularStrength = 0.0f, .shading = Shading::Water};
     float reliefExaggeration = 1.0f; ///< multiplies the physical depth scale
-    bool mipmaps = true;
-    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
-    /// Storage of the surface: float16 halves its memory and transfer, unorm8 quarters them
-    /// (docs/ACCURACY.md: what each costs). The packing runs on the device.
-    SurfaceFormat format = SurfaceFormat::Float32;
-    TransferPath transfer = TransferPath::Auto; ///< how the surface reaches GL (FieldUpload.h)
+    FieldOptions surface; ///< mip maps, height pyramid, storage format, path to GL
     void validate() const;
 };
 

@@ -13,12 +13,7 @@ struct WaterConfig {
     WaveConfig waves;
     SurfaceMaterial material{.depthScale = 0.04f, .shadowSharpness = 1.0f,
                              .specularStrength = 0.8f, .specularPower = 96.0f};
-    bool mipmaps = true;
-    bool pyramid = false; ///< build the height pyramid each update (Technique::Hierarchical)
-    /// Storage of the surface: float16 halves its memory and transfer, unorm8 quarters them
-    /// (docs/ACCURACY.md: what each costs). The packing runs on the device.
-    SurfaceFormat format = SurfaceFormat::Float32;
-    TransferPath transfer = TransferPath::Auto; ///< how the surface reaches GL (FieldUpload.h)
+    FieldOptions surface; ///< mip maps, height pyramid, storage format, path to GL
     void validate() const;
 };
 
