@@ -1,5 +1,7 @@
 #include "hfx/effects/Accuracy.h"
 
+#include "hfx/compute/SurfacePacker.h"
+
 #include "hfx/compute/MaxPyramid.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/core/Error.h"
@@ -52,7 +54,7 @@ SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, i
         // The packing the effects use, so the figures are those of the shipped path.
         SurfacePacker packer(cl, size, size, format);
         packer.run(sobel.output());
-        uploadPacked(cl, packer, textures);
+        uploadTexels(cl, packer.output(), textures);
     }
     if (textures.pyramid()) uploadPyramid(cl, pyramid, textures);
     return textures;

@@ -114,12 +114,12 @@ void FieldEffect::endUpdate() {
 
 void FieldEffect::upload() {
     SurfaceTextures& back = uploadTarget();
+    // The texels in the surface's own layout: packed, or for float32 the normals themselves.
+    const cl::Buffer& texels = packer_ ? packer_->output() : normals_.output();
     if (pixels_)
-        uploadFromPixelBuffer(cl_, packer_ ? packer_->output() : normals_.output(), *pixels_, back);
-    else if (packer_)
-        uploadPacked(cl_, *packer_, back);
+        uploadFromPixelBuffer(cl_, texels, *pixels_, back);
     else
-        uploadField(cl_, normals_.output(), back);
+        uploadTexels(cl_, texels, back);
     if (pyramid_) uploadPyramid(cl_, *pyramid_, back);
     uploadExtra();
     front_ = 1 - front_;

@@ -73,13 +73,9 @@ void uploadFromPixelBuffer(ClContext& cl, const cl::Buffer& texels, PixelBuffer&
     });
 }
 
-void uploadPacked(ClContext& cl, const SurfacePacker& packer, SurfaceTextures& textures) {
-    if (packer.format() != textures.config().format)
-        throw Error(str("uploadPacked: ", surfaceFormatName(packer.format()), " texels for a ",
-                        surfaceFormatName(textures.config().format), " surface"));
-    mapAndUpload(cl, packer.output(),
-                 surfaceBytes(packer.output(), texelBytes(packer.format()), textures, "uploadPacked"), "uploadPacked",
-                 [&](const void* mapped) { textures.uploadPacked(mapped); });
+void uploadTexels(ClContext& cl, const cl::Buffer& texels, SurfaceTextures& textures) {
+    mapAndUpload(cl, texels, surfaceBytes(texels, texelBytes(textures.config().format), textures, "uploadTexels"),
+                 "uploadTexels", [&](const void* mapped) { textures.uploadPacked(mapped); });
 }
 
 void uploadPyramid(ClContext& cl, const MaxPyramid& pyramid, SurfaceTextures& textures) {

@@ -12,7 +12,6 @@
 
 #include "hfx/compute/ClContext.h"
 #include "hfx/compute/MaxPyramid.h"
-#include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/PixelBuffer.h"
 #include "hfx/core/SurfaceTextures.h"
 
@@ -42,9 +41,9 @@ void uploadFromPixelBuffer(ClContext& cl, const cl::Buffer& texels, PixelBuffer&
 /// textures.config().width * height float4.
 void uploadField(ClContext& cl, const cl::Buffer& normalHeight, SurfaceTextures& textures);
 
-/// Waits for the queue's work on the packer's output, then uploads it as it is (a plain copy).
-/// The packer's format and size must be the textures'.
-void uploadPacked(ClContext& cl, const SurfacePacker& packer, SurfaceTextures& textures);
+/// Waits for the queue's work on `texels`, then uploads them as they are (a plain copy): they
+/// must be in the textures' format's layout — a SurfacePacker's output, or float4 for Float32.
+void uploadTexels(ClContext& cl, const cl::Buffer& texels, SurfaceTextures& textures);
 
 /// Waits for the queue's work on the pyramid, then uploads all its levels into the textures'
 /// pyramid (which must exist and match its size).
