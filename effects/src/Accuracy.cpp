@@ -1,9 +1,8 @@
 #include "hfx/effects/Accuracy.h"
 
-#include "hfx/compute/SurfacePacker.h"
-
 #include "hfx/compute/MaxPyramid.h"
 #include "hfx/compute/SobelNormals.h"
+#include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/effects/FieldUpload.h"
