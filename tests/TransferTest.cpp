@@ -7,6 +7,7 @@
 #include "hfx/effects/FieldUpload.h"
 #include "hfx/effects/WaterEffect.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -68,6 +69,23 @@ TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {
     }
     EXPECT_EQ(marker.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE)
         << "the effect's memory went while its kernels still ran";
+}
+
+TEST_F(Transfer, CpuUploadOfUnorm8EncodesAsTheKernelDoes) {
+    // SurfaceTextures::upload(const float*) encodes unorm8 on the CPU; SurfacePacker on the
+    // device. Both must give the same bytes, ties and out-of-range values included.
+    constexpr int W = 16, H = 8;
+    std::vector<float> texels(W * H * 4);
+    for (size_t i = 0; i < texels.size(); ++i)
+        texels[i] = i % 7 == 0 ? float(i % 255) / 255.0f + 0.5f / 255.0f : std::sin(0.61f * float(i)) * 1.2f;
+    SurfaceTextures cpu({.width = W, .height = H, .mipmaps = false, .format = SurfaceFormat::Unorm8});
+    SurfaceTextures device({.width = W, .height = H, .mipmaps = false, .format = SurfaceFormat::Unorm8});
+    cpu.upload(texels.data());
+    cl::Buffer in(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, texels.size() * sizeof(float), texels.data());
+    SurfacePacker packer(cl(), W, H, SurfaceFormat::Unorm8);
+    packer.run(in);
+    uploadTexels(cl(), packer.output(), device);
+    EXPECT_EQ(readSurface(cpu), readSurface(device));
 }
 
 TEST_F(Transfer, PixelBufferUploadsWhatIsWrittenIntoItsMemory) {
