@@ -8,7 +8,7 @@
 #include "Timing.h"
 
 #include "hfx/core/Gl.h"
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 #include "hfx/core/RenderTarget.h"
 
 #include <algorithm>

@@ -5,7 +5,7 @@
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/NoiseField.h"
 #include "hfx/core/Error.h"
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 #include "hfx/effects/Accuracy.h"
 #include "hfx/effects/BrickWall.h"
 

@@ -6,7 +6,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Image.h"
 #include "hfx/effects/OceanEffect.h"
-#include "hfx/effects/WaterEffect.h"
+#include "hfx/effects/SineWavesEffect.h"
 
 #include <imgui.h>
 
@@ -38,7 +38,7 @@ public:
             ocean_ = std::make_unique<OceanEffect>(cl, c);
             base = ocean_->material();
         } else {
-            WaterConfig c;
+            SineWavesConfig c;
             c.waves.size = o.fieldSize > 0 ? o.fieldSize : 512;
             c.waves.seed = o.seed;
             c.waves.maxCycles = std::min(20, c.waves.size / 2);
@@ -46,7 +46,7 @@ public:
             c.material.shading = Shading::Water;
             c.material.specularStrength = 0.0f;
             c.surface = o.fieldOptions();
-            sine_ = std::make_unique<WaterEffect>(cl, c);
+            sine_ = std::make_unique<SineWavesEffect>(cl, c);
             base = sine_->material();
         }
         base.water.environment = environment_.id();
@@ -95,7 +95,7 @@ private:
     }
 
     std::unique_ptr<OceanEffect> ocean_;
-    std::unique_ptr<WaterEffect> sine_;
+    std::unique_ptr<SineWavesEffect> sine_;
     GlTexture environment_;
     Mesh plane_;
     DirectionalLight light_;

@@ -4,7 +4,7 @@
 
 #include "Scene.h"
 
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 
 #include <glm/vec4.hpp>
 

@@ -10,7 +10,7 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/RenderTarget.h"
 

@@ -11,7 +11,7 @@
 #include "hfx/effects/GasPlanet.h"
 #include "hfx/effects/ImageSurface.h"
 #include "hfx/effects/OceanEffect.h"
-#include "hfx/effects/WaterEffect.h"
+#include "hfx/effects/SineWavesEffect.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -29,7 +29,7 @@ class Robustness : public DeviceTest {};
 
 TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-    WaterEffect water(cl(), {.waves = {.size = 64}});
+    SineWavesEffect water(cl(), {.waves = {.size = 64}});
     OceanEffect ocean(cl(), {.ocean = {.size = 64}});
     DecalWallEffect wall(cl(), {.bricks = {.size = 64}});
     GasPlanetEffect planet(cl(), {.gas = {.width = 32, .height = 16, .initialBands = 2.0f}});
@@ -52,7 +52,7 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
 }
 
 TEST_F(Robustness, BadMaterialsDrawNothing) {
-    WaterEffect water(cl(), {.waves = {.size = 64}});
+    SineWavesEffect water(cl(), {.waves = {.size = 64}});
     RenderTarget target(64, 64);
     target.bind();
     target.clear({0.25f, 0.5f, 0.75f, 1.0f});

@@ -5,7 +5,7 @@
 #include "hfx/core/Gl.h"
 #include "hfx/core/PixelBuffer.h"
 #include "hfx/effects/FieldUpload.h"
-#include "hfx/effects/WaterEffect.h"
+#include "hfx/effects/SineWavesEffect.h"
 
 #include <cmath>
 #include <cstdint>
@@ -18,8 +18,8 @@ class Transfer : public DeviceTest {};
 
 TEST_F(Transfer, PixelBufferAndMapPathsGiveTheSameTexturesInEveryFormat) {
     for (SurfaceFormat format : kSurfaceFormats) {
-        WaterEffect mapped(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::Map}});
-        WaterEffect pixels(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::PixelBuffer}});
+        SineWavesEffect mapped(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::Map}});
+        SineWavesEffect pixels(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::PixelBuffer}});
         EXPECT_EQ(mapped.transferPath(), TransferPath::Map);
         EXPECT_EQ(pixels.transferPath(), TransferPath::PixelBuffer);
         for (int frame = 0; frame < 3; ++frame) {
@@ -48,7 +48,7 @@ TEST_F(Transfer, AutoPicksThePixelBufferWhereTheDeviceSharesHostMemory) {
     const bool unified = cl().device().getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
     EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Auto), unified ? TransferPath::PixelBuffer : TransferPath::Map);
     EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Map), TransferPath::Map);
-    WaterEffect water(cl(), {.waves = {.size = 64}});
+    SineWavesEffect water(cl(), {.waves = {.size = 64}});
     EXPECT_NE(water.transferPath(), TransferPath::Auto);
     EXPECT_NE(water.transferDescription().find(transferPathName(water.transferPath())), std::string::npos)
         << water.transferDescription();
@@ -63,7 +63,7 @@ TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {
     // a 1024² step takes milliseconds, the destructor alone microseconds.
     cl::Event marker;
     {
-        WaterEffect water(cl(), {.waves = {.size = 1024}, .surface = {.transfer = TransferPath::PixelBuffer}});
+        SineWavesEffect water(cl(), {.waves = {.size = 1024}, .surface = {.transfer = TransferPath::PixelBuffer}});
         water.beginUpdate(0.1);
         cl().queue().enqueueMarkerWithWaitList(nullptr, &marker);
     }

@@ -12,7 +12,7 @@
 #include "hfx/effects/DecalWall.h"
 #include "hfx/effects/GasPlanet.h"
 #include "hfx/effects/OceanEffect.h"
-#include "hfx/effects/WaterEffect.h"
+#include "hfx/effects/SineWavesEffect.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -210,8 +210,8 @@ TEST_F(Users, PlanetColoursComeFromTheGasThroughTheRamp) {
 }
 
 TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {
-    WaterEffect sequential(cl(), {.waves = {.size = 64}});
-    WaterEffect overlapped(cl(), {.waves = {.size = 64}});
+    SineWavesEffect sequential(cl(), {.waves = {.size = 64}});
+    SineWavesEffect overlapped(cl(), {.waves = {.size = 64}});
     for (int frame = 0; frame < 3; ++frame) {
         const GLuint drawn = overlapped.textures().surface();
         const std::vector<float> drawnTexels = readSurface(overlapped.textures());
@@ -237,9 +237,9 @@ TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {
 }
 
 TEST_F(Users, SmallerFormatsStoreWhatTheyNameAndStayCloseToFloat) {
-    WaterEffect full(cl(), {.waves = {.size = 64}});
-    WaterEffect half(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Float16}});
-    WaterEffect bytes(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Unorm8}});
+    SineWavesEffect full(cl(), {.waves = {.size = 64}});
+    SineWavesEffect half(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Float16}});
+    SineWavesEffect bytes(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Unorm8}});
     for (int i = 0; i < 3; ++i) { // the second and third go through the other texture pair
         full.update(0.1);
         half.update(0.1);

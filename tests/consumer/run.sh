@@ -11,4 +11,11 @@ cmake --build "$work/build" -j2
 if grep -rq "$(cd "$source/../.." && pwd)" "$work/prefix/lib/cmake/hfx"; then
     echo "the installed package config refers to the source tree"; exit 1
 fi
+# hfx::hfx is GL-only: neither its exported targets nor the consumer's link mention GLFW.
+if grep -qi "glfw" "$work/prefix/lib/cmake/hfx/hfxTargets.cmake"; then
+    echo "hfx::hfx's exported targets link GLFW"; exit 1
+fi
+if grep -rqi "glfw" "$work/build/CMakeFiles/hfx-consumer.dir/link.txt" || ldd "$work/build/hfx-consumer" | grep -qi glfw; then
+    echo "the consumer links GLFW through hfx::hfx"; exit 1
+fi
 "$work/build/hfx-consumer"

@@ -3,7 +3,7 @@
 // Where a device is missing the tests skip, saying why.
 
 #include "hfx/compute/ClContext.h"
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/SurfaceTextures.h"
 

@@ -1,6 +1,6 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

@@ -1,4 +1,4 @@
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"

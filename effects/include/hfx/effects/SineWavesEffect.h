@@ -1,6 +1,8 @@
 #pragma once
-// Procedural water: a FieldEffect over the directional-waves source. Draw it with
-// SurfaceRenderer on a plane whose texcoords repeat the (tileable) patch.
+// Directional sine waves (WaveField: a sum of tileable waves with deep-water dispersion) as a
+// lit surface: the cheap animated relief, Blinn-Phong shaded unless the material says otherwise
+// (the water scene's `--waves sine` shades it as water). Draw it with SurfaceRenderer on a plane
+// whose texcoords repeat the (tileable) patch.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
@@ -9,7 +11,7 @@
 
 namespace hfx {
 
-struct WaterConfig {
+struct SineWavesConfig {
     WaveConfig waves;
     SurfaceMaterial material{.depthScale = 0.04f, .shadowSharpness = 1.0f,
                              .specularStrength = 0.8f, .specularPower = 96.0f};
@@ -17,9 +19,9 @@ struct WaterConfig {
     void validate() const;
 };
 
-class WaterEffect final : public FieldEffect {
+class SineWavesEffect final : public FieldEffect {
 public:
-    WaterEffect(ClContext& cl, const WaterConfig& config = {});
+    SineWavesEffect(ClContext& cl, const SineWavesConfig& config = {});
 
     /// Jumps to an absolute time (seconds) and refreshes the textures.
     void setTime(double seconds);

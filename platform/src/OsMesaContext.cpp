@@ -2,7 +2,7 @@
 #include <GL/osmesa.h>
 
 #include "hfx/core/Error.h"
-#include "hfx/core/GlContext.h"
+#include "hfx/platform/GlContext.h"
 #include "hfx/core/GlLoader.h"
 
 #include <vector>
