@@ -44,7 +44,7 @@ uniform sampler2D s_albedo;
 #if HFX_TECHNIQUE == 6
 uniform sampler2D s_pyramid;     // R32F, level k texel bounds the bilinear cells it covers
 uniform int u_pyramidLevels;
-uniform bool u_pyramidWrap;      // the field tiles: cell indices wrap (else they clamp)
+uniform ivec2 u_wrap;            // per axis: cell indices wrap (1, the field's edges wrap) or clamp
 #endif
 
 uniform mat4 u_viewProj;
@@ -154,7 +154,7 @@ float traceHierarchical(vec2 uv0, vec2 parallax) {
         const float tExit = min(min(dir.x != 0.0 ? tCross.x : 1e30, dir.y != 0.0 ? tCross.y : 1e30), 1.0);
         const ivec2 levelSize = max(size >> level, ivec2(1));
         ivec2 index = ivec2(cell);
-        index = u_pyramidWrap ? (index % levelSize + levelSize) % levelSize : clamp(index, ivec2(0), levelSize - 1);
+        index = mix(clamp(index, ivec2(0), levelSize - 1), (index % levelSize + levelSize) % levelSize, bvec2(u_wrap));
         const float bound_h = texelFetch(s_pyramid, index, level).r;
         g_fetches += 1.0;
         const float tDown = 1.0 - bound_h; // where the ray has come down to the cell's bound

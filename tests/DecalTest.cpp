@@ -32,10 +32,8 @@ std::vector<float> reference(const DecalConfig& c, const std::vector<float>& bas
             float& d = damage[size_t(y) * W + x];
             for (const BulletHole& s : stamps) {
                 float dx = (x + 0.5f) - s.u * W, dy = (y + 0.5f) - s.v * H;
-                if (c.periodic) {
-                    dx -= W * std::rint(dx / W);
-                    dy -= H * std::rint(dy / H);
-                }
+                if (wrapsU(c.edges)) dx -= W * std::rint(dx / W);
+                if (wrapsV(c.edges)) dy -= H * std::rint(dy / H);
                 const float r = std::sqrt(dx * dx + dy * dy) / (s.radius * W);
                 d = hfx_apply_damage(d, hfx_crater_profile(r, s.depth, s.rimHeight, s.rimWidth),
                                      base[size_t(y) * W + x]);
@@ -70,12 +68,12 @@ TEST_F(Decals, SingleStampMatchesAnalyticProfile) {
 }
 
 TEST_F(Decals, KernelMatchesUnbinnedReference) {
-    for (const bool periodic : {true, false}) {
-        const DecalConfig config{.width = 100, .height = 72, .periodic = periodic, .tileSize = 16};
+    for (const EdgeMode edges : kEdgeModes) {
+        const DecalConfig config{.width = 100, .height = 72, .edges = edges, .tileSize = 16};
         std::vector<float> base(100 * 72);
         for (size_t i = 0; i < base.size(); ++i) base[i] = 0.5f + 0.4f * std::sin(float(i) * 0.37f);
         DecalMap map(cl(), config, base);
-        std::mt19937 random(periodic ? 1 : 2);
+        std::mt19937 random(unsigned(edges) + 1);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);
         std::vector<float> damage(base.size(), 0.0f);
         for (int batch = 0; batch < 3; ++batch) {
@@ -92,7 +90,7 @@ TEST_F(Decals, KernelMatchesUnbinnedReference) {
             const auto gpu = read(map.damage(), damage.size());
             double maxDiff = 0;
             for (size_t i = 0; i < gpu.size(); ++i) maxDiff = std::max(maxDiff, double(std::abs(gpu[i] - damage[i])));
-            EXPECT_LT(maxDiff, 1e-6) << "batch " << batch << (periodic ? " periodic" : " clamped");
+            EXPECT_LT(maxDiff, 1e-6) << "batch " << batch << ", edges " << edgeModeName(edges);
         }
     }
 }
@@ -131,7 +129,7 @@ TEST_F(Decals, StampOnAnEdgeWraps) {
     for (int x = 0; x < 6; ++x) EXPECT_FLOAT_EQ(d[row * N + x], d[row * N + N - 1 - x]) << x;
     EXPECT_LT(d[row * N + N - 1], -0.1f);
 
-    DecalMap clamped(cl(), {.width = N, .height = N, .periodic = false});
+    DecalMap clamped(cl(), {.width = N, .height = N, .edges = EdgeMode::Clamp});
     clamped.addBulletHole({.u = 0.0f, .v = 0.5f, .radius = 0.08f});
     clamped.step(0.1);
     const auto c = read(clamped.damage(), N * N);
@@ -176,7 +174,7 @@ TEST_F(Decals, BadStampsAreRefusedAndNothingIsQueued) {
 }
 
 TEST(DecalExplosion, ExpandsIntoCraterAndDebris) {
-    const auto stamps = DecalMap::expand({.u = 0.9f, .v = 0.1f, .debris = 40, .seed = 3}, true);
+    const auto stamps = DecalMap::expand({.u = 0.9f, .v = 0.1f, .debris = 40, .seed = 3}, EdgeMode::Wrap);
     ASSERT_EQ(stamps.size(), 41u);
     EXPECT_EQ(stamps[0].radius, Explosion{}.radius);
     for (const BulletHole& s : stamps) {
@@ -186,10 +184,10 @@ TEST(DecalExplosion, ExpandsIntoCraterAndDebris) {
         EXPECT_LT(s.v, 1.0f);
     }
     // Same seed, same debris.
-    const auto again = DecalMap::expand({.u = 0.9f, .v = 0.1f, .debris = 40, .seed = 3}, true);
+    const auto again = DecalMap::expand({.u = 0.9f, .v = 0.1f, .debris = 40, .seed = 3}, EdgeMode::Wrap);
     EXPECT_EQ(again[17].u, stamps[17].u);
     // On a clamped map debris that flies off the edge is dropped.
-    EXPECT_LT(DecalMap::expand({.u = 0.99f, .v = 0.01f, .debris = 40, .seed = 3}, false).size(), 41u);
+    EXPECT_LT(DecalMap::expand({.u = 0.99f, .v = 0.01f, .debris = 40, .seed = 3}, EdgeMode::Clamp).size(), 41u);
 }
 
 } // namespace

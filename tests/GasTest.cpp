@@ -30,7 +30,7 @@ TEST_F(Gas, ProjectionRemovesDivergencePerBand) {
     // Laplacian share their stencil (DESIGN.md). Mid-band modes, where |lambda| is small, must
     // lose three orders of magnitude; every mode must follow its lambda^n.
     constexpr int N = 64, sweeps = 40;
-    GasField gas(cl(), {.width = N, .height = N, .periodicY = true, .pressureIterations = sweeps});
+    GasField gas(cl(), {.width = N, .height = N, .edges = EdgeMode::Wrap, .pressureIterations = sweeps});
     struct Mode {
         int kx, ky;
     };
@@ -77,7 +77,7 @@ TEST_F(Gas, TaylorGreenVortexDecaysAtTheViscousRate) {
     constexpr float nu = 0.5f, U = 0.1f, dt = 0.5f;
     constexpr int steps = 200;
     const double k = kTwoPi / N;
-    GasField gas(cl(), {.width = N, .height = N, .periodicY = true, .viscosity = nu, .viscosityIterations = 40,
+    GasField gas(cl(), {.width = N, .height = N, .edges = EdgeMode::Wrap, .viscosity = nu, .viscosityIterations = 40,
                         .pressureIterations = 60, .maccormack = true});
     std::vector<float> u(N * N), v(N * N), dye(N * N, 0.0f);
     for (int j = 0; j < N; ++j)
@@ -103,7 +103,7 @@ TEST_F(Gas, TaylorGreenVortexDecaysAtTheViscousRate) {
 
 TEST_F(Gas, DyeMassIsConserved) {
     constexpr int N = 64;
-    GasField gas(cl(), {.width = N, .height = N, .periodicY = true, .vorticity = 0.1f});
+    GasField gas(cl(), {.width = N, .height = N, .edges = EdgeMode::Wrap, .vorticity = 0.1f});
     std::vector<float> u(N * N), v(N * N), dye(N * N);
     const double k = kTwoPi / N;
     for (int j = 0; j < N; ++j)
@@ -148,9 +148,9 @@ TEST_F(Gas, TenThousandLargeStepsStayFinite) {
 
 TEST_F(Gas, KernelsMatchCppReference) {
     // Width 40 runs the four-cells-per-item pressure sweep, 42 the one-cell sweep.
-    for (const auto [width, periodicY] : {std::pair{40, false}, std::pair{40, true}, std::pair{42, false}}) {
-        const GasConfig config{.width = width, .height = 24, .periodicY = periodicY, .pressureIterations = 30,
-                               .vorticity = 0.2f, .maccormack = periodicY, .conserveDye = false, .jetSpeed = 3.0f, .jetRate = 0.0f,
+    for (const auto& [width, edges] : {std::pair{40, EdgeMode::WrapU}, std::pair{40, EdgeMode::Wrap}, std::pair{42, EdgeMode::WrapU}}) {
+        const GasConfig config{.width = width, .height = 24, .edges = edges, .pressureIterations = 30,
+                               .vorticity = 0.2f, .maccormack = edges == EdgeMode::Wrap, .conserveDye = false, .jetSpeed = 3.0f, .jetRate = 0.0f,
                                .initialBands = 3.0f};
         GasField gas(cl(), config);
         GasReference reference{config, {}, {}, {}};
@@ -167,7 +167,7 @@ TEST_F(Gas, KernelsMatchCppReference) {
                                 double(std::abs(dye[i] - reference.dye[i]))});
         // Same float operations in the same order; the device's sqrt and the host's agree to an
         // ulp, which four steps of 30 sweeps carry to about 1e-6 of the jets' speed of 3.
-        EXPECT_LT(maxDiff, 2e-5) << (periodicY ? "periodic" : "walls") << ", width " << width;
+        EXPECT_LT(maxDiff, 2e-5) << edgeModeName(edges) << ", width " << width;
     }
 }
 

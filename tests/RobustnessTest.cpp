@@ -101,7 +101,7 @@ TEST_F(Robustness, MapsOfEveryFormatLoadAndNonSquareSizesKeepTheirShape) {
     ASSERT_TRUE(out->open(path, spec));
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, map.pixels.data()));
     out->close();
-    ImageSurface surface(cl(), {.heightMap = path, .wrapEdges = false});
+    ImageSurface surface(cl(), {.heightMap = path, .edges = EdgeMode::Clamp});
     EXPECT_EQ(surface.textures().config().width, W);
     EXPECT_EQ(surface.textures().config().height, H);
     const std::vector<float> texels = readSurface(surface.textures());

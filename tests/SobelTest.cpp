@@ -89,7 +89,7 @@ TEST_F(Sobel, ClampedEdgesOfARampKeepTheInteriorExact) {
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) heights[y * W + x] = 0.2f + 0.01f * x + 0.005f * y;
     const float depthScale = 0.1f;
-    const auto out = run(heights, {.width = W, .height = H, .depthScale = depthScale, .wrapEdges = false});
+    const auto out = run(heights, {.width = W, .height = H, .depthScale = depthScale, .edges = EdgeMode::Clamp});
     const glm::dvec3 expected = glm::normalize(glm::dvec3(-0.01 * depthScale * W, -0.005 * depthScale * H, 1));
     for (int y = 1; y < H - 1; ++y)
         for (int x = 1; x < W - 1; ++x) {
@@ -108,17 +108,17 @@ TEST_F(Sobel, KernelMatchesSharedCpuMath) {
     // wrapped u with clamped v), against the same host math.
     struct Case {
         int W, H;
-        bool wrap, clampV;
+        EdgeMode edges;
     };
-    for (const Case k : {Case{32, 32, true, false}, Case{30, 17, true, false}, Case{36, 12, false, false},
-                         Case{22, 9, false, false}, Case{40, 10, true, true}, Case{26, 11, true, true}}) {
+    for (const Case k : {Case{32, 32, EdgeMode::Wrap}, Case{30, 17, EdgeMode::Wrap}, Case{36, 12, EdgeMode::Clamp},
+                         Case{22, 9, EdgeMode::Clamp}, Case{40, 10, EdgeMode::WrapU}, Case{26, 11, EdgeMode::WrapU}}) {
         const int W = k.W, H = k.H;
         std::vector<float> heights(W * H);
         for (int i = 0; i < W * H; ++i) heights[i] = float((i * 7919) % 101) / 100.0f; // rough field
-        const auto out = run(heights, {.width = W, .height = H, .depthScale = 0.03f, .wrapEdges = k.wrap, .clampV = k.clampV});
+        const auto out = run(heights, {.width = W, .height = H, .depthScale = 0.03f, .edges = k.edges});
         auto at = [&](int x, int y) {
-            x = k.wrap ? (x + W) % W : std::clamp(x, 0, W - 1);
-            y = k.wrap && !k.clampV ? (y + H) % H : std::clamp(y, 0, H - 1);
+            x = wrapsU(k.edges) ? (x + W) % W : std::clamp(x, 0, W - 1);
+            y = wrapsV(k.edges) ? (y + H) % H : std::clamp(y, 0, H - 1);
             return heights[y * W + x];
         };
         for (int y = 0; y < H; ++y)

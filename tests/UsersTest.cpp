@@ -206,7 +206,7 @@ TEST_F(Users, PlanetColoursComeFromTheGasThroughTheRamp) {
     glGetTextureParameteriv(planet.textures().surface(), GL_TEXTURE_WRAP_T, &wrapT);
     EXPECT_EQ(wrapS, GL_REPEAT);
     EXPECT_EQ(wrapT, GL_CLAMP_TO_EDGE);
-    EXPECT_THROW(GasPlanetEffect(cl(), {.gas = {.width = 64, .height = 32, .periodicY = true}}), Error);
+    EXPECT_THROW(GasPlanetEffect(cl(), {.gas = {.width = 64, .height = 32, .edges = EdgeMode::Wrap}}), Error);
 }
 
 TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {

@@ -22,11 +22,10 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
         int s = tileStamps[k];
         float4 stamp = stamps[s];
         float dx = (x + 0.5f) - stamp.x, dy = (y + 0.5f) - stamp.y;
-#ifndef CLAMP_EDGES
-        /* The nearest copy of a periodic stamp: centres lie in the map, so one shift suffices. */
-        dx += dx > 0.5f * width ? -(float)width : (dx < -0.5f * width ? (float)width : 0.0f);
-        dy += dy > 0.5f * rows ? -(float)rows : (dy < -0.5f * rows ? (float)rows : 0.0f);
-#endif
+        /* Along an axis that wraps, the nearest copy of the stamp: centres lie in the map, so
+           one shift suffices. */
+        if (HFX_WRAP_U) dx += dx > 0.5f * width ? -(float)width : (dx < -0.5f * width ? (float)width : 0.0f);
+        if (HFX_WRAP_V) dy += dy > 0.5f * rows ? -(float)rows : (dy < -0.5f * rows ? (float)rows : 0.0f);
         float4 shape = shapes[s];
         float d2 = dx * dx + dy * dy;
         if (d2 >= shape.z) continue;

@@ -1,7 +1,9 @@
 #include "GasMath.h"
 
-/* Kernels of one stable-fluids step; see GasMath.h for the grid. SOLID_Y is 1 when walls bound
-   y. Face fields of v keep v = 0 on the wall row (j = 0) whenever SOLID_Y. */
+/* Kernels of one stable-fluids step; see GasMath.h for the grid. x always wraps; y wraps when
+   HFX_WRAP_V (hfx::edgeOptions), else walls bound it (WALLS), and face fields of v keep v = 0 on
+   the wall row (j = 0). */
+#define WALLS (!HFX_WRAP_V)
 
 #define ID                                                                                         \
     int i = get_global_id(0), j = get_global_id(1);                                                \
@@ -12,17 +14,17 @@ __kernel void advect(__global const float* restrict u, __global const float* res
                      __global const float* restrict src, __global float* restrict dst, int W, int H,
                      float ox, float oy, float dt, int wallRow) {
     ID
-    dst[k] = (SOLID_Y && wallRow && j == 0) ? 0.0f
-                                            : hfx_gas_advect(u, v, src, W, H, i, j, ox, oy, dt, SOLID_Y);
+    dst[k] = (WALLS && wallRow && j == 0) ? 0.0f
+                                            : hfx_gas_advect(u, v, src, W, H, i, j, ox, oy, dt, WALLS);
 }
 
 __kernel void maccormack(__global const float* u, __global const float* v, __global const float* src,
                          __global const float* forward, __global const float* backward,
                          __global float* dst, int W, int H, float ox, float oy, float dt, int wallRow) {
     ID
-    dst[k] = (SOLID_Y && wallRow && j == 0)
+    dst[k] = (WALLS && wallRow && j == 0)
                  ? 0.0f
-                 : hfx_gas_maccormack(u, v, src, forward, backward, W, H, i, j, ox, oy, dt, SOLID_Y);
+                 : hfx_gas_maccormack(u, v, src, forward, backward, W, H, i, j, ox, oy, dt, WALLS);
 }
 
 /* A round splat of force (cells/s^2 for dt seconds) and dye at (x, y) cells, Gaussian radius r. */
@@ -31,10 +33,10 @@ __kernel void splat(__global float* u, __global float* v, __global float* dye, i
     ID
     float dx = (float)i + 0.5f - x, dy = (float)j + 0.5f - y;
     dx -= W * rint(dx / W);
-    if (!SOLID_Y) dy -= H * rint(dy / H);
+    if (!WALLS) dy -= H * rint(dy / H);
     float w = exp(-(dx * dx + dy * dy) / (r * r));
     u[k] += dt * fx * exp(-((dx + 0.5f) * (dx + 0.5f) + dy * dy) / (r * r));
-    if (!(SOLID_Y && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
+    if (!(WALLS && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
     dye[k] = clamp(dye[k] + amount * w, 0.0f, 1.0f);
 }
 
@@ -58,7 +60,7 @@ __kernel void confine(__global const float* w, __global float* u, __global float
     hfx_gas_confinement(w, W, H, i, j, eps, a);
     hfx_gas_confinement(w, W, H, hfx_gas_step(i - 1, W), j, eps, b);
     u[k] += dt * 0.5f * (a[0] + b[0]);
-    if (SOLID_Y && j == 0) return;
+    if (WALLS && j == 0) return;
     hfx_gas_confinement(w, W, H, i, hfx_gas_step(j - 1, H), eps, b);
     v[k] += dt * 0.5f * (a[1] + b[1]);
 }
@@ -66,7 +68,7 @@ __kernel void confine(__global const float* w, __global float* u, __global float
 __kernel void diffuse(__global const float* x, __global const float* x0, __global float* dst, int W,
                       int H, float a, int wallRow) {
     ID
-    dst[k] = (SOLID_Y && wallRow && j == 0) ? 0.0f : hfx_gas_diffuse_jacobi(x, x0, W, H, i, j, a);
+    dst[k] = (WALLS && wallRow && j == 0) ? 0.0f : hfx_gas_diffuse_jacobi(x, x0, W, H, i, j, a);
 }
 
 __kernel void divergence(__global const float* u, __global const float* v, __global float* div, int W, int H) {
@@ -76,7 +78,7 @@ __kernel void divergence(__global const float* u, __global const float* v, __glo
 
 __kernel void pressure(__global const float* p, __global const float* div, __global float* dst, int W, int H) {
     ID
-    dst[k] = hfx_gas_pressure_jacobi(p, div, W, H, i, j, SOLID_Y);
+    dst[k] = hfx_gas_pressure_jacobi(p, div, W, H, i, j, WALLS);
 }
 
 /* The same sweep, four cells along i per work-item (W a multiple of 4), as float4: the rows are
@@ -91,8 +93,8 @@ __kernel void pressure4(__global const float* p, __global const float* div, __gl
     float l = p[row + hfx_gas_step(i0 - 1, W)], r = p[row + hfx_gas_step(i0 + 4, W)];
     float4 sum = (float4)(l, c.x, c.y, c.z) + (float4)(c.y, c.z, c.w, r);
     float n = 2.0f;
-    if (!SOLID_Y || j > 0) { sum += vload4(0, p + hfx_gas_step(j - 1, H) * W + i0); n += 1.0f; }
-    if (!SOLID_Y || j < H - 1) { sum += vload4(0, p + hfx_gas_step(j + 1, H) * W + i0); n += 1.0f; }
+    if (!WALLS || j > 0) { sum += vload4(0, p + hfx_gas_step(j - 1, H) * W + i0); n += 1.0f; }
+    if (!WALLS || j < H - 1) { sum += vload4(0, p + hfx_gas_step(j + 1, H) * W + i0); n += 1.0f; }
     vstore4((sum - vload4(0, div + row + i0)) / n, 0, dst + row + i0);
 }
 
@@ -100,7 +102,7 @@ __kernel void pressure4(__global const float* p, __global const float* div, __gl
 __kernel void project(__global float* u, __global float* v, __global const float* p, int W, int H) {
     ID
     u[k] -= p[k] - p[j * W + hfx_gas_step(i - 1, W)];
-    v[k] = (SOLID_Y && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H) * W + i]);
+    v[k] = (WALLS && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H) * W + i]);
 }
 
 __kernel void dye_height(__global const float* dye, __global float* height, int W, int H) {

@@ -1,20 +1,16 @@
+#include "EdgeMath.h"
+
 /* Maximum-height pyramid. Level 0 has one texel per bilinear cell: cell (i, j) lies between the
    samples i..i+1 and j..j+1 (texel centres), so its value, the max of those four corners,
    bounds every bilinearly interpolated height inside it. Each further level takes the max of
    2x2 texels of the one below (a lone last row or column counts alone). */
 
-int corner(int i, int n) {
-#ifdef CLAMP_EDGES
-    return min(i, n - 1);
-#else
-    return i == n ? 0 : i;
-#endif
-}
-
 __kernel void max_cells(__global const float* height, __global float* level0, int width, int rows) {
     int x = get_global_id(0), y = get_global_id(1);
     if (x >= width || y >= rows) return;
-    int x1 = corner(x + 1, width), y1 = corner(y + 1, rows);
+    /* The cell's far corners: across an edge that wraps, the first sample (as the wrapped texture
+       interpolates); across one that clamps, the last again. */
+    int x1 = hfx_edge_index(x + 1, width, HFX_WRAP_U), y1 = hfx_edge_index(y + 1, rows, HFX_WRAP_V);
     float a = fmax(height[y * width + x], height[y * width + x1]);
     float b = fmax(height[y1 * width + x], height[y1 * width + x1]);
     level0[y * width + x] = fmax(a, b);

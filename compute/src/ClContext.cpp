@@ -252,4 +252,23 @@ cl::Kernel ClContext::kernel(std::string_view file, const char* name, const std:
     return clGuard("creating an OpenCL kernel", [&] { return cl::Kernel(p, name); });
 }
 
+void ClContext::enqueue(const cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local) {
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global, local);
+    ++launches_;
+    Launches& entry = launchesByKernel_[kernel()];
+    if (!entry.kernel()) entry.kernel = kernel;
+    ++entry.count;
+}
+
+std::uint64_t ClContext::launches(std::string_view kernelName) const {
+    std::uint64_t n = 0;
+    for (const auto& [handle, entry] : launchesByKernel_)
+        if (entry.kernel.getInfo<CL_KERNEL_FUNCTION_NAME>() == kernelName) n += entry.count;
+    return n;
+}
+
+std::string edgeOptions(EdgeMode edges) {
+    return str("-DHFX_WRAP_U=", wrapsU(edges) ? 1 : 0, " -DHFX_WRAP_V=", wrapsV(edges) ? 1 : 0);
+}
+
 } // namespace hfx

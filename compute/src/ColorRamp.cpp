@@ -64,7 +64,7 @@ void ColorRamp::run(const cl::Buffer& field) {
         kernel_.setArg(2, stopBuffer_);
         kernel_.setArg(3, int(stops_.size()));
         kernel_.setArg(4, int(n));
-        cl_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(n));
+        cl_.enqueue(kernel_, cl::NDRange(n));
     });
 }
 

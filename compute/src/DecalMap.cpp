@@ -45,8 +45,7 @@ DecalMap::DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<f
         height_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, texels * sizeof(float));
         tileStartBuffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, tileStart_.size() * sizeof(int));
         kernel_ = cl.kernel("decals.cl", "decals",
-                            str("-DTILE=", config.tileSize,
-                                config.periodic ? "" : " -DCLAMP_EDGES"));
+                            str("-DTILE=", config.tileSize, " ", edgeOptions(config.edges)));
     });
     clear();
 }
@@ -82,7 +81,7 @@ void DecalMap::addBulletHoles(const std::vector<BulletHole>& holes) {
     pending_.insert(pending_.end(), holes.begin(), holes.end());
 }
 
-std::vector<BulletHole> DecalMap::expand(const Explosion& e, bool periodic) {
+std::vector<BulletHole> DecalMap::expand(const Explosion& e, EdgeMode edges) {
     if (e.debris < 0 || e.debris > 4096)
         throw Error(str("explosion debris count must be in [0, 4096], got ", e.debris));
     if (!(e.debrisSpread >= 1.0f && e.debrisSpread <= 16.0f))
@@ -96,21 +95,20 @@ std::vector<BulletHole> DecalMap::expand(const Explosion& e, bool periodic) {
         float u = float(e.u + distance * std::cos(angle)), v = float(e.v + distance * std::sin(angle));
         const float size = float(e.debrisRadius * random.uniform(0.5, 1.5));
         const float depth = float(e.depth * random.uniform(0.2, 0.5));
-        if (periodic) {
-            u -= std::floor(u);
-            v -= std::floor(v);
-            u = std::min(u, std::nextafter(1.0f, 0.0f));
-            v = std::min(v, std::nextafter(1.0f, 0.0f));
-        } else if (u < 0.0f || u >= 1.0f || v < 0.0f || v >= 1.0f) {
-            continue; // off a clamped map: the debris flew past its edge
-        }
+        // Across an edge that wraps the debris lands on the other side; past one that clamps it
+        // flew off the map.
+        auto land = [](float& x, bool wraps) {
+            if (wraps) x = std::min(x - std::floor(x), std::nextafter(1.0f, 0.0f));
+            return x >= 0.0f && x < 1.0f;
+        };
+        if (!land(u, wrapsU(edges)) || !land(v, wrapsV(edges))) continue;
         stamps.push_back({u, v, size, depth, depth * 0.3f, 0.4f});
     }
     return stamps;
 }
 
 void DecalMap::addExplosion(const Explosion& explosion) {
-    addBulletHoles(expand(explosion, config_.periodic));
+    addBulletHoles(expand(explosion, config_.edges));
 }
 
 void DecalMap::bin() {
@@ -119,15 +117,15 @@ void DecalMap::bin() {
     stamps_.clear();
     shapes_.clear();
     tileStamps_.clear();
-    // The tiles a stamp's footprint covers, per axis as at most two ranges of tiles: on a
-    // periodic map the texel range wraps (texels carry the period, and the last tile may be
+    // The tiles a stamp's footprint covers, per axis as at most two ranges of tiles: along an
+    // axis that wraps the texel range wraps (texels carry the period, and the last tile may be
     // partial, so wrapping is done on texels, then mapped to tiles).
     struct Range {
         int lo, hi;
     };
-    auto axis = [&](double centre, double reach, int n, int tiles, Range* out) -> int {
+    auto axis = [&](double centre, double reach, int n, int tiles, bool wraps, Range* out) -> int {
         int a = int(std::floor(centre - reach)), b = int(std::floor(centre + reach));
-        if (!config_.periodic) {
+        if (!wraps) {
             a = std::max(a, 0), b = std::min(b, n - 1);
             if (a > b) return 0;
             out[0] = {a / T, b / T};
@@ -144,7 +142,8 @@ void DecalMap::bin() {
     auto forEachTile = [&](const BulletHole& h, auto&& visit) {
         const double reach = h.radius * (1.0 + h.rimWidth) * W + 1.0;
         Range xs[2], ys[2];
-        const int nx = axis(h.u * W, reach, W, tilesX_, xs), ny = axis(h.v * H, reach, H, tilesY_, ys);
+        const int nx = axis(h.u * W, reach, W, tilesX_, wrapsU(config_.edges), xs),
+                  ny = axis(h.v * H, reach, H, tilesY_, wrapsV(config_.edges), ys);
         for (int i = 0; i < ny; ++i)
             for (int ty = ys[i].lo; ty <= ys[i].hi; ++ty)
                 for (int j = 0; j < nx; ++j)
@@ -202,7 +201,7 @@ void DecalMap::step(double dt) {
         // One work-group per tile: every work-item of a group loops over the same stamp list,
         // so the device can run the group's loop in vector lanes.
         const size_t T = size_t(config_.tileSize);
-        q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(tilesX_ * T, tilesY_ * T), cl::NDRange(T, T));
+        cl_.enqueue(kernel_, cl::NDRange(tilesX_ * T, tilesY_ * T), cl::NDRange(T, T));
     });
     pending_.clear();
 }

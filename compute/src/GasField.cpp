@@ -12,6 +12,8 @@ namespace hfx {
 void GasConfig::validate() const {
     if (width < 4 || height < 4 || width > 8192 || height > 8192)
         throw Error(str("GasConfig size must be in 4..8192, got ", width, "x", height));
+    if (edges == EdgeMode::Clamp)
+        throw Error("GasConfig.edges must be wrap or wrap-u, got clamp: the gas always wraps in x (longitude)");
     if (!(viscosity >= 0.0f) || !std::isfinite(viscosity))
         throw Error(str("GasConfig.viscosity must be >= 0, got ", viscosity));
     if (viscosityIterations < 1 || viscosityIterations > 1000)
@@ -37,8 +39,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         sumsBefore_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
         sumsAfter_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
         factor_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float));
-        const std::string options = config.periodicY ? "-DSOLID_Y=0" : "-DSOLID_Y=1";
-        const cl::Program& program = cl.program("gas.cl", options);
+        const cl::Program& program = cl.program("gas.cl", edgeOptions(config.edges));
         advect_ = cl::Kernel(program, "advect");
         maccormack_ = cl::Kernel(program, "maccormack");
         splat_ = cl::Kernel(program, "splat");
@@ -47,8 +48,8 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         confine_ = cl::Kernel(program, "confine");
         diffuse_ = cl::Kernel(program, "diffuse");
         divergence_ = cl::Kernel(program, "divergence");
-        // Four cells per work-item where the rows allow it: 2.2-3.6x the one-cell sweep on PoCL
-        // (BM_GasPressureKernel), the same results.
+        // Four cells per work-item where the rows allow it: faster, the same results
+        // (BM_GasPressureKernel, docs/BENCHMARKS.md).
         pressure_ = cl::Kernel(program, config.width % 4 == 0 ? "pressure4" : "pressure");
         project_ = cl::Kernel(program, "project");
         dyeHeight_ = cl::Kernel(program, "dye_height");
@@ -76,7 +77,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
 void GasField::run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args) {
     cl_uint index = 0;
     for (const auto& [size, value] : args) kernel.setArg(index++, size, value);
-    cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(config_.width, config_.height));
+    cl_.enqueue(kernel, cl::NDRange(config_.width, config_.height));
 }
 
 namespace {
@@ -154,7 +155,7 @@ void GasField::step(double dtSeconds) {
             rowSums_.setArg(1, sums);
             rowSums_.setArg(2, W);
             rowSums_.setArg(3, H);
-            q.enqueueNDRangeKernel(rowSums_, cl::NullRange, cl::NDRange(size_t(H)));
+            cl_.enqueue(rowSums_, cl::NDRange(size_t(H)));
         };
         if (config_.conserveDye) rowSums(dye_, sumsBefore_);
         advectField(dye_, 0.5f, 0.5f, dt, false);
@@ -165,7 +166,7 @@ void GasField::step(double dtSeconds) {
             massFactor_.setArg(1, sumsAfter_);
             massFactor_.setArg(2, H);
             massFactor_.setArg(3, factor_);
-            q.enqueueNDRangeKernel(massFactor_, cl::NullRange, cl::NDRange(1));
+            cl_.enqueue(massFactor_, cl::NDRange(1));
             run(scale_, {arg(dye_), arg(factor_), arg(W), arg(H)});
         }
         writeHeight();
@@ -185,7 +186,7 @@ void GasField::project() {
             pressure_.setArg(2, p2_);
             pressure_.setArg(3, W);
             pressure_.setArg(4, H);
-            q.enqueueNDRangeKernel(pressure_, cl::NullRange, sweep);
+            cl_.enqueue(pressure_, sweep);
             std::swap(p_, p2_);
         }
         run(project_, {arg(u_), arg(v_), arg(p_), arg(W), arg(H)});

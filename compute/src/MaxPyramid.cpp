@@ -4,7 +4,7 @@
 
 namespace hfx {
 
-MaxPyramid::MaxPyramid(ClContext& cl, int width, int height, bool wrapEdges)
+MaxPyramid::MaxPyramid(ClContext& cl, int width, int height, EdgeMode edges)
     : cl_(cl), width_(width), height_(height) {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         throw Error(str("MaxPyramid size must be in 1..16384, got ", width, "x", height));
@@ -17,7 +17,7 @@ MaxPyramid::MaxPyramid(ClContext& cl, int width, int height, bool wrapEdges)
     clGuard("creating the max-height pyramid", [&] {
         buffer_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
                              offset * sizeof(float));
-        const std::string options = wrapEdges ? "" : "-DCLAMP_EDGES";
+        const std::string options = edgeOptions(edges);
         cells_ = cl.kernel("pyramid.cl", "max_cells", options);
         reduce_ = cl.kernel("pyramid.cl", "max_reduce", options);
     });
@@ -37,7 +37,7 @@ void MaxPyramid::build(const cl::Buffer& height) {
         cells_.setArg(1, buffer_); // level 0 starts at offset 0
         cells_.setArg(2, width_);
         cells_.setArg(3, height_);
-        q.enqueueNDRangeKernel(cells_, cl::NullRange, cl::NDRange(width_, height_));
+        cl_.enqueue(cells_, cl::NDRange(width_, height_));
         for (size_t k = 1; k < levels_.size(); ++k) {
             reduce_.setArg(0, buffer_);
             reduce_.setArg(1, int(levels_[k - 1].offset));
@@ -46,7 +46,7 @@ void MaxPyramid::build(const cl::Buffer& height) {
             reduce_.setArg(4, int(levels_[k].offset));
             reduce_.setArg(5, levels_[k].width);
             reduce_.setArg(6, levels_[k].height);
-            q.enqueueNDRangeKernel(reduce_, cl::NullRange, cl::NDRange(levels_[k].width, levels_[k].height));
+            cl_.enqueue(reduce_, cl::NDRange(levels_[k].width, levels_[k].height));
         }
     });
 }

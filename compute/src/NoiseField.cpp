@@ -22,7 +22,7 @@ Fractal parseFractal(const std::string& name) {
 
 float NoiseConfig::frequencyY() const {
     const float f = frequency * float(height) / float(width);
-    if (!periodic) return f;
+    if (!wrapsV(edges)) return f;
     const float whole = std::max(1.0f, std::round(f));
     return kind == NoiseKind::Psrd ? std::max(2.0f, 2.0f * std::round(f / 2.0f)) : whole;
 }
@@ -42,14 +42,16 @@ void NoiseConfig::validate() const {
         throw Error(str("NoiseConfig.warp must be in [0, 64], got ", warp));
     if (!std::isfinite(speed) || !std::isfinite(seed))
         throw Error(str("NoiseConfig.speed and seed must be finite, got ", speed, " and ", seed));
-    if (periodic) {
+    if (edges != EdgeMode::Clamp) {
         if (kind == NoiseKind::Simplex)
-            throw Error("NoiseConfig: simplex noise has no periodic variant; use perlin or psrd, "
-                        "or set periodic = false");
+            throw Error(str("NoiseConfig: simplex noise has no periodic variant (edges ", edgeModeName(edges),
+                            "); use perlin or psrd, or edges = clamp"));
+        if (kind == NoiseKind::Psrd && edges == EdgeMode::WrapU)
+            throw Error("NoiseConfig: psrd noise tiles both ways or not at all; edges wrap-u needs perlin");
         if (frequency != std::round(frequency))
-            throw Error(str("NoiseConfig.frequency must be a whole number when periodic, got ", frequency));
+            throw Error(str("NoiseConfig.frequency must be a whole number when the edges wrap, got ", frequency));
         if (lacunarity != std::round(lacunarity))
-            throw Error(str("NoiseConfig.lacunarity must be a whole number when periodic, got ", lacunarity));
+            throw Error(str("NoiseConfig.lacunarity must be a whole number when the edges wrap, got ", lacunarity));
         if (kind == NoiseKind::Perlin && frequency * std::pow(lacunarity, octaves - 1) > 256.0f)
             throw Error(str("NoiseConfig: the finest octave's period ", frequency * std::pow(lacunarity, octaves - 1),
                             " exceeds Perlin's 256-cell lattice"));
@@ -64,7 +66,7 @@ NoiseField::NoiseField(ClContext& cl, const NoiseConfig& config) : cl_(cl), conf
         // Correctly rounded division, so the kernel rounds as the C++ reference does.
         kernel_ = cl.kernel("noise.cl", "noise",
                             str("-cl-fp32-correctly-rounded-divide-sqrt -DKIND=", int(config.kind),
-                                " -DFRACTAL=", int(config.fractal)));
+                                " -DFRACTAL=", int(config.fractal), " ", edgeOptions(config.edges)));
     });
     compute();
 }
@@ -102,14 +104,12 @@ void NoiseField::compute() {
         kernel_.setArg(a++, config_.height);
         kernel_.setArg(a++, config_.frequency);
         kernel_.setArg(a++, config_.frequencyY());
-        kernel_.setArg(a++, config_.periodic ? 1 : 0);
         kernel_.setArg(a++, timeCoordinate(time_));
         kernel_.setArg(a++, config_.octaves);
         kernel_.setArg(a++, config_.lacunarity);
         kernel_.setArg(a++, config_.gain);
         kernel_.setArg(a++, config_.warp);
-        cl_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
-                                         cl::NDRange(config_.width, config_.height));
+        cl_.enqueue(kernel_, cl::NDRange(config_.width, config_.height));
     });
 }
 

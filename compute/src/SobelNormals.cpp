@@ -20,8 +20,7 @@ SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config, void* hostM
         output_ = hostMemory ? cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes, hostMemory)
                              : cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, bytes);
         // Four texels per work-item where the rows allow it (the faster kernel), one elsewhere.
-        kernel_ = cl.kernel("sobel.cl", config.width % 4 == 0 ? "sobel4" : "sobel",
-                            !config.wrapEdges ? "-DCLAMP_EDGES" : (config.clampV ? "-DCLAMP_Y" : ""));
+        kernel_ = cl.kernel("sobel.cl", config.width % 4 == 0 ? "sobel4" : "sobel", edgeOptions(config.edges));
     });
 }
 
@@ -46,8 +45,7 @@ void SobelNormals::run(const cl::Buffer& height) {
         kernel_.setArg(4, config_.depthScale * config_.width);
         kernel_.setArg(5, config_.depthScale * config_.height);
         const size_t perItem = config_.width % 4 == 0 ? 4 : 1;
-        cl_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
-                                         cl::NDRange(config_.width / perItem, config_.height));
+        cl_.enqueue(kernel_, cl::NDRange(config_.width / perItem, config_.height));
     });
 }
 

@@ -27,7 +27,7 @@ void SurfacePacker::run(const cl::Buffer& normalHeight) {
         kernel_.setArg(0, normalHeight);
         kernel_.setArg(1, output_);
         kernel_.setArg(2, count_);
-        cl_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(size_t(count_)));
+        cl_.enqueue(kernel_, cl::NDRange(size_t(count_)));
     });
 }
 

@@ -103,7 +103,7 @@ void WaveField::compute() {
         tables_.setArg(1, rows_);
         tables_.setArg(2, config_.size);
         tables_.setArg(3, waveBuffer_);
-        q.enqueueNDRangeKernel(tables_, cl::NullRange, cl::NDRange(config_.size, waves_.size()));
+        cl_.enqueue(tables_, cl::NDRange(config_.size, waves_.size()));
         kernel_.setArg(0, height_);
         kernel_.setArg(1, config_.size);
         kernel_.setArg(2, columns_);
@@ -112,7 +112,7 @@ void WaveField::compute() {
         kernel_.setArg(5, int(waves_.size()));
         kernel_.setArg(6, config_.steepness);
         kernel_.setArg(7, inverseTotalAmplitude(waves_));
-        q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(config_.size, config_.size));
+        cl_.enqueue(kernel_, cl::NDRange(config_.size, config_.size));
     });
 }
 

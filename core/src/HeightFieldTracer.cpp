@@ -17,10 +17,8 @@ HeightFieldTracer::HeightFieldTracer(std::vector<float> heights, int width, int 
 }
 
 double HeightFieldTracer::sample(long long i, long long j) const {
-    i = edges_ == EdgeMode::Clamp ? std::clamp<long long>(i, 0, width_ - 1)
-                                  : ((i % width_) + width_) % width_;
-    j = edges_ == EdgeMode::Wrap ? ((j % height_) + height_) % height_
-                                 : std::clamp<long long>(j, 0, height_ - 1);
+    i = wrapsU(edges_) ? ((i % width_) + width_) % width_ : std::clamp<long long>(i, 0, width_ - 1);
+    j = wrapsV(edges_) ? ((j % height_) + height_) % height_ : std::clamp<long long>(j, 0, height_ - 1);
     return heights_[size_t(j) * width_ + size_t(i)];
 }
 

@@ -120,6 +120,9 @@ void ShaderProgram::set(std::string_view name, float v) const {
 void ShaderProgram::set(std::string_view name, const glm::vec2& v) const {
     glProgramUniform2fv(id(), uniform(name), 1, glm::value_ptr(v));
 }
+void ShaderProgram::set(std::string_view name, const glm::ivec2& v) const {
+    glProgramUniform2iv(id(), uniform(name), 1, glm::value_ptr(v));
+}
 void ShaderProgram::set(std::string_view name, const glm::vec3& v) const {
     glProgramUniform3fv(id(), uniform(name), 1, glm::value_ptr(v));
 }

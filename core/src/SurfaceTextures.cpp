@@ -35,8 +35,8 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
                   ? static_cast<int>(std::bit_width(static_cast<unsigned>(
                         std::max(config.width, config.height))))
                   : 1;
-    const GLenum wrapS = config.edges == EdgeMode::Clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
-    const GLenum wrapT = config.edges == EdgeMode::Wrap ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    const GLenum wrapS = wrapsU(config.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    const GLenum wrapT = wrapsV(config.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
     for (const GlTexture* t : {&surface_, &albedo_}) {
         glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, wrapS);
         glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, wrapT);

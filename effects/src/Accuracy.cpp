@@ -44,7 +44,7 @@ SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, i
                           const_cast<float*>(heights.data()));
     });
     SobelNormals sobel(cl, {.width = size, .height = size, .depthScale = depthScale});
-    MaxPyramid pyramid(cl, size, size, true);
+    MaxPyramid pyramid(cl, size, size, EdgeMode::Wrap);
     sobel.run(buffer);
     pyramid.build(buffer);
     if (format == SurfaceFormat::Float32) {

@@ -68,7 +68,7 @@ DecalWallEffect::Made DecalWallEffect::make(ClContext& cl, const DecalWallConfig
     WallMaps maps = loadWall(config);
     DecalConfig decals{.width = maps.width,
                        .height = maps.height,
-                       .periodic = true,
+                       .edges = EdgeMode::Wrap,
                        .healRate = config.healRate,
                        .maxStampsPerBatch = config.maxStampsPerBatch};
     Made made{std::make_unique<DecalMap>(cl, decals, maps.heights), std::move(maps.albedo), {}, {}};
@@ -97,35 +97,20 @@ DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, M
       decals_(static_cast<DecalMap&>(source())) {
     if (!made.albedo.empty()) setAlbedo(made.albedo);
     if (!made.normals.empty()) {
-        const int w = decals_.width(), h = decals_.height();
-        clGuard("uploading the wall's normal map", [&] {
-            baseHeights_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                      made.heights.size() * sizeof(float), made.heights.data());
-            detail_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                 made.normals.size() * sizeof(float), made.normals.data());
-            addDetail_ = cl.kernel("sobel.cl", "sobel_add_detail");
-        });
-        baseNormals_ = std::make_unique<SobelNormals>(
-            cl, SobelConfig{.width = w, .height = h, .depthScale = material().depthScale, .wrapEdges = true});
+        baseHeights_ = std::move(made.heights);
+        normalMap_ = std::move(made.normals);
         refresh(nowMs()); // again, now with the normal map
     }
 }
 
 void DecalWallEffect::enqueueExtra() {
-    if (!baseNormals_) return;
-    if (baseDepthScale_ != material().depthScale) {
-        baseNormals_->setDepthScale(material().depthScale);
-        baseNormals_->run(baseHeights_);
-        baseDepthScale_ = material().depthScale;
+    if (normalMap_.empty()) return;
+    const SobelConfig& sobel = normals().config();
+    if (!detail_ || detailDepth_ != sobel.depthScale) {
+        detail_ = std::make_unique<DetailNormals>(cl(), sobel, baseHeights_, normalMap_);
+        detailDepth_ = sobel.depthScale;
     }
-    const int n = decals_.width() * decals_.height();
-    clGuard("adding the wall's normal map", [&] {
-        addDetail_.setArg(0, normals().output());
-        addDetail_.setArg(1, baseNormals_->output());
-        addDetail_.setArg(2, detail_);
-        addDetail_.setArg(3, n);
-        cl().queue().enqueueNDRangeKernel(addDetail_, cl::NullRange, cl::NDRange(size_t(n)));
-    });
+    detail_->apply(normals().output());
 }
 
 void DecalWallEffect::shoot(double u, double v) {

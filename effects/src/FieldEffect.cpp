@@ -15,9 +15,7 @@ SurfaceTexturesConfig texturesConfig(const HeightSource& source, const FieldOpti
     return {.width = source.width(),
             .height = source.height(),
             .mipmaps = o.mipmaps,
-            .edges = source.periodic()    ? EdgeMode::Wrap
-                     : source.periodicU() ? EdgeMode::WrapU
-                                          : EdgeMode::Clamp,
+            .edges = source.edges(),
             .pyramid = o.pyramid,
             .format = o.format};
 }
@@ -44,14 +42,13 @@ FieldEffect::FieldEffect(ClContext& cl, std::unique_ptr<HeightSource> source,
                SobelConfig{.width = source->width(),
                            .height = source->height(),
                            .depthScale = material.depthScale,
-                           .wrapEdges = source->periodicU(),
-                           .clampV = !source->periodic()},
+                           .edges = source->edges()},
                pixels_ && options.format == SurfaceFormat::Float32 ? pixels_->memory() : nullptr),
       textures_{std::make_unique<SurfaceTextures>(texturesConfig(*source, options)),
                 std::make_unique<SurfaceTextures>(texturesConfig(*source, options))} {
     source_ = std::move(source);
     if (options.pyramid)
-        pyramid_ = std::make_unique<MaxPyramid>(cl, source_->width(), source_->height(), source_->periodic());
+        pyramid_ = std::make_unique<MaxPyramid>(cl, source_->width(), source_->height(), source_->edges());
     if (options.format != SurfaceFormat::Float32)
         packer_ = std::make_unique<SurfacePacker>(cl, source_->width(), source_->height(), options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);

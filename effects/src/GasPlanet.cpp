@@ -16,8 +16,9 @@ std::vector<ColorStop> gasGiantPalette() {
 
 void GasPlanetConfig::validate() const {
     gas.validate();
-    if (gas.periodicY)
-        throw Error("GasPlanetConfig.gas.periodicY must be false: a planet's poles are walls, not a seam");
+    if (gas.edges != EdgeMode::WrapU)
+        throw Error(str("GasPlanetConfig.gas.edges must be wrap-u, got ", edgeModeName(gas.edges),
+                        ": a planet's poles are walls, not a seam"));
     if (!(stormsPerSecond >= 0.0f && stormsPerSecond <= 100.0f))
         throw Error(str("GasPlanetConfig.stormsPerSecond must be in [0, 100], got ", stormsPerSecond));
     if (!(stormRadius > 0.0f && stormRadius <= 0.25f))

@@ -26,7 +26,7 @@ SurfaceTexturesConfig texturesConfig(const ImageSurfaceConfig& config, const Ima
     return {.width = height.width,
             .height = height.height,
             .mipmaps = config.mipmaps,
-            .edges = config.wrapEdges ? EdgeMode::Wrap : EdgeMode::Clamp};
+            .edges = config.edges};
 }
 
 } // namespace
@@ -64,7 +64,7 @@ ImageSurface::ImageSurface(ClContext& cl, const ImageSurfaceConfig& config)
               SobelNormals sobel(cl, {.width = w,
                                       .height = h,
                                       .depthScale = config.material.depthScale,
-                                      .wrapEdges = config.wrapEdges});
+                                      .edges = config.edges});
               sobel.run(heights);
               uploadField(cl, sobel.output(), textures);
           }

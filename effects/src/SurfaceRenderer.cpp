@@ -178,7 +178,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
     if (material.shading == Shading::Water) glBindTextureUnit(2, material.water.environment);
     if (options.technique == Technique::Hierarchical) {
         p.set("u_pyramidLevels", textures.pyramidLevels());
-        p.set("u_pyramidWrap", textures.config().edges == EdgeMode::Wrap ? 1 : 0);
+        p.set("u_wrap", glm::ivec2(wrapsU(textures.config().edges), wrapsV(textures.config().edges)));
         glBindTextureUnit(3, textures.pyramid());
     }
     glEnable(GL_DEPTH_TEST);

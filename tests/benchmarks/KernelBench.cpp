@@ -155,7 +155,7 @@ void BM_Noise(benchmark::State& state) {
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x)
                 h[size_t(y) * n + x] = hfx_noise_texel(0, 0, (x + 0.5f) / n, (y + 0.5f) / n, c.frequency, c.frequencyY(),
-                                                       1, 0.5f, c.octaves, c.lacunarity, c.gain, c.warp);
+                                                       1, 1, 0.5f, c.octaves, c.lacunarity, c.gain, c.warp);
         benchmark::DoNotOptimize(h.data());
     });
 }
@@ -187,7 +187,7 @@ void BM_Pyramid(benchmark::State& state) {
     const auto heights = randomHeights(n);
     cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
                      const_cast<float*>(heights.data()));
-    MaxPyramid pyramid(cl(), n, n, true);
+    MaxPyramid pyramid(cl(), n, n, EdgeMode::Wrap);
     measure(state, [&] { pyramid.build(input); }, 4.0 * n * n * (1.0 + 4.0 / 3.0),
             [&] { benchmark::DoNotOptimize(pyramidReference(heights, n, n)); });
 }

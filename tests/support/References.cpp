@@ -53,13 +53,11 @@ void decalsReference(const DecalConfig& c, const std::vector<float>& base, std::
         const int y0 = int(std::floor(s.v * H - reach)), y1 = int(std::floor(s.v * H + reach));
         for (int ty = y0; ty <= std::min(y1, y0 + H - 1); ++ty)
             for (int tx = x0; tx <= std::min(x1, x0 + W - 1); ++tx) {
-                if (!c.periodic && (tx < 0 || ty < 0 || tx >= W || ty >= H)) continue;
+                if ((!wrapsU(c.edges) && (tx < 0 || tx >= W)) || (!wrapsV(c.edges) && (ty < 0 || ty >= H))) continue;
                 const int x = ((tx % W) + W) % W, y = ((ty % H) + H) % H;
                 float dx = (x + 0.5f) - s.u * W, dy = (y + 0.5f) - s.v * H;
-                if (c.periodic) {
-                    dx -= W * std::rint(dx / W);
-                    dy -= H * std::rint(dy / H);
-                }
+                if (wrapsU(c.edges)) dx -= W * std::rint(dx / W);
+                if (wrapsV(c.edges)) dy -= H * std::rint(dy / H);
                 const float r = std::sqrt(dx * dx + dy * dy) / (s.radius * W);
                 float& d = damage[size_t(y) * W + x];
                 d = hfx_apply_damage(d, hfx_crater_profile(r, s.depth, s.rimHeight, s.rimWidth), base[size_t(y) * W + x]);

@@ -32,7 +32,7 @@ struct GasReference {
     std::vector<float> u, v, dye;
     int W() const { return c.width; }
     int H() const { return c.height; }
-    int solid() const { return c.periodicY ? 0 : 1; }
+    int walls() const { return wrapsV(c.edges) ? 0 : 1; }
     template <typename F>
     std::vector<float> map(F&& f) const {
         std::vector<float> out(size_t(W()) * H());
@@ -43,18 +43,18 @@ struct GasReference {
     std::vector<float> advect(const std::vector<float>& src, float ox, float oy, float dt, bool wallRow) const {
         auto plain = [&](const std::vector<float>& s, float step) {
             return map([&](int i, int j) {
-                return (solid() && wallRow && j == 0)
+                return (walls() && wallRow && j == 0)
                            ? 0.0f
-                           : hfx_gas_advect(u.data(), v.data(), s.data(), W(), H(), i, j, ox, oy, step, solid());
+                           : hfx_gas_advect(u.data(), v.data(), s.data(), W(), H(), i, j, ox, oy, step, walls());
             });
         };
         if (!c.maccormack) return plain(src, dt);
         const auto forward = plain(src, dt), backward = plain(forward, -dt);
         return map([&](int i, int j) {
-            return (solid() && wallRow && j == 0)
+            return (walls() && wallRow && j == 0)
                        ? 0.0f
                        : hfx_gas_maccormack(u.data(), v.data(), src.data(), forward.data(), backward.data(), W(), H(),
-                                            i, j, ox, oy, dt, solid());
+                                            i, j, ox, oy, dt, walls());
         });
     }
     void step(float dt) {
@@ -66,7 +66,7 @@ struct GasReference {
                     hfx_gas_confinement(w.data(), W(), H(), i, j, c.vorticity, a);
                     hfx_gas_confinement(w.data(), W(), H(), hfx_gas_step(i - 1, W()), j, c.vorticity, b);
                     u[j * W() + i] += dt * 0.5f * (a[0] + b[0]);
-                    if (solid() && j == 0) continue;
+                    if (walls() && j == 0) continue;
                     hfx_gas_confinement(w.data(), W(), H(), i, hfx_gas_step(j - 1, H()), c.vorticity, b);
                     v[j * W() + i] += dt * 0.5f * (a[1] + b[1]);
                 }
@@ -78,12 +78,12 @@ struct GasReference {
         std::vector<float> div = map([&](int i, int j) { return hfx_gas_divergence(u.data(), v.data(), W(), H(), i, j); });
         std::vector<float> p(div.size(), 0.0f);
         for (int it = 0; it < c.pressureIterations; ++it)
-            p = map([&](int i, int j) { return hfx_gas_pressure_jacobi(p.data(), div.data(), W(), H(), i, j, solid()); });
+            p = map([&](int i, int j) { return hfx_gas_pressure_jacobi(p.data(), div.data(), W(), H(), i, j, walls()); });
         for (int j = 0; j < H(); ++j)
             for (int i = 0; i < W(); ++i) {
                 const int k = j * W() + i;
                 u[k] -= p[k] - p[j * W() + hfx_gas_step(i - 1, W())];
-                v[k] = (solid() && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H()) * W() + i]);
+                v[k] = (walls() && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H()) * W() + i]);
             }
         dye = advect(dye, 0.5f, 0.5f, dt, false);
     }

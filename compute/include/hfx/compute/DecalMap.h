@@ -2,7 +2,7 @@
 // A persistent damage map: bullet holes (craters with raised rims) and explosions (a large
 // crater plus scattered debris pits) stamped in batches of thousands, on top of a base height
 // map (a brick wall, say). Damage accumulates but base + damage never leaves [0,1]; it may heal
-// slowly. Stamps on a periodic map wrap across its edges.
+// slowly. Stamps wrap across the edges that wrap (DecalConfig::edges).
 //
 // Positions are texcoords in [0,1); radii are in units of the map's width.
 // Thread: the thread that owns the ClContext.
@@ -35,7 +35,7 @@ struct Explosion {
 struct DecalConfig {
     int width = 512;
     int height = 512;
-    bool periodic = true;          ///< stamps wrap across edges (tileable walls)
+    EdgeMode edges = EdgeMode::Wrap; ///< stamps wrap across the edges that wrap (tileable walls)
     float healRate = 0.0f;         ///< damage decays as exp(-healRate t); 0 = permanent
     int tileSize = 16;             ///< texels per binning tile edge
     int maxStampsPerBatch = 65536; ///< a larger batch is refused, not truncated
@@ -64,11 +64,12 @@ public:
     const cl::Buffer& damage() const { return damage_; }
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }
-    bool periodic() const override { return config_.periodic; }
+    EdgeMode edges() const override { return config_.edges; }
     const DecalConfig& config() const { return config_; }
 
     /// The stamps an explosion expands into: the crater first, then the debris pits.
-    static std::vector<BulletHole> expand(const Explosion& explosion, bool periodic);
+    /// Debris past an edge that wraps lands across it; past one that clamps it is dropped.
+    static std::vector<BulletHole> expand(const Explosion& explosion, EdgeMode edges);
 
 private:
     void validate(const BulletHole& hole) const;

@@ -18,7 +18,8 @@ namespace hfx {
 struct GasConfig {
     int width = 256;
     int height = 128;
-    bool periodicY = false;       ///< false: walls at the top and bottom (poles)
+    /// x always wraps (longitude). WrapU: walls at the top and bottom (poles); Wrap: a torus.
+    EdgeMode edges = EdgeMode::WrapU;
     float viscosity = 0.0f;       ///< cells^2 per second
     int viscosityIterations = 20;
     int pressureIterations = 40;
@@ -59,8 +60,7 @@ public:
     const cl::Buffer& buffer() const override { return height_; }
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }
-    bool periodic() const override { return config_.periodicY; }
-    bool periodicU() const override { return true; }
+    EdgeMode edges() const override { return config_.edges; }
     const GasConfig& config() const { return config_; }
 
 private:

@@ -17,10 +17,9 @@ public:
     virtual const cl::Buffer& buffer() const = 0;
     virtual int width() const = 0;
     virtual int height() const = 0;
-    /// True when the field tiles (edges wrap for the Sobel filter and the textures).
-    virtual bool periodic() const = 0;
-    /// True when the field tiles along u (x) at least: a longitude-latitude grid wraps in u only.
-    virtual bool periodicU() const { return periodic(); }
+    /// How the field continues beyond its edges: Wrap when it tiles, WrapU for a
+    /// longitude-latitude grid, Clamp otherwise. Sobel, the pyramid and the textures follow it.
+    virtual EdgeMode edges() const = 0;
 };
 
 } // namespace hfx

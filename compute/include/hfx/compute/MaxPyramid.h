@@ -20,8 +20,9 @@ struct PyramidLevel {
 
 class MaxPyramid {
 public:
-    /// wrapEdges: the last cell of a row joins the last sample to the first (periodic fields).
-    MaxPyramid(ClContext& cl, int width, int height, bool wrapEdges);
+    /// Along an axis that wraps (the source's edges), the last cell joins the last sample to the
+    /// first, as the wrapped texture interpolates; along one that clamps it holds the last sample.
+    MaxPyramid(ClContext& cl, int width, int height, EdgeMode edges);
 
     /// Enqueues the whole pyramid of `height` (width x height floats); does not wait.
     void build(const cl::Buffer& height);

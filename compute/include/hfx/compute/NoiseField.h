@@ -25,13 +25,15 @@ struct NoiseConfig {
     int height = 512;
     NoiseKind kind = NoiseKind::Perlin;
     Fractal fractal = Fractal::Fbm;
-    float frequency = 8.0f;  ///< base cells across the width (whole number when periodic)
+    float frequency = 8.0f;  ///< base cells across the width (whole number when it wraps)
     int octaves = 5;
-    float lacunarity = 2.0f; ///< frequency ratio of successive octaves (2 when periodic)
+    float lacunarity = 2.0f; ///< frequency ratio of successive octaves (whole when it wraps)
     float gain = 0.5f;       ///< amplitude ratio of successive octaves
     float warp = 0.0f;       ///< domain-warp distance in base cells, 0 = none
     float speed = 0.3f;      ///< time-coordinate units (or radians for psrd) per second
-    bool periodic = true;    ///< tileable (Perlin and psrd; simplex has no periodic variant)
+    /// Wrap: tileable (Perlin and psrd); WrapU: tileable in u only (Perlin); Clamp: not tileable
+    /// (any kind; simplex has no periodic variant).
+    EdgeMode edges = EdgeMode::Wrap;
     float seed = 0.0f;       ///< start of the time coordinate: different seeds, different fields
     void validate() const;   ///< throws hfx::Error naming the bad field and its value
     /// Cells across the height: the width's frequency scaled by the aspect (psrdnoise's y period
@@ -50,7 +52,7 @@ public:
     const cl::Buffer& buffer() const override { return height_; }
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }
-    bool periodic() const override { return config_.periodic; }
+    EdgeMode edges() const override { return config_.edges; }
     const NoiseConfig& config() const { return config_; }
     /// The time coordinate the kernel sees at `seconds`.
     float timeCoordinate(double seconds) const;

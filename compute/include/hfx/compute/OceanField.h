@@ -56,7 +56,7 @@ public:
     const cl::Buffer& rawHeight() const { return field_; }
     int width() const override { return config_.size; }
     int height() const override { return config_.size; }
-    bool periodic() const override { return true; }
+    EdgeMode edges() const override { return EdgeMode::Wrap; }
     const OceanConfig& config() const { return config_; }
 
     /// h0(k) at FFT index order, and the quantised angular frequencies.

@@ -15,8 +15,7 @@ struct SobelConfig {
     /// Depth of the height range in texture units (the renderer's depth scale): the normals are
     /// those of the surface z = depthScale * h(u, v).
     float depthScale = 0.05f;
-    bool wrapEdges = true; ///< periodic fields wrap; others clamp to the edge texel
-    bool clampV = false;   ///< with wrapEdges: wrap u only, clamp v (longitude-latitude grids)
+    EdgeMode edges = EdgeMode::Wrap; ///< the source's: neighbours across an edge wrap or clamp
     void validate() const;
 };
 

@@ -44,7 +44,7 @@ public:
     const cl::Buffer& buffer() const override { return height_; }
     int width() const override { return config_.size; }
     int height() const override { return config_.size; }
-    bool periodic() const override { return true; }
+    EdgeMode edges() const override { return EdgeMode::Wrap; }
     int size() const { return config_.size; }
     const WaveConfig& config() const { return config_; }
     const std::vector<Wave>& waves() const { return waves_; }

@@ -7,7 +7,7 @@
 //
 // Thread: const methods may be called from any number of threads at once.
 
-#include "hfx/core/SurfaceTextures.h"
+#include "hfx/core/EdgeMode.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

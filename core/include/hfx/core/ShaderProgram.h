@@ -40,6 +40,7 @@ public:
     void set(std::string_view name, int v) const;
     void set(std::string_view name, float v) const;
     void set(std::string_view name, const glm::vec2& v) const;
+    void set(std::string_view name, const glm::ivec2& v) const;
     void set(std::string_view name, const glm::vec3& v) const;
     void set(std::string_view name, const glm::vec4& v) const;
     void set(std::string_view name, const glm::mat4& v) const;

@@ -6,6 +6,7 @@
 //
 // Owns its textures. Thread: the thread whose GL context is current.
 
+#include "hfx/core/EdgeMode.h"
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/SurfaceFormat.h"
@@ -14,15 +15,11 @@
 
 namespace hfx {
 
-/// How texels beyond the edges are read: Wrap tiles both ways; WrapU tiles u and clamps v (a
-/// longitude-latitude map, which wraps at the date line but not over the poles); Clamp clamps.
-enum class EdgeMode { Wrap, Clamp, WrapU };
-
 struct SurfaceTexturesConfig {
     int width = 512;
     int height = 512;
     bool mipmaps = true; ///< POM's level-of-detail switch needs them; tests of the search don't
-    EdgeMode edges = EdgeMode::Wrap;
+    EdgeMode edges = EdgeMode::Wrap; ///< the textures' wrap modes, and the pyramid walk's
     /// Also a maximum-height pyramid texture (R32F, full mip chain) for the hierarchical tracer;
     /// needs power-of-two sizes.
     bool pyramid = false;

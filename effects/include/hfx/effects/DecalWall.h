@@ -9,7 +9,7 @@
 // Thread: the thread that owns both the ClContext and the current GL context.
 
 #include "hfx/compute/DecalMap.h"
-#include "hfx/compute/SobelNormals.h"
+#include "hfx/compute/DetailNormals.h"
 #include "hfx/core/Image.h"
 #include "hfx/effects/BrickWall.h"
 #include "hfx/effects/FieldEffect.h"
@@ -66,12 +66,11 @@ private:
 
     DecalWallConfig config_;
     DecalMap& decals_;
-    // With a normal map: the base heights' own Sobel normals (redone when the depth scale
-    // changes) and the map, on the device.
-    std::unique_ptr<SobelNormals> baseNormals_;
-    cl::Buffer baseHeights_, detail_;
-    cl::Kernel addDetail_;
-    float baseDepthScale_ = -1.0f;
+    // With a normal map: the map and its base heights, and the pass that adds the damage to it
+    // (remade when the depth scale changes).
+    std::vector<float> baseHeights_, normalMap_;
+    std::unique_ptr<DetailNormals> detail_;
+    float detailDepth_ = -1.0f;
 };
 
 } // namespace hfx

@@ -19,7 +19,7 @@ struct ImageSurfaceConfig {
     std::string normalMap;  ///< optional: derived from the heights when empty
     std::string colorMap;   ///< optional: light grey when empty
     SurfaceMaterial material{.depthScale = 0.08f};
-    bool wrapEdges = true;  ///< tileable maps wrap; others clamp
+    EdgeMode edges = EdgeMode::Wrap; ///< tileable maps wrap; others clamp
     bool mipmaps = true;
     ImageReadLimits limits;
     void validate() const;

@@ -191,13 +191,16 @@ HFX_FN float hfx_fractal(int kind, int fractal, float x, float y, float t, int o
 }
 
 /* One texel of a noise field at texcoords (u, v): frequencyX x frequencyY base cells across the
-   field (whole numbers when periodic), optionally domain-warped (Quilez): the position moves by
-   `warp` cells times a second fractal pair, which keeps the result periodic when it was. */
+   field (whole numbers along an axis that wraps), optionally domain-warped (Quilez): the position
+   moves by `warp` cells times a second fractal pair, which keeps the result periodic where it
+   was. wrapU / wrapV: the field tiles along u / v (hfx::EdgeMode; Perlin's lattice repeats every
+   256 cells anyway, which is what an axis that does not wrap gets). */
 HFX_FN float hfx_noise_texel(int kind, int fractal, float u, float v, float frequencyX,
-                             float frequencyY, int periodic, float t, int octaves, float lacunarity,
-                             float gain, float warp) {
+                             float frequencyY, int wrapU, int wrapV, float t, int octaves,
+                             float lacunarity, float gain, float warp) {
     float x = u * frequencyX, y = v * frequencyY;
-    float periodX = periodic ? frequencyX : 0.0f, periodY = periodic ? frequencyY : 0.0f;
+    float periodX = wrapU ? frequencyX : 0.0f;
+    float periodY = wrapV ? frequencyY : (wrapU ? 256.0f : 0.0f);
     if (warp > 0.0f) {
         float qx = hfx_fractal(kind, HFX_FRACTAL_FBM, x + 5.0f, y + 1.0f, t, octaves, lacunarity,
                                gain, periodX, periodY);

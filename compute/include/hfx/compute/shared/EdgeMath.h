@@ -1,0 +1,12 @@
+#ifndef HFX_EDGE_MATH_H
+#define HFX_EDGE_MATH_H
+#include "ClPrelude.h"
+
+/* Reading beyond a field's edges (hfx::EdgeMode). Kernels are built with -DHFX_WRAP_U=0|1 and
+   -DHFX_WRAP_V=0|1 (hfx::edgeOptions), and pass them as `wrap`; the C++ references pass the
+   mode's wrapsU / wrapsV. `i` lies at most one period outside [0, n): a select, not a modulo. */
+HFX_FN int hfx_edge_index(int i, int n, int wrap) {
+    if (wrap) return i < 0 ? i + n : (i >= n ? i - n : i);
+    return i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
+}
+#endif
