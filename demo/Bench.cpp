@@ -38,13 +38,15 @@ struct Budget {
 /// Medians over `frames` frames after two warm-up frames; the scene's own material and POM.
 Budget measure(Scene& scene, RenderTarget& target, int frames) {
     std::vector<double> field, normals, extra, upload, pom, unshadowed, nm;
-    const SurfaceMaterial material = scene.material();
+    const SurfaceMaterial material = scene.effect().material();
     for (int frame = -2; frame < frames; ++frame) {
         const double u = timeMs([&] { scene.update(1.0 / 30.0); });
         const StageTimes s = scene.effect().lastTimes();
         auto draw = [&](Technique t, bool shadows) {
             scene.technique = t;
-            scene.material().shadows = shadows;
+            SurfaceMaterial m = material;
+            m.shadows = shadows;
+            scene.effect().setMaterial(m);
             return timeMs([&] {
                 target.clear();
                 scene.draw();
@@ -53,7 +55,7 @@ Budget measure(Scene& scene, RenderTarget& target, int frames) {
         const double p = draw(Technique::ParallaxOcclusion, true);
         const double q = draw(Technique::ParallaxOcclusion, false);
         const double n = draw(Technique::NormalMapping, true);
-        scene.material() = material;
+        scene.effect().setMaterial(material);
         if (frame < 0) continue;
         field.push_back(s.field);
         normals.push_back(s.normals);

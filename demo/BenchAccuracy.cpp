@@ -6,7 +6,7 @@
 #include "hfx/compute/NoiseField.h"
 #include "hfx/core/Error.h"
 #include "hfx/platform/GlContext.h"
-#include "hfx/effects/Accuracy.h"
+#include "hfx/tools/AccuracyProbe.h"
 #include "hfx/effects/BrickWall.h"
 
 #include <algorithm>

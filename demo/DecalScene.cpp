@@ -6,7 +6,8 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Random.h"
-#include "hfx/effects/DecalWall.h"
+#include "hfx/effects/DecalWallEffect.h"
+#include "hfx/tools/ShotList.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
@@ -24,8 +25,7 @@ public:
         : wall_(cl, config(o)), plane_(makePlane(kWall)),
           post_(makePlane({.size = 0.5f, .texcoordScale = 1.0f, .subdivisions = 1})), random_(o.seed),
           width_(o.width), height_(o.height) {
-        setMaterial(wall_.material(), o);
-        applyMaterial();
+        applyOptions(o);
         if (!o.shots.empty()) {
             shots_ = readShotList(o.shots);
             replaying_ = true;
@@ -92,7 +92,7 @@ private:
         c.normalMap = o.normalMap;
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
-        c.surface = o.fieldOptions();
+        c.surface = o.surfaceOptions();
         return c;
     }
 

@@ -12,7 +12,7 @@ class MapsScene final : public Scene {
 public:
     MapsScene(ClContext& cl, const SceneOptions& o)
         : surface_(cl, config(o)), plane_(makePlane({.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1})) {
-        setMaterial(surface_.material(), o);
+        applyOptions(o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.2f, 0.5f, 0.55f);
         camera_.aspect = o.aspect();
         light_.direction = {-1.0f, 0.45f, -0.3f};
@@ -26,10 +26,9 @@ public:
 private:
     static ImageSurfaceConfig config(const SceneOptions& o) {
         if (o.heightMap.empty()) throw Error("the maps scene needs --height-map FILE");
-        if (o.technique == Technique::Hierarchical)
-            throw Error("the maps scene has no height pyramid; --technique hier works with water, decals and planet");
         ImageSurfaceConfig c{.heightMap = o.heightMap, .normalMap = o.normalMap, .colorMap = o.colorMap};
         if (o.depthScale > 0.0f) c.material.depthScale = o.depthScale;
+        c.surface = o.surfaceOptions();
         return c;
     }
 

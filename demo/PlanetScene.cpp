@@ -3,7 +3,7 @@
 
 #include "Scene.h"
 
-#include "hfx/effects/GasPlanet.h"
+#include "hfx/effects/GasPlanetEffect.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
@@ -15,8 +15,7 @@ class PlanetScene final : public Scene {
 public:
     PlanetScene(ClContext& cl, const SceneOptions& o)
         : planet_(cl, config(o)), sphere_(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64})) {
-        setMaterial(planet_.material(), o);
-        applyMaterial();
+        applyOptions(o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.3f, 0.25f);
         camera_.aspect = o.aspect();
         light_.direction = {1.0f, 0.2f, 0.1f};
@@ -43,7 +42,7 @@ private:
         }
         c.gas.seed = o.seed;
         c.seed = o.seed;
-        c.surface = o.fieldOptions();
+        c.surface = o.surfaceOptions();
         return c;
     }
 

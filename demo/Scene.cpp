@@ -2,30 +2,23 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
-#include "hfx/effects/FieldEffect.h"
 
 namespace hfx::demo {
 
-void Scene::applyMaterial() {
-    material_.validate();
-    if (auto* field = dynamic_cast<FieldEffect*>(&effect()))
-        if (field->material().depthScale != material_.depthScale) field->setDepthScale(material_.depthScale);
-}
-
-void Scene::setMaterial(const SurfaceMaterial& base, const SceneOptions& o) {
-    material_ = base;
-    if (o.depthScale > 0.0f) material_.depthScale = o.depthScale;
-    if (o.minSamples > 0) material_.minSamples = o.minSamples;
-    if (o.maxSamples > 0) material_.maxSamples = o.maxSamples;
-    if (material_.maxSamples < material_.minSamples) material_.maxSamples = material_.minSamples;
-    material_.shadows = o.shadows;
-    material_.lodThreshold = o.lodThreshold;
+void Scene::applyOptions(const SceneOptions& o) {
+    SurfaceMaterial m = effect().material();
+    if (o.depthScale > 0.0f) m.depthScale = o.depthScale;
+    if (o.minSamples > 0) m.minSamples = o.minSamples;
+    if (o.maxSamples > 0) m.maxSamples = o.maxSamples;
+    if (m.maxSamples < m.minSamples) m.maxSamples = m.minSamples;
+    m.shadows = o.shadows;
+    m.lodThreshold = o.lodThreshold;
+    effect().setMaterial(m);
     technique = o.technique;
-    material_.validate();
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {
-    renderer.draw(mesh(), model(), effect().textures(), material_, camera_, light, {.technique = technique});
+    renderer.draw(mesh(), model(), effect().textures(), effect().material(), camera_, light, {.technique = technique});
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

@@ -1,14 +1,12 @@
 #pragma once
 // A scene of the demo: one user of the module (water, decals, planet, or maps from files), with
-// its camera, light and live-editable material. The program loop (main.cpp) owns the context,
+// its camera and light; the effect owns the material the panel edits. The program loop (main.cpp) owns the context,
 // the frame and the UI; a scene only updates its effect and draws.
 
 #include "hfx/compute/ClContext.h"
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/effects/Effect.h"
-#include "hfx/effects/FieldEffect.h"
-#include "hfx/effects/ShotList.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
 #include <cstdint>
@@ -30,8 +28,8 @@ struct SceneOptions {
     float aspect() const { return float(width) / float(height); }
     SurfaceFormat surfaceFormat = SurfaceFormat::Float32; ///< storage of the surface textures
     TransferPath transfer = TransferPath::Auto;           ///< how the surface reaches GL
-    /// A field effect's surface options: the height pyramid exactly when the technique needs it.
-    FieldOptions fieldOptions() const {
+    /// An effect's surface options: the height pyramid exactly when the technique needs it.
+    SurfaceOptions surfaceOptions() const {
         return {.pyramid = technique == Technique::Hierarchical, .format = surfaceFormat, .transfer = transfer};
     }
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
@@ -73,9 +71,6 @@ public:
     virtual void clear() {}
 
     Camera& camera() { return camera_; }
-    /// The material drawn with; change it live, then call applyMaterial().
-    SurfaceMaterial& material() { return material_; }
-    void applyMaterial();
     Technique technique = Technique::ParallaxOcclusion;
     bool wireframe = false; ///< overlay the base mesh's triangles
     /// The mesh and model matrix drawn (for the wireframe overlay and for picking).
@@ -83,10 +78,12 @@ public:
     virtual glm::mat4 model() const { return glm::mat4(1.0f); }
 
 protected:
+    /// Draws the effect's surface with its own material (the one owner: the panel edits it there).
     void drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light);
-    void setMaterial(const SurfaceMaterial& base, const SceneOptions& options);
+    /// The command line's overrides of the effect's material (samples, depth, shadows, LOD) and
+    /// its technique.
+    void applyOptions(const SceneOptions& options);
     Camera camera_;
-    SurfaceMaterial material_;
 };
 
 /// The known scene names, for help texts and errors.

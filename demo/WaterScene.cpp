@@ -27,16 +27,14 @@ public:
             const Image sky = readImage(o.environment);
             environment_ = makeEnvironment(sky);
         }
-        SurfaceMaterial base;
         if (o.waves == "fft") {
             OceanEffectConfig c;
             c.ocean.size = o.fieldSize > 0 ? o.fieldSize : 512;
             c.ocean.seed = o.seed;
             c.ocean.windSpeed = o.windSpeed;
             c.ocean.windDirection = o.windDirection;
-            c.surface = o.fieldOptions();
+            c.surface = o.surfaceOptions();
             ocean_ = std::make_unique<OceanEffect>(cl, c);
-            base = ocean_->material();
         } else {
             SineWavesConfig c;
             c.waves.size = o.fieldSize > 0 ? o.fieldSize : 512;
@@ -45,13 +43,13 @@ public:
             c.waves.minCycles = std::min(c.waves.minCycles, c.waves.maxCycles);
             c.material.shading = Shading::Water;
             c.material.specularStrength = 0.0f;
-            c.surface = o.fieldOptions();
+            c.surface = o.surfaceOptions();
             sine_ = std::make_unique<SineWavesEffect>(cl, c);
-            base = sine_->material();
         }
-        base.water.environment = environment_.id();
-        setMaterial(base, o);
-        applyMaterial();
+        SurfaceMaterial m = effect().material();
+        m.water.environment = environment_.id();
+        effect().setMaterial(m);
+        applyOptions(o);
         camera_.position = {0.0f, 2.4f, 6.0f};
         camera_.target = {0.0f, 0.0f, -4.0f};
         camera_.aspect = o.aspect();
@@ -70,10 +68,7 @@ public:
         if (!ocean_) return;
         bool changed = ImGui::SliderFloat("wind speed (m/s)", &wind_, 1.0f, 30.0f);
         changed |= ImGui::SliderAngle("wind direction", &windDir_, -180.0f, 180.0f);
-        if (changed) {
-            ocean_->setWind(wind_, windDir_);
-            material_.depthScale = ocean_->material().depthScale;
-        }
+        if (changed) ocean_->setWind(wind_, windDir_); // the sea's new depth is in the ocean's material
     }
 
 private:

@@ -152,7 +152,8 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
         ImGui::Begin("HFX");
         ImGui::Text("%s scene", scene.name());
-        SurfaceMaterial& m = scene.material();
+        // The effect owns the material: edit a copy, hand it back when it changed.
+        SurfaceMaterial m = scene.effect().material();
         const SurfaceMaterial before = m;
         // The hierarchical tracer is offered when the scene was started with it (it needs the
         // per-frame pyramid, --technique hier).
@@ -170,8 +171,8 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         ImGui::SliderInt("shadow samples", &m.shadowSamples, 1, 32);
         ImGui::SliderFloat("LOD threshold", &m.lodThreshold, 0.0f, 12.0f);
         ImGui::Checkbox("wireframe of the base mesh", &scene.wireframe);
-        scene.panel();
-        if (!(before == m)) scene.applyMaterial();
+        if (!(before == m)) scene.effect().setMaterial(m);
+        scene.panel(); // after: the scene's controls may change the material too (the wind, the sea's depth)
         const StageTimes stages = scene.effect().lastTimes();
         ImGui::Separator();
         ImGui::Text("compute not hidden by the draw %.2f ms  upload %.2f ms", stages.compute, stages.upload);

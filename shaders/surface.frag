@@ -51,6 +51,7 @@ uniform mat4 u_viewProj;
 uniform vec3 u_cameraPos;
 uniform float u_depthScale;      // texture units between h = 1 and h = 0
 uniform vec2 u_normalDecode;     // stored normal * x + y: (1, 0) for float formats, (2, -1) for unorm8
+uniform float u_normalScale;     // u_depthScale / the depth the stored normals were made for
 uniform int u_minSamples;        // linear-search steps looking straight down
 uniform int u_maxSamples;        // ... and at grazing angles
 uniform float u_lodThreshold;    // mip level from which on only normal mapping is done
@@ -303,7 +304,10 @@ void main() {
     const vec3 albedo = textureLod(s_albedo, uv, mipLevel).rgb;
     const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
     const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
-    const vec3 storedNormal = surfaceSample.xyz * u_normalDecode.x + u_normalDecode.y;
+    // The stored normal is that of z = normalDepth * h; the one of z = depthScale * h has its
+    // slopes (x/z, y/z) scaled by their ratio: exact, so the material alone sets the depth.
+    const vec3 decoded = surfaceSample.xyz * u_normalDecode.x + u_normalDecode.y;
+    const vec3 storedNormal = vec3(decoded.xy * u_normalScale, decoded.z);
     const vec3 normal = normalize(tangentUnit * storedNormal.x + bitangentUnit * storedNormal.y +
                                   geometricNormal * storedNormal.z);
     const vec3 lightDir = normalize(u_lightDir);

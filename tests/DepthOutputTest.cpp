@@ -20,8 +20,8 @@ TEST_F(DepthOutput, QuadIsClippedAtTheDisplacedSurface) {
     constexpr int field = 64, image = 160;
     constexpr float depthScale = 0.15f, planeSize = 2.0f;
     const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
-    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false});
-    textures.upload(sobelReference(heights, field, depthScale).data());
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
+    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
     textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
     const Mesh plane(makePlane({.size = planeSize}));
     PlaneView view{.planeSize = planeSize, .camera = cameraAtAngle(40, 8.0f, 1.0f)};

@@ -35,7 +35,7 @@ TEST_F(ImageSurfaceTest, DerivedNormalsMatchTheCpuSobel) {
     const auto heights = sumOfSines(N, {{0.3, 1, 2, 0.5}, {0.1, 3, -1, 0.0}});
     const std::string path = writeHeightMap("surface_height.png", heights, N);
     const float depthScale = 0.07f;
-    ImageSurface surface(cl(), {.heightMap = path, .material = {.depthScale = depthScale}, .mipmaps = false});
+    ImageSurface surface(cl(), {.heightMap = path, .material = {.depthScale = depthScale}, .surface = {.mipmaps = false}});
     std::vector<float> gpu(size_t(N) * N * 4);
     glGetTextureImage(surface.textures().surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(gpu.size() * 4), gpu.data());
     // The file stores 16 bits: compare with the CPU Sobel of the quantised heights.

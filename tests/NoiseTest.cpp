@@ -219,7 +219,7 @@ TEST_F(NoiseKernel, SobelNormalsMatchPsrdAnalyticGradient) {
     constexpr int N = 256;
     constexpr float f = 4.0f, depthScale = 0.02f;
     NoiseField field(cl(), {.width = N, .height = N, .kind = NoiseKind::Psrd, .frequency = f, .octaves = 1});
-    SobelNormals sobel(cl(), {.width = N, .height = N, .depthScale = depthScale});
+    SobelNormals sobel(cl(), {.width = N, .height = N, .normalDepth = depthScale});
     sobel.run(field.buffer());
     std::vector<cl_float4> normals(N * N);
     cl().queue().enqueueReadBuffer(sobel.output(), CL_TRUE, 0, normals.size() * sizeof(cl_float4), normals.data());

@@ -31,8 +31,8 @@ struct Measured {
 };
 
 Measured renderAndCompare(const std::vector<float>& heights, double angle, const char* tag) {
-    SurfaceTextures textures({.width = kField, .height = kField, .mipmaps = false});
-    textures.upload(sobelReference(heights, kField, kDepthScale).data());
+    SurfaceTextures textures({.width = kField, .height = kField, .mipmaps = false, .normalDepth = kDepthScale});
+    textures.uploadTexels(sobelReference(heights, kField, kDepthScale).data());
     const Mesh plane(makePlane({.size = 2.0f}));
     PlaneView view{.planeSize = 2.0f, .camera = cameraAtAngle(angle, 8.0f, 1.0f)};
     RenderTarget target(kImage, kImage, true);

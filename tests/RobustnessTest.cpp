@@ -7,8 +7,8 @@
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/effects/DecalWall.h"
-#include "hfx/effects/GasPlanet.h"
+#include "hfx/effects/DecalWallEffect.h"
+#include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/ImageSurface.h"
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
@@ -33,7 +33,7 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
     OceanEffect ocean(cl(), {.ocean = {.size = 64}});
     DecalWallEffect wall(cl(), {.bricks = {.size = 64}});
     GasPlanetEffect planet(cl(), {.gas = {.width = 32, .height = 16, .initialBands = 2.0f}});
-    for (FieldEffect* effect : std::initializer_list<FieldEffect*>{&water, &ocean, &wall, &planet}) {
+    for (Effect* effect : std::initializer_list<Effect*>{&water, &ocean, &wall, &planet}) {
         effect->update(0.02);
         const std::vector<float> before = readSurface(effect->textures());
         const SurfaceMaterial material = effect->material();
@@ -42,7 +42,9 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
             EXPECT_NE(m.find("dt"), std::string::npos) << m;
         }
         for (float depth : {-0.1f, 2.0f, float(nan)}) {
-            const std::string m = messageOf([&] { effect->setDepthScale(depth); });
+            SurfaceMaterial bad = material;
+            bad.depthScale = depth;
+            const std::string m = messageOf([&] { effect->setMaterial(bad); });
             EXPECT_NE(m.find("depthScale"), std::string::npos) << m;
         }
         EXPECT_EQ(readSurface(effect->textures()), before);

@@ -2,7 +2,7 @@
 // file and line), and that formatShot writes what it reads back.
 
 #include "hfx/core/Error.h"
-#include "hfx/effects/ShotList.h"
+#include "hfx/tools/ShotList.h"
 
 #include <gtest/gtest.h>
 

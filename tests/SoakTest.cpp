@@ -9,8 +9,8 @@
 #include "hfx/core/Mesh.h"
 #include "hfx/core/Random.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/effects/DecalWall.h"
-#include "hfx/effects/GasPlanet.h"
+#include "hfx/effects/DecalWallEffect.h"
+#include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/OceanEffect.h"
 
 #include <cmath>
@@ -99,7 +99,11 @@ TEST_F(Soak, DecalWallUnderStampStorms) {
                  .depth = float(random.uniform(0.0, 1.0)), .rimHeight = float(random.uniform(0.0, 0.3))};
         wall.decals().addBulletHoles(holes);
         if (step % 31 == 0) wall.explode(random.next(), random.next(), random.nextBits());
-        if (step % 500 == 250) wall.setDepthScale(float(random.uniform(0.01, 0.2)));
+        if (step % 500 == 250) {
+            SurfaceMaterial m = wall.material();
+            m.depthScale = float(random.uniform(0.01, 0.2));
+            wall.setMaterial(m);
+        }
         if (step % 5000 == 4999) wall.decals().clear();
     });
 }

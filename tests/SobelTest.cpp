@@ -53,7 +53,7 @@ TEST_F(Sobel, SumOfSinesMatchesAnalyticNormals) {
                 h += w.amplitude * std::sin(2 * std::numbers::pi * (w.m * x + w.n * y) / N + w.phase);
             heights[y * N + x] = float(h);
         }
-    const auto out = run(heights, {.width = N, .height = N, .depthScale = depthScale});
+    const auto out = run(heights, {.width = N, .height = N, .normalDepth = depthScale});
 
     double maxDiscreteError = 0, maxAnalyticAngle = 0;
     for (int y = 0; y < N; ++y)
@@ -89,7 +89,7 @@ TEST_F(Sobel, ClampedEdgesOfARampKeepTheInteriorExact) {
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) heights[y * W + x] = 0.2f + 0.01f * x + 0.005f * y;
     const float depthScale = 0.1f;
-    const auto out = run(heights, {.width = W, .height = H, .depthScale = depthScale, .edges = EdgeMode::Clamp});
+    const auto out = run(heights, {.width = W, .height = H, .edges = EdgeMode::Clamp, .normalDepth = depthScale});
     const glm::dvec3 expected = glm::normalize(glm::dvec3(-0.01 * depthScale * W, -0.005 * depthScale * H, 1));
     for (int y = 1; y < H - 1; ++y)
         for (int x = 1; x < W - 1; ++x) {
@@ -115,7 +115,7 @@ TEST_F(Sobel, KernelMatchesSharedCpuMath) {
         const int W = k.W, H = k.H;
         std::vector<float> heights(W * H);
         for (int i = 0; i < W * H; ++i) heights[i] = float((i * 7919) % 101) / 100.0f; // rough field
-        const auto out = run(heights, {.width = W, .height = H, .depthScale = 0.03f, .edges = k.edges});
+        const auto out = run(heights, {.width = W, .height = H, .edges = k.edges, .normalDepth = 0.03f});
         auto at = [&](int x, int y) {
             x = wrapsU(k.edges) ? (x + W) % W : std::clamp(x, 0, W - 1);
             y = wrapsV(k.edges) ? (y + H) % H : std::clamp(y, 0, H - 1);
@@ -139,7 +139,8 @@ TEST_F(Sobel, KernelMatchesSharedCpuMath) {
 
 TEST_F(Sobel, RejectsBadConfigurationAndSmallBuffers) {
     EXPECT_THROW(SobelNormals(cl(), {.width = 0, .height = 16}), Error);
-    EXPECT_THROW(SobelNormals(cl(), {.depthScale = -1.0f}), Error);
+    EXPECT_THROW(SobelNormals(cl(), {.normalDepth = -1.0f}), Error);
+    EXPECT_THROW(SobelNormals(cl(), {.normalDepth = 0.0f}), Error);
     SobelNormals sobel(cl(), {.width = 64, .height = 64});
     cl::Buffer small(cl().context(), CL_MEM_READ_WRITE, 16 * 16 * sizeof(float));
     try {

@@ -8,7 +8,7 @@
 #include "hfx/compute/NoiseField.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Mesh.h"
-#include "hfx/effects/Accuracy.h"
+#include "hfx/tools/AccuracyProbe.h"
 
 #include <cmath>
 #include <cstdio>
@@ -141,7 +141,7 @@ TEST_F(Techniques, FinitePatchSilhouettesDiscardRaysThatLeaveThePatch) {
         packed[i * 4 + 2] = 1.0f;
         packed[i * 4 + 3] = heights[i];
     }
-    textures.upload(packed.data());
+    textures.uploadTexels(packed.data());
     const Mesh plane(makePlane({.size = 2.0f}));
     Camera camera = Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.2f);
     camera.aspect = 1.0f;

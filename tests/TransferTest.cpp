@@ -4,7 +4,6 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/PixelBuffer.h"
-#include "hfx/effects/FieldUpload.h"
 #include "hfx/effects/SineWavesEffect.h"
 
 #include <cmath>
@@ -71,23 +70,6 @@ TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {
         << "the effect's memory went while its kernels still ran";
 }
 
-TEST_F(Transfer, CpuUploadOfUnorm8EncodesAsTheKernelDoes) {
-    // SurfaceTextures::upload(const float*) encodes unorm8 on the CPU; SurfacePacker on the
-    // device. Both must give the same bytes, ties and out-of-range values included.
-    constexpr int W = 16, H = 8;
-    std::vector<float> texels(W * H * 4);
-    for (size_t i = 0; i < texels.size(); ++i)
-        texels[i] = i % 7 == 0 ? float(i % 255) / 255.0f + 0.5f / 255.0f : std::sin(0.61f * float(i)) * 1.2f;
-    SurfaceTextures cpu({.width = W, .height = H, .mipmaps = false, .format = SurfaceFormat::Unorm8});
-    SurfaceTextures device({.width = W, .height = H, .mipmaps = false, .format = SurfaceFormat::Unorm8});
-    cpu.upload(texels.data());
-    cl::Buffer in(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, texels.size() * sizeof(float), texels.data());
-    SurfacePacker packer(cl(), W, H, SurfaceFormat::Unorm8);
-    packer.run(in);
-    uploadTexels(cl(), packer.output(), device);
-    EXPECT_EQ(readSurface(cpu), readSurface(device));
-}
-
 TEST_F(Transfer, PixelBufferUploadsWhatIsWrittenIntoItsMemory) {
     SurfaceTextures textures({.width = 4, .height = 2, .mipmaps = false, .format = SurfaceFormat::Unorm8});
     PixelBuffer pixels(4 * 2 * 4);
@@ -95,7 +77,7 @@ TEST_F(Transfer, PixelBufferUploadsWhatIsWrittenIntoItsMemory) {
     for (int frame = 0; frame < 2; ++frame) {
         pixels.waitUntilRead();
         for (int i = 0; i < 32; ++i) bytes[i] = static_cast<unsigned char>(i * 5 + frame * 50);
-        pixels.uploadSurface(textures);
+        pixels.uploadTexels(textures);
         const std::vector<float> read = readSurface(textures);
         for (int i = 0; i < 32; ++i)
             ASSERT_NEAR(read[i], (i * 5 + frame * 50) / 255.0, 1e-6) << "frame " << frame << " byte " << i;
@@ -103,13 +85,9 @@ TEST_F(Transfer, PixelBufferUploadsWhatIsWrittenIntoItsMemory) {
     GLint bound = -1;
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &bound);
     EXPECT_EQ(bound, 0) << "the upload left its buffer bound";
-    // Too small a buffer for the surface, and a device buffer that does not lie over it: refused.
+    // Too small a buffer for the surface: refused.
     PixelBuffer small(16);
-    EXPECT_NE(messageOf([&] { small.uploadSurface(textures); }).find("needs 32 bytes"), std::string::npos);
-    SurfacePacker elsewhere(cl(), 4, 2, SurfaceFormat::Unorm8);
-    EXPECT_NE(messageOf([&] { uploadFromPixelBuffer(cl(), elsewhere.output(), pixels, textures); })
-                  .find("does not lie over"),
-              std::string::npos);
+    EXPECT_NE(messageOf([&] { small.uploadTexels(textures); }).find("needs 32 bytes"), std::string::npos);
 }
 
 } // namespace

@@ -9,8 +9,8 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/effects/BrickWall.h"
-#include "hfx/effects/DecalWall.h"
-#include "hfx/effects/GasPlanet.h"
+#include "hfx/effects/DecalWallEffect.h"
+#include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
 
@@ -113,8 +113,11 @@ TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
     EXPECT_NEAR(glm::length(flank), 1.0f, 1e-5f);
     EXPECT_LT(flank.x / flank.z, expected.x / expected.z - 0.05f);
 
-    // A depth-scale change re-derives the base normals: undamaged texels keep the map.
-    wall.setDepthScale(0.12f);
+    // A deeper material leaves the stored normals alone (the renderer rescales them): undamaged
+    // texels still hold the map exactly.
+    SurfaceMaterial deeper = wall.material();
+    deeper.depthScale = 0.12f;
+    wall.setMaterial(deeper);
     wall.update(1.0 / 30.0);
     texels = readSurface(wall.textures());
     EXPECT_LT(glm::length(at(5, 5) - expected), 1e-6f);

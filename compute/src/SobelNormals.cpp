@@ -9,8 +9,8 @@ namespace hfx {
 void SobelConfig::validate() const {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         throw Error(str("SobelConfig size must be in 1..16384, got ", width, "x", height));
-    if (!(depthScale >= 0.0f) || !std::isfinite(depthScale))
-        throw Error(str("SobelConfig.depthScale must be >= 0 and finite, got ", depthScale));
+    if (!(normalDepth > 0.0f) || !std::isfinite(normalDepth))
+        throw Error(str("SobelConfig.normalDepth must be positive and finite, got ", normalDepth));
 }
 
 SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config, void* hostMemory) : cl_(cl), config_(config) {
@@ -24,13 +24,6 @@ SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config, void* hostM
     });
 }
 
-void SobelNormals::setDepthScale(float depthScale) {
-    SobelConfig next = config_;
-    next.depthScale = depthScale;
-    next.validate();
-    config_ = next;
-}
-
 void SobelNormals::run(const cl::Buffer& height) {
     const size_t bytes = height.getInfo<CL_MEM_SIZE>();
     const size_t needed = sizeof(float) * size_t(config_.width) * config_.height;
@@ -42,8 +35,8 @@ void SobelNormals::run(const cl::Buffer& height) {
         kernel_.setArg(1, output_);
         kernel_.setArg(2, config_.width);
         kernel_.setArg(3, config_.height);
-        kernel_.setArg(4, config_.depthScale * config_.width);
-        kernel_.setArg(5, config_.depthScale * config_.height);
+        kernel_.setArg(4, config_.normalDepth * config_.width);
+        kernel_.setArg(5, config_.normalDepth * config_.height);
         const size_t perItem = config_.width % 4 == 0 ? 4 : 1;
         cl_.enqueue(kernel_, cl::NDRange(config_.width / perItem, config_.height));
     });

@@ -37,7 +37,7 @@ void PixelBuffer::waitUntilRead() {
     fence_ = nullptr;
 }
 
-void PixelBuffer::uploadSurface(SurfaceTextures& textures) {
+void PixelBuffer::uploadTexels(SurfaceTextures& textures) {
     const auto& c = textures.config();
     const size_t needed = size_t(c.width) * c.height * texelBytes(c.format);
     if (needed > bytes_)
@@ -47,7 +47,7 @@ void PixelBuffer::uploadSurface(SurfaceTextures& textures) {
     GLint previous = 0;
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &previous);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer_.id());
-    textures.uploadPacked(nullptr); // with an unpack buffer bound, the pointer is the offset into it
+    textures.uploadTexels(nullptr); // with an unpack buffer bound, the pointer is the offset into it
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(previous));
     fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
 }

@@ -46,4 +46,21 @@ std::vector<float> packNormalMap(const Image& normalMap, const std::string& path
     return packed;
 }
 
+SurfaceMaps readSurfaceMaps(const std::string& heightMap, const std::string& normalMap, const std::string& colorMap,
+                            const ImageReadLimits& limits) {
+    SurfaceMaps maps;
+    const Image height = readImage(heightMap, limits);
+    maps.width = height.width;
+    maps.height = height.height;
+    maps.heights = heightsFromImage(height, heightMap);
+    if (!normalMap.empty()) maps.normals = packNormalMap(readImage(normalMap, limits), normalMap, maps.heights);
+    if (!colorMap.empty()) {
+        maps.color = readImage(colorMap, limits);
+        if (maps.color.width != height.width || maps.color.height != height.height)
+            throw Error(str("colour map '", colorMap, "' is ", maps.color.width, "x", maps.color.height,
+                            " but the height map '", heightMap, "' is ", height.width, "x", height.height));
+    }
+    return maps;
+}
+
 } // namespace hfx

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <vector>
 
@@ -14,6 +16,8 @@ void SurfaceTexturesConfig::validate() const {
         throw Error(str("surface size must be in 1..16384, got ", width, "x", height));
     if (pyramid && (!std::has_single_bit(unsigned(width)) || !std::has_single_bit(unsigned(height))))
         throw Error(str("a surface with a height pyramid needs power-of-two sizes, got ", width, "x", height));
+    if (!(normalDepth > 0.0f) || !std::isfinite(normalDepth))
+        throw Error(str("SurfaceTexturesConfig.normalDepth must be positive and finite, got ", normalDepth));
     if (pyramid && format == SurfaceFormat::Unorm8)
         throw Error("a surface with a height pyramid needs a float format (float32 or float16): unorm8 "
                     "heights round up to 1/510 above the pyramid's bound and the hierarchical tracer would miss");
@@ -23,8 +27,25 @@ namespace {
 GLenum internalFormat(SurfaceFormat f) {
     return f == SurfaceFormat::Float32 ? GL_RGBA32F : f == SurfaceFormat::Float16 ? GL_RGBA16F : GL_RGBA8;
 }
-GLenum packedType(SurfaceFormat f) {
+GLenum texelType(SurfaceFormat f) {
     return f == SurfaceFormat::Float32 ? GL_FLOAT : f == SurfaceFormat::Float16 ? GL_HALF_FLOAT : GL_UNSIGNED_BYTE;
+}
+
+/// A flat surface at the polygon (normal +z, h = 1), in the format's layout, width*height texels.
+std::vector<unsigned char> flatTexels(SurfaceFormat format, size_t count) {
+    std::vector<unsigned char> one(texelBytes(format));
+    if (format == SurfaceFormat::Float32) {
+        const float t[4] = {0.0f, 0.0f, 1.0f, 1.0f};
+        std::memcpy(one.data(), t, sizeof t);
+    } else if (format == SurfaceFormat::Float16) {
+        const std::uint16_t t[4] = {0, 0, 0x3c00, 0x3c00}; // IEEE half 0 and 1
+        std::memcpy(one.data(), t, sizeof t);
+    } else {
+        one = {128, 128, 255, 255}; // n/2 + 1/2 of (0, 0, 1), rounded to nearest, and h = 1
+    }
+    std::vector<unsigned char> texels(one.size() * count);
+    for (size_t i = 0; i < texels.size(); ++i) texels[i] = one[i % one.size()];
+    return texels;
 }
 } // namespace
 
@@ -47,9 +68,7 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     glTextureStorage2D(surface_.id(), levels_, internalFormat(config.format), config.width, config.height);
     glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height);
     setAlbedo(Image{1, 1, 3, {0.8f, 0.8f, 0.8f}});
-    std::vector<float> flat(static_cast<size_t>(config.width) * config.height * 4, 0.0f);
-    for (size_t i = 0; i < flat.size(); i += 4) flat[i + 2] = flat[i + 3] = 1.0f;
-    upload(flat.data());
+    uploadTexels(flatTexels(config.format, static_cast<size_t>(config.width) * config.height).data());
     if (config.pyramid) {
         pyramid_ = GlTexture::create();
         pyramidLevels_ = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(config.width, config.height))));
@@ -73,30 +92,10 @@ void SurfaceTextures::uploadPyramid(const float* levels) {
     }
 }
 
-void SurfaceTextures::upload(const float* normalHeight) {
-    if (config_.format != SurfaceFormat::Unorm8) {
-        // The driver converts float to the storage format (GL's float-to-half rounds to nearest).
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA, GL_FLOAT,
-                            normalHeight);
-        if (levels_ > 1) glGenerateTextureMipmap(surface_.id());
-        return;
-    }
-    // GL would clamp a negative normal component to 0: encode n/2 + 1/2 here, as the kernel does.
-    const size_t n = static_cast<size_t>(config_.width) * config_.height * 4;
-    staging_.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        const float v = (i % 4 == 3) ? normalHeight[i] : normalHeight[i] * 0.5f + 0.5f;
-        // fmin/fmax map NaN to 0, as the kernel's saturating conversion does.
-        staging_[i] = static_cast<unsigned char>(std::fmin(std::fmax(v, 0.0f), 1.0f) * 255.0f + 0.5f);
-    }
-    uploadPacked(staging_.data());
-}
-
-void SurfaceTextures::uploadPacked(const void* texels) {
+void SurfaceTextures::uploadTexels(const void* texels) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
-                        packedType(config_.format), texels);
+                        texelType(config_.format), texels);
     if (levels_ > 1) glGenerateTextureMipmap(surface_.id());
 }
 

@@ -14,19 +14,12 @@ void OceanEffectConfig::validate() const {
         throw Error(str("OceanEffectConfig.reliefExaggeration must be in (0, 20], got ", reliefExaggeration));
 }
 
-namespace {
-std::unique_ptr<HeightSource> makeOcean(ClContext& cl, const OceanEffectConfig& config) {
-    config.validate();
-    return std::make_unique<OceanField>(cl, config.ocean);
-}
-} // namespace
-
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
-    : FieldEffect(cl, makeOcean(cl, config), config.material,
-                  config.surface),
-      ocean_(static_cast<OceanField&>(source())), exaggeration_(config.reliefExaggeration) {
-    setDepthScale(physicalDepthScale());
-    refresh(nowMs());
+    : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration),
+      // Normals for the sea state the ocean starts in; later winds are rescaled by the renderer.
+      surface_(cl, SurfacePipelineConfig::of(ocean_, physicalDepthScale(), config.surface)) {
+    material_.depthScale = physicalDepthScale();
+    refresh();
 }
 
 float OceanEffect::physicalDepthScale() const {
@@ -34,17 +27,20 @@ float OceanEffect::physicalDepthScale() const {
     return std::clamp(depth, 1e-4f, 1.0f);
 }
 
+void OceanEffect::enqueueSurface() {
+    surface_.derive(ocean_.buffer());
+    surface_.submit();
+}
+
 void OceanEffect::setWind(float speed, float direction) {
-    const double start = nowMs();
     ocean_.setWind(speed, direction);
-    setDepthScale(physicalDepthScale());
-    refresh(start);
+    material_.depthScale = physicalDepthScale();
+    refresh();
 }
 
 void OceanEffect::setTime(double seconds) {
-    const double start = nowMs();
     ocean_.setTime(seconds);
-    refresh(start);
+    refresh();
 }
 
 } // namespace hfx

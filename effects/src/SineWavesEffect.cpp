@@ -1,5 +1,7 @@
 #include "hfx/effects/SineWavesEffect.h"
 
+#include "hfx/core/Error.h"
+
 namespace hfx {
 
 void SineWavesConfig::validate() const {
@@ -7,24 +9,21 @@ void SineWavesConfig::validate() const {
     material.validate();
 }
 
-namespace {
-std::unique_ptr<HeightSource> makeWaves(ClContext& cl, const SineWavesConfig& config) {
-    config.validate();
-    return std::make_unique<WaveField>(cl, config.waves);
-}
-} // namespace
-
 SineWavesEffect::SineWavesEffect(ClContext& cl, const SineWavesConfig& config)
-    : FieldEffect(cl, makeWaves(cl, config), config.material,
-                  config.surface),
-      waves_(static_cast<WaveField&>(source())) {
-    setAlbedo(Image{1, 1, 3, {0.05f, 0.22f, 0.30f}});
+    : Effect(validated(config).material), waves_(cl, config.waves),
+      surface_(cl, SurfacePipelineConfig::of(waves_, config.material.depthScale, config.surface)) {
+    surface_.setAlbedo(Image{1, 1, 3, {0.05f, 0.22f, 0.30f}});
+    refresh();
+}
+
+void SineWavesEffect::enqueueSurface() {
+    surface_.derive(waves_.buffer());
+    surface_.submit();
 }
 
 void SineWavesEffect::setTime(double seconds) {
-    const double start = nowMs();
     waves_.setTime(seconds);
-    refresh(start);
+    refresh();
 }
 
 } // namespace hfx

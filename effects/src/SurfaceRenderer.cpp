@@ -145,6 +145,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
     setTransforms(p, model, camera);
     p.set("u_cameraPos", camera.position);
     p.set("u_depthScale", material.depthScale);
+    p.set("u_normalScale", material.depthScale / textures.config().normalDepth);
     p.set("u_normalDecode", textures.config().format == SurfaceFormat::Unorm8 ? glm::vec2(2.0f, -1.0f)
                                                                              : glm::vec2(1.0f, 0.0f));
     p.set("u_minSamples", material.minSamples);

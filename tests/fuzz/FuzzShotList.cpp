@@ -1,7 +1,7 @@
 // libFuzzer target: bytes as a shot list. Accepted lists must format and parse back to the same
 // shots; anything else must be an hfx::Error.
 #include "hfx/core/Error.h"
-#include "hfx/effects/ShotList.h"
+#include "hfx/tools/ShotList.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #include "support/Fields.h"
 
-#include "hfx/effects/Accuracy.h"
+#include "hfx/tools/AccuracyProbe.h"
 
 #include <algorithm>
 #include <cmath>

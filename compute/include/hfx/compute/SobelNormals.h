@@ -12,10 +12,11 @@ namespace hfx {
 struct SobelConfig {
     int width = 512;
     int height = 512;
-    /// Depth of the height range in texture units (the renderer's depth scale): the normals are
-    /// those of the surface z = depthScale * h(u, v).
-    float depthScale = 0.05f;
     EdgeMode edges = EdgeMode::Wrap; ///< the source's: neighbours across an edge wrap or clamp
+    /// The relief depth in texture units the normals are made for: those of the surface
+    /// z = normalDepth * h(u, v). The renderer rescales them to the depth it draws with
+    /// (SurfaceTexturesConfig::normalDepth records it), so this is fixed for the filter's life.
+    float normalDepth = 0.05f;
     void validate() const;
 };
 
@@ -27,7 +28,6 @@ public:
 
     /// Enqueues the filter over `height` (width x height floats); does not wait.
     void run(const cl::Buffer& height);
-    void setDepthScale(float depthScale);
 
     const cl::Buffer& output() const { return output_; }
     const SobelConfig& config() const { return config_; }

@@ -27,6 +27,14 @@ std::string describe(const char* op, const A& a, const B& b) {
 }
 } // namespace detail
 
+/// `config` after its validate() (which throws hfx::Error naming the bad field): for member
+/// initialiser lists that must refuse a configuration before anything is made from it.
+template <typename Config>
+const Config& validated(const Config& config) {
+    config.validate();
+    return config;
+}
+
 /// Concatenates its arguments with operator<<, for error messages.
 template <typename... Args>
 std::string str(const Args&... args) {

@@ -30,9 +30,9 @@ public:
     /// Blocks until GL has read what the last upload took from the buffer (no-op when none is
     /// in flight), so the memory may be written again.
     void waitUntilRead();
-    /// Uploads the surface texels from the buffer's start, in the textures' format's layout
-    /// (float4 for Float32), and fences the read. Restores the unpack-buffer binding it found.
-    void uploadSurface(SurfaceTextures& textures);
+    /// Uploads the buffer's start as the textures' texels (SurfaceTextures::uploadTexels: the
+    /// format's layout) and fences the read. Restores the unpack-buffer binding it found.
+    void uploadTexels(SurfaceTextures& textures);
 
 private:
     GlBuffer buffer_;

@@ -1,8 +1,11 @@
 #pragma once
 // The GL side of a height field: one texture holding the tangent-space normal in xyz and the
 // height in w (h in [0,1], 1 = the polygon surface), so a POM step costs one fetch — RGBA32F,
-// RGBA16F or RGBA8 (SurfaceFormat) — plus an RGBA8 albedo texture. Storage is allocated once;
-// upload() / uploadPacked() refresh it in place every frame.
+// RGBA16F or RGBA8 (SurfaceFormat) — plus an RGBA8 albedo texture and optionally the height
+// pyramid. Storage is allocated once; the upload functions refresh it in place every frame. The
+// normals are those of one relief depth, normalDepth, which the textures record: the renderer
+// rescales them to whatever depth it draws with (SurfaceMaterial::depthScale), so the material
+// alone owns the depth.
 //
 // Owns its textures. Thread: the thread whose GL context is current.
 
@@ -26,30 +29,31 @@ struct SurfaceTexturesConfig {
     /// Storage of normal + height: Float16 halves the memory and the transfer, Unorm8 quarters
     /// them (docs/ACCURACY.md measures what each costs against the exact intersection).
     SurfaceFormat format = SurfaceFormat::Float32;
-    void validate() const;
+    /// The relief depth (texture units between h = 1 and h = 0) the stored normals were derived
+    /// for. Any positive value is exact for float32; the storage formats keep the most slope
+    /// precision when it is near the depth drawn.
+    float normalDepth = 0.05f;
+    void validate() const; ///< throws hfx::Error naming the bad field and its value
 };
 
 class SurfaceTextures {
 public:
     explicit SurfaceTextures(const SurfaceTexturesConfig& config);
 
-    /// Replaces the normal+height texels: `normalHeight` is width*height float4, row 0 at v = 0
-    /// (the first row of a compute buffer), and regenerates the mip chain when there is one.
-    /// Converts to the storage format on the way (in the driver, or here for Unorm8).
-    void upload(const float* normalHeight);
-    /// The same from texels already in the storage format's layout (SurfaceFormat), as
-    /// SurfacePacker writes them: a plain copy. With a buffer bound to GL_PIXEL_UNPACK_BUFFER,
-    /// `texels` is the offset into it, as GL defines.
-    void uploadPacked(const void* texels);
-    /// Replaces the albedo; the image must match the surface size or be 1x1 (a solid colour).
-    void setAlbedo(const Image& albedo);
-    /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
-    /// field), and regenerates its mip chain.
-    void uploadAlbedo(const unsigned char* rgba);
-
+    /// Replaces the normal+height texels with width*height texels in the storage format's
+    /// layout (SurfaceFormat: float4, half4, or RGBA8 as n/2 + 1/2 and h, as SurfacePacker writes
+    /// them), row 0 at v = 0: a plain copy, no conversion. Regenerates the mip chain when there
+    /// is one. With a buffer bound to GL_PIXEL_UNPACK_BUFFER, `texels` is the offset into it.
+    void uploadTexels(const void* texels);
     /// Replaces the pyramid: every level back to back, level 0 (width x height) first, each
     /// level half the one before, as MaxPyramid lays them out.
     void uploadPyramid(const float* levels);
+    /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
+    /// field), and regenerates its mip chain.
+    void uploadAlbedo(const unsigned char* rgba);
+    /// Replaces the albedo with an image (converted here, top row first as files store it); it
+    /// must match the surface size or be 1x1 (a solid colour).
+    void setAlbedo(const Image& albedo);
 
     GLuint surface() const { return surface_.id(); }
     GLuint pyramid() const { return pyramid_.id(); } ///< 0 without a pyramid
@@ -63,7 +67,6 @@ private:
     int levels_ = 1;
     int pyramidLevels_ = 0;
     GlTexture surface_, albedo_, pyramid_;
-    std::vector<unsigned char> staging_; ///< Unorm8 texels encoded by upload()
 };
 
 } // namespace hfx

@@ -1,45 +1,70 @@
 #pragma once
-// What a user of the module drives each frame: update(dt) produces this frame's height field on
-// the compute device, derives its normals and hands both to GL; the caller then draws with a
-// SurfaceRenderer using textures() and material().
+// What a user of the module drives each frame. An effect holds a source of its own concrete
+// type and a SurfacePipeline beside it; a frame reads top-down:
 //
-// An effect owns its source, compute buffers and textures. Thread: the thread that owns both
-// the ClContext and the current GL context.
+//   Effect::update(dt)
+//     surface.begin(Staged)
+//     advance(dt)          the effect: its source steps (storms, stamps, wind... first)
+//     enqueueSurface()     the effect: surface.derive(source.buffer()), its passes, surface.submit()
+//     surface.finish()     the texels reach GL
+//
+// then the caller draws textures() with a SurfaceRenderer and material(). beginUpdate(dt) is the
+// same with nothing waited for, endUpdate() the finish: draw between the two and the compute
+// hides behind the draw.
+//
+// The material is the effect's, and the one owner of the relief's depth: the surface's normals
+// are made once for a fixed depth and rescaled by the renderer, so changing the depth (or any
+// other field) is setMaterial() and nothing else.
+//
+// Thread: the thread that owns both the ClContext and the current GL context.
 
-#include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
 #include <string>
 
 namespace hfx {
 
-/// Wall-clock milliseconds of the last update, by stage (measured on the host around waits).
-struct StageTimes {
-    double compute = 0.0; ///< field step + normals (+ pyramid, colours), enqueue to finish
-    double upload = 0.0;  ///< map, GL upload, mip generation
-    // The parts of compute, each waited for on its own (so they add up to compute):
-    double field = 0.0;   ///< the source's step
-    double normals = 0.0; ///< Sobel
-    double extra = 0.0;   ///< the height pyramid and effect-specific work (colours, normal map)
-    // After beginUpdate/endUpdate (overlapped), the parts are not waited for one by one: compute
-    // is then the time endUpdate() still had to wait, the part the draw did not hide.
-};
-
 class Effect {
 public:
     virtual ~Effect() = default;
-    /// Advances the effect by dt seconds (> 0) and refreshes its textures.
-    virtual void update(double dt) = 0;
-    /// Overlapped frames: beginUpdate(dt) enqueues the next field on the compute device and
-    /// returns at once; endUpdate() waits for it and hands it to GL. Draw the current textures()
-    /// between the two and the compute hides behind the draw. update(dt) is the two in a row.
-    virtual void beginUpdate(double dt) { update(dt); }
-    virtual void endUpdate() {}
-    virtual const SurfaceTextures& textures() const = 0;
-    virtual const SurfaceMaterial& material() const = 0;
-    virtual StageTimes lastTimes() const = 0;
+    Effect(const Effect&) = delete;
+    Effect& operator=(const Effect&) = delete;
+
+    /// Advances the effect by dt seconds (> 0, finite) and refreshes its textures; each stage
+    /// is waited for and timed (lastTimes()). A bad dt throws and changes nothing.
+    void update(double dt);
+    /// Overlapped frames: enqueues the next frame on the compute device and returns at once
+    /// (finishing one still in flight first).
+    void beginUpdate(double dt);
+    /// Waits for the frame beginUpdate() started and hands it to GL (nothing when none is).
+    void endUpdate();
+
+    /// The textures to draw now (they change after each update: ask every frame).
+    const SurfaceTextures& textures() const { return surface().textures(); }
+    const SurfaceMaterial& material() const { return material_; }
+    /// Replaces the material; throws hfx::Error naming the bad field and changes nothing.
+    void setMaterial(const SurfaceMaterial& material);
+    StageTimes lastTimes() const { return surface().lastTimes(); }
+    TransferPath transferPath() const { return surface().transferPath(); }
     /// How the surface reaches GL, for start-up reports: "float16 texels, pixel-buffer path".
-    virtual std::string transferDescription() const = 0;
+    std::string transferDescription() const { return surface().transferDescription(); }
+
+protected:
+    explicit Effect(const SurfaceMaterial& material);
+    /// The effect's pipeline (a member of the derived class, constructed after its source).
+    virtual const SurfacePipeline& surface() const = 0;
+    SurfacePipeline& surface() { return const_cast<SurfacePipeline&>(std::as_const(*this).surface()); }
+    /// Moves the source on by dt seconds, refusing a bad dt before anything changes.
+    virtual void advance(double dt) = 0;
+    /// Enqueues this frame's surface from what the source holds now: surface().derive(), the
+    /// effect's passes, surface().submit().
+    virtual void enqueueSurface() = 0;
+    /// The surface of the source as it is now, synchronously, without advancing it: what a
+    /// constructor calls once, and what a jump in time or a new spectrum calls.
+    void refresh();
+
+    SurfaceMaterial material_;
 };
 
 } // namespace hfx

@@ -1,15 +1,19 @@
 #pragma once
 // A surface from files: a height map (any format OpenImageIO reads, 8-bit or better), an
-// optional tangent-space normal map and an optional colour map. Without a normal map the
-// normals come from the device's Sobel kernel, like a generated field's. Loaded once; the
-// surface is static, so update() only counts time.
+// optional tangent-space normal map and an optional colour map. The heights go down the same
+// SurfacePipeline as a generated field's (as a StaticField), so a map from files gets the Sobel
+// normals, the height pyramid, every surface format and both transfer paths; a normal map is
+// laid over them by the same pass the decal wall uses (DetailNormals), which with unchanged
+// heights gives the map exactly. Derived once: update() only checks dt.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
-#include "hfx/compute/ClContext.h"
-#include "hfx/core/Image.h"
+#include "hfx/compute/DetailNormals.h"
+#include "hfx/compute/StaticField.h"
+#include "hfx/core/SurfaceMaps.h"
 #include "hfx/effects/Effect.h"
 
+#include <memory>
 #include <string>
 
 namespace hfx {
@@ -20,9 +24,9 @@ struct ImageSurfaceConfig {
     std::string colorMap;   ///< optional: light grey when empty
     SurfaceMaterial material{.depthScale = 0.08f};
     EdgeMode edges = EdgeMode::Wrap; ///< tileable maps wrap; others clamp
-    bool mipmaps = true;
+    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
     ImageReadLimits limits;
-    void validate() const;
+    void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 
 class ImageSurface final : public Effect {
@@ -30,17 +34,19 @@ public:
     /// Throws hfx::Error naming the file for a missing, corrupt, mismatched or out-of-range map.
     ImageSurface(ClContext& cl, const ImageSurfaceConfig& config);
 
-    void update(double dt) override;
-    const SurfaceTextures& textures() const override { return textures_; }
-    const SurfaceMaterial& material() const override { return config_.material; }
-    std::string transferDescription() const override {
-        return std::string(surfaceFormatName(textures_.config().format)) + " texels, uploaded once";
-    }
-    StageTimes lastTimes() const override { return {}; }
-
 private:
-    ImageSurfaceConfig config_;
-    SurfaceTextures textures_;
+    /// Everything read from the files, before anything is made on a device.
+    static SurfaceMaps load(const ImageSurfaceConfig& config);
+    ImageSurface(ClContext& cl, const ImageSurfaceConfig& config, SurfaceMaps maps);
+    const SurfacePipeline& surface() const override { return surface_; }
+    void advance(double dt) override { heights_.step(dt); }
+    /// The first time only: the heights never change.
+    void enqueueSurface() override;
+
+    StaticField heights_;
+    SurfacePipeline surface_;
+    std::unique_ptr<DetailNormals> detail_; ///< with a normal map
+    bool derived_ = false;
 };
 
 } // namespace hfx

@@ -7,7 +7,7 @@
 // Thread: the thread that owns both the ClContext and the current GL context.
 
 #include "hfx/compute/WaveField.h"
-#include "hfx/effects/FieldEffect.h"
+#include "hfx/effects/Effect.h"
 
 namespace hfx {
 
@@ -15,13 +15,13 @@ struct SineWavesConfig {
     WaveConfig waves;
     SurfaceMaterial material{.depthScale = 0.04f, .shadowSharpness = 1.0f,
                              .specularStrength = 0.8f, .specularPower = 96.0f};
-    FieldOptions surface; ///< mip maps, height pyramid, storage format, path to GL
-    void validate() const;
+    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 
-class SineWavesEffect final : public FieldEffect {
+class SineWavesEffect final : public Effect {
 public:
-    SineWavesEffect(ClContext& cl, const SineWavesConfig& config = {});
+    explicit SineWavesEffect(ClContext& cl, const SineWavesConfig& config = {});
 
     /// Jumps to an absolute time (seconds) and refreshes the textures.
     void setTime(double seconds);
@@ -29,7 +29,12 @@ public:
     const WaveField& waves() const { return waves_; }
 
 private:
-    WaveField& waves_;
+    const SurfacePipeline& surface() const override { return surface_; }
+    void advance(double dt) override { waves_.step(dt); }
+    void enqueueSurface() override;
+
+    WaveField waves_;
+    SurfacePipeline surface_;
 };
 
 } // namespace hfx

@@ -1,4 +1,4 @@
-#include "hfx/effects/ShotList.h"
+#include "hfx/tools/ShotList.h"
 
 #include "hfx/core/Error.h"
 

@@ -1,15 +1,10 @@
-#include "hfx/effects/Accuracy.h"
+#include "hfx/tools/AccuracyProbe.h"
 
-#include "hfx/compute/MaxPyramid.h"
-#include "hfx/compute/SobelNormals.h"
-#include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
-#include "hfx/effects/FieldUpload.h"
 
 #include <glm/geometric.hpp>
-
-#include "hfx/core/Gl.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,35 +23,6 @@ SurfaceMaterial materialOf(const AccuracyConfig& config) {
             .maxSamples = config.maxSamples,
             .lodThreshold = 100.0f, // mip level 0: the figures speak of the search, not the filter
             .shadows = config.shadows};
-}
-
-SurfaceTextures makeTextures(ClContext& cl, const std::vector<float>& heights, int size, float depthScale, SurfaceFormat format) {
-    if (heights.size() != size_t(size) * size)
-        throw Error(str("AccuracyProbe: ", heights.size(), " heights do not make a ", size, "x", size, " field"));
-    SurfaceTextures textures({.width = size,
-                              .height = size,
-                              .mipmaps = false,
-                              .edges = EdgeMode::Wrap,
-                              .pyramid = format != SurfaceFormat::Unorm8,
-                              .format = format});
-    cl::Buffer buffer = clGuard("AccuracyProbe: uploading the heights", [&] {
-        return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * sizeof(float),
-                          const_cast<float*>(heights.data()));
-    });
-    SobelNormals sobel(cl, {.width = size, .height = size, .depthScale = depthScale});
-    MaxPyramid pyramid(cl, size, size, EdgeMode::Wrap);
-    sobel.run(buffer);
-    pyramid.build(buffer);
-    if (format == SurfaceFormat::Float32) {
-        uploadField(cl, sobel.output(), textures);
-    } else {
-        // The packing the effects use, so the figures are those of the shipped path.
-        SurfacePacker packer(cl, size, size, format);
-        packer.run(sobel.output());
-        uploadTexels(cl, packer.output(), textures);
-    }
-    if (textures.pyramid()) uploadPyramid(cl, pyramid, textures);
-    return textures;
 }
 
 } // namespace
@@ -87,15 +53,16 @@ bool planePixelRay(const Camera& camera, float planeSize, int x, int y, int widt
     return true;
 }
 
-AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale, SurfaceFormat format)
-    : size_(size), depthScale_(depthScale), exact_(heights, size, size, EdgeMode::Wrap),
-      textures_(makeTextures(cl, heights, size, depthScale, format)), plane_(makePlane({.size = kPlaneSize})),
-      timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})) {}
+AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float normalDepth, SurfaceFormat format)
+    : size_(size), exact_(heights, size, size, EdgeMode::Wrap), field_(cl, size, size, EdgeMode::Wrap, heights),
+      surface_(cl, SurfacePipelineConfig::of(field_, normalDepth,
+                                             // mip level 0 only: the figures speak of the search, not the filter
+                                             {.mipmaps = false, .pyramid = format != SurfaceFormat::Unorm8, .format = format})),
+      plane_(makePlane({.size = kPlaneSize})), timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})) {
+    surface_.run(field_.buffer());
+}
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
-    if (config.depthScale != depthScale_)
-        throw Error(str("AccuracyProbe: the normals were made for depth scale ", depthScale_, ", asked for ",
-                        config.depthScale));
     const int n = config.image;
     if (!target_ || target_->width() != n) target_ = std::make_unique<RenderTarget>(n, n, true);
     const Camera camera = accuracyCamera(config.angleDegrees, kDistance);
@@ -104,7 +71,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     light.direction = config.light;
     target_->bind();
     target_->clear();
-    renderer_.draw(plane_, glm::mat4(1.0f), textures_, material, camera, light,
+    renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, camera, light,
                    {.technique = technique, .traceOutput = true});
     const std::vector<glm::vec4> trace = target_->readTrace();
 
@@ -196,7 +163,7 @@ double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
         glFinish();
         const auto start = std::chrono::steady_clock::now();
         target.clear();
-        renderer_.draw(timedPlane_, glm::mat4(1.0f), textures_, material, camera, light, {.technique = technique});
+        renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), material, camera, light, {.technique = technique});
         glFinish();
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (i >= 0) times.push_back(ms);

@@ -7,12 +7,12 @@
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
-#include "hfx/compute/ClContext.h"
+#include "hfx/compute/StaticField.h"
 #include "hfx/core/HeightFieldTracer.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
 #include <memory>
@@ -55,10 +55,12 @@ struct AccuracyResult {
 class AccuracyProbe {
 public:
     /// heights: size x size in [0,1], row 0 at v = 0, tiling (edges wrap); size a power of two.
-    /// Normals and the pyramid are made on the device, as a frame would make them.
-    /// format: the surface's storage (to measure what a smaller format costs); unorm8 takes no
-    /// pyramid, so it cannot measure the hierarchical technique.
-    AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float depthScale,
+    /// The surface is made by the frames' own path (a StaticField down a SurfacePipeline:
+    /// normals for `normalDepth`, the pyramid, packing, transfer), so the figures are those of
+    /// what the effects draw; measure() may draw any depth. format: the surface's storage (to
+    /// measure what a smaller format costs); unorm8 takes no pyramid, so it cannot measure the
+    /// hierarchical technique.
+    AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float normalDepth,
                   SurfaceFormat format = SurfaceFormat::Float32);
 
     AccuracyResult measure(Technique technique, const AccuracyConfig& config);
@@ -68,12 +70,13 @@ public:
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
     const HeightFieldTracer& exact() const { return exact_; }
+    const SurfaceTextures& textures() const { return surface_.textures(); }
 
 private:
     int size_;
-    float depthScale_;
     HeightFieldTracer exact_;
-    SurfaceTextures textures_;
+    StaticField field_;
+    SurfacePipeline surface_;
     SurfaceRenderer renderer_;
     std::unique_ptr<RenderTarget> target_;
     Image lastFrame_;

@@ -10,9 +10,9 @@
 
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/DetailNormals.h"
-#include "hfx/core/Image.h"
+#include "hfx/core/SurfaceMaps.h"
 #include "hfx/effects/BrickWall.h"
-#include "hfx/effects/FieldEffect.h"
+#include "hfx/effects/Effect.h"
 #include "hfx/effects/Picking.h"
 
 #include <memory>
@@ -36,11 +36,11 @@ struct DecalWallConfig {
     Explosion explosion{.radius = 0.05f, .depth = 0.6f, .debris = 40};
     SurfaceMaterial material{.depthScale = 0.06f, .maxSamples = 48, .shadowSharpness = 3.0f};
     ImageReadLimits limits;
-    FieldOptions surface; ///< mip maps, height pyramid, storage format, path to GL
-    void validate() const;
+    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 
-class DecalWallEffect final : public FieldEffect {
+class DecalWallEffect final : public Effect {
 public:
     /// Throws hfx::Error naming the file for a missing, corrupt or mismatched map.
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config = {});
@@ -59,18 +59,19 @@ public:
     std::vector<float> readHeights();
 
 private:
-    struct Made;
-    static Made make(ClContext& cl, const DecalWallConfig& config);
-    DecalWallEffect(ClContext& cl, const DecalWallConfig& config, Made made);
-    void enqueueExtra() override;
+    /// The wall's maps (files, or the procedural bricks), made before anything on a device.
+    static SurfaceMaps load(const DecalWallConfig& config);
+    DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
+    const SurfacePipeline& surface() const override { return surface_; }
+    void advance(double dt) override { decals_.step(dt); }
+    /// The damaged heights' normals, with the artist's normal map added when there is one.
+    void enqueueSurface() override;
 
+    ClContext& cl_;
     DecalWallConfig config_;
-    DecalMap& decals_;
-    // With a normal map: the map and its base heights, and the pass that adds the damage to it
-    // (remade when the depth scale changes).
-    std::vector<float> baseHeights_, normalMap_;
-    std::unique_ptr<DetailNormals> detail_;
-    float detailDepth_ = -1.0f;
+    DecalMap decals_;
+    SurfacePipeline surface_;
+    std::unique_ptr<DetailNormals> detail_; ///< with a normal map
 };
 
 } // namespace hfx

@@ -1,7 +1,6 @@
-#include "hfx/effects/GasPlanet.h"
+#include "hfx/effects/GasPlanetEffect.h"
 
 #include "hfx/core/Error.h"
-#include "hfx/effects/FieldUpload.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -28,19 +27,11 @@ void GasPlanetConfig::validate() const {
     material.validate();
 }
 
-namespace {
-std::unique_ptr<HeightSource> makeGas(ClContext& cl, const GasPlanetConfig& config) {
-    config.validate();
-    return std::make_unique<GasField>(cl, config.gas);
-}
-} // namespace
-
 GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
-    : FieldEffect(cl, makeGas(cl, config), config.material,
-                  config.surface), config_(config),
-      gas_(static_cast<GasField&>(source())),
-      colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed) {
-    refresh(nowMs()); // again, now with the colours
+    : Effect(validated(config).material), config_(config), gas_(cl, config.gas),
+      colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed),
+      surface_(cl, SurfacePipelineConfig::of(gas_, config.material.depthScale, config.surface)) {
+    refresh();
 }
 
 void GasPlanetEffect::addStorm(float u, float v, bool clockwise) {
@@ -53,7 +44,7 @@ void GasPlanetEffect::addStorm(float u, float v, bool clockwise) {
     gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r, .dye = clockwise ? 1.0f : 0.05f});
 }
 
-void GasPlanetEffect::stepSource(double dt) {
+void GasPlanetEffect::advance(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error(str("GasPlanetEffect::update: dt must be positive and finite, got ", dt));
     time_ += dt;
@@ -67,9 +58,11 @@ void GasPlanetEffect::stepSource(double dt) {
     gas_.step(dt);
 }
 
-void GasPlanetEffect::enqueueExtra() { colors_.run(gas_.buffer()); }
-
-void GasPlanetEffect::uploadExtra() { uploadAlbedo(cl(), colors_.output(), uploadTarget()); }
+void GasPlanetEffect::enqueueSurface() {
+    surface_.derive(gas_.buffer());
+    colors_.run(gas_.buffer());
+    surface_.submit(&colors_.output());
+}
 
 glm::mat4 GasPlanetEffect::modelMatrix() const {
     return glm::rotate(glm::mat4(1.0f), float(std::fmod(time_ * config_.rotationSpeed, 6.283185307179586)),

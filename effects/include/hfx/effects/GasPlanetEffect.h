@@ -10,7 +10,7 @@
 #include "hfx/compute/ColorRamp.h"
 #include "hfx/compute/GasField.h"
 #include "hfx/core/Random.h"
-#include "hfx/effects/FieldEffect.h"
+#include "hfx/effects/Effect.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -34,11 +34,11 @@ struct GasPlanetConfig {
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
                              .shading = Shading::Planet, .silhouetteFade = 0.25f};
-    FieldOptions surface; ///< mip maps, height pyramid, storage format, path to GL
-    void validate() const;
+    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 
-class GasPlanetEffect final : public FieldEffect {
+class GasPlanetEffect final : public Effect {
 public:
     explicit GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config = {});
 
@@ -51,15 +51,18 @@ public:
     glm::mat4 modelMatrix() const;
 
 private:
-    void stepSource(double dt) override;
-    void enqueueExtra() override;
-    void uploadExtra() override;
+    const SurfacePipeline& surface() const override { return surface_; }
+    /// New storms at their rate, then the gas's step.
+    void advance(double dt) override;
+    /// The relief from the dye, and the albedo: the dye through the colour ramp.
+    void enqueueSurface() override;
 
     GasPlanetConfig config_;
-    GasField& gas_;
+    GasField gas_;
     ColorRamp colors_;
     SplitMix64 random_;
     double time_ = 0.0, stormClock_ = 0.0;
+    SurfacePipeline surface_;
 };
 
 } // namespace hfx

@@ -1,0 +1,195 @@
+#include "hfx/effects/SurfacePipeline.h"
+
+#include "hfx/core/Error.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace hfx {
+
+void SurfacePipelineConfig::validate() const {
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw Error(str("SurfacePipelineConfig size must be in 1..16384, got ", width, "x", height));
+    if (!(normalDepth > 0.0f) || !std::isfinite(normalDepth))
+        throw Error(str("SurfacePipelineConfig.normalDepth must be positive and finite, got ", normalDepth));
+}
+
+SurfacePipelineConfig SurfacePipelineConfig::of(const HeightSource& source, float normalDepth,
+                                                const SurfaceOptions& options) {
+    return {.width = source.width(),
+            .height = source.height(),
+            .edges = source.edges(),
+            .normalDepth = normalDepth > 0.0f ? normalDepth : 0.05f,
+            .options = options};
+}
+
+namespace {
+
+
+SurfaceTexturesConfig texturesConfig(const SurfacePipelineConfig& c) {
+    return {.width = c.width,
+            .height = c.height,
+            .mipmaps = c.options.mipmaps,
+            .edges = c.edges,
+            .pyramid = c.options.pyramid,
+            .format = c.options.format,
+            .normalDepth = c.normalDepth};
+}
+
+std::unique_ptr<PixelBuffer> makePixels(TransferPath path, const SurfacePipelineConfig& c) {
+    if (path != TransferPath::PixelBuffer) return nullptr;
+    return std::make_unique<PixelBuffer>(texelBytes(c.options.format) * size_t(c.width) * c.height);
+}
+
+/// Maps the first `bytes` of `buffer` for reading (waiting for the queue's work on it), hands
+/// the mapping to `upload`, and unmaps whatever happens.
+template <typename Upload>
+void mapAndUpload(ClContext& cl, const cl::Buffer& buffer, size_t bytes, const char* what, Upload&& upload) {
+    cl::CommandQueue& q = cl.queue();
+    void* mapped = clGuard(what, [&] { return q.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes); });
+    try {
+        upload(mapped);
+    } catch (...) {
+        q.enqueueUnmapMemObject(buffer, mapped);
+        throw;
+    }
+    clGuard(what, [&] { q.enqueueUnmapMemObject(buffer, mapped); });
+}
+
+} // namespace
+
+double SurfacePipeline::nowMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& config)
+    : cl_(cl), config_(validated(config)), transfer_(chooseTransferPath(cl, config.options.transfer)),
+      pixels_(makePixels(transfer_, config)),
+      // A float32 surface's texels are the normals themselves: with a pixel buffer, they lie in it.
+      sobel_(cl, config.sobel(),
+             pixels_ && config.options.format == SurfaceFormat::Float32 ? pixels_->memory() : nullptr),
+      textures_{std::make_unique<SurfaceTextures>(texturesConfig(config)),
+                std::make_unique<SurfaceTextures>(texturesConfig(config))} {
+    if (config.options.pyramid)
+        pyramid_ = std::make_unique<MaxPyramid>(cl, config.width, config.height, config.edges);
+    if (config.options.format != SurfaceFormat::Float32)
+        packer_ = std::make_unique<SurfacePacker>(cl, config.width, config.height, config.options.format,
+                                                  pixels_ ? pixels_->memory() : nullptr);
+}
+
+SurfacePipeline::~SurfacePipeline() {
+    if (!pixels_) return; // device buffers of their own outlive their kernels by reference counts
+    try {
+        cl_.queue().finish();
+    } catch (...) {
+        // Destructors never throw; a failed finish leaves nothing running to wait for.
+    }
+}
+
+std::string SurfacePipeline::transferDescription() const {
+    return str(surfaceFormatName(config_.options.format), " texels", packer_ ? " packed on the device" : "", ", ",
+               transferPathName(transfer_), " path");
+}
+
+void SurfacePipeline::setAlbedo(const Image& albedo) {
+    for (auto& t : textures_) t->setAlbedo(albedo);
+}
+
+void SurfacePipeline::wait() {
+    clGuard("SurfacePipeline: waiting for the device", [&] { cl_.queue().finish(); });
+}
+
+void SurfacePipeline::begin(StageTiming timing) {
+    if (state_ == State::Submitted) finish(); // never two frames in flight
+    // A frame abandoned before submit() (its source refused a bad dt, say) is simply dropped:
+    // whatever it enqueued wrote nothing GL reads.
+    state_ = State::Begun;
+    timing_ = timing;
+    albedo_ = cl::Buffer();
+    times_ = {};
+    start_ = nowMs();
+}
+
+void SurfacePipeline::derive(const cl::Buffer& heights) {
+    HFX_CHECK(state_ == State::Begun);
+    if (timing_ == StageTiming::Staged) wait();
+    derived_ = nowMs();
+    if (pixels_) pixels_->waitUntilRead(); // the normals or the packing write the pixel buffer
+    sobel_.run(heights);
+    if (timing_ == StageTiming::Staged) wait();
+    normalsDone_ = nowMs();
+    if (pyramid_) pyramid_->build(heights);
+    state_ = State::Derived;
+}
+
+void SurfacePipeline::submit(const cl::Buffer* albedo) {
+    HFX_CHECK(state_ == State::Derived);
+    if (packer_) packer_->run(sobel_.output());
+    if (albedo) {
+        const size_t needed = 4 * size_t(config_.width) * config_.height;
+        if (albedo->getInfo<CL_MEM_SIZE>() < needed)
+            throw Error(str("SurfacePipeline::submit: the albedo holds ", albedo->getInfo<CL_MEM_SIZE>(),
+                            " bytes, a ", config_.width, "x", config_.height, " RGBA8 albedo needs ", needed));
+        albedo_ = *albedo;
+    }
+    clGuard("SurfacePipeline::submit", [&] {
+        cl_.queue().enqueueMarkerWithWaitList(nullptr, &submitted_);
+        cl_.queue().flush(); // start now, not at the wait
+    });
+    state_ = State::Submitted;
+    if (timing_ == StageTiming::Staged) {
+        wait();
+        const double done = nowMs();
+        times_ = {.compute = done - start_,
+                  .upload = 0.0,
+                  .field = derived_ - start_,
+                  .normals = normalsDone_ - derived_,
+                  .extra = done - normalsDone_};
+    }
+}
+
+void SurfacePipeline::finish() {
+    if (state_ != State::Submitted) {
+        state_ = State::Idle;
+        return;
+    }
+    state_ = State::Idle; // a failed upload leaves no frame in flight
+    const double waitStart = nowMs();
+    clGuard("SurfacePipeline::finish", [&] { submitted_.wait(); });
+    const double computed = nowMs();
+    if (timing_ == StageTiming::Overlapped) times_ = {.compute = computed - waitStart};
+
+    SurfaceTextures& back = *textures_[1 - front_];
+    const size_t texels = size_t(config_.width) * config_.height;
+    // The texels in the surface's own layout: packed, or for float32 the normals themselves.
+    const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
+    const size_t bytes = texelBytes(config_.options.format) * texels;
+    if (pixels_) {
+        // Mapping a buffer over host memory waits for its writers and makes that memory current
+        // (on a device sharing host memory it copies nothing); GL then reads it where it lies.
+        mapAndUpload(cl_, source, bytes, "uploading the surface from the pixel buffer", [&](const void* mapped) {
+            HFX_CHECK(mapped == pixels_->memory());
+            pixels_->uploadTexels(back);
+        });
+    } else {
+        mapAndUpload(cl_, source, bytes, "uploading the surface",
+                     [&](const void* mapped) { back.uploadTexels(mapped); });
+    }
+    if (pyramid_)
+        mapAndUpload(cl_, pyramid_->buffer(), pyramid_->totalFloats() * sizeof(float), "uploading the pyramid",
+                     [&](const void* mapped) { back.uploadPyramid(static_cast<const float*>(mapped)); });
+    if (albedo_())
+        mapAndUpload(cl_, albedo_, 4 * texels, "uploading the albedo",
+                     [&](const void* mapped) { back.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });
+    front_ = 1 - front_;
+    times_.upload = nowMs() - computed;
+}
+
+void SurfacePipeline::run(const cl::Buffer& heights, const cl::Buffer* albedo) {
+    begin(StageTiming::Staged);
+    derive(heights);
+    submit(albedo);
+    finish();
+}
+
+} // namespace hfx

@@ -1,0 +1,180 @@
+// The one surface pipeline: every user runs it exactly once per frame (and once when made),
+// the normals it stores for one depth draw as the normals of any other, and a map from files
+// gets everything a generated field gets (formats, transfer paths, the height pyramid).
+
+#include "support/Fields.h"
+#include "support/Fixtures.h"
+#include "support/References.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/core/SurfaceMaps.h"
+#include "hfx/effects/DecalWallEffect.h"
+#include "hfx/effects/GasPlanetEffect.h"
+#include "hfx/effects/ImageSurface.h"
+#include "hfx/effects/OceanEffect.h"
+#include "hfx/effects/SineWavesEffect.h"
+#include "hfx/tools/AccuracyProbe.h"
+
+#include <functional>
+#include <memory>
+
+namespace hfx::test {
+namespace {
+
+class Pipeline : public DeviceTest {
+protected:
+    /// Sobel launches (either kernel) while `f` runs.
+    std::uint64_t sobelRuns(const std::function<void()>& f) {
+        const auto count = [&] { return cl().launches("sobel") + cl().launches("sobel4"); };
+        const std::uint64_t before = count();
+        f();
+        return count() - before;
+    }
+};
+
+std::string writeMap(const std::string& name, const std::vector<float>& heights, int size) {
+    Image image{size, size, 1, std::vector<float>(heights.size())};
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) image.at(x, size - 1 - y, 0) = heights[size_t(y) * size + x];
+    const std::string path = outputPath(name);
+    writeImage(path, image);
+    return path;
+}
+
+TEST_F(Pipeline, EveryUserRunsItOnceWhenMadeAndOncePerUpdate) {
+    const std::string map = writeMap("pipeline_map.exr", sumOfSines(32, {{0.3, 1, 2, 0.4}}), 32);
+    struct User {
+        const char* name;
+        std::function<std::unique_ptr<Effect>()> make;
+        std::uint64_t perUpdate;
+    };
+    const User users[] = {
+        {"sine waves", [&] { return std::make_unique<SineWavesEffect>(cl(), SineWavesConfig{.waves = {.size = 64}}); }, 1},
+        {"ocean", [&] { return std::make_unique<OceanEffect>(cl(), OceanEffectConfig{.ocean = {.size = 64}}); }, 1},
+        {"decal wall", [&] { return std::make_unique<DecalWallEffect>(cl(), DecalWallConfig{.bricks = {.size = 64}}); }, 1},
+        {"decal wall with a normal map",
+         [&] {
+             // A flat normal map: (0, 0, 1) stored as (0.5, 0.5, 1).
+             const std::string normals = outputPath("pipeline_normals.png");
+             Image flat{32, 32, 3, std::vector<float>(32 * 32 * 3, 0.5f)};
+             for (int i = 0; i < 32 * 32; ++i) flat.pixels[i * 3 + 2] = 1.0f;
+             writeImage(normals, flat);
+             return std::make_unique<DecalWallEffect>(cl(), DecalWallConfig{.heightMap = map, .normalMap = normals});
+         },
+         1},
+        {"gas planet",
+         [&] {
+             return std::make_unique<GasPlanetEffect>(cl(), GasPlanetConfig{.gas = {.width = 32, .height = 16, .initialBands = 2}});
+         },
+         1},
+        {"image surface", [&] { return std::make_unique<ImageSurface>(cl(), ImageSurfaceConfig{.heightMap = map}); }, 0},
+    };
+    for (const User& user : users) {
+        std::unique_ptr<Effect> effect;
+        // The detail pass derives its base normals once too: one more Sobel, at construction only.
+        const std::uint64_t made = sobelRuns([&] { effect = user.make(); });
+        EXPECT_EQ(made, std::string(user.name).find("normal map") != std::string::npos ? 2u : 1u) << user.name;
+        EXPECT_EQ(sobelRuns([&] { effect->update(0.05); }), user.perUpdate) << user.name;
+        EXPECT_EQ(sobelRuns([&] {
+                      effect->beginUpdate(0.05);
+                      effect->endUpdate();
+                  }),
+                  user.perUpdate)
+            << user.name;
+    }
+    EXPECT_EQ(sobelRuns([&] { AccuracyProbe probe(cl(), sumOfSines(32, {{0.2, 1, 1, 0}}), 32, 0.1f); }), 1u);
+}
+
+TEST_F(Pipeline, NormalsStoredForOneDepthDrawAsTheNormalsOfAnother) {
+    // The material owns the depth: the renderer rescales stored normals (made for normalDepth)
+    // to the depth it draws. Normals made for 0.02 and for 0.1, both drawn at 0.1, must light
+    // alike; drawn at 0.02 instead, the same surface looks different (so the check has teeth).
+    constexpr int N = 64;
+    const auto heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.12, -1, 3, 0.7}});
+    StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
+    SurfacePipeline shallow(cl(), SurfacePipelineConfig::of(field, 0.02f, {.mipmaps = false}));
+    SurfacePipeline deep(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
+    shallow.run(field.buffer());
+    deep.run(field.buffer());
+    EXPECT_FLOAT_EQ(shallow.textures().config().normalDepth, 0.02f);
+
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const Camera camera = cameraAtAngle(35.0, 6.0f, 1.0f);
+    SurfaceRenderer renderer;
+    RenderTarget target(128, 128);
+    auto draw = [&](const SurfacePipeline& p, float depth) {
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), p.textures(), {.depthScale = depth, .lodThreshold = 100.0f, .shadows = false},
+                      camera, {});
+        return target.readColor();
+    };
+    const Image a = draw(shallow, 0.1f), b = draw(deep, 0.1f), c = draw(deep, 0.02f);
+    double worst = 0.0, differs = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])));
+        differs = std::max(differs, double(std::abs(c.pixels[i] - b.pixels[i])));
+    }
+    // Float32 normals rescaled in slope space are exact up to rounding: one 8-bit step allowed.
+    EXPECT_LE(worst, 1.0 / 255 + 1e-6);
+    EXPECT_GT(differs, 0.1) << "the depth drawn does not change the shading: the comparison above proves nothing";
+}
+
+TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
+    constexpr int N = 64;
+    const auto heights = sumOfSines(N, {{0.25, 1, 2, 0.5}, {0.1, 3, -1, 0.0}});
+    const std::string map = writeMap("pipeline_formats.exr", heights, N); // float: the heights as they are
+    const auto sobel = sobelReference(heights, N, 0.08f);
+    const auto pyramid = pyramidReference(heights, N, N);
+    for (SurfaceFormat format : kSurfaceFormats)
+        for (TransferPath path : {TransferPath::Map, TransferPath::PixelBuffer}) {
+            const bool hasPyramid = format != SurfaceFormat::Unorm8;
+            ImageSurface surface(cl(), {.heightMap = map,
+                                        .material = {.depthScale = 0.08f},
+                                        .surface = {.mipmaps = false, .pyramid = hasPyramid, .format = format, .transfer = path}});
+            EXPECT_EQ(surface.transferPath(), path);
+            const std::vector<float> texels = readSurface(surface.textures());
+            // Each format's rounding: none, half floats near 1 (2^-11), half a step of 1/255 (the
+            // normal's n/2 + 1/2 doubles it).
+            const double bound = format == SurfaceFormat::Float32 ? 1e-6 : format == SurfaceFormat::Float16 ? 1e-3 : 1.0 / 255 + 1e-6;
+            double worst = 0.0;
+            for (size_t i = 0; i < texels.size(); ++i) {
+                const double stored = format == SurfaceFormat::Unorm8 && i % 4 != 3 ? texels[i] * 2.0 - 1.0 : texels[i];
+                worst = std::max(worst, std::abs(stored - sobel[i]));
+            }
+            EXPECT_LE(worst, bound) << surfaceFormatName(format) << ", " << transferPathName(path);
+            ASSERT_EQ(surface.textures().pyramid() != 0, hasPyramid);
+            if (!hasPyramid) continue;
+            std::vector<float> level0(size_t(N) * N);
+            glGetTextureImage(surface.textures().pyramid(), 0, GL_RED, GL_FLOAT, GLsizei(level0.size() * sizeof(float)),
+                              level0.data());
+            EXPECT_EQ(level0, std::vector<float>(pyramid.begin(), pyramid.begin() + N * N)) << surfaceFormatName(format);
+        }
+}
+
+TEST_F(Pipeline, ANormalMapOverUnchangingHeightsIsStoredExactly) {
+    constexpr int N = 32;
+    const auto heights = sumOfSines(N, {{0.3, 1, 1, 0.2}});
+    const std::string map = writeMap("pipeline_nm_height.exr", heights, N);
+    Image normals{N, N, 3, std::vector<float>(N * N * 3)};
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) {
+            normals.at(x, y, 0) = 0.5f + 0.3f * std::sin(0.4f * x);
+            normals.at(x, y, 1) = 0.5f - 0.2f * std::cos(0.3f * y);
+            normals.at(x, y, 2) = 0.9f;
+        }
+    const std::string normalMap = outputPath("pipeline_nm.exr");
+    writeImage(normalMap, normals);
+    const std::vector<float> expected = packNormalMap(readImage(normalMap), normalMap, heights);
+    ImageSurface surface(cl(), {.heightMap = map, .normalMap = normalMap, .surface = {.mipmaps = false}});
+    EXPECT_EQ(readSurface(surface.textures()), expected);
+    // A static surface derives once: later updates change nothing and refuse a bad dt.
+    surface.update(0.1);
+    EXPECT_EQ(readSurface(surface.textures()), expected);
+    EXPECT_NE(messageOf([&] { surface.update(-1.0); }).find("dt"), std::string::npos);
+}
+
+} // namespace
+} // namespace hfx::test
