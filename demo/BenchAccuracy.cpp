@@ -5,9 +5,9 @@
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/NoiseField.h"
 #include "hfx/core/Error.h"
+#include "hfx/effects/BrickWall.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/tools/AccuracyProbe.h"
-#include "hfx/effects/BrickWall.h"
 
 #include <algorithm>
 #include <cmath>
@@ -97,12 +97,14 @@ int runBenchAccuracy(const std::string& outDir, int field) {
     ClContext cl;
     const std::vector<Map> maps = makeMaps(cl, field);
     const double angles[] = {0, 45, 70, 80, 85};
-    const std::map<Technique, glm::vec3> colors = {
-        {Technique::NormalMapping, {0.5f, 0.5f, 0.5f}}, {Technique::ParallaxOffset, {0.9f, 0.6f, 0.0f}},
-        {Technique::SteepParallax, {0.8f, 0.1f, 0.1f}}, {Technique::Relief, {0.1f, 0.6f, 0.1f}},
-        {Technique::Secant, {0.6f, 0.2f, 0.8f}},        {Technique::ParallaxOcclusion, {0.1f, 0.3f, 0.9f}},
-        {Technique::Hierarchical, {0.0f, 0.0f, 0.0f}}};
-    const char* colorNames[] = {"grey", "orange", "red", "green", "purple", "blue", "black"};
+    // One colour per row of the technique table, in its order.
+    const std::pair<const char*, glm::vec3> palette[] = {
+        {"grey", {0.5f, 0.5f, 0.5f}},   {"orange", {0.9f, 0.6f, 0.0f}}, {"red", {0.8f, 0.1f, 0.1f}},
+        {"green", {0.1f, 0.6f, 0.1f}},  {"purple", {0.6f, 0.2f, 0.8f}}, {"blue", {0.1f, 0.3f, 0.9f}},
+        {"black", {0.0f, 0.0f, 0.0f}},  {"brown", {0.55f, 0.3f, 0.1f}}, {"cyan", {0.0f, 0.7f, 0.8f}}};
+    static_assert(std::size(palette) >= kTechniqueCount, "a colour for every technique");
+    std::map<Technique, glm::vec3> colors;
+    for (size_t i = 0; i < kTechniqueCount; ++i) colors[kTechniques[i]] = palette[i].second;
     const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f); // 60 degrees
 
     std::ostringstream md;
@@ -130,7 +132,7 @@ int runBenchAccuracy(const std::string& outDir, int field) {
             for (size_t ti = 0; ti < std::size(kTechniques); ++ti) {
                 const Technique t = kTechniques[ti];
                 const AccuracyResult r = probe.measure(t, {.angleDegrees = angle});
-                const bool hasShadows = t != Technique::NormalMapping && t != Technique::ParallaxOffset;
+                const bool hasShadows = techniqueInfo(t).shadow != SelfShadow::None;
                 const AccuracyResult s =
                     hasShadows ? probe.measure(t, {.angleDegrees = angle, .shadows = true, .light = light}) : AccuracyResult{};
                 char shadow[32] = "n/a", ms[32] = "-";
@@ -143,7 +145,7 @@ int runBenchAccuracy(const std::string& outDir, int field) {
                 std::snprintf(line, sizeof line, "| %.0f | %s | %.3f | %.3f | %.2f%% | %.1f | %.4f | %s | %s |\n", angle,
                               techniqueName(t), r.mean, r.p95, 100.0 * r.over4, r.fetches, r.depthMean, shadow, ms);
                 md << line;
-                if (t != Technique::NormalMapping) points.emplace_back(t, r.fetches, r.mean);
+                if (techniqueInfo(t).traces) points.emplace_back(t, r.fetches, r.mean);
                 if (t == Technique::Hierarchical) {
                     hierMean[{map.name, angle}] = r.mean;
                     hierFetches[{map.name, angle}] = r.fetches;
@@ -200,13 +202,14 @@ int runBenchAccuracy(const std::string& outDir, int field) {
     md << "## Plot and crops\n\n![error against fetches](accuracy/plot.png)\n\n"
        << "Mean error (texels, log scale, 1e-4 to 100; grid lines per decade, the darker one at 1 texel)\n"
        << "against mean fetches per pixel (grid every 10), one point per map and angle. Colours: ";
-    int i = 0;
-    for (Technique t : kTechniques) {
-        if (t != Technique::NormalMapping) md << techniqueName(t) << " " << colorNames[i] << (t == Technique::Hierarchical ? ".\n\n" : ", ");
-        ++i;
+    std::string legend, order;
+    for (size_t i = 0; i < kTechniqueCount; ++i) {
+        if (techniqueInfo(kTechniques[i]).traces)
+            legend += str(legend.empty() ? "" : ", ", techniqueName(kTechniques[i]), " ", palette[i].first);
+        order += str(order.empty() ? "" : ", ", techniqueName(kTechniques[i]));
     }
-    md << "![crops at 80 degrees](accuracy/crops_80.jpg)\n\nThe bricks map at 80 degrees, left to right: ";
-    for (Technique t : kTechniques) md << techniqueName(t) << (t == Technique::Hierarchical ? ".\n" : ", ");
+    md << legend << ".\n\n![crops at 80 degrees](accuracy/crops_80.jpg)\n\nThe bricks map at 80 degrees, left to right: "
+       << order << ".\n";
     std::filesystem::create_directories(std::filesystem::path(outDir) / "accuracy");
     writeImage((std::filesystem::path(outDir) / "accuracy" / "plot.png").string(), plot(points, colors));
     writeImage((std::filesystem::path(outDir) / "accuracy" / "crops_80.jpg").string(), strip);

@@ -105,10 +105,14 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     if (!options_.out.empty()) std::filesystem::create_directories(options_.out);
     int screenshots = 0;
     double drawMs = 0.0, frameMs = 0.0, last = nowMs();
+    // The techniques this scene can draw: those that need the per-frame pyramid only when it was
+    // started with one (--technique hier).
+    std::vector<Technique> offered;
+    for (const TechniqueInfo& t : kTechniqueTable)
+        if (!t.needsPyramid || scene.effect().textures().pyramid() != 0) offered.push_back(t.technique);
     int techniqueIndex = 0;
-    for (int i = 0; i < int(std::size(kTechniques)); ++i)
-        if (kTechniques[i] == scene.technique) techniqueIndex = i;
-    const bool hasPyramid = scene.effect().textures().pyramid() != 0;
+    for (int i = 0; i < int(offered.size()); ++i)
+        if (offered[i] == scene.technique) techniqueIndex = i;
 
     for (int frame = 0; options_.frames == 0 || frame < options_.frames; ++frame) {
         if (!gl.pollEvents() || escapeKey.pressed(window)) break;
@@ -155,14 +159,11 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         // The effect owns the material: edit a copy, hand it back when it changed.
         SurfaceMaterial m = scene.effect().material();
         const SurfaceMaterial before = m;
-        // The hierarchical tracer is offered when the scene was started with it (it needs the
-        // per-frame pyramid, --technique hier).
-        const int shown = int(std::size(kTechniques)) - (hasPyramid ? 0 : 1);
-        if (ImGui::Combo("technique", &techniqueIndex, [](void*, int i, const char** out) {
-                *out = techniqueName(kTechniques[i]);
+        if (ImGui::Combo("technique", &techniqueIndex, [](void* list, int i, const char** out) {
+                *out = techniqueName((*static_cast<const std::vector<Technique>*>(list))[i]);
                 return true;
-            }, nullptr, shown))
-            scene.technique = kTechniques[techniqueIndex];
+            }, &offered, int(offered.size())))
+            scene.technique = offered[techniqueIndex];
         ImGui::SliderInt("samples min", &m.minSamples, 1, 128);
         ImGui::SliderInt("samples max", &m.maxSamples, 1, 256);
         m.maxSamples = std::max(m.maxSamples, m.minSamples);

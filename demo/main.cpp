@@ -94,6 +94,10 @@ int run(const Options& o) {
     sceneOptions.transfer = parseTransferPath(o.transfer);
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
+    if (o.scene == "techniques") {
+        std::printf("%s", techniqueTableMarkdown().c_str());
+        return 0;
+    }
     if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
     if (o.scene == "bench-mesh") return runBenchMesh(o.width, o.height, o.frames > 0 ? o.frames : 10);
     if (o.scene == "bench-accuracy") {
@@ -132,7 +136,7 @@ int main(int argc, char** argv) {
     SceneOptions& s = o.sceneOptions;
     app.add_option("scene", o.scene,
                    "scene: water (FFT ocean), decals (damage on a wall), planet (gas giant), maps "
-                   "(a surface from image files), bench (frame-time benchmark), bench-accuracy (every technique "
+                   "(a surface from image files), techniques (print the table of surface techniques), bench (frame-time benchmark), bench-accuracy (every technique "
                    "against the exact intersection; writes --out/ACCURACY.md, default docs) or bench-mesh (a POM "
                    "quad against a tessellated mesh of the same 1024² heights)")
         ->capture_default_str();
@@ -150,10 +154,13 @@ int main(int argc, char** argv) {
     app.add_option("--dt", o.dt, "seconds between frames")->check(CLI::Range(1e-6, 10.0))->capture_default_str();
     app.add_option("--field", s.fieldSize, "height-field texels per edge (default: the scene's; ocean: a power of two)")
         ->check(CLI::Range(8, 8192));
-    app.add_option("--technique", o.technique,
-                   "pom, nm (normal mapping), parallax (offset limiting), steep, relief, secant, or hier "
-                   "(hierarchical tracer over the per-frame height pyramid)")
-        ->check(CLI::IsMember({"pom", "nm", "parallax", "steep", "relief", "secant", "hier"}))->capture_default_str();
+    std::vector<std::string> techniques;
+    std::string techniqueHelp = "surface technique (hfx-demo techniques lists them):";
+    for (const TechniqueInfo& t : kTechniqueTable) {
+        techniques.emplace_back(t.name);
+        techniqueHelp += str("\n  ", t.name, ": ", t.summary);
+    }
+    app.add_option("--technique", o.technique, techniqueHelp)->check(CLI::IsMember(techniques))->capture_default_str();
     app.add_option("--samples-min", s.minSamples, "POM steps seen head-on (default: the scene's)")
         ->check(CLI::Range(1, 256));
     app.add_option("--samples-max", s.maxSamples, "POM steps at grazing angles (default: the scene's)")

@@ -1,16 +1,13 @@
 #version 450 core
 // Passes the world-space position and the unnormalised tangent frame (dP/du, dP/dv) so the
-// fragment stage can express the view and light rays in texture units, per pixel.
+// fragment stage can express the view and light rays in texture units, per pixel. Composed after
+// surface/uniforms.glsl (u_model, u_viewProj, u_normalMatrix).
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_tangent;
 layout(location = 3) in vec3 a_bitangent;
 layout(location = 4) in vec2 a_texcoord;
-
-uniform mat4 u_model;
-uniform mat3 u_normalMatrix;
-uniform mat4 u_viewProj;
 
 out vec3 v_worldPos;
 out vec3 v_normal;
@@ -21,7 +18,7 @@ out vec2 v_texcoord;
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_worldPos = world.xyz;
-    v_normal = u_normalMatrix * a_normal;
+    v_normal = mat3(u_normalMatrix) * a_normal;
     v_tangent = mat3(u_model) * a_tangent;
     v_bitangent = mat3(u_model) * a_bitangent;
     v_texcoord = a_texcoord;

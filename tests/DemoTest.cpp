@@ -3,6 +3,7 @@
 #include "support/Fixtures.h"
 
 #include "hfx/core/Image.h"
+#include "hfx/effects/Technique.h"
 
 #include <sys/wait.h>
 
@@ -109,7 +110,8 @@ TEST(Demo, SineWavesStillRender) {
 }
 
 TEST(Demo, EveryTechniqueDrawsTheDecalWall) {
-    for (const char* technique : {"nm", "parallax", "steep", "relief", "secant", "pom", "hier"}) {
+    for (const TechniqueInfo& info : kTechniqueTable) {
+        const char* technique = info.name;
         const std::string out = outputPath(std::string("demo_technique_") + technique);
         const Result r = runDemo(std::string("decals --headless --frames 2 --width 160 --height 90 --field 128 --technique ") +
                                  technique + " --out " + out);
@@ -218,6 +220,16 @@ TEST(Demo, UnknownSceneIsAClearError) {
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("unknown scene 'volcano'"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos);
+}
+
+TEST(Demo, TheReadmesTechniqueTableIsTheOneTheTablePrints) {
+    // The C++ table drives the docs: README.md carries `hfx-demo techniques` verbatim.
+    const Result r = runDemo("techniques");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output, techniqueTableMarkdown());
+    std::ifstream readme(HFX_SOURCE_DIR "/README.md");
+    const std::string text((std::istreambuf_iterator<char>(readme)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find(r.output), std::string::npos) << "README.md's technique table differs from:\n" << r.output;
 }
 
 TEST(Demo, MapsSceneRendersAFileAndRefusesBadOnes) {

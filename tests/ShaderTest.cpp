@@ -26,6 +26,23 @@ TEST_F(Shader, CompileErrorNamesFileAndLine) {
     }
 }
 
+TEST_F(Shader, ComposedStagesNameTheFileAndLineOfAnError) {
+    // Three files: a declaration, a broken helper on its line 3, the main with the #version
+    // line last in the list (it still goes first in the composed text).
+    const SourceFile decl{"decl.glsl", "// declarations\nfloat helperValue();\n", "test"};
+    const SourceFile helper{"helper.glsl", "// a helper\nfloat helperValue() {\n    return missingName;\n}\n", "test"};
+    const SourceFile main{"main.frag", "#version 450 core\nout vec4 o;\nvoid main() { o = vec4(helperValue()); }\n",
+                          "test"};
+    const std::string m = messageOf([&] { ShaderProgram({vertex}, {decl, helper, main}, {{"V", "1"}}); });
+    EXPECT_NE(m.find("helper.glsl:3:"), std::string::npos) << m;
+    EXPECT_NE(m.find("missingName"), std::string::npos) << m;
+    // Fixed, the same composition builds; two #version lines are refused by name.
+    const SourceFile fixed{"helper.glsl", "float helperValue() { return 1.0; }\n", "test"};
+    EXPECT_EQ(messageOf([&] { ShaderProgram({vertex}, {decl, fixed, main}); }), "(no error)");
+    const SourceFile second{"second.frag", "#version 450 core\n", "test"};
+    EXPECT_NE(messageOf([&] { ShaderProgram({vertex}, {second, main}); }).find("second.frag"), std::string::npos);
+}
+
 TEST_F(Shader, LinkErrorCarriesTheLog) {
     const SourceFile noMain{"nomain.frag", "#version 450 core\nout vec4 o;\nvoid notMain() {}\n", "test"};
     EXPECT_THROW(ShaderProgram(vertex, noMain), Error);

@@ -12,19 +12,38 @@
 namespace hfx {
 namespace {
 
-std::string withDefines(const SourceFile& source, const std::vector<ShaderDefine>& defines) {
-    const std::string& text = source.text;
-    const size_t versionStart = text.find("#version");
-    if (versionStart == std::string::npos)
-        throw Error(str("shader ", source.name, " (", source.origin, ") has no #version line"));
-    const size_t versionEnd = text.find('\n', versionStart);
-    std::string out = text.substr(0, versionEnd + 1);
+/// The stage's text: the #version line (from the one part that has it), the defines, then each
+/// part after "#line 1 k", k its index, with its own #version line blanked so lines keep their
+/// numbers.
+std::string compose(const std::vector<SourceFile>& parts, const std::vector<ShaderDefine>& defines) {
+    const SourceFile* versioned = nullptr;
+    for (const SourceFile& part : parts) {
+        if (part.text.find("#version") == std::string::npos) continue;
+        if (versioned)
+            throw Error(str("shader parts ", versioned->name, " and ", part.name, " both have a #version line"));
+        versioned = &part;
+    }
+    if (!versioned) {
+        const std::string name = parts.empty() ? std::string("(no parts)") : parts.back().name;
+        throw Error(str("shader ", name, " (", parts.empty() ? "" : parts.back().origin, ") has no #version line"));
+    }
+    const size_t versionStart = versioned->text.find("#version");
+    const size_t versionEnd = versioned->text.find('\n', versionStart);
+    std::string out = versioned->text.substr(versionStart, versionEnd - versionStart) + '\n';
     for (const ShaderDefine& d : defines) out += str("#define ", d.name, ' ', d.value, '\n');
-    // Count lines up to and including the #version line so the log speaks of the file's lines.
-    const auto versionLine = std::count(text.begin(), text.begin() + versionEnd, '\n') + 1;
-    out += str("#line ", versionLine + 1, '\n');
-    if (versionEnd != std::string::npos) out += text.substr(versionEnd + 1);
+    for (size_t k = 0; k < parts.size(); ++k) {
+        std::string text = parts[k].text;
+        if (&parts[k] == versioned) text.replace(versionStart, versionEnd - versionStart, "");
+        out += str("#line 1 ", k, '\n', text);
+        if (!text.empty() && text.back() != '\n') out += '\n';
+    }
     return out;
+}
+
+std::vector<std::string> namesOf(const std::vector<SourceFile>& parts) {
+    std::vector<std::string> names;
+    for (const SourceFile& p : parts) names.push_back(p.name);
+    return names;
 }
 
 std::string shaderLog(GLuint shader) {
@@ -36,8 +55,8 @@ std::string shaderLog(GLuint shader) {
     return log;
 }
 
-GLuint compile(GLenum stage, const SourceFile& source, const std::vector<ShaderDefine>& defines) {
-    const std::string text = withDefines(source, defines);
+GLuint compile(GLenum stage, const std::vector<SourceFile>& parts, const std::vector<ShaderDefine>& defines) {
+    const std::string text = compose(parts, defines);
     const GLuint shader = glCreateShader(stage);
     const char* ptr = text.c_str();
     glShaderSource(shader, 1, &ptr, nullptr);
@@ -45,10 +64,9 @@ GLuint compile(GLenum stage, const SourceFile& source, const std::vector<ShaderD
     GLint ok = GL_FALSE;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        const std::string log = detail::annotateShaderLog(shaderLog(shader), source.name);
+        const std::string log = detail::annotateShaderLog(shaderLog(shader), namesOf(parts));
         glDeleteShader(shader);
-        throw Error(str("shader ", source.name, " (", source.origin, ") failed to compile:\n",
-                        log));
+        throw Error(str("shader ", parts.back().name, " (", parts.back().origin, ") failed to compile:\n", log));
     }
     return shader;
 }
@@ -56,15 +74,18 @@ GLuint compile(GLenum stage, const SourceFile& source, const std::vector<ShaderD
 } // namespace
 
 namespace detail {
-std::string annotateShaderLog(const std::string& log, const std::string& fileName) {
-    static const std::regex mesa(R"(^\s*\d+:(\d+)\(\d+\):\s*)");
-    static const std::regex other(R"(^\s*(?:ERROR:\s*)?\d+[:(](\d+)\)?\s*:\s*)");
+std::string annotateShaderLog(const std::string& log, const std::vector<std::string>& fileNames) {
+    static const std::regex mesa(R"(^\s*(\d+):(\d+)\(\d+\):\s*)");
+    static const std::regex other(R"(^\s*(?:ERROR:\s*)?(\d+)[:(](\d+)\)?\s*:\s*)");
     std::istringstream in(log);
     std::string line, out;
     while (std::getline(in, line)) {
         std::smatch m;
-        if (std::regex_search(line, m, mesa) || std::regex_search(line, m, other))
-            line = str(fileName, ':', m[1].str(), ": ", m.suffix().str());
+        if (std::regex_search(line, m, mesa) || std::regex_search(line, m, other)) {
+            const size_t k = std::stoul(m[1].str());
+            const std::string file = k < fileNames.size() ? fileNames[k] : str("source ", k);
+            line = str(file, ':', m[2].str(), ": ", m.suffix().str());
+        }
         out += line + '\n';
     }
     return out;
@@ -72,6 +93,31 @@ std::string annotateShaderLog(const std::string& log, const std::string& fileNam
 } // namespace detail
 
 ShaderProgram::ShaderProgram(const SourceFile& vertex, const SourceFile& fragment,
+                             const std::vector<ShaderDefine>& defines)
+    : ShaderProgram(std::vector<SourceFile>{vertex}, std::vector<SourceFile>{fragment}, defines) {}
+
+namespace {
+/// Links the compiled stages into `program` (deleting them), throwing the log on failure.
+void link(GLuint program, std::initializer_list<GLuint> stages, const std::string& what) {
+    for (GLuint s : stages) glAttachShader(program, s);
+    glLinkProgram(program);
+    for (GLuint s : stages) {
+        glDetachShader(program, s);
+        glDeleteShader(s);
+    }
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
+        glGetProgramInfoLog(program, length, nullptr, log.data());
+        throw Error(str("program ", what, " failed to link:\n", log.c_str()));
+    }
+}
+} // namespace
+
+ShaderProgram::ShaderProgram(const std::vector<SourceFile>& vertex, const std::vector<SourceFile>& fragment,
                              const std::vector<ShaderDefine>& defines)
     : program_(GlProgram::create()) {
     const GLuint vs = compile(GL_VERTEX_SHADER, vertex, defines);
@@ -82,23 +128,14 @@ ShaderProgram::ShaderProgram(const SourceFile& vertex, const SourceFile& fragmen
         glDeleteShader(vs);
         throw;
     }
-    glAttachShader(program_.id(), vs);
-    glAttachShader(program_.id(), fs);
-    glLinkProgram(program_.id());
-    glDetachShader(program_.id(), vs);
-    glDetachShader(program_.id(), fs);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(program_.id(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(program_.id(), length, nullptr, log.data());
-        throw Error(str("program ", vertex.name, " + ", fragment.name, " failed to link:\n",
-                        log.c_str()));
-    }
+    link(program_.id(), {vs, fs}, str(vertex.back().name, " + ", fragment.back().name));
+}
+
+ShaderProgram ShaderProgram::compute(const std::vector<SourceFile>& parts, const std::vector<ShaderDefine>& defines) {
+    ShaderProgram p;
+    p.program_ = GlProgram::create();
+    link(p.program_.id(), {compile(GL_COMPUTE_SHADER, parts, defines)}, parts.empty() ? "" : parts.back().name);
+    return p;
 }
 
 GLint ShaderProgram::uniform(std::string_view name) const {

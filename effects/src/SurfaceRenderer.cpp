@@ -12,11 +12,13 @@ namespace detail {
 std::string_view embeddedShader(std::string_view name);
 }
 
-namespace {
-
-SourceFile shader(std::string_view name) {
+SourceFile surfaceShader(std::string_view name) {
     return loadSource(name, detail::embeddedShader(name), "HFX_SHADER_DIR");
 }
+
+namespace {
+
+SourceFile shader(std::string_view name) { return surfaceShader(name); }
 
 /// Saves what draw() changes and puts it back, so the caller's state survives.
 class GlStateGuard {
@@ -31,6 +33,11 @@ public:
             glActiveTexture(GL_TEXTURE0 + unit);
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
         }
+        for (GLuint index = 0; index < 2; ++index) {
+            glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, index, &blocks_[index]);
+            glGetInteger64i_v(GL_UNIFORM_BUFFER_START, index, &blockStart_[index]);
+            glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, index, &blockSize_[index]);
+        }
     }
     ~GlStateGuard() {
         (depthTest_ ? glEnable : glDisable)(GL_DEPTH_TEST);
@@ -39,48 +46,23 @@ public:
         glBindVertexArray(static_cast<GLuint>(vao_));
         for (int unit = 0; unit < 4; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
+        for (GLuint index = 0; index < 2; ++index) {
+            if (blocks_[index] != 0 && blockSize_[index] > 0)
+                glBindBufferRange(GL_UNIFORM_BUFFER, index, GLuint(blocks_[index]), blockStart_[index], blockSize_[index]);
+            else
+                glBindBufferBase(GL_UNIFORM_BUFFER, index, GLuint(blocks_[index]));
+        }
     }
     GlStateGuard(const GlStateGuard&) = delete;
     GlStateGuard& operator=(const GlStateGuard&) = delete;
 
 private:
     GLboolean depthTest_;
-    GLint depthFunc_, program_, vao_, activeTexture_, textures_[4];
+    GLint depthFunc_, program_, vao_, activeTexture_, textures_[4], blocks_[2];
+    GLint64 blockStart_[2], blockSize_[2];
 };
 
-void setTransforms(const ShaderProgram& p, const glm::mat4& model, const Camera& camera) {
-    p.set("u_model", model);
-    p.set("u_viewProj", camera.viewProjection());
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
-    glProgramUniformMatrix3fv(p.id(), p.uniform("u_normalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
-}
-
 } // namespace
-
-const char* techniqueName(Technique technique) {
-    switch (technique) {
-    case Technique::NormalMapping: return "nm";
-    case Technique::ParallaxOcclusion: return "pom";
-    case Technique::ParallaxOffset: return "parallax";
-    case Technique::SteepParallax: return "steep";
-    case Technique::Relief: return "relief";
-    case Technique::Secant: return "secant";
-    case Technique::Hierarchical: return "hier";
-    }
-    return "?";
-}
-
-std::string techniqueNames() {
-    std::string names;
-    for (Technique t : kTechniques) names += (names.empty() ? "" : ", ") + std::string(techniqueName(t));
-    return names;
-}
-
-Technique parseTechnique(const std::string& name) {
-    for (Technique t : kTechniques)
-        if (name == techniqueName(t)) return t;
-    throw Error(str("unknown technique '", name, "' (expected one of ", techniqueNames(), ")"));
-}
 
 void SurfaceMaterial::validate() const {
     if (!(depthScale >= 0.0f) || !std::isfinite(depthScale) || depthScale > 1.0f)
@@ -115,73 +97,92 @@ void SurfaceMaterial::validate() const {
 }
 
 const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading) {
-    const auto key = std::make_tuple(static_cast<int>(options.technique), options.traceOutput,
-                                     static_cast<int>(shading));
+    const auto key = std::make_tuple(options.technique, options.traceOutput, shading);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
-        const std::vector<ShaderDefine> defines = {
-            {"HFX_TECHNIQUE", std::to_string(static_cast<int>(options.technique))},
-            {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"},
-            {"HFX_SHADING", std::to_string(static_cast<int>(shading))}};
-        ShaderProgram p(shader("surface.vert"), shader("surface.frag"), defines);
-        p.set("s_surface", 0);
-        p.set("s_albedo", 1);
-        p.set("s_environment", 2);
-        p.set("s_pyramid", 3);
+        // The fragment stage: the common declarations, the technique's tracer, the shading model,
+        // and the main (shaders/surface.frag explains the order); the table says the defines.
+        const TechniqueInfo& info = techniqueInfo(options.technique);
+        const std::vector<ShaderDefine> defines = {{"HFX_TRACES", info.traces ? "1" : "0"},
+                                                   {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None ? "1" : "0"},
+                                                   {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"}};
+        ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
+                        {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("trace/common.glsl"),
+                         shader(info.shader), shader("shade/common.glsl"), shader(shadingShader(shading)),
+                         shader("surface.frag")},
+                        defines);
         it = programs_.emplace(key, std::move(p)).first;
     }
     return it->second;
+}
+
+void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const Camera& camera) {
+    u.model = model;
+    u.viewProj = camera.viewProjection();
+    u.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))));
+    if (!surfaceBlock_) {
+        surfaceBlock_ = GlBuffer::create();
+        glNamedBufferStorage(surfaceBlock_.id(), sizeof(SurfaceUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    glNamedBufferSubData(surfaceBlock_.id(), 0, sizeof(SurfaceUniforms), &u);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, surfaceBlock_.id());
 }
 
 void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
                            const SurfaceMaterial& material, const Camera& camera,
                            const DirectionalLight& light, const DrawOptions& options) {
     material.validate();
-    if (options.technique == Technique::Hierarchical && !textures.pyramid())
-        throw Error("the hierarchical technique needs surface textures with a height pyramid "
-                    "(SurfaceTexturesConfig::pyramid, refreshed by uploadPyramid)");
+    const TechniqueInfo& info = techniqueInfo(options.technique);
+    if (info.needsPyramid && !textures.pyramid())
+        throw Error(str("the ", info.name, " technique needs surface textures with a height pyramid "
+                        "(SurfaceOptions::pyramid, SurfaceTexturesConfig::pyramid)"));
     const ShaderProgram& p = program(options, material.shading);
     GlStateGuard guard;
-    setTransforms(p, model, camera);
-    p.set("u_cameraPos", camera.position);
-    p.set("u_depthScale", material.depthScale);
-    p.set("u_normalScale", material.depthScale / textures.config().normalDepth);
-    p.set("u_normalDecode", textures.config().format == SurfaceFormat::Unorm8 ? glm::vec2(2.0f, -1.0f)
-                                                                             : glm::vec2(1.0f, 0.0f));
-    p.set("u_minSamples", material.minSamples);
-    p.set("u_maxSamples", material.maxSamples);
-    p.set("u_lodThreshold", material.lodThreshold);
-    p.set("u_shadows", material.shadows ? 1 : 0);
-    p.set("u_shadowSamples", material.shadowSamples);
-    p.set("u_shadowSharpness", material.shadowSharpness);
-    p.set("u_clipToPatch", material.clipToPatch ? 1 : 0);
-    p.set("u_patchBounds", material.patchBounds);
-    p.set("u_lightDir", glm::normalize(light.direction));
-    p.set("u_lightColor", light.color);
-    p.set("u_ambient", light.ambient);
-    p.set("u_specularStrength", material.specularStrength);
-    p.set("u_specularPower", material.specularPower);
-    p.set("u_silhouetteFade", material.silhouetteFade);
+    const EdgeMode edges = textures.config().edges;
+    SurfaceUniforms u{.patchBounds = material.patchBounds,
+                      .cameraPos = camera.position,
+                      .depthScale = material.depthScale,
+                      .lightDir = glm::normalize(light.direction),
+                      .normalScale = material.depthScale / textures.config().normalDepth,
+                      .lightColor = light.color,
+                      .lodThreshold = material.lodThreshold,
+                      .ambient = light.ambient,
+                      .shadowSharpness = material.shadowSharpness,
+                      .normalDecode = textures.config().format == SurfaceFormat::Unorm8 ? glm::vec2(2.0f, -1.0f)
+                                                                                        : glm::vec2(1.0f, 0.0f),
+                      .specularStrength = material.specularStrength,
+                      .specularPower = material.specularPower,
+                      .silhouetteFade = material.silhouetteFade,
+                      .minSamples = material.minSamples,
+                      .maxSamples = material.maxSamples,
+                      .shadowSamples = material.shadowSamples,
+                      .shadows = material.shadows ? 1 : 0,
+                      .clipToPatch = material.clipToPatch ? 1 : 0,
+                      .pyramidLevels = textures.pyramidLevels(),
+                      .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0}};
+    bindUniforms(u, model, camera);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
-        p.set("u_deepColor", w.deepColor);
-        p.set("u_shallowColor", w.shallowColor);
-        p.set("u_skyZenith", w.skyZenith);
-        p.set("u_skyHorizon", w.skyHorizon);
-        p.set("u_fresnelF0", w.fresnelF0);
-        p.set("u_glintPower", w.glintPower);
-        p.set("u_glintStrength", w.glintStrength);
-        p.set("u_hazeDistance", w.hazeDistance);
-        p.set("u_hasEnvironment", w.environment != 0 ? 1 : 0);
+        const WaterUniforms water{.deepColor = w.deepColor,
+                                  .fresnelF0 = w.fresnelF0,
+                                  .shallowColor = w.shallowColor,
+                                  .glintPower = w.glintPower,
+                                  .skyZenith = w.skyZenith,
+                                  .glintStrength = w.glintStrength,
+                                  .skyHorizon = w.skyHorizon,
+                                  .hazeDistance = w.hazeDistance,
+                                  .hasEnvironment = w.environment != 0 ? 1 : 0};
+        if (!waterBlock_) {
+            waterBlock_ = GlBuffer::create();
+            glNamedBufferStorage(waterBlock_.id(), sizeof(WaterUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        }
+        glNamedBufferSubData(waterBlock_.id(), 0, sizeof(WaterUniforms), &water);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 1, waterBlock_.id());
+        glBindTextureUnit(2, w.environment);
     }
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(1, textures.albedo());
-    if (material.shading == Shading::Water) glBindTextureUnit(2, material.water.environment);
-    if (options.technique == Technique::Hierarchical) {
-        p.set("u_pyramidLevels", textures.pyramidLevels());
-        p.set("u_wrap", glm::ivec2(wrapsU(textures.config().edges), wrapsV(textures.config().edges)));
-        glBindTextureUnit(3, textures.pyramid());
-    }
+    if (info.needsPyramid) glBindTextureUnit(3, textures.pyramid());
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();
@@ -190,9 +191,11 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
 
 void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
                                const glm::vec4& color) {
-    if (!flat_.id()) flat_ = ShaderProgram(shader("surface.vert"), shader("flat.frag"));
+    if (!flat_.id())
+        flat_ = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")}, {shader("flat.frag")});
     GlStateGuard guard;
-    setTransforms(flat_, model, camera);
+    SurfaceUniforms u;
+    bindUniforms(u, model, camera);
     flat_.set("u_color", color);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

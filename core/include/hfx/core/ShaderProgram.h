@@ -1,7 +1,10 @@
 #pragma once
-// A linked GLSL program built from named sources. Variants come from #define lines placed after
-// the #version line; a #line directive keeps the info log's line numbers equal to the file's.
-// Compile and link failures throw hfx::Error with the file name, line and the driver's log.
+// A linked GLSL program built from named sources. A stage may be composed of several files
+// (common declarations, a technique, a shading model, the main), concatenated in order: exactly
+// one of them carries the #version line, which goes first; variants come from #define lines
+// placed after it. #line directives number each file's lines as its own and give it its own
+// source-string number, so a compile error names the file and line it is in. Compile and link
+// failures throw hfx::Error with the file name, line and the driver's log.
 //
 // Owns one GL program. Thread: the thread whose GL context is current.
 
@@ -31,6 +34,11 @@ public:
     /// Compiles and links; `defines` go to both stages.
     ShaderProgram(const SourceFile& vertex, const SourceFile& fragment,
                   const std::vector<ShaderDefine>& defines = {});
+    /// Each stage from several files, concatenated in order (see above).
+    ShaderProgram(const std::vector<SourceFile>& vertex, const std::vector<SourceFile>& fragment,
+                  const std::vector<ShaderDefine>& defines = {});
+    /// A compute program from several files.
+    static ShaderProgram compute(const std::vector<SourceFile>& parts, const std::vector<ShaderDefine>& defines = {});
 
     GLuint id() const { return program_.id(); }
     void use() const { glUseProgram(program_.id()); }
@@ -56,8 +64,9 @@ private:
 };
 
 namespace detail {
-/// Rewrites "0:12(5): error: ..." (Mesa) or "0(12) : error ..." (others) as "file:12: error: ...".
-std::string annotateShaderLog(const std::string& log, const std::string& fileName);
+/// Rewrites "S:12(5): error: ..." (Mesa) or "S(12) : error ..." (others) as "file:12: error: ...",
+/// where file is fileNames[S], the source-string number the composition's #line gave it.
+std::string annotateShaderLog(const std::string& log, const std::vector<std::string>& fileNames);
 } // namespace detail
 
 } // namespace hfx

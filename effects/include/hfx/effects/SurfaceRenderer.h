@@ -1,15 +1,19 @@
 #pragma once
-// Draws a mesh with a height-field surface: parallax occlusion mapping (shaders/surface.frag) or
-// plain normal mapping. It draws into whatever framebuffer and context the caller has bound and
-// restores the GL state it changes (program, vertex array, depth test, texture units 0-3).
+// Draws a mesh with a height-field surface, by any technique of the table (Technique.h) and any
+// shading model: the program is composed from shaders/surface.frag, the technique's trace file
+// and the model's shade file, built per variant on first use and kept. Per-draw uniforms go in
+// one uniform buffer (SurfaceUniforms). It draws into whatever framebuffer and context the
+// caller has bound and restores the GL state it changes (program, vertex array, depth test,
+// texture units 0-3, uniform-buffer bindings 0 and 1).
 //
-// Thread: the thread whose GL context is current; shader programs are built per variant on
-// first use and kept.
+// Thread: the thread whose GL context is current.
 
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/effects/Technique.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -20,35 +24,6 @@
 #include <string>
 
 namespace hfx {
-
-/// The surface techniques, one shader variant each, same inputs and outputs. The numbers are
-/// the shader's HFX_TECHNIQUE.
-enum class Technique {
-    NormalMapping = 0,     ///< "nm": no parallax
-    ParallaxOcclusion = 1, ///< "pom": linear search + piecewise-linear hit, soft shadows (Tatarchuk 2006)
-    ParallaxOffset = 2,    ///< "parallax": one offset with offset limiting (Welsh 2004)
-    SteepParallax = 3,     ///< "steep": linear search, first sample under, hard shadows (McGuire 2005)
-    Relief = 4,            ///< "relief": linear then 6 binary steps, hard shadows (Policarpo 2005)
-    Secant = 5,            ///< "secant": linear search refined by 3 secant steps, soft shadows
-    Hierarchical = 6,      ///< "hier": max-height pyramid walk to the exact bilinear hit, soft shadows
-};
-inline constexpr Technique kTechniques[] = {Technique::NormalMapping, Technique::ParallaxOffset,
-                                            Technique::SteepParallax, Technique::Relief,
-                                            Technique::Secant,        Technique::ParallaxOcclusion,
-                                            Technique::Hierarchical};
-/// "nm", "pom", "parallax", "steep", "relief", "secant", "hier"; throws hfx::Error naming the
-/// value and the known names otherwise.
-Technique parseTechnique(const std::string& name);
-const char* techniqueName(Technique technique);
-/// "nm, parallax, steep, relief, secant, pom, hier" (for help texts).
-std::string techniqueNames();
-
-/// How the surface is lit once the relief is traced.
-enum class Shading {
-    Lit,    ///< Blinn-Phong of albedo and normal
-    Water,  ///< Fresnel-weighted sky reflection, sun glint, body colour by depth, distance haze
-    Planet, ///< Blinn-Phong with a soft terminator of the sphere and an atmosphere rim
-};
 
 /// The water look (Shading::Water). Colours are linear RGB.
 struct WaterLook {
@@ -82,9 +57,14 @@ struct SurfaceMaterial {
     /// Curved meshes: the relief fades out where the view grazes the geometry (cos below this),
     /// so silhouettes keep the mesh's outline instead of smearing texels. 0 = off.
     float silhouetteFade = 0.0f;
-    void validate() const;
-    bool operator==(const SurfaceMaterial&) const = default;       ///< throws hfx::Error naming the field and its value
+    void validate() const; ///< throws hfx::Error naming the field and its value
+    bool operator==(const SurfaceMaterial&) const = default;
 };
+
+/// A shader source of the module by its path under shaders/ ("trace/pom.glsl"): the embedded
+/// copy, or the file in HFX_SHADER_DIR when that is set. For harnesses that run a tracer outside
+/// the renderer (shaders/trace/README.md). Throws hfx::Error for an unknown name.
+SourceFile surfaceShader(std::string_view name);
 
 struct DirectionalLight {
     glm::vec3 direction{0.4f, 0.6f, 0.3f}; ///< towards the light, need not be unit length
@@ -113,8 +93,12 @@ public:
     const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit);
 
 private:
-    std::map<std::tuple<int, bool, int>, ShaderProgram> programs_;
+    /// Fills the transforms and binds the blocks' buffers (the guard restores them).
+    void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const Camera& camera);
+
+    std::map<std::tuple<Technique, bool, Shading>, ShaderProgram> programs_;
     ShaderProgram flat_;
+    GlBuffer surfaceBlock_, waterBlock_;
 };
 
 } // namespace hfx

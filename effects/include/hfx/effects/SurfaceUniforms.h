@@ -1,0 +1,73 @@
+#pragma once
+// The C++ mirrors of the surface shaders' std140 uniform blocks: HfxSurface
+// (shaders/surface/uniforms.glsl, binding 0) and HfxWater (shaders/shade/water.glsl, binding
+// 1). SurfaceRenderer fills them once per draw into uniform buffers; the layout is checked at
+// compile time here (std140: a vec3 takes 16 bytes unless a scalar follows it) and against the
+// driver's own offsets by a test.
+//
+// Thread: any (plain values).
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstddef>
+
+namespace hfx {
+
+struct SurfaceUniforms {
+    glm::mat4 model{1.0f};
+    glm::mat4 viewProj{1.0f};
+    glm::mat4 normalMatrix{1.0f};
+    glm::vec4 patchBounds{0.0f, 0.0f, 1.0f, 1.0f};
+    glm::vec3 cameraPos{0.0f};
+    float depthScale = 0.0f;
+    glm::vec3 lightDir{0.0f, 1.0f, 0.0f};
+    float normalScale = 1.0f;
+    glm::vec3 lightColor{1.0f};
+    float lodThreshold = 0.0f;
+    glm::vec3 ambient{0.0f};
+    float shadowSharpness = 1.0f;
+    glm::vec2 normalDecode{1.0f, 0.0f};
+    float specularStrength = 0.0f;
+    float specularPower = 1.0f;
+    float silhouetteFade = 0.0f;
+    int minSamples = 1;
+    int maxSamples = 1;
+    int shadowSamples = 1;
+    int shadows = 0;
+    int clipToPatch = 0;
+    int pyramidLevels = 0;
+    int reserved = 0;
+    glm::ivec2 wrap{1, 1};
+    glm::ivec2 padding{0, 0}; ///< std140 rounds the block to 16 bytes
+};
+
+struct WaterUniforms {
+    glm::vec3 deepColor{0.0f};
+    float fresnelF0 = 0.0f;
+    glm::vec3 shallowColor{0.0f};
+    float glintPower = 1.0f;
+    glm::vec3 skyZenith{0.0f};
+    float glintStrength = 0.0f;
+    glm::vec3 skyHorizon{0.0f};
+    float hazeDistance = 1.0f;
+    int hasEnvironment = 0;
+    int padding[3] = {0, 0, 0};
+};
+
+// std140 offsets of the GLSL blocks, member by member where alignment could slip.
+static_assert(offsetof(SurfaceUniforms, patchBounds) == 192);
+static_assert(offsetof(SurfaceUniforms, depthScale) == 220);
+static_assert(offsetof(SurfaceUniforms, shadowSharpness) == 268);
+static_assert(offsetof(SurfaceUniforms, normalDecode) == 272);
+static_assert(offsetof(SurfaceUniforms, silhouetteFade) == 288);
+static_assert(offsetof(SurfaceUniforms, shadows) == 304);
+static_assert(offsetof(SurfaceUniforms, wrap) == 320);
+static_assert(sizeof(SurfaceUniforms) == 336);
+static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
+static_assert(offsetof(WaterUniforms, hasEnvironment) == 64);
+static_assert(sizeof(WaterUniforms) == 80);
+
+} // namespace hfx

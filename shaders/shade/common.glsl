@@ -1,0 +1,16 @@
+// What a shading model (shade/*.glsl) is given: the traced point, lit by the directional light.
+// Each model defines vec3 hfx_shade(HfxSurfacePoint p), the linear colour of the pixel.
+
+struct HfxSurfacePoint {
+    vec3 albedo;          // the colour map at the hit
+    vec3 normal;          // world space, unit: the relief's normal at the hit
+    vec3 geometricNormal; // world space, unit: the mesh's own
+    vec3 position;        // world space: the displaced point
+    vec3 viewDir;         // world space, unit, towards the eye
+    vec3 lightDir;        // world space, unit, towards the light
+    float height;         // h at the hit (1 = the polygon)
+    float lit;            // 1 - self-shadow, faded in from the geometric terminator
+    float cosView;        // between the geometric normal and the view
+    float diffuse;        // max(N.L, 0)
+    float specular;       // Blinn-Phong lobe (u_specularPower), 0 facing away
+};

@@ -1,0 +1,30 @@
+// The uniforms of a surface draw, set once per draw as one std140 block. Mirrored field for
+// field by hfx::SurfaceUniforms (effects/src/SurfaceUniforms.h); a test compares the offsets the
+// driver reports with the C++ struct's. Included by both stages of the surface program.
+
+layout(std140, binding = 0) uniform HfxSurface {
+    mat4 u_model;
+    mat4 u_viewProj;
+    mat4 u_normalMatrix;      // inverse transpose of u_model's 3x3, in the upper left
+    vec4 u_patchBounds;       // umin, vmin, umax, vmax
+    vec3 u_cameraPos;
+    float u_depthScale;       // texture units between h = 1 and h = 0
+    vec3 u_lightDir;          // world space, towards the light, unit length
+    float u_normalScale;      // u_depthScale / the depth the stored normals were made for
+    vec3 u_lightColor;
+    float u_lodThreshold;     // mip level from which on only normal mapping is done
+    vec3 u_ambient;
+    float u_shadowSharpness;  // how fast a blocker's occlusion saturates
+    vec2 u_normalDecode;      // stored normal * x + y: (1, 0) for float formats, (2, -1) for unorm8
+    float u_specularStrength;
+    float u_specularPower;
+    float u_silhouetteFade;   // curved meshes: relief fades where cos(view) drops below this
+    int u_minSamples;         // linear-search steps looking straight down
+    int u_maxSamples;         // ... and at grazing angles
+    int u_shadowSamples;
+    int u_shadows;            // 1: self-shadows
+    int u_clipToPatch;        // 1: discard rays that leave u_patchBounds (finite patches)
+    int u_pyramidLevels;      // levels of s_pyramid, 0 without one
+    int u_reserved;
+    ivec2 u_wrap;             // per axis: 1 where the field's edges wrap, 0 where they clamp
+};

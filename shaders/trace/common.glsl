@@ -1,0 +1,69 @@
+// What every tracer (trace/*.glsl) shares: the ray and hit types of the contract in
+// trace/README.md, and the linear search and shadow occlusion built on the harness's
+// hfx_height. Texture space: x = u, y = v, heights h in [0,1] with 1 at the polygon; a ray enters
+// at h = 1 and reaches h = 0 after moving by its parallax vector in texcoords.
+
+struct HfxRay {
+    vec2 uv;        // entry texcoords: where the view ray crosses the polygon (h = 1)
+    vec2 parallax;  // the ray's texcoord offset from h = 1 down to h = 0 (P = V.xy / V.z * depthScale)
+    float cosTheta; // z of the unit texture-space vector towards the eye (offset limiting)
+    float level;    // mip level the search's fetches read
+    int samples;    // linear-search steps for this pixel (the dynamic sample rate, the caller's)
+};
+
+struct HfxHit {
+    vec2 uv;     // texcoords of the hit
+    float depth; // how far below the polygon, as a fraction of the relief depth (0..1)
+};
+
+struct HfxShadowRay {
+    vec2 uv;         // the displaced point
+    float h0;        // its height
+    vec2 span;       // texcoord offset from the point to where the light ray climbs to h = 1
+    float level;     // mip level of the fetches
+    int samples;     // heights sampled along the light ray
+    float sharpness; // how fast a blocker's occlusion saturates (soft shadows)
+};
+
+const int HFX_MAX_SAMPLES = 256;       // hard bound of every search loop; rays ask for fewer
+const int HFX_MAX_SHADOW_SAMPLES = 32;
+
+HfxHit hfx_hit_at(HfxRay ray, float t) { return HfxHit(ray.uv - ray.parallax * t, t); }
+
+// Linear search in depth fraction t (ray height 1 - t): the first of ray.samples equal steps
+// whose sample is at or above the ray. On a hit, [t0, t1] brackets it with d = surface - ray
+// heights d0 < 0 <= d1; t0 == t1 == 0 when the ray starts inside the relief.
+bool hfx_linear_search(HfxRay ray, out float t0, out float t1, out float d0, out float d1) {
+    const float stepSize = 1.0 / float(ray.samples);
+    t0 = 0.0;
+    d0 = hfx_height(ray.uv, ray.level) - 1.0;
+    t1 = 0.0;
+    d1 = d0;
+    if (d0 >= 0.0) return true;
+    for (int i = 1; i <= HFX_MAX_SAMPLES; ++i) {
+        if (i > ray.samples) break;
+        t1 = float(i) * stepSize;
+        d1 = hfx_height(ray.uv - ray.parallax * t1, ray.level) - (1.0 - t1);
+        if (d1 >= 0.0) return true;
+        t0 = t1;
+        d0 = d1;
+    }
+    return false;
+}
+
+// Tatarchuk's occlusion: heights along the light ray from the displaced point; a blocker's
+// occlusion is its rise above the ray relative to the ray's own climb there, so a close blocker
+// (small climb) counts fully and a far one weakly. The largest over the samples; > 0 means some
+// sample stood above the ray.
+float hfx_occlusion(HfxShadowRay ray) {
+    const int samples = clamp(ray.samples, 1, HFX_MAX_SHADOW_SAMPLES);
+    float occlusion = 0.0;
+    for (int i = 1; i <= HFX_MAX_SHADOW_SAMPLES; ++i) {
+        if (i > samples) break;
+        const float f = float(i) / float(samples + 1);
+        const float rayHeight = ray.h0 + f * (1.0 - ray.h0);
+        const float blocker = hfx_height(ray.uv + ray.span * f, ray.level) - rayHeight;
+        occlusion = max(occlusion, blocker / (f * (1.0 - ray.h0)));
+    }
+    return occlusion;
+}

@@ -1,0 +1,195 @@
+// The shader side's contracts: the uniform blocks have the layout their C++ mirrors claim, every
+// tracer runs outside the fragment stage through the accessor contract (shaders/trace/README.md,
+// here a compute shader over the same textures) and lands where the exact intersection says, and
+// the technique table is what the docs print.
+
+#include "support/Fields.h"
+#include "support/Fixtures.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/tools/AccuracyProbe.h"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace hfx::test {
+namespace {
+
+class TracerContract : public DeviceTest {};
+
+GLint offsetOf(GLuint program, const char* name) {
+    GLuint index = GL_INVALID_INDEX;
+    glGetUniformIndices(program, 1, &name, &index);
+    if (index == GL_INVALID_INDEX) return -1;
+    GLint offset = -1;
+    glGetActiveUniformsiv(program, 1, &index, GL_UNIFORM_OFFSET, &offset);
+    return offset;
+}
+
+TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
+    SurfaceRenderer renderer;
+    // Water shading with the hierarchical tracer: the variant that reads every member.
+    const GLuint p = renderer.program({.technique = Technique::Hierarchical}, Shading::Water).id();
+    const std::pair<const char*, size_t> surface[] = {
+        {"u_model", offsetof(SurfaceUniforms, model)},
+        {"u_viewProj", offsetof(SurfaceUniforms, viewProj)},
+        {"u_normalMatrix", offsetof(SurfaceUniforms, normalMatrix)},
+        {"u_patchBounds", offsetof(SurfaceUniforms, patchBounds)},
+        {"u_cameraPos", offsetof(SurfaceUniforms, cameraPos)},
+        {"u_depthScale", offsetof(SurfaceUniforms, depthScale)},
+        {"u_lightDir", offsetof(SurfaceUniforms, lightDir)},
+        {"u_normalScale", offsetof(SurfaceUniforms, normalScale)},
+        {"u_lightColor", offsetof(SurfaceUniforms, lightColor)},
+        {"u_lodThreshold", offsetof(SurfaceUniforms, lodThreshold)},
+        {"u_ambient", offsetof(SurfaceUniforms, ambient)},
+        {"u_shadowSharpness", offsetof(SurfaceUniforms, shadowSharpness)},
+        {"u_normalDecode", offsetof(SurfaceUniforms, normalDecode)},
+        {"u_specularStrength", offsetof(SurfaceUniforms, specularStrength)},
+        {"u_specularPower", offsetof(SurfaceUniforms, specularPower)},
+        {"u_silhouetteFade", offsetof(SurfaceUniforms, silhouetteFade)},
+        {"u_minSamples", offsetof(SurfaceUniforms, minSamples)},
+        {"u_maxSamples", offsetof(SurfaceUniforms, maxSamples)},
+        {"u_shadowSamples", offsetof(SurfaceUniforms, shadowSamples)},
+        {"u_shadows", offsetof(SurfaceUniforms, shadows)},
+        {"u_clipToPatch", offsetof(SurfaceUniforms, clipToPatch)},
+        {"u_pyramidLevels", offsetof(SurfaceUniforms, pyramidLevels)},
+        {"u_wrap", offsetof(SurfaceUniforms, wrap)},
+        {"u_deepColor", offsetof(WaterUniforms, deepColor)},
+        {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
+        {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},
+        {"u_glintPower", offsetof(WaterUniforms, glintPower)},
+        {"u_skyZenith", offsetof(WaterUniforms, skyZenith)},
+        {"u_glintStrength", offsetof(WaterUniforms, glintStrength)},
+        {"u_skyHorizon", offsetof(WaterUniforms, skyHorizon)},
+        {"u_hazeDistance", offsetof(WaterUniforms, hazeDistance)},
+        {"u_hasEnvironment", offsetof(WaterUniforms, hasEnvironment)},
+    };
+    for (const auto& [name, offset] : surface) EXPECT_EQ(offsetOf(p, name), GLint(offset)) << name;
+    for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)}}) {
+        const GLuint index = glGetUniformBlockIndex(p, block);
+        ASSERT_NE(index, GL_INVALID_INDEX) << block;
+        GLint dataSize = 0;
+        glGetActiveUniformBlockiv(p, index, GL_UNIFORM_BLOCK_DATA_SIZE, &dataSize);
+        EXPECT_EQ(dataSize, GLint(size)) << block;
+    }
+}
+
+/// A compute-shader harness of the tracer contract: the accessors over the same textures the
+/// renderer reads, then trace/common.glsl and a technique's file, then a main that traces one
+/// ray per invocation from a buffer of rays into a buffer of hits.
+const SourceFile kHarness{"harness.comp", R"(#version 450 core
+layout(local_size_x = 64) in;
+layout(binding = 0) uniform sampler2D s_surface;
+layout(binding = 3) uniform sampler2D s_pyramid;
+uniform int u_levels;
+uniform ivec2 u_wrap;
+float hfx_height(vec2 uv, float level) { return textureLod(s_surface, uv, level).w; }
+vec4 hfx_gather(vec2 uv) { return textureGather(s_surface, uv, 3); }
+ivec2 hfx_size() { return textureSize(s_surface, 0); }
+int hfx_levels() { return u_levels; }
+float hfx_bound(ivec2 cell, int level) {
+    const ivec2 n = max(hfx_size() >> level, ivec2(1));
+    return texelFetch(s_pyramid, mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap)), level).r;
+}
+)",
+                          "test"};
+const SourceFile kHarnessMain{"harness_main.comp", R"(
+layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; }; // 2 per ray: uv, parallax | cos, level, samples
+layout(std430, binding = 1) writeonly buffer Hits { vec4 hits[]; };
+uniform int u_count;
+void main() {
+    const uint i = gl_GlobalInvocationID.x;
+    if (i >= uint(u_count)) return;
+    const vec4 a = rays[2 * i], b = rays[2 * i + 1];
+    HfxRay ray;
+    ray.uv = a.xy;
+    ray.parallax = a.zw;
+    ray.cosTheta = b.x;
+    ray.level = b.y;
+    ray.samples = int(b.z);
+    const HfxHit hit = hfx_trace(ray);
+    hits[i] = vec4(hit.uv, hit.depth, 0.0);
+}
+)",
+                              "test"};
+
+TEST_F(TracerContract, EveryTracerRunsInAComputeHarnessAndHitsWhereTheExactIntersectionSays) {
+    constexpr int N = 64;
+    constexpr double depth = 0.1, angle = 60.0 * std::numbers::pi / 180.0, azimuth = 0.7;
+    const auto heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.12, -1, 3, 0.7}});
+    AccuracyProbe probe(cl(), heights, N, float(depth)); // the renderer's own textures and pyramid
+    const glm::dvec3 toEye(std::sin(angle) * std::cos(azimuth), std::sin(angle) * std::sin(azimuth), std::cos(angle));
+    const glm::dvec2 parallax = glm::dvec2(toEye) / toEye.z * depth;
+
+    constexpr int kRays = 2048;
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<glm::vec4> rays;
+    std::vector<glm::dvec2> exact;
+    for (int i = 0; i < kRays; ++i) {
+        const glm::dvec2 uv0(unit(random), unit(random));
+        const auto hit = probe.exact().traceView(uv0, toEye, depth);
+        ASSERT_TRUE(hit);
+        exact.push_back(hit->uv);
+        rays.emplace_back(float(uv0.x), float(uv0.y), float(parallax.x), float(parallax.y));
+        rays.emplace_back(float(toEye.z), 0.0f, 32.0f, 0.0f);
+    }
+    GlBuffer rayBuffer = GlBuffer::create(), hitBuffer = GlBuffer::create();
+    glNamedBufferStorage(rayBuffer.id(), GLsizeiptr(rays.size() * sizeof(glm::vec4)), rays.data(), 0);
+    glNamedBufferStorage(hitBuffer.id(), GLsizeiptr(kRays * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+
+    auto meanError = [&](const TechniqueInfo& t) {
+        const ShaderProgram p = ShaderProgram::compute(
+            {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(t.shader), kHarnessMain});
+        p.set("u_levels", probe.textures().pyramidLevels());
+        p.set("u_wrap", glm::ivec2(1, 1));
+        p.set("u_count", kRays);
+        glBindTextureUnit(0, probe.textures().surface());
+        glBindTextureUnit(3, probe.textures().pyramid());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, rayBuffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, hitBuffer.id());
+        p.use();
+        glDispatchCompute(kRays / 64, 1, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::vector<glm::vec4> hits(kRays);
+        glGetNamedBufferSubData(hitBuffer.id(), 0, GLsizeiptr(hits.size() * sizeof(glm::vec4)), hits.data());
+        glUseProgram(0);
+        double sum = 0.0;
+        for (int i = 0; i < kRays; ++i) sum += glm::length(glm::dvec2(hits[i].x, hits[i].y) - exact[i]) * N;
+        return sum / kRays;
+    };
+    // Bounds after each technique's error in the fragment stage (docs/ACCURACY.md, smooth map),
+    // with room: the harness must not change what a tracer computes. Normal mapping does not
+    // trace (it stays at the entry, far off); offset limiting only has to beat it clearly.
+    const double untraced = meanError(techniqueInfo(Technique::NormalMapping));
+    EXPECT_GT(untraced, 2.0);
+    for (const TechniqueInfo& t : kTechniqueTable) {
+        const double error = meanError(t);
+        std::printf("[harness] %-8s mean error %.4f texels\n", t.name, error);
+        switch (t.technique) {
+        case Technique::NormalMapping: break;
+        case Technique::ParallaxOffset: EXPECT_LT(error, 0.75 * untraced) << t.name; break;
+        case Technique::SteepParallax: EXPECT_LT(error, 0.5) << t.name; break; // the step size: 1/32 of the depth
+        case Technique::Hierarchical: EXPECT_LT(error, 0.01) << t.name; break;
+        default: EXPECT_LT(error, 0.05) << t.name; // pom, secant, relief: refined inside the bracket
+        }
+    }
+}
+
+TEST_F(TracerContract, TheTechniqueTableNamesItsShadersAndParsesItsNames) {
+    for (const TechniqueInfo& t : kTechniqueTable) {
+        EXPECT_EQ(parseTechnique(t.name), t.technique);
+        EXPECT_EQ(&techniqueInfo(t.technique), &t);
+        EXPECT_FALSE(surfaceShader(t.shader).text.empty()) << t.shader;
+        EXPECT_NE(techniqueTableMarkdown().find(std::string("`") + t.name + "`"), std::string::npos);
+    }
+    EXPECT_NE(messageOf([] { parseTechnique("raytrace"); }).find(techniqueNames()), std::string::npos);
+    EXPECT_NE(messageOf([] { surfaceShader("trace/none.glsl"); }).find("trace/none.glsl"), std::string::npos);
+}
+
+} // namespace
+} // namespace hfx::test
