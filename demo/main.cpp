@@ -17,6 +17,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 
@@ -45,6 +47,15 @@ struct Options {
     bool noProgress = false;
     SceneOptions sceneOptions;
 };
+
+/// Refuses what CLI::Range lets through: NaN compares false with both bounds.
+const CLI::Validator kFinite(
+    [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return std::isfinite(v) ? std::string() : "'" + text + "' is not a finite number";
+    },
+    "FINITE");
 
 const glm::vec4 kBackground{0.55f, 0.68f, 0.85f, 1.0f};
 
@@ -151,7 +162,7 @@ int main(int argc, char** argv) {
                    "after the last frame, write the field's height, normal and albedo maps (EXR and PNG) to this folder");
     app.add_option("--width", o.width, "image width in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
     app.add_option("--height", o.height, "image height in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
-    app.add_option("--dt", o.dt, "seconds between frames")->check(CLI::Range(1e-6, 10.0))->capture_default_str();
+    app.add_option("--dt", o.dt, "seconds between frames")->check(kFinite)->check(CLI::Range(1e-6, 10.0))->capture_default_str();
     app.add_option("--field", s.fieldSize, "height-field texels per edge (default: the scene's; ocean: a power of two)")
         ->check(CLI::Range(8, 8192));
     std::vector<std::string> techniques;
@@ -166,9 +177,9 @@ int main(int argc, char** argv) {
     app.add_option("--samples-max", s.maxSamples, "POM steps at grazing angles (default: the scene's)")
         ->check(CLI::Range(1, 256));
     app.add_option("--depth-scale", s.depthScale, "relief depth in texture units (default: the scene's)")
-        ->check(CLI::Range(0.0001, 1.0));
+        ->check(kFinite)->check(CLI::Range(0.0001, 1.0));
     app.add_option("--lod-threshold", s.lodThreshold, "mip level where POM has faded to normal mapping")
-        ->check(CLI::Range(0.0, 16.0))->capture_default_str();
+        ->check(kFinite)->check(CLI::Range(0.0, 16.0))->capture_default_str();
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
@@ -182,9 +193,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"auto", "map", "pixel-buffer"}))->capture_default_str();
     app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")
         ->check(CLI::IsMember({"fft", "sine"}))->capture_default_str();
-    app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(CLI::Range(0.5, 100.0))->capture_default_str();
+    app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(kFinite)->check(CLI::Range(0.5, 100.0))->capture_default_str();
     app.add_option("--wind-dir", s.windDirection, "water: wind direction in radians")
-        ->check(CLI::Range(-10.0, 10.0))->capture_default_str();
+        ->check(kFinite)->check(CLI::Range(-10.0, 10.0))->capture_default_str();
     app.add_option("--environment", s.environment, "water: equirectangular sky image to reflect");
     app.add_option("--shots", s.shots, "decals: shot list to replay (lines 'bullet|explosion|click FRAME A B')");
     app.add_option("--height-map", s.heightMap, "maps, decals: height map image (h in [0,1])");

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
-    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -Wno-dev > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }
+    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DHFX_GL_DEBUG=ON -Wno-dev > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }
 cmake --build build-asan -j"$(nproc)" >> build-asan.log 2>&1 || { tail -n 60 build-asan.log; exit 1; }
 # new_delete_type_mismatch=0: libclFFT 2.12 deletes its FFT actions through a base pointer with
 # a sized delete (a bug inside clFFT, not HFX). quarantine_size_mb=16: freed memory waits in

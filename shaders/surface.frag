@@ -46,8 +46,8 @@ layout(binding = 1) uniform sampler2D s_albedo;
 // The search and shadow fetches read one mip level, the nearest to the level that the
 // undisplaced texcoords' gradients select: computed once, so the level does not jump where the
 // traced texcoords jump (silhouettes of the relief), and one level means the ray meets one
-// bilinear surface, at about 60% of the cost of a trilinear textureGrad fetch on llvmpipe.
-// Shading fetches keep trilinear filtering.
+// bilinear surface, cheaper than a trilinear textureGrad fetch (docs/BENCHMARKS.md,
+// "textureGrad"). Shading fetches keep trilinear filtering.
 
 void main() {
     const vec3 geometricNormal = normalize(v_normal);

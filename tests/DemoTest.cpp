@@ -283,6 +283,15 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
     }
     const Result r = runDemo("water --technique raytrace --headless");
     EXPECT_NE(r.output.find("raytrace"), std::string::npos) << r.output;
+    // NaN passes a range check (it compares false with both bounds): refused by name instead of
+    // rendering the default. Infinity too.
+    for (const char* option : {"--depth-scale", "--dt", "--lod-threshold", "--wind-speed", "--wind-dir"})
+        for (const char* value : {"nan", "inf"}) {
+            const Result bad = runDemo(std::string("water --headless ") + option + " " + value);
+            EXPECT_NE(bad.exitCode, 0) << option << " " << value;
+            EXPECT_NE(bad.output.find(option), std::string::npos) << bad.output;
+            EXPECT_NE(bad.output.find(value), std::string::npos) << bad.output;
+        }
 }
 
 TEST(Demo, HelpListsTheOptions) {

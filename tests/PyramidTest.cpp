@@ -67,8 +67,9 @@ TEST_F(Pyramid, MatchesCpuReferenceAtEveryLevel) {
                     ASSERT_EQ(out[levels[k].offset + size_t(y) * levels[k].width + x], expected)
                         << "level " << k << " texel " << x << "," << y;
                 }
-        if (edges == EdgeMode::Wrap)
+        if (edges == EdgeMode::Wrap) {
             EXPECT_EQ(out, pyramidReference(heights, W, H));
+        }
         // The top bounds the whole field.
         EXPECT_EQ(out.back(), *std::max_element(heights.begin(), heights.end()));
     }

@@ -58,7 +58,9 @@ TEST(ShotList, FormatReadsBack) {
         EXPECT_EQ(back[i].frame, shots[i].frame);
         EXPECT_EQ(back[i].a, shots[i].a);
         EXPECT_EQ(back[i].b, shots[i].b);
-        if (shots[i].kind == Shot::Kind::Explosion) EXPECT_EQ(back[i].seed, shots[i].seed);
+        if (shots[i].kind == Shot::Kind::Explosion) {
+            EXPECT_EQ(back[i].seed, shots[i].seed);
+        }
     }
 }
 

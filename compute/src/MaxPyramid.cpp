@@ -32,7 +32,6 @@ void MaxPyramid::build(const cl::Buffer& height) {
     if (height.getInfo<CL_MEM_SIZE>() < sizeof(float) * size_t(width_) * height_)
         throw Error(str("MaxPyramid::build: the height buffer is smaller than ", width_, "x", height_, " floats"));
     clGuard("MaxPyramid::build", [&] {
-        cl::CommandQueue& q = cl_.queue();
         cells_.setArg(0, height);
         cells_.setArg(1, buffer_); // level 0 starts at offset 0
         cells_.setArg(2, width_);

@@ -2,7 +2,7 @@
 
 #include "hfx/core/Error.h"
 
-#include <cstdio>
+#include <string>
 
 namespace hfx {
 
@@ -19,9 +19,30 @@ void loadGl(GlProcLoader loader) {
 }
 
 namespace detail {
+namespace {
+const char* glErrorName(GLenum e) {
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    default: return "GL error";
+    }
+}
+} // namespace
+
 void glCheck(const char* call, const char* file, int line) {
-    for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError())
-        std::fprintf(stderr, "%s:%d: GL error 0x%04x after %s\n", file, line, e, call);
+    std::string errors;
+    // A lost context reports errors forever: a bounded number is enough to name them.
+    for (int i = 0; i < 8; ++i) {
+        const GLenum e = glGetError();
+        if (e == GL_NO_ERROR) break;
+        errors += str(errors.empty() ? "" : ", ", glErrorName(e), " (0x", std::hex, e, std::dec, ")");
+    }
+    if (!errors.empty()) throw Error(str(errors, " after ", call, " at ", file, ":", line));
 }
 } // namespace detail
 

@@ -85,10 +85,10 @@ Mesh::Mesh(const MeshData& data)
         if (index >= data.vertices.size())
             throw Error(str("mesh index ", index, " is out of range (", data.vertices.size(),
                             " vertices)"));
-    glNamedBufferStorage(vertices_.id(), data.vertices.size() * sizeof(Vertex),
-                         data.vertices.data(), 0);
-    glNamedBufferStorage(indices_.id(), data.indices.size() * sizeof(uint32_t),
-                         data.indices.data(), 0);
+    HFX_GL_CHECK(glNamedBufferStorage(vertices_.id(), data.vertices.size() * sizeof(Vertex),
+                         data.vertices.data(), 0));
+    HFX_GL_CHECK(glNamedBufferStorage(indices_.id(), data.indices.size() * sizeof(uint32_t),
+                         data.indices.data(), 0));
     const GLuint vao = vao_.id();
     glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(Vertex));
     glVertexArrayElementBuffer(vao, indices_.id());
@@ -107,7 +107,7 @@ Mesh::Mesh(const MeshData& data)
 
 void Mesh::draw() const {
     glBindVertexArray(vao_.id());
-    glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+    HFX_GL_CHECK(glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr));
     glBindVertexArray(0);
 }
 

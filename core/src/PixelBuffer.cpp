@@ -11,7 +11,7 @@ constexpr GLbitfield kMapping = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MA
 
 PixelBuffer::PixelBuffer(size_t bytes) : buffer_(GlBuffer::create()), bytes_(bytes) {
     if (bytes == 0) throw Error("PixelBuffer: zero bytes requested");
-    glNamedBufferStorage(buffer_.id(), GLsizeiptr(bytes), nullptr, kMapping);
+    HFX_GL_CHECK(glNamedBufferStorage(buffer_.id(), GLsizeiptr(bytes), nullptr, kMapping));
     memory_ = glMapNamedBufferRange(buffer_.id(), 0, GLsizeiptr(bytes), kMapping);
     if (!memory_)
         throw Error(str("PixelBuffer: mapping a ", bytes, "-byte pixel buffer persistently failed (GL error 0x",

@@ -65,14 +65,14 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER,
                             levels_ > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     }
-    glTextureStorage2D(surface_.id(), levels_, internalFormat(config.format), config.width, config.height);
-    glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height);
+    HFX_GL_CHECK(glTextureStorage2D(surface_.id(), levels_, internalFormat(config.format), config.width, config.height));
+    HFX_GL_CHECK(glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height));
     setAlbedo(Image{1, 1, 3, {0.8f, 0.8f, 0.8f}});
     uploadTexels(flatTexels(config.format, static_cast<size_t>(config.width) * config.height).data());
     if (config.pyramid) {
         pyramid_ = GlTexture::create();
         pyramidLevels_ = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(config.width, config.height))));
-        glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_R32F, config.width, config.height);
+        HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_R32F, config.width, config.height));
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAX_LEVEL, pyramidLevels_ - 1);
@@ -87,23 +87,23 @@ void SurfaceTextures::uploadPyramid(const float* levels) {
     size_t offset = 0;
     for (int level = 0; level < pyramidLevels_; ++level) {
         const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
-        glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RED, GL_FLOAT, levels + offset);
+        HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RED, GL_FLOAT, levels + offset));
         offset += static_cast<size_t>(w) * h;
     }
 }
 
 void SurfaceTextures::uploadTexels(const void* texels) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
-                        texelType(config_.format), texels);
-    if (levels_ > 1) glGenerateTextureMipmap(surface_.id());
+    HFX_GL_CHECK(glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
+                        texelType(config_.format), texels));
+    if (levels_ > 1) HFX_GL_CHECK(glGenerateTextureMipmap(surface_.id()));
 }
 
 void SurfaceTextures::uploadAlbedo(const unsigned char* rgba) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(albedo_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
-                        GL_UNSIGNED_BYTE, rgba);
-    if (levels_ > 1) glGenerateTextureMipmap(albedo_.id());
+    HFX_GL_CHECK(glTextureSubImage2D(albedo_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
+                        GL_UNSIGNED_BYTE, rgba));
+    if (levels_ > 1) HFX_GL_CHECK(glGenerateTextureMipmap(albedo_.id()));
 }
 
 void SurfaceTextures::setAlbedo(const Image& albedo) {
@@ -127,9 +127,9 @@ void SurfaceTextures::setAlbedo(const Image& albedo) {
             }
         }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(albedo_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
-                        GL_UNSIGNED_BYTE, rgba.data());
-    if (levels_ > 1) glGenerateTextureMipmap(albedo_.id());
+    HFX_GL_CHECK(glTextureSubImage2D(albedo_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
+                        GL_UNSIGNED_BYTE, rgba.data()));
+    if (levels_ > 1) HFX_GL_CHECK(glGenerateTextureMipmap(albedo_.id()));
 }
 
 } // namespace hfx

@@ -168,7 +168,8 @@ void SurfacePipeline::finish() {
         // Mapping a buffer over host memory waits for its writers and makes that memory current
         // (on a device sharing host memory it copies nothing); GL then reads it where it lies.
         mapAndUpload(cl_, source, bytes, "uploading the surface from the pixel buffer", [&](const void* mapped) {
-            HFX_CHECK(mapped == pixels_->memory());
+            // A buffer made over host memory maps to that memory (CL_MEM_USE_HOST_PTR).
+            HFX_CHECK_EQ(mapped, static_cast<const void*>(pixels_->memory()));
             pixels_->uploadTexels(back);
         });
     } else {

@@ -20,6 +20,17 @@ namespace {
 
 SourceFile shader(std::string_view name) { return surfaceShader(name); }
 
+/// Writes a uniform block's data into its buffer (made on first use) and binds it at `binding`.
+template <typename Block>
+void updateBlock(GlBuffer& buffer, GLuint binding, const Block& data) {
+    if (!buffer) {
+        buffer = GlBuffer::create();
+        HFX_GL_CHECK(glNamedBufferStorage(buffer.id(), sizeof(Block), nullptr, GL_DYNAMIC_STORAGE_BIT));
+    }
+    HFX_GL_CHECK(glNamedBufferSubData(buffer.id(), 0, sizeof(Block), &data));
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer.id());
+}
+
 /// Saves what draw() changes and puts it back, so the caller's state survives.
 class GlStateGuard {
 public:
@@ -120,12 +131,7 @@ void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, c
     u.model = model;
     u.viewProj = camera.viewProjection();
     u.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))));
-    if (!surfaceBlock_) {
-        surfaceBlock_ = GlBuffer::create();
-        glNamedBufferStorage(surfaceBlock_.id(), sizeof(SurfaceUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    }
-    glNamedBufferSubData(surfaceBlock_.id(), 0, sizeof(SurfaceUniforms), &u);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, surfaceBlock_.id());
+    updateBlock(surfaceBlock_, 0, u);
 }
 
 void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
@@ -172,12 +178,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
                                   .skyHorizon = w.skyHorizon,
                                   .hazeDistance = w.hazeDistance,
                                   .hasEnvironment = w.environment != 0 ? 1 : 0};
-        if (!waterBlock_) {
-            waterBlock_ = GlBuffer::create();
-            glNamedBufferStorage(waterBlock_.id(), sizeof(WaterUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
-        }
-        glNamedBufferSubData(waterBlock_.id(), 0, sizeof(WaterUniforms), &water);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 1, waterBlock_.id());
+        updateBlock(waterBlock_, 1, water);
         glBindTextureUnit(2, w.environment);
     }
     glBindTextureUnit(0, textures.surface());

@@ -60,6 +60,3 @@ std::string str(const Args&... args) {
     } while (0)
 
 #define HFX_CHECK_EQ(a, b) HFX_CHECK_OP(a, ==, b)
-#define HFX_CHECK_LT(a, b) HFX_CHECK_OP(a, <, b)
-#define HFX_CHECK_LE(a, b) HFX_CHECK_OP(a, <=, b)
-#define HFX_CHECK_GT(a, b) HFX_CHECK_OP(a, >, b)

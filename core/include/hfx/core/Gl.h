@@ -9,11 +9,15 @@
 
 namespace hfx {
 namespace detail {
+/// Throws hfx::Error naming `call`, where it stands and every GL error pending after it
+/// ("GL_INVALID_OPERATION after glBindTexture(...) at Texture.cpp:12"); nothing when none is.
 void glCheck(const char* call, const char* file, int line);
-}
-
+} // namespace detail
 } // namespace hfx
 
+// HFX_GL_CHECK(call): with the HFX_GL_DEBUG build option (cmake -DHFX_GL_DEBUG=ON; the sanitizer
+// build turns it on), polls glGetError after the call and throws naming it; otherwise the call
+// alone, at no cost.
 #if defined(HFX_GL_DEBUG)
 #define HFX_GL_CHECK(call)                                                                         \
     do {                                                                                           \

@@ -7,9 +7,9 @@
 #pragma OPENCL FP_CONTRACT OFF
 #define HFX_FN
 /* Forced inline, for math that a kernel calls several times per work-item: PoCL vectorises a
-   kernel across its work-items only when no call is left (measured: the gas's advection spent
-   half its time in an out-of-line hfx_gas_sample; inlined, BM_Gas runs 1.2-1.6x faster). Not
-   the default: the noise kernels ran about 10% slower inlined. */
+   kernel across its work-items only when no call is left (the gas's advection spent much of its
+   time in an out-of-line hfx_gas_sample). Not the default: the noise kernels ran slower inlined.
+   The figures: BM_Gas and BM_Noise in docs/BENCHMARKS.md. */
 #define HFX_FN_INLINE static inline __attribute__((always_inline))
 #define HFX_CONSTANT __constant
 #define HFX_GLOBAL __global

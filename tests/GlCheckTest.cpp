@@ -1,0 +1,35 @@
+// Always-on contract checks and the debug build's GL error polling: both name what failed.
+// This file turns HFX_GL_CHECK on for itself, whatever the library was built with.
+#ifndef HFX_GL_DEBUG
+#define HFX_GL_DEBUG 1
+#endif
+
+#include "support/Fixtures.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+
+namespace hfx::test {
+namespace {
+
+class GlCheck : public GlTest {};
+
+TEST_F(GlCheck, AFailingCallIsAnErrorNamingTheCallAndWhereItStands) {
+    // Binding a name that glGenTextures never made is GL_INVALID_OPERATION in a core context.
+    const std::string m = messageOf([] { HFX_GL_CHECK(glBindTexture(GL_TEXTURE_2D, 987654)); });
+    EXPECT_NE(m.find("GL_INVALID_OPERATION"), std::string::npos) << m;
+    EXPECT_NE(m.find("glBindTexture(GL_TEXTURE_2D, 987654)"), std::string::npos) << m;
+    EXPECT_NE(m.find("GlCheckTest.cpp:"), std::string::npos) << m;
+    // A good call passes, and the failed one left no error behind for the next check.
+    EXPECT_EQ(messageOf([] { HFX_GL_CHECK(glBindTexture(GL_TEXTURE_2D, 0)); }), "(no error)");
+}
+
+TEST(Check, AViolatedContractAbortsPrintingBothValues) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const int two = 2;
+    EXPECT_DEATH(HFX_CHECK_EQ(two + 1, 4), "HFX_CHECK failed: two \\+ 1 == 4.*3 == 4");
+    EXPECT_DEATH(HFX_CHECK(two > 5), "HFX_CHECK failed: two > 5");
+}
+
+} // namespace
+} // namespace hfx::test
