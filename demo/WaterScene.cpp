@@ -60,7 +60,10 @@ public:
     }
 
     void draw() override { drawSurface(renderer_, light_); }
-    Effect& effect() override { return ocean_ ? static_cast<Effect&>(*ocean_) : *sine_; }
+    Effect& effect() override {
+        if (ocean_) return *ocean_;
+        return *sine_;
+    }
     const char* name() const override { return "water"; }
     const Mesh& mesh() const override { return plane_; }
 

@@ -1,24 +1,22 @@
 #include "hfx/compute/NoiseField.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Names.h"
 
 #include <cmath>
 
 namespace hfx {
 
-NoiseKind parseNoiseKind(const std::string& name) {
-    if (name == "perlin") return NoiseKind::Perlin;
-    if (name == "simplex") return NoiseKind::Simplex;
-    if (name == "psrd") return NoiseKind::Psrd;
-    throw Error(str("unknown noise '", name, "' (expected perlin, simplex or psrd)"));
-}
+namespace {
+constexpr NamedValue<NoiseKind> kKinds[] = {
+    {NoiseKind::Perlin, "perlin"}, {NoiseKind::Simplex, "simplex"}, {NoiseKind::Psrd, "psrd"}};
+constexpr NamedValue<Fractal> kFractals[] = {
+    {Fractal::Fbm, "fbm"}, {Fractal::Ridged, "ridged"}, {Fractal::Turbulence, "turbulence"}};
+} // namespace
 
-Fractal parseFractal(const std::string& name) {
-    if (name == "fbm") return Fractal::Fbm;
-    if (name == "ridged") return Fractal::Ridged;
-    if (name == "turbulence") return Fractal::Turbulence;
-    throw Error(str("unknown fractal '", name, "' (expected fbm, ridged or turbulence)"));
-}
+NoiseKind parseNoiseKind(const std::string& name) { return parseName(kKinds, name, "noise"); }
+
+Fractal parseFractal(const std::string& name) { return parseName(kFractals, name, "fractal"); }
 
 float NoiseConfig::frequencyY() const {
     const float f = frequency * float(height) / float(width);

@@ -1,14 +1,13 @@
 #include "hfx/core/EdgeMode.h"
 
+#include "hfx/core/Names.h"
+
 namespace hfx {
 
-const char* edgeModeName(EdgeMode edges) {
-    switch (edges) {
-    case EdgeMode::Wrap: return "wrap";
-    case EdgeMode::Clamp: return "clamp";
-    case EdgeMode::WrapU: return "wrap-u";
-    }
-    return "?";
+namespace {
+constexpr NamedValue<EdgeMode> kNames[] = {{EdgeMode::Wrap, "wrap"}, {EdgeMode::Clamp, "clamp"}, {EdgeMode::WrapU, "wrap-u"}};
 }
+
+const char* edgeModeName(EdgeMode edges) { return nameOf(kNames, edges); }
 
 } // namespace hfx

@@ -1,6 +1,7 @@
 #include "hfx/core/SurfaceFormat.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Names.h"
 
 namespace hfx {
 
@@ -13,19 +14,13 @@ size_t texelBytes(SurfaceFormat format) {
     throw Error(str("unknown surface format ", int(format)));
 }
 
-const char* surfaceFormatName(SurfaceFormat format) {
-    switch (format) {
-    case SurfaceFormat::Float32: return "float32";
-    case SurfaceFormat::Float16: return "float16";
-    case SurfaceFormat::Unorm8: return "unorm8";
-    }
-    return "unknown";
+namespace {
+constexpr NamedValue<SurfaceFormat> kNames[] = {
+    {SurfaceFormat::Float32, "float32"}, {SurfaceFormat::Float16, "float16"}, {SurfaceFormat::Unorm8, "unorm8"}};
 }
 
-SurfaceFormat parseSurfaceFormat(std::string_view name) {
-    for (SurfaceFormat f : kSurfaceFormats)
-        if (name == surfaceFormatName(f)) return f;
-    throw Error(str("unknown surface format '", name, "' (known: float32, float16, unorm8)"));
-}
+const char* surfaceFormatName(SurfaceFormat format) { return nameOf(kNames, format); }
+
+SurfaceFormat parseSurfaceFormat(std::string_view name) { return parseName(kNames, name, "surface format"); }
 
 } // namespace hfx

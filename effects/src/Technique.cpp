@@ -1,6 +1,7 @@
 #include "hfx/effects/Technique.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Names.h"
 
 namespace hfx {
 
@@ -24,14 +25,14 @@ Technique parseTechnique(const std::string& name) {
     throw Error(str("unknown technique '", name, "' (expected one of ", techniqueNames(), ")"));
 }
 
-const char* selfShadowName(SelfShadow shadow) {
-    switch (shadow) {
-    case SelfShadow::None: return "none";
-    case SelfShadow::Hard: return "hard";
-    case SelfShadow::Soft: return "soft";
-    }
-    return "?";
-}
+namespace {
+constexpr NamedValue<SelfShadow> kShadowNames[] = {
+    {SelfShadow::None, "none"}, {SelfShadow::Hard, "hard"}, {SelfShadow::Soft, "soft"}};
+constexpr NamedValue<Shading> kShadingShaders[] = {
+    {Shading::Lit, "shade/lit.glsl"}, {Shading::Water, "shade/water.glsl"}, {Shading::Planet, "shade/planet.glsl"}};
+} // namespace
+
+const char* selfShadowName(SelfShadow shadow) { return nameOf(kShadowNames, shadow); }
 
 std::string techniqueTableMarkdown() {
     std::string md = "| name | technique | self-shadow | needs the pyramid |\n| --- | --- | --- | --- |\n";
@@ -41,13 +42,6 @@ std::string techniqueTableMarkdown() {
     return md;
 }
 
-const char* shadingShader(Shading shading) {
-    switch (shading) {
-    case Shading::Lit: return "shade/lit.glsl";
-    case Shading::Water: return "shade/water.glsl";
-    case Shading::Planet: return "shade/planet.glsl";
-    }
-    throw Error(str("shading ", int(shading), " has no shader"));
-}
+const char* shadingShader(Shading shading) { return nameOf(kShadingShaders, shading); }
 
 } // namespace hfx

@@ -1,23 +1,18 @@
 #include "hfx/effects/TransferPath.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Names.h"
 
 namespace hfx {
 
-const char* transferPathName(TransferPath path) {
-    switch (path) {
-    case TransferPath::Auto: return "auto";
-    case TransferPath::Map: return "map";
-    case TransferPath::PixelBuffer: return "pixel-buffer";
-    }
-    return "unknown";
+namespace {
+constexpr NamedValue<TransferPath> kNames[] = {
+    {TransferPath::Auto, "auto"}, {TransferPath::Map, "map"}, {TransferPath::PixelBuffer, "pixel-buffer"}};
 }
 
-TransferPath parseTransferPath(std::string_view name) {
-    for (TransferPath p : {TransferPath::Auto, TransferPath::Map, TransferPath::PixelBuffer})
-        if (name == transferPathName(p)) return p;
-    throw Error(str("unknown transfer path '", name, "' (known: auto, map, pixel-buffer)"));
-}
+const char* transferPathName(TransferPath path) { return nameOf(kNames, path); }
+
+TransferPath parseTransferPath(std::string_view name) { return parseName(kNames, name, "transfer path"); }
 
 TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested) {
     if (requested != TransferPath::Auto) return requested;

@@ -110,14 +110,14 @@ void BM_SobelKernel(benchmark::State& state) {
     cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
                      const_cast<float*>(heights.data()));
     cl::Buffer output(cl().context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, heights.size() * 16);
-    cl::Kernel kernel = cl().kernel("sobel.cl", perItem == 4 ? "sobel4" : "sobel");
+    cl::Kernel kernel = cl().kernel("sobel.cl", perItem == 4 ? "sobel4" : "sobel", edgeOptions(EdgeMode::Wrap));
     kernel.setArg(0, input);
     kernel.setArg(1, output);
     kernel.setArg(2, n);
     kernel.setArg(3, n);
     kernel.setArg(4, 0.05f * n);
     kernel.setArg(5, 0.05f * n);
-    measure(state, [&] { cl().queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n / perItem, n)); },
+    measure(state, [&] { cl().enqueue(kernel, cl::NDRange(n / perItem, n)); },
             20.0 * n * n, nullptr);
 }
 
@@ -129,13 +129,13 @@ void BM_GasPressureKernel(benchmark::State& state) {
         return cl::Buffer(cl().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, v.size() * 4, const_cast<float*>(v.data()));
     };
     cl::Buffer p = buffer(p0), d = buffer(div), out = buffer(p0);
-    cl::Kernel kernel = cl().kernel("gas.cl", perItem == 4 ? "pressure4" : "pressure", "-DSOLID_Y=1");
+    cl::Kernel kernel = cl().kernel("gas.cl", perItem == 4 ? "pressure4" : "pressure", edgeOptions(EdgeMode::WrapU));
     kernel.setArg(0, p);
     kernel.setArg(1, d);
     kernel.setArg(2, out);
     kernel.setArg(3, n);
     kernel.setArg(4, n);
-    measure(state, [&] { cl().queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n / perItem, n)); },
+    measure(state, [&] { cl().enqueue(kernel, cl::NDRange(n / perItem, n)); },
             12.0 * n * n, nullptr);
 }
 
