@@ -10,7 +10,7 @@ __kernel void max_cells(__global const float* height, __global float* level0, in
     if (x >= width || y >= rows) return;
     /* The cell's far corners: across an edge that wraps, the first sample (as the wrapped texture
        interpolates); across one that clamps, the last again. */
-    int x1 = hfx_edge_index(x + 1, width, HFX_WRAP_U), y1 = hfx_edge_index(y + 1, rows, HFX_WRAP_V);
+    int x1 = hfx_edge_next(x, width, HFX_WRAP_U), y1 = hfx_edge_next(y, rows, HFX_WRAP_V);
     float a = fmax(height[y * width + x], height[y * width + x1]);
     float b = fmax(height[y1 * width + x], height[y1 * width + x1]);
     level0[y * width + x] = fmax(a, b);
