@@ -18,7 +18,8 @@ void Scene::applyOptions(const SceneOptions& o) {
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {
-    renderer.draw(mesh(), model(), effect().textures(), effect().material(), camera_, light, {.technique = technique});
+    const std::vector<SurfaceLayer> layers = effect().layers();
+    renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, {.technique = technique});
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

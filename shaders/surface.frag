@@ -12,6 +12,8 @@
 //   HFX_TRACES        1 when the technique displaces the texcoords (all but normal mapping):
 //                     the view ray goes into texture space and gl_FragDepth is written
 //   HFX_SELF_SHADOW   1 when it has self-shadows (hfx_shadow is called)
+//   HFX_LAYERS        1 to 4: the surface's layers (the ocean's cascades), summed in height and
+//                     slope (surface/heights.glsl); 1 is an ordinary surface
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction
@@ -42,6 +44,18 @@ layout(location = 1) out vec4 o_trace;
 #endif
 
 layout(binding = 1) uniform sampler2D s_albedo;
+
+#if HFX_LAYERS > 1
+// One layer's share of the shaded point: its slopes (the normal's x/z, y/z, in its own
+// texcoords and depth, turned into the surface's by slopeShare) and its height.
+void hfx_add_layer(sampler2D s, vec2 uv, float level, float scale, float weight, float slopeShare,
+                   inout vec2 slope, inout float height) {
+    const vec4 t = textureLod(s, uv * scale, level);
+    const vec3 n = t.xyz * u_normalDecode.x + u_normalDecode.y;
+    slope += slopeShare * n.xy / max(n.z, 1e-3);
+    height += weight * t.w;
+}
+#endif
 
 // The search and shadow fetches read one mip level, the nearest to the level that the
 // undisplaced texcoords' gradients select: computed once, so the level does not jump where the
@@ -111,14 +125,31 @@ void main() {
     gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
 #endif
 
+#if HFX_LAYERS == 1
     const vec4 surfaceSample = textureLod(s_surface, uv, mipLevel);
     const vec3 albedo = textureLod(s_albedo, uv, mipLevel).rgb;
-    const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
-    const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
     // The stored normal is that of z = normalDepth * h; the one of z = depthScale * h has its
     // slopes (x/z, y/z) scaled by their ratio: exact, so the material alone sets the depth.
     const vec3 decoded = surfaceSample.xyz * u_normalDecode.x + u_normalDecode.y;
     const vec3 storedNormal = vec3(decoded.xy * u_normalScale, decoded.z);
+    const float height = surfaceSample.w;
+#else
+    // Slopes add: each layer's, scaled to the surface's texcoords and depth (u_layerSlope).
+    vec2 slope = vec2(0.0);
+    float height = 0.0;
+    hfx_add_layer(s_surface, uv, mipLevel + u_layerLevel.x, u_layerScale.x, u_layerWeight.x, u_layerSlope.x, slope, height);
+    hfx_add_layer(s_surface1, uv, mipLevel + u_layerLevel.y, u_layerScale.y, u_layerWeight.y, u_layerSlope.y, slope, height);
+#if HFX_LAYERS > 2
+    hfx_add_layer(s_surface2, uv, mipLevel + u_layerLevel.z, u_layerScale.z, u_layerWeight.z, u_layerSlope.z, slope, height);
+#endif
+#if HFX_LAYERS > 3
+    hfx_add_layer(s_surface3, uv, mipLevel + u_layerLevel.w, u_layerScale.w, u_layerWeight.w, u_layerSlope.w, slope, height);
+#endif
+    const vec3 storedNormal = vec3(slope, 1.0);
+    const vec3 albedo = textureLod(s_albedo, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rgb;
+#endif
+    const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
+    const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
     const vec3 normal = normalize(tangentUnit * storedNormal.x + bitangentUnit * storedNormal.y +
                                   geometricNormal * storedNormal.z);
     const vec3 lightDir = normalize(u_lightDir);
@@ -151,7 +182,7 @@ void main() {
     point.position = displacedWorld;
     point.viewDir = normalize(u_cameraPos - displacedWorld);
     point.lightDir = lightDir;
-    point.height = surfaceSample.w;
+    point.height = height;
     point.lit = lit;
     point.cosView = cosView;
     point.diffuse = max(nDotL, 0.0);

@@ -157,7 +157,7 @@ void SurfacePipeline::finish() {
     const double waitStart = nowMs();
     clGuard("SurfacePipeline::finish", [&] { submitted_.wait(); });
     const double computed = nowMs();
-    if (timing_ == StageTiming::Overlapped) times_ = {.compute = computed - waitStart};
+    if (timing_ == StageTiming::Overlapped) times_ = {.compute = computed - waitStart, .staged = false};
 
     SurfaceTextures& back = *textures_[1 - front_];
     const size_t texels = size_t(config_.width) * config_.height;

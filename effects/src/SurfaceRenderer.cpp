@@ -40,7 +40,7 @@ public:
         glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
         glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
         glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
-        for (int unit = 0; unit < 4; ++unit) {
+        for (int unit = 0; unit < kUnits; ++unit) {
             glActiveTexture(GL_TEXTURE0 + unit);
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
         }
@@ -55,7 +55,7 @@ public:
         glDepthFunc(static_cast<GLenum>(depthFunc_));
         glUseProgram(static_cast<GLuint>(program_));
         glBindVertexArray(static_cast<GLuint>(vao_));
-        for (int unit = 0; unit < 4; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
+        for (int unit = 0; unit < kUnits; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
         for (GLuint index = 0; index < 2; ++index) {
             if (blocks_[index] != 0 && blockSize_[index] > 0)
@@ -69,7 +69,8 @@ public:
 
 private:
     GLboolean depthTest_;
-    GLint depthFunc_, program_, vao_, activeTexture_, textures_[4], blocks_[2];
+    static constexpr int kUnits = 10; // surface, albedo, environment, pyramid, layers 1-3, their albedos
+    GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[2];
     GLint64 blockStart_[2], blockSize_[2];
 };
 
@@ -107,8 +108,8 @@ void SurfaceMaterial::validate() const {
     }
 }
 
-const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading) {
-    const auto key = std::make_tuple(options.technique, options.traceOutput, shading);
+const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading, int layers) {
+    const auto key = std::make_tuple(options.technique, options.traceOutput, shading, layers);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         // The fragment stage: the common declarations, the technique's tracer, the shading model,
@@ -116,7 +117,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shadin
         const TechniqueInfo& info = techniqueInfo(options.technique);
         const std::vector<ShaderDefine> defines = {{"HFX_TRACES", info.traces ? "1" : "0"},
                                                    {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None ? "1" : "0"},
-                                                   {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"}};
+                                                   {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"},
+                                                   {"HFX_LAYERS", std::to_string(layers)}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("trace/common.glsl"),
                          shader(info.shader), shader("shade/common.glsl"), shader(shadingShader(shading)),
@@ -137,12 +139,52 @@ void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, c
 void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
                            const SurfaceMaterial& material, const Camera& camera,
                            const DirectionalLight& light, const DrawOptions& options) {
+    const SurfaceLayer layer{.textures = &textures};
+    draw(mesh, model, std::span(&layer, 1), material, camera, light, options);
+}
+
+namespace {
+void validateLayers(std::span<const SurfaceLayer> layers, const TechniqueInfo& technique) {
+    if (layers.empty() || int(layers.size()) > kMaxSurfaceLayers)
+        throw Error(str("a surface has 1 to ", kMaxSurfaceLayers, " layers, got ", layers.size()));
+    float weights = 0.0f;
+    for (size_t i = 0; i < layers.size(); ++i) {
+        const SurfaceLayer& l = layers[i];
+        if (!l.textures) throw Error(str("surface layer ", i, " has no textures"));
+        if (!(l.texcoordScale > 0.0f) || !std::isfinite(l.texcoordScale))
+            throw Error(str("surface layer ", i, ": texcoordScale must be positive, got ", l.texcoordScale));
+        if (!(l.weight >= 0.0f) || !std::isfinite(l.weight))
+            throw Error(str("surface layer ", i, ": weight must be >= 0, got ", l.weight));
+        weights += l.weight;
+        if (layers.size() > 1) {
+            if (l.textures->config().edges != EdgeMode::Wrap)
+                throw Error(str("surface layer ", i, " does not tile (edges ", edgeModeName(l.textures->config().edges),
+                                "): the layers of a surface repeat at their own scales"));
+            if (l.textures->config().format != layers[0].textures->config().format)
+                throw Error(str("surface layer ", i, " is ", surfaceFormatName(l.textures->config().format),
+                                ", layer 0 ", surfaceFormatName(layers[0].textures->config().format),
+                                ": a surface's layers share one format"));
+        }
+    }
+    if (std::abs(weights - 1.0f) > 1e-3f)
+        throw Error(str("the weights of a surface's layers must sum to 1 (heights stay in [0,1]), got ", weights));
+    if (technique.needsPyramid && layers.size() > 1)
+        throw Error(str("the ", technique.name, " technique traces one grid; a layered surface (", layers.size(),
+                        " layers) needs another technique"));
+    if (technique.needsPyramid && !layers[0].textures->pyramid())
+        throw Error(str("the ", technique.name, " technique needs surface textures with a height pyramid "
+                        "(SurfaceOptions::pyramid, SurfaceTexturesConfig::pyramid)"));
+}
+} // namespace
+
+void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+                           const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
+                           const DrawOptions& options) {
     material.validate();
     const TechniqueInfo& info = techniqueInfo(options.technique);
-    if (info.needsPyramid && !textures.pyramid())
-        throw Error(str("the ", info.name, " technique needs surface textures with a height pyramid "
-                        "(SurfaceOptions::pyramid, SurfaceTexturesConfig::pyramid)"));
-    const ShaderProgram& p = program(options, material.shading);
+    validateLayers(layers, info);
+    const SurfaceTextures& textures = *layers[0].textures;
+    const ShaderProgram& p = program(options, material.shading, int(layers.size()));
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -166,6 +208,17 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
                       .clipToPatch = material.clipToPatch ? 1 : 0,
                       .pyramidLevels = textures.pyramidLevels(),
                       .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0}};
+    // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
+    // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
+    // texture read at the mesh's own texcoords (the level surface.frag computes).
+    const float base = float(textures.config().width);
+    for (size_t i = 0; i < layers.size(); ++i) {
+        const SurfaceLayer& l = layers[i];
+        u.layerScale[int(i)] = l.texcoordScale;
+        u.layerWeight[int(i)] = l.weight;
+        u.layerSlope[int(i)] = material.depthScale * l.weight * l.texcoordScale / l.textures->config().normalDepth;
+        u.layerLevel[int(i)] = std::log2(l.texcoordScale * float(l.textures->config().width) / base);
+    }
     bindUniforms(u, model, camera);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
@@ -183,6 +236,10 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const Surfa
     }
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(1, textures.albedo());
+    for (size_t i = 1; i < layers.size(); ++i) {
+        glBindTextureUnit(GLuint(3 + i), layers[i].textures->surface());
+        glBindTextureUnit(GLuint(6 + i), layers[i].textures->albedo());
+    }
     if (info.needsPyramid) glBindTextureUnit(3, textures.pyramid());
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

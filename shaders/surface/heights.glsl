@@ -1,17 +1,46 @@
 // The fragment stage's side of the tracer contract (trace/README.md): the height accessors
-// every trace/*.glsl calls, over the surface texture's w channel and the height pyramid. Each
-// counts the fetches it makes, for the trace output.
+// every trace/*.glsl calls, over the surface texture's w channel and the height pyramid. A
+// layered surface (HFX_LAYERS > 1: the ocean's cascades) sums its layers' heights, each at its
+// own scale and mip level, so the tracers trace the sum without knowing of layers. Each accessor
+// counts the texture reads it makes, for the trace output.
 
-layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w
+#ifndef HFX_LAYERS
+#define HFX_LAYERS 1
+#endif
+
+layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 layout(binding = 3) uniform sampler2D s_pyramid; // R32F, level k texel bounds the bilinear cells it covers
+#if HFX_LAYERS > 1
+layout(binding = 4) uniform sampler2D s_surface1;
+#endif
+#if HFX_LAYERS > 2
+layout(binding = 5) uniform sampler2D s_surface2;
+#endif
+#if HFX_LAYERS > 3
+layout(binding = 6) uniform sampler2D s_surface3;
+#endif
 
 float g_fetches = 0.0;
 
 float hfx_height(vec2 uv, float level) {
-    g_fetches += 1.0;
+    g_fetches += float(HFX_LAYERS);
+#if HFX_LAYERS == 1
     return textureLod(s_surface, uv, level).w;
+#else
+    float h = u_layerWeight.x * textureLod(s_surface, uv * u_layerScale.x, level + u_layerLevel.x).w;
+    h += u_layerWeight.y * textureLod(s_surface1, uv * u_layerScale.y, level + u_layerLevel.y).w;
+#if HFX_LAYERS > 2
+    h += u_layerWeight.z * textureLod(s_surface2, uv * u_layerScale.z, level + u_layerLevel.z).w;
+#endif
+#if HFX_LAYERS > 3
+    h += u_layerWeight.w * textureLod(s_surface3, uv * u_layerScale.w, level + u_layerLevel.w).w;
+#endif
+    return h;
+#endif
 }
 
+// The hierarchical tracer's accessors read layer 0 alone: the renderer refuses it on layered
+// surfaces (a sum of bilinear patches on different grids has no closed-form cell solve).
 vec4 hfx_gather(vec2 uv) {
     g_fetches += 1.0;
     return textureGather(s_surface, uv, 3);

@@ -27,4 +27,9 @@ layout(std140, binding = 0) uniform HfxSurface {
     int u_pyramidLevels;      // levels of s_pyramid, 0 without one
     int u_reserved;
     ivec2 u_wrap;             // per axis: 1 where the field's edges wrap, 0 where they clamp
+    // Layered surfaces (HFX_LAYERS > 1, the ocean's cascades), one component per layer:
+    vec4 u_layerScale;        // layer texcoords = the mesh's texcoords * scale
+    vec4 u_layerWeight;       // its share of the height: h = sum weight * h_layer
+    vec4 u_layerSlope;        // depthScale * weight * scale / the layer's normal depth: its slopes' share
+    vec4 u_layerLevel;        // its mip level minus layer 0's read unscaled: log2(scale * size / size0)
 };

@@ -42,10 +42,14 @@ public:
 
     /// The textures to draw now (they change after each update: ask every frame).
     const SurfaceTextures& textures() const { return surface().textures(); }
+    /// What to draw: SurfaceRenderer::draw's layers. One, textures(), for most effects; the
+    /// ocean's cascades for the ocean.
+    virtual std::vector<SurfaceLayer> layers() const { return {{.textures = &textures()}}; }
     const SurfaceMaterial& material() const { return material_; }
     /// Replaces the material; throws hfx::Error naming the bad field and changes nothing.
     void setMaterial(const SurfaceMaterial& material);
-    StageTimes lastTimes() const { return surface().lastTimes(); }
+    /// The last frame's stage times, over all the effect's surfaces.
+    StageTimes lastTimes() const;
     TransferPath transferPath() const { return surface().transferPath(); }
     /// How the surface reaches GL, for start-up reports: "float16 texels, pixel-buffer path".
     std::string transferDescription() const { return surface().transferDescription(); }
@@ -54,7 +58,9 @@ protected:
     explicit Effect(const SurfaceMaterial& material);
     /// The effect's pipeline (a member of the derived class, constructed after its source).
     virtual const SurfacePipeline& surface() const = 0;
-    SurfacePipeline& surface() { return const_cast<SurfacePipeline&>(std::as_const(*this).surface()); }
+    /// All its pipelines, surface() first: an effect with several (the ocean's cascades) lists
+    /// them, and the frame begins and finishes each.
+    virtual std::vector<const SurfacePipeline*> surfaces() const { return {&surface()}; }
     /// Moves the source on by dt seconds, refusing a bad dt before anything changes.
     virtual void advance(double dt) = 0;
     /// Enqueues this frame's surface from what the source holds now: surface().derive(), the
@@ -65,6 +71,10 @@ protected:
     void refresh();
 
     SurfaceMaterial material_;
+
+private:
+    void begin(StageTiming timing);
+    void finish();
 };
 
 } // namespace hfx

@@ -73,6 +73,7 @@ struct StageTimes {
     double extra = 0.0;   ///< the height pyramid, the effect's passes, packing
     // With StageTiming::Overlapped the parts are not waited for one by one: compute is then the
     // time finish() still had to wait, the part the draw did not hide.
+    bool staged = true; ///< the parts above were waited for one by one
 };
 
 enum class StageTiming {

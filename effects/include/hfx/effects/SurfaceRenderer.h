@@ -20,6 +20,7 @@
 #include <glm/vec4.hpp>
 
 #include <map>
+#include <span>
 #include <tuple>
 #include <string>
 
@@ -72,6 +73,16 @@ struct DirectionalLight {
     glm::vec3 ambient{0.18f, 0.2f, 0.24f};
 };
 
+/// One layer of a layered surface (the ocean's cascades): its textures, read at the mesh's
+/// texcoords times `texcoordScale`, contributing `weight` of the height (h = sum weight_i h_i,
+/// the weights summing to 1) and, through it, of the slopes. Layers must tile (wrap both ways).
+struct SurfaceLayer {
+    const SurfaceTextures* textures = nullptr;
+    float texcoordScale = 1.0f;
+    float weight = 1.0f;
+};
+inline constexpr int kMaxSurfaceLayers = 4;
+
 struct DrawOptions {
     Technique technique = Technique::ParallaxOcclusion;
     bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
@@ -84,19 +95,25 @@ public:
     void draw(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
               const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
               const DrawOptions& options = {});
+    /// A layered surface: 1 to kMaxSurfaceLayers layers of one surface format, traced as the
+    /// sum of their heights (every technique but hier, which needs one grid) and shaded with the
+    /// sum of their slopes. The material's depthScale is in the mesh's texcoords.
+    void draw(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+              const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
+              const DrawOptions& options = {});
 
     /// Draws a mesh in one flat colour with its own depth (for scenes and tests).
     void drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
                   const glm::vec4& color);
 
     /// Builds the shader variant now (start-up) instead of on the first draw.
-    const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit);
+    const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit, int layers = 1);
 
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).
     void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const Camera& camera);
 
-    std::map<std::tuple<Technique, bool, Shading>, ShaderProgram> programs_;
+    std::map<std::tuple<Technique, bool, Shading, int>, ShaderProgram> programs_;
     ShaderProgram flat_;
     GlBuffer surfaceBlock_, waterBlock_;
 };

@@ -41,7 +41,11 @@ struct SurfaceUniforms {
     int pyramidLevels = 0;
     int reserved = 0;
     glm::ivec2 wrap{1, 1};
-    glm::ivec2 padding{0, 0}; ///< std140 rounds the block to 16 bytes
+    glm::ivec2 padding{0, 0}; ///< std140 puts the next vec4 on 16 bytes
+    glm::vec4 layerScale{1.0f};
+    glm::vec4 layerWeight{1.0f, 0.0f, 0.0f, 0.0f};
+    glm::vec4 layerSlope{0.0f};
+    glm::vec4 layerLevel{0.0f};
 };
 
 struct WaterUniforms {
@@ -65,7 +69,8 @@ static_assert(offsetof(SurfaceUniforms, normalDecode) == 272);
 static_assert(offsetof(SurfaceUniforms, silhouetteFade) == 288);
 static_assert(offsetof(SurfaceUniforms, shadows) == 304);
 static_assert(offsetof(SurfaceUniforms, wrap) == 320);
-static_assert(sizeof(SurfaceUniforms) == 336);
+static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
+static_assert(sizeof(SurfaceUniforms) == 400);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, hasEnvironment) == 64);
 static_assert(sizeof(WaterUniforms) == 80);

@@ -1,0 +1,123 @@
+// Layered surfaces (the ocean's cascades): a layer B of half the texels drawn at twice the scale
+// has its texel centres exactly on layer A's, so the two-layer surface wA A + wB B is, texel for
+// texel, one surface C on A's grid, and bilinear filtering agrees too. Drawn layered, it must
+// trace and shade as C drawn alone, and hit where the exact intersection of C says.
+
+#include "support/Fields.h"
+#include "support/Fixtures.h"
+
+#include "hfx/compute/StaticField.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/SurfacePipeline.h"
+#include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/AccuracyProbe.h"
+
+#include <glm/geometric.hpp>
+
+namespace hfx::test {
+namespace {
+
+class LayeredSurface : public DeviceTest {};
+
+constexpr int N = 64;
+constexpr float kWeightA = 0.7f, kWeightB = 0.3f;
+
+struct Layers {
+    std::vector<float> a, b, sum;
+    std::unique_ptr<StaticField> fieldA, fieldB, fieldSum;
+    std::unique_ptr<SurfacePipeline> surfaceA, surfaceB, surfaceSum;
+};
+
+Layers makeLayers(ClContext& cl) {
+    Layers l;
+    l.a = sumOfSines(N, {{0.25, 2, 1, 0.3}, {0.1, -1, 4, 1.0}});
+    l.b = sumOfSines(N / 2, {{0.3, 1, 2, 0.8}, {0.12, 3, -2, 0.1}});
+    l.sum.resize(size_t(N) * N);
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x)
+            l.sum[size_t(y) * N + x] = kWeightA * l.a[size_t(y) * N + x] + kWeightB * l.b[size_t(y % (N / 2)) * (N / 2) + x % (N / 2)];
+    l.fieldA = std::make_unique<StaticField>(cl, N, N, EdgeMode::Wrap, l.a);
+    l.fieldB = std::make_unique<StaticField>(cl, N / 2, N / 2, EdgeMode::Wrap, l.b);
+    l.fieldSum = std::make_unique<StaticField>(cl, N, N, EdgeMode::Wrap, l.sum);
+    // Each with normals for a depth of its own: the renderer combines their slopes.
+    l.surfaceA = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldA, 0.05f, {.mipmaps = false}));
+    l.surfaceB = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldB, 0.02f, {.mipmaps = false}));
+    l.surfaceSum = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldSum, 0.08f, {.mipmaps = false}));
+    l.surfaceA->run(l.fieldA->buffer());
+    l.surfaceB->run(l.fieldB->buffer());
+    l.surfaceSum->run(l.fieldSum->buffer());
+    return l;
+}
+
+TEST_F(LayeredSurface, DrawsAsTheSingleSurfaceOfItsSumAndHitsItsExactIntersection) {
+    const Layers l = makeLayers(cl());
+    const SurfaceLayer layered[] = {{.textures = &l.surfaceA->textures(), .weight = kWeightA},
+                                    {.textures = &l.surfaceB->textures(), .texcoordScale = 2.0f, .weight = kWeightB}};
+    const SurfaceMaterial material{.depthScale = 0.1f, .minSamples = 8, .maxSamples = 32, .lodThreshold = 100.0f, .shadows = true};
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const Camera camera = accuracyCamera(50.0);
+    DirectionalLight light;
+    light.direction = {0.6f, 0.55f, 0.3f};
+    SurfaceRenderer renderer;
+    constexpr int image = 160;
+    RenderTarget target(image, image, true);
+    auto render = [&](std::span<const SurfaceLayer> layers) {
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), layers, material, camera, light, {.traceOutput = true});
+        return std::pair{target.readColor(), target.readTrace()};
+    };
+    const SurfaceLayer single{.textures = &l.surfaceSum->textures()};
+    const auto [colorLayered, traceLayered] = render(layered);
+    const auto [colorSingle, traceSingle] = render(std::span(&single, 1));
+
+    // Colour: the slopes summed per layer are the sum's slopes (Sobel is linear), so shading
+    // agrees to a rounding step; a search decision flipped by float rounding may move a pixel.
+    size_t far = 0;
+    for (size_t i = 0; i < colorSingle.pixels.size(); ++i) far += std::abs(colorSingle.pixels[i] - colorLayered.pixels[i]) > 2.5f / 255;
+    EXPECT_LT(double(far) / colorSingle.pixels.size(), 0.002) << "of the colour values differ by more than 2 steps";
+
+    // Hits: against the layered draw's twin and against the exact bilinear intersection of C.
+    const HeightFieldTracer exact(l.sum, N, N, EdgeMode::Wrap);
+    std::vector<double> toTwin, toExact;
+    for (int y = 0; y < image; ++y)
+        for (int x = 0; x < image; ++x) {
+            const glm::vec4 a = traceLayered[size_t(y) * image + x], b = traceSingle[size_t(y) * image + x];
+            if (a.w == 0.0f) continue;
+            toTwin.push_back(glm::length(glm::vec2(a) - glm::vec2(b)) * N);
+            glm::dvec2 uv0;
+            glm::dvec3 toEye;
+            if (!planePixelRay(camera, 2.0f, x, y, image, image, uv0, toEye)) continue;
+            if (const auto hit = exact.traceView(uv0, toEye, material.depthScale))
+                toExact.push_back(glm::length(glm::dvec2(a.x, a.y) - hit->uv) * N);
+        }
+    ASSERT_GT(toExact.size(), 1000u);
+    EXPECT_LT(statistics(toTwin).mean, 0.01) << "texels between the layered and the summed surface's hits";
+    // POM with 8..32 samples at 50 degrees (docs/ACCURACY.md, smooth map: about 0.003 texel).
+    EXPECT_LT(statistics(toExact).mean, 0.05) << "texels from the exact intersection";
+}
+
+TEST_F(LayeredSurface, RefusesWhatItCannotDraw) {
+    const Layers l = makeLayers(cl());
+    SurfaceRenderer renderer;
+    const Mesh plane(makePlane({}));
+    const Camera camera = accuracyCamera(30.0);
+    const SurfaceMaterial material;
+    auto draw = [&](std::vector<SurfaceLayer> layers, Technique t = Technique::ParallaxOcclusion) {
+        return messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), layers, material, camera, {}, {.technique = t}); });
+    };
+    const SurfaceTextures* a = &l.surfaceA->textures();
+    const SurfaceTextures* b = &l.surfaceB->textures();
+    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {b, 2.0f, 0.4f}}).find("sum to 1"), std::string::npos);
+    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {b, 2.0f, 0.5f}}, Technique::Hierarchical).find("one grid"), std::string::npos);
+    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {nullptr, 2.0f, 0.5f}}).find("no textures"), std::string::npos);
+    EXPECT_NE(draw({{a, -1.0f, 0.5f}, {b, 2.0f, 0.5f}}).find("texcoordScale"), std::string::npos);
+    EXPECT_NE(draw({}).find("1 to 4 layers"), std::string::npos);
+    SurfaceTextures clamped({.width = 8, .height = 8, .mipmaps = false, .edges = EdgeMode::Clamp});
+    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {&clamped, 2.0f, 0.5f}}).find("does not tile"), std::string::npos);
+    SurfaceTextures half({.width = 8, .height = 8, .mipmaps = false, .format = SurfaceFormat::Float16});
+    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {&half, 2.0f, 0.5f}}).find("one format"), std::string::npos);
+}
+
+} // namespace
+} // namespace hfx::test
