@@ -62,7 +62,7 @@ int runBenchMesh(int width, int height, int frames) {
     // One ocean per surface format, all from the same seed: the same heights, stored three ways.
     std::vector<std::unique_ptr<OceanEffect>> oceans;
     for (SurfaceFormat format : kSurfaceFormats)
-        oceans.push_back(std::make_unique<OceanEffect>(cl, OceanEffectConfig{.ocean = {.size = N}, .surface = {.format = format}}));
+        oceans.push_back(std::make_unique<OceanEffect>(cl, OceanEffectConfig{.ocean = {.size = N, .cascades = 1}, .surface = {.format = format}}));
     const SurfaceTextures& textures = oceans.front()->textures();
     const float depthScale = oceans.front()->material().depthScale;
 

@@ -33,7 +33,15 @@ struct SceneOptions {
         return {.pyramid = technique == Technique::Hierarchical, .format = surfaceFormat, .transfer = transfer};
     }
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
-    float windSpeed = 12.0f, windDirection = 0.6f;
+    float windSpeed = 10.0f, windDirection = 0.6f; ///< water: U10 (m/s), radians from +x
+    int beaufort = -1;                 ///< water: a Beaufort force 0..12 sets the wind (-1: windSpeed)
+    float fetchKm = 300.0f;            ///< water: fetch of the wind sea
+    std::string spectrum = "jonswap";  ///< water: phillips, pierson-moskowitz, jonswap, tma
+    std::string spreading = "donelan-banner"; ///< water: cos2s, hasselmann, donelan-banner
+    float depthMeters = 0.0f;          ///< water: sea depth (0: deep)
+    float swell = 0.0f;                ///< water: energy of a swell from 50 degrees off the wind (0: none)
+    float choppiness = 1.0f;           ///< water: horizontal displacement lambda
+    int cascades = 0;                  ///< water: 0: the ocean's default
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image

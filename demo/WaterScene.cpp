@@ -1,5 +1,6 @@
-// The procedural-water user: the FFT ocean (or the cheap directional sine waves) on a large
-// plane seen low over the water towards a low sun, shaded as water.
+// The procedural-water user: the FFT ocean (or the cheap directional sine waves) on a plane of
+// open sea, 8 km across in metres, seen from a few metres up towards a low sun, shaded as water;
+// the plane's texcoords count the effect's patches (the ocean's largest cascade).
 
 #include "Scene.h"
 
@@ -16,25 +17,48 @@
 namespace hfx::demo {
 namespace {
 
-constexpr PlaneConfig kPlane{.size = 48.0f, .texcoordScale = 6.0f, .subdivisions = 1};
+constexpr float kSeaMeters = 8000.0f;
+
+/// The sea state the options describe: a Beaufort force, or a wind speed; fetch, spectrum,
+/// spreading, depth and swell as given.
+OceanEffectConfig oceanConfig(const SceneOptions& o) {
+    OceanEffectConfig c;
+    if (o.fieldSize > 0) c.ocean.size = o.fieldSize;
+    if (o.cascades > 0) c.ocean.cascades = o.cascades;
+    // Smaller cascades cannot take the default ratio between lengths (size / 48 at most): one
+    // cascade, unless asked otherwise.
+    else if (c.ocean.size < 256) c.ocean.cascades = 1;
+    c.ocean.seed = o.seed;
+    c.ocean.choppiness = o.choppiness;
+    WaveSpectrum& wind = c.ocean.sea.wind;
+    wind.windSpeed = o.beaufort >= 0 ? beaufortWindSpeed(o.beaufort) : o.windSpeed;
+    wind.direction = o.windDirection;
+    wind.fetchKm = o.fetchKm;
+    wind.shape = parseSpectrumShape(o.spectrum.c_str());
+    wind.spreading = parseSpreading(o.spreading.c_str());
+    c.ocean.sea.depthMeters = o.depthMeters;
+    c.ocean.sea.swell.energy = o.swell;
+    c.ocean.sea.swell.direction = o.windDirection + 0.9f;
+    // A pyramid for hier needs one grid: the ocean then runs one cascade.
+    c.surface = o.surfaceOptions();
+    if (c.surface.pyramid) c.ocean.cascades = 1;
+    return c;
+}
 
 class WaterScene final : public Scene {
 public:
-    WaterScene(ClContext& cl, const SceneOptions& o) : plane_(makePlane(kPlane)), wind_(o.windSpeed), windDir_(o.windDirection) {
+    WaterScene(ClContext& cl, const SceneOptions& o) : wind_(o.windSpeed), windDir_(o.windDirection) {
         if (o.waves != "fft" && o.waves != "sine")
             throw Error(str("unknown waves '", o.waves, "' (expected fft or sine)"));
         if (!o.environment.empty()) {
             const Image sky = readImage(o.environment);
             environment_ = makeEnvironment(sky);
         }
+        float patch = 0.0f; // metres per texcoord unit
         if (o.waves == "fft") {
-            OceanEffectConfig c;
-            c.ocean.size = o.fieldSize > 0 ? o.fieldSize : 512;
-            c.ocean.seed = o.seed;
-            c.ocean.windSpeed = o.windSpeed;
-            c.ocean.windDirection = o.windDirection;
-            c.surface = o.surfaceOptions();
-            ocean_ = std::make_unique<OceanEffect>(cl, c);
+            ocean_ = std::make_unique<OceanEffect>(cl, oceanConfig(o));
+            patch = ocean_->ocean().config().patchMeters;
+            wind_ = ocean_->ocean().config().sea.wind.windSpeed;
         } else {
             SineWavesConfig c;
             c.waves.size = o.fieldSize > 0 ? o.fieldSize : 512;
@@ -45,15 +69,20 @@ public:
             c.material.specularStrength = 0.0f;
             c.surface = o.surfaceOptions();
             sine_ = std::make_unique<SineWavesEffect>(cl, c);
+            patch = c.waves.patchMeters;
         }
+        plane_ = Mesh(makePlane({.size = kSeaMeters, .texcoordScale = kSeaMeters / patch, .subdivisions = 1}));
         SurfaceMaterial m = effect().material();
         m.water.environment = environment_.id();
+        m.water.hazeDistance = 2500.0f; // metres
         effect().setMaterial(m);
         applyOptions(o);
-        camera_.position = {0.0f, 2.4f, 6.0f};
-        camera_.target = {0.0f, 0.0f, -4.0f};
+        // Seven metres above the water, looking 8 degrees down towards the low sun.
+        camera_.position = {0.0f, 7.0f, 0.0f};
+        camera_.target = {0.0f, 7.0f - 100.0f * std::tan(0.14f), -100.0f};
         camera_.aspect = o.aspect();
-        camera_.farPlane = 200.0f;
+        camera_.nearPlane = 0.2f;
+        camera_.farPlane = 12000.0f;
         light_.direction = {-0.35f, 0.22f, -1.0f};
         light_.color = {1.0f, 0.9f, 0.75f};
         light_.ambient = {0.35f, 0.42f, 0.5f};

@@ -197,6 +197,20 @@ int main(int argc, char** argv) {
     app.add_option("--wind-dir", s.windDirection, "water: wind direction in radians")
         ->check(kFinite)->check(CLI::Range(-10.0, 10.0))->capture_default_str();
     app.add_option("--environment", s.environment, "water: equirectangular sky image to reflect");
+    app.add_option("--beaufort", s.beaufort, "water: Beaufort force 0-12, sets the wind speed (overrides --wind-speed)")
+        ->check(CLI::Range(0, 12));
+    app.add_option("--fetch", s.fetchKm, "water: fetch of the wind sea in km")->check(kFinite)->check(CLI::Range(1.0, 100000.0))->capture_default_str();
+    app.add_option("--spectrum", s.spectrum, "water: phillips, pierson-moskowitz, jonswap or tma")
+        ->check(CLI::IsMember({"phillips", "pierson-moskowitz", "jonswap", "tma"}))->capture_default_str();
+    app.add_option("--spreading", s.spreading, "water: cos2s, hasselmann or donelan-banner")
+        ->check(CLI::IsMember({"cos2s", "hasselmann", "donelan-banner"}))->capture_default_str();
+    app.add_option("--sea-depth", s.depthMeters, "water: depth of the sea in metres (0: deep; tma uses it)")
+        ->check(kFinite)->check(CLI::Range(0.0, 10000.0))->capture_default_str();
+    app.add_option("--swell", s.swell, "water: energy of a swell 50 degrees off the wind (0: none, 1: a full sea)")
+        ->check(kFinite)->check(CLI::Range(0.0, 4.0))->capture_default_str();
+    app.add_option("--choppiness", s.choppiness, "water: horizontal displacement (0: heights only; near 1 the crests sharpen)")
+        ->check(kFinite)->check(CLI::Range(0.0, 4.0))->capture_default_str();
+    app.add_option("--cascades", s.cascades, "water: ocean cascades, 1-4 (default 3)")->check(CLI::Range(1, 4));
     app.add_option("--shots", s.shots, "decals: shot list to replay (lines 'bullet|explosion|click FRAME A B')");
     app.add_option("--height-map", s.heightMap, "maps, decals: height map image (h in [0,1])");
     app.add_option("--normal-map", s.normalMap,

@@ -30,7 +30,7 @@ class Robustness : public DeviceTest {};
 TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
     SineWavesEffect water(cl(), {.waves = {.size = 64}});
-    OceanEffect ocean(cl(), {.ocean = {.size = 64}});
+    OceanEffect ocean(cl(), {.ocean = {.size = 64, .cascades = 1}});
     DecalWallEffect wall(cl(), {.bricks = {.size = 64}});
     GasPlanetEffect planet(cl(), {.gas = {.width = 32, .height = 16, .initialBands = 2.0f}});
     for (Effect* effect : std::initializer_list<Effect*>{&water, &ocean, &wall, &planet}) {

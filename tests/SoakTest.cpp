@@ -62,7 +62,8 @@ protected:
             if (step % 100 == 0) {
                 target.bind();
                 target.clear();
-                renderer.draw(mesh, glm::mat4(1.0f), effect.textures(), effect.material(), camera, {});
+                const std::vector<SurfaceLayer> layers = effect.layers();
+                renderer.draw(mesh, glm::mat4(1.0f), layers, effect.material(), camera, {});
             }
             if (step % 1000 == 999 || step == steps - 1) {
                 checkField(effect.textures(), what, step);
@@ -79,7 +80,7 @@ protected:
 };
 
 TEST_F(Soak, OceanWithWindChanges) {
-    OceanEffect ocean(cl(), {.ocean = {.size = 128}});
+    OceanEffect ocean(cl(), {.ocean = {.size = 128, .cascades = 2, .cascadeRatio = 2.6f}});
     SplitMix64 random(11);
     const Mesh plane(makePlane({.size = 8.0f, .texcoordScale = 2.0f}));
     soak("ocean", ocean, plane, [&](int step) {

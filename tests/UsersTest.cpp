@@ -161,9 +161,10 @@ TEST_F(Users, DecalWallRefusesBadMapsAndKeepsNoHalfState) {
 TEST_F(Users, OceanWindChangesTheSeaAndItsDepthAndBadWindChangesNothing) {
     OceanEffectConfig config;
     config.ocean.size = 64;
+    config.ocean.cascades = 1;
     OceanEffect ocean(cl(), config);
     const float calmDepth = ocean.material().depthScale;
-    EXPECT_NEAR(calmDepth, 8.0f * ocean.ocean().sigmaMeters() / config.ocean.patchMeters, 1e-6f);
+    EXPECT_NEAR(calmDepth, 8.0f * ocean.ocean().sigmaMeters() / ocean.ocean().config().patchMeters, 1e-6f);
     const std::vector<float> before = readSurface(ocean.textures());
     ocean.setWind(4.0f, 1.2f);
     // A light wind raises a much lower sea (the spectrum's energy grows steeply with the wind
@@ -174,12 +175,12 @@ TEST_F(Users, OceanWindChangesTheSeaAndItsDepthAndBadWindChangesNothing) {
     EXPECT_THROW(ocean.setWind(-3.0f, 0.0f), Error);
     EXPECT_THROW(ocean.setWind(10.0f, std::nanf("")), Error);
     EXPECT_EQ(ocean.material().depthScale, stormDepth);
-    EXPECT_EQ(ocean.ocean().config().windSpeed, 4.0f);
-    // The spectrum is the one a fresh ocean with that wind would draw.
-    OceanConfig same = config.ocean;
-    same.windSpeed = 4.0f;
-    same.windDirection = 1.2f;
-    EXPECT_EQ(ocean.ocean().amplitudes(), OceanField::spectrumAmplitudes(same));
+    EXPECT_EQ(ocean.ocean().config().sea.wind.windSpeed, 4.0f);
+    // The spectrum is the one a fresh ocean of that patch with that wind would draw.
+    OceanConfig same = ocean.ocean().config();
+    same.sea.wind.windSpeed = 4.0f;
+    same.sea.wind.direction = 1.2f;
+    EXPECT_EQ(ocean.ocean().cascade(0).h0, OceanField::spectrumAmplitudes(same, 0));
 }
 
 TEST_F(Users, PlanetColoursComeFromTheGasThroughTheRamp) {

@@ -1,24 +1,66 @@
 #include "OceanMath.h"
 
-/* h(k, t) for the wave vectors with kx index 0..N/2; h0 and omega (N x N, FFT order) were made on
-   the host at set-up. h(-k, t) = conj(h(k, t)) by construction, so the other half is implied and
-   a complex-to-real transform of this half gives the height: half the transform's work.
-   t is reduced modulo the spectrum's repeat period (frequencies are multiples of 2 pi / T), so
-   omega * t stays small and exact in float over any run. */
-__kernel void ocean_spectrum(__global const float2* h0, __global const float* omega,
-                             __global float2* out, int N, float t) {
+/* The half spectra of one cascade at time t: h(k, t), and with `displacement` the horizontal
+   displacement D(k, t) = i k/|k| h(k, t) (x and y), each (N/2 + 1) x N, back to back. h(-k) =
+   conj(h(k)) and so D(-k) = conj(D(k)): a complex-to-real transform of each half gives the
+   field. h0 and omega (N x N, FFT order) are made on the host, zero outside the cascade's band.
+   t is reduced modulo the repeat period (frequencies are multiples of 2 pi / T), so omega * t
+   stays small and exact in float over any run. */
+__kernel void ocean_spectrum(__global const float2* h0, __global const float* omega, __global float2* out, int N,
+                             float t, float dk, int displacement) {
     int x = get_global_id(0), y = get_global_id(1);
     if (x > N / 2 || y >= N) return;
     int k = y * N + x, mk = ((N - y) % N) * N + (N - x) % N; /* index of -k */
     float2 a = h0[k], b = h0[mk];
     float re, im;
     hfx_ocean_mode(a.x, a.y, b.x, b.y, -omega[k] * t, &re, &im);
-    out[y * (N / 2 + 1) + x] = (float2)(re, im);
+    int halves = (N / 2 + 1) * N, o = y * (N / 2 + 1) + x;
+    out[o] = (float2)(re, im);
+    if (!displacement) return;
+    float kx = dk * (float)x, ky = dk * (float)(y < N / 2 ? y : y - N);
+    float len = sqrt(kx * kx + ky * ky);
+    float ux = len > 0.0f ? kx / len : 0.0f, uy = len > 0.0f ? ky / len : 0.0f;
+    /* i (re + i im) = -im + i re */
+    out[halves + o] = (float2)(-im * ux, re * ux);
+    out[2 * halves + o] = (float2)(-im * uy, re * uy);
 }
 
-/* The transform's sum, mapped to h in [0,1]: 0.5 + height * scale, clamped. */
-__kernel void ocean_height(__global const float* sum, __global float* height, int N, float scale) {
-    int x = get_global_id(0), y = get_global_id(1);
-    if (x >= N || y >= N) return;
-    height[y * N + x] = clamp(0.5f + sum[y * N + x] * scale, 0.0f, 1.0f);
+/* On the Lagrangian grid (the undisplaced points): the Jacobian of the displacement, and the
+   foam, which is attached to the water (it rides the orbital motion with its point) and drifts
+   downwind: last step's foam, `drift` texels upwind, decayed, plus what this step's J < threshold
+   injects, capped at 1. fields: h, Dx, Dy (N x N each, metres). Also the displacement's gradient
+   (three N x N planes) for the Eulerian resample's Newton steps. */
+__kernel void ocean_lagrangian(__global const float* fields, __global const float* foamIn, __global float* foamOut,
+                               __global float* jacobian, __global float* gradient, int N, float lambdaPerTexel,
+                               float decay, float injection, float threshold, float driftX, float driftY) {
+    int i = get_global_id(0), j = get_global_id(1);
+    if (i >= N || j >= N) return;
+    int n = N * N, k = j * N + i;
+    float xx, yy, xy;
+    hfx_ocean_gradient(fields + n, fields + 2 * n, N, lambdaPerTexel, i, j, &xx, &yy, &xy);
+    gradient[k] = xx;
+    gradient[n + k] = yy;
+    gradient[2 * n + k] = xy;
+    float J = hfx_ocean_jacobian(fields + n, fields + 2 * n, N, lambdaPerTexel, i, j);
+    jacobian[k] = J;
+    float carried = hfx_ocean_sample(foamIn, N, (float)i - driftX, (float)j - driftY);
+    foamOut[k] = clamp(carried * decay + injection * fmax(threshold - J, 0.0f), 0.0f, 1.0f);
+}
+
+/* The Eulerian field the renderer traces: for texel (i, j), the Lagrangian point displaced onto
+   it, and the height and foam there. height = 0.5 + metres * scale, clamped to [0,1]. */
+__kernel void ocean_eulerian(__global const float* fields, __global const float* gradient, __global const float* foam,
+                             __global float* height, __global float* meters, __global uchar4* foamColor, int N,
+                             float lambdaPerTexel, float scale, int iterations) {
+    int i = get_global_id(0), j = get_global_id(1);
+    if (i >= N || j >= N) return;
+    int n = N * N, k = j * N + i;
+    float x0, y0;
+    hfx_ocean_lagrangian_point(fields + n, fields + 2 * n, gradient, N, lambdaPerTexel, iterations, (float)i, (float)j,
+                               &x0, &y0);
+    float H = hfx_ocean_sample(fields, N, x0, y0);
+    meters[k] = H;
+    height[k] = clamp(0.5f + H * scale, 0.0f, 1.0f);
+    float f = hfx_ocean_sample(foam, N, x0, y0);
+    foamColor[k] = (uchar4)(255, 255, 255, convert_uchar_sat(f * 255.0f + 0.5f));
 }

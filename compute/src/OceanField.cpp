@@ -5,6 +5,7 @@
 
 #include <clFFT.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -14,7 +15,6 @@
 namespace hfx {
 namespace {
 
-constexpr double kGravity = 9.81;
 constexpr double kPi = std::numbers::pi;
 
 void checkFft(clfftStatus status, const char* what) {
@@ -73,37 +73,9 @@ void releaseLibrary() {
     if (--libraryUsers == 0) clfftTeardown();
 }
 
-/// Wave-number spectral density Psi(k) (m^4): Psi dk_x dk_y is the variance of those waves.
-double spectralDensity(const OceanConfig& c, double kx, double ky) {
-    const double k = std::hypot(kx, ky);
-    if (k == 0.0) return 0.0;
-    const double wind = c.windDirection;
-    const double cosTheta = (kx * std::cos(wind) + ky * std::sin(wind)) / k;
-    const double smallWaves = std::exp(-std::pow(k * c.smallWaveMeters, 2.0));
-    if (c.spectrum == OceanSpectrum::Phillips) {
-        // Phillips' k^-4 saturation range with his constant 0.0081, cut below the longest
-        // wave the wind raises (L = V^2 / g), spread as |cos|^p around the wind.
-        const double L = c.windSpeed * c.windSpeed / kGravity;
-        // |cos|^p normalised to integrate to 1 over the circle.
-        const double spread = std::pow(std::abs(cosTheta), c.directionality) *
-                              std::tgamma(c.directionality / 2 + 1) /
-                              (std::sqrt(kPi) * std::tgamma(c.directionality / 2 + 0.5)) / 2.0;
-        return 0.0081 / (2.0 * kPi) * std::exp(-1.0 / (k * L * k * L)) / (k * k * k * k) * spread * smallWaves;
-    }
-    // JONSWAP (Hasselmann et al. 1973) in frequency, with fetch-limited peak and alpha, spread
-    // as (2 / pi) cos^2 around the wind, converted to wave numbers through w^2 = g k.
-    const double U = c.windSpeed, F = c.fetchKm * 1000.0;
-    const double omega = std::sqrt(kGravity * k);
-    const double omegaPeak = 22.0 * std::cbrt(kGravity * kGravity / (U * F));
-    const double alpha = 0.076 * std::pow(U * U / (F * kGravity), 0.22);
-    const double sigma = omega <= omegaPeak ? 0.07 : 0.09;
-    const double r = std::exp(-std::pow(omega - omegaPeak, 2.0) / (2.0 * sigma * sigma * omegaPeak * omegaPeak));
-    const double S = alpha * kGravity * kGravity / std::pow(omega, 5.0) *
-                     std::exp(-1.25 * std::pow(omegaPeak / omega, 4.0)) * std::pow(3.3, r);
-    const double spread = cosTheta > 0 ? 2.0 / kPi * cosTheta * cosTheta : 0.0;
-    const double dOmegaDk = kGravity / (2.0 * omega);
-    return S * spread * dOmegaDk / k * smallWaves;
-}
+/// Newton steps of the Eulerian resample: quadratic convergence, so four reach float precision
+/// on steep unfolded waves (lambda k A = 0.75 in the tests).
+constexpr int kEulerianIterations = 4;
 
 } // namespace
 
@@ -114,101 +86,204 @@ struct OceanField::Plan {
     }
 };
 
+void FoamConfig::validate() const {
+    if (!(threshold >= 0.0f && threshold <= 2.0f))
+        throw Error(str("FoamConfig.threshold must be in [0, 2], got ", threshold));
+    if (!(injection >= 0.0f) || !std::isfinite(injection))
+        throw Error(str("FoamConfig.injection must be >= 0, got ", injection));
+    if (!(halfLife > 0.0f) || !std::isfinite(halfLife))
+        throw Error(str("FoamConfig.halfLife must be positive seconds, got ", halfLife));
+    if (!(drift >= 0.0f && drift <= 1.0f)) throw Error(str("FoamConfig.drift must be in [0, 1], got ", drift));
+}
+
 void OceanConfig::validate() const {
-    if (size < 8 || size > 4096 || (size & (size - 1)) != 0)
-        throw Error(str("OceanConfig.size must be a power of two in [8, 4096], got ", size));
-    if (!(patchMeters > 0.0f) || !std::isfinite(patchMeters))
-        throw Error(str("OceanConfig.patchMeters must be positive, got ", patchMeters));
-    if (!(windSpeed > 0.0f) || windSpeed > 100.0f)
-        throw Error(str("OceanConfig.windSpeed must be in (0, 100] m/s, got ", windSpeed));
-    if (!std::isfinite(windDirection))
-        throw Error(str("OceanConfig.windDirection must be finite, got ", windDirection));
-    if (!(fetchKm > 0.0f) || fetchKm > 10000.0f)
-        throw Error(str("OceanConfig.fetchKm must be in (0, 10000], got ", fetchKm));
-    if (!(directionality >= 0.0f) || directionality > 32.0f)
-        throw Error(str("OceanConfig.directionality must be in [0, 32], got ", directionality));
-    if (!(smallWaveMeters >= 0.0f) || !std::isfinite(smallWaveMeters))
-        throw Error(str("OceanConfig.smallWaveMeters must be >= 0, got ", smallWaveMeters));
+    if (size < 16 || size > 1024 || (size & (size - 1)) != 0)
+        throw Error(str("OceanConfig.size must be a power of two in [16, 1024], got ", size));
+    if (cascades < 1 || cascades > 4) throw Error(str("OceanConfig.cascades must be in [1, 4], got ", cascades));
+    if (!(patchMeters >= 0.0f) || !std::isfinite(patchMeters))
+        throw Error(str("OceanConfig.patchMeters must be >= 0 (0: from the sea state), got ", patchMeters));
+    if (!(cascadeRatio > 2.0f && cascadeRatio <= 8.0f))
+        throw Error(str("OceanConfig.cascadeRatio must be in (2, 8], got ", cascadeRatio));
+    // The next cascade's band starts where this one keeps 8 texels per wave, pi N / (4 L); it
+    // needs 6 of its own lattice steps (2 pi / L') there, so L / L' <= N / 48.
+    if (cascades > 1 && cascadeRatio > float(size) / 48.0f)
+        throw Error(str("OceanConfig.cascadeRatio ", cascadeRatio, " is too large for ", size,
+                        "-texel cascades (at most size / 48 = ", float(size) / 48.0f,
+                        "): the next cascade would start its band within 6 lattice steps of its origin"));
+    sea.validate();
+    if (!(choppiness >= 0.0f && choppiness <= 4.0f))
+        throw Error(str("OceanConfig.choppiness must be in [0, 4], got ", choppiness));
     if (!(repeatSeconds >= 1.0f) || !std::isfinite(repeatSeconds))
         throw Error(str("OceanConfig.repeatSeconds must be >= 1, got ", repeatSeconds));
+    foam.validate();
 }
 
-float OceanField::quantisedOmega(double k, double repeatSeconds) {
+std::vector<float> OceanConfig::cascadeLengths() const {
+    float largest = patchMeters;
+    if (largest == 0.0f) {
+        const double wp = sea.wind.peakFrequency();
+        const double peakWavelength = 2.0 * kPi * kGravity / (wp * wp); // deep water
+        largest = float(std::max(200.0, 8.0 * peakWavelength));
+    }
+    std::vector<float> lengths;
+    for (int i = 0; i < cascades; ++i) lengths.push_back(largest / std::pow(cascadeRatio, float(i)));
+    return lengths;
+}
+
+float OceanField::quantisedOmega(double k, double depth, double repeatSeconds) {
     const double w0 = 2.0 * kPi / repeatSeconds;
-    return float(std::floor(std::sqrt(kGravity * k) / w0) * w0);
+    return float(std::floor(dispersion(k, depth) / w0) * w0);
 }
 
-std::vector<std::complex<float>> OceanField::spectrumAmplitudes(const OceanConfig& config) {
+void OceanField::waveVector(int x, int y, int n, double patchMeters, double& kx, double& ky) {
+    const double dk = 2.0 * kPi / patchMeters;
+    kx = dk * (x < n / 2 ? x : x - n);
+    ky = dk * (y < n / 2 ? y : y - n);
+}
+
+namespace {
+/// The bands: cascade i keeps k in [k_i, k_i+1), where k_i+1 = pi N / (4 L_i) keeps 8 of its
+/// texels per wave; the first starts at 0.
+void bandOf(const OceanConfig& c, const std::vector<float>& lengths, int i, float& kMin, float& kMax) {
+    kMin = i == 0 ? 0.0f : float(kPi * c.size / (4.0 * lengths[size_t(i - 1)]));
+    kMax = float(kPi * c.size / (4.0 * lengths[size_t(i)]));
+}
+} // namespace
+
+std::vector<std::complex<float>> OceanField::spectrumAmplitudes(const OceanConfig& config, int cascade) {
     config.validate();
+    const std::vector<float> lengths = config.cascadeLengths();
+    if (cascade < 0 || cascade >= config.cascades)
+        throw Error(str("OceanField::spectrumAmplitudes: cascade ", cascade, " of ", config.cascades));
+    float kMin, kMax;
+    bandOf(config, lengths, cascade, kMin, kMax);
     const int N = config.size;
+    const double L = lengths[size_t(cascade)], dk = 2.0 * kPi / L;
     std::vector<std::complex<float>> h0(size_t(N) * N);
-    SplitMix64 random(config.seed);
-    const double dk = 2.0 * kPi / config.patchMeters;
+    // One random phase per wave vector, from a stream per cascade: the same seed draws the same
+    // sea on every machine. The magnitude is the spectrum's own (no random amplitude), so the
+    // sea's variance is the spectrum's, exactly: |h0|^2 = Psi dk^2 / 2 and the pair k, -k give
+    // E|h(k, t)|^2 = Psi dk^2.
+    SplitMix64 random(config.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(cascade) + 1);
     for (int y = 0; y < N; ++y)
         for (int x = 0; x < N; ++x) {
-            const int kxIndex = x < N / 2 ? x : x - N, kyIndex = y < N / 2 ? y : y - N;
-            const double kx = dk * kxIndex, ky = dk * kyIndex;
-            // Box-Muller: two unit Gaussians, one complex amplitude of variance Psi dk^2 / 2 per part.
-            const double r = std::sqrt(-2.0 * std::log(1.0 - random.next())), a = 2.0 * kPi * random.next();
-            const double amplitude = std::sqrt(spectralDensity(config, kx, ky) * dk * dk / 2.0);
-            h0[size_t(y) * N + x] = {float(amplitude * r * std::cos(a)), float(amplitude * r * std::sin(a))};
+            double kx, ky;
+            waveVector(x, y, N, L, kx, ky);
+            const double phase = 2.0 * kPi * random.next();
+            const double k = std::hypot(kx, ky);
+            if (!(k >= kMin && k < kMax)) continue;
+            const double magnitude = std::sqrt(config.sea.density(kx, ky) * dk * dk / 2.0);
+            h0[size_t(y) * N + x] = {float(magnitude * std::cos(phase)), float(magnitude * std::sin(phase))};
         }
     return h0;
 }
 
+float OceanField::sigmaMeters() const {
+    double variance = 0.0;
+    for (const OceanCascade& c : cascades_) variance += double(c.sigma) * c.sigma;
+    return float(std::sqrt(variance));
+}
+
 void OceanField::setWind(float speed, float direction) {
     OceanConfig next = config_;
-    next.windSpeed = speed;
-    next.windDirection = direction;
-    auto h0 = spectrumAmplitudes(next); // validates; throws before anything changes
+    next.sea.wind.windSpeed = speed;
+    next.sea.wind.direction = direction;
+    next.patchMeters = config_.cascadeLengths().front(); // the cascades keep their lengths
+    std::vector<std::vector<std::complex<float>>> h0;
+    for (int i = 0; i < next.cascades; ++i) h0.push_back(spectrumAmplitudes(next, i)); // validates first
     config_ = next;
-    h0_ = std::move(h0);
-    uploadAmplitudes();
-    compute();
+    for (size_t i = 0; i < cascades_.size(); ++i) {
+        cascades_[i].h0 = std::move(h0[i]);
+        uploadAmplitudes(cascades_[i]);
+    }
+    compute(0.0);
+}
+
+void OceanField::setAmplitudes(int cascade, const std::vector<std::complex<float>>& h0) {
+    if (cascade < 0 || cascade >= cascadeCount())
+        throw Error(str("OceanField::setAmplitudes: cascade ", cascade, " of ", cascadeCount()));
+    OceanCascade& c = cascades_[size_t(cascade)];
+    if (h0.size() != c.h0.size())
+        throw Error(str("OceanField::setAmplitudes: ", h0.size(), " amplitudes for ", c.h0.size(), " wave vectors"));
+    for (const auto& a : h0)
+        if (!std::isfinite(a.real()) || !std::isfinite(a.imag()))
+            throw Error("OceanField::setAmplitudes: amplitudes must be finite");
+    c.h0 = h0;
+    uploadAmplitudes(c);
+    compute(0.0);
+}
+
+void OceanField::makeCascade(OceanCascade& c, float patchMeters, float kMin, float kMax) {
+    const int N = config_.size;
+    const size_t n = size_t(N) * N;
+    c.patchMeters = patchMeters;
+    c.kMin = kMin;
+    c.kMax = kMax;
+    c.omega.resize(n);
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) {
+            double kx, ky;
+            waveVector(x, y, N, patchMeters, kx, ky);
+            c.omega[size_t(y) * N + x] =
+                quantisedOmega(std::hypot(kx, ky), config_.sea.depthMeters, config_.repeatSeconds);
+        }
+    clGuard("creating an ocean cascade", [&] {
+        const cl::Context& ctx = cl_.context();
+        c.h0Device = cl::Buffer(ctx, CL_MEM_READ_ONLY, n * sizeof(cl_float2));
+        c.omegaDevice = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(float), c.omega.data());
+        c.lagrangian = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * n * sizeof(float));
+        c.jacobian = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
+        c.gradient = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * n * sizeof(float));
+        for (cl::Buffer& f : c.foam) {
+            f = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
+            cl_.queue().enqueueFillBuffer(f, 0.0f, 0, n * sizeof(float));
+        }
+        c.height = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
+        c.meters = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
+        c.foamColor = cl::Buffer(ctx, CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, n * sizeof(cl_uchar4));
+    });
 }
 
 OceanField::OceanField(ClContext& cl, const OceanConfig& config)
     : cl_(cl), config_((config.validate(), config)), plan_(std::make_unique<Plan>()) {
     const int N = config.size;
-    const size_t n = size_t(N) * N;
-    h0_ = spectrumAmplitudes(config);
-    omega_.resize(n);
-    const double dk = 2.0 * kPi / config.patchMeters;
-    for (int y = 0; y < N; ++y)
-        for (int x = 0; x < N; ++x) {
-            const int kxIndex = x < N / 2 ? x : x - N, kyIndex = y < N / 2 ? y : y - N;
-            omega_[size_t(y) * N + x] = quantisedOmega(std::hypot(dk * kxIndex, dk * kyIndex), config.repeatSeconds);
-        }
+    const std::vector<float> lengths = config.cascadeLengths();
+    config_.patchMeters = lengths.front();
+    cascades_.resize(size_t(config.cascades));
+    for (int i = 0; i < config.cascades; ++i) {
+        float kMin, kMax;
+        bandOf(config_, lengths, i, kMin, kMax);
+        makeCascade(cascades_[size_t(i)], lengths[size_t(i)], kMin, kMax);
+        cascades_[size_t(i)].h0 = spectrumAmplitudes(config_, i);
+    }
+    const int fields = config.choppiness > 0.0f ? 3 : 1;
     clGuard("creating the ocean", [&] {
-        h0Buffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, n * sizeof(cl_float2));
-        omegaBuffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, n * sizeof(float));
-        spectrum_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, size_t(N / 2 + 1) * N * sizeof(cl_float2));
-        field_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, n * sizeof(float));
-        height_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, n * sizeof(float));
+        spectrum_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, size_t(fields) * size_t(N / 2 + 1) * N * sizeof(cl_float2));
         spectrumKernel_ = cl.kernel("ocean.cl", "ocean_spectrum");
-        heightKernel_ = cl.kernel("ocean.cl", "ocean_height");
-        cl.queue().enqueueWriteBuffer(omegaBuffer_, CL_TRUE, 0, n * sizeof(float), omega_.data());
+        lagrangianKernel_ = cl.kernel("ocean.cl", "ocean_lagrangian");
+        eulerianKernel_ = cl.kernel("ocean.cl", "ocean_eulerian");
     });
     acquireLibrary(cl.programCache());
     try {
-        // An out-of-place 2D inverse transform from the Hermitian half spectrum (kx index
-        // 0..N/2, rows of N/2 + 1) to real heights, without the 1/N^2 scale: the height is the
-        // plain sum of the modes. Baked now, so no frame pays for compiling it.
-        const size_t lengths[2] = {size_t(N), size_t(N)};
+        // Out-of-place 2D inverse transforms from the Hermitian half spectra (kx index 0..N/2,
+        // rows of N/2 + 1) to real fields, without the 1/N^2 scale (a field is the plain sum of
+        // its modes): h, Dx and Dy in one batch. Baked now, so no frame pays for compiling it.
+        const size_t lengths2[2] = {size_t(N), size_t(N)};
         size_t inStrides[2] = {1, size_t(N / 2 + 1)}, outStrides[2] = {1, size_t(N)};
-        checkFft(clfftCreateDefaultPlan(&plan_->handle, cl.context()(), CLFFT_2D, lengths), "creating the plan");
+        checkFft(clfftCreateDefaultPlan(&plan_->handle, cl.context()(), CLFFT_2D, lengths2), "creating the plan");
         checkFft(clfftSetPlanPrecision(plan_->handle, CLFFT_SINGLE), "setting the precision");
         checkFft(clfftSetLayout(plan_->handle, CLFFT_HERMITIAN_INTERLEAVED, CLFFT_REAL), "setting the layout");
         checkFft(clfftSetResultLocation(plan_->handle, CLFFT_OUTOFPLACE), "setting out-of-place");
         checkFft(clfftSetPlanInStride(plan_->handle, CLFFT_2D, inStrides), "setting the input strides");
         checkFft(clfftSetPlanOutStride(plan_->handle, CLFFT_2D, outStrides), "setting the output strides");
         checkFft(clfftSetPlanDistance(plan_->handle, size_t(N / 2 + 1) * N, size_t(N) * N), "setting the distances");
+        checkFft(clfftSetPlanBatchSize(plan_->handle, size_t(fields)), "setting the batch");
         checkFft(clfftSetPlanScale(plan_->handle, CLFFT_BACKWARD, 1.0f), "setting the scale");
         cl_command_queue queue = cl.queue()();
         withoutClfftWarnings(
             [&] { checkFft(clfftBakePlan(plan_->handle, 1, &queue, nullptr, nullptr), "baking the plan"); });
-        uploadAmplitudes();
-        compute();
+        for (OceanCascade& c : cascades_) uploadAmplitudes(c);
+        compute(0.0);
     } catch (...) {
         plan_.reset();
         releaseLibrary();
@@ -221,24 +296,14 @@ OceanField::~OceanField() {
     releaseLibrary();
 }
 
-void OceanField::setAmplitudes(const std::vector<std::complex<float>>& h0) {
-    if (h0.size() != h0_.size())
-        throw Error(str("OceanField::setAmplitudes: ", h0.size(), " amplitudes for ", h0_.size(), " wave vectors"));
-    for (const auto& a : h0)
-        if (!std::isfinite(a.real()) || !std::isfinite(a.imag()))
-            throw Error("OceanField::setAmplitudes: amplitudes must be finite");
-    h0_ = h0;
-    uploadAmplitudes();
-    compute();
-}
-
-void OceanField::uploadAmplitudes() {
+void OceanField::uploadAmplitudes(OceanCascade& c) {
+    // The expected variance: E|h(k, t)|^2 = |h0(k)|^2 + |h0(-k)|^2 summed over k.
     double variance = 0.0;
-    for (const auto& a : h0_) variance += 2.0 * std::norm(a);
-    sigma_ = float(std::sqrt(variance));
-    scale_ = sigma_ > 0.0f ? 1.0f / (8.0f * sigma_) : 1.0f;
+    for (const auto& a : c.h0) variance += 2.0 * std::norm(a);
+    c.sigma = float(std::sqrt(variance));
+    c.scale = c.sigma > 0.0f ? 1.0f / (8.0f * c.sigma) : 1.0f;
     clGuard("uploading the ocean spectrum", [&] {
-        cl_.queue().enqueueWriteBuffer(h0Buffer_, CL_TRUE, 0, h0_.size() * sizeof(cl_float2), h0_.data());
+        cl_.queue().enqueueWriteBuffer(c.h0Device, CL_TRUE, 0, c.h0.size() * sizeof(cl_float2), c.h0.data());
     });
 }
 
@@ -246,39 +311,83 @@ void OceanField::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error(str("OceanField::step: dt must be positive and finite, got ", dt));
     time_ += dt;
-    compute();
+    compute(dt);
 }
 
 void OceanField::setTime(double seconds) {
     if (!std::isfinite(seconds)) throw Error(str("OceanField::setTime: time must be finite, got ", seconds));
     time_ = seconds;
-    compute();
+    clGuard("clearing the foam", [&] {
+        for (OceanCascade& c : cascades_)
+            for (cl::Buffer& f : c.foam) cl_.queue().enqueueFillBuffer(f, 0.0f, 0, f.getInfo<CL_MEM_SIZE>());
+    });
+    compute(0.0);
 }
 
-void OceanField::compute() {
+void OceanField::compute(double dt) {
     const int N = config_.size;
     // Every frequency is a multiple of 2 pi / T, so t may be taken modulo T, in double.
     const float t = float(std::fmod(time_, double(config_.repeatSeconds)) +
                           (time_ < 0 ? double(config_.repeatSeconds) : 0.0));
+    const int displacement = config_.choppiness > 0.0f ? 1 : 0;
+    const FoamConfig& foam = config_.foam;
+    const float decay = float(std::exp2(-dt / foam.halfLife));
+    const float injection = float(foam.injection * dt);
+    // dt = 0 (set-up, a jump, a new spectrum) steps no foam: it stays in the buffer it is in.
+    const int back = foamFront_, front = dt > 0.0 ? 1 - foamFront_ : foamFront_;
     clGuard("OceanField::step", [&] {
-        cl::CommandQueue& q = cl_.queue();
-        spectrumKernel_.setArg(0, h0Buffer_);
-        spectrumKernel_.setArg(1, omegaBuffer_);
-        spectrumKernel_.setArg(2, spectrum_);
-        spectrumKernel_.setArg(3, N);
-        spectrumKernel_.setArg(4, t);
-        cl_.enqueue(spectrumKernel_, cl::NDRange(N / 2 + 1, N));
-        cl_command_queue queue = q();
-        cl_mem in = spectrum_(), out = field_();
-        checkFft(clfftEnqueueTransform(plan_->handle, CLFFT_BACKWARD, 1, &queue, 0, nullptr, nullptr, &in, &out,
-                                       nullptr),
-                 "the inverse transform");
-        heightKernel_.setArg(0, field_);
-        heightKernel_.setArg(1, height_);
-        heightKernel_.setArg(2, N);
-        heightKernel_.setArg(3, scale_);
-        cl_.enqueue(heightKernel_, cl::NDRange(N, N));
+        cl_command_queue queue = cl_.queue()();
+        for (OceanCascade& c : cascades_) {
+            const float texel = c.patchMeters / float(N);
+            const float lambdaPerTexel = config_.choppiness / texel;
+            spectrumKernel_.setArg(0, c.h0Device);
+            spectrumKernel_.setArg(1, c.omegaDevice);
+            spectrumKernel_.setArg(2, spectrum_);
+            spectrumKernel_.setArg(3, N);
+            spectrumKernel_.setArg(4, t);
+            spectrumKernel_.setArg(5, float(2.0 * kPi / c.patchMeters));
+            spectrumKernel_.setArg(6, displacement);
+            cl_.enqueue(spectrumKernel_, cl::NDRange(N / 2 + 1, N));
+            cl_mem in = spectrum_(), out = c.lagrangian();
+            checkFft(clfftEnqueueTransform(plan_->handle, CLFFT_BACKWARD, 1, &queue, 0, nullptr, nullptr, &in, &out,
+                                           nullptr),
+                     "the inverse transform");
+            if (!displacement) {
+                // No choppiness: D = 0, so the Lagrangian and Eulerian grids agree and J = 1.
+                cl_.queue().enqueueFillBuffer(c.lagrangian, 0.0f, size_t(N) * N * sizeof(float),
+                                              2 * size_t(N) * N * sizeof(float));
+            }
+            // Downwind drift, in texels per step.
+            const float drift = foam.drift * config_.sea.wind.windSpeed * float(dt) / texel;
+            int a = 0;
+            lagrangianKernel_.setArg(a++, c.lagrangian);
+            lagrangianKernel_.setArg(a++, c.foam[back]);
+            lagrangianKernel_.setArg(a++, c.foam[front]);
+            lagrangianKernel_.setArg(a++, c.jacobian);
+            lagrangianKernel_.setArg(a++, c.gradient);
+            lagrangianKernel_.setArg(a++, N);
+            lagrangianKernel_.setArg(a++, lambdaPerTexel);
+            lagrangianKernel_.setArg(a++, decay);
+            lagrangianKernel_.setArg(a++, injection);
+            lagrangianKernel_.setArg(a++, foam.threshold);
+            lagrangianKernel_.setArg(a++, drift * std::cos(config_.sea.wind.direction));
+            lagrangianKernel_.setArg(a++, drift * std::sin(config_.sea.wind.direction));
+            cl_.enqueue(lagrangianKernel_, cl::NDRange(N, N));
+            a = 0;
+            eulerianKernel_.setArg(a++, c.lagrangian);
+            eulerianKernel_.setArg(a++, c.gradient);
+            eulerianKernel_.setArg(a++, c.foam[front]);
+            eulerianKernel_.setArg(a++, c.height);
+            eulerianKernel_.setArg(a++, c.meters);
+            eulerianKernel_.setArg(a++, c.foamColor);
+            eulerianKernel_.setArg(a++, N);
+            eulerianKernel_.setArg(a++, lambdaPerTexel);
+            eulerianKernel_.setArg(a++, c.scale);
+            eulerianKernel_.setArg(a++, displacement ? kEulerianIterations : 0);
+            cl_.enqueue(eulerianKernel_, cl::NDRange(N, N));
+        }
     });
+    foamFront_ = front;
 }
 
 } // namespace hfx

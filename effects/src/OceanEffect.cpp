@@ -12,24 +12,60 @@ void OceanEffectConfig::validate() const {
     material.validate();
     if (!(reliefExaggeration > 0.0f && reliefExaggeration <= 20.0f))
         throw Error(str("OceanEffectConfig.reliefExaggeration must be in (0, 20], got ", reliefExaggeration));
+    if (surface.pyramid && ocean.cascades > 1)
+        throw Error(str("OceanEffectConfig: a height pyramid (the hier technique) traces one grid; the ocean has ",
+                        ocean.cascades, " cascades (set ocean.cascades = 1 for hier)"));
 }
 
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
-    : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration),
-      // Normals for the sea state the ocean starts in; later winds are rescaled by the renderer.
-      surface_(cl, SurfacePipelineConfig::of(ocean_, physicalDepthScale(), config.surface)) {
+    : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration) {
+    // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
+    // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
+    for (int i = 0; i < ocean_.cascadeCount(); ++i) {
+        const OceanCascade& c = ocean_.cascade(i);
+        const float depth = std::max(8.0f * c.sigma / c.patchMeters, 1e-6f);
+        surfaces_.push_back(std::make_unique<SurfacePipeline>(
+            cl, SurfacePipelineConfig{.width = ocean_.config().size,
+                                      .height = ocean_.config().size,
+                                      .edges = EdgeMode::Wrap,
+                                      .normalDepth = depth,
+                                      .options = config.surface}));
+    }
     material_.depthScale = physicalDepthScale();
     refresh();
 }
 
+std::vector<const SurfacePipeline*> OceanEffect::surfaces() const {
+    std::vector<const SurfacePipeline*> all;
+    for (const auto& s : surfaces_) all.push_back(s.get());
+    return all;
+}
+
 float OceanEffect::physicalDepthScale() const {
-    const float depth = 8.0f * ocean_.sigmaMeters() / ocean_.config().patchMeters * exaggeration_;
-    return std::clamp(depth, 1e-4f, 1.0f);
+    float sum = 0.0f;
+    for (int i = 0; i < ocean_.cascadeCount(); ++i) sum += ocean_.cascade(i).sigma;
+    return std::clamp(8.0f * sum / ocean_.config().patchMeters * exaggeration_, 1e-5f, 1.0f);
+}
+
+std::vector<SurfaceLayer> OceanEffect::layers() const {
+    float sum = 0.0f;
+    for (int i = 0; i < ocean_.cascadeCount(); ++i) sum += ocean_.cascade(i).sigma;
+    std::vector<SurfaceLayer> layers;
+    for (int i = 0; i < ocean_.cascadeCount(); ++i) {
+        const OceanCascade& c = ocean_.cascade(i);
+        layers.push_back({.textures = &surfaces_[size_t(i)]->textures(),
+                          .texcoordScale = ocean_.config().patchMeters / c.patchMeters,
+                          .weight = sum > 0.0f ? c.sigma / sum : 1.0f / float(ocean_.cascadeCount())});
+    }
+    return layers;
 }
 
 void OceanEffect::enqueueSurface() {
-    surface_.derive(ocean_.buffer());
-    surface_.submit();
+    for (int i = 0; i < ocean_.cascadeCount(); ++i) {
+        SurfacePipeline& s = *surfaces_[size_t(i)];
+        s.derive(ocean_.cascade(i).height);
+        s.submit(&ocean_.cascade(i).foamColor);
+    }
 }
 
 void OceanEffect::setWind(float speed, float direction) {

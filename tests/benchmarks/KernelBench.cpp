@@ -211,7 +211,7 @@ void BM_Gas(benchmark::State& state) {
 
 void BM_Ocean(benchmark::State& state) {
     const int n = int(state.range(0));
-    OceanField ocean(cl(), {.size = n});
+    OceanField ocean(cl(), {.size = n, .cascades = 1});
     // No single-threaded FFT on the machine to compare with: time and bandwidth only (spectrum
     // in, FFT passes, height out: about 5 complex reads and writes per texel).
     measure(state, [&] { ocean.step(1.0 / 60); }, 5 * 16.0 * n * n, {});

@@ -1,14 +1,37 @@
 #pragma once
-// Tessendorf's statistical FFT ocean ("Simulating Ocean Water", 2001): a Phillips or JONSWAP
-// spectrum of wind waves on a tileable patch, animated with the deep-water dispersion relation
-// w^2 = g k (quantised to a repeat period, so the animation loops seamlessly and float phases
-// stay exact), transformed to heights each frame by an inverse 2D FFT on the device (clFFT).
+// Tessendorf's statistical FFT ocean ("Simulating Ocean Water", 2001) in cascades, with choppy
+// waves and persistent foam, on the OpenCL device (clFFT).
 //
-// Heights are stored as h = 0.5 + height / (8 sigma), sigma the spectrum's RMS height, clamped
-// to [0,1] (a 4-sigma crest reaches 1); heightScale() gives that factor, sigmaMeters() sigma.
+// The sea state (OceanSpectrum.h: physical spectra, spreading, swell, depth) is sampled on 1 to 4
+// cascades: square periodic patches whose edges shrink by `cascadeRatio` (5.27 by default, so no
+// two lengths share a common factor and their sum never repeats) and whose wave-number bands do
+// not overlap: cascade i keeps k in [k_i, k_i+1), every wave at least 8 of its texels long and
+// at least 6 of its lattice steps from the origin. The bands' variances add up to the sea's
+// (Parseval; tested).
+//
+// Each step, per cascade: the spectrum at time t for h, and for the horizontal displacement
+// D(k) = i k/|k| h(k); one batched inverse transform; on the Lagrangian grid (the undisplaced
+// points x0) the Jacobian J of x0 -> x0 + lambda D(x0) by fourth-order differences, and the foam,
+// injected where J < threshold, halving every halfLife seconds, drifting downwind; then the
+// Eulerian field the renderer traces: for each texel x, the point x0 displaced onto it by a few
+// Newton steps on x0 + lambda D(x0) = x, then the height h(x0) and the foam there. A single mode is the
+// trochoidal (Gerstner) wave: x = x0 - lambda k^ A sin(theta), h = A cos(theta),
+// J = 1 - lambda k A cos(theta) (tested to 1e-4).
+//
+// Where J > 0 the map is invertible and the Eulerian height is the surface's; where it folds
+// (J <= 0, an overhang no height field holds) the steps fall back to the fixed point
+// x0 <- x - lambda D(x0), which settles on one of the layers over x,
+// and the crest is drawn as the height field through it, sharp and possibly clipped: the foam
+// marks exactly those places.
+//
+// Time is a pure input: the heights and displacements at t depend on the seed, the sea state
+// and t alone (setTime jumps there; tested bit for bit). Foam is history: it is stepped with the
+// field, and setTime restarts it clear.
+//
 // Thread: the thread that owns the ClContext.
 
-#include "hfx/compute/HeightSource.h"
+#include "hfx/compute/ClContext.h"
+#include "hfx/compute/OceanSpectrum.h"
 
 #include <complex>
 #include <cstdint>
@@ -17,71 +40,98 @@
 
 namespace hfx {
 
-enum class OceanSpectrum { Phillips, Jonswap };
-
-struct OceanConfig {
-    int size = 256;                 ///< texels per edge, a power of two in [8, 4096]
-    float patchMeters = 100.0f;     ///< physical edge length of the tileable patch
-    OceanSpectrum spectrum = OceanSpectrum::Phillips;
-    float windSpeed = 12.0f;        ///< m/s at 10 m
-    float windDirection = 0.6f;     ///< radians from +u
-    float fetchKm = 200.0f;         ///< JONSWAP: distance the wind has blown over water
-    float directionality = 2.0f;    ///< Phillips: |k.w|^directionality
-    float smallWaveMeters = 0.05f;  ///< waves shorter than this are suppressed
-    float repeatSeconds = 200.0f;   ///< loop period of the animation
-    std::uint64_t seed = 1;
-    void validate() const;
+struct FoamConfig {
+    float threshold = 0.35f; ///< foam is injected where J falls below this (1 is flat water)
+    float injection = 6.0f;  ///< foam added per second per unit of threshold - J (capped at 1)
+    float halfLife = 2.0f;   ///< seconds for foam to halve
+    float drift = 0.03f;     ///< downwind drift, as a fraction of the wind speed
+    void validate() const;   ///< throws hfx::Error naming the bad field and its value
 };
 
-class OceanField final : public HeightSource {
+struct OceanConfig {
+    int size = 256;             ///< texels per cascade edge, a power of two in [16, 1024]
+    int cascades = 3;           ///< 1 to 4
+    /// The largest cascade's edge in metres; 0: 8 peak wavelengths of the wind sea (at least
+    /// 200 m), so the peak is resolved and the patch repeats far apart.
+    float patchMeters = 0.0f;
+    float cascadeRatio = 5.27f; ///< each cascade's edge over the next's, in (2, 8]
+    SeaState sea;
+    float choppiness = 1.0f;    ///< lambda: 0 is plain heights; near 1 the crests sharpen, above they fold
+    float repeatSeconds = 200.0f; ///< frequencies are multiples of 2 pi / this: the sea loops
+    std::uint64_t seed = 1;
+    FoamConfig foam;
+    void validate() const;      ///< throws hfx::Error naming the bad field and its value
+    /// The cascades' edges in metres, largest first (patchMeters resolved).
+    std::vector<float> cascadeLengths() const;
+};
+
+/// One cascade: a periodic size x size patch of the sea, its wave-number band and its fields.
+struct OceanCascade {
+    float patchMeters = 0.0f;
+    float kMin = 0.0f, kMax = 0.0f;   ///< its band (rad/m): k in [kMin, kMax)
+    float sigma = 0.0f;               ///< its height's RMS (m), the spectrum's expected value
+    float scale = 0.0f;               ///< stored height h = 0.5 + metres * scale (1 / 8 sigma)
+    std::vector<std::complex<float>> h0; ///< h0(k), FFT index order, zero outside the band
+    std::vector<float> omega;         ///< w(k), quantised to multiples of 2 pi / repeatSeconds
+    cl::Buffer height;                ///< Eulerian h in [0,1] (size^2 floats): what Sobel and the GL surface take
+    cl::Buffer meters;                ///< the same heights in metres, unclamped
+    cl::Buffer foamColor;             ///< Eulerian foam as RGBA8: white, coverage in alpha
+    cl::Buffer lagrangian;            ///< h, Dx, Dy on the Lagrangian grid (metres), 3 size^2 blocks
+    cl::Buffer jacobian;              ///< J on the Lagrangian grid
+    cl::Buffer gradient;              ///< lambda dDx/dx, dDy/dy, dDx/dy on the Lagrangian grid, 3 size^2 blocks
+    cl::Buffer foam[2];               ///< foam coverage on the Lagrangian grid, this step's and the last
+    cl::Buffer h0Device, omegaDevice; ///< h0 and omega on the device
+};
+
+class OceanField {
 public:
     OceanField(ClContext& cl, const OceanConfig& config);
-    ~OceanField() override;
+    ~OceanField();
     OceanField(const OceanField&) = delete;
     OceanField& operator=(const OceanField&) = delete;
 
-    void step(double dt) override;
+    /// Advances by dt seconds (> 0, finite): the fields at the new time, the foam stepped by dt.
+    void step(double dt);
+    /// The fields at `seconds` (finite), without stepping; the foam restarts clear.
     void setTime(double seconds);
-    /// Changes the wind (m/s, radians from +u) and regenerates the spectrum from the same random
-    /// draws, so the sea changes character without jumping; throws and changes nothing on bad
-    /// values. Heights are renormalised to the new sigma (see heightScale()).
-    void setWind(float speed, float direction);
-    /// h0(k) of a configuration, in FFT index order (what the constructor draws).
-    static std::vector<std::complex<float>> spectrumAmplitudes(const OceanConfig& config);
     double time() const { return time_; }
 
-    const cl::Buffer& buffer() const override { return height_; }
-    /// The inverse transform's sum of the modes, N x N floats (height in the spectrum's units,
-    /// before heightScale() maps it into [0,1]).
-    const cl::Buffer& rawHeight() const { return field_; }
-    int width() const override { return config_.size; }
-    int height() const override { return config_.size; }
-    EdgeMode edges() const override { return EdgeMode::Wrap; }
-    const OceanConfig& config() const { return config_; }
+    /// Changes the wind sea (m/s, radians from +u) and regenerates the spectrum from the same
+    /// random phases, so the sea changes character without jumping; throws and changes nothing
+    /// on bad values.
+    void setWind(float speed, float direction);
+    /// Replaces one cascade's h0 (custom spectra, tests); its sigma and scale follow.
+    void setAmplitudes(int cascade, const std::vector<std::complex<float>>& h0);
 
-    /// h0(k) at FFT index order, and the quantised angular frequencies.
-    const std::vector<std::complex<float>>& amplitudes() const { return h0_; }
-    const std::vector<float>& frequencies() const { return omega_; }
-    /// Replaces h0 (custom spectra, tests); rescales the stored heights to the new sigma.
-    void setAmplitudes(const std::vector<std::complex<float>>& h0);
-    float sigmaMeters() const { return sigma_; }
-    float heightScale() const { return scale_; }
-    /// w(k) = sqrt(g |k|) rounded to a multiple of 2 pi / repeatSeconds.
-    static float quantisedOmega(double k, double repeatSeconds);
+    int cascadeCount() const { return int(cascades_.size()); }
+    const OceanCascade& cascade(int i) const { return cascades_.at(size_t(i)); }
+    /// A cascade's foam coverage on the Lagrangian grid after the last step (size^2 floats).
+    const cl::Buffer& foam(int cascade) const { return cascades_.at(size_t(cascade)).foam[foamFront_]; }
+    const OceanConfig& config() const { return config_; }
+    /// The RMS height of the whole sea (m): the cascades' sigmas in quadrature.
+    float sigmaMeters() const;
+
+    /// h0(k) of a configuration's cascade, in FFT index order (what the constructor draws).
+    static std::vector<std::complex<float>> spectrumAmplitudes(const OceanConfig& config, int cascade);
+    /// w(k) rounded down to a multiple of 2 pi / repeatSeconds, on water of the given depth.
+    static float quantisedOmega(double k, double depth, double repeatSeconds);
+    /// The wave vector (rad/m) of FFT index (x, y) on a cascade of edge L: n = x for x < N/2,
+    /// else x - N (likewise y).
+    static void waveVector(int x, int y, int n, double patchMeters, double& kx, double& ky);
 
 private:
-    void compute();
-    void uploadAmplitudes();
-
     struct Plan;
+    void makeCascade(OceanCascade& c, float patchMeters, float kMin, float kMax);
+    void uploadAmplitudes(OceanCascade& c);
+    void compute(double dt);
+
     ClContext& cl_;
     OceanConfig config_;
-    std::vector<std::complex<float>> h0_;
-    std::vector<float> omega_;
-    float sigma_ = 0.0f, scale_ = 0.0f;
-    cl::Buffer h0Buffer_, omegaBuffer_, spectrum_, field_, height_;
-    cl::Kernel spectrumKernel_, heightKernel_;
+    std::vector<OceanCascade> cascades_;
+    cl::Buffer spectrum_; ///< the half spectra of h, Dx, Dy, reused by every cascade
+    cl::Kernel spectrumKernel_, lagrangianKernel_, eulerianKernel_;
     std::unique_ptr<Plan> plan_;
+    int foamFront_ = 0;
     double time_ = 0.0;
 };
 

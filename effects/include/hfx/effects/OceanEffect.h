@@ -1,25 +1,31 @@
 #pragma once
-// The procedural-water user: the FFT ocean (Tessendorf), shaded as water (Fresnel-weighted sky
-// reflection, sun glint, body colour by depth). The relief depth follows the sea state: a patch
-// of patchMeters carries 8 sigma metres between h = 0 and h = 1, so the material's depth scale
-// is 8 sigma / patchMeters texture units (times `reliefExaggeration`), and a stronger wind
-// deepens the waves on screen, not only their shape.
+// The procedural-water user: the FFT ocean (OceanField: physical spectra, cascades, choppy
+// waves, foam) shaded as water, drawn as one layer per cascade (SurfaceRenderer's layered
+// surfaces). Texcoords: one unit is the largest cascade's patch (OceanField::config().patchMeters
+// metres); the others repeat at their own lengths. The material's depth scale follows the sea
+// state: the cascades carry 8 sigma_i metres each between h = 0 and 1, so the relief is
+// 8 sum(sigma_i) / patch texture units (times `reliefExaggeration`), and each cascade's normals
+// are made for its own physical depth, so their slopes add as the sea's do.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
 #include "hfx/compute/OceanField.h"
 #include "hfx/effects/Effect.h"
 
+#include <memory>
+#include <vector>
+
 namespace hfx {
 
 struct OceanEffectConfig {
-    OceanConfig ocean{.size = 512, .spectrum = OceanSpectrum::Jonswap};
+    OceanConfig ocean;
     /// The look; its depthScale is replaced by the sea state's (physicalDepthScale()).
     SurfaceMaterial material{.minSamples = 8, .maxSamples = 40, .shadowSharpness = 1.0f,
                              .specularStrength = 0.0f, .shading = Shading::Water};
     float reliefExaggeration = 1.0f; ///< multiplies the physical depth scale
-    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
-    void validate() const;  ///< throws hfx::Error naming the bad field and its value
+    /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
+    SurfaceOptions surface;
+    void validate() const; ///< throws hfx::Error naming the bad field and its value
 };
 
 class OceanEffect final : public Effect {
@@ -33,17 +39,20 @@ public:
     void setTime(double seconds);
     double time() const { return ocean_.time(); }
     const OceanField& ocean() const { return ocean_; }
-    /// 8 sigma / patchMeters * exaggeration: the depth scale of the sea as it is now.
+    /// 8 sum(sigma_i) / patch * exaggeration: the depth scale of the sea as it is now.
     float physicalDepthScale() const;
+    /// The cascades, largest first: texcoord scales patch / L_i, weights sigma_i / sum(sigma).
+    std::vector<SurfaceLayer> layers() const override;
 
 private:
-    const SurfacePipeline& surface() const override { return surface_; }
+    const SurfacePipeline& surface() const override { return *surfaces_.front(); }
+    std::vector<const SurfacePipeline*> surfaces() const override;
     void advance(double dt) override { ocean_.step(dt); }
     void enqueueSurface() override;
 
     OceanField ocean_;
     float exaggeration_;
-    SurfacePipeline surface_;
+    std::vector<std::unique_ptr<SurfacePipeline>> surfaces_; ///< one per cascade
 };
 
 } // namespace hfx

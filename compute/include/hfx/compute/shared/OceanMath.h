@@ -4,7 +4,7 @@
 
 /* Tessendorf's statistical ocean. The spectrum is stored at FFT index (x, y) for the wave
    vector k = 2 pi (n, m) / L with n = x for x < N/2 and x - N otherwise (likewise m), so the
-   inverse DFT of the array is the height at the grid points, with no sign flips.
+   inverse DFT of the array is the field at the grid points, with no sign flips.
 
    h(k, t) = h0(k) e^{-i w t} + conj(h0(-k)) e^{i w t}: Hermitian in k, so the height is real,
    and the mode h0(k) e^{i (k.x - w t)} travels along +k (downwind for a wind spectrum).
@@ -15,5 +15,80 @@ HFX_FN void hfx_ocean_mode(float h0re, float h0im, float h0mre, float h0mim, flo
     /* h0 (c + i s) + conj(h0m) (c - i s), with phase = -w t */
     *re = (h0re * c - h0im * s) + (h0mre * c - h0mim * s);
     *im = (h0re * s + h0im * c) - (h0mre * s + h0mim * c);
+}
+
+/* Bilinear sample of a periodic N x N field (N a power of two) at (x, y) in texel units, the
+   grid points at whole numbers. */
+HFX_FN_INLINE float hfx_ocean_sample(HFX_GLOBAL const float* f, int N, float x, float y) {
+    float fx = HFX_FLOOR(x), fy = HFX_FLOOR(y);
+    int i = (int)fx, j = (int)fy;
+    float ax = x - fx, ay = y - fy;
+    int m = N - 1;
+    int i0 = i & m, i1 = (i + 1) & m, j0 = (j & m) * N, j1 = ((j + 1) & m) * N;
+    float a = f[j0 + i0] + ax * (f[j0 + i1] - f[j0 + i0]);
+    float b = f[j1 + i0] + ax * (f[j1 + i1] - f[j1 + i0]);
+    return a + ay * (b - a);
+}
+
+/* d/dx of a periodic field along a row (stride 1) or a column (stride N) at index (i, j):
+   fourth-order central differences, per texel: exact to (k dx)^4 / 30 of the slope. */
+HFX_FN_INLINE float hfx_ocean_derivative(HFX_GLOBAL const float* f, int N, int i, int j, int alongX) {
+    int m = N - 1;
+    if (alongX) {
+        int r = j * N;
+        return (8.0f * (f[r + ((i + 1) & m)] - f[r + ((i - 1) & m)]) - (f[r + ((i + 2) & m)] - f[r + ((i - 2) & m)])) /
+               12.0f;
+    }
+    return (8.0f * (f[((j + 1) & m) * N + i] - f[((j - 1) & m) * N + i]) -
+            (f[((j + 2) & m) * N + i] - f[((j - 2) & m) * N + i])) /
+           12.0f;
+}
+
+/* The gradient of lambda D at grid point (i, j) (dimensionless: lambdaPerTexel is the
+   choppiness over the texel's size, D in metres): dDx/dx, dDy/dy, and the cross term, which is
+   symmetric for D = i k^ h (a gradient field), averaged over its two differences. */
+HFX_FN_INLINE void hfx_ocean_gradient(HFX_GLOBAL const float* dx, HFX_GLOBAL const float* dy, int N,
+                                      float lambdaPerTexel, int i, int j, float* xx, float* yy, float* xy) {
+    *xx = lambdaPerTexel * hfx_ocean_derivative(dx, N, i, j, 1);
+    *yy = lambdaPerTexel * hfx_ocean_derivative(dy, N, i, j, 0);
+    *xy = 0.5f * lambdaPerTexel * (hfx_ocean_derivative(dx, N, i, j, 0) + hfx_ocean_derivative(dy, N, i, j, 1));
+}
+
+/* The Jacobian determinant of x0 -> x0 + lambda D(x0) at grid point (i, j). */
+HFX_FN_INLINE float hfx_ocean_jacobian(HFX_GLOBAL const float* dx, HFX_GLOBAL const float* dy, int N,
+                                       float lambdaPerTexel, int i, int j) {
+    float a = lambdaPerTexel * hfx_ocean_derivative(dx, N, i, j, 1);
+    float b = lambdaPerTexel * hfx_ocean_derivative(dx, N, i, j, 0);
+    float c = lambdaPerTexel * hfx_ocean_derivative(dy, N, i, j, 1);
+    float d = lambdaPerTexel * hfx_ocean_derivative(dy, N, i, j, 0);
+    return (1.0f + a) * (1.0f + d) - b * c;
+}
+
+/* The Lagrangian point x0 whose displaced position x0 + lambda D(x0) is (x, y) (texel units):
+   Newton's method on r(x0) = x0 + lambda D(x0) - x with the displacement's gradient g (xx, yy,
+   xy planes, hfx_ocean_gradient's, sampled bilinearly), from x0 = x. Quadratic where the map does
+   not fold; where its Jacobian falls below 0.05 (a fold), the step is the plain fixed point
+   x0 <- x - lambda D(x0) instead, which lands on one of the folded layers. */
+HFX_FN_INLINE void hfx_ocean_lagrangian_point(HFX_GLOBAL const float* dx, HFX_GLOBAL const float* dy,
+                                              HFX_GLOBAL const float* g, int N, float lambdaPerTexel,
+                                              int iterations, float x, float y, float* x0, float* y0) {
+    int n = N * N;
+    float px = x, py = y;
+    for (int it = 0; it < iterations; ++it) {
+        float rx = px + lambdaPerTexel * hfx_ocean_sample(dx, N, px, py) - x;
+        float ry = py + lambdaPerTexel * hfx_ocean_sample(dy, N, px, py) - y;
+        float a = 1.0f + hfx_ocean_sample(g, N, px, py), d = 1.0f + hfx_ocean_sample(g + n, N, px, py);
+        float b = hfx_ocean_sample(g + 2 * n, N, px, py);
+        float det = a * d - b * b;
+        if (det > 0.05f) {
+            px -= (d * rx - b * ry) / det;
+            py -= (a * ry - b * rx) / det;
+        } else {
+            px -= rx;
+            py -= ry;
+        }
+    }
+    *x0 = px;
+    *y0 = py;
 }
 #endif
