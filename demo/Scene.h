@@ -41,7 +41,7 @@ struct SceneOptions {
     float depthMeters = 0.0f;          ///< water: sea depth (0: deep)
     float swell = 0.0f;                ///< water: energy of a swell from 50 degrees off the wind (0: none)
     float choppiness = 1.0f;           ///< water: horizontal displacement lambda
-    int cascades = 0;                  ///< water: 0: the ocean's default
+    int cascades = 0;                  ///< water: 0: the ocean's default (4)
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image

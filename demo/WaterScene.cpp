@@ -88,7 +88,10 @@ public:
         light_.ambient = {0.35f, 0.42f, 0.5f};
     }
 
-    void draw() override { drawSurface(renderer_, light_); }
+    void draw() override {
+        renderer_.drawSky(camera_, light_, effect().material().water);
+        drawSurface(renderer_, light_);
+    }
     Effect& effect() override {
         if (ocean_) return *ocean_;
         return *sine_;

@@ -6,6 +6,7 @@
 //   trace/common.glsl       ray, hit and shadow-ray types, the linear search, shadow occlusion
 //   trace/<technique>.glsl  hfx_trace and hfx_shadow: one file per technique (trace/README.md)
 //   shade/common.glsl       the shaded point
+//   shade/sky.glsl          the sky (reflections, haze), its look's uniform block
 //   shade/<model>.glsl      hfx_shade: one file per shading model (lit, water, planet)
 //   surface.frag            this file: the texture-space frame, level of detail, depth output
 // Prepended #defines, from the C++ technique table (hfx::techniqueInfo):
@@ -44,16 +45,36 @@ layout(location = 1) out vec4 o_trace;
 #endif
 
 layout(binding = 1) uniform sampler2D s_albedo;
+#if HFX_LAYERS > 1
+layout(binding = 7) uniform sampler2D s_albedo1;
+#endif
+#if HFX_LAYERS > 2
+layout(binding = 8) uniform sampler2D s_albedo2;
+#endif
+#if HFX_LAYERS > 3
+layout(binding = 9) uniform sampler2D s_albedo3;
+#endif
+
+// Toksvig: the mip-averaged unit normals shorten where the slopes they average differ; the
+// shortening estimates the variance of those slopes (in the stored normal's own units), less
+// what the storage format's rounding alone shows.
+float hfx_slope_variance(vec3 averaged) {
+    const float len = max(length(averaged), 1e-3);
+    return max((1.0 - len) / len - u_varianceFloor, 0.0);
+}
 
 #if HFX_LAYERS > 1
 // One layer's share of the shaded point: its slopes (the normal's x/z, y/z, in its own
-// texcoords and depth, turned into the surface's by slopeShare) and its height.
-void hfx_add_layer(sampler2D s, vec2 uv, float level, float scale, float weight, float slopeShare,
-                   inout vec2 slope, inout float height) {
+// texcoords and depth, turned into the surface's by slopeShare) and their variance, its height;
+// and, returned, its own height and its albedo's alpha (the ocean's foam of that layer).
+vec2 hfx_add_layer(sampler2D s, sampler2D a, vec2 uv, float level, float scale, float weight, float slopeShare,
+                   inout vec2 slope, inout float variance, inout float height) {
     const vec4 t = textureLod(s, uv * scale, level);
     const vec3 n = t.xyz * u_normalDecode.x + u_normalDecode.y;
     slope += slopeShare * n.xy / max(n.z, 1e-3);
+    variance += slopeShare * slopeShare * hfx_slope_variance(n);
     height += weight * t.w;
+    return vec2(t.w, textureLod(a, uv * scale, level).a);
 }
 #endif
 
@@ -127,24 +148,37 @@ void main() {
 
 #if HFX_LAYERS == 1
     const vec4 surfaceSample = textureLod(s_surface, uv, mipLevel);
-    const vec3 albedo = textureLod(s_albedo, uv, mipLevel).rgb;
+    const vec4 albedoSample = textureLod(s_albedo, uv, mipLevel);
+    const vec3 albedo = albedoSample.rgb;
+    const float alpha = albedoSample.a;
     // The stored normal is that of z = normalDepth * h; the one of z = depthScale * h has its
     // slopes (x/z, y/z) scaled by their ratio: exact, so the material alone sets the depth.
     const vec3 decoded = surfaceSample.xyz * u_normalDecode.x + u_normalDecode.y;
     const vec3 storedNormal = vec3(decoded.xy * u_normalScale, decoded.z);
+    const float slopeVariance = u_normalScale * u_normalScale * hfx_slope_variance(decoded);
     const float height = surfaceSample.w;
+    const vec4 layerFoam = vec4(alpha, 0.0, 0.0, 0.0), layerDetail = vec4(height, 0.5, 0.5, 0.5);
 #else
-    // Slopes add: each layer's, scaled to the surface's texcoords and depth (u_layerSlope).
+    // Slopes add: each layer's, scaled to the surface's texcoords and depth (u_layerSlope), and
+    // so do their variances (independent layers).
     vec2 slope = vec2(0.0);
-    float height = 0.0;
-    hfx_add_layer(s_surface, uv, mipLevel + u_layerLevel.x, u_layerScale.x, u_layerWeight.x, u_layerSlope.x, slope, height);
-    hfx_add_layer(s_surface1, uv, mipLevel + u_layerLevel.y, u_layerScale.y, u_layerWeight.y, u_layerSlope.y, slope, height);
+    float slopeVariance = 0.0, height = 0.0;
+    vec2 l0 = hfx_add_layer(s_surface, s_albedo, uv, mipLevel + u_layerLevel.x, u_layerScale.x, u_layerWeight.x,
+                            u_layerSlope.x, slope, slopeVariance, height);
+    vec2 l1 = hfx_add_layer(s_surface1, s_albedo1, uv, mipLevel + u_layerLevel.y, u_layerScale.y, u_layerWeight.y,
+                            u_layerSlope.y, slope, slopeVariance, height);
+    vec2 l2 = vec2(0.5, 0.0), l3 = vec2(0.5, 0.0);
 #if HFX_LAYERS > 2
-    hfx_add_layer(s_surface2, uv, mipLevel + u_layerLevel.z, u_layerScale.z, u_layerWeight.z, u_layerSlope.z, slope, height);
+    l2 = hfx_add_layer(s_surface2, s_albedo2, uv, mipLevel + u_layerLevel.z, u_layerScale.z, u_layerWeight.z,
+                       u_layerSlope.z, slope, slopeVariance, height);
 #endif
 #if HFX_LAYERS > 3
-    hfx_add_layer(s_surface3, uv, mipLevel + u_layerLevel.w, u_layerScale.w, u_layerWeight.w, u_layerSlope.w, slope, height);
+    l3 = hfx_add_layer(s_surface3, s_albedo3, uv, mipLevel + u_layerLevel.w, u_layerScale.w, u_layerWeight.w,
+                       u_layerSlope.w, slope, slopeVariance, height);
 #endif
+    // Each layer's foam is broken up by the next finer layer's relief (the finest by its own).
+    const vec4 layerFoam = vec4(l0.y, l1.y, l2.y, l3.y);
+    const vec4 layerDetail = vec4(l1.x, HFX_LAYERS > 2 ? l2.x : l1.x, HFX_LAYERS > 3 ? l3.x : l2.x, l3.x);
     const vec3 storedNormal = vec3(slope, 1.0);
     const vec3 albedo = textureLod(s_albedo, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rgb;
 #endif
@@ -186,7 +220,14 @@ void main() {
     point.lit = lit;
     point.cosView = cosView;
     point.diffuse = max(nDotL, 0.0);
-    point.specular = nDotL > 0.0 ? pow(max(dot(normal, normalize(lightDir + point.viewDir)), 0.0), u_specularPower) : 0.0;
+    // Toksvig: the lobe widens with the slopes' variance and keeps its energy.
+    point.slopeVariance = slopeVariance;
+    point.foam = layerFoam;
+    point.foamDetail = layerDetail;
+    const float power = u_specularPower / (1.0 + u_specularPower * slopeVariance);
+    point.specular = nDotL > 0.0 ? (power + 2.0) / (u_specularPower + 2.0) *
+                                       pow(max(dot(normal, normalize(lightDir + point.viewDir)), 0.0), power)
+                                 : 0.0;
     const vec3 color = hfx_shade(point);
     o_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 #if HFX_TRACE_OUTPUT

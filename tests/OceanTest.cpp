@@ -246,6 +246,25 @@ TEST_F(Ocean, FoamAppearsWhereJFallsBelowTheThresholdAndHalvesInItsHalfLife) {
     EXPECT_NEAR(total() / start, 0.5, 0.02 * 0.5) << "after one half-life";
 }
 
+TEST_F(Ocean, AutomaticFoamCoversWhatMonahansLawGives) {
+    // J - 1 is nearly Gaussian on a sea of many modes, so thresholds set from its spectral
+    // variance leave Monahan's whitecap fraction W(U10) below them: measured over the cascades,
+    // one step after a clear start (the injected area), within a quarter of W.
+    for (float u10 : {10.0f, 16.0f}) {
+        OceanField ocean(cl(), {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = u10}}});
+        ocean.setTime(1.0);
+        ocean.step(0.01);
+        double covered = 0;
+        for (int c = 0; c < ocean.cascadeCount(); ++c) {
+            const auto f = plane(ocean.foam(c), ocean);
+            covered += double(std::count_if(f.begin(), f.end(), [](float x) { return x > 0.0f; })) / f.size();
+        }
+        const double w = OceanField::whitecapCoverage(u10);
+        EXPECT_NEAR(covered, w, 0.25 * w) << u10 << " m/s";
+    }
+    EXPECT_NEAR(OceanField::whitecapCoverage(10.0), 3.84e-6 * std::pow(10.0, 3.41), 1e-12);
+}
+
 TEST_F(Ocean, SingleWaveMovesAtThePhaseSpeed) {
     // One mode along +x, n = 4 cycles over the patch: the height 2 a cos(k x - w t) travels
     // along +x at w / k, with w = sqrt(g k) rounded down to a multiple of 2 pi / T.

@@ -57,6 +57,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_shadows", offsetof(SurfaceUniforms, shadows)},
         {"u_clipToPatch", offsetof(SurfaceUniforms, clipToPatch)},
         {"u_pyramidLevels", offsetof(SurfaceUniforms, pyramidLevels)},
+        {"u_varianceFloor", offsetof(SurfaceUniforms, varianceFloor)},
         {"u_wrap", offsetof(SurfaceUniforms, wrap)},
         {"u_layerScale", offsetof(SurfaceUniforms, layerScale)},
         {"u_layerWeight", offsetof(SurfaceUniforms, layerWeight)},
@@ -71,6 +72,10 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_skyHorizon", offsetof(WaterUniforms, skyHorizon)},
         {"u_hazeDistance", offsetof(WaterUniforms, hazeDistance)},
         {"u_hasEnvironment", offsetof(WaterUniforms, hasEnvironment)},
+        {"u_foam", offsetof(WaterUniforms, foam)},
+        {"u_sunGlow", offsetof(WaterUniforms, sunGlow)},
+        {"u_foamColor", offsetof(WaterUniforms, foamColor)},
+        {"u_foamRoughness", offsetof(WaterUniforms, foamRoughness)},
     };
     for (const auto& [name, offset] : surface) EXPECT_EQ(offsetOf(p, name), GLint(offset)) << name;
     for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)}}) {

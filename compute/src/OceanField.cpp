@@ -87,8 +87,8 @@ struct OceanField::Plan {
 };
 
 void FoamConfig::validate() const {
-    if (!(threshold >= 0.0f && threshold <= 2.0f))
-        throw Error(str("FoamConfig.threshold must be in [0, 2], got ", threshold));
+    if (!(threshold <= 2.0f)) throw Error(str("FoamConfig.threshold must be at most 2 (< 0: automatic), got ", threshold));
+    if (!(coverage >= 0.0f && coverage <= 20.0f)) throw Error(str("FoamConfig.coverage must be in [0, 20], got ", coverage));
     if (!(injection >= 0.0f) || !std::isfinite(injection))
         throw Error(str("FoamConfig.injection must be >= 0, got ", injection));
     if (!(halfLife > 0.0f) || !std::isfinite(halfLife))
@@ -197,6 +197,7 @@ void OceanField::setWind(float speed, float direction) {
         uploadAmplitudes(cascades_[i]);
     }
     compute(0.0);
+    calibrateFoam();
 }
 
 void OceanField::setAmplitudes(int cascade, const std::vector<std::complex<float>>& h0) {
@@ -211,6 +212,7 @@ void OceanField::setAmplitudes(int cascade, const std::vector<std::complex<float
     c.h0 = h0;
     uploadAmplitudes(c);
     compute(0.0);
+    calibrateFoam();
 }
 
 void OceanField::makeCascade(OceanCascade& c, float patchMeters, float kMin, float kMax) {
@@ -284,6 +286,7 @@ OceanField::OceanField(ClContext& cl, const OceanConfig& config)
             [&] { checkFft(clfftBakePlan(plan_->handle, 1, &queue, nullptr, nullptr), "baking the plan"); });
         for (OceanCascade& c : cascades_) uploadAmplitudes(c);
         compute(0.0);
+        calibrateFoam();
     } catch (...) {
         plan_.reset();
         releaseLibrary();
@@ -296,10 +299,56 @@ OceanField::~OceanField() {
     releaseLibrary();
 }
 
+double OceanField::whitecapCoverage(double windSpeed) {
+    return std::min(1.0, 3.84e-6 * std::pow(std::max(windSpeed, 0.0), 3.41));
+}
+
+void OceanField::calibrateFoam() {
+    const FoamConfig& f = config_.foam;
+    double total = 0.0;
+    for (const OceanCascade& c : cascades_) total += double(c.sigmaJ) * c.sigmaJ;
+    const double coverage = whitecapCoverage(config_.sea.wind.windSpeed) * f.coverage;
+    const size_t n = size_t(config_.size) * config_.size;
+    std::vector<float> J(n);
+    for (OceanCascade& c : cascades_) {
+        if (f.threshold >= 0.0f) {
+            c.foamThreshold = f.threshold;
+            c.foamGain = f.injection;
+            continue;
+        }
+        // This cascade's share of the coverage, by its share of the J variance, as the quantile
+        // of its J now: J's lower tail is thinner than a Gaussian's (its quadratic terms), so
+        // the realised field sets the threshold, not sigma_J alone.
+        const double share = total > 0.0 ? coverage * double(c.sigmaJ) * c.sigmaJ / total : 0.0;
+        if (share <= 0.0) {
+            c.foamThreshold = -1.0f;
+            c.foamGain = 0.0f;
+            continue;
+        }
+        clGuard("calibrating the foam", [&] {
+            cl_.queue().enqueueReadBuffer(c.jacobian, CL_TRUE, 0, n * sizeof(float), J.data());
+        });
+        const size_t rank = std::min(n - 1, size_t(share * double(n)));
+        std::nth_element(J.begin(), J.begin() + std::ptrdiff_t(rank), J.end());
+        c.foamThreshold = J[rank];
+        c.foamGain = f.injection / std::max(c.sigmaJ, 1e-3f);
+    }
+}
+
 void OceanField::uploadAmplitudes(OceanCascade& c) {
-    // The expected variance: E|h(k, t)|^2 = |h0(k)|^2 + |h0(-k)|^2 summed over k.
-    double variance = 0.0;
-    for (const auto& a : c.h0) variance += 2.0 * std::norm(a);
+    // The expected variances: E|h(k, t)|^2 = |h0(k)|^2 + |h0(-k)|^2 summed over k, and J - 1,
+    // about -lambda div D = lambda |k| h, has |k|^2 of each mode's.
+    const int N = config_.size;
+    double variance = 0.0, jVariance = 0.0;
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) {
+            double kx, ky;
+            waveVector(x, y, N, c.patchMeters, kx, ky);
+            const double e = 2.0 * std::norm(c.h0[size_t(y) * N + x]);
+            variance += e;
+            jVariance += e * (kx * kx + ky * ky);
+        }
+    c.sigmaJ = float(config_.choppiness * std::sqrt(jVariance));
     c.sigma = float(std::sqrt(variance));
     c.scale = c.sigma > 0.0f ? 1.0f / (8.0f * c.sigma) : 1.0f;
     clGuard("uploading the ocean spectrum", [&] {
@@ -332,7 +381,7 @@ void OceanField::compute(double dt) {
     const int displacement = config_.choppiness > 0.0f ? 1 : 0;
     const FoamConfig& foam = config_.foam;
     const float decay = float(std::exp2(-dt / foam.halfLife));
-    const float injection = float(foam.injection * dt);
+
     // dt = 0 (set-up, a jump, a new spectrum) steps no foam: it stays in the buffer it is in.
     const int back = foamFront_, front = dt > 0.0 ? 1 - foamFront_ : foamFront_;
     clGuard("OceanField::step", [&] {
@@ -368,8 +417,8 @@ void OceanField::compute(double dt) {
             lagrangianKernel_.setArg(a++, N);
             lagrangianKernel_.setArg(a++, lambdaPerTexel);
             lagrangianKernel_.setArg(a++, decay);
-            lagrangianKernel_.setArg(a++, injection);
-            lagrangianKernel_.setArg(a++, foam.threshold);
+            lagrangianKernel_.setArg(a++, float(c.foamGain * dt));
+            lagrangianKernel_.setArg(a++, c.foamThreshold);
             lagrangianKernel_.setArg(a++, drift * std::cos(config_.sea.wind.direction));
             lagrangianKernel_.setArg(a++, drift * std::sin(config_.sea.wind.direction));
             cl_.enqueue(lagrangianKernel_, cl::NDRange(N, N));

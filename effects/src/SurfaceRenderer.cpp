@@ -20,6 +20,28 @@ namespace {
 
 SourceFile shader(std::string_view name) { return surfaceShader(name); }
 
+WaterUniforms waterUniforms(const WaterLook& w) {
+    return {.deepColor = w.deepColor,
+            .fresnelF0 = w.fresnelF0,
+            .shallowColor = w.shallowColor,
+            .glintPower = w.glintPower,
+            .skyZenith = w.skyZenith,
+            .glintStrength = w.glintStrength,
+            .skyHorizon = w.skyHorizon,
+            .hazeDistance = w.hazeDistance,
+            .hasEnvironment = w.environment != 0 ? 1 : 0,
+            .foam = w.foam ? 1 : 0,
+            .sunGlow = w.sunGlow,
+            .foamColor = w.foamColor,
+            .foamRoughness = w.foamRoughness};
+}
+
+/// The slope variance a format's rounding alone shows in its mip-0 normals (Toksvig must not
+/// read it as roughness): float16 normals are unit to 2^-11, unorm8's to about 1/255.
+float varianceFloor(SurfaceFormat format) {
+    return format == SurfaceFormat::Float32 ? 0.0f : format == SurfaceFormat::Float16 ? 1e-3f : 8e-3f;
+}
+
 /// Writes a uniform block's data into its buffer (made on first use) and binds it at `binding`.
 template <typename Block>
 void updateBlock(GlBuffer& buffer, GLuint binding, const Block& data) {
@@ -121,7 +143,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shadin
                                                    {"HFX_LAYERS", std::to_string(layers)}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("trace/common.glsl"),
-                         shader(info.shader), shader("shade/common.glsl"), shader(shadingShader(shading)),
+                         shader(info.shader), shader("shade/common.glsl"), shader("shade/sky.glsl"),
+                         shader(shadingShader(shading)),
                          shader("surface.frag")},
                         defines);
         it = programs_.emplace(key, std::move(p)).first;
@@ -207,6 +230,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
                       .shadows = material.shadows ? 1 : 0,
                       .clipToPatch = material.clipToPatch ? 1 : 0,
                       .pyramidLevels = textures.pyramidLevels(),
+                      .varianceFloor = varianceFloor(textures.config().format),
                       .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0}};
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
@@ -222,16 +246,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
     bindUniforms(u, model, camera);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
-        const WaterUniforms water{.deepColor = w.deepColor,
-                                  .fresnelF0 = w.fresnelF0,
-                                  .shallowColor = w.shallowColor,
-                                  .glintPower = w.glintPower,
-                                  .skyZenith = w.skyZenith,
-                                  .glintStrength = w.glintStrength,
-                                  .skyHorizon = w.skyHorizon,
-                                  .hazeDistance = w.hazeDistance,
-                                  .hasEnvironment = w.environment != 0 ? 1 : 0};
-        updateBlock(waterBlock_, 1, water);
+        updateBlock(waterBlock_, 1, waterUniforms(w));
         glBindTextureUnit(2, w.environment);
     }
     glBindTextureUnit(0, textures.surface());
@@ -245,6 +260,25 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
     glDepthFunc(GL_LESS);
     p.use();
     mesh.draw();
+}
+
+void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look) {
+    if (!sky_.id()) {
+        sky_ = ShaderProgram({shader("sky.vert")}, {shader("surface/uniforms.glsl"), shader("shade/sky.glsl"), shader("sky.frag")});
+        empty_ = GlVertexArray::create();
+    }
+    if (look.environment != 0 && !glIsTexture(look.environment))
+        throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
+    GlStateGuard guard;
+    SurfaceUniforms u{.cameraPos = camera.position, .lightDir = glm::normalize(light.direction), .lightColor = light.color};
+    bindUniforms(u, glm::mat4(1.0f), camera);
+    updateBlock(waterBlock_, 1, waterUniforms(look));
+    glBindTextureUnit(2, look.environment);
+    sky_.set("u_inverseViewProj", glm::inverse(camera.viewProjection()));
+    glDisable(GL_DEPTH_TEST);
+    sky_.use();
+    glBindVertexArray(empty_.id());
+    HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
 }
 
 void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,

@@ -1,5 +1,6 @@
 // What a shading model (shade/*.glsl) is given: the traced point, lit by the directional light.
-// Each model defines vec3 hfx_shade(HfxSurfacePoint p), the linear colour of the pixel.
+// Each model defines vec3 hfx_shade(HfxSurfacePoint p), the linear colour of the pixel; the sky
+// (shade/sky.glsl) is composed before every model.
 
 struct HfxSurfacePoint {
     vec3 albedo;          // the colour map at the hit
@@ -12,5 +13,8 @@ struct HfxSurfacePoint {
     float lit;            // 1 - self-shadow, faded in from the geometric terminator
     float cosView;        // between the geometric normal and the view
     float diffuse;        // max(N.L, 0)
-    float specular;       // Blinn-Phong lobe (u_specularPower), 0 facing away
+    float specular;       // Blinn-Phong lobe (u_specularPower, widened by slopeVariance), 0 facing away
+    float slopeVariance;  // variance of the slopes the pixel covers, from the mip-averaged normals (Toksvig)
+    vec4 foam;            // each layer's albedo alpha: foam coverage, where the effect writes it (layers 0-3)
+    vec4 foamDetail;      // for each layer, the next finer layer's height in [0,1]: thin foam survives on its crests
 };

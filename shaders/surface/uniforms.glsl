@@ -25,7 +25,7 @@ layout(std140, binding = 0) uniform HfxSurface {
     int u_shadows;            // 1: self-shadows
     int u_clipToPatch;        // 1: discard rays that leave u_patchBounds (finite patches)
     int u_pyramidLevels;      // levels of s_pyramid, 0 without one
-    int u_reserved;
+    float u_varianceFloor;    // slope variance the storage format's rounding alone shows (not roughness)
     ivec2 u_wrap;             // per axis: 1 where the field's edges wrap, 0 where they clamp
     // Layered surfaces (HFX_LAYERS > 1, the ocean's cascades), one component per layer:
     vec4 u_layerScale;        // layer texcoords = the mesh's texcoords * scale

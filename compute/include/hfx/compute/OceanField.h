@@ -40,17 +40,27 @@
 
 namespace hfx {
 
+/// Whitecaps. By default (threshold < 0) each cascade's threshold on J is set from the sea
+/// state so that the area where foam is injected follows Monahan's whitecap coverage,
+/// W = 3.84e-6 U10^3.41 (Monahan & O'Muircheartaigh 1980; 1% at 10 m/s, 4.5% at 15.5): W is
+/// shared among the cascades by their variance of J - 1 (about lambda |k| h, which the spectrum
+/// gives), and each cascade's threshold is the quantile of its own J that leaves its share below,
+/// taken from the field when the spectrum is made or changed (J's statistics do not change with
+/// time). An explicit threshold (>= 0) is used as it is, by every cascade.
 struct FoamConfig {
-    float threshold = 0.35f; ///< foam is injected where J falls below this (1 is flat water)
-    float injection = 6.0f;  ///< foam added per second per unit of threshold - J (capped at 1)
-    float halfLife = 2.0f;   ///< seconds for foam to halve
+    float threshold = -1.0f; ///< foam is injected where J falls below this (1 is flat water); < 0: Monahan
+    float coverage = 1.0f;   ///< scales Monahan's coverage (automatic thresholds only)
+    /// Foam added per second per unit of threshold - J; with automatic thresholds per unit of
+    /// (threshold - J) / sigma_J, so a cascade's foam builds alike whatever its steepness.
+    float injection = 4.0f;
+    float halfLife = 4.0f;   ///< seconds for foam to halve
     float drift = 0.03f;     ///< downwind drift, as a fraction of the wind speed
     void validate() const;   ///< throws hfx::Error naming the bad field and its value
 };
 
 struct OceanConfig {
     int size = 256;             ///< texels per cascade edge, a power of two in [16, 1024]
-    int cascades = 3;           ///< 1 to 4
+    int cascades = 4;           ///< 1 to 4
     /// The largest cascade's edge in metres; 0: 8 peak wavelengths of the wind sea (at least
     /// 200 m), so the peak is resolved and the patch repeats far apart.
     float patchMeters = 0.0f;
@@ -70,6 +80,9 @@ struct OceanCascade {
     float patchMeters = 0.0f;
     float kMin = 0.0f, kMax = 0.0f;   ///< its band (rad/m): k in [kMin, kMax)
     float sigma = 0.0f;               ///< its height's RMS (m), the spectrum's expected value
+    float sigmaJ = 0.0f;              ///< RMS of its J - 1 (about lambda |k| h), the spectrum's expected value
+    float foamThreshold = 0.0f;       ///< where foam is injected: J below this
+    float foamGain = 0.0f;            ///< foam per second per unit of threshold - J
     float scale = 0.0f;               ///< stored height h = 0.5 + metres * scale (1 / 8 sigma)
     std::vector<std::complex<float>> h0; ///< h0(k), FFT index order, zero outside the band
     std::vector<float> omega;         ///< w(k), quantised to multiples of 2 pi / repeatSeconds
@@ -110,6 +123,8 @@ public:
     const OceanConfig& config() const { return config_; }
     /// The RMS height of the whole sea (m): the cascades' sigmas in quadrature.
     float sigmaMeters() const;
+    /// Monahan's whitecap coverage for a wind of U10 m/s: 3.84e-6 U^3.41, at most 1.
+    static double whitecapCoverage(double windSpeed);
 
     /// h0(k) of a configuration's cascade, in FFT index order (what the constructor draws).
     static std::vector<std::complex<float>> spectrumAmplitudes(const OceanConfig& config, int cascade);
@@ -123,6 +138,7 @@ private:
     struct Plan;
     void makeCascade(OceanCascade& c, float patchMeters, float kMin, float kMax);
     void uploadAmplitudes(OceanCascade& c);
+    void calibrateFoam();
     void compute(double dt);
 
     ClContext& cl_;

@@ -21,7 +21,7 @@ struct OceanEffectConfig {
     OceanConfig ocean;
     /// The look; its depthScale is replaced by the sea state's (physicalDepthScale()).
     SurfaceMaterial material{.minSamples = 8, .maxSamples = 40, .shadowSharpness = 1.0f,
-                             .specularStrength = 0.0f, .shading = Shading::Water};
+                             .specularStrength = 0.0f, .shading = Shading::Water, .water = {.foam = true}};
     float reliefExaggeration = 1.0f; ///< multiplies the physical depth scale
     /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
     SurfaceOptions surface;

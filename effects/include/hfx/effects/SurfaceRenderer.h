@@ -36,6 +36,12 @@ struct WaterLook {
     float glintPower = 900.0f;                     ///< sharpness of the sun's reflection
     float glintStrength = 40.0f;
     float hazeDistance = 90.0f;                    ///< world units where half the colour is haze
+    float sunGlow = 0.6f;                          ///< the glow around the sun in the procedural sky
+    /// The albedo's alpha is foam coverage (OceanEffect writes it per cascade): foam is drawn in
+    /// foamColor, lit like snow, and widens the glint by foamRoughness.
+    bool foam = false;
+    glm::vec3 foamColor{0.9f, 0.93f, 0.95f};
+    float foamRoughness = 0.6f;
     /// Optional equirectangular sky (a GL texture the caller owns; 0 = procedural sky).
     unsigned environment = 0;
     bool operator==(const WaterLook&) const = default;
@@ -102,6 +108,11 @@ public:
               const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
               const DrawOptions& options = {});
 
+    /// The sky of `look` (Shading::Water's: its gradient, sun glow or environment image) behind
+    /// everything in the bound framebuffer, for the view of `camera` and the sun of `light`:
+    /// what the water reflects and fades into at the horizon. Writes no depth.
+    void drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look);
+
     /// Draws a mesh in one flat colour with its own depth (for scenes and tests).
     void drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
                   const glm::vec4& color);
@@ -114,8 +125,9 @@ private:
     void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const Camera& camera);
 
     std::map<std::tuple<Technique, bool, Shading, int>, ShaderProgram> programs_;
-    ShaderProgram flat_;
+    ShaderProgram flat_, sky_;
     GlBuffer surfaceBlock_, waterBlock_;
+    GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
 };
 
 } // namespace hfx

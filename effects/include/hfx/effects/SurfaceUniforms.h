@@ -1,6 +1,6 @@
 #pragma once
 // The C++ mirrors of the surface shaders' std140 uniform blocks: HfxSurface
-// (shaders/surface/uniforms.glsl, binding 0) and HfxWater (shaders/shade/water.glsl, binding
+// (shaders/surface/uniforms.glsl, binding 0) and HfxWater (shaders/shade/sky.glsl, binding
 // 1). SurfaceRenderer fills them once per draw into uniform buffers; the layout is checked at
 // compile time here (std140: a vec3 takes 16 bytes unless a scalar follows it) and against the
 // driver's own offsets by a test.
@@ -39,7 +39,7 @@ struct SurfaceUniforms {
     int shadows = 0;
     int clipToPatch = 0;
     int pyramidLevels = 0;
-    int reserved = 0;
+    float varianceFloor = 0.0f;
     glm::ivec2 wrap{1, 1};
     glm::ivec2 padding{0, 0}; ///< std140 puts the next vec4 on 16 bytes
     glm::vec4 layerScale{1.0f};
@@ -58,7 +58,11 @@ struct WaterUniforms {
     glm::vec3 skyHorizon{0.0f};
     float hazeDistance = 1.0f;
     int hasEnvironment = 0;
-    int padding[3] = {0, 0, 0};
+    int foam = 0;
+    float sunGlow = 0.0f;
+    float reserved = 0.0f;
+    glm::vec3 foamColor{1.0f};
+    float foamRoughness = 0.0f;
 };
 
 // std140 offsets of the GLSL blocks, member by member where alignment could slip.
@@ -73,6 +77,7 @@ static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(sizeof(SurfaceUniforms) == 400);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, hasEnvironment) == 64);
-static_assert(sizeof(WaterUniforms) == 80);
+static_assert(offsetof(WaterUniforms, foamColor) == 80);
+static_assert(sizeof(WaterUniforms) == 96);
 
 } // namespace hfx

@@ -1,0 +1,12 @@
+#version 450 core
+// The sky behind everything (SurfaceRenderer::drawSky): each pixel's view direction through
+// hfx_sky (shade/sky.glsl), the same sky the water reflects and fades into.
+in vec2 v_ndc;
+layout(location = 0) out vec4 o_color;
+uniform mat4 u_inverseViewProj;
+
+void main() {
+    const vec4 far = u_inverseViewProj * vec4(v_ndc, 1.0, 1.0);
+    const vec3 dir = normalize(far.xyz / far.w - u_cameraPos);
+    o_color = vec4(pow(clamp(hfx_sky(dir), 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+}

@@ -1,0 +1,82 @@
+// The water's far field: shimmer is what changes when the camera moves by less than a pixel.
+// With the normals' variance through the mips (Toksvig) in the glint and the Fresnel term, the
+// far sea changes less than with the variance forced to zero (the same shaders, patched).
+
+#include "support/Fixtures.h"
+
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/OceanEffect.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace hfx::test {
+namespace {
+
+class OceanShading : public DeviceTest {};
+
+/// Sparkle: the share of the far field's pixels (the rows just below the horizon) whose colour
+/// changes by more than 8/255 between two views a quarter pixel apart.
+double shimmer(OceanEffect& ocean) {
+    constexpr int W = 480, H = 270;
+    const Mesh sea(makePlane({.size = 8000.0f, .texcoordScale = 8000.0f / ocean.ocean().config().patchMeters}));
+    RenderTarget target(W, H);
+    SurfaceRenderer renderer;
+    DirectionalLight light{.direction = {-0.35f, 0.22f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}, .ambient = {0.35f, 0.42f, 0.5f}};
+    auto view = [&](float shift) {
+        Camera camera;
+        camera.position = {shift, 7.0f, 0.0f};
+        camera.target = {shift, 7.0f - 100.0f * std::tan(0.05f), -100.0f};
+        camera.aspect = float(W) / H;
+        camera.nearPlane = 0.2f;
+        camera.farPlane = 12000.0f;
+        target.bind();
+        target.clear();
+        const std::vector<SurfaceLayer> layers = ocean.layers();
+        renderer.draw(sea, glm::mat4(1.0f), layers, ocean.material(), camera, light);
+        return target.readColor();
+    };
+    // A quarter pixel at the far field's distance (about 300 m, 480 pixels over 0.8 radians).
+    const Image a = view(0.0f), b = view(0.25f * 300.0f * 0.8f / W);
+    // The horizon lies 0.05 rad above the centre; the band 3 to 40 rows under it is the sea from
+    // about 150 m out to the horizon's haze (images are stored top row first).
+    const int horizon = H / 2 - int(0.05f / 0.8f * H + 0.5f);
+    size_t sparkles = 0, n = 0;
+    for (int y = horizon + 3; y < horizon + 40; ++y)
+        for (int x = 0; x < W; ++x, ++n) {
+            float change = 0.0f;
+            for (int c = 0; c < 3; ++c) change = std::max(change, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+            sparkles += change > 8.0f / 255.0f;
+        }
+    return double(sparkles) / double(n);
+}
+
+TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
+    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3}});
+    const double filtered = shimmer(ocean);
+
+    // The same shaders with the variance forced to zero, through the live-editing override.
+    const std::filesystem::path dir = outputPath("ocean_shading_no_toksvig");
+    std::filesystem::remove_all(dir);
+    std::filesystem::copy(HFX_SHADER_SOURCE_DIR, dir, std::filesystem::copy_options::recursive);
+    std::stringstream frag;
+    frag << std::ifstream(dir / "surface.frag").rdbuf();
+    std::string text = frag.str();
+    const std::string from = "point.slopeVariance = slopeVariance;";
+    ASSERT_NE(text.find(from), std::string::npos);
+    text.replace(text.find(from), from.size(), "point.slopeVariance = 0.0;");
+    std::ofstream(dir / "surface.frag") << text;
+    setenv("HFX_SHADER_DIR", dir.c_str(), 1);
+    const double plain = shimmer(ocean);
+    unsetenv("HFX_SHADER_DIR");
+
+    std::printf("[shimmer] far field, quarter-pixel move: %.2f%% of pixels sparkle with Toksvig, %.2f%% without\n",
+                100.0 * filtered, 100.0 * plain);
+    EXPECT_GT(plain, 0.001) << "no shimmer to damp: the band is not the sea";
+    EXPECT_LT(filtered, 0.8 * plain) << "the variance did not calm the far field";
+}
+
+} // namespace
+} // namespace hfx::test
