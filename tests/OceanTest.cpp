@@ -327,6 +327,88 @@ TEST_F(Ocean, EulerianFieldTilesAndTheAnimationLoops) {
     EXPECT_GT(moved, 0.01 * ocean.sigmaMeters());
 }
 
+// A wind change blends the spectra (hfx_ocean_blend: energy mixed linearly, each k's phase
+// kept): mid-blend the field is that of the blended amplitudes and its variance the mean of the
+// two seas', with no dip; at the end it is the new sea. A sea that turns 90 degrees over 10 s
+// changes no faster per frame than a steady sea does by itself (its waves moving), where an
+// immediate change jumps.
+TEST_F(Ocean, WindChangesBlendWithoutAJump) {
+    OceanConfig before = oneCascade(64, 200.0f, 1.0f);
+    before.sea.wind.windSpeed = 12.0f;
+    OceanConfig after = before;
+    after.sea.wind.direction = float(std::numbers::pi / 2);
+    const double dt = 1.0 / 30.0;
+    auto heights = [&](const OceanField& o) {
+        auto l = lagrangian(o);
+        l.resize(size_t(64) * 64);
+        return l;
+    };
+    auto maxDiff = [](const std::vector<float>& a, const std::vector<float>& b) {
+        double m = 0;
+        for (size_t i = 0; i < a.size(); ++i) m = std::max(m, double(std::abs(a[i] - b[i])));
+        return m;
+    };
+    // How much a steady sea changes in a frame, either wind.
+    double steady = 0;
+    for (const OceanConfig& c : {before, after}) {
+        OceanField o(cl(), c);
+        o.setTime(1.0);
+        for (int i = 0; i < 30; ++i) {
+            const auto a = heights(o);
+            o.step(dt);
+            steady = std::max(steady, maxDiff(a, heights(o)));
+        }
+    }
+
+    OceanField turning(cl(), before);
+    turning.setTime(1.0);
+    turning.setWind(after.sea.wind.windSpeed, after.sea.wind.direction, 10.0);
+    double worst = 0;
+    auto last = heights(turning);
+    for (int i = 0; i < 150; ++i) { // to t = 6: s = smoothstep(0.5) = 0.5
+        turning.step(dt);
+        auto now = heights(turning);
+        worst = std::max(worst, maxDiff(last, now));
+        last = std::move(now);
+    }
+    EXPECT_NEAR(turning.windBlend().at(turning.time()), 0.5, 1e-6);
+    OceanField from(cl(), before), to(cl(), after), mixed(cl(), before);
+    std::vector<std::complex<float>> half(to.cascade(0).h0.size());
+    for (size_t k = 0; k < half.size(); ++k) {
+        const std::complex<float> a = from.cascade(0).h0[k], b = to.cascade(0).h0[k];
+        const double energy = 0.5 * (std::norm(a) + std::norm(b));
+        const std::complex<float> m = 0.5f * (a + b);
+        half[k] = std::abs(m) > 0.0f ? m * float(std::sqrt(energy) / std::abs(m)) : 0.0f;
+    }
+    mixed.setAmplitudes(0, half);
+    for (OceanField* o : {&from, &to, &mixed}) o->setTime(turning.time());
+    const double sigma = to.sigmaMeters();
+    EXPECT_LT(maxDiff(last, heights(mixed)), 1e-3 * sigma) << "mid-blend is the sea of the blended spectrum";
+    const double meanVariance = 0.5 * (std::pow(from.sigmaMeters(), 2) + std::pow(to.sigmaMeters(), 2));
+    EXPECT_NEAR(turning.sigmaMeters(), std::sqrt(meanVariance), 1e-4 * sigma) << "the sea keeps its height";
+    double sum = 0, sum2 = 0;
+    for (float v : last) sum += v, sum2 += double(v) * v;
+    const double mean = sum / double(last.size()), realised = std::sqrt(sum2 / double(last.size()) - mean * mean);
+    EXPECT_NEAR(realised, turning.sigmaMeters(), 0.1 * sigma) << "and the field shows it";
+    for (int i = 0; i < 160; ++i) {
+        turning.step(dt);
+        auto now = heights(turning);
+        worst = std::max(worst, maxDiff(last, now));
+        last = std::move(now);
+    }
+    EXPECT_LE(worst, 1.5 * steady) << "a frame of the blend changes the sea at most 1.5 times a steady frame";
+    to.setTime(turning.time());
+    EXPECT_LT(maxDiff(last, heights(to)), 1e-3 * sigma) << "after the blend it is the new sea";
+
+    OceanField cut(cl(), before);
+    cut.setTime(1.0);
+    const auto a = heights(cut);
+    cut.setWind(after.sea.wind.windSpeed, after.sea.wind.direction);
+    EXPECT_GT(maxDiff(a, heights(cut)), 5.0 * steady) << "an immediate change is a jump";
+    EXPECT_THROW(cut.setWind(10.0f, 0.0f, -1.0), Error);
+    EXPECT_THROW(cut.setWind(10.0f, 0.0f, std::nan("")), Error);
+}
+
 TEST_F(Ocean, BadConfigurationIsRefusedByName) {
     EXPECT_NE(messageOf([&] { OceanField(cl(), {.size = 100}); }).find("size"), std::string::npos);
     EXPECT_NE(messageOf([&] { OceanField(cl(), {.cascades = 5}); }).find("cascades"), std::string::npos);

@@ -166,10 +166,20 @@ TEST_F(Users, OceanWindChangesTheSeaAndItsDepthAndBadWindChangesNothing) {
     const float calmDepth = ocean.material().depthScale;
     EXPECT_NEAR(calmDepth, 8.0f * ocean.ocean().sigmaMeters() / ocean.ocean().config().patchMeters, 1e-6f);
     const std::vector<float> before = readSurface(ocean.textures());
-    ocean.setWind(4.0f, 1.2f);
+    ocean.setWind(4.0f, 1.2f); // blends in over config.windBlendSeconds (4 s)
+    EXPECT_EQ(ocean.material().depthScale, calmDepth) << "the new sea takes over at once";
+    EXPECT_EQ(readSurface(ocean.textures()), before);
+    ocean.update(2.0);
+    const float midway = ocean.material().depthScale;
+    EXPECT_LT(midway, calmDepth);
+    ocean.update(2.5);
     // A light wind raises a much lower sea (the spectrum's energy grows steeply with the wind
-    // while its peak fits in the patch): shallower relief.
+    // while its peak fits in the patch): shallower relief, reached through the blend.
     EXPECT_LT(ocean.material().depthScale, calmDepth / 4.0f);
+    EXPECT_LT(ocean.material().depthScale, midway);
+    EXPECT_NEAR(ocean.material().depthScale,
+                std::max(8.0f * ocean.ocean().sigmaMeters() / ocean.ocean().config().patchMeters, 1e-5f), 1e-7f)
+        << "the depth follows the sea (not below 1e-5: a patch of 64 texels hardly resolves a 4 m/s sea)";
     EXPECT_NE(readSurface(ocean.textures()), before);
     const float stormDepth = ocean.material().depthScale;
     EXPECT_THROW(ocean.setWind(-3.0f, 0.0f), Error);

@@ -3,17 +3,21 @@
 /* The half spectra of one cascade at time t: h(k, t), and with `displacement` the horizontal
    displacement D(k, t) = i k/|k| h(k, t) (x and y), each (N/2 + 1) x N, back to back. h(-k) =
    conj(h(k)) and so D(-k) = conj(D(k)): a complex-to-real transform of each half gives the
-   field. h0 and omega (N x N, FFT order) are made on the host, zero outside the cascade's band.
+   field. h0 and omega (N x N, FFT order) are made on the host, zero outside the cascade's band;
+   during a wind change h0 is blended from h0From (hfx_ocean_blend: the waves fade where they are).
    t is reduced modulo the repeat period (frequencies are multiples of 2 pi / T), so omega * t
    stays small and exact in float over any run. */
-__kernel void ocean_spectrum(__global const float2* h0, __global const float* omega, __global float2* out, int N,
-                             float t, float dk, int displacement) {
+__kernel void ocean_spectrum(__global const float2* h0From, __global const float2* h0, float blend,
+                             __global const float* omega, __global float2* out, int N, float t, float dk,
+                             int displacement) {
     int x = get_global_id(0), y = get_global_id(1);
     if (x > N / 2 || y >= N) return;
     int k = y * N + x, mk = ((N - y) % N) * N + (N - x) % N; /* index of -k */
-    float2 a = h0[k], b = h0[mk];
+    float are, aim, bre, bim;
+    hfx_ocean_blend(h0From[k].x, h0From[k].y, h0[k].x, h0[k].y, blend, &are, &aim);
+    hfx_ocean_blend(h0From[mk].x, h0From[mk].y, h0[mk].x, h0[mk].y, blend, &bre, &bim);
     float re, im;
-    hfx_ocean_mode(a.x, a.y, b.x, b.y, -omega[k] * t, &re, &im);
+    hfx_ocean_mode(are, aim, bre, bim, -omega[k] * t, &re, &im);
     int halves = (N / 2 + 1) * N, o = y * (N / 2 + 1) + x;
     out[o] = (float2)(re, im);
     if (!displacement) return;

@@ -1,4 +1,5 @@
 #include "hfx/compute/OceanField.h"
+#include "hfx/compute/shared/OceanMath.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Random.h"
@@ -184,7 +185,15 @@ float OceanField::sigmaMeters() const {
     return float(std::sqrt(variance));
 }
 
-void OceanField::setWind(float speed, float direction) {
+double WindBlend::at(double time) const {
+    if (seconds <= 0.0) return 1.0;
+    const double s = std::clamp((time - start) / seconds, 0.0, 1.0);
+    return s * s * (3.0 - 2.0 * s);
+}
+
+void OceanField::setWind(float speed, float direction, double blendSeconds) {
+    if (!(blendSeconds >= 0.0) || !std::isfinite(blendSeconds))
+        throw Error(str("OceanField::setWind: blendSeconds must be >= 0 and finite, got ", blendSeconds));
     OceanConfig next = config_;
     next.sea.wind.windSpeed = speed;
     next.sea.wind.direction = direction;
@@ -192,12 +201,26 @@ void OceanField::setWind(float speed, float direction) {
     std::vector<std::vector<std::complex<float>>> h0;
     for (int i = 0; i < next.cascades; ++i) h0.push_back(spectrumAmplitudes(next, i)); // validates first
     config_ = next;
+    const double s = blend_.at(time_);
     for (size_t i = 0; i < cascades_.size(); ++i) {
-        cascades_[i].h0 = std::move(h0[i]);
-        uploadAmplitudes(cascades_[i]);
+        OceanCascade& c = cascades_[i];
+        if (blendSeconds > 0.0) {
+            // From the sea as it is now, mid-blend included.
+            for (size_t k = 0; k < c.h0.size(); ++k) {
+                float re, im;
+                hfx_ocean_blend(c.h0From[k].real(), c.h0From[k].imag(), c.h0[k].real(), c.h0[k].imag(), float(s), &re, &im);
+                c.h0From[k] = {re, im};
+            }
+        } else {
+            c.h0From = h0[i];
+        }
+        c.h0 = std::move(h0[i]);
+        uploadAmplitudes(c);
     }
+    blend_ = {.start = time_, .seconds = blendSeconds};
     compute(0.0);
-    calibrateFoam();
+    if (blendSeconds > 0.0) calibrateAfterBlend_ = true; // J's statistics are the new sea's once it is there
+    else calibrateFoam();
 }
 
 void OceanField::setAmplitudes(int cascade, const std::vector<std::complex<float>>& h0) {
@@ -210,6 +233,7 @@ void OceanField::setAmplitudes(int cascade, const std::vector<std::complex<float
         if (!std::isfinite(a.real()) || !std::isfinite(a.imag()))
             throw Error("OceanField::setAmplitudes: amplitudes must be finite");
     c.h0 = h0;
+    c.h0From = h0;
     uploadAmplitudes(c);
     compute(0.0);
     calibrateFoam();
@@ -232,6 +256,7 @@ void OceanField::makeCascade(OceanCascade& c, float patchMeters, float kMin, flo
     clGuard("creating an ocean cascade", [&] {
         const cl::Context& ctx = cl_.context();
         c.h0Device = cl::Buffer(ctx, CL_MEM_READ_ONLY, n * sizeof(cl_float2));
+        c.h0FromDevice = cl::Buffer(ctx, CL_MEM_READ_ONLY, n * sizeof(cl_float2));
         c.omegaDevice = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(float), c.omega.data());
         c.lagrangian = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * n * sizeof(float));
         c.jacobian = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
@@ -257,6 +282,7 @@ OceanField::OceanField(ClContext& cl, const OceanConfig& config)
         bandOf(config_, lengths, i, kMin, kMax);
         makeCascade(cascades_[size_t(i)], lengths[size_t(i)], kMin, kMax);
         cascades_[size_t(i)].h0 = spectrumAmplitudes(config_, i);
+        cascades_[size_t(i)].h0From = cascades_[size_t(i)].h0;
     }
     const int fields = config.choppiness > 0.0f ? 3 : 1;
     clGuard("creating the ocean", [&] {
@@ -335,24 +361,34 @@ void OceanField::calibrateFoam() {
     }
 }
 
+void OceanField::setBlendedSigma(OceanCascade& c, double s) {
+    // hfx_ocean_blend moves each mode's energy linearly, and so the variance.
+    const double variance = (1.0 - s) * c.varianceFrom + s * c.varianceTo;
+    c.sigma = float(std::sqrt(std::max(variance, 0.0)));
+    c.scale = c.sigma > 0.0f ? 1.0f / (8.0f * c.sigma) : 1.0f;
+}
+
 void OceanField::uploadAmplitudes(OceanCascade& c) {
     // The expected variances: E|h(k, t)|^2 = |h0(k)|^2 + |h0(-k)|^2 summed over k, and J - 1,
     // about -lambda div D = lambda |k| h, has |k|^2 of each mode's.
     const int N = config_.size;
-    double variance = 0.0, jVariance = 0.0;
+    double jVariance = 0.0;
+    c.varianceFrom = c.varianceTo = 0.0;
     for (int y = 0; y < N; ++y)
         for (int x = 0; x < N; ++x) {
             double kx, ky;
             waveVector(x, y, N, c.patchMeters, kx, ky);
-            const double e = 2.0 * std::norm(c.h0[size_t(y) * N + x]);
-            variance += e;
+            const size_t k = size_t(y) * N + x;
+            const double e = 2.0 * std::norm(c.h0[k]);
+            c.varianceTo += e;
+            c.varianceFrom += 2.0 * std::norm(c.h0From[k]);
             jVariance += e * (kx * kx + ky * ky);
         }
     c.sigmaJ = float(config_.choppiness * std::sqrt(jVariance));
-    c.sigma = float(std::sqrt(variance));
-    c.scale = c.sigma > 0.0f ? 1.0f / (8.0f * c.sigma) : 1.0f;
+    setBlendedSigma(c, blend_.at(time_));
     clGuard("uploading the ocean spectrum", [&] {
         cl_.queue().enqueueWriteBuffer(c.h0Device, CL_TRUE, 0, c.h0.size() * sizeof(cl_float2), c.h0.data());
+        cl_.queue().enqueueWriteBuffer(c.h0FromDevice, CL_TRUE, 0, c.h0From.size() * sizeof(cl_float2), c.h0From.data());
     });
 }
 
@@ -379,6 +415,8 @@ void OceanField::compute(double dt) {
     const float t = float(std::fmod(time_, double(config_.repeatSeconds)) +
                           (time_ < 0 ? double(config_.repeatSeconds) : 0.0));
     const int displacement = config_.choppiness > 0.0f ? 1 : 0;
+    const double blend = blend_.at(time_);
+    for (OceanCascade& c : cascades_) setBlendedSigma(c, blend);
     const FoamConfig& foam = config_.foam;
     const float decay = float(std::exp2(-dt / foam.halfLife));
 
@@ -389,13 +427,15 @@ void OceanField::compute(double dt) {
         for (OceanCascade& c : cascades_) {
             const float texel = c.patchMeters / float(N);
             const float lambdaPerTexel = config_.choppiness / texel;
-            spectrumKernel_.setArg(0, c.h0Device);
-            spectrumKernel_.setArg(1, c.omegaDevice);
-            spectrumKernel_.setArg(2, spectrum_);
-            spectrumKernel_.setArg(3, N);
-            spectrumKernel_.setArg(4, t);
-            spectrumKernel_.setArg(5, float(2.0 * kPi / c.patchMeters));
-            spectrumKernel_.setArg(6, displacement);
+            spectrumKernel_.setArg(0, c.h0FromDevice);
+            spectrumKernel_.setArg(1, c.h0Device);
+            spectrumKernel_.setArg(2, float(blend));
+            spectrumKernel_.setArg(3, c.omegaDevice);
+            spectrumKernel_.setArg(4, spectrum_);
+            spectrumKernel_.setArg(5, N);
+            spectrumKernel_.setArg(6, t);
+            spectrumKernel_.setArg(7, float(2.0 * kPi / c.patchMeters));
+            spectrumKernel_.setArg(8, displacement);
             cl_.enqueue(spectrumKernel_, cl::NDRange(N / 2 + 1, N));
             cl_mem in = spectrum_(), out = c.lagrangian();
             checkFft(clfftEnqueueTransform(plan_->handle, CLFFT_BACKWARD, 1, &queue, 0, nullptr, nullptr, &in, &out,
@@ -437,6 +477,10 @@ void OceanField::compute(double dt) {
         }
     });
     foamFront_ = front;
+    if (calibrateAfterBlend_ && blend >= 1.0) {
+        calibrateAfterBlend_ = false;
+        calibrateFoam();
+    }
 }
 
 } // namespace hfx

@@ -12,13 +12,16 @@ void OceanEffectConfig::validate() const {
     material.validate();
     if (!(reliefExaggeration > 0.0f && reliefExaggeration <= 20.0f))
         throw Error(str("OceanEffectConfig.reliefExaggeration must be in (0, 20], got ", reliefExaggeration));
+    if (!(windBlendSeconds >= 0.0) || !std::isfinite(windBlendSeconds))
+        throw Error(str("OceanEffectConfig.windBlendSeconds must be >= 0 and finite, got ", windBlendSeconds));
     if (surface.pyramid && ocean.cascades > 1)
         throw Error(str("OceanEffectConfig: a height pyramid (the hier technique) traces one grid; the ocean has ",
                         ocean.cascades, " cascades (set ocean.cascades = 1 for hier)"));
 }
 
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
-    : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration) {
+    : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration),
+      windBlendSeconds_(config.windBlendSeconds) {
     // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
     // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
@@ -68,14 +71,22 @@ void OceanEffect::enqueueSurface() {
     }
 }
 
-void OceanEffect::setWind(float speed, float direction) {
-    ocean_.setWind(speed, direction);
+void OceanEffect::advance(double dt) {
+    ocean_.step(dt);
+    material_.depthScale = physicalDepthScale(); // moves while a wind change blends in
+}
+
+void OceanEffect::setWind(float speed, float direction) { setWind(speed, direction, windBlendSeconds_); }
+
+void OceanEffect::setWind(float speed, float direction, double blendSeconds) {
+    ocean_.setWind(speed, direction, blendSeconds);
     material_.depthScale = physicalDepthScale();
     refresh();
 }
 
 void OceanEffect::setTime(double seconds) {
     ocean_.setTime(seconds);
+    material_.depthScale = physicalDepthScale();
     refresh();
 }
 

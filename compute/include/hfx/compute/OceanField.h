@@ -85,6 +85,10 @@ struct OceanCascade {
     float foamGain = 0.0f;            ///< foam per second per unit of threshold - J
     float scale = 0.0f;               ///< stored height h = 0.5 + metres * scale (1 / 8 sigma)
     std::vector<std::complex<float>> h0; ///< h0(k), FFT index order, zero outside the band
+    /// The spectrum a wind change blends from (OceanField::setWind): h0 at time t is
+    /// hfx_ocean_blend(h0From, h0, blend(t)), energy mixed linearly and each k's phase kept, so
+    /// waves fade in and out where they are.
+    std::vector<std::complex<float>> h0From;
     std::vector<float> omega;         ///< w(k), quantised to multiples of 2 pi / repeatSeconds
     cl::Buffer height;                ///< Eulerian h in [0,1] (size^2 floats): what Sobel and the GL surface take
     cl::Buffer meters;                ///< the same heights in metres, unclamped
@@ -93,7 +97,18 @@ struct OceanCascade {
     cl::Buffer jacobian;              ///< J on the Lagrangian grid
     cl::Buffer gradient;              ///< lambda dDx/dx, dDy/dy, dDx/dy on the Lagrangian grid, 3 size^2 blocks
     cl::Buffer foam[2];               ///< foam coverage on the Lagrangian grid, this step's and the last
-    cl::Buffer h0Device, omegaDevice; ///< h0 and omega on the device
+    cl::Buffer h0Device, h0FromDevice, omegaDevice; ///< h0, h0From and omega on the device
+    /// sum 2 |h0From|^2 and sum 2 |h0|^2: sigma^2 at blend s is their mix.
+    double varianceFrom = 0.0, varianceTo = 0.0;
+};
+
+/// A wind change in progress: the spectrum blends from OceanCascade::h0From to h0 between
+/// `start` and start + `seconds` (of the field's time), along a smoothstep.
+struct WindBlend {
+    double start = 0.0;
+    double seconds = 0.0;
+    /// 0 before the change, 1 once it is done.
+    double at(double time) const;
 };
 
 class OceanField {
@@ -109,10 +124,13 @@ public:
     void setTime(double seconds);
     double time() const { return time_; }
 
-    /// Changes the wind sea (m/s, radians from +u) and regenerates the spectrum from the same
-    /// random phases, so the sea changes character without jumping; throws and changes nothing
-    /// on bad values.
-    void setWind(float speed, float direction);
+    /// Changes the wind sea (m/s, radians from +u): the spectrum of that wind, from the same
+    /// random phases, is blended in over `blendSeconds` of the field's time (0: at once). The
+    /// wave vectors stay where they are, so nothing rotates about the patch's origin: waves of
+    /// the old direction fade out where they are and the new ones fade in. A change during a
+    /// blend starts from the sea as it is then. Throws and changes nothing on bad values.
+    void setWind(float speed, float direction, double blendSeconds = 0.0);
+    const WindBlend& windBlend() const { return blend_; }
     /// Replaces one cascade's h0 (custom spectra, tests); its sigma and scale follow.
     void setAmplitudes(int cascade, const std::vector<std::complex<float>>& h0);
 
@@ -138,6 +156,7 @@ private:
     struct Plan;
     void makeCascade(OceanCascade& c, float patchMeters, float kMin, float kMax);
     void uploadAmplitudes(OceanCascade& c);
+    void setBlendedSigma(OceanCascade& c, double blend);
     void calibrateFoam();
     void compute(double dt);
 
@@ -149,6 +168,8 @@ private:
     std::unique_ptr<Plan> plan_;
     int foamFront_ = 0;
     double time_ = 0.0;
+    WindBlend blend_;
+    bool calibrateAfterBlend_ = false;
 };
 
 } // namespace hfx

@@ -23,6 +23,9 @@ struct OceanEffectConfig {
     SurfaceMaterial material{.minSamples = 8, .maxSamples = 40, .shadowSharpness = 1.0f,
                              .specularStrength = 0.0f, .shading = Shading::Water, .water = {.foam = true}};
     float reliefExaggeration = 1.0f; ///< multiplies the physical depth scale
+    /// How long a wind change (setWind) takes to blend in, seconds of the sea's time: a gust
+    /// that takes the sea over at once reads as a cut.
+    double windBlendSeconds = 4.0;
     /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
     SurfaceOptions surface;
     void validate() const; ///< throws hfx::Error naming the bad field and its value
@@ -32,9 +35,12 @@ class OceanEffect final : public Effect {
 public:
     explicit OceanEffect(ClContext& cl, const OceanEffectConfig& config = {});
 
-    /// Live wind change (m/s, radians from +u): a new spectrum and with it a new depth scale in
-    /// material(); throws and changes nothing on bad values.
+    /// Live wind change (m/s, radians from +u): the new sea blends in over the config's
+    /// windBlendSeconds, and the depth scale in material() follows it frame by frame; throws and
+    /// changes nothing on bad values.
     void setWind(float speed, float direction);
+    /// The same over `blendSeconds` (0: at once).
+    void setWind(float speed, float direction, double blendSeconds);
     /// Jumps to an absolute time (seconds) and refreshes the textures.
     void setTime(double seconds);
     double time() const { return ocean_.time(); }
@@ -47,11 +53,12 @@ public:
 private:
     const SurfacePipeline& surface() const override { return *surfaces_.front(); }
     std::vector<const SurfacePipeline*> surfaces() const override;
-    void advance(double dt) override { ocean_.step(dt); }
+    void advance(double dt) override;
     void enqueueSurface() override;
 
     OceanField ocean_;
     float exaggeration_;
+    double windBlendSeconds_;
     std::vector<std::unique_ptr<SurfacePipeline>> surfaces_; ///< one per cascade
 };
 

@@ -17,6 +17,20 @@ HFX_FN void hfx_ocean_mode(float h0re, float h0im, float h0mre, float h0mim, flo
     *im = (h0re * s + h0im * c) - (h0mre * s + h0mim * c);
 }
 
+/* A wind change's amplitude at blend s in [0, 1] from a (the old sea's h0(k)) to b (the new):
+   the energy |h|^2 = (1 - s)|a|^2 + s|b|^2 moves linearly, so the spectrum is the linear mix of
+   the two and the sea keeps its height mid-change, and the phase is that of mix(a, b, s): a
+   and b of one k share their random phase (OceanField draws it per k), so it stays where it is
+   and the waves fade in and out in place. Zero where the mix vanishes. */
+HFX_FN void hfx_ocean_blend(float are, float aim, float bre, float bim, float s, float* re, float* im) {
+    float mre = are + s * (bre - are), mim = aim + s * (bim - aim);
+    float len = HFX_SQRT(mre * mre + mim * mim);
+    float energy = (1.0f - s) * (are * are + aim * aim) + s * (bre * bre + bim * bim);
+    float g = len > 0.0f ? HFX_SQRT(energy) / len : 0.0f;
+    *re = mre * g;
+    *im = mim * g;
+}
+
 /* Bilinear sample of a periodic N x N field (N a power of two) at (x, y) in texel units, the
    grid points at whole numbers. */
 HFX_FN_INLINE float hfx_ocean_sample(HFX_GLOBAL const float* f, int N, float x, float y) {
