@@ -23,7 +23,7 @@
 #include <filesystem>
 
 namespace hfx::demo {
-int runBench(const SceneOptions& scene, int width, int height, int frames);
+int runBench(const SceneOptions& scene, int width, int height, int frames, const std::vector<std::string>& only);
 int runBenchAccuracy(const std::string& outDir, int field);
 int runBenchMesh(int width, int height, int frames);
 }
@@ -45,6 +45,7 @@ struct Options {
     std::string transfer = "auto";
     std::string format = "png";
     bool noProgress = false;
+    std::vector<std::string> benchOnly;
     SceneOptions sceneOptions;
 };
 
@@ -109,7 +110,7 @@ int run(const Options& o) {
         std::printf("%s", techniqueTableMarkdown().c_str());
         return 0;
     }
-    if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20);
+    if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20, o.benchOnly);
     if (o.scene == "bench-mesh") return runBenchMesh(o.width, o.height, o.frames > 0 ? o.frames : 10);
     if (o.scene == "bench-accuracy") {
         const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
@@ -218,6 +219,9 @@ int main(int argc, char** argv) {
     app.add_option("--color-map", s.colorMap, "maps, decals: colour map");
     app.add_option("--window-shot", o.windowShot,
                    "window runs with --frames: save the last frame as the window shows it, panel included");
+    app.add_option("--bench-only", o.benchOnly, "bench: only these tables (default all)")
+        ->check(CLI::IsMember({"water", "decals", "planet", "transfer", "scaling"}))
+        ->delimiter(',');
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
     s.shadows = !noShadows;

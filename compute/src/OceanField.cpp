@@ -74,10 +74,6 @@ void releaseLibrary() {
     if (--libraryUsers == 0) clfftTeardown();
 }
 
-/// Newton steps of the Eulerian resample: quadratic convergence, so four reach float precision
-/// on steep unfolded waves (lambda k A = 0.75 in the tests).
-constexpr int kEulerianIterations = 4;
-
 } // namespace
 
 struct OceanField::Plan {
@@ -183,6 +179,11 @@ float OceanField::sigmaMeters() const {
     double variance = 0.0;
     for (const OceanCascade& c : cascades_) variance += double(c.sigma) * c.sigma;
     return float(std::sqrt(variance));
+}
+
+float OceanField::periodicTime(double seconds, float repeatSeconds) {
+    const double r = std::fmod(seconds, double(repeatSeconds));
+    return float(r < 0.0 ? r + double(repeatSeconds) : r);
 }
 
 double WindBlend::at(double time) const {
@@ -411,9 +412,7 @@ void OceanField::setTime(double seconds) {
 
 void OceanField::compute(double dt) {
     const int N = config_.size;
-    // Every frequency is a multiple of 2 pi / T, so t may be taken modulo T, in double.
-    const float t = float(std::fmod(time_, double(config_.repeatSeconds)) +
-                          (time_ < 0 ? double(config_.repeatSeconds) : 0.0));
+    const float t = periodicTime(time_, config_.repeatSeconds);
     const int displacement = config_.choppiness > 0.0f ? 1 : 0;
     const double blend = blend_.at(time_);
     for (OceanCascade& c : cascades_) setBlendedSigma(c, blend);
@@ -472,7 +471,7 @@ void OceanField::compute(double dt) {
             eulerianKernel_.setArg(a++, N);
             eulerianKernel_.setArg(a++, lambdaPerTexel);
             eulerianKernel_.setArg(a++, c.scale);
-            eulerianKernel_.setArg(a++, displacement ? kEulerianIterations : 0);
+            eulerianKernel_.setArg(a++, displacement ? eulerianIterations : 0);
             cl_.enqueue(eulerianKernel_, cl::NDRange(N, N));
         }
     });

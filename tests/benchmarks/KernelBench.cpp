@@ -11,6 +11,7 @@
 #include "hfx/compute/MaxPyramid.h"
 #include "hfx/compute/NoiseField.h"
 #include "hfx/compute/OceanField.h"
+#include "hfx/compute/OceanQuery.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/WaveField.h"
 #include "hfx/compute/shared/NoiseMath.h"
@@ -209,12 +210,45 @@ void BM_Gas(benchmark::State& state) {
                                                             : std::function<void()>());
 }
 
+/// The ocean step at {size, cascades, choppiness 0/1}: spectrum, one batched inverse FFT per
+/// cascade (h alone, or h, Dx, Dy), the Lagrangian pass (J, gradient, foam) and the Eulerian
+/// resample (Newton steps with choppiness, a copy without).
 void BM_Ocean(benchmark::State& state) {
-    const int n = int(state.range(0));
-    OceanField ocean(cl(), {.size = n, .cascades = 1});
-    // No single-threaded FFT on the machine to compare with: time and bandwidth only (spectrum
-    // in, FFT passes, height out: about 5 complex reads and writes per texel).
-    measure(state, [&] { ocean.step(1.0 / 60); }, 5 * 16.0 * n * n, {});
+    const int n = int(state.range(0)), cascades = int(state.range(1));
+    const float choppiness = float(state.range(2));
+    OceanConfig config{.size = n, .cascades = cascades, .choppiness = choppiness};
+    config.sea.wind.windSpeed = 10.0f;
+    OceanField ocean(cl(), config);
+    // No single-threaded reference of the whole step (OceanQuery is one for part of it: see
+    // BM_OceanQuery). Bytes per texel and cascade: the half spectra out (1 or 3 complex), the
+    // FFT's passes (about 4 reads and writes of them), the fields in and J, gradient, foam,
+    // height, metres, foam colour out.
+    const double fields = choppiness > 0.0f ? 3.0 : 1.0;
+    const double bytes = cascades * double(n) * n * (fields * 8.0 * 5.0 + fields * 4.0 + 4.0 * 9.0);
+    measure(state, [&] { ocean.step(1.0 / 60); }, bytes, {});
+}
+
+/// OceanQuery::heights of 256 points on the default sea (4 cascades of 256^2, choppy): at a new
+/// time each batch (the grids: spectra, 12 FFTs, gradients; then the points) and at the same
+/// time (the points alone: 4 bilinear corners x 4 cascades x 4 Newton steps each).
+void BM_OceanQuery(benchmark::State& state) {
+    const bool newTime = state.range(0) != 0;
+    OceanConfig config;
+    config.sea.wind.windSpeed = 10.0f;
+    OceanField ocean(cl(), config);
+    OceanQuery query(ocean);
+    std::vector<glm::vec2> points;
+    for (int i = 0; i < 256; ++i) points.emplace_back(3.7f * float(i), 1.3f * float(i * i % 97));
+    std::vector<float> out(points.size());
+    double t = 0.0;
+    query.heights(points, t, out);
+    for (auto _ : state) {
+        if (newTime) t += 1.0 / 60;
+        query.heights(points, t, out);
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.counters["us_per_point"] = benchmark::Counter(double(points.size()),
+                                                        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK(BM_Sobel)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -223,7 +257,12 @@ BENCHMARK(BM_Decals)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMilli
 BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Noise)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Ocean)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Ocean)
+    ->ArgsProduct({{512, 1024}, {1, 2, 3, 4}, {0, 1}})
+    ->ArgNames({"size", "cascades", "chop"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 

@@ -151,6 +151,12 @@ public:
     /// The wave vector (rad/m) of FFT index (x, y) on a cascade of edge L: n = x for x < N/2,
     /// else x - N (likewise y).
     static void waveVector(int x, int y, int n, double patchMeters, double& kx, double& ky);
+    /// The time the spectrum is evaluated at: `seconds` modulo repeatSeconds (every frequency
+    /// is a multiple of 2 pi / repeatSeconds), so omega t stays exact in float over any run.
+    static float periodicTime(double seconds, float repeatSeconds);
+    /// Newton steps of the Eulerian resample (x0 + lambda D(x0) = x): quadratic convergence, so
+    /// four reach float precision on steep unfolded waves (lambda k A = 0.75 in the tests).
+    static constexpr int eulerianIterations = 4;
 
 private:
     struct Plan;
