@@ -15,6 +15,7 @@
 //   HFX_SELF_SHADOW   1 when it has self-shadows (hfx_shadow is called)
 //   HFX_LAYERS        1 to 4: the surface's layers (the ocean's cascades), summed in height and
 //                     slope (surface/heights.glsl); 1 is an ordinary surface
+//   HFX_TRACED_LAYERS 1 to HFX_LAYERS: the leading layers the tracers see; the rest only shade
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction

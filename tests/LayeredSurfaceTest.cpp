@@ -97,6 +97,69 @@ TEST_F(LayeredSurface, DrawsAsTheSingleSurfaceOfItsSumAndHitsItsExactIntersectio
     EXPECT_LT(statistics(toExact).mean, 0.05) << "texels from the exact intersection";
 }
 
+// An untraced layer stands flat at its rest height in the trace: the hits are the exact
+// intersection of wA A + wB rest, not of the sum; the slopes still include it.
+TEST_F(LayeredSurface, AnUntracedLayerIsFlatInTheTraceAndStillShades) {
+    const Layers l = makeLayers(cl());
+    constexpr float rest = 0.3f;
+    const SurfaceLayer layered[] = {
+        {.textures = &l.surfaceA->textures(), .weight = kWeightA},
+        {.textures = &l.surfaceB->textures(), .texcoordScale = 2.0f, .weight = kWeightB, .traced = false, .restHeight = rest}};
+    const SurfaceLayer full[] = {{.textures = &l.surfaceA->textures(), .weight = kWeightA},
+                                 {.textures = &l.surfaceB->textures(), .texcoordScale = 2.0f, .weight = kWeightB}};
+    const SurfaceMaterial material{.depthScale = 0.1f, .minSamples = 8, .maxSamples = 32, .lodThreshold = 100.0f, .shadows = false};
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const Camera camera = accuracyCamera(50.0);
+    SurfaceRenderer renderer;
+    constexpr int image = 160;
+    RenderTarget target(image, image, true);
+    auto render = [&](std::span<const SurfaceLayer> layers) {
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), layers, material, camera, {}, {.traceOutput = true});
+        return std::pair{target.readColor(), target.readTrace()};
+    };
+    const auto [colorUntraced, traceUntraced] = render(layered);
+    const auto [colorFull, traceFull] = render(full);
+
+    std::vector<float> flat(size_t(N) * N);
+    for (size_t i = 0; i < flat.size(); ++i) flat[i] = kWeightA * l.a[i] + kWeightB * rest;
+    const HeightFieldTracer exactFlat(flat, N, N, EdgeMode::Wrap), exactSum(l.sum, N, N, EdgeMode::Wrap);
+    std::vector<double> toFlat, toSum;
+    double fetchesUntraced = 0, fetchesFull = 0;
+    size_t shadedAlike = 0, pixels = 0;
+    for (int y = 0; y < image; ++y)
+        for (int x = 0; x < image; ++x) {
+            const glm::vec4 a = traceUntraced[size_t(y) * image + x];
+            if (a.w == 0.0f) continue;
+            fetchesUntraced += std::floor(a.w);
+            fetchesFull += std::floor(traceFull[size_t(y) * image + x].w);
+            glm::dvec2 uv0;
+            glm::dvec3 toEye;
+            if (!planePixelRay(camera, 2.0f, x, y, image, image, uv0, toEye)) continue;
+            const auto hitFlat = exactFlat.traceView(uv0, toEye, material.depthScale);
+            const auto hitSum = exactSum.traceView(uv0, toEye, material.depthScale);
+            if (!hitFlat || !hitSum) continue;
+            toFlat.push_back(glm::length(glm::dvec2(a.x, a.y) - hitFlat->uv) * N);
+            toSum.push_back(glm::length(glm::dvec2(a.x, a.y) - hitSum->uv) * N);
+            // Shading at the same texcoords: B's slopes are in both, so pixels whose hits agree
+            // shade alike; a B left out of the shading too would change most of them.
+            if (glm::length(glm::vec2(a) - glm::vec2(traceFull[size_t(y) * image + x])) * N < 0.05f) {
+                ++pixels;
+                float diff = 0.0f; // colour rows top first, trace rows bottom first
+                for (int c = 0; c < 3; ++c)
+                    diff = std::max(diff, std::abs(colorUntraced.at(x, image - 1 - y, c) - colorFull.at(x, image - 1 - y, c)));
+                shadedAlike += diff <= 2.5f / 255;
+            }
+        }
+    ASSERT_GT(toFlat.size(), 1000u);
+    EXPECT_LT(statistics(toFlat).mean, 0.05) << "texels from the exact intersection of the traced part";
+    EXPECT_GT(statistics(toSum).mean, 0.2) << "texels from the full sum's intersection: B must be out of the trace";
+    EXPECT_NEAR(fetchesUntraced / fetchesFull, 0.5, 0.1) << "one fetch per step instead of two";
+    ASSERT_GT(pixels, 100u);
+    EXPECT_GT(double(shadedAlike) / double(pixels), 0.95) << "of the pixels hit alike shade alike";
+}
+
 TEST_F(LayeredSurface, RefusesWhatItCannotDraw) {
     const Layers l = makeLayers(cl());
     SurfaceRenderer renderer;
@@ -113,6 +176,10 @@ TEST_F(LayeredSurface, RefusesWhatItCannotDraw) {
     EXPECT_NE(draw({{a, 1.0f, 0.5f}, {nullptr, 2.0f, 0.5f}}).find("no textures"), std::string::npos);
     EXPECT_NE(draw({{a, -1.0f, 0.5f}, {b, 2.0f, 0.5f}}).find("texcoordScale"), std::string::npos);
     EXPECT_NE(draw({}).find("1 to 4 layers"), std::string::npos);
+    EXPECT_NE(draw({{a, 1.0f, 0.5f, false}, {b, 2.0f, 0.5f}}).find("always traced"), std::string::npos);
+    EXPECT_NE(draw({{a, 1.0f, 0.4f}, {b, 2.0f, 0.3f, false}, {b, 4.0f, 0.3f}}).find("traced layers come first"),
+              std::string::npos);
+    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {b, 2.0f, 0.5f, false, 1.5f}}).find("restHeight"), std::string::npos);
     SurfaceTextures clamped({.width = 8, .height = 8, .mipmaps = false, .edges = EdgeMode::Clamp});
     EXPECT_NE(draw({{a, 1.0f, 0.5f}, {&clamped, 2.0f, 0.5f}}).find("does not tile"), std::string::npos);
     SurfaceTextures half({.width = 8, .height = 8, .mipmaps = false, .format = SurfaceFormat::Float16});

@@ -32,39 +32,33 @@ __kernel void ocean_spectrum(__global const float2* h0From, __global const float
 /* On the Lagrangian grid (the undisplaced points): the Jacobian of the displacement, and the
    foam, which is attached to the water (it rides the orbital motion with its point) and drifts
    downwind: last step's foam, `drift` texels upwind, decayed, plus what this step's J < threshold
-   injects, capped at 1. fields: h, Dx, Dy (N x N each, metres). Also the displacement's gradient
-   (three N x N planes) for the Eulerian resample's Newton steps. */
+   injects, capped at 1. fields: h, Dx, Dy (N x N each, metres). Also the packed grid
+   (hfx_ocean_pack: displacement, its gradient, height, foam) for the Eulerian resample. */
 __kernel void ocean_lagrangian(__global const float* fields, __global const float* foamIn, __global float* foamOut,
-                               __global float* jacobian, __global float* gradient, int N, float lambdaPerTexel,
+                               __global float* jacobian, __global float* packed, int N, float lambdaPerTexel,
                                float decay, float injection, float threshold, float driftX, float driftY) {
     int i = get_global_id(0), j = get_global_id(1);
     if (i >= N || j >= N) return;
     int n = N * N, k = j * N + i;
-    float xx, yy, xy;
-    hfx_ocean_gradient(fields + n, fields + 2 * n, N, lambdaPerTexel, i, j, &xx, &yy, &xy);
-    gradient[k] = xx;
-    gradient[n + k] = yy;
-    gradient[2 * n + k] = xy;
     float J = hfx_ocean_jacobian(fields + n, fields + 2 * n, N, lambdaPerTexel, i, j);
     jacobian[k] = J;
     float carried = hfx_ocean_sample(foamIn, N, (float)i - driftX, (float)j - driftY);
-    foamOut[k] = clamp(carried * decay + injection * fmax(threshold - J, 0.0f), 0.0f, 1.0f);
+    float foam = clamp(carried * decay + injection * fmax(threshold - J, 0.0f), 0.0f, 1.0f);
+    foamOut[k] = foam;
+    hfx_ocean_pack(fields, N, lambdaPerTexel, i, j, foam, packed);
 }
 
 /* The Eulerian field the renderer traces: for texel (i, j), the Lagrangian point displaced onto
    it, and the height and foam there. height = 0.5 + metres * scale, clamped to [0,1]. */
-__kernel void ocean_eulerian(__global const float* fields, __global const float* gradient, __global const float* foam,
-                             __global float* height, __global float* meters, __global uchar4* foamColor, int N,
-                             float lambdaPerTexel, float scale, int iterations) {
+__kernel void ocean_eulerian(__global const float* packed, __global float* height, __global float* meters,
+                             __global uchar4* foamColor, int N, float lambdaPerTexel, float scale, int iterations) {
     int i = get_global_id(0), j = get_global_id(1);
     if (i >= N || j >= N) return;
-    int n = N * N, k = j * N + i;
-    float x0, y0;
-    hfx_ocean_lagrangian_point(fields + n, fields + 2 * n, gradient, N, lambdaPerTexel, iterations, (float)i, (float)j,
-                               &x0, &y0);
-    float H = hfx_ocean_sample(fields, N, x0, y0);
+    int k = j * N + i;
+    HfxOceanCell c = hfx_ocean_lagrangian_texel(packed, N, lambdaPerTexel, iterations, i, j);
+    float H = hfx_ocean_lerp(packed, c, HFX_OCEAN_H);
     meters[k] = H;
     height[k] = clamp(0.5f + H * scale, 0.0f, 1.0f);
-    float f = hfx_ocean_sample(foam, N, x0, y0);
+    float f = hfx_ocean_lerp(packed, c, HFX_OCEAN_FOAM);
     foamColor[k] = (uchar4)(255, 255, 255, convert_uchar_sat(f * 255.0f + 0.5f));
 }

@@ -261,7 +261,7 @@ void OceanField::makeCascade(OceanCascade& c, float patchMeters, float kMin, flo
         c.omegaDevice = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(float), c.omega.data());
         c.lagrangian = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * n * sizeof(float));
         c.jacobian = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
-        c.gradient = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * n * sizeof(float));
+        c.packed = cl::Buffer(ctx, CL_MEM_READ_WRITE, HFX_OCEAN_PACKED * n * sizeof(float));
         for (cl::Buffer& f : c.foam) {
             f = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
             cl_.queue().enqueueFillBuffer(f, 0.0f, 0, n * sizeof(float));
@@ -452,7 +452,7 @@ void OceanField::compute(double dt) {
             lagrangianKernel_.setArg(a++, c.foam[back]);
             lagrangianKernel_.setArg(a++, c.foam[front]);
             lagrangianKernel_.setArg(a++, c.jacobian);
-            lagrangianKernel_.setArg(a++, c.gradient);
+            lagrangianKernel_.setArg(a++, c.packed);
             lagrangianKernel_.setArg(a++, N);
             lagrangianKernel_.setArg(a++, lambdaPerTexel);
             lagrangianKernel_.setArg(a++, decay);
@@ -462,9 +462,7 @@ void OceanField::compute(double dt) {
             lagrangianKernel_.setArg(a++, drift * std::sin(config_.sea.wind.direction));
             cl_.enqueue(lagrangianKernel_, cl::NDRange(N, N));
             a = 0;
-            eulerianKernel_.setArg(a++, c.lagrangian);
-            eulerianKernel_.setArg(a++, c.gradient);
-            eulerianKernel_.setArg(a++, c.foam[front]);
+            eulerianKernel_.setArg(a++, c.packed);
             eulerianKernel_.setArg(a++, c.height);
             eulerianKernel_.setArg(a++, c.meters);
             eulerianKernel_.setArg(a++, c.foamColor);

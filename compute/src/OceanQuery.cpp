@@ -45,7 +45,7 @@ struct OceanQuery::Grids {
         std::vector<std::complex<float>> h0From, h0;
         std::vector<float> omega;
         FftwArray<float> fields;     ///< h, Dx, Dy on the Lagrangian grid (3 N^2)
-        std::vector<float> gradient; ///< lambda dDx/dx, dDy/dy, dDx/dy (3 N^2)
+        std::vector<float> packed; ///< the grid packed as ocean_eulerian reads it (hfx_ocean_pack)
     };
     int N = 0;
     float choppiness = 0.0f;
@@ -67,7 +67,7 @@ OceanQuery::OceanQuery(const OceanField& ocean) : grids_(std::make_unique<Grids>
     g.cascades.resize(size_t(ocean.cascadeCount()));
     for (Grids::Cascade& c : g.cascades) {
         c.fields = fftwArray<float>(3 * n);
-        c.gradient.assign(3 * n, 0.0f);
+        c.packed.assign(HFX_OCEAN_PACKED * n, 0.0f);
     }
     {
         // Three 2D complex-to-real transforms of the (N/2 + 1)-wide halves, unnormalised (a
@@ -152,11 +152,8 @@ void OceanQuery::prepare(double t) {
         if (!displacement)
             std::fill(f + n, f + 3 * n, 0.0f);
         for (int j = 0; j < N; ++j)
-            for (int i = 0; i < N; ++i) {
-                const size_t k = size_t(j) * N + size_t(i);
-                hfx_ocean_gradient(f + n, f + 2 * n, N, c.lambdaPerTexel, i, j, &c.gradient[k],
-                                   &c.gradient[n + k], &c.gradient[2 * n + k]);
-            }
+            for (int i = 0; i < N; ++i)
+                hfx_ocean_pack(f, N, c.lambdaPerTexel, i, j, 0.0f, c.packed.data());
     }
     g.valid = true;
     g.time = t;
@@ -165,15 +162,12 @@ void OceanQuery::prepare(double t) {
 float OceanQuery::cascadeHeight(int cascade, glm::vec2 point) const {
     const Grids& g = *grids_;
     const Grids::Cascade& c = g.cascades[size_t(cascade)];
-    const size_t n = size_t(g.N) * g.N;
-    const float* f = c.fields.get();
     const int iterations = g.choppiness > 0.0f ? OceanField::eulerianIterations : 0;
     // The Eulerian height at a texel, as ocean_eulerian computes it.
     auto eulerian = [&](int i, int j) {
-        float x0, y0;
-        hfx_ocean_lagrangian_point(f + n, f + 2 * n, c.gradient.data(), g.N, c.lambdaPerTexel,
-                                   iterations, float(i), float(j), &x0, &y0);
-        return hfx_ocean_sample(f, g.N, x0, y0);
+        const HfxOceanCell cell = hfx_ocean_lagrangian_texel(c.packed.data(), g.N, c.lambdaPerTexel,
+                                                             iterations, i, j);
+        return hfx_ocean_lerp(c.packed.data(), cell, HFX_OCEAN_H);
     };
     // Into the patch in double, then texels, so points kilometres out keep their precision;
     // between texels bilinear, as the renderer filters OceanCascade::meters.

@@ -14,6 +14,8 @@ void OceanEffectConfig::validate() const {
         throw Error(str("OceanEffectConfig.reliefExaggeration must be in (0, 20], got ", reliefExaggeration));
     if (!(windBlendSeconds >= 0.0) || !std::isfinite(windBlendSeconds))
         throw Error(str("OceanEffectConfig.windBlendSeconds must be >= 0 and finite, got ", windBlendSeconds));
+    if (!(untracedShare >= 0.0f && untracedShare < 1.0f))
+        throw Error(str("OceanEffectConfig.untracedShare must be in [0, 1), got ", untracedShare));
     if (surface.pyramid && ocean.cascades > 1)
         throw Error(str("OceanEffectConfig: a height pyramid (the hier technique) traces one grid; the ocean has ",
                         ocean.cascades, " cascades (set ocean.cascades = 1 for hier)"));
@@ -21,7 +23,7 @@ void OceanEffectConfig::validate() const {
 
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
     : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration),
-      windBlendSeconds_(config.windBlendSeconds) {
+      windBlendSeconds_(config.windBlendSeconds), untracedShare_(config.untracedShare) {
     // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
     // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
@@ -59,6 +61,15 @@ std::vector<SurfaceLayer> OceanEffect::layers() const {
         layers.push_back({.textures = &surfaces_[size_t(i)]->textures(),
                           .texcoordScale = ocean_.config().patchMeters / c.patchMeters,
                           .weight = sum > 0.0f ? c.sigma / sum : 1.0f / float(ocean_.cascadeCount())});
+    }
+    // From the finest up, while the untraced weights stay within the share (stored heights rest
+    // at 0.5: OceanCascade::scale).
+    float untraced = 0.0f;
+    for (size_t i = layers.size() - 1; i > 0; --i) {
+        untraced += layers[i].weight;
+        if (untraced > untracedShare_) break;
+        layers[i].traced = false;
+        layers[i].restHeight = 0.5f;
     }
     return layers;
 }

@@ -5,6 +5,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace hfx {
@@ -130,8 +131,9 @@ void SurfaceMaterial::validate() const {
     }
 }
 
-const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading, int layers) {
-    const auto key = std::make_tuple(options.technique, options.traceOutput, shading, layers);
+const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading, int layers, int traced) {
+    if (traced <= 0 || traced > layers) traced = layers;
+    const auto key = std::make_tuple(options.technique, options.traceOutput, shading, layers, traced);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         // The fragment stage: the common declarations, the technique's tracer, the shading model,
@@ -140,7 +142,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shadin
         const std::vector<ShaderDefine> defines = {{"HFX_TRACES", info.traces ? "1" : "0"},
                                                    {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None ? "1" : "0"},
                                                    {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"},
-                                                   {"HFX_LAYERS", std::to_string(layers)}};
+                                                   {"HFX_LAYERS", std::to_string(layers)},
+                                                   {"HFX_TRACED_LAYERS", std::to_string(traced)}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("trace/common.glsl"),
                          shader(info.shader), shader("shade/common.glsl"), shader("shade/sky.glsl"),
@@ -179,6 +182,12 @@ void validateLayers(std::span<const SurfaceLayer> layers, const TechniqueInfo& t
         if (!(l.weight >= 0.0f) || !std::isfinite(l.weight))
             throw Error(str("surface layer ", i, ": weight must be >= 0, got ", l.weight));
         weights += l.weight;
+        if (!l.traced && i == 0) throw Error("surface layer 0 is untraced: the first layer is always traced");
+        if (l.traced && i > 0 && !layers[i - 1].traced)
+            throw Error(str("surface layer ", i, " is traced after the untraced layer ", i - 1,
+                            ": traced layers come first"));
+        if (!(l.restHeight >= 0.0f && l.restHeight <= 1.0f))
+            throw Error(str("surface layer ", i, ": restHeight must be in [0, 1], got ", l.restHeight));
         if (layers.size() > 1) {
             if (l.textures->config().edges != EdgeMode::Wrap)
                 throw Error(str("surface layer ", i, " does not tile (edges ", edgeModeName(l.textures->config().edges),
@@ -207,7 +216,8 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
-    const ShaderProgram& p = program(options, material.shading, int(layers.size()));
+    const int traced = int(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
+    const ShaderProgram& p = program(options, material.shading, int(layers.size()), traced);
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -242,6 +252,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
         u.layerWeight[int(i)] = l.weight;
         u.layerSlope[int(i)] = material.depthScale * l.weight * l.texcoordScale / l.textures->config().normalDepth;
         u.layerLevel[int(i)] = std::log2(l.texcoordScale * float(l.textures->config().width) / base);
+        if (!l.traced) u.untracedHeight += l.weight * l.restHeight;
     }
     bindUniforms(u, model, camera);
     if (material.shading == Shading::Water) {

@@ -20,19 +20,28 @@ layout(binding = 5) uniform sampler2D s_surface2;
 layout(binding = 6) uniform sampler2D s_surface3;
 #endif
 
+// A layered surface traces its first HFX_TRACED_LAYERS layers (all unless told): the others
+// (the ocean's fine cascades, a few percent of the depth) stand at their rest heights in the
+// trace, summed in u_untracedHeight, and still shade with their slopes.
+#ifndef HFX_TRACED_LAYERS
+#define HFX_TRACED_LAYERS HFX_LAYERS
+#endif
+
 float g_fetches = 0.0;
 
 float hfx_height(vec2 uv, float level) {
-    g_fetches += float(HFX_LAYERS);
+    g_fetches += float(HFX_TRACED_LAYERS);
 #if HFX_LAYERS == 1
     return textureLod(s_surface, uv, level).w;
 #else
-    float h = u_layerWeight.x * textureLod(s_surface, uv * u_layerScale.x, level + u_layerLevel.x).w;
+    float h = u_untracedHeight + u_layerWeight.x * textureLod(s_surface, uv * u_layerScale.x, level + u_layerLevel.x).w;
+#if HFX_TRACED_LAYERS > 1
     h += u_layerWeight.y * textureLod(s_surface1, uv * u_layerScale.y, level + u_layerLevel.y).w;
-#if HFX_LAYERS > 2
+#endif
+#if HFX_TRACED_LAYERS > 2
     h += u_layerWeight.z * textureLod(s_surface2, uv * u_layerScale.z, level + u_layerLevel.z).w;
 #endif
-#if HFX_LAYERS > 3
+#if HFX_TRACED_LAYERS > 3
     h += u_layerWeight.w * textureLod(s_surface3, uv * u_layerScale.w, level + u_layerLevel.w).w;
 #endif
     return h;

@@ -95,7 +95,7 @@ struct OceanCascade {
     cl::Buffer foamColor;             ///< Eulerian foam as RGBA8: white, coverage in alpha
     cl::Buffer lagrangian;            ///< h, Dx, Dy on the Lagrangian grid (metres), 3 size^2 blocks
     cl::Buffer jacobian;              ///< J on the Lagrangian grid
-    cl::Buffer gradient;              ///< lambda dDx/dx, dDy/dy, dDx/dy on the Lagrangian grid, 3 size^2 blocks
+    cl::Buffer packed;                ///< the Lagrangian grid packed for the resample (OceanMath.h, hfx_ocean_pack)
     cl::Buffer foam[2];               ///< foam coverage on the Lagrangian grid, this step's and the last
     cl::Buffer h0Device, h0FromDevice, omegaDevice; ///< h0, h0From and omega on the device
     /// sum 2 |h0From|^2 and sum 2 |h0|^2: sigma^2 at blend s is their mix.

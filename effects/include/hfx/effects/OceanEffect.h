@@ -26,6 +26,11 @@ struct OceanEffectConfig {
     /// How long a wind change (setWind) takes to blend in, seconds of the sea's time: a gust
     /// that takes the sea over at once reads as a cut.
     double windBlendSeconds = 4.0;
+    /// The finest cascades whose weights together are at most this share of the relief depth
+    /// are left out of the trace (SurfaceLayer::traced): flat there, they still shade. Each saves
+    /// a fetch per search and shadow step; their height moves the hit by at most half their share
+    /// of the depth. 0 traces every cascade.
+    float untracedShare = 0.05f;
     /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
     SurfaceOptions surface;
     void validate() const; ///< throws hfx::Error naming the bad field and its value
@@ -47,7 +52,8 @@ public:
     const OceanField& ocean() const { return ocean_; }
     /// 8 sum(sigma_i) / patch * exaggeration: the depth scale of the sea as it is now.
     float physicalDepthScale() const;
-    /// The cascades, largest first: texcoord scales patch / L_i, weights sigma_i / sum(sigma).
+    /// The cascades, largest first: texcoord scales patch / L_i, weights sigma_i / sum(sigma);
+    /// the finest untraced as the config's untracedShare says.
     std::vector<SurfaceLayer> layers() const override;
 
 private:
@@ -59,6 +65,7 @@ private:
     OceanField ocean_;
     float exaggeration_;
     double windBlendSeconds_;
+    float untracedShare_;
     std::vector<std::unique_ptr<SurfacePipeline>> surfaces_; ///< one per cascade
 };
 

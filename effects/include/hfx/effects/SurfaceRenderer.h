@@ -82,10 +82,15 @@ struct DirectionalLight {
 /// One layer of a layered surface (the ocean's cascades): its textures, read at the mesh's
 /// texcoords times `texcoordScale`, contributing `weight` of the height (h = sum weight_i h_i,
 /// the weights summing to 1) and, through it, of the slopes. Layers must tile (wrap both ways).
+/// An untraced layer only shades: the tracers see it flat at `restHeight` (its mean), which
+/// saves its fetch at every search and shadow step; worth it where weight * its height's range
+/// is a few percent of the depth or less. Traced layers come first; layer 0 is always traced.
 struct SurfaceLayer {
     const SurfaceTextures* textures = nullptr;
     float texcoordScale = 1.0f;
     float weight = 1.0f;
+    bool traced = true;
+    float restHeight = 0.5f;
 };
 inline constexpr int kMaxSurfaceLayers = 4;
 
@@ -118,13 +123,15 @@ public:
                   const glm::vec4& color);
 
     /// Builds the shader variant now (start-up) instead of on the first draw.
-    const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit, int layers = 1);
+    /// `traced` is the count of traced layers (0: all of them).
+    const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit, int layers = 1,
+                                 int traced = 0);
 
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).
     void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const Camera& camera);
 
-    std::map<std::tuple<Technique, bool, Shading, int>, ShaderProgram> programs_;
+    std::map<std::tuple<Technique, bool, Shading, int, int>, ShaderProgram> programs_;
     ShaderProgram flat_, sky_;
     GlBuffer surfaceBlock_, waterBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data

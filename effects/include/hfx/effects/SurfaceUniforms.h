@@ -41,7 +41,8 @@ struct SurfaceUniforms {
     int pyramidLevels = 0;
     float varianceFloor = 0.0f;
     glm::ivec2 wrap{1, 1};
-    glm::ivec2 padding{0, 0}; ///< std140 puts the next vec4 on 16 bytes
+    float untracedHeight = 0.0f;
+    float padding = 0.0f; ///< std140 puts the next vec4 on 16 bytes
     glm::vec4 layerScale{1.0f};
     glm::vec4 layerWeight{1.0f, 0.0f, 0.0f, 0.0f};
     glm::vec4 layerSlope{0.0f};
