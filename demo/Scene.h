@@ -42,6 +42,7 @@ struct SceneOptions {
     float swell = 0.0f;                ///< water: energy of a swell from 50 degrees off the wind (0: none)
     float choppiness = 1.0f;           ///< water: horizontal displacement lambda
     int cascades = 0;                  ///< water: 0: the ocean's default (4)
+    float cameraPitch = 8.0f;          ///< water: degrees the camera looks below the horizon
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image

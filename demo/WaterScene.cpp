@@ -9,6 +9,7 @@
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
 
+#include <glm/trigonometric.hpp>
 #include <imgui.h>
 
 #include <algorithm>
@@ -77,9 +78,9 @@ public:
         m.water.hazeDistance = 2500.0f; // metres
         effect().setMaterial(m);
         applyOptions(o);
-        // Seven metres above the water, looking 8 degrees down towards the low sun.
+        // Seven metres above the water, looking down (8 degrees unless told) towards the low sun.
         camera_.position = {0.0f, 7.0f, 0.0f};
-        camera_.target = {0.0f, 7.0f - 100.0f * std::tan(0.14f), -100.0f};
+        camera_.target = {0.0f, 7.0f - 100.0f * std::tan(glm::radians(o.cameraPitch)), -100.0f};
         camera_.aspect = o.aspect();
         camera_.nearPlane = 0.2f;
         camera_.farPlane = 12000.0f;
@@ -101,9 +102,27 @@ public:
 
     void panel() override {
         if (!ocean_) return;
-        bool changed = ImGui::SliderFloat("wind speed (m/s)", &wind_, 1.0f, 30.0f);
+        // Beaufort presets: the middle of each force's wind; the slider shows the force it is in.
+        static constexpr const char* kForces[] = {"0 calm", "1 light air", "2 light breeze", "3 gentle breeze",
+                                                  "4 moderate breeze", "5 fresh breeze", "6 strong breeze",
+                                                  "7 near gale", "8 gale", "9 strong gale", "10 storm",
+                                                  "11 violent storm", "12 hurricane"};
+        int force = 0;
+        while (force < 12 && beaufortWindSpeed(force + 1) - 0.5f * (beaufortWindSpeed(force + 1) - beaufortWindSpeed(force)) <= wind_)
+            ++force;
+        bool changed = false;
+        if (ImGui::Combo("Beaufort", &force, kForces, IM_ARRAYSIZE(kForces))) {
+            wind_ = beaufortWindSpeed(force);
+            changed = true;
+        }
+        changed |= ImGui::SliderFloat("wind speed (m/s)", &wind_, 0.5f, 40.0f);
         changed |= ImGui::SliderAngle("wind direction", &windDir_, -180.0f, 180.0f);
         if (changed) ocean_->setWind(wind_, windDir_); // the sea's new depth is in the ocean's material
+        const OceanField& sea = ocean_->ocean();
+        double variance = 0.0;
+        for (int i = 0; i < sea.cascadeCount(); ++i) variance += double(sea.cascade(i).sigma) * sea.cascade(i).sigma;
+        ImGui::Text("Hs %.2f m (4 sigma), %d cascades of %d^2, %.0f m patch", 4.0 * std::sqrt(variance),
+                    sea.cascadeCount(), sea.config().size, double(sea.config().patchMeters));
     }
 
 private:

@@ -212,6 +212,8 @@ int main(int argc, char** argv) {
     app.add_option("--choppiness", s.choppiness, "water: horizontal displacement (0: heights only; near 1 the crests sharpen)")
         ->check(kFinite)->check(CLI::Range(0.0, 4.0))->capture_default_str();
     app.add_option("--cascades", s.cascades, "water: ocean cascades, 1-4 (default 4)")->check(CLI::Range(1, 4));
+    app.add_option("--camera-pitch", s.cameraPitch, "water: degrees the camera looks below the horizon (small: the far field)")
+        ->check(kFinite)->check(CLI::Range(0.0, 89.0))->capture_default_str();
     app.add_option("--shots", s.shots, "decals: shot list to replay (lines 'bullet|explosion|click FRAME A B')");
     app.add_option("--height-map", s.heightMap, "maps, decals: height map image (h in [0,1])");
     app.add_option("--normal-map", s.normalMap,

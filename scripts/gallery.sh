@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Renders the README's gallery: one 1280x720 picture of each scene, headless, at the scenes'
 # default grazing cameras, after enough frames for the field to develop (the decal volley, the
-# planet's storms). Writes docs/gallery/{water,decals,planet}.jpg.
+# planet's storms). Writes docs/gallery/{water,decals,planet}.jpg, the sea calm (Beaufort 3) and
+# rough (Beaufort 7), the far field seen 5 degrees down (water-horizon.jpg), and a 4-second
+# 640x360 video of the rough sea (water.mp4, needs ffmpeg).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -15,7 +17,17 @@ render() { # scene frames [options...]
     ./build/demo/hfx-demo "$scene" --headless --frames "$frames" --format jpg --out "$work/$scene" "$@"
     cp "$(ls "$work/$scene"/*.jpg | tail -n 1)" "docs/gallery/$scene.jpg"
 }
+render water 30 --beaufort 3 && mv docs/gallery/water.jpg docs/gallery/water-calm.jpg
+render water 30 --beaufort 7 && mv docs/gallery/water.jpg docs/gallery/water-rough.jpg
+render water 30 --camera-pitch 5 && mv docs/gallery/water.jpg docs/gallery/water-horizon.jpg
 render water 30
+if command -v ffmpeg >/dev/null; then
+    # Encoded here rather than by --video: a higher CRF keeps the committed file small.
+    ./build/demo/hfx-demo water --headless --frames 120 --width 640 --height 360 --beaufort 7 --format jpg \
+        --out "$work/video" --no-progress >/dev/null
+    ffmpeg -loglevel error -y -framerate 30 -i "$work/video/water_%04d.jpg" -c:v libx264 -crf 30 -preset slow \
+        -pix_fmt yuv420p -movflags +faststart docs/gallery/water.mp4
+fi
 render decals 36
 render planet 120
 ls -l docs/gallery

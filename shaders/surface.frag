@@ -177,9 +177,11 @@ void main() {
     l3 = hfx_add_layer(s_surface3, s_albedo3, uv, mipLevel + u_layerLevel.w, u_layerScale.w, u_layerWeight.w,
                        u_layerSlope.w, slope, slopeVariance, height);
 #endif
-    // Each layer's foam is broken up by the next finer layer's relief (the finest by its own).
+    // Each layer's foam is broken up by the relief of the next two finer layers (the finest by
+    // its own): a lace of two scales rather than the blobs of one.
     const vec4 layerFoam = vec4(l0.y, l1.y, l2.y, l3.y);
-    const vec4 layerDetail = vec4(l1.x, HFX_LAYERS > 2 ? l2.x : l1.x, HFX_LAYERS > 3 ? l3.x : l2.x, l3.x);
+    const float d2 = HFX_LAYERS > 2 ? l2.x : l1.x, d3 = HFX_LAYERS > 3 ? l3.x : d2;
+    const vec4 layerDetail = vec4(l1.x + 0.7 * (d2 - 0.5), d2 + 0.7 * (d3 - 0.5), d3, d3);
     const vec3 storedNormal = vec3(slope, 1.0);
     const vec3 albedo = textureLod(s_albedo, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rgb;
 #endif

@@ -29,5 +29,10 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const vec3 foamLit = u_foamColor * (u_ambient + p.lit * max(dot(p.normal, p.lightDir), 0.0) * u_lightColor);
     color = mix(color, foamLit, foam);
     const float distance = length(u_cameraPos - p.position);
-    return mix(color, hfx_haze(p.position - u_cameraPos), distance / (distance + u_hazeDistance));
+    color = mix(color, hfx_haze(p.position - u_cameraPos), distance / (distance + u_hazeDistance));
+    // Highlights roll off above a knee instead of clipping: the sun's path on the water keeps
+    // its glitter where a clamp turned it into one white sheet.
+    const float knee = 0.75;
+    const vec3 over = max(color - knee, 0.0);
+    return min(color, knee) + (1.0 - knee) * (1.0 - exp(-over / (1.0 - knee)));
 }
