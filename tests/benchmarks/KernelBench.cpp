@@ -211,8 +211,8 @@ void BM_Gas(benchmark::State& state) {
 }
 
 /// The ocean step at {size, cascades, choppiness 0/1}: spectrum, one batched inverse FFT per
-/// cascade (h alone, or h, Dx, Dy), the Lagrangian pass (J, gradient, foam) and the Eulerian
-/// resample (Newton steps with choppiness, a copy without).
+/// cascade (h alone, or h, Dx, Dy), the Lagrangian pass (J, foam, the packed grid) and the
+/// Eulerian resample (Newton steps with choppiness, a copy without).
 void BM_Ocean(benchmark::State& state) {
     const int n = int(state.range(0)), cascades = int(state.range(1));
     const float choppiness = float(state.range(2));
@@ -221,16 +221,16 @@ void BM_Ocean(benchmark::State& state) {
     OceanField ocean(cl(), config);
     // No single-threaded reference of the whole step (OceanQuery is one for part of it: see
     // BM_OceanQuery). Bytes per texel and cascade: the half spectra out (1 or 3 complex), the
-    // FFT's passes (about 4 reads and writes of them), the fields in and J, gradient, foam,
-    // height, metres, foam colour out.
+    // FFT's passes (about 4 reads and writes of them), the fields in and J, foam, the packed
+    // grid (8 floats, written and read), height, metres, foam colour out.
     const double fields = choppiness > 0.0f ? 3.0 : 1.0;
-    const double bytes = cascades * double(n) * n * (fields * 8.0 * 5.0 + fields * 4.0 + 4.0 * 9.0);
+    const double bytes = cascades * double(n) * n * (fields * 8.0 * 5.0 + fields * 4.0 + 4.0 * 22.0);
     measure(state, [&] { ocean.step(1.0 / 60); }, bytes, {});
 }
 
 /// OceanQuery::heights of 256 points on the default sea (4 cascades of 256^2, choppy): at a new
-/// time each batch (the grids: spectra, 12 FFTs, gradients; then the points) and at the same
-/// time (the points alone: 4 bilinear corners x 4 cascades x 4 Newton steps each).
+/// time each batch (the grids: spectra, 12 FFTs, the packed grids; then the points) and at the
+/// same time (the points alone: 4 bilinear corners x 4 cascades x up to 4 Newton steps each).
 void BM_OceanQuery(benchmark::State& state) {
     const bool newTime = state.range(0) != 0;
     OceanConfig config;

@@ -154,8 +154,9 @@ public:
     /// The time the spectrum is evaluated at: `seconds` modulo repeatSeconds (every frequency
     /// is a multiple of 2 pi / repeatSeconds), so omega t stays exact in float over any run.
     static float periodicTime(double seconds, float repeatSeconds);
-    /// Newton steps of the Eulerian resample (x0 + lambda D(x0) = x): quadratic convergence, so
-    /// four reach float precision on steep unfolded waves (lambda k A = 0.75 in the tests).
+    /// Newton steps of the Eulerian resample (x0 + lambda D(x0) = x), at most: quadratic
+    /// convergence, so four reach float precision on steep unfolded waves (lambda k A = 0.75 in
+    /// the tests); a texel stops once a step moves it less than HFX_OCEAN_NEWTON_TOLERANCE.
     static constexpr int eulerianIterations = 4;
 
 private:

@@ -5,7 +5,8 @@
 // An OceanQuery is a snapshot of an OceanField's spectra (h0, the wind change in progress, the
 // frequencies, the cascades' lengths and choppiness). At time t it does what the device does,
 // with the same float math (OceanMath.h, shared with ocean.cl): per cascade the spectra of h, Dx
-// and Dy at t, their inverse transforms (FFTW, single precision), the displacement's gradient;
+// and Dy at t, their inverse transforms (FFTW, single precision), the packed grid of the
+// displacement and its gradient (hfx_ocean_pack);
 // then, at the four texels around each point, the Lagrangian point x0 displaced onto the texel
 // by the same Newton steps and h(x0), blended bilinearly. The cascades' heights add up: the
 // result is the surface the renderer traces (each cascade's OceanCascade::meters, filtered
@@ -18,7 +19,7 @@
 // periodic, and each point is reduced to each cascade's patch in double first, so points
 // kilometres away keep their precision.
 //
-// Cost: the grids at a new t take 3 transforms per cascade (about 10 ms for four 256^2 cascades
+// Cost: the grids at a new t take 3 transforms per cascade (about 5 ms for four 256^2 cascades
 // on one core; docs/BENCHMARKS.md); the query keeps them, so every batch at the same t costs only
 // the points (microseconds each). After OceanField::setWind or setAmplitudes, update() takes the
 // new spectra.
