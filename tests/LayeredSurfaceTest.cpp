@@ -49,27 +49,37 @@ Layers makeLayers(ClContext& cl) {
     return l;
 }
 
+constexpr int kImage = 160;
+
+/// Draws layered surfaces on a 2-unit plane seen at 50 degrees, into a kImage^2 target with the
+/// trace output: the colour (top row first) and the trace (bottom row first).
+struct LayerShot {
+    const Mesh plane{makePlane({.size = 2.0f})};
+    const Camera camera = accuracyCamera(50.0);
+    SurfaceRenderer renderer;
+    RenderTarget target{kImage, kImage, true};
+    std::pair<Image, std::vector<glm::vec4>> operator()(std::span<const SurfaceLayer> layers,
+                                                        const SurfaceMaterial& material, const DirectionalLight& light) {
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), layers, material, camera, light, {.traceOutput = true});
+        return {target.readColor(), target.readTrace()};
+    }
+};
+
 TEST_F(LayeredSurface, DrawsAsTheSingleSurfaceOfItsSumAndHitsItsExactIntersection) {
     const Layers l = makeLayers(cl());
     const SurfaceLayer layered[] = {{.textures = &l.surfaceA->textures(), .weight = kWeightA},
                                     {.textures = &l.surfaceB->textures(), .texcoordScale = 2.0f, .weight = kWeightB}};
     const SurfaceMaterial material{.depthScale = 0.1f, .minSamples = 8, .maxSamples = 32, .lodThreshold = 100.0f, .shadows = true};
-    const Mesh plane(makePlane({.size = 2.0f}));
-    const Camera camera = accuracyCamera(50.0);
     DirectionalLight light;
     light.direction = {0.6f, 0.55f, 0.3f};
-    SurfaceRenderer renderer;
-    constexpr int image = 160;
-    RenderTarget target(image, image, true);
-    auto render = [&](std::span<const SurfaceLayer> layers) {
-        target.bind();
-        target.clear();
-        renderer.draw(plane, glm::mat4(1.0f), layers, material, camera, light, {.traceOutput = true});
-        return std::pair{target.readColor(), target.readTrace()};
-    };
+    LayerShot shot;
+    const Camera& camera = shot.camera;
+    constexpr int image = kImage;
     const SurfaceLayer single{.textures = &l.surfaceSum->textures()};
-    const auto [colorLayered, traceLayered] = render(layered);
-    const auto [colorSingle, traceSingle] = render(std::span(&single, 1));
+    const auto [colorLayered, traceLayered] = shot(layered, material, light);
+    const auto [colorSingle, traceSingle] = shot(std::span(&single, 1), material, light);
 
     // Colour: the slopes summed per layer are the sum's slopes (Sobel is linear), so shading
     // agrees to a rounding step; a search decision flipped by float rounding may move a pixel.
@@ -108,19 +118,11 @@ TEST_F(LayeredSurface, AnUntracedLayerIsFlatInTheTraceAndStillShades) {
     const SurfaceLayer full[] = {{.textures = &l.surfaceA->textures(), .weight = kWeightA},
                                  {.textures = &l.surfaceB->textures(), .texcoordScale = 2.0f, .weight = kWeightB}};
     const SurfaceMaterial material{.depthScale = 0.1f, .minSamples = 8, .maxSamples = 32, .lodThreshold = 100.0f, .shadows = false};
-    const Mesh plane(makePlane({.size = 2.0f}));
-    const Camera camera = accuracyCamera(50.0);
-    SurfaceRenderer renderer;
-    constexpr int image = 160;
-    RenderTarget target(image, image, true);
-    auto render = [&](std::span<const SurfaceLayer> layers) {
-        target.bind();
-        target.clear();
-        renderer.draw(plane, glm::mat4(1.0f), layers, material, camera, {}, {.traceOutput = true});
-        return std::pair{target.readColor(), target.readTrace()};
-    };
-    const auto [colorUntraced, traceUntraced] = render(layered);
-    const auto [colorFull, traceFull] = render(full);
+    LayerShot shot;
+    const Camera& camera = shot.camera;
+    constexpr int image = kImage;
+    const auto [colorUntraced, traceUntraced] = shot(layered, material, {});
+    const auto [colorFull, traceFull] = shot(full, material, {});
 
     std::vector<float> flat(size_t(N) * N);
     for (size_t i = 0; i < flat.size(); ++i) flat[i] = kWeightA * l.a[i] + kWeightB * rest;
