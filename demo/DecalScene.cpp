@@ -24,11 +24,16 @@ public:
     DecalScene(ClContext& cl, const SceneOptions& o)
         : wall_(cl, config(o)), plane_(makePlane(kWall)),
           post_(makePlane({.size = 0.5f, .texcoordScale = 1.0f, .subdivisions = 1})), random_(o.seed),
-          width_(o.width), height_(o.height) {
+          width_(o.width), height_(o.height), saveDamage_(o.saveDamage) {
         applyOptions(o);
         if (!o.shots.empty()) {
             shots_ = readShotList(o.shots);
             replaying_ = true;
+        }
+        if (!o.loadDamage.empty()) {
+            wall_.loadDamage(o.loadDamage);
+            autoFire = false;
+            std::printf("loaded %d impacts from %s\n", wall_.damage().size(), o.loadDamage.c_str());
         }
         // The wall stands in the XY plane facing +Z; the camera looks along it from the side.
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.4f, 1.15f, 0.15f);
@@ -74,12 +79,19 @@ public:
             record({.kind = Shot::Kind::Explosion, .frame = frame_ + 1, .a = hit->uv.x, .b = hit->uv.y, .seed = seed});
         }
     }
-    void clear() override { wall_.decals().clear(); }
+    void clear() override { wall_.clearDamage(); }
+    void finish() override {
+        if (saveDamage_.empty()) return;
+        wall_.saveDamage(saveDamage_);
+        std::printf("saved %d impacts to %s\n", wall_.damage().size(), saveDamage_.c_str());
+    }
     void panel() override {
         ImGui::Checkbox("automatic volley", &autoFire);
         ImGui::Text("click: bullet hole, E: explosion, C: clear damage");
-        ImGui::Text("pending stamps %zu", wall_.decals().pendingStamps());
-        if (ImGui::Button("clear damage")) wall_.decals().clear();
+        const DamageLog& damage = wall_.damage();
+        ImGui::Text("impacts %d of %d (%llu merged, %llu evicted)", damage.size(), damage.budget(),
+                    (unsigned long long)damage.merged(), (unsigned long long)damage.evicted());
+        if (ImGui::Button("clear damage")) wall_.clearDamage();
     }
 
     bool autoFire = true;
@@ -131,6 +143,7 @@ private:
     bool replaying_ = false;
     int frame_ = 0;
     int width_, height_;
+    std::string saveDamage_;
 };
 
 } // namespace

@@ -46,6 +46,7 @@ struct SceneOptions {
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image
+    std::string saveDamage, loadDamage; ///< decals: damage log written after the last frame, read at start
 };
 
 class Scene {
@@ -78,6 +79,8 @@ public:
     virtual void explode(double /*x*/, double /*y*/, int /*width*/, int /*height*/) {}
     /// The clear key (decals: forget the damage).
     virtual void clear() {}
+    /// After the last frame: writes what the options asked for (the decal scene's damage log).
+    virtual void finish() {}
 
     Camera& camera() { return camera_; }
     Technique technique = Technique::ParallaxOcclusion;

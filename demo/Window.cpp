@@ -212,6 +212,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         gl.swapBuffers();
     }
     if (!options_.exportMaps.empty()) exportMaps(options_.exportMaps, scene.effect().textures());
+    scene.finish();
     return 0;
 }
 

@@ -96,6 +96,7 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
     if (!outDir.empty() && progress.enabled())
         std::printf("wrote %d frames to %s\n", frames, outDir.c_str());
     if (!o.exportMaps.empty()) exportMaps(o.exportMaps, scene.effect().textures());
+    scene.finish();
     return 0;
 }
 
@@ -214,6 +215,9 @@ int main(int argc, char** argv) {
     app.add_option("--cascades", s.cascades, "water: ocean cascades, 1-4 (default 4)")->check(CLI::Range(1, 4));
     app.add_option("--camera-pitch", s.cameraPitch, "water: degrees the camera looks below the horizon (small: the far field)")
         ->check(kFinite)->check(CLI::Range(0.0, 89.0))->capture_default_str();
+    app.add_option("--save-damage", s.saveDamage, "decals: after the last frame, write the damage log (impacts, clock) to this file");
+    app.add_option("--load-damage", s.loadDamage,
+                   "decals: start from a saved damage log (drawn exactly as saved; no automatic volley)");
     app.add_option("--shots", s.shots, "decals: shot list to replay (lines 'bullet|explosion|click FRAME A B')");
     app.add_option("--height-map", s.heightMap, "maps, decals: height map image (h in [0,1])");
     app.add_option("--normal-map", s.normalMap,

@@ -46,6 +46,7 @@ layout(location = 1) out vec4 o_trace;
 #endif
 
 layout(binding = 1) uniform sampler2D s_albedo;
+layout(binding = 10) uniform sampler2D s_channels; // roughness, ambient occlusion (layer 0's)
 #if HFX_LAYERS > 1
 layout(binding = 7) uniform sampler2D s_albedo1;
 #endif
@@ -227,7 +228,11 @@ void main() {
     point.slopeVariance = slopeVariance;
     point.foam = layerFoam;
     point.foamDetail = layerDetail;
-    const float power = u_specularPower / (1.0 + u_specularPower * slopeVariance);
+    const vec2 channels = textureLod(s_channels, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rg;
+    point.roughness = channels.r;
+    point.occlusion = channels.g;
+    // Roughness as a slope deviation of its own: it widens the lobe like the variance does.
+    const float power = u_specularPower / (1.0 + u_specularPower * (slopeVariance + channels.r * channels.r));
     point.specular = nDotL > 0.0 ? (power + 2.0) / (u_specularPower + 2.0) *
                                        pow(max(dot(normal, normalize(lightDir + point.viewDir)), 0.0), power)
                                  : 0.0;

@@ -4,10 +4,12 @@
 #include "support/Fixtures.h"
 #include "support/References.h"
 
+#include "hfx/compute/DamageLog.h"
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/shared/DecalMath.h"
 #include "hfx/core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -20,6 +22,25 @@ protected:
         std::vector<float> out(count);
         cl().queue().enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(float), out.data());
         return out;
+    }
+    std::vector<std::uint8_t> bytes(const cl::Buffer& buffer, size_t count) {
+        std::vector<std::uint8_t> out(count);
+        cl().queue().enqueueReadBuffer(buffer, CL_TRUE, 0, count, out.data());
+        return out;
+    }
+    /// FNV-1a over the height, albedo and channel maps of `map`.
+    std::uint64_t hashMaps(const DecalMap& map) {
+        const size_t n = size_t(map.width()) * map.height();
+        std::uint64_t h = 1469598103934665603ull;
+        auto mix = [&](const void* data, size_t size) {
+            for (size_t i = 0; i < size; ++i) h = (h ^ static_cast<const std::uint8_t*>(data)[i]) * 1099511628211ull;
+        };
+        const std::vector<float> heights = read(map.buffer(), n);
+        mix(heights.data(), heights.size() * sizeof(float));
+        const std::vector<std::uint8_t> albedo = bytes(map.albedo(), 4 * n), channels = bytes(map.channels(), 4 * n);
+        mix(albedo.data(), albedo.size());
+        mix(channels.data(), channels.size());
+        return h;
     }
 };
 
@@ -171,6 +192,79 @@ TEST_F(Decals, BadStampsAreRefusedAndNothingIsQueued) {
     EXPECT_EQ(map.pendingStamps(), 1u);
     EXPECT_THROW(map.step(0.0), Error);
     EXPECT_THROW(DecalMap(cl(), {.width = 8, .height = 8}, std::vector<float>(64, 2.0f)), Error);
+}
+
+TEST_F(Decals, MarksMatchTheSharedMathAndBurnTheAlbedoTowardsSoot) {
+    constexpr int N = 96;
+    DecalConfig config{.width = N, .height = N, .edges = EdgeMode::Clamp};
+    std::vector<std::uint8_t> base(4 * N * N);
+    for (size_t i = 0; i < base.size(); ++i) base[i] = std::uint8_t(40 + (i * 37) % 200);
+    DecalMap map(cl(), config, {}, base);
+    const BulletHole hole{.u = 0.45f, .v = 0.5f, .radius = 0.08f, .scorch = 0.8f, .roughness = 0.7f, .occlusion = 0.5f,
+                          .scorchReach = 2.0f, .phase = 1.3f};
+    map.addBulletHole(hole);
+    map.rebuild();
+    const auto albedo = bytes(map.albedo(), 4 * N * N), channels = bytes(map.channels(), 4 * N * N);
+    int worst = 0, scorched = 0;
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) {
+            const float r = hole.radius * N;
+            float scorch, rough, occlusion;
+            hfx_decal_marks(((x + 0.5f) - hole.u * N) / r, ((y + 0.5f) - hole.v * N) / r, hole.scorch, hole.roughness,
+                            hole.occlusion, hole.scorchReach, hole.phase, &scorch, &rough, &occlusion);
+            const size_t i = 4 * (size_t(y) * N + x);
+            auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+            worst = std::max({worst, std::abs(channels[i] - byte(rough)), std::abs(channels[i + 1] - byte(occlusion)),
+                              std::abs(channels[i + 2] - byte(scorch))});
+            for (int c = 0; c < 3; ++c) {
+                const float expected = base[i + c] + scorch * (255.0f * config.soot[size_t(c)] - base[i + c]);
+                worst = std::max(worst, std::abs(albedo[i + c] - int(std::lround(expected))));
+            }
+            EXPECT_EQ(albedo[i + 3], base[i + 3]);
+            scorched += scorch > 0.5f;
+        }
+    EXPECT_LE(worst, 1) << "steps of 1/255 from the shared math";
+    EXPECT_GT(scorched, 300) << "the burn covers about pi (1.4 radii)^2";
+}
+
+// A log fed 10,000 impacts (merging, evicting, healing as the clock runs), its map rebuilt as it
+// goes; saved and loaded into a fresh map, it rebuilds the same heights, albedo and channels.
+TEST_F(Decals, AReplayedDamageLogRebuildsTheSameMapsBitForBit) {
+    constexpr int N = 128;
+    std::vector<float> base(N * N);
+    for (size_t i = 0; i < base.size(); ++i) base[i] = 0.7f + 0.2f * std::sin(float(i) * 0.11f);
+    DamageLogConfig logConfig{.budget = 256, .mergeRadius = 0.01f};
+    logConfig.look.scorch = {.start = 1.0, .duration = 20.0, .end = 0.3f};
+    DamageLog live(logConfig);
+    DecalMap liveMap(cl(), {.width = N, .height = N}, base);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> unit(0.0f, 0.999f);
+    for (int i = 0; i < 10000; ++i) {
+        live.add({.u = unit(random), .v = unit(random), .radius = 0.01f + 0.02f * unit(random),
+                  .kind = i % 50 == 0 ? ImpactKind::Explosion : ImpactKind::Bullet, .seed = std::uint64_t(i)});
+        live.advance(0.005);
+        if (i % 1000 == 999) {
+            liveMap.addBulletHoles(live.stamps());
+            liveMap.rebuild();
+        }
+    }
+    EXPECT_EQ(live.size(), 256);
+    EXPECT_GT(live.merged(), 0u);
+    const std::uint64_t liveHash = hashMaps(liveMap);
+    const std::string path = outputPath("replay-damage.log");
+    live.save(path);
+
+    const DamageLog loaded = DamageLog::load(path, logConfig);
+    DecalMap replayed(cl(), {.width = N, .height = N}, base);
+    replayed.addBulletHoles(loaded.stamps());
+    replayed.rebuild();
+    EXPECT_EQ(hashMaps(replayed), liveHash);
+    // And the hash sees a change: one more impact moves it.
+    DamageLog more = loaded;
+    more.add({.u = 0.5f, .v = 0.5f, .radius = 0.05f});
+    replayed.addBulletHoles(more.stamps());
+    replayed.rebuild();
+    EXPECT_NE(hashMaps(replayed), liveHash);
 }
 
 TEST(DecalExplosion, ExpandsIntoCraterAndDebris) {

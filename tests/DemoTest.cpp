@@ -163,6 +163,29 @@ TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
     EXPECT_NE(off.output.find("outside the 320x180 image"), std::string::npos) << off.output;
 }
 
+// Save and load: a run that loads the damage log another run saved draws, on its first frame,
+// exactly the last frame of the run that saved it (a late-joining client sees the same wall).
+TEST(Demo, ASavedDamageLogLoadsIntoTheSameWall) {
+    const std::string a = outputPath("demo_damage_a"), b = outputPath("demo_damage_b"), c = outputPath("demo_damage_c");
+    const std::string log = outputPath("demo_damage.log");
+    const std::string args = " --headless --width 320 --height 180 --field 128 --out ";
+    const Result saved = runDemo("decals --frames 8" + args + a + " --save-damage " + log);
+    ASSERT_EQ(saved.exitCode, 0) << saved.output;
+    EXPECT_NE(saved.output.find("saved"), std::string::npos) << saved.output;
+    const Result loaded = runDemo("decals --frames 1" + args + b + " --load-damage " + log);
+    ASSERT_EQ(loaded.exitCode, 0) << loaded.output;
+    EXPECT_EQ(readBytes(a + "/decals_0007.png"), readBytes(b + "/decals_0000.png"));
+    const Result fresh = runDemo("decals --frames 1" + args + c);
+    ASSERT_EQ(fresh.exitCode, 0) << fresh.output;
+    EXPECT_NE(readBytes(c + "/decals_0000.png"), readBytes(b + "/decals_0000.png")) << "the log drew nothing";
+
+    const std::string bad = outputPath("demo_damage_bad.log");
+    std::ofstream(bad) << "hfx-damage 1\nnow 0\nimpact rocket 0.5 0.5 0 0 1 0.1 1 0 1\n";
+    const Result refused = runDemo("decals --frames 1" + args + b + " --load-damage " + bad);
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_NE(refused.output.find(bad + ":3: unknown impact kind 'rocket'"), std::string::npos) << refused.output;
+}
+
 TEST(Demo, WritesAVideoWhenFfmpegIsThere) {
     if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
         GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg)";

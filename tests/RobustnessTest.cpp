@@ -74,15 +74,24 @@ TEST_F(Robustness, BadMaterialsDrawNothing) {
     EXPECT_EQ(target.readColor().pixels, before.pixels) << "a refused draw left pixels behind";
 }
 
-TEST_F(Robustness, HugeStampBatchesAreRefusedWhole) {
-    DecalWallEffect wall(cl(), {.bricks = {.size = 64}, .maxStampsPerBatch = 1000});
-    std::vector<BulletHole> storm(1001, BulletHole{.u = 0.5f, .v = 0.5f, .radius = 0.02f});
-    const std::string m = messageOf([&] { wall.decals().addBulletHoles(storm); });
-    EXPECT_NE(m.find("1000"), std::string::npos) << m;
-    EXPECT_EQ(wall.decals().pendingStamps(), 0u);
-    storm.resize(1000);
-    wall.decals().addBulletHoles(storm);
-    EXPECT_EQ(wall.decals().pendingStamps(), 1000u);
+TEST_F(Robustness, ImpactBatchesAreAllOrNoneAndBudgetsMustFitTheStampBatch) {
+    // Every impact's stamps are rebuilt each frame: a budget whose explosions could overflow the
+    // stamp batch is refused up front, naming both.
+    const std::string tooBig =
+        messageOf([&] { DecalWallEffect(cl(), {.bricks = {.size = 64}, .damage = {.budget = 256}, .maxStampsPerBatch = 1000}); });
+    EXPECT_NE(tooBig.find("1000"), std::string::npos) << tooBig;
+    EXPECT_NE(tooBig.find("budget"), std::string::npos) << tooBig;
+
+    DecalWallEffect wall(cl(), {.bricks = {.size = 64}, .damage = {.budget = 16}});
+    std::vector<ImpactEvent> storm(40);
+    for (size_t i = 0; i < storm.size(); ++i) storm[i] = {.u = float(i) / 40.0f, .v = 0.5f, .radius = 0.02f};
+    storm.back().u = 1.5f;
+    const std::string m = messageOf([&] { wall.impacts(storm); });
+    EXPECT_NE(m.find("outside the map"), std::string::npos) << m;
+    EXPECT_EQ(wall.damage().size(), 0) << "a refused batch added nothing";
+    storm.pop_back();
+    wall.impacts(storm);
+    EXPECT_EQ(wall.damage().size(), 16) << "the budget holds the newest 16";
     EXPECT_NE(messageOf([&] { wall.shoot(std::numeric_limits<double>::infinity(), 0.5); }).find("finite"),
               std::string::npos);
 }

@@ -89,23 +89,27 @@ TEST_F(Soak, OceanWithWindChanges) {
 }
 
 TEST_F(Soak, DecalWallUnderStampStorms) {
-    DecalWallEffect wall(cl(), {.bricks = {.size = 128}, .healRate = 0.05f});
+    // A small budget, so the storms evict, and fast heal curves, so every channel heals.
+    DamageLogConfig damage{.budget = 512};
+    damage.look.height = {.start = 1.0, .duration = 10.0, .end = 0.0f};
+    damage.look.scorch = {.start = 0.5, .duration = 5.0, .end = 0.2f};
+    DecalWallEffect wall(cl(), {.bricks = {.size = 128}, .damage = damage});
     SplitMix64 random(12);
     const Mesh plane(makePlane({.size = 4.0f, .texcoordScale = 2.0f}));
     soak("decals", wall, plane, [&](int step) {
         const int burst = step % 97 == 0 ? 3000 : 20;
-        std::vector<BulletHole> holes(burst);
-        for (BulletHole& h : holes)
+        std::vector<ImpactEvent> holes(static_cast<size_t>(burst));
+        for (ImpactEvent& h : holes)
             h = {.u = float(random.next()), .v = float(random.next()), .radius = float(random.uniform(0.002, 0.03)),
-                 .depth = float(random.uniform(0.0, 1.0)), .rimHeight = float(random.uniform(0.0, 0.3))};
-        wall.decals().addBulletHoles(holes);
+                 .seed = random.nextBits()};
+        wall.impacts(holes);
         if (step % 31 == 0) wall.explode(random.next(), random.next(), random.nextBits());
         if (step % 500 == 250) {
             SurfaceMaterial m = wall.material();
             m.depthScale = float(random.uniform(0.01, 0.2));
             wall.setMaterial(m);
         }
-        if (step % 5000 == 4999) wall.decals().clear();
+        if (step % 5000 == 4999) wall.clearDamage();
     });
 }
 

@@ -182,3 +182,70 @@ TEST_F(Pipeline, ANormalMapOverUnchangingHeightsIsStoredExactly) {
 
 } // namespace
 } // namespace hfx::test
+
+namespace hfx::test {
+namespace {
+
+// The shading channels: a surface half covered by roughness 1 and occlusion 0 (the inside of a
+// fresh crater) loses its ambient light and its highlight there, by the lit model's formula.
+TEST_F(Pipeline, ShadingChannelsTakeTheAmbientAndTheHighlightWhereTheySaySo) {
+    constexpr int N = 8;
+    SurfaceTextures textures({.width = N, .height = N, .mipmaps = false});
+    textures.setAlbedo(Image{1, 1, 3, {0.3f, 0.3f, 0.3f}});
+    std::vector<unsigned char> channels(4 * N * N);
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) {
+            const bool crater = x < N / 2;
+            unsigned char* c = &channels[4 * size_t(y * N + x)];
+            c[0] = crater ? 255 : 0; // roughness
+            c[1] = crater ? 0 : 255; // occlusion
+            c[2] = 0;
+            c[3] = 255;
+        }
+    textures.uploadChannels(channels.data());
+    const SurfaceMaterial material{.depthScale = 0.05f, .shadows = false, .specularStrength = 0.2f, .specularPower = 32.0f};
+    DirectionalLight light;
+    light.direction = {0.0f, 1.0f, 0.0f}; // straight down the view: the highlight's peak everywhere
+    const Camera camera = accuracyCamera(0.0);
+    const Mesh plane(makePlane({.size = 2.0f}));
+    SurfaceRenderer renderer;
+    constexpr int image = 64;
+    RenderTarget target(image, image, true);
+    target.bind();
+    target.clear();
+    renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light,
+                  {.technique = Technique::NormalMapping, .traceOutput = true});
+    const Image color = target.readColor();
+    const std::vector<glm::vec4> trace = target.readTrace();
+    // The lit model (shade/lit.glsl) with N = L = up: diffuse 1; the Blinn-Phong lobe at the
+    // pixel's half vector, where roughness 1 turns the power P into P / (1 + P) and the
+    // normalisation (P' + 2) / (P + 2) follows.
+    const float albedo = 77.0f / 255.0f, P = 32.0f, roughP = P / (1.0f + P);
+    auto lobe = [&](glm::vec2 uv, float power) {
+        const glm::vec3 point((uv.x - 0.5f) * 2.0f, 0.0f, -(uv.y - 0.5f) * 2.0f); // makePlane's layout
+        const glm::vec3 h = glm::normalize(glm::normalize(light.direction) + glm::normalize(camera.position - point));
+        return (power + 2.0f) / (P + 2.0f) * std::pow(h.y, power);
+    };
+    int checked[2] = {0, 0};
+    for (int y = 0; y < image; ++y)
+        for (int x = 0; x < image; ++x) {
+            const glm::vec4 t = trace[size_t(y) * image + x];
+            // Away from the halves' border and from the wrap at u = 0, where filtering mixes them.
+            if (t.w == 0.0f || std::abs(t.x - 0.5f) < 0.2f || t.x < 0.07f || t.x > 0.93f) continue;
+            const bool crater = t.x < 0.5f;
+            for (int c = 0; c < 3; ++c) {
+                const float lightColor = light.color[c], ambient = light.ambient[c];
+                const float linear = crater ? albedo * lightColor + 0.2f * lightColor * lobe(glm::vec2(t), roughP)
+                                            : albedo * (ambient + lightColor) + 0.2f * lightColor * lobe(glm::vec2(t), P);
+                const float expected = std::pow(std::min(linear, 1.0f), 1.0f / 2.2f);
+                ASSERT_NEAR(color.at(x, image - 1 - y, c), expected, 2.0f / 255.0f)
+                    << (crater ? "crater" : "open") << " pixel " << x << "," << y << " channel " << c;
+            }
+            ++checked[crater];
+        }
+    EXPECT_GT(checked[0], 200);
+    EXPECT_GT(checked[1], 200);
+}
+
+} // namespace
+} // namespace hfx::test

@@ -1,22 +1,28 @@
 #include "DecalMath.h"
 
-/* One step of the damage map: heal (scale the damage), then apply this batch's stamps in order,
-   each clamped so base + damage stays in [0,1], then write the combined height.
+/* One step of the damage map: heal (scale the damage; 0 rebuilds it from this batch alone), then
+   apply this batch's stamps in order, each clamped so base + damage stays in [0,1], then write
+   the combined height; and the batch's shading marks: the albedo (the base colour burnt towards
+   soot by the scorch) and the shading channels (roughness, occlusion, scorch, 255).
    Stamps are binned on the host into square tiles of TILE texels: tileStart[t]..tileStart[t+1]
    index tileStamps, the stamps whose footprint touches tile t, in batch order. A texel loops
    over its tile's list only, so thousands of stamps cost what their footprints cover.
    stamps[i] = (centre x, centre y in texels, 1 / radius in texels, depth),
-   shapes[i] = (rimHeight, rimWidth, squared reach in texels^2, 0): texels beyond the reach of a
-   stamp in their tile's list skip it before any square root. */
+   shapes[i] = (rimHeight, rimWidth, squared reach in texels^2, the scorch's phase): texels beyond
+   the reach of a stamp in their tile's list skip it before any square root.
+   looks[i] = (scorch, roughness, occlusion strengths, scorch reach in radii). */
 __kernel void decals(__global float* damage, __global const float* base, __global float* height,
                      int width, int rows, float heal, int tilesX,
                      __global const int* tileStart, __global const int* tileStamps,
-                     __global const float4* stamps, __global const float4* shapes) {
+                     __global const float4* stamps, __global const float4* shapes, __global const float4* looks,
+                     __global const uchar4* baseAlbedo, __global uchar4* albedo, __global uchar4* channels,
+                     float4 soot) {
     int x = get_global_id(0), y = get_global_id(1);
     if (x >= width || y >= rows) return;
     int i = y * width + x;
     float b = base[i];
     float d = damage[i] * heal;
+    float scorch = 0.0f, rough = 0.0f, occlusion = 1.0f;
     int tile = (y / TILE) * tilesX + x / TILE;
     for (int k = tileStart[tile]; k < tileStart[tile + 1]; ++k) {
         int s = tileStamps[k];
@@ -31,8 +37,22 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
         if (d2 >= shape.z) continue;
         float r = sqrt(d2) * stamp.z;
         d = hfx_apply_damage(d, hfx_crater_profile(r, stamp.w, shape.x, shape.y), b);
+        float4 look = looks[s];
+        if (look.x > 0.0f || look.y > 0.0f || look.z > 0.0f) {
+            float sc, ro, oc;
+            hfx_decal_marks(dx * stamp.z, dy * stamp.z, look.x, look.y, look.z, look.w, shape.w, &sc, &ro, &oc);
+            scorch = fmax(scorch, sc);
+            rough = fmax(rough, ro);
+            occlusion = fmin(occlusion, oc);
+        }
     }
     damage[i] = d;
     float h = b + d;
     height[i] = h < 0.0f ? 0.0f : (h > 1.0f ? 1.0f : h);
+    float4 c = convert_float4(baseAlbedo[i]);
+    float4 burnt = c + clamp(scorch, 0.0f, 1.0f) * (soot - c);
+    albedo[i] = (uchar4)(convert_uchar_sat_rte(burnt.x), convert_uchar_sat_rte(burnt.y), convert_uchar_sat_rte(burnt.z),
+                         baseAlbedo[i].w);
+    channels[i] = (uchar4)(convert_uchar_sat_rte(rough * 255.0f), convert_uchar_sat_rte(occlusion * 255.0f),
+                           convert_uchar_sat_rte(scorch * 255.0f), 255);
 }

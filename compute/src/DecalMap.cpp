@@ -21,9 +21,13 @@ void DecalConfig::validate() const {
         throw Error(str("DecalConfig.maxStampsPerBatch must be in [1, 4194304], got ", maxStampsPerBatch));
     if (!(baseHeight >= 0.0f && baseHeight <= 1.0f))
         throw Error(str("DecalConfig.baseHeight must be in [0, 1], got ", baseHeight));
+    for (float c : soot)
+        if (!(c >= 0.0f && c <= 1.0f))
+            throw Error(str("DecalConfig.soot components must be in [0, 1], got ", c));
 }
 
-DecalMap::DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<float>& base)
+DecalMap::DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<float>& base,
+                   const std::vector<std::uint8_t>& baseAlbedo)
     : cl_(cl), config_((config.validate(), config)),
       tilesX_((config.width + config.tileSize - 1) / config.tileSize),
       tilesY_((config.height + config.tileSize - 1) / config.tileSize) {
@@ -36,6 +40,11 @@ DecalMap::DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<f
         if (!(baseHeights[i] >= 0.0f && baseHeights[i] <= 1.0f))
             throw Error(str("DecalMap: base height ", baseHeights[i], " at texel ", i % config.width, ",",
                             i / config.width, " is outside [0, 1]"));
+    std::vector<std::uint8_t> albedo = baseAlbedo;
+    if (albedo.empty()) albedo.assign(4 * texels, 204);
+    if (albedo.size() != 4 * texels)
+        throw Error(str("DecalMap: the base albedo has ", baseAlbedo.size(), " bytes, the ", config.width, "x",
+                        config.height, " map needs ", 4 * texels, " (RGBA8)"));
     tileStart_.resize(size_t(tilesX_) * tilesY_ + 1);
     tileCounts_.resize(size_t(tilesX_) * tilesY_);
     clGuard("creating the decal map", [&] {
@@ -44,6 +53,9 @@ DecalMap::DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<f
         damage_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, texels * sizeof(float));
         height_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, texels * sizeof(float));
         tileStartBuffer_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, tileStart_.size() * sizeof(int));
+        baseAlbedo_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, albedo.size(), albedo.data());
+        albedo_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, albedo.size());
+        channels_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, albedo.size());
         kernel_ = cl.kernel("decals.cl", "decals",
                             str("-DTILE=", config.tileSize, " ", edgeOptions(config.edges)));
     });
@@ -69,6 +81,12 @@ void DecalMap::validate(const BulletHole& h) const {
         throw Error(str("decal rimHeight must be in [0, 1], got ", h.rimHeight));
     if (!(h.rimWidth > 0.0f && h.rimWidth <= 4.0f))
         throw Error(str("decal rimWidth must be in (0, 4] radii, got ", h.rimWidth));
+    for (auto [value, name] : {std::pair{h.scorch, "scorch"}, std::pair{h.roughness, "roughness"},
+                               std::pair{h.occlusion, "occlusion"}})
+        if (!(value >= 0.0f && value <= 1.0f)) throw Error(str("decal ", name, " must be in [0, 1], got ", value));
+    if (!(h.scorchReach >= 1.0f && h.scorchReach <= 16.0f))
+        throw Error(str("decal scorchReach must be in [1, 16] radii, got ", h.scorchReach));
+    if (!std::isfinite(h.phase)) throw Error(str("decal phase must be finite, got ", h.phase));
 }
 
 void DecalMap::addBulletHole(const BulletHole& hole) { addBulletHoles({hole}); }
@@ -87,8 +105,9 @@ std::vector<BulletHole> DecalMap::expand(const Explosion& e, EdgeMode edges) {
     if (!(e.debrisSpread >= 1.0f && e.debrisSpread <= 16.0f))
         throw Error(str("explosion debrisSpread must be in [1, 16], got ", e.debrisSpread));
     std::vector<BulletHole> stamps;
-    stamps.push_back({e.u, e.v, e.radius, e.depth, e.depth * 0.25f, 0.3f});
     SplitMix64 random(e.seed);
+    stamps.push_back({e.u, e.v, e.radius, e.depth, e.depth * 0.25f, 0.3f, e.scorch, e.roughness, e.occlusion,
+                      e.scorchReach, float(random.uniform(0.0, 2.0 * std::numbers::pi))});
     for (int i = 0; i < e.debris; ++i) {
         const double angle = random.uniform(0.0, 2.0 * std::numbers::pi);
         const double distance = e.radius * random.uniform(0.6, e.debrisSpread);
@@ -102,7 +121,8 @@ std::vector<BulletHole> DecalMap::expand(const Explosion& e, EdgeMode edges) {
             return x >= 0.0f && x < 1.0f;
         };
         if (!land(u, wrapsU(edges)) || !land(v, wrapsV(edges))) continue;
-        stamps.push_back({u, v, size, depth, depth * 0.3f, 0.4f});
+        stamps.push_back({u, v, size, depth, depth * 0.3f, 0.4f, 0.5f * e.scorch, 0.5f * e.roughness, 0.5f * e.occlusion,
+                          1.5f, float(angle)});
     }
     return stamps;
 }
@@ -116,6 +136,7 @@ void DecalMap::bin() {
     std::fill(tileCounts_.begin(), tileCounts_.end(), 0);
     stamps_.clear();
     shapes_.clear();
+    looks_.clear();
     tileStamps_.clear();
     // The tiles a stamp's footprint covers, per axis as at most two ranges of tiles: along an
     // axis that wraps the texel range wraps (texels carry the period, and the last tile may be
@@ -140,7 +161,7 @@ void DecalMap::bin() {
         return 2;
     };
     auto forEachTile = [&](const BulletHole& h, auto&& visit) {
-        const double reach = h.radius * (1.0 + h.rimWidth) * W + 1.0;
+        const double reach = h.radius * hfx_decal_reach(h.rimWidth, h.scorch, h.roughness, h.scorchReach) * W + 1.0;
         Range xs[2], ys[2];
         const int nx = axis(h.u * W, reach, W, tilesX_, wrapsU(config_.edges), xs),
                   ny = axis(h.v * H, reach, H, tilesY_, wrapsV(config_.edges), ys);
@@ -156,9 +177,11 @@ void DecalMap::bin() {
     std::fill(tileCounts_.begin(), tileCounts_.end(), 0);
     for (size_t i = 0; i < pending_.size(); ++i) {
         const BulletHole& h = pending_[i];
-        const float radius = h.radius * float(W), reach = radius * (1.0f + h.rimWidth);
+        const float radius = h.radius * float(W);
+        const float reach = radius * hfx_decal_reach(h.rimWidth, h.scorch, h.roughness, h.scorchReach);
         stamps_.push_back({{h.u * float(W), h.v * float(H), 1.0f / radius, h.depth}});
-        shapes_.push_back({{h.rimHeight, h.rimWidth, reach * reach, 0.0f}});
+        shapes_.push_back({{h.rimHeight, h.rimWidth, reach * reach, h.phase}});
+        looks_.push_back({{h.scorch, h.roughness, h.occlusion, h.scorchReach}});
         forEachTile(h, [&](int tile) { tileStamps_[size_t(tileStart_[tile] + tileCounts_[tile]++)] = int(i); });
     }
 }
@@ -166,6 +189,12 @@ void DecalMap::bin() {
 void DecalMap::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error(str("DecalMap::step: dt must be positive and finite, got ", dt));
+    apply(float(std::exp(-double(config_.healRate) * dt)));
+}
+
+void DecalMap::rebuild() { apply(0.0f); }
+
+void DecalMap::apply(float heal) {
     bin();
     clGuard("DecalMap::step", [&] {
         cl::CommandQueue& q = cl_.queue();
@@ -174,6 +203,7 @@ void DecalMap::step(double dt) {
             stampCapacity_ = std::max<size_t>(stamps_.size(), 256);
             stampBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
             shapeBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
+            lookBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
         }
         if (tileStamps_.size() > listCapacity_ || !tileStampsBuffer_()) {
             listCapacity_ = std::max<size_t>(tileStamps_.size(), 1024);
@@ -184,6 +214,7 @@ void DecalMap::step(double dt) {
         if (!stamps_.empty()) {
             q.enqueueWriteBuffer(stampBuffer_, CL_TRUE, 0, stamps_.size() * sizeof(cl_float4), stamps_.data());
             q.enqueueWriteBuffer(shapeBuffer_, CL_TRUE, 0, shapes_.size() * sizeof(cl_float4), shapes_.data());
+            q.enqueueWriteBuffer(lookBuffer_, CL_TRUE, 0, looks_.size() * sizeof(cl_float4), looks_.data());
             q.enqueueWriteBuffer(tileStampsBuffer_, CL_TRUE, 0, tileStamps_.size() * sizeof(int), tileStamps_.data());
         }
         int a = 0;
@@ -192,12 +223,17 @@ void DecalMap::step(double dt) {
         kernel_.setArg(a++, height_);
         kernel_.setArg(a++, config_.width);
         kernel_.setArg(a++, config_.height);
-        kernel_.setArg(a++, float(std::exp(-double(config_.healRate) * dt)));
+        kernel_.setArg(a++, heal);
         kernel_.setArg(a++, tilesX_);
         kernel_.setArg(a++, tileStartBuffer_);
         kernel_.setArg(a++, tileStampsBuffer_);
         kernel_.setArg(a++, stampBuffer_);
         kernel_.setArg(a++, shapeBuffer_);
+        kernel_.setArg(a++, lookBuffer_);
+        kernel_.setArg(a++, baseAlbedo_);
+        kernel_.setArg(a++, albedo_);
+        kernel_.setArg(a++, channels_);
+        kernel_.setArg(a++, cl_float4{{255.0f * config_.soot[0], 255.0f * config_.soot[1], 255.0f * config_.soot[2], 255.0f}});
         // One work-group per tile: every work-item of a group loops over the same stamp list,
         // so the device can run the group's loop in vector lanes.
         const size_t T = size_t(config_.tileSize);

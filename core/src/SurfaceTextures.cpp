@@ -50,7 +50,7 @@ std::vector<unsigned char> flatTexels(SurfaceFormat format, size_t count) {
 } // namespace
 
 SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
-    : config_(config), surface_(GlTexture::create()), albedo_(GlTexture::create()) {
+    : config_(config), surface_(GlTexture::create()), albedo_(GlTexture::create()), channels_(GlTexture::create()) {
     config_.validate();
     levels_ = config.mipmaps
                   ? static_cast<int>(std::bit_width(static_cast<unsigned>(
@@ -58,7 +58,7 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
                   : 1;
     const GLenum wrapS = wrapsU(config.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
     const GLenum wrapT = wrapsV(config.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
-    for (const GlTexture* t : {&surface_, &albedo_}) {
+    for (const GlTexture* t : {&surface_, &albedo_, &channels_}) {
         glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, wrapS);
         glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, wrapT);
         glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -68,6 +68,10 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     HFX_GL_CHECK(glTextureStorage2D(surface_.id(), levels_, internalFormat(config.format), config.width, config.height));
     HFX_GL_CHECK(glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height));
     setAlbedo(Image{1, 1, 3, {0.8f, 0.8f, 0.8f}});
+    HFX_GL_CHECK(glTextureStorage2D(channels_.id(), levels_, GL_RGBA8, config.width, config.height));
+    const GLubyte open[4] = {0, 255, 0, 255}; // no added roughness, no occlusion
+    for (int level = 0; level < levels_; ++level)
+        HFX_GL_CHECK(glClearTexImage(channels_.id(), level, GL_RGBA, GL_UNSIGNED_BYTE, open));
     uploadTexels(flatTexels(config.format, static_cast<size_t>(config.width) * config.height).data());
     if (config.pyramid) {
         pyramid_ = GlTexture::create();
@@ -104,6 +108,13 @@ void SurfaceTextures::uploadAlbedo(const unsigned char* rgba) {
     HFX_GL_CHECK(glTextureSubImage2D(albedo_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
                         GL_UNSIGNED_BYTE, rgba));
     if (levels_ > 1) HFX_GL_CHECK(glGenerateTextureMipmap(albedo_.id()));
+}
+
+void SurfaceTextures::uploadChannels(const unsigned char* rgba) {
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    HFX_GL_CHECK(glTextureSubImage2D(channels_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
+                        GL_UNSIGNED_BYTE, rgba));
+    if (levels_ > 1) HFX_GL_CHECK(glGenerateTextureMipmap(channels_.id()));
 }
 
 void SurfaceTextures::setAlbedo(const Image& albedo) {

@@ -3,6 +3,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/SurfaceMaps.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hfx {
@@ -14,11 +15,15 @@ void DecalWallConfig::validate() const {
             throw Error(str("DecalWallConfig: a colour or normal map ('", colorMap.empty() ? normalMap : colorMap,
                             "') needs a heightMap to go with it"));
     }
-    if (!(healRate >= 0.0f) || !std::isfinite(healRate))
-        throw Error(str("DecalWallConfig.healRate must be >= 0 and finite, got ", healRate));
-    if (!(bullet.radius > 0.0f) || !(explosion.radius > 0.0f))
-        throw Error(str("DecalWallConfig: bullet and explosion radii must be positive, got ", bullet.radius,
-                        " and ", explosion.radius));
+    damage.validate();
+    if (!(damage.look.bullet.radius > 0.0f) || !(damage.look.explosion.radius > 0.0f))
+        throw Error(str("DecalWallConfig: bullet and explosion radii must be positive, got ", damage.look.bullet.radius,
+                        " and ", damage.look.explosion.radius));
+    const long long stamps = (long long)damage.budget * (1 + std::max(damage.look.explosion.debris, 0));
+    if (stamps > maxStampsPerBatch)
+        throw Error(str("DecalWallConfig: a budget of ", damage.budget, " impacts rebuilds up to ", stamps,
+                        " stamps a frame (explosions with ", damage.look.explosion.debris,
+                        " debris), more than maxStampsPerBatch = ", maxStampsPerBatch));
     material.validate();
 }
 
@@ -27,6 +32,21 @@ namespace {
 double wrap01(double x) {
     const double w = x - std::floor(x);
     return w >= 1.0 ? 0.0 : w;
+}
+
+/// RGBA8 bytes, row 0 at v = 0, of a colour image stored top row first; none for no image.
+std::vector<std::uint8_t> albedoBytes(const Image& image) {
+    std::vector<std::uint8_t> rgba;
+    if (image.empty()) return rgba;
+    rgba.resize(size_t(image.width) * image.height * 4);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 4; ++c) {
+                const float v = c < 3 ? image.at(x, image.height - 1 - y, image.channels >= 3 ? c : 0)
+                                      : (image.channels == 4 ? image.at(x, image.height - 1 - y, 3) : 1.0f);
+                rgba[(size_t(y) * image.width + x) * 4 + c] = std::uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+            }
+    return rgba;
 }
 
 } // namespace
@@ -46,44 +66,61 @@ DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config)
     : DecalWallEffect(cl, config, load(config)) {}
 
 DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps)
-    : Effect(config.material), cl_(cl), config_(config),
+    : Effect(config.material), cl_(cl), config_(config), log_(config.damage),
       decals_(cl,
               {.width = maps.width,
                .height = maps.height,
                .edges = EdgeMode::Wrap,
-               .healRate = config.healRate,
                .maxStampsPerBatch = config.maxStampsPerBatch},
-              maps.heights),
+              maps.heights, albedoBytes(maps.color)),
       surface_(cl, SurfacePipelineConfig::of(decals_, config.material.depthScale, config.surface)) {
-    if (!maps.color.empty()) surface_.setAlbedo(maps.color);
     if (!maps.normals.empty())
         detail_ = std::make_unique<DetailNormals>(cl, surface_.config().sobel(), maps.heights, maps.normals);
     refresh();
 }
 
+void DecalWallEffect::advance(double dt) {
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw Error(str("DecalWallEffect::update: dt must be positive and finite, got ", dt));
+    log_.advance(dt);
+    decals_.addBulletHoles(log_.stamps());
+    decals_.rebuild();
+}
+
 void DecalWallEffect::enqueueSurface() {
     surface_.derive(decals_.buffer());
     if (detail_) detail_->apply(surface_.normals());
-    surface_.submit();
+    surface_.submit(&decals_.albedo(), &decals_.channels());
 }
 
 void DecalWallEffect::shoot(double u, double v) {
     if (!std::isfinite(u) || !std::isfinite(v))
         throw Error(str("DecalWallEffect::shoot: texcoords must be finite, got ", u, ", ", v));
-    BulletHole hole = config_.bullet;
-    hole.u = float(wrap01(u));
-    hole.v = float(wrap01(v));
-    decals_.addBulletHole(hole);
+    log_.add({.u = float(wrap01(u)), .v = float(wrap01(v)), .radius = config_.damage.look.bullet.radius,
+              .kind = ImpactKind::Bullet, .seed = log_.added() + 1});
 }
 
 void DecalWallEffect::explode(double u, double v, std::uint64_t seed) {
     if (!std::isfinite(u) || !std::isfinite(v))
         throw Error(str("DecalWallEffect::explode: texcoords must be finite, got ", u, ", ", v));
-    Explosion e = config_.explosion;
-    e.u = float(wrap01(u));
-    e.v = float(wrap01(v));
-    e.seed = seed;
-    decals_.addExplosion(e);
+    log_.add({.u = float(wrap01(u)), .v = float(wrap01(v)), .radius = config_.damage.look.explosion.radius,
+              .kind = ImpactKind::Explosion, .seed = seed});
+}
+
+bool DecalWallEffect::impact(const ImpactEvent& impact) { return log_.add(impact); }
+
+void DecalWallEffect::loadDamage(const std::string& path) {
+    DamageLog loaded = DamageLog::load(path, config_.damage);
+    log_ = std::move(loaded);
+    decals_.addBulletHoles(log_.stamps());
+    decals_.rebuild();
+    refresh();
+}
+
+void DecalWallEffect::impacts(const std::vector<ImpactEvent>& impacts) {
+    DamageLog trial = log_; // all or none: a bad impact anywhere leaves the log as it was
+    for (const ImpactEvent& e : impacts) trial.add(e);
+    log_ = std::move(trial);
 }
 
 std::vector<float> DecalWallEffect::readHeights() {

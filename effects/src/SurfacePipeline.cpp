@@ -106,6 +106,7 @@ void SurfacePipeline::begin(StageTiming timing) {
     state_ = State::Begun;
     timing_ = timing;
     albedo_ = cl::Buffer();
+    channels_ = cl::Buffer();
     times_ = {};
     start_ = nowMs();
 }
@@ -122,16 +123,16 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     state_ = State::Derived;
 }
 
-void SurfacePipeline::submit(const cl::Buffer* albedo) {
+void SurfacePipeline::submit(const cl::Buffer* albedo, const cl::Buffer* channels) {
     HFX_CHECK(state_ == State::Derived);
+    const size_t needed = 4 * size_t(config_.width) * config_.height;
+    for (auto [buffer, name] : {std::pair{albedo, "albedo"}, std::pair{channels, "shading channels"}})
+        if (buffer && buffer->getInfo<CL_MEM_SIZE>() < needed)
+            throw Error(str("SurfacePipeline::submit: the ", name, " buffer holds ", buffer->getInfo<CL_MEM_SIZE>(),
+                            " bytes, a ", config_.width, "x", config_.height, " RGBA8 map needs ", needed));
     if (packer_) packer_->run(sobel_.output());
-    if (albedo) {
-        const size_t needed = 4 * size_t(config_.width) * config_.height;
-        if (albedo->getInfo<CL_MEM_SIZE>() < needed)
-            throw Error(str("SurfacePipeline::submit: the albedo holds ", albedo->getInfo<CL_MEM_SIZE>(),
-                            " bytes, a ", config_.width, "x", config_.height, " RGBA8 albedo needs ", needed));
-        albedo_ = *albedo;
-    }
+    if (albedo) albedo_ = *albedo;
+    if (channels) channels_ = *channels;
     clGuard("SurfacePipeline::submit", [&] {
         cl_.queue().enqueueMarkerWithWaitList(nullptr, &submitted_);
         cl_.queue().flush(); // start now, not at the wait
@@ -182,6 +183,9 @@ void SurfacePipeline::finish() {
     if (albedo_())
         mapAndUpload(cl_, albedo_, 4 * texels, "uploading the albedo",
                      [&](const void* mapped) { back.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });
+    if (channels_())
+        mapAndUpload(cl_, channels_, 4 * texels, "uploading the shading channels",
+                     [&](const void* mapped) { back.uploadChannels(static_cast<const unsigned char*>(mapped)); });
     front_ = 1 - front_;
     times_.upload = nowMs() - computed;
 }

@@ -262,6 +262,7 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
     }
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(1, textures.albedo());
+    glBindTextureUnit(10, textures.channels());
     for (size_t i = 1; i < layers.size(); ++i) {
         glBindTextureUnit(GLuint(3 + i), layers[i].textures->surface());
         glBindTextureUnit(GLuint(6 + i), layers[i].textures->albedo());

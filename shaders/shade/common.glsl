@@ -13,7 +13,9 @@ struct HfxSurfacePoint {
     float lit;            // 1 - self-shadow, faded in from the geometric terminator
     float cosView;        // between the geometric normal and the view
     float diffuse;        // max(N.L, 0)
-    float specular;       // Blinn-Phong lobe (u_specularPower, widened by slopeVariance), 0 facing away
+    float specular;       // Blinn-Phong lobe (u_specularPower, widened by slopeVariance and roughness), 0 facing away
+    float roughness;      // added to the material's: the shading channels' R (0 where none were given)
+    float occlusion;      // ambient occlusion, 1 open: the shading channels' G
     float slopeVariance;  // variance of the slopes the pixel covers, from the mip-averaged normals (Toksvig)
     vec4 foam;            // each layer's albedo alpha: foam coverage, where the effect writes it (layers 0-3)
     vec4 foamDetail;      // for each layer, the next finer layer's height in [0,1]: thin foam survives on its crests

@@ -9,6 +9,7 @@
 
 #include "hfx/compute/HeightSource.h"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +21,12 @@ struct BulletHole {
     float depth = 0.35f;     ///< of the bowl at its centre, height units
     float rimHeight = 0.08f; ///< raised lip, height units
     float rimWidth = 0.35f;  ///< half-width of the lip, in radii
+    // Shading marks (DecalMath.h, hfx_decal_marks), each 0 (none) to 1:
+    float scorch = 0.0f;      ///< soot burnt into the albedo, out to scorchReach radii
+    float roughness = 0.0f;   ///< the fresh fracture's roughness over the bowl and lip
+    float occlusion = 0.0f;   ///< how dark the bowl's floor is to ambient light
+    float scorchReach = 2.0f; ///< radii, 1 to 16
+    float phase = 0.0f;       ///< turns the scorch's ragged edge (radians)
 };
 
 struct Explosion {
@@ -29,7 +36,11 @@ struct Explosion {
     int debris = 24;              ///< small pits scattered around the crater
     float debrisRadius = 0.006f;
     float debrisSpread = 2.5f;    ///< debris lands up to this many crater radii out
-    std::uint64_t seed = 1;       ///< where the debris lands
+    std::uint64_t seed = 1;       ///< where the debris lands, and the scorch's edge
+    float scorch = 0.0f;          ///< the crater's marks (BulletHole's); the debris get half
+    float roughness = 0.0f;
+    float occlusion = 0.0f;
+    float scorchReach = 2.5f;
 };
 
 struct DecalConfig {
@@ -40,13 +51,16 @@ struct DecalConfig {
     int tileSize = 16;             ///< texels per binning tile edge
     int maxStampsPerBatch = 65536; ///< a larger batch is refused, not truncated
     float baseHeight = 0.85f;      ///< flat base when no base map is given
+    std::array<float, 3> soot{0.05f, 0.045f, 0.04f}; ///< linear RGB the scorch burns the albedo towards
     void validate() const;
 };
 
 class DecalMap final : public HeightSource {
 public:
     /// base: width*height heights in [0,1], row 0 at v = 0; empty: flat at config.baseHeight.
-    DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<float>& base = {});
+    /// baseAlbedo: width*height RGBA8, row 0 at v = 0; empty: light grey.
+    DecalMap(ClContext& cl, const DecalConfig& config, const std::vector<float>& base = {},
+             const std::vector<std::uint8_t>& baseAlbedo = {});
 
     /// Queue stamps for the next step(). Throws hfx::Error and queues nothing when the stamp is
     /// outside the map, has a non-positive radius, a negative depth or overflows the batch.
@@ -56,12 +70,20 @@ public:
     size_t pendingStamps() const { return pending_.size(); }
 
     /// Heals by dt, applies the queued stamps, writes the combined height; does not wait.
+    /// The albedo and the shading channels carry the marks of this step's stamps only.
     void step(double dt) override;
+    /// Replaces all damage with the queued stamps alone (a map made from a DamageLog each frame).
+    void rebuild();
     /// Forgets all damage.
     void clear();
 
     const cl::Buffer& buffer() const override { return height_; }
     const cl::Buffer& damage() const { return damage_; }
+    /// RGBA8, row 0 at v = 0: the base albedo burnt by the last step's scorch.
+    const cl::Buffer& albedo() const { return albedo_; }
+    /// RGBA8 shading channels of the last step (SurfaceTextures::uploadChannels): roughness,
+    /// occlusion, scorch, 255.
+    const cl::Buffer& channels() const { return channels_; }
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }
     EdgeMode edges() const override { return config_.edges; }
@@ -74,6 +96,7 @@ public:
 private:
     void validate(const BulletHole& hole) const;
     void bin();
+    void apply(float heal);
 
     ClContext& cl_;
     DecalConfig config_;
@@ -82,9 +105,11 @@ private:
     // Staging reused every step: stamps, shapes and the tile lists.
     std::vector<cl_float4> stamps_;
     std::vector<cl_float4> shapes_;
+    std::vector<cl_float4> looks_;
     std::vector<int> tileStart_, tileStamps_, tileCounts_;
     size_t stampCapacity_ = 0, listCapacity_ = 0;
-    cl::Buffer base_, damage_, height_, tileStartBuffer_, tileStampsBuffer_, stampBuffer_, shapeBuffer_;
+    cl::Buffer base_, damage_, height_, tileStartBuffer_, tileStampsBuffer_, stampBuffer_, shapeBuffer_, lookBuffer_;
+    cl::Buffer baseAlbedo_, albedo_, channels_;
     cl::Kernel kernel_;
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 // The GL side of a height field: one texture holding the tangent-space normal in xyz and the
 // height in w (h in [0,1], 1 = the polygon surface), so a POM step costs one fetch — RGBA32F,
-// RGBA16F or RGBA8 (SurfaceFormat) — plus an RGBA8 albedo texture and optionally the height
-// pyramid. Storage is allocated once; the upload functions refresh it in place every frame. The
+// RGBA16F or RGBA8 (SurfaceFormat) — plus an RGBA8 albedo texture, an RGBA8 texture of shading
+// channels (roughness, ambient occlusion; a decal's fresh fracture and its crater's shadowed
+// bowl) and optionally the height pyramid. Storage is allocated once; the upload functions refresh it in place every frame. The
 // normals are those of one relief depth, normalDepth, which the textures record: the renderer
 // rescales them to whatever depth it draws with (SurfaceMaterial::depthScale), so the material
 // alone owns the depth.
@@ -54,11 +55,17 @@ public:
     /// Replaces the albedo with an image (converted here, top row first as files store it); it
     /// must match the surface size or be 1x1 (a solid colour).
     void setAlbedo(const Image& albedo);
+    /// Replaces the shading channels with width*height RGBA8 texels, row 0 at v = 0: R the
+    /// roughness added to the material's (0: the material's own gloss, 1: fully diffuse), G the
+    /// ambient occlusion (1: open, 0: no ambient light), B and A reserved (write 0 and 255).
+    /// Until the first upload: roughness 0, occlusion 1, which draws as without the texture.
+    void uploadChannels(const unsigned char* rgba);
 
     GLuint surface() const { return surface_.id(); }
     GLuint pyramid() const { return pyramid_.id(); } ///< 0 without a pyramid
     int pyramidLevels() const { return pyramidLevels_; }
     GLuint albedo() const { return albedo_.id(); }
+    GLuint channels() const { return channels_.id(); }
     const SurfaceTexturesConfig& config() const { return config_; }
     int levels() const { return levels_; }
 
@@ -66,7 +73,7 @@ private:
     SurfaceTexturesConfig config_;
     int levels_ = 1;
     int pyramidLevels_ = 0;
-    GlTexture surface_, albedo_, pyramid_;
+    GlTexture surface_, albedo_, channels_, pyramid_;
 };
 
 } // namespace hfx

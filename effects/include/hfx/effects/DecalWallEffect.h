@@ -1,13 +1,16 @@
 #pragma once
 // The decal-damage user: a wall (height and colour maps from files, or a procedural brick wall
-// when none are given) carrying a persistent DecalMap. Shots and explosions are queued by
-// texcoord and stamped on the device in the next update(); pick() turns a camera ray into the
-// texcoord the user sees on the displaced surface. Normals are re-derived from the damaged
-// heights every update (and added to the normal map's, when one is given), so craters shade,
-// cast soft self-shadows and clip geometry (POM's depth output) from the frame they appear in.
+// when none are given) carrying damage a game can ship: a DamageLog of impacts (a fixed budget,
+// oldest evicted first, close impacts merged, heal curves per channel, save and load), from
+// which the DecalMap rebuilds the heights, the scorched albedo and the shading channels
+// (roughness, ambient occlusion) every update. pick() turns a camera ray into the texcoord the
+// user sees on the displaced surface. Normals are re-derived from the damaged heights every
+// update (and added to the normal map's, when one is given), so craters shade, cast soft
+// self-shadows and clip geometry (POM's depth output) from the frame they appear in.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
+#include "hfx/compute/DamageLog.h"
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/DetailNormals.h"
 #include "hfx/core/SurfaceMaps.h"
@@ -30,10 +33,9 @@ struct DecalWallConfig {
     /// the map exactly and craters bend it.
     std::string normalMap;
     BrickWallConfig bricks;     ///< the procedural wall (its size sets the map's)
-    float healRate = 0.0f;      ///< damage decays as exp(-healRate t); 0 = permanent
-    int maxStampsPerBatch = 65536;
-    BulletHole bullet{.radius = 0.012f, .depth = 0.5f, .rimHeight = 0.08f};
-    Explosion explosion{.radius = 0.05f, .depth = 0.6f, .debris = 40};
+    /// The impacts' budget, merging, look (shapes and marks) and heal curves.
+    DamageLogConfig damage;
+    int maxStampsPerBatch = 65536; ///< stamps per rebuild: the budget's impacts with their debris
     SurfaceMaterial material{.depthScale = 0.06f, .maxSamples = 48, .shadowSharpness = 3.0f};
     ImageReadLimits limits;
     SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
@@ -45,11 +47,23 @@ public:
     /// Throws hfx::Error naming the file for a missing, corrupt or mismatched map.
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config = {});
 
-    /// Queues a bullet hole (the configured shape) at texcoords wrapped into [0,1).
+    /// A bullet hole (the look's radius) at texcoords wrapped into [0,1), in the next update.
     void shoot(double u, double v);
-    /// Queues an explosion at texcoords wrapped into [0,1); `seed` scatters its debris.
+    /// An explosion at texcoords wrapped into [0,1); `seed` scatters its debris.
     void explode(double u, double v, std::uint64_t seed);
-    DecalMap& decals() { return decals_; }
+    /// Any impact (DamageLog::add: merged, or evicting the oldest); true when it merged.
+    bool impact(const ImpactEvent& impact);
+    /// Several impacts, all or none: every one is checked before any is added.
+    void impacts(const std::vector<ImpactEvent>& impacts);
+    /// Forgets all damage (the next update shows the bare wall).
+    void clearDamage() { log_.clear(); }
+    const DamageLog& damage() const { return log_; }
+    /// Writes the damage (DamageLog::save); loadDamage replaces it with a saved one and redraws
+    /// the surface from it at once, exactly as the run that saved it drew it. Throws naming the
+    /// file; a failed load keeps the damage there was.
+    void saveDamage(const std::string& path) const { log_.save(path); }
+    void loadDamage(const std::string& path);
+    const DecalMap& decals() const { return decals_; }
     const DecalWallConfig& config() const { return config_; }
 
     /// The texcoords a world ray meets on the displaced wall drawn on `frame`, using the heights
@@ -63,12 +77,14 @@ private:
     static SurfaceMaps load(const DecalWallConfig& config);
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
     const SurfacePipeline& surface() const override { return surface_; }
-    void advance(double dt) override { decals_.step(dt); }
+    /// Moves the log's clock and rebuilds the maps from it.
+    void advance(double dt) override;
     /// The damaged heights' normals, with the artist's normal map added when there is one.
     void enqueueSurface() override;
 
     ClContext& cl_;
     DecalWallConfig config_;
+    DamageLog log_;
     DecalMap decals_;
     SurfacePipeline surface_;
     std::unique_ptr<DetailNormals> detail_; ///< with a normal map

@@ -98,8 +98,9 @@ public:
     /// The float4 normals derive() writes: passes between derive() and submit() may edit them.
     const cl::Buffer& normals() const { return sobel_.output(); }
     /// Enqueues the packing and ends the frame's device work. `albedo`, when given, is
-    /// width*height RGBA8 on the device (a ColorRamp's output) that finish() uploads too.
-    void submit(const cl::Buffer* albedo = nullptr);
+    /// width*height RGBA8 on the device (a ColorRamp's output) that finish() uploads too;
+    /// `channels` likewise, the shading channels (SurfaceTextures::uploadChannels).
+    void submit(const cl::Buffer* albedo = nullptr, const cl::Buffer* channels = nullptr);
     /// Waits for the submitted frame, uploads it into the back textures and swaps. Without a
     /// submitted frame (begin() with nothing after it), does nothing.
     void finish();
@@ -137,6 +138,7 @@ private:
     State state_ = State::Idle;
     StageTiming timing_ = StageTiming::Staged;
     cl::Buffer albedo_;    ///< this frame's device albedo, or none
+    cl::Buffer channels_;  ///< this frame's device shading channels, or none
     cl::Event submitted_;  ///< a marker behind the frame's device work
     double start_ = 0.0, derived_ = 0.0, normalsDone_ = 0.0;
     StageTimes times_;

@@ -21,6 +21,7 @@
 #define HFX_SIN sin
 #define HFX_POW pow
 #define HFX_FLOOR floor
+#define HFX_ATAN2 atan2
 #else
 #include <cmath>
 #define HFX_FN inline
@@ -35,6 +36,7 @@
 #define HFX_SIN std::sin
 #define HFX_POW std::pow
 #define HFX_FLOOR std::floor
+#define HFX_ATAN2 std::atan2
 #endif
 #define HFX_TWO_PI 6.28318530717958647692f
 #endif

@@ -24,4 +24,39 @@ HFX_FN float hfx_apply_damage(float d, float change, float base) {
     float lo = -base, hi = 1.0f - base;
     return next < lo ? lo : (next > hi ? hi : next);
 }
+
+/* 0 below e0, 1 above e1, a smooth cubic between (GLSL's smoothstep). */
+HFX_FN float hfx_decal_smoothstep(float e0, float e1, float x) {
+    float t = (x - e0) / (e1 - e0);
+    t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+/* The shading marks of one impact at a texel (dx, dy) from its centre, in radii (r = 1 at the
+   lip). Scorch: full out to 0.55 of its reach, fading to nothing at the reach (in radii), whose
+   edge wobbles with the angle by two harmonics of the impact's phase, so no two burns share an
+   outline. Roughness: the fresh fracture of the bowl and the lip, fading out by 1.5 radii.
+   Occlusion: the bowl's shadowed floor, 1 - strength (1 - r^2) inside the lip. Each is scaled by
+   its strength (the heal curves' values). */
+HFX_FN void hfx_decal_marks(float dx, float dy, float scorchStrength, float roughStrength, float occlusionStrength,
+                            float reach, float phase, float* scorch, float* rough, float* occlusion) {
+    float r = HFX_SQRT(dx * dx + dy * dy);
+    *scorch = 0.0f;
+    if (scorchStrength > 0.0f && r < 1.3f * reach) {
+        float a = HFX_ATAN2(dy, dx);
+        float edge = reach * (1.0f + 0.18f * HFX_SIN(5.0f * a + phase) + 0.1f * HFX_SIN(9.0f * a + 2.3f * phase));
+        *scorch = scorchStrength * (1.0f - hfx_decal_smoothstep(0.55f * edge, edge, r));
+    }
+    *rough = roughStrength * (1.0f - hfx_decal_smoothstep(1.0f, 1.5f, r));
+    *occlusion = r < 1.0f ? 1.0f - occlusionStrength * (1.0f - r * r) : 1.0f;
+}
+
+/* How far (radii) a stamp's marks reach: its crater's lip and rim, its roughness, its scorch
+   (the wobble adds at most 28%). */
+HFX_FN float hfx_decal_reach(float rimWidth, float scorchStrength, float roughStrength, float scorchReach) {
+    float reach = 1.0f + rimWidth;
+    if (roughStrength > 0.0f && reach < 1.5f) reach = 1.5f;
+    if (scorchStrength > 0.0f && reach < 1.3f * scorchReach) reach = 1.3f * scorchReach;
+    return reach;
+}
 #endif

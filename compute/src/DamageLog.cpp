@@ -1,0 +1,280 @@
+#include "hfx/compute/DamageLog.h"
+
+#include "hfx/core/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace hfx {
+
+const char* impactKindName(ImpactKind kind) { return kind == ImpactKind::Bullet ? "bullet" : "explosion"; }
+
+float HealCurve::at(double age) const {
+    if (duration <= 0.0 || age <= start) return 1.0f;
+    const double t = std::min((age - start) / duration, 1.0);
+    const double s = t * t * (3.0 - 2.0 * t);
+    return float(1.0 + (double(end) - 1.0) * s);
+}
+
+void HealCurve::validate(const char* channel) const {
+    if (!(start >= 0.0) || !std::isfinite(start) || !(duration >= 0.0) || !std::isfinite(duration))
+        throw Error(str("the ", channel, " heal curve needs start and duration >= 0 and finite, got ", start, " and ",
+                        duration));
+    if (!(end >= 0.0f && end <= 1.0f))
+        throw Error(str("the ", channel, " heal curve's end must be in [0, 1], got ", end));
+}
+
+void DamageLook::validate() const {
+    height.validate("height");
+    scorch.validate("scorch");
+    roughness.validate("roughness");
+    occlusion.validate("occlusion");
+    if (!(maxStrength >= 1.0f && maxStrength <= 16.0f))
+        throw Error(str("DamageLook.maxStrength must be in [1, 16], got ", maxStrength));
+}
+
+void DamageLogConfig::validate() const {
+    if (budget < 1 || budget > 65536) throw Error(str("DamageLogConfig.budget must be in [1, 65536], got ", budget));
+    if (!(mergeRadius >= 0.0f && mergeRadius <= 0.5f))
+        throw Error(str("DamageLogConfig.mergeRadius must be in [0, 0.5] map widths, got ", mergeRadius));
+    look.validate();
+}
+
+DamageLog::DamageLog(const DamageLogConfig& config) : config_((config.validate(), config)) {
+    // Cells at least mergeRadius wide: a merge partner lies in the 3x3 cells around a point.
+    grid_ = config.mergeRadius > 0.0f ? std::clamp(int(1.0f / config.mergeRadius), 1, 1024) : 1;
+    slots_.resize(size_t(config.budget));
+    next_.assign(size_t(config.budget), -1);
+    cells_.assign(size_t(grid_) * grid_, -1);
+}
+
+int DamageLog::cellOf(float u, float v) const {
+    const int x = std::min(int(u * float(grid_)), grid_ - 1), y = std::min(int(v * float(grid_)), grid_ - 1);
+    return y * grid_ + x;
+}
+
+void DamageLog::link(int slot) {
+    const ImpactEvent& e = slots_[size_t(slot)];
+    int& first = cells_[size_t(cellOf(e.u, e.v))];
+    next_[size_t(slot)] = first;
+    first = slot;
+}
+
+void DamageLog::unlink(int slot) {
+    const ImpactEvent& e = slots_[size_t(slot)];
+    int* at = &cells_[size_t(cellOf(e.u, e.v))];
+    while (*at != slot) at = &next_[size_t(*at)]; // a cell holds a few impacts: merging spaces them
+    *at = next_[size_t(slot)];
+}
+
+void DamageLog::validate(const ImpactEvent& e) const {
+    if (!(e.u >= 0.0f && e.u < 1.0f && e.v >= 0.0f && e.v < 1.0f))
+        throw Error(str("impact at (", e.u, ", ", e.v, ") is outside the map: texcoords must lie in [0, 1)"));
+    if (!std::isfinite(e.nx) || !std::isfinite(e.ny) || !std::isfinite(e.nz))
+        throw Error(str("impact normal (", e.nx, ", ", e.ny, ", ", e.nz, ") is not finite"));
+    if (!(e.radius > 0.0f && e.radius <= 1.0f))
+        throw Error(str("impact radius must be in (0, 1] map widths, got ", e.radius));
+    if (e.kind != ImpactKind::Bullet && e.kind != ImpactKind::Explosion)
+        throw Error(str("impact kind ", int(e.kind), " is neither a bullet nor an explosion"));
+    if (!(e.strength >= 1.0f && e.strength <= config_.look.maxStrength))
+        throw Error(str("impact strength must be in [1, ", config_.look.maxStrength, "], got ", e.strength));
+    if (!std::isfinite(e.time)) throw Error(str("impact time must be finite, got ", e.time));
+}
+
+void DamageLog::insert(const ImpactEvent& impact) {
+    const int budget = config_.budget;
+    if (live_ == budget) { // full: the oldest goes
+        unlink(oldest_);
+        oldest_ = (oldest_ + 1) % budget;
+        --live_;
+        ++evicted_;
+    }
+    const int slot = (oldest_ + live_) % budget;
+    slots_[size_t(slot)] = impact;
+    link(slot);
+    ++live_;
+}
+
+bool DamageLog::add(ImpactEvent impact) {
+    impact.time = now_;
+    validate(impact);
+    ++added_;
+    if (config_.mergeRadius > 0.0f) {
+        const int cx = std::min(int(impact.u * float(grid_)), grid_ - 1);
+        const int cy = std::min(int(impact.v * float(grid_)), grid_ - 1);
+        auto gap = [&](float a, float b) {
+            const float d = std::abs(a - b);
+            return config_.wrap ? std::min(d, 1.0f - d) : d;
+        };
+        const float r2 = config_.mergeRadius * config_.mergeRadius;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                int x = cx + dx, y = cy + dy;
+                if (config_.wrap) x = (x + grid_) % grid_, y = (y + grid_) % grid_;
+                else if (x < 0 || y < 0 || x >= grid_ || y >= grid_) continue;
+                for (int s = cells_[size_t(y * grid_ + x)]; s >= 0; s = next_[size_t(s)]) {
+                    ImpactEvent& live = slots_[size_t(s)];
+                    const float gu = gap(live.u, impact.u), gv = gap(live.v, impact.v);
+                    if (live.kind != impact.kind || gu * gu + gv * gv >= r2) continue;
+                    live.strength = std::min(live.strength + 1.0f, config_.look.maxStrength);
+                    live.radius = std::max(live.radius, impact.radius);
+                    live.time = now_;
+                    ++merged_;
+                    return true;
+                }
+            }
+    }
+    insert(impact);
+    return false;
+}
+
+void DamageLog::advance(double seconds) {
+    if (!(seconds >= 0.0) || !std::isfinite(seconds))
+        throw Error(str("DamageLog::advance: seconds must be >= 0 and finite, got ", seconds));
+    now_ += seconds;
+}
+
+void DamageLog::clear() {
+    std::fill(cells_.begin(), cells_.end(), -1);
+    live_ = 0;
+    oldest_ = 0;
+}
+
+std::vector<ImpactEvent> DamageLog::events() const {
+    std::vector<ImpactEvent> out;
+    out.reserve(size_t(live_));
+    for (int i = 0; i < live_; ++i) out.push_back(slots_[size_t((oldest_ + i) % config_.budget)]);
+    return out;
+}
+
+std::vector<BulletHole> DamageLog::stamps() const {
+    const DamageLook& look = config_.look;
+    std::vector<BulletHole> out;
+    for (const ImpactEvent& e : events()) {
+        const double age = now_ - e.time;
+        const float height = look.height.at(age), scorch = look.scorch.at(age), rough = look.roughness.at(age),
+                    occlusion = look.occlusion.at(age);
+        // Merged hits deepen the crater and widen it a little.
+        const float deeper = 1.0f + 0.35f * (e.strength - 1.0f), wider = 1.0f + 0.2f * (e.strength - 1.0f);
+        auto heal = [&](BulletHole h) {
+            h.depth = std::min(h.depth * deeper, 1.0f) * height;
+            h.rimHeight *= height;
+            h.scorch *= scorch;
+            h.roughness *= rough;
+            h.occlusion *= occlusion;
+            return h;
+        };
+        if (e.kind == ImpactKind::Bullet) {
+            BulletHole h = look.bullet;
+            h.u = e.u, h.v = e.v;
+            h.radius = std::min(e.radius * wider, 1.0f);
+            h.phase = float(e.seed % 6283) * 1e-3f;
+            out.push_back(heal(h));
+        } else {
+            Explosion x = look.explosion;
+            x.u = e.u, x.v = e.v;
+            x.radius = std::min(e.radius * wider, 1.0f);
+            x.seed = e.seed;
+            for (const BulletHole& h : DecalMap::expand(x, config_.wrap ? EdgeMode::Wrap : EdgeMode::Clamp))
+                out.push_back(heal(h));
+        }
+    }
+    return out;
+}
+
+size_t DamageLog::memoryBytes() const {
+    return slots_.capacity() * sizeof(ImpactEvent) + (next_.capacity() + cells_.capacity()) * sizeof(int);
+}
+
+namespace {
+std::string hex(double x) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%a", x);
+    return buffer;
+}
+} // namespace
+
+void DamageLog::save(const std::string& path) const {
+    std::ofstream file(path, std::ios::trunc);
+    if (!file) throw Error(str("cannot write the damage log '", path, "'"));
+    file << "hfx-damage 1\n";
+    file << "now " << hex(now_) << "\n";
+    for (const ImpactEvent& e : events())
+        file << "impact " << impactKindName(e.kind) << ' ' << hex(e.u) << ' ' << hex(e.v) << ' ' << hex(e.nx) << ' '
+             << hex(e.ny) << ' ' << hex(e.nz) << ' ' << hex(e.radius) << ' ' << e.seed << ' ' << hex(e.time) << ' '
+             << hex(e.strength) << "\n";
+    file.flush();
+    if (!file) throw Error(str("writing the damage log '", path, "' failed"));
+}
+
+DamageLog DamageLog::load(const std::string& path, const DamageLogConfig& config) {
+    std::ifstream file(path);
+    if (!file) throw Error(str("cannot read the damage log '", path, "'"));
+    DamageLog log(config);
+    std::string line;
+    int number = 0;
+    auto fail = [&](const std::string& why) { return Error(str(path, ":", number, ": ", why)); };
+    auto number64 = [&](std::istringstream& in, const char* what) {
+        std::string word;
+        if (!(in >> word)) throw fail(str("missing ", what));
+        char* end = nullptr;
+        const double value = std::strtod(word.c_str(), &end);
+        if (*end != '\0' || !std::isfinite(value)) throw fail(str("bad ", what, " '", word, "'"));
+        return value;
+    };
+    bool header = false, clock = false;
+    std::vector<ImpactEvent> impacts;
+    while (std::getline(file, line)) {
+        ++number;
+        if (line.empty()) continue;
+        std::istringstream in(line);
+        std::string word;
+        in >> word;
+        if (!header) {
+            int version = 0;
+            if (word != "hfx-damage" || !(in >> version) || version != 1)
+                throw fail("not an HFX damage log (expected 'hfx-damage 1')");
+            header = true;
+        } else if (word == "now") {
+            log.now_ = number64(in, "clock");
+            clock = true;
+        } else if (word == "impact") {
+            ImpactEvent e;
+            std::string kind;
+            in >> kind;
+            if (kind == "bullet") e.kind = ImpactKind::Bullet;
+            else if (kind == "explosion") e.kind = ImpactKind::Explosion;
+            else throw fail(str("unknown impact kind '", kind, "' (bullet or explosion)"));
+            e.u = float(number64(in, "u"));
+            e.v = float(number64(in, "v"));
+            e.nx = float(number64(in, "normal x"));
+            e.ny = float(number64(in, "normal y"));
+            e.nz = float(number64(in, "normal z"));
+            e.radius = float(number64(in, "radius"));
+            if (!(in >> e.seed)) throw fail("missing or bad seed");
+            e.time = number64(in, "time");
+            e.strength = float(number64(in, "strength"));
+            if (in >> word) throw fail(str("unexpected '", word, "' after the impact"));
+            try {
+                log.validate(e);
+            } catch (const Error& error) {
+                throw fail(error.what());
+            }
+            impacts.push_back(e);
+        } else {
+            throw fail(str("unknown record '", word, "'"));
+        }
+    }
+    if (!header) throw Error(str(path, ": empty, not an HFX damage log"));
+    if (!clock) throw Error(str(path, ": no 'now' line (the log's clock)"));
+    if (int(impacts.size()) > config.budget)
+        throw Error(str(path, ": ", impacts.size(), " impacts do not fit a budget of ", config.budget));
+    for (const ImpactEvent& e : impacts) log.insert(e);
+    return log;
+}
+
+} // namespace hfx

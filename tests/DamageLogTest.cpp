@@ -1,0 +1,179 @@
+// The damage log a game ships: a fixed budget whose memory does not grow and which evicts the
+// oldest impact first, merging of close impacts (across a wrapping edge too), heal curves that
+// reach their end value at the set time, and a saved log that reads back bit for bit (and
+// refuses, by file and line, what it is not).
+
+#include "support/Fixtures.h"
+
+#include "hfx/compute/DamageLog.h"
+#include "hfx/core/Error.h"
+#include "hfx/core/Random.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+namespace hfx::test {
+namespace {
+
+TEST(DamageLog, TenThousandImpactsIntoABudgetOf256KeepMemoryFlatAndEvictTheOldest) {
+    DamageLog log({.budget = 256, .mergeRadius = 0.0f});
+    const size_t memory = log.memoryBytes();
+    SplitMix64 random(3);
+    std::vector<ImpactEvent> all;
+    for (int i = 0; i < 10000; ++i) {
+        const ImpactEvent e{.u = float(random.next()), .v = float(random.next()), .seed = std::uint64_t(i)};
+        EXPECT_FALSE(log.add(e));
+        all.push_back(e);
+        log.advance(0.01);
+        ASSERT_EQ(log.memoryBytes(), memory) << "after " << i + 1 << " impacts";
+    }
+    EXPECT_EQ(log.size(), 256);
+    EXPECT_EQ(log.evicted(), 10000u - 256u);
+    const std::vector<ImpactEvent> live = log.events();
+    ASSERT_EQ(live.size(), 256u);
+    for (size_t i = 0; i < live.size(); ++i) // the newest 256, oldest first
+        EXPECT_EQ(live[i].seed, all[10000 - 256 + i].seed) << i;
+}
+
+TEST(DamageLog, CloseImpactsOfOneKindMergeAcrossTheWrapAndDeepenUpToTheCap) {
+    DamageLogConfig config{.budget = 64, .mergeRadius = 0.01f};
+    config.look.maxStrength = 3.0f;
+    DamageLog log(config);
+    EXPECT_FALSE(log.add({.u = 0.5f, .v = 0.5f}));
+    log.advance(2.0);
+    EXPECT_TRUE(log.add({.u = 0.505f, .v = 0.5f, .radius = 0.02f}));
+    EXPECT_FALSE(log.add({.u = 0.52f, .v = 0.5f})) << "farther than the merge radius";
+    EXPECT_FALSE(log.add({.u = 0.5f, .v = 0.5f, .kind = ImpactKind::Explosion})) << "another kind";
+    EXPECT_TRUE(log.add({.u = 0.501f, .v = 0.499f}));
+    EXPECT_TRUE(log.add({.u = 0.5f, .v = 0.5f}));
+    const std::vector<ImpactEvent> live = log.events();
+    ASSERT_EQ(live.size(), 3u);
+    EXPECT_EQ(live[0].strength, 3.0f) << "four hits, capped at maxStrength";
+    EXPECT_EQ(live[0].radius, 0.02f) << "the larger radius";
+    EXPECT_EQ(live[0].time, 2.0) << "a merge restarts its healing";
+    EXPECT_EQ(live[0].u, 0.5f) << "the crater stays where it was";
+    EXPECT_EQ(log.merged(), 3u);
+
+    DamageLog wrapping(config);
+    wrapping.add({.u = 0.999f, .v = 0.3f});
+    EXPECT_TRUE(wrapping.add({.u = 0.003f, .v = 0.3f})) << "0.004 apart across the edge";
+    config.wrap = false;
+    DamageLog clamped(config);
+    clamped.add({.u = 0.999f, .v = 0.3f});
+    EXPECT_FALSE(clamped.add({.u = 0.003f, .v = 0.3f})) << "a wall that does not tile";
+}
+
+TEST(DamageLog, HealCurvesReachTheirEndValueAtTheSetTime) {
+    const HealCurve curve{.start = 2.0, .duration = 3.0, .end = 0.25f};
+    EXPECT_EQ(curve.at(0.0), 1.0f);
+    EXPECT_EQ(curve.at(2.0), 1.0f);
+    EXPECT_EQ(curve.at(5.0), 0.25f);
+    EXPECT_EQ(curve.at(100.0), 0.25f);
+    float last = 1.0f;
+    for (double t = 2.0; t <= 5.0; t += 0.1) {
+        EXPECT_LE(curve.at(t), last) << t;
+        last = curve.at(t);
+    }
+    EXPECT_NEAR(curve.at(3.5), 0.625f, 1e-6f) << "half way on the smoothstep";
+    EXPECT_EQ(HealCurve{}.at(1e9), 1.0f) << "no duration: permanent";
+
+    // Through the log: every channel of a bullet at its curve's end, the others untouched.
+    DamageLogConfig config;
+    config.look.scorch = {.start = 1.0, .duration = 4.0, .end = 0.3f};
+    config.look.roughness = {.start = 0.0, .duration = 2.0, .end = 0.0f};
+    config.look.height = {.start = 3.0, .duration = 7.0, .end = 0.5f};
+    DamageLog log(config);
+    log.add({});
+    log.advance(5.0);
+    const BulletHole b = config.look.bullet;
+    BulletHole h = log.stamps().at(0);
+    EXPECT_EQ(h.scorch, b.scorch * 0.3f);
+    EXPECT_EQ(h.roughness, 0.0f);
+    EXPECT_EQ(h.occlusion, b.occlusion);
+    EXPECT_GT(h.depth, 0.5f * b.depth) << "height heals until 10 s";
+    log.advance(5.0);
+    h = log.stamps().at(0);
+    EXPECT_EQ(h.depth, b.depth * 0.5f);
+    EXPECT_EQ(h.rimHeight, b.rimHeight * 0.5f);
+}
+
+TEST(DamageLog, ExplosionsExpandIntoTheirDebrisWithTheirSeed) {
+    DamageLog log;
+    log.add({.u = 0.3f, .v = 0.6f, .radius = 0.05f, .kind = ImpactKind::Explosion, .seed = 77});
+    const std::vector<BulletHole> stamps = log.stamps();
+    Explosion x = DamageLogConfig{}.look.explosion;
+    x.u = 0.3f, x.v = 0.6f, x.radius = 0.05f, x.seed = 77;
+    const std::vector<BulletHole> expected = DecalMap::expand(x, EdgeMode::Wrap);
+    ASSERT_EQ(stamps.size(), expected.size());
+    for (size_t i = 0; i < stamps.size(); ++i) {
+        EXPECT_EQ(stamps[i].u, expected[i].u);
+        EXPECT_EQ(stamps[i].scorch, expected[i].scorch);
+    }
+}
+
+TEST(DamageLog, ASavedLogReadsBackBitForBit) {
+    DamageLog log({.budget = 100, .mergeRadius = 0.02f});
+    SplitMix64 random(9);
+    for (int i = 0; i < 400; ++i) {
+        log.add({.u = float(random.next()), .v = float(random.next()), .nx = float(random.uniform(-1, 1)),
+                 .ny = 0.25f, .nz = 0.96875f, .radius = float(random.uniform(0.001, 0.05)),
+                 .kind = i % 7 == 0 ? ImpactKind::Explosion : ImpactKind::Bullet, .seed = random.nextBits()});
+        log.advance(random.uniform(0.0, 0.1));
+    }
+    ASSERT_GT(log.merged(), 0u);
+    const std::string path = outputPath("damage.log");
+    log.save(path);
+    const DamageLog back = DamageLog::load(path, {.budget = 100, .mergeRadius = 0.02f});
+    EXPECT_EQ(back.now(), log.now());
+    const auto a = log.events(), b = back.events();
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(std::memcmp(&a[i].u, &b[i].u, sizeof(float) * 6), 0) << i;
+        EXPECT_EQ(a[i].kind, b[i].kind);
+        EXPECT_EQ(a[i].seed, b[i].seed);
+        EXPECT_EQ(a[i].time, b[i].time);
+        EXPECT_EQ(a[i].strength, b[i].strength);
+    }
+    const auto sa = log.stamps(), sb = back.stamps();
+    ASSERT_EQ(sa.size(), sb.size());
+    EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(BulletHole)), 0);
+    EXPECT_NE(messageOf([&] { DamageLog::load(path, {.budget = 10}); }).find("budget of 10"), std::string::npos);
+}
+
+TEST(DamageLog, BadImpactsAndBadFilesAreRefusedByNameAndChangeNothing) {
+    DamageLog log;
+    log.add({.u = 0.5f, .v = 0.5f});
+    EXPECT_NE(messageOf([&] { log.add({.u = 1.0f}); }).find("outside the map"), std::string::npos);
+    EXPECT_NE(messageOf([&] { log.add({.nx = std::nanf("")}); }).find("normal"), std::string::npos);
+    EXPECT_NE(messageOf([&] { log.add({.radius = 0.0f}); }).find("radius"), std::string::npos);
+    EXPECT_NE(messageOf([&] { log.add({.kind = ImpactKind(9)}); }).find("kind"), std::string::npos);
+    EXPECT_NE(messageOf([&] { log.advance(-1.0); }).find("seconds"), std::string::npos);
+    EXPECT_EQ(log.size(), 1);
+    EXPECT_EQ(log.added(), 1u);
+    EXPECT_NE(messageOf([&] { DamageLog({.budget = 0}); }).find("budget"), std::string::npos);
+    EXPECT_NE(messageOf([&] { DamageLog({.mergeRadius = -1.0f}); }).find("mergeRadius"), std::string::npos);
+    DamageLogConfig badCurve;
+    badCurve.look.scorch.end = 2.0f;
+    EXPECT_NE(messageOf([&] { DamageLog{badCurve}; }).find("scorch heal curve"), std::string::npos);
+
+    auto loadText = [](const std::string& text) {
+        const std::string path = outputPath("bad-damage.log");
+        std::ofstream(path) << text;
+        return messageOf([&] { DamageLog::load(path); });
+    };
+    EXPECT_NE(loadText("").find("empty"), std::string::npos);
+    EXPECT_NE(loadText("hello 1\n").find(":1: not an HFX damage log"), std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 1\nnow 0x1p+0\nimpact laser 0 0 0 0 1 0.1 1 0 1\n").find(":3: unknown impact kind 'laser'"),
+              std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 1\nnow 0\nimpact bullet 0.5 0.5 0 0 1 0.1 1 0\n").find(":3: missing strength"),
+              std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 1\nnow 0\nimpact bullet 1.5 0.5 0 0 1 0.1 1 0 1\n").find(":3: impact at (1.5"),
+              std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 1\nimpact bullet 0.5 0.5 0 0 1 0.1 1 0 1\n").find("no 'now' line"),
+              std::string::npos);
+    EXPECT_NE(messageOf([] { DamageLog::load("/no/such/damage.log"); }).find("/no/such/damage.log"), std::string::npos);
+}
+
+} // namespace
+} // namespace hfx::test
