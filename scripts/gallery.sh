@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the README's gallery: one 1280x720 picture of each scene, headless, at the scenes'
-# default grazing cameras, after enough frames for the field to develop (the decal volley, the
-# planet's storms). Writes docs/gallery/{water,decals,planet}.jpg, the sea calm (Beaufort 3) and
+# default grazing cameras, after enough frames for the field to develop (the decal volley: 196
+# bullets and 5 explosions with their scorch; the planet's storms). Writes docs/gallery/{water,decals,planet}.jpg, the sea calm (Beaufort 3) and
 # rough (Beaufort 7), the far field seen 5 degrees down (water-horizon.jpg), and a 4-second
 # 640x360 video of the rough sea (water.mp4, needs ffmpeg).
 set -euo pipefail
@@ -28,6 +28,6 @@ if command -v ffmpeg >/dev/null; then
     ffmpeg -loglevel error -y -framerate 30 -i "$work/video/water_%04d.jpg" -c:v libx264 -crf 30 -preset slow \
         -pix_fmt yuv420p -movflags +faststart docs/gallery/water.mp4
 fi
-render decals 36
+render decals 50
 render planet 120
 ls -l docs/gallery

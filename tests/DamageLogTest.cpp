@@ -96,6 +96,16 @@ TEST(DamageLog, HealCurvesReachTheirEndValueAtTheSetTime) {
     h = log.stamps().at(0);
     EXPECT_EQ(h.depth, b.depth * 0.5f);
     EXPECT_EQ(h.rimHeight, b.rimHeight * 0.5f);
+
+    // The curves move between ages 0 and 10 s (roughness from 0, height until 10): the heal clock
+    // tells when the maps change.
+    EXPECT_TRUE(log.healsBetween(0.0, 0.125));
+    EXPECT_TRUE(log.healsBetween(9.9, 10.1));
+    EXPECT_FALSE(log.healsBetween(10.0, 50.0)) << "every curve has ended";
+    EXPECT_FALSE(log.healsBetween(3.0, 3.0)) << "the same heal time";
+    log.advance(0.3);
+    EXPECT_EQ(log.healTime(), 10.25) << "the clock rounded down to healStep = 0.125";
+    EXPECT_NE(messageOf([] { DamageLog({.healStep = 0.0}); }).find("healStep"), std::string::npos);
 }
 
 TEST(DamageLog, ExplosionsExpandIntoTheirDebrisWithTheirSeed) {

@@ -210,8 +210,10 @@ TEST_F(Decals, MarksMatchTheSharedMathAndBurnTheAlbedoTowardsSoot) {
         for (int x = 0; x < N; ++x) {
             const float r = hole.radius * N;
             float scorch, rough, occlusion;
+            float w[4];
+            hfx_decal_wobble(hole.phase, w);
             hfx_decal_marks(((x + 0.5f) - hole.u * N) / r, ((y + 0.5f) - hole.v * N) / r, hole.scorch, hole.roughness,
-                            hole.occlusion, hole.scorchReach, hole.phase, &scorch, &rough, &occlusion);
+                            hole.occlusion, hole.scorchReach, w[0], w[1], w[2], w[3], &scorch, &rough, &occlusion);
             const size_t i = 4 * (size_t(y) * N + x);
             auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
             worst = std::max({worst, std::abs(channels[i] - byte(rough)), std::abs(channels[i + 1] - byte(occlusion)),

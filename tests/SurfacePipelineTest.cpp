@@ -249,3 +249,39 @@ TEST_F(Pipeline, ShadingChannelsTakeTheAmbientAndTheHighlightWhereTheySaySo) {
 
 } // namespace
 } // namespace hfx::test
+
+namespace hfx::test {
+namespace {
+
+// The decal pass runs when the maps would change: an impact, or a heal curve moving (read on
+// the log's heal clock, healStep apart); a still wall costs no decal pass.
+TEST_F(Pipeline, TheWallRebuildsItsDecalsOnlyWhenTheyWouldChange) {
+    DecalWallEffect wall(cl(), {.bricks = {.size = 64}});
+    const DamageLook& look = wall.config().damage.look; // roughness heals from 5 s on, for 30 s
+    auto passes = [&] { return cl().launches("decals"); };
+    wall.update(0.1);
+    const std::uint64_t start = passes();
+    for (int i = 0; i < 5; ++i) wall.update(0.1);
+    EXPECT_EQ(passes(), start) << "nothing changed";
+    wall.shoot(0.5, 0.5);
+    wall.update(0.1);
+    EXPECT_EQ(passes(), start + 1) << "an impact";
+    for (int i = 0; i < 10; ++i) wall.update(0.1);
+    EXPECT_EQ(passes(), start + 1) << "no curve moves before " << look.roughness.start << " s";
+    wall.update(look.roughness.start);
+    EXPECT_EQ(passes(), start + 2) << "the roughness began to heal";
+    const std::uint64_t healing = passes();
+    for (int i = 0; i < 25; ++i) wall.update(0.01); // 0.25 s: two or three heal steps of 0.125 s
+    EXPECT_GE(passes(), healing + 2);
+    EXPECT_LE(passes(), healing + 3);
+    wall.update(100.0);
+    const std::uint64_t healed = passes();
+    wall.update(0.5);
+    EXPECT_EQ(passes(), healed) << "every curve has reached its end";
+    wall.clearDamage();
+    wall.update(0.1);
+    EXPECT_EQ(passes(), healed + 1);
+}
+
+} // namespace
+} // namespace hfx::test

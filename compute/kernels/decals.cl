@@ -8,13 +8,15 @@
    index tileStamps, the stamps whose footprint touches tile t, in batch order. A texel loops
    over its tile's list only, so thousands of stamps cost what their footprints cover.
    stamps[i] = (centre x, centre y in texels, 1 / radius in texels, depth),
-   shapes[i] = (rimHeight, rimWidth, squared reach in texels^2, the scorch's phase): texels beyond
+   shapes[i] = (rimHeight, rimWidth, squared reach in texels^2, 0): texels beyond
    the reach of a stamp in their tile's list skip it before any square root.
-   looks[i] = (scorch, roughness, occlusion strengths, scorch reach in radii). */
+   looks[i] = (scorch, roughness, occlusion strengths, scorch reach in radii),
+   wobbles[i] = hfx_decal_wobble of its phase. */
 __kernel void decals(__global float* damage, __global const float* base, __global float* height,
                      int width, int rows, float heal, int tilesX,
                      __global const int* tileStart, __global const int* tileStamps,
                      __global const float4* stamps, __global const float4* shapes, __global const float4* looks,
+                     __global const float4* wobbles,
                      __global const uchar4* baseAlbedo, __global uchar4* albedo, __global uchar4* channels,
                      float4 soot) {
     int x = get_global_id(0), y = get_global_id(1);
@@ -40,7 +42,9 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
         float4 look = looks[s];
         if (look.x > 0.0f || look.y > 0.0f || look.z > 0.0f) {
             float sc, ro, oc;
-            hfx_decal_marks(dx * stamp.z, dy * stamp.z, look.x, look.y, look.z, look.w, shape.w, &sc, &ro, &oc);
+            float4 w = wobbles[s];
+            hfx_decal_marks(dx * stamp.z, dy * stamp.z, look.x, look.y, look.z, look.w, w.x, w.y, w.z, w.w, &sc, &ro,
+                            &oc);
             scorch = fmax(scorch, sc);
             rough = fmax(rough, ro);
             occlusion = fmin(occlusion, oc);

@@ -39,6 +39,8 @@ void DamageLook::validate() const {
 
 void DamageLogConfig::validate() const {
     if (budget < 1 || budget > 65536) throw Error(str("DamageLogConfig.budget must be in [1, 65536], got ", budget));
+    if (!(healStep > 0.0 && healStep <= 60.0))
+        throw Error(str("DamageLogConfig.healStep must be in (0, 60] seconds, got ", healStep));
     if (!(mergeRadius >= 0.0f && mergeRadius <= 0.5f))
         throw Error(str("DamageLogConfig.mergeRadius must be in [0, 0.5] map widths, got ", mergeRadius));
     look.validate();
@@ -85,6 +87,22 @@ void DamageLog::validate(const ImpactEvent& e) const {
     if (!std::isfinite(e.time)) throw Error(str("impact time must be finite, got ", e.time));
 }
 
+double DamageLog::healTime() const { return std::floor(now_ / config_.healStep) * config_.healStep; }
+
+bool DamageLog::healsBetween(double t0, double t1) const {
+    if (!(t1 > t0)) return false; // the same heal time reads the same curves
+    const DamageLook& look = config_.look;
+    for (const HealCurve* c : {&look.height, &look.scorch, &look.roughness, &look.occlusion}) {
+        if (c->duration <= 0.0) continue;
+        for (int i = 0; i < live_; ++i) {
+            const double time = slots_[size_t((oldest_ + i) % config_.budget)].time;
+            // Its curve moves while start < age < start + duration.
+            if (t1 - time > c->start && t0 - time < c->start + c->duration) return true;
+        }
+    }
+    return false;
+}
+
 void DamageLog::insert(const ImpactEvent& impact) {
     const int budget = config_.budget;
     if (live_ == budget) { // full: the oldest goes
@@ -97,6 +115,7 @@ void DamageLog::insert(const ImpactEvent& impact) {
     slots_[size_t(slot)] = impact;
     link(slot);
     ++live_;
+    ++changes_;
 }
 
 bool DamageLog::add(ImpactEvent impact) {
@@ -124,6 +143,7 @@ bool DamageLog::add(ImpactEvent impact) {
                     live.radius = std::max(live.radius, impact.radius);
                     live.time = now_;
                     ++merged_;
+                    ++changes_;
                     return true;
                 }
             }
@@ -142,6 +162,7 @@ void DamageLog::clear() {
     std::fill(cells_.begin(), cells_.end(), -1);
     live_ = 0;
     oldest_ = 0;
+    ++changes_;
 }
 
 std::vector<ImpactEvent> DamageLog::events() const {
@@ -154,8 +175,9 @@ std::vector<ImpactEvent> DamageLog::events() const {
 std::vector<BulletHole> DamageLog::stamps() const {
     const DamageLook& look = config_.look;
     std::vector<BulletHole> out;
+    const double healTime = this->healTime();
     for (const ImpactEvent& e : events()) {
-        const double age = now_ - e.time;
+        const double age = healTime - e.time;
         const float height = look.height.at(age), scorch = look.scorch.at(age), rough = look.roughness.at(age),
                     occlusion = look.occlusion.at(age);
         // Merged hits deepen the crater and widen it a little.

@@ -137,6 +137,7 @@ void DecalMap::bin() {
     stamps_.clear();
     shapes_.clear();
     looks_.clear();
+    wobbles_.clear();
     tileStamps_.clear();
     // The tiles a stamp's footprint covers, per axis as at most two ranges of tiles: along an
     // axis that wraps the texel range wraps (texels carry the period, and the last tile may be
@@ -180,8 +181,11 @@ void DecalMap::bin() {
         const float radius = h.radius * float(W);
         const float reach = radius * hfx_decal_reach(h.rimWidth, h.scorch, h.roughness, h.scorchReach);
         stamps_.push_back({{h.u * float(W), h.v * float(H), 1.0f / radius, h.depth}});
-        shapes_.push_back({{h.rimHeight, h.rimWidth, reach * reach, h.phase}});
+        shapes_.push_back({{h.rimHeight, h.rimWidth, reach * reach, 0.0f}});
         looks_.push_back({{h.scorch, h.roughness, h.occlusion, h.scorchReach}});
+        cl_float4 wobble;
+        hfx_decal_wobble(h.phase, wobble.s);
+        wobbles_.push_back(wobble);
         forEachTile(h, [&](int tile) { tileStamps_[size_t(tileStart_[tile] + tileCounts_[tile]++)] = int(i); });
     }
 }
@@ -204,6 +208,7 @@ void DecalMap::apply(float heal) {
             stampBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
             shapeBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
             lookBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
+            wobbleBuffer_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, stampCapacity_ * sizeof(cl_float4));
         }
         if (tileStamps_.size() > listCapacity_ || !tileStampsBuffer_()) {
             listCapacity_ = std::max<size_t>(tileStamps_.size(), 1024);
@@ -215,6 +220,7 @@ void DecalMap::apply(float heal) {
             q.enqueueWriteBuffer(stampBuffer_, CL_TRUE, 0, stamps_.size() * sizeof(cl_float4), stamps_.data());
             q.enqueueWriteBuffer(shapeBuffer_, CL_TRUE, 0, shapes_.size() * sizeof(cl_float4), shapes_.data());
             q.enqueueWriteBuffer(lookBuffer_, CL_TRUE, 0, looks_.size() * sizeof(cl_float4), looks_.data());
+            q.enqueueWriteBuffer(wobbleBuffer_, CL_TRUE, 0, wobbles_.size() * sizeof(cl_float4), wobbles_.data());
             q.enqueueWriteBuffer(tileStampsBuffer_, CL_TRUE, 0, tileStamps_.size() * sizeof(int), tileStamps_.data());
         }
         int a = 0;
@@ -230,6 +236,7 @@ void DecalMap::apply(float heal) {
         kernel_.setArg(a++, stampBuffer_);
         kernel_.setArg(a++, shapeBuffer_);
         kernel_.setArg(a++, lookBuffer_);
+        kernel_.setArg(a++, wobbleBuffer_);
         kernel_.setArg(a++, baseAlbedo_);
         kernel_.setArg(a++, albedo_);
         kernel_.setArg(a++, channels_);

@@ -83,8 +83,14 @@ void DecalWallEffect::advance(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error(str("DecalWallEffect::update: dt must be positive and finite, got ", dt));
     log_.advance(dt);
+    if (log_.changes() != builtChanges_ || log_.healsBetween(builtHealTime_, log_.healTime())) rebuild();
+}
+
+void DecalWallEffect::rebuild() {
     decals_.addBulletHoles(log_.stamps());
     decals_.rebuild();
+    builtChanges_ = log_.changes();
+    builtHealTime_ = log_.healTime();
 }
 
 void DecalWallEffect::enqueueSurface() {
@@ -112,8 +118,7 @@ bool DecalWallEffect::impact(const ImpactEvent& impact) { return log_.add(impact
 void DecalWallEffect::loadDamage(const std::string& path) {
     DamageLog loaded = DamageLog::load(path, config_.damage);
     log_ = std::move(loaded);
-    decals_.addBulletHoles(log_.stamps());
-    decals_.rebuild();
+    rebuild();
     refresh();
 }
 

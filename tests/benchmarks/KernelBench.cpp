@@ -6,6 +6,7 @@
 
 #include "support/References.h"
 
+#include "hfx/compute/DamageLog.h"
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/GasField.h"
 #include "hfx/compute/MaxPyramid.h"
@@ -15,6 +16,7 @@
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/WaveField.h"
 #include "hfx/compute/shared/NoiseMath.h"
+#include "hfx/core/Random.h"
 
 #include <benchmark/benchmark.h>
 
@@ -183,6 +185,48 @@ void BM_Decals(benchmark::State& state) {
     });
 }
 
+/// DamageLog::add into a full log (every add evicts or merges): the O(1) insertion, per impact.
+void BM_DamageLogAdd(benchmark::State& state) {
+    DamageLog log({.budget = int(state.range(0))});
+    SplitMix64 random(4);
+    auto impact = [&] {
+        return ImpactEvent{.u = float(random.uniform(0.0, 0.999)), .v = float(random.uniform(0.0, 0.999)),
+                           .seed = random.nextBits()};
+    };
+    for (int i = 0; i < 4 * log.budget(); ++i) log.add(impact());
+    std::vector<ImpactEvent> batch(4096);
+    for (auto _ : state) {
+        state.PauseTiming();
+        for (ImpactEvent& e : batch) e = impact();
+        state.ResumeTiming();
+        for (const ImpactEvent& e : batch) benchmark::DoNotOptimize(log.add(e));
+    }
+    state.SetItemsProcessed(state.iterations() * int64_t(batch.size()));
+    state.counters["merged_share"] = double(log.merged()) / double(log.added());
+}
+
+/// The wall's decal pass at {size, budget}: a full log (one impact in 50 an explosion with 40
+/// debris) expanded into stamps with their heal curves, binned and rebuilt into heights, scorched
+/// albedo and shading channels.
+void BM_DecalRebuild(benchmark::State& state) {
+    const int n = int(state.range(0)), budget = int(state.range(1));
+    DamageLog log({.budget = budget});
+    SplitMix64 random(6);
+    for (int i = 0; i < budget; ++i)
+        log.add({.u = float(random.uniform(0.0, 0.999)), .v = float(random.uniform(0.0, 0.999)),
+                 .radius = i % 50 == 0 ? 0.05f : 0.012f, .kind = i % 50 == 0 ? ImpactKind::Explosion : ImpactKind::Bullet,
+                 .seed = std::uint64_t(i)});
+    DecalMap map(cl(), {.width = n, .height = n});
+    state.counters["stamps"] = double(log.stamps().size());
+    // Memory per texel: base, damage in and out, height out (floats); base albedo in, albedo and
+    // channels out (RGBA8).
+    measure(state, [&] {
+        log.advance(1.0 / 60);
+        map.addBulletHoles(log.stamps());
+        map.rebuild();
+    }, 28.0 * n * n, {});
+}
+
 void BM_Pyramid(benchmark::State& state) {
     const int n = int(state.range(0));
     const auto heights = randomHeights(n);
@@ -254,6 +298,12 @@ void BM_OceanQuery(benchmark::State& state) {
 BENCHMARK(BM_Sobel)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SobelKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Decals)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DamageLogAdd)->Arg(256)->Arg(4096)->ArgNames({"budget"});
+BENCHMARK(BM_DecalRebuild)
+    ->ArgsProduct({{512, 2048}, {64, 256, 1024}})
+    ->ArgNames({"size", "budget"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Noise)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);

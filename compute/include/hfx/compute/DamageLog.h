@@ -62,6 +62,10 @@ struct DamageLogConfig {
     int budget = 256;           ///< live impacts, 1 to 65536: memory is fixed by it
     float mergeRadius = 0.006f; ///< map widths; impacts of one kind closer merge; 0: never
     bool wrap = true;           ///< distances across the map's edges (a tiling wall)
+    /// Heal curves are read on the clock rounded down to this many seconds (healTime()), so
+    /// healing changes the maps at most 1 / healStep times a second and the maps are a function
+    /// of the impacts and that clock alone.
+    double healStep = 0.125;
     DamageLook look;
     void validate() const;
 };
@@ -79,6 +83,14 @@ public:
     /// Moves the clock on (seconds, >= 0 and finite).
     void advance(double seconds);
     double now() const { return now_; }
+    /// The clock the heal curves read: now() rounded down to a multiple of healStep.
+    double healTime() const;
+    /// Counts every change to the live impacts (adds, merges, clears, loads).
+    std::uint64_t changes() const { return changes_; }
+    /// Whether some live impact's heal curves move between heal times t0 and t1 (false unless
+    /// t0 < t1):
+    /// when not, and changes() has not moved, stamps() are what they were at t0.
+    bool healsBetween(double t0, double t1) const;
     /// Forgets every impact (the clock keeps running).
     void clear();
 
@@ -89,7 +101,7 @@ public:
     std::uint64_t evicted() const { return evicted_; } ///< live impacts pushed out by the budget
     /// The live impacts, oldest first.
     std::vector<ImpactEvent> events() const;
-    /// The stamps of the live impacts at the clock, oldest first (explosions expanded into their
+    /// The stamps of the live impacts at healTime(), oldest first (explosions expanded into their
     /// debris), each channel scaled by its heal curve at the impact's age: what DecalMap rebuilds.
     std::vector<BulletHole> stamps() const;
     /// The bytes the log holds, fixed at construction (the budget's slots and the merge grid).
@@ -118,7 +130,7 @@ private:
     int oldest_ = 0;                 ///< the oldest live slot; the next free one is oldest_ + live_
     int live_ = 0;
     double now_ = 0.0;
-    std::uint64_t added_ = 0, merged_ = 0, evicted_ = 0;
+    std::uint64_t added_ = 0, merged_ = 0, evicted_ = 0, changes_ = 0;
 };
 
 } // namespace hfx

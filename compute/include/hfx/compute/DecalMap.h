@@ -105,10 +105,10 @@ private:
     // Staging reused every step: stamps, shapes and the tile lists.
     std::vector<cl_float4> stamps_;
     std::vector<cl_float4> shapes_;
-    std::vector<cl_float4> looks_;
+    std::vector<cl_float4> looks_, wobbles_;
     std::vector<int> tileStart_, tileStamps_, tileCounts_;
     size_t stampCapacity_ = 0, listCapacity_ = 0;
-    cl::Buffer base_, damage_, height_, tileStartBuffer_, tileStampsBuffer_, stampBuffer_, shapeBuffer_, lookBuffer_;
+    cl::Buffer base_, damage_, height_, tileStartBuffer_, tileStampsBuffer_, stampBuffer_, shapeBuffer_, lookBuffer_, wobbleBuffer_;
     cl::Buffer baseAlbedo_, albedo_, channels_;
     cl::Kernel kernel_;
 };

@@ -77,14 +77,19 @@ private:
     static SurfaceMaps load(const DecalWallConfig& config);
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
     const SurfacePipeline& surface() const override { return surface_; }
-    /// Moves the log's clock and rebuilds the maps from it.
+    /// Moves the log's clock and rebuilds the maps from it when they would change: an impact
+    /// came, merged or went, or a heal curve moved (the decal pass costs what the budget's
+    /// stamps cover; a still wall costs nothing).
     void advance(double dt) override;
+    void rebuild();
     /// The damaged heights' normals, with the artist's normal map added when there is one.
     void enqueueSurface() override;
 
     ClContext& cl_;
     DecalWallConfig config_;
     DamageLog log_;
+    std::uint64_t builtChanges_ = ~0ull; ///< the log's changes() and healTime() the maps show
+    double builtHealTime_ = 0.0;
     DecalMap decals_;
     SurfacePipeline surface_;
     std::unique_ptr<DetailNormals> detail_; ///< with a normal map

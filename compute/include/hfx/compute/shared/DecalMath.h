@@ -32,19 +32,37 @@ HFX_FN float hfx_decal_smoothstep(float e0, float e1, float x) {
     return t * t * (3.0f - 2.0f * t);
 }
 
+/* The scorch's outline at an impact of phase p: the angle's harmonics 5 and 9 turned by p and
+   2.3 p, as (cos 5p', sin 5p'...) need no trigonometry per texel: wobble[] = (cos p, sin p,
+   cos 2.3p, sin 2.3p), computed once per stamp (hfx_decal_wobble). */
+HFX_FN void hfx_decal_wobble(float phase, float* wobble) {
+    wobble[0] = HFX_COS(phase);
+    wobble[1] = HFX_SIN(phase);
+    wobble[2] = HFX_COS(2.3f * phase);
+    wobble[3] = HFX_SIN(2.3f * phase);
+}
+
 /* The shading marks of one impact at a texel (dx, dy) from its centre, in radii (r = 1 at the
    lip). Scorch: full out to 0.55 of its reach, fading to nothing at the reach (in radii), whose
-   edge wobbles with the angle by two harmonics of the impact's phase, so no two burns share an
-   outline. Roughness: the fresh fracture of the bowl and the lip, fading out by 1.5 radii.
-   Occlusion: the bowl's shadowed floor, 1 - strength (1 - r^2) inside the lip. Each is scaled by
-   its strength (the heal curves' values). */
+   edge wobbles with the angle a by 0.18 sin(5a + p) + 0.1 sin(9a + 2.3p) (p the impact's phase;
+   the multiple angles from powers of (cos a + i sin a)), so no two burns share an outline.
+   Roughness: the fresh fracture of the bowl and the lip, fading out by 1.5 radii. Occlusion:
+   the bowl's shadowed floor, 1 - strength (1 - r^2) inside the lip. Each is scaled by its
+   strength (the heal curves' values). */
 HFX_FN void hfx_decal_marks(float dx, float dy, float scorchStrength, float roughStrength, float occlusionStrength,
-                            float reach, float phase, float* scorch, float* rough, float* occlusion) {
+                            float reach, float c1, float s1, float c2, float s2, float* scorch, float* rough,
+                            float* occlusion) {
     float r = HFX_SQRT(dx * dx + dy * dy);
     *scorch = 0.0f;
     if (scorchStrength > 0.0f && r < 1.3f * reach) {
-        float a = HFX_ATAN2(dy, dx);
-        float edge = reach * (1.0f + 0.18f * HFX_SIN(5.0f * a + phase) + 0.1f * HFX_SIN(9.0f * a + 2.3f * phase));
+        float inv = r > 0.0f ? 1.0f / r : 0.0f;
+        float c = r > 0.0f ? dx * inv : 1.0f, s = dy * inv;
+        /* (c + i s)^2, ^4, ^5, ^9 */
+        float c2a = c * c - s * s, s2a = 2.0f * c * s;
+        float c4a = c2a * c2a - s2a * s2a, s4a = 2.0f * c2a * s2a;
+        float c5a = c4a * c - s4a * s, s5a = s4a * c + c4a * s;
+        float c9a = c5a * c4a - s5a * s4a, s9a = s5a * c4a + c5a * s4a;
+        float edge = reach * (1.0f + 0.18f * (s5a * c1 + c5a * s1) + 0.1f * (s9a * c2 + c9a * s2));
         *scorch = scorchStrength * (1.0f - hfx_decal_smoothstep(0.55f * edge, edge, r));
     }
     *rough = roughStrength * (1.0f - hfx_decal_smoothstep(1.0f, 1.5f, r));
