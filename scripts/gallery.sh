@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Renders the README's gallery: one 1280x720 picture of each scene, headless, at the scenes'
 # default grazing cameras, after enough frames for the field to develop (the decal volley: 196
-# bullets and 5 explosions with their scorch; the planet's storms). Writes docs/gallery/{water,decals,planet}.jpg, the sea calm (Beaufort 3) and
-# rough (Beaufort 7), the far field seen 5 degrees down (water-horizon.jpg), and a 4-second
-# 640x360 video of the rough sea (water.mp4, needs ffmpeg).
+# bullets and 5 explosions with their scorch; the planet's storms). Writes
+# docs/gallery/{water,decals,planet}.jpg, the sea calm (Beaufort 3) and rough (Beaufort 7), the
+# far field seen 5 degrees down (water-horizon.jpg), and a 4-second 640x360 video of the rough
+# sea (water.mp4, needs ffmpeg).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
