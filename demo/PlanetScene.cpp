@@ -11,10 +11,11 @@
 namespace hfx::demo {
 namespace {
 
-class PlanetScene final : public Scene {
+class PlanetScene final : public ImpactScene {
 public:
     PlanetScene(ClContext& cl, const SceneOptions& o)
-        : planet_(cl, config(o)), sphere_(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64})) {
+        : ImpactScene(o), planet_(cl, config(o)), sphere_(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64})),
+          impacts_(planet_) {
         applyOptions(o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.3f, 0.25f);
         camera_.aspect = o.aspect();
@@ -46,8 +47,11 @@ private:
         return c;
     }
 
+    ImpactReceiver& receiver() override { return impacts_; }
+
     GasPlanetEffect planet_;
     Mesh sphere_;
+    PlanetImpacts impacts_;
     DirectionalLight light_;
     SurfaceRenderer renderer_;
 };

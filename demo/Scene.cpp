@@ -3,6 +3,8 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 
+#include <cstdio>
+
 namespace hfx::demo {
 
 void Scene::applyOptions(const SceneOptions& o) {
@@ -25,6 +27,31 @@ void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     }
+}
+
+ImpactScene::ImpactScene(const SceneOptions& o) : width_(o.width), height_(o.height) {
+    if (!o.shots.empty()) shots_ = readShotList(o.shots);
+}
+
+void ImpactScene::prepare(double /*dt*/) {
+    // As the decal scene: frame 0 is drawn before any update, so shots at 0 land with frame 1.
+    ++frame_;
+    for (const Shot& shot : shots_)
+        if (shot.frame == frame_ || (frame_ == 1 && shot.frame == 0)) {
+            if (shot.a < 0 || shot.b < 0 || shot.a >= width_ || shot.b >= height_)
+                throw Error(str("shot list line ", shot.line, ": (", shot.a, ", ", shot.b, ") is outside the ", width_,
+                                "x", height_, " image (", name(), " shots are pixels)"));
+            fire(shot.kind == Shot::Kind::Explosion ? ImpactKind::Explosion : ImpactKind::Bullet, shot.a, shot.b,
+                 width_, height_, shot.seed);
+        }
+}
+
+void ImpactScene::fire(ImpactKind kind, double x, double y, int width, int height, std::uint64_t seed) {
+    const Ray ray = camera_.rayThroughPixel(x, height - y, width, height);
+    ImpactReceiver* targets[] = {&receiver()};
+    if (const auto hit = routeImpact({.origin = ray.origin, .direction = ray.direction, .kind = kind, .seed = seed}, targets))
+        std::printf("impact: %s at (%.3f, %.3f, %.3f) on the %s\n", impactKindName(kind), hit->hit.world.x,
+                    hit->hit.world.y, hit->hit.world.z, targets[hit->receiver]->name());
 }
 
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options) {

@@ -7,7 +7,9 @@
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/effects/Effect.h"
+#include "hfx/effects/Impacts.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/ShotList.h"
 
 #include <cstdint>
 #include <memory>
@@ -96,6 +98,29 @@ protected:
     /// its technique.
     void applyOptions(const SceneOptions& options);
     Camera camera_;
+};
+
+/// A scene whose surface takes impacts through routeImpact (water, planet): a click fires a
+/// bullet from the camera through the pixel, the explosion key a blast, and a shot list
+/// (--shots) replays both, every line's A B being pixel coordinates here.
+class ImpactScene : public Scene {
+public:
+    void prepare(double dt) override;
+    void click(double x, double y, int width, int height) override { fire(ImpactKind::Bullet, x, y, width, height, 1); }
+    void explode(double x, double y, int width, int height) override {
+        fire(ImpactKind::Explosion, x, y, width, height, ++blasts_);
+    }
+
+protected:
+    ImpactScene(const SceneOptions& options);
+    /// The surface the impacts go to (made by the derived scene).
+    virtual ImpactReceiver& receiver() = 0;
+
+private:
+    void fire(ImpactKind kind, double x, double y, int width, int height, std::uint64_t seed);
+    std::vector<Shot> shots_;
+    int frame_ = 0, width_, height_;
+    std::uint64_t blasts_ = 0;
 };
 
 /// The known scene names, for help texts and errors.

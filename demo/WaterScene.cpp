@@ -46,9 +46,10 @@ OceanEffectConfig oceanConfig(const SceneOptions& o) {
     return c;
 }
 
-class WaterScene final : public Scene {
+class WaterScene final : public ImpactScene {
 public:
-    WaterScene(ClContext& cl, const SceneOptions& o) : wind_(o.windSpeed), windDir_(o.windDirection) {
+    WaterScene(ClContext& cl, const SceneOptions& o)
+        : ImpactScene(o), wind_(o.windSpeed), windDir_(o.windDirection) {
         if (o.waves != "fft" && o.waves != "sine")
             throw Error(str("unknown waves '", o.waves, "' (expected fft or sine)"));
         if (!o.environment.empty()) {
@@ -72,7 +73,9 @@ public:
             sine_ = std::make_unique<SineWavesEffect>(cl, c);
             patch = c.waves.patchMeters;
         }
-        plane_ = Mesh(makePlane({.size = kSeaMeters, .texcoordScale = kSeaMeters / patch, .subdivisions = 1}));
+        const PlaneConfig sea{.size = kSeaMeters, .texcoordScale = kSeaMeters / patch, .subdivisions = 1};
+        plane_ = Mesh(makePlane(sea));
+        if (ocean_) impacts_ = std::make_unique<OceanImpacts>(*ocean_, SurfaceFrame::ofPlane(sea));
         SurfaceMaterial m = effect().material();
         m.water.environment = environment_.id();
         m.water.hazeDistance = 2500.0f; // metres
@@ -143,8 +146,14 @@ private:
         return t;
     }
 
+    ImpactReceiver& receiver() override {
+        if (!impacts_) throw Error("the sine waves take no impacts (--waves fft does)");
+        return *impacts_;
+    }
+
     std::unique_ptr<OceanEffect> ocean_;
     std::unique_ptr<SineWavesEffect> sine_;
+    std::unique_ptr<OceanImpacts> impacts_;
     GlTexture environment_;
     Mesh plane_;
     DirectionalLight light_;

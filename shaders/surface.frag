@@ -16,6 +16,7 @@
 //   HFX_LAYERS        1 to 4: the surface's layers (the ocean's cascades), summed in height and
 //                     slope (surface/heights.glsl); 1 is an ordinary surface
 //   HFX_TRACED_LAYERS 1 to HFX_LAYERS: the leading layers the tracers see; the rest only shade
+//   HFX_RINGS         1 for the water shading: impact rings (HfxRings) in height, slope and foam
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction
@@ -186,10 +187,25 @@ void main() {
     const vec3 storedNormal = vec3(slope, 1.0);
     const vec3 albedo = textureLod(s_albedo, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rgb;
 #endif
+#if HFX_RINGS
+    // The impact rings: their slope (slope form: x/z, y/z of the normal) and foam on top.
+    vec3 ringNormal = storedNormal;
+    vec4 ringFoam = layerFoam;
+    if (u_ringCount > 0) {
+        const vec4 rings = hfx_rings(uv);
+        ringNormal.xy -= depthScale * rings.yz * storedNormal.z;
+        ringFoam.x = max(ringFoam.x, rings.w);
+    }
+#define HFX_SHADED_NORMAL ringNormal
+#define HFX_SHADED_FOAM ringFoam
+#else
+#define HFX_SHADED_NORMAL storedNormal
+#define HFX_SHADED_FOAM layerFoam
+#endif
     const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
     const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
-    const vec3 normal = normalize(tangentUnit * storedNormal.x + bitangentUnit * storedNormal.y +
-                                  geometricNormal * storedNormal.z);
+    const vec3 normal = normalize(tangentUnit * HFX_SHADED_NORMAL.x + bitangentUnit * HFX_SHADED_NORMAL.y +
+                                  geometricNormal * HFX_SHADED_NORMAL.z);
     const vec3 lightDir = normalize(u_lightDir);
     const float nDotL = dot(normal, lightDir);
 
@@ -226,7 +242,7 @@ void main() {
     point.diffuse = max(nDotL, 0.0);
     // Toksvig: the lobe widens with the slopes' variance and keeps its energy.
     point.slopeVariance = slopeVariance;
-    point.foam = layerFoam;
+    point.foam = HFX_SHADED_FOAM;
     point.foamDetail = layerDetail;
     const vec2 channels = textureLod(s_channels, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rg;
     point.roughness = channels.r;

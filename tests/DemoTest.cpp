@@ -186,6 +186,31 @@ TEST(Demo, ASavedDamageLogLoadsIntoTheSameWall) {
     EXPECT_NE(refused.output.find(bad + ":3: unknown impact kind 'rocket'"), std::string::npos) << refused.output;
 }
 
+// Every scene takes impacts: a shot list's explosion (pixels) rings the water and stirs a storm
+// on the planet; a shot outside the image is refused by line.
+TEST(Demo, ImpactsLandInTheWaterAndOnThePlanet) {
+    const std::string shots = outputPath("demo_impact_shots.txt");
+    std::ofstream(shots) << "explosion 1 80 60 3\nclick 1 100 70\n";
+    for (const char* scene : {"water", "planet"}) {
+        const std::string hit = outputPath(std::string("demo_impact_") + scene), calm = hit + "_none";
+        const std::string args = std::string(scene) + " --headless --frames 3 --width 160 --height 90 --field 64 --out ";
+        const Result r = runDemo(args + hit + " --shots " + shots);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find(std::string("impact: explosion at")), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(std::string("on the ") + (std::string(scene) == "water" ? "ocean" : "planet")),
+                  std::string::npos) << r.output;
+        const Result none = runDemo(args + calm);
+        ASSERT_EQ(none.exitCode, 0) << none.output;
+        EXPECT_NE(readBytes(hit + "/" + scene + "_0002.png"), readBytes(calm + "/" + scene + "_0002.png")) << scene;
+    }
+    const std::string outside = outputPath("demo_impact_outside.txt");
+    std::ofstream(outside) << "explosion 1 900 10 1\n";
+    const Result off = runDemo("water --headless --frames 2 --width 160 --height 90 --field 64 --out " +
+                               outputPath("demo_impact_off") + " --shots " + outside);
+    EXPECT_NE(off.exitCode, 0);
+    EXPECT_NE(off.output.find("line 1"), std::string::npos) << off.output;
+}
+
 TEST(Demo, WritesAVideoWhenFfmpegIsThere) {
     if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
         GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg)";

@@ -215,6 +215,14 @@ void GasField::setState(const std::vector<float>& u, const std::vector<float>& v
     });
 }
 
+std::vector<float> GasField::readHeights() {
+    std::vector<float> heights(size_t(config_.width) * config_.height);
+    clGuard("GasField::readHeights", [&] {
+        cl_.queue().enqueueReadBuffer(buffer(), CL_TRUE, 0, heights.size() * sizeof(float), heights.data());
+    });
+    return heights;
+}
+
 void GasField::readState(std::vector<float>& u, std::vector<float>& v, std::vector<float>& dye) {
     const size_t n = size_t(config_.width) * config_.height;
     u.resize(n);

@@ -4,6 +4,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace hfx {
@@ -34,10 +35,13 @@ GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
     refresh();
 }
 
-void GasPlanetEffect::addStorm(float u, float v, bool clockwise) {
+void GasPlanetEffect::addStorm(float u, float v, bool clockwise, float strength) {
+    if (!(strength > 0.0f) || !std::isfinite(strength))
+        throw Error(str("GasPlanetEffect::addStorm: strength must be positive and finite, got ", strength));
     // Two opposite pushes a radius apart in latitude: a shear that rolls up into a vortex.
-    const float r = config_.stormRadius, dv = 0.5f * r * float(config_.gas.width) / float(config_.gas.height);
-    const float force = clockwise ? config_.stormForce : -config_.stormForce;
+    const float size = std::cbrt(strength);
+    const float r = std::min(config_.stormRadius * size, 0.2f), dv = 0.5f * r * float(config_.gas.width) / float(config_.gas.height);
+    const float force = (clockwise ? config_.stormForce : -config_.stormForce) * size;
     const float v0 = std::fmin(std::fmax(v, dv + 0.01f), 0.99f - dv);
     gas_.addSplat({.u = u, .v = v0 + dv, .radius = r, .forceX = force, .dye = 0.0f});
     gas_.addSplat({.u = u, .v = v0 - dv, .radius = r, .forceX = -force, .dye = 0.0f});

@@ -85,6 +85,51 @@ void OceanEffect::enqueueSurface() {
 void OceanEffect::advance(double dt) {
     ocean_.step(dt);
     material_.depthScale = physicalDepthScale(); // moves while a wind change blends in
+    updateRings();
+}
+
+namespace {
+constexpr double kRingDecaySeconds = 10.0, kRingFoamSeconds = 3.0, kRingLifeSeconds = 40.0;
+} // namespace
+
+void OceanEffect::disturb(glm::dvec2 uv, float energy, ImpactKind kind) {
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+        throw Error(str("OceanEffect::disturb: texcoords must be finite, got ", uv.x, ", ", uv.y));
+    if (!(energy > 0.0f) || !std::isfinite(energy))
+        throw Error(str("OceanEffect::disturb: energy must be positive and finite, got ", energy));
+    const bool blast = kind == ImpactKind::Explosion;
+    const float size = std::cbrt(energy);
+    const Ring ring{.uv = uv,
+                    .start = ocean_.time(),
+                    .wavelength = blast ? 5.0f : 0.8f,
+                    .amplitude = (blast ? 0.5f : 0.06f) * size,
+                    .foam = std::min(1.0f, (blast ? 1.0f : 0.4f) * size)};
+    if (rings_.size() == size_t(kMaxWaterRings)) rings_.erase(rings_.begin()); // the oldest goes
+    rings_.push_back(ring);
+    updateRings();
+}
+
+void OceanEffect::updateRings() {
+    const double now = ocean_.time();
+    std::erase_if(rings_, [&](const Ring& r) { return now - r.start > kRingLifeSeconds || now < r.start; });
+    const double patch = ocean_.config().patchMeters, depth = double(material_.depthScale) * patch;
+    WaterLook& w = material_.water;
+    w.ringCount = int(rings_.size());
+    for (size_t i = 0; i < rings_.size(); ++i) {
+        const Ring& r = rings_[i];
+        const double t = now - r.start, lambda = r.wavelength;
+        // Deep water: a packet of wavelength lambda travels at half its phase speed; its height
+        // falls as energy spreads over the growing circle and as it decays.
+        const double groupSpeed = 0.5 * std::sqrt(kGravity * lambda / (2.0 * 3.14159265358979));
+        const double r0 = 0.5 * lambda, radius = r0 + groupSpeed * t;
+        const double amplitude = r.amplitude * std::exp(-t / kRingDecaySeconds) * std::sqrt(r0 / radius);
+        w.rings[i] = {.centre = glm::vec2(r.uv),
+                      .radius = float(radius / patch),
+                      .width = float(0.8 * lambda / patch),
+                      .wavenumber = float(2.0 * 3.14159265358979 / lambda * patch),
+                      .amplitude = float(amplitude / depth),
+                      .foam = float(r.foam * std::exp(-t / kRingFoamSeconds))};
+    }
 }
 
 void OceanEffect::setWind(float speed, float direction) { setWind(speed, direction, windBlendSeconds_); }
@@ -97,6 +142,8 @@ void OceanEffect::setWind(float speed, float direction, double blendSeconds) {
 
 void OceanEffect::setTime(double seconds) {
     ocean_.setTime(seconds);
+    rings_.clear();
+    material_.water.ringCount = 0;
     material_.depthScale = physicalDepthScale();
     refresh();
 }

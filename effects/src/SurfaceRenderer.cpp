@@ -67,7 +67,7 @@ public:
             glActiveTexture(GL_TEXTURE0 + unit);
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
         }
-        for (GLuint index = 0; index < 2; ++index) {
+        for (GLuint index = 0; index < kBlocks; ++index) {
             glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, index, &blocks_[index]);
             glGetInteger64i_v(GL_UNIFORM_BUFFER_START, index, &blockStart_[index]);
             glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, index, &blockSize_[index]);
@@ -80,7 +80,7 @@ public:
         glBindVertexArray(static_cast<GLuint>(vao_));
         for (int unit = 0; unit < kUnits; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
-        for (GLuint index = 0; index < 2; ++index) {
+        for (GLuint index = 0; index < kBlocks; ++index) {
             if (blocks_[index] != 0 && blockSize_[index] > 0)
                 glBindBufferRange(GL_UNIFORM_BUFFER, index, GLuint(blocks_[index]), blockStart_[index], blockSize_[index]);
             else
@@ -92,9 +92,11 @@ public:
 
 private:
     GLboolean depthTest_;
-    static constexpr int kUnits = 10; // surface, albedo, environment, pyramid, layers 1-3, their albedos
-    GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[2];
-    GLint64 blockStart_[2], blockSize_[2];
+    // surface, albedo, environment, pyramid, layers 1-3, their albedos, shading channels
+    static constexpr int kUnits = 11;
+    static constexpr GLuint kBlocks = 3; // surface, water, rings
+    GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
+    GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
 };
 
 } // namespace
@@ -143,7 +145,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shadin
                                                    {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None ? "1" : "0"},
                                                    {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"},
                                                    {"HFX_LAYERS", std::to_string(layers)},
-                                                   {"HFX_TRACED_LAYERS", std::to_string(traced)}};
+                                                   {"HFX_TRACED_LAYERS", std::to_string(traced)},
+                                                   {"HFX_RINGS", shading == Shading::Water ? "1" : "0"}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("trace/common.glsl"),
                          shader(info.shader), shader("shade/common.glsl"), shader("shade/sky.glsl"),
@@ -259,6 +262,14 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
         const WaterLook& w = material.water;
         updateBlock(waterBlock_, 1, waterUniforms(w));
         glBindTextureUnit(2, w.environment);
+        RingUniforms rings;
+        rings.count = w.ringCount;
+        for (int i = 0; i < w.ringCount; ++i) {
+            const WaterRing& r = w.rings[size_t(i)];
+            rings.shape[i] = {r.centre, r.radius, r.width};
+            rings.wave[i] = {r.wavenumber, r.amplitude, r.foam, 0.0f};
+        }
+        updateBlock(ringBlock_, 2, rings);
     }
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(1, textures.albedo());

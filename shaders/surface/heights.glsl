@@ -27,9 +27,40 @@ layout(binding = 6) uniform sampler2D s_surface3;
 #define HFX_TRACED_LAYERS HFX_LAYERS
 #endif
 
+#ifndef HFX_RINGS
+#define HFX_RINGS 0
+#endif
+
+#if HFX_RINGS
+// The impact rings at uv: x the height (h units), yz its gradient (per texcoord), w the foam.
+// Each ring is a wave packet, amplitude exp(-(x/width)^2) cos(k x), x = r - radius.
+vec4 hfx_rings(vec2 uv) {
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < u_ringCount; ++i) {
+        const vec2 d = uv - u_ringShape[i].xy;
+        const float r = length(d), x = r - u_ringShape[i].z, width = u_ringShape[i].w;
+        if (abs(x) > 3.0 * width) continue;
+        const float envelope = exp(-(x * x) / (width * width)), k = u_ringWave[i].x, a = u_ringWave[i].y;
+        const float c = cos(k * x), s = sin(k * x);
+        const float dr = a * envelope * (-2.0 * x / (width * width) * c - k * s);
+        sum += vec4(a * envelope * c, (r > 0.0 ? d / r : vec2(0.0)) * dr, u_ringWave[i].z * envelope);
+    }
+    return sum;
+}
+#endif
+
 float g_fetches = 0.0;
 
+float hfx_layers_height(vec2 uv, float level);
+
 float hfx_height(vec2 uv, float level) {
+#if HFX_RINGS
+    if (u_ringCount > 0) return hfx_layers_height(uv, level) + hfx_rings(uv).x;
+#endif
+    return hfx_layers_height(uv, level);
+}
+
+float hfx_layers_height(vec2 uv, float level) {
     g_fetches += float(HFX_TRACED_LAYERS);
 #if HFX_LAYERS == 1
     return textureLod(s_surface, uv, level).w;

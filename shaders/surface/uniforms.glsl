@@ -34,3 +34,12 @@ layout(std140, binding = 0) uniform HfxSurface {
     vec4 u_layerSlope;        // depthScale * weight * scale / the layer's normal depth: its slopes' share
     vec4 u_layerLevel;        // its mip level minus layer 0's read unscaled: log2(scale * size / size0)
 };
+
+// Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's
+// texcoords; mirrored by hfx::RingUniforms. They are not tiled with the layers.
+#define HFX_MAX_RINGS 8
+layout(std140, binding = 2) uniform HfxRings {
+    vec4 u_ringShape[HFX_MAX_RINGS]; // centre u, v, radius, width
+    vec4 u_ringWave[HFX_MAX_RINGS];  // wavenumber (radians per texcoord), amplitude (h units), foam, 0
+    int u_ringCount;
+};

@@ -48,12 +48,16 @@ public:
 
     void step(double dt) override;
     void addSplat(const GasSplat& splat); ///< throws hfx::Error for a splat off the map
+    /// The splats queued for the next step, in order.
+    const std::vector<GasSplat>& pendingSplats() const { return splats_; }
     /// Runs only the pressure projection (tests, and after setting a velocity by hand).
     void project();
 
     /// Host access to the state (row-major W x H; see GasMath.h for where each lives).
     void setState(const std::vector<float>& u, const std::vector<float>& v, const std::vector<float>& dye);
     void readState(std::vector<float>& u, std::vector<float>& v, std::vector<float>& dye);
+    /// The heights buffer() holds (row 0 at v = 0), waiting for the queue.
+    std::vector<float> readHeights();
     /// The divergence the projection's Laplacian matches: outflow through each cell's faces.
     std::vector<float> readDivergence();
 

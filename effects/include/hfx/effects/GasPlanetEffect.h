@@ -42,8 +42,9 @@ class GasPlanetEffect final : public Effect {
 public:
     explicit GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config = {});
 
-    /// A storm now: a vortex of the configured size at texcoords (u in [0,1), v in [0,1)).
-    void addStorm(float u, float v, bool clockwise);
+    /// A storm now: a vortex of the configured size (times the cube root of `strength`, > 0)
+    /// at texcoords (u in [0,1), v in [0,1)).
+    void addStorm(float u, float v, bool clockwise, float strength = 1.0f);
     GasField& gas() { return gas_; }
     const ColorRamp& colors() const { return colors_; }
     double time() const { return time_; }

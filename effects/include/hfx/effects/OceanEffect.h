@@ -9,8 +9,11 @@
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
+#include "hfx/compute/DamageLog.h"
 #include "hfx/compute/OceanField.h"
 #include "hfx/effects/Effect.h"
+
+#include <glm/vec2.hpp>
 
 #include <memory>
 #include <vector>
@@ -46,8 +49,16 @@ public:
     void setWind(float speed, float direction);
     /// The same over `blendSeconds` (0: at once).
     void setWind(float speed, float direction, double blendSeconds);
-    /// Jumps to an absolute time (seconds) and refreshes the textures.
+    /// Jumps to an absolute time (seconds) and refreshes the textures; rings are dropped.
     void setTime(double seconds);
+    /// An impact on the water at `uv` (the mesh's texcoords, in patches: metres over the
+    /// largest patch): a ring of waves spreads from it at the group speed of its wavelength,
+    /// with foam on its crest, and decays (a bullet: 0.8 m waves, an explosion: 5 m; amplitudes
+    /// grow with the cube root of `energy`, 1 being the kind's usual). At most kMaxWaterRings at
+    /// once, the oldest replaced; rings live in material().water and are not tiled with the
+    /// patches. Throws hfx::Error and adds nothing on a non-finite uv or energy <= 0.
+    void disturb(glm::dvec2 uv, float energy, ImpactKind kind);
+    int ringCount() const { return material_.water.ringCount; }
     double time() const { return ocean_.time(); }
     const OceanField& ocean() const { return ocean_; }
     /// 8 sum(sigma_i) / patch * exaggeration: the depth scale of the sea as it is now.
@@ -62,6 +73,15 @@ private:
     void advance(double dt) override;
     void enqueueSurface() override;
 
+    /// Writes the live rings into material_.water for the sea's time now.
+    void updateRings();
+
+    struct Ring {
+        glm::dvec2 uv;
+        double start;
+        float wavelength, amplitude, foam; ///< metres, metres, coverage
+    };
+    std::vector<Ring> rings_;
     OceanField ocean_;
     float exaggeration_;
     double windBlendSeconds_;

@@ -19,6 +19,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <array>
 #include <map>
 #include <span>
 #include <tuple>
@@ -27,6 +28,18 @@
 namespace hfx {
 
 /// The water look (Shading::Water). Colours are linear RGB.
+/// One ring of waves on the water, in the mesh's texcoords: h += amplitude exp(-(x/width)^2)
+/// cos(wavenumber x) with x = r - radius, r the distance from the centre; foam on its crest.
+struct WaterRing {
+    glm::vec2 centre{0.0f};
+    float radius = 0.0f;
+    float width = 1.0f;
+    float wavenumber = 0.0f; ///< radians per texcoord
+    float amplitude = 0.0f;  ///< height units (fractions of the material's depth)
+    float foam = 0.0f;       ///< coverage on the crest, 0..1
+    bool operator==(const WaterRing&) const = default;
+};
+
 struct WaterLook {
     glm::vec3 deepColor{0.004f, 0.035f, 0.07f};    ///< troughs: light travels far in the water
     glm::vec3 shallowColor{0.02f, 0.16f, 0.17f};   ///< crests: thin water scatters the sun
@@ -44,6 +57,10 @@ struct WaterLook {
     float foamRoughness = 0.6f;
     /// Optional equirectangular sky (a GL texture the caller owns; 0 = procedural sky).
     unsigned environment = 0;
+    /// Rings of waves spreading from impacts (OceanEffect::disturb fills them each frame), added
+    /// to the traced height, the slopes and the foam: not tiled with the sea's patches.
+    std::array<WaterRing, kMaxWaterRings> rings{};
+    int ringCount = 0;
     bool operator==(const WaterLook&) const = default;
 };
 
@@ -133,7 +150,7 @@ private:
 
     std::map<std::tuple<Technique, bool, Shading, int, int>, ShaderProgram> programs_;
     ShaderProgram flat_, sky_;
-    GlBuffer surfaceBlock_, waterBlock_;
+    GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
 };
 

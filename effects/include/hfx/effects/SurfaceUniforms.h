@@ -66,6 +66,15 @@ struct WaterUniforms {
     float foamRoughness = 0.0f;
 };
 
+/// HfxRings (shaders/surface/uniforms.glsl, binding 2): the water's impact rings.
+inline constexpr int kMaxWaterRings = 8;
+struct RingUniforms {
+    glm::vec4 shape[kMaxWaterRings]{}; ///< centre u, v (mesh texcoords), radius, width (texcoords)
+    glm::vec4 wave[kMaxWaterRings]{};  ///< wavenumber (radians per texcoord), amplitude (h units), foam, 0
+    int count = 0;
+    int padding[3] = {0, 0, 0};
+};
+
 // std140 offsets of the GLSL blocks, member by member where alignment could slip.
 static_assert(offsetof(SurfaceUniforms, patchBounds) == 192);
 static_assert(offsetof(SurfaceUniforms, depthScale) == 220);
@@ -80,5 +89,7 @@ static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, hasEnvironment) == 64);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);
 static_assert(sizeof(WaterUniforms) == 96);
+static_assert(offsetof(RingUniforms, wave) == 16 * kMaxWaterRings);
+static_assert(offsetof(RingUniforms, count) == 32 * kMaxWaterRings);
 
 } // namespace hfx
