@@ -59,6 +59,7 @@ std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const S
     if (name == "decals") return makeDecalScene(cl, options);
     if (name == "planet") return makePlanetScene(cl, options);
     if (name == "maps") return makeMapsScene(cl, options);
+    if (name == "noise") return makeNoiseScene(cl, options);
     throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
 }
 

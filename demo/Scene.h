@@ -49,6 +49,10 @@ struct SceneOptions {
     std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image
     std::string saveDamage, loadDamage; ///< decals: damage log written after the last frame, read at start
+    // noise: the NoiseField shown (NoiseConfig's fields)
+    std::string noiseKind = "perlin", fractal = "fbm", tiling = "wrap";
+    int octaves = 5;
+    float frequency = 6.0f, lacunarity = 2.0f, gain = 0.5f, warp = 0.0f, noiseSpeed = 0.3f;
 };
 
 class Scene {
@@ -124,12 +128,13 @@ private:
 };
 
 /// The known scene names, for help texts and errors.
-inline constexpr const char* kSceneNames = "water, decals, planet, maps";
+inline constexpr const char* kSceneNames = "water, decals, planet, noise, maps";
 
 std::unique_ptr<Scene> makeWaterScene(ClContext& cl, const SceneOptions& options);
 std::unique_ptr<Scene> makeDecalScene(ClContext& cl, const SceneOptions& options);
 std::unique_ptr<Scene> makePlanetScene(ClContext& cl, const SceneOptions& options);
 std::unique_ptr<Scene> makeMapsScene(ClContext& cl, const SceneOptions& options);
+std::unique_ptr<Scene> makeNoiseScene(ClContext& cl, const SceneOptions& options);
 /// Throws hfx::Error naming the scene and listing the known ones.
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options);
 

@@ -118,7 +118,7 @@ int run(const Options& o) {
         if (field & (field - 1)) throw Error(str("bench-accuracy needs a power-of-two --field, got ", field));
         return runBenchAccuracy(o.out.empty() ? "docs" : o.out, field);
     }
-    if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet")
+    if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet" && o.scene != "noise")
         throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));
     if (!o.video.empty()) checkVideoEncoder();
 
@@ -148,7 +148,8 @@ int main(int argc, char** argv) {
     Options o;
     SceneOptions& s = o.sceneOptions;
     app.add_option("scene", o.scene,
-                   "scene: water (FFT ocean), decals (damage on a wall), planet (gas giant), maps "
+                   "scene: water (FFT ocean), decals (damage on a wall), planet (gas giant), noise (any noise as a "
+                   "lit relief), maps "
                    "(a surface from image files), techniques (print the table of surface techniques), bench (frame-time benchmark), bench-accuracy (every technique "
                    "against the exact intersection; writes --out/ACCURACY.md, default docs) or bench-mesh (a POM "
                    "quad against a tessellated mesh of the same 1024² heights)")
@@ -215,6 +216,23 @@ int main(int argc, char** argv) {
     app.add_option("--cascades", s.cascades, "water: ocean cascades, 1-4 (default 4)")->check(CLI::Range(1, 4));
     app.add_option("--camera-pitch", s.cameraPitch, "water: degrees the camera looks below the horizon (small: the far field)")
         ->check(kFinite)->check(CLI::Range(0.0, 89.0))->capture_default_str();
+    app.add_option("--noise-kind", s.noiseKind, "noise: perlin, simplex or psrd")
+        ->check(CLI::IsMember({"perlin", "simplex", "psrd"}))->capture_default_str();
+    app.add_option("--fractal", s.fractal, "noise: fbm, ridged or turbulence")
+        ->check(CLI::IsMember({"fbm", "ridged", "turbulence"}))->capture_default_str();
+    app.add_option("--tiling", s.tiling, "noise: wrap (tiles), wrap-u (tiles in u) or clamp (does not tile; simplex)")
+        ->check(CLI::IsMember({"wrap", "wrap-u", "clamp"}))->capture_default_str();
+    app.add_option("--octaves", s.octaves, "noise: octaves summed")->check(CLI::Range(1, 16))->capture_default_str();
+    app.add_option("--frequency", s.frequency, "noise: base cells across the field (whole when it tiles)")
+        ->check(kFinite)->check(CLI::Range(0.5, 256.0))->capture_default_str();
+    app.add_option("--lacunarity", s.lacunarity, "noise: frequency ratio of successive octaves")
+        ->check(kFinite)->check(CLI::Range(1.0, 8.0))->capture_default_str();
+    app.add_option("--gain", s.gain, "noise: amplitude ratio of successive octaves")
+        ->check(kFinite)->check(CLI::Range(0.05, 1.0))->capture_default_str();
+    app.add_option("--warp", s.warp, "noise: domain warp in base cells (0: none)")
+        ->check(kFinite)->check(CLI::Range(0.0, 8.0))->capture_default_str();
+    app.add_option("--noise-speed", s.noiseSpeed, "noise: animation speed (time units per second)")
+        ->check(kFinite)->check(CLI::Range(0.0, 10.0))->capture_default_str();
     app.add_option("--save-damage", s.saveDamage, "decals: after the last frame, write the damage log (impacts, clock) to this file");
     app.add_option("--load-damage", s.loadDamage,
                    "decals: start from a saved damage log (drawn exactly as saved; no automatic volley)");

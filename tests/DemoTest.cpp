@@ -100,7 +100,7 @@ TEST_P(DemoScenes, HeadlessRunsAreDeterministicDynamicAndFinite) {
         EXPECT_TRUE(std::filesystem::exists(maps + "/" + file)) << file;
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, DemoScenes, ::testing::Values("water", "decals", "planet"));
+INSTANTIATE_TEST_SUITE_P(Scenes, DemoScenes, ::testing::Values("water", "decals", "planet", "noise"));
 
 TEST(Demo, SineWavesStillRender) {
     const std::string out = outputPath("demo_sine");

@@ -17,6 +17,7 @@
 #include "hfx/effects/SineWavesEffect.h"
 #include "hfx/tools/AccuracyProbe.h"
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 
@@ -281,6 +282,47 @@ TEST_F(Pipeline, TheWallRebuildsItsDecalsOnlyWhenTheyWouldChange) {
     wall.clearDamage();
     wall.update(0.1);
     EXPECT_EQ(passes(), healed + 1);
+}
+
+} // namespace
+} // namespace hfx::test
+
+namespace hfx::test {
+namespace {
+
+// Noise put to use: the wall's stone grain and the planet's cloud tops are their fields plus the
+// NoiseField's heights, as documented, and nothing else.
+TEST_F(Pipeline, NoiseGrainsTheWallAndDetailsThePlanetsCloudTops) {
+    const DecalWallConfig config{.bricks = {.size = 64}};
+    DecalWallEffect wall(cl(), config);
+    const BrickWallMaps bricks = makeBrickWall(config.bricks);
+    NoiseConfig grainConfig = config.grainNoise;
+    grainConfig.width = grainConfig.height = 64;
+    NoiseField grain(cl(), grainConfig);
+    const std::vector<float> noise = readHeights(cl(), grain);
+    const std::vector<float> walls = wall.readHeights();
+    double moved = 0;
+    for (size_t i = 0; i < walls.size(); ++i) {
+        ASSERT_EQ(walls[i], std::clamp(bricks.heights[i] + config.grain * (noise[i] - 0.5f), 0.0f, 1.0f)) << i;
+        moved = std::max(moved, double(std::abs(walls[i] - bricks.heights[i])));
+    }
+    EXPECT_GT(moved, 0.01) << "the grain shows";
+    DecalWallEffect plain(cl(), {.bricks = {.size = 64}, .grain = 0.0f});
+    EXPECT_EQ(plain.readHeights(), bricks.heights);
+
+    GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .initialBands = 4.0f}, .stormsPerSecond = 0.0f});
+    planet.update(0.1);
+    ASSERT_NE(planet.detail(), nullptr);
+    const std::vector<float> gas = planet.gas().readHeights(), drawn = planet.readHeights();
+    const std::vector<float> detail = readHeights(cl(), planet.detail()->noise());
+    double worst = 0, shown = 0;
+    for (size_t i = 0; i < gas.size(); ++i) {
+        const float expected = std::clamp(gas[i] + planet.detail()->amount() * (detail[i] - 0.5f), 0.0f, 1.0f);
+        worst = std::max(worst, double(std::abs(drawn[i] - expected)));
+        shown = std::max(shown, double(std::abs(drawn[i] - gas[i])));
+    }
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_GT(shown, 0.02) << "the cloud tops' detail shows";
 }
 
 } // namespace

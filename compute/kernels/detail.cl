@@ -18,3 +18,12 @@ __kernel void add_detail(__global float4* current, __global const float4* base,
     float inv = rsqrt(sx * sx + sy * sy + 1.0f);
     current[k] = (float4)(sx * inv, sy * inv, inv, c.w);
 }
+
+/* Fine detail on a field's heights: out = clamp(base + amount (detail - 0.5), 0, 1), detail a
+   noise in [0, 1] of the same size (HeightDetail: the planet's cloud tops). */
+__kernel void add_height_detail(__global const float* base, __global const float* detail, __global float* out,
+                                float amount, int n) {
+    int k = get_global_id(0);
+    if (k >= n) return;
+    out[k] = clamp(base[k] + amount * (detail[k] - 0.5f), 0.0f, 1.0f);
+}

@@ -16,6 +16,13 @@ void DecalWallConfig::validate() const {
                             "') needs a heightMap to go with it"));
     }
     damage.validate();
+    if (!(grain >= 0.0f && grain <= 0.5f)) throw Error(str("DecalWallConfig.grain must be in [0, 0.5], got ", grain));
+    if (heightMap.empty() && grain > 0.0f) {
+        NoiseConfig noise = grainNoise;
+        noise.width = noise.height = bricks.size;
+        noise.edges = EdgeMode::Wrap;
+        noise.validate();
+    }
     if (!(damage.look.bullet.radius > 0.0f) || !(damage.look.explosion.radius > 0.0f))
         throw Error(str("DecalWallConfig: bullet and explosion radii must be positive, got ", damage.look.bullet.radius,
                         " and ", damage.look.explosion.radius));
@@ -62,8 +69,24 @@ SurfaceMaps DecalWallEffect::load(const DecalWallConfig& config) {
             .color = std::move(bricks.albedo)};
 }
 
+SurfaceMaps DecalWallEffect::withGrain(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps) {
+    if (!config.heightMap.empty() || config.grain == 0.0f) return maps;
+    NoiseConfig noise = config.grainNoise;
+    noise.width = maps.width;
+    noise.height = maps.height;
+    noise.edges = EdgeMode::Wrap; // the wall tiles
+    NoiseField field(cl, noise);
+    std::vector<float> grain(maps.heights.size());
+    clGuard("reading the wall's grain", [&] {
+        cl.queue().enqueueReadBuffer(field.buffer(), CL_TRUE, 0, grain.size() * sizeof(float), grain.data());
+    });
+    for (size_t i = 0; i < grain.size(); ++i)
+        maps.heights[i] = std::clamp(maps.heights[i] + config.grain * (grain[i] - 0.5f), 0.0f, 1.0f);
+    return maps;
+}
+
 DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config)
-    : DecalWallEffect(cl, config, load(config)) {}
+    : DecalWallEffect(cl, config, withGrain(cl, config, load(config))) {}
 
 DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps)
     : Effect(config.material), cl_(cl), config_(config), log_(config.damage),

@@ -25,11 +25,28 @@ void GasPlanetConfig::validate() const {
         throw Error(str("GasPlanetConfig.stormRadius must be in (0, 0.25], got ", stormRadius));
     if (!std::isfinite(stormForce) || !std::isfinite(rotationSpeed))
         throw Error("GasPlanetConfig.stormForce and rotationSpeed must be finite");
+    if (!(detail >= 0.0f && detail <= 1.0f)) throw Error(str("GasPlanetConfig.detail must be in [0, 1], got ", detail));
+    if (detail > 0.0f) {
+        NoiseConfig noise = detailNoise;
+        noise.width = gas.width;
+        noise.height = gas.height;
+        noise.validate();
+    }
     material.validate();
 }
 
+namespace {
+std::unique_ptr<HeightDetail> makeDetail(ClContext& cl, const GasPlanetConfig& config) {
+    if (config.detail <= 0.0f) return nullptr;
+    NoiseConfig noise = config.detailNoise;
+    noise.width = config.gas.width;
+    noise.height = config.gas.height;
+    return std::make_unique<HeightDetail>(cl, noise, config.detail);
+}
+} // namespace
+
 GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
-    : Effect(validated(config).material), config_(config), gas_(cl, config.gas),
+    : Effect(validated(config).material), cl_(cl), config_(config), gas_(cl, config.gas), detail_(makeDetail(cl, config)),
       colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed),
       surface_(cl, SurfacePipelineConfig::of(gas_, config.material.depthScale, config.surface)) {
     refresh();
@@ -60,12 +77,24 @@ void GasPlanetEffect::advance(double dt) {
         addStorm(u, v, random_.next() < 0.5);
     }
     gas_.step(dt);
+    if (detail_) detail_->step(dt);
 }
 
 void GasPlanetEffect::enqueueSurface() {
-    surface_.derive(gas_.buffer());
-    colors_.run(gas_.buffer());
+    // The colour follows the gas; the relief carries the cloud tops' detail too.
+    if (detail_) detail_->run(gas_.buffer());
+    surface_.derive(detail_ ? detail_->output() : gas_.buffer());
+    colors_.run(detail_ ? detail_->output() : gas_.buffer());
     surface_.submit(&colors_.output());
+}
+
+std::vector<float> GasPlanetEffect::readHeights() {
+    if (!detail_) return gas_.readHeights();
+    std::vector<float> heights(size_t(config_.gas.width) * config_.gas.height);
+    clGuard("reading the planet's heights", [&] {
+        cl_.queue().enqueueReadBuffer(detail_->output(), CL_TRUE, 0, heights.size() * sizeof(float), heights.data());
+    });
+    return heights;
 }
 
 glm::mat4 GasPlanetEffect::modelMatrix() const {

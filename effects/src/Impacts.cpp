@@ -157,7 +157,7 @@ std::optional<ImpactHit> PlanetImpacts::hit(const Ray& ray) {
         return glm::dvec2(wrap01(lon / (2.0 * pi)), std::clamp(lat / pi + 0.5, 0.0, 1.0));
     };
     const GasConfig& gas = planet_.gas().config();
-    const std::vector<float> heights = planet_.gas().readHeights();
+    const std::vector<float> heights = planet_.readHeights();
     auto height = [&](glm::dvec2 uv) { // bilinear, texel centres at (i + 0.5) / W, u wraps
         const int W = gas.width, H = gas.height;
         const double x = uv.x * W - 0.5, y = std::clamp(uv.y * H - 0.5, 0.0, double(H - 1));

@@ -92,4 +92,14 @@ std::vector<float> readSurface(const SurfaceTextures& textures) {
     return texels;
 }
 
+std::vector<float> readFloats(ClContext& cl, const cl::Buffer& buffer, size_t count) {
+    std::vector<float> out(count);
+    cl.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(float), out.data());
+    return out;
+}
+
+std::vector<float> readHeights(ClContext& cl, const HeightSource& source) {
+    return readFloats(cl, source.buffer(), size_t(source.width()) * source.height());
+}
+
 } // namespace hfx::test

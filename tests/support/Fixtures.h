@@ -3,6 +3,7 @@
 // Where a device is missing the tests skip, saying why.
 
 #include "hfx/compute/ClContext.h"
+#include "hfx/compute/HeightSource.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/SurfaceTextures.h"
@@ -39,6 +40,11 @@ protected:
 /// Level 0 of a surface texture as GL holds it: width*height float4 (normal.xyz, height), row 0
 /// at v = 0. Needs the texture's context current.
 std::vector<float> readSurface(const SurfaceTextures& textures);
+
+/// The first `count` floats of a device buffer (waits for the queue).
+std::vector<float> readFloats(ClContext& cl, const cl::Buffer& buffer, size_t count);
+/// All of a height source's heights, row 0 at v = 0.
+std::vector<float> readHeights(ClContext& cl, const HeightSource& source);
 
 /// The message of the hfx::Error that `f` throws, or "(no error)".
 std::string messageOf(const std::function<void()>& f);

@@ -12,6 +12,7 @@
 
 #include "hfx/compute/DamageLog.h"
 #include "hfx/compute/DecalMap.h"
+#include "hfx/compute/NoiseField.h"
 #include "hfx/compute/DetailNormals.h"
 #include "hfx/core/SurfaceMaps.h"
 #include "hfx/effects/BrickWall.h"
@@ -33,6 +34,11 @@ struct DecalWallConfig {
     /// the map exactly and craters bend it.
     std::string normalMap;
     BrickWallConfig bricks;     ///< the procedural wall (its size sets the map's)
+    /// The procedural wall's stone grain: a NoiseField (made once on the device; its size and
+    /// tiling are the wall's) added to the bricks' heights, grain * (noise - 0.5). 0: none.
+    float grain = 0.06f;
+    NoiseConfig grainNoise{.kind = NoiseKind::Perlin, .fractal = Fractal::Turbulence, .frequency = 32.0f,
+                           .octaves = 3, .gain = 0.55f, .speed = 0.0f};
     /// The impacts' budget, merging, look (shapes and marks) and heal curves.
     DamageLogConfig damage;
     int maxStampsPerBatch = 65536; ///< stamps per rebuild: the budget's impacts with their debris
@@ -75,6 +81,8 @@ public:
 private:
     /// The wall's maps (files, or the procedural bricks), made before anything on a device.
     static SurfaceMaps load(const DecalWallConfig& config);
+    /// The procedural wall's heights with the stone grain added (files are kept as they are).
+    static SurfaceMaps withGrain(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
     const SurfacePipeline& surface() const override { return surface_; }
     /// Moves the log's clock and rebuilds the maps from it when they would change: an impact

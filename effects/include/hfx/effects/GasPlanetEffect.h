@@ -9,6 +9,7 @@
 
 #include "hfx/compute/ColorRamp.h"
 #include "hfx/compute/GasField.h"
+#include "hfx/compute/HeightDetail.h"
 #include "hfx/core/Random.h"
 #include "hfx/effects/Effect.h"
 
@@ -30,6 +31,11 @@ struct GasPlanetConfig {
     float stormRadius = 0.025f;    ///< in map widths
     float stormForce = 900.0f;     ///< cells per second^2 over a step
     float rotationSpeed = 0.08f;   ///< radians per second about +Y
+    /// Fine relief of the cloud tops: a slowly drifting noise (HeightDetail) added to the dye's
+    /// heights, detail * (noise - 0.5); 0 draws the gas alone. Its size and edges are the gas's.
+    float detail = 0.25f;
+    NoiseConfig detailNoise{.kind = NoiseKind::Perlin, .fractal = Fractal::Fbm, .frequency = 32.0f, .octaves = 4,
+                            .speed = 0.05f, .edges = EdgeMode::WrapU};
     std::uint64_t seed = 1;
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
@@ -46,6 +52,9 @@ public:
     /// at texcoords (u in [0,1), v in [0,1)).
     void addStorm(float u, float v, bool clockwise, float strength = 1.0f);
     GasField& gas() { return gas_; }
+    /// The heights drawn (the gas's, with the cloud tops' detail), row 0 at v = 0; waits.
+    std::vector<float> readHeights();
+    const HeightDetail* detail() const { return detail_.get(); }
     const ColorRamp& colors() const { return colors_; }
     double time() const { return time_; }
     /// Rotation about +Y after time() seconds: the planet's model matrix (scale not included).
@@ -58,8 +67,10 @@ private:
     /// The relief from the dye, and the albedo: the dye through the colour ramp.
     void enqueueSurface() override;
 
+    ClContext& cl_;
     GasPlanetConfig config_;
     GasField gas_;
+    std::unique_ptr<HeightDetail> detail_; ///< none when config.detail is 0
     ColorRamp colors_;
     SplitMix64 random_;
     double time_ = 0.0, stormClock_ = 0.0;

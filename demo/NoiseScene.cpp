@@ -1,0 +1,93 @@
+// The noise user: any NoiseField configuration as a lit, animated POM surface on a plane that
+// repeats it twice each way (so a tiling noise shows its seams, or that it has none), for an
+// artist to tune in the panel and export with --export-maps.
+
+#include "Scene.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/effects/NoiseSurfaceEffect.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace hfx::demo {
+namespace {
+
+class NoiseScene final : public Scene {
+public:
+    NoiseScene(ClContext& cl, const SceneOptions& o)
+        : surface_(cl, config(o)), plane_(makePlane({.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1})) {
+        applyOptions(o);
+        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.0f, 0.6f, 0.6f);
+        camera_.aspect = o.aspect();
+        light_.direction = {-0.9f, 0.5f, -0.35f};
+    }
+
+    void draw() override { drawSurface(renderer_, light_); }
+    Effect& effect() override { return surface_; }
+    const char* name() const override { return "noise"; }
+    const Mesh& mesh() const override { return plane_; }
+
+    void panel() override {
+        NoiseConfig n = surface_.noise().config();
+        static constexpr const char* kKinds[] = {"perlin", "simplex", "psrd"};
+        static constexpr const char* kFractals[] = {"fbm", "ridged", "turbulence"};
+        static constexpr const char* kTilings[] = {"tiles (wrap)", "tiles in u", "does not tile"};
+        int kind = int(n.kind), fractal = int(n.fractal);
+        int tiling = n.edges == EdgeMode::Wrap ? 0 : n.edges == EdgeMode::WrapU ? 1 : 2;
+        bool changed = ImGui::Combo("kind", &kind, kKinds, IM_ARRAYSIZE(kKinds));
+        changed |= ImGui::Combo("fractal", &fractal, kFractals, IM_ARRAYSIZE(kFractals));
+        changed |= ImGui::Combo("tiling", &tiling, kTilings, IM_ARRAYSIZE(kTilings));
+        changed |= ImGui::SliderInt("octaves", &n.octaves, 1, 10);
+        changed |= ImGui::SliderFloat("frequency (cells)", &n.frequency, 1.0f, 32.0f, "%.0f");
+        changed |= ImGui::SliderFloat("gain", &n.gain, 0.1f, 0.9f);
+        changed |= ImGui::SliderFloat("warp (cells)", &n.warp, 0.0f, 2.0f);
+        changed |= ImGui::SliderFloat("speed", &n.speed, 0.0f, 2.0f);
+        if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+        if (!changed) return;
+        n.kind = NoiseKind(kind);
+        n.fractal = Fractal(fractal);
+        n.edges = tiling == 0 ? EdgeMode::Wrap : tiling == 1 ? EdgeMode::WrapU : EdgeMode::Clamp;
+        n.frequency = std::round(n.frequency); // a tiling noise needs whole cells
+        try {
+            surface_.setNoise(n);
+            message_.clear();
+        } catch (const Error& e) {
+            message_ = e.what(); // simplex does not tile, say: the surface stays as it was
+        }
+    }
+
+private:
+    static NoiseSurfaceConfig config(const SceneOptions& o) {
+        NoiseSurfaceConfig c;
+        NoiseConfig& n = c.noise;
+        if (o.fieldSize > 0) n.width = n.height = o.fieldSize;
+        n.kind = parseNoiseKind(o.noiseKind);
+        n.fractal = parseFractal(o.fractal);
+        n.octaves = o.octaves;
+        n.frequency = o.frequency;
+        n.lacunarity = o.lacunarity;
+        n.gain = o.gain;
+        n.warp = o.warp;
+        n.speed = o.noiseSpeed;
+        n.edges = o.tiling == "wrap" ? EdgeMode::Wrap : o.tiling == "wrap-u" ? EdgeMode::WrapU : EdgeMode::Clamp;
+        n.seed = float(o.seed % 1000u);
+        c.surface = o.surfaceOptions();
+        return c;
+    }
+
+    NoiseSurfaceEffect surface_;
+    Mesh plane_;
+    DirectionalLight light_;
+    SurfaceRenderer renderer_;
+    std::string message_;
+};
+
+} // namespace
+
+std::unique_ptr<Scene> makeNoiseScene(ClContext& cl, const SceneOptions& options) {
+    return std::make_unique<NoiseScene>(cl, options);
+}
+
+} // namespace hfx::demo
