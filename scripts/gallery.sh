@@ -2,9 +2,9 @@
 # Renders the README's gallery: one 1280x720 picture of each scene, headless, at the scenes'
 # default grazing cameras, after enough frames for the field to develop (the decal volley: 196
 # bullets and 5 explosions with their scorch; the planet's storms). Writes
-# docs/gallery/{water,decals,planet}.jpg, the sea calm (Beaufort 3) and rough (Beaufort 7), the
-# far field seen 5 degrees down (water-horizon.jpg), and a 4-second 640x360 video of the rough
-# sea (water.mp4, needs ffmpeg).
+# docs/gallery/{water,decals,planet,noise}.jpg, the sea calm (Beaufort 3) and rough (Beaufort 7),
+# the far field seen 5 degrees down (water-horizon.jpg), the sea after an explosion
+# (water-explosion.jpg), and a 4-second 640x360 video of the rough sea (water.mp4, needs ffmpeg).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -15,13 +15,13 @@ mkdir -p docs/gallery
 render() { # scene frames [options...]
     local scene=$1 frames=$2
     shift 2
+    rm -rf "${work:?}/$scene" # no frames left from an earlier render of the scene
     ./build/demo/hfx-demo "$scene" --headless --frames "$frames" --format jpg --out "$work/$scene" "$@"
     cp "$(ls "$work/$scene"/*.jpg | tail -n 1)" "docs/gallery/$scene.jpg"
 }
 render water 30 --beaufort 3 && mv docs/gallery/water.jpg docs/gallery/water-calm.jpg
 render water 30 --beaufort 7 && mv docs/gallery/water.jpg docs/gallery/water-rough.jpg
 render water 30 --camera-pitch 5 && mv docs/gallery/water.jpg docs/gallery/water-horizon.jpg
-render water 30
 if command -v ffmpeg >/dev/null; then
     # Encoded here rather than by --video: a higher CRF keeps the committed file small.
     ./build/demo/hfx-demo water --headless --frames 120 --width 640 --height 360 --beaufort 7 --format jpg \
@@ -30,5 +30,10 @@ if command -v ffmpeg >/dev/null; then
         -pix_fmt yuv420p -movflags +faststart docs/gallery/water.mp4
 fi
 render decals 50
+# The ocean one second after an explosion (and two bullets) fired from the camera.
+printf 'explosion 1 760 560 3\nclick 1 420 600\nclick 1 440 610\n' > "$work/water-shots.txt"
+render water 31 --shots "$work/water-shots.txt" && mv docs/gallery/water.jpg docs/gallery/water-explosion.jpg
+render water 30
+render noise 2 --noise-kind psrd --fractal ridged --warp 0.6
 render planet 120
 ls -l docs/gallery
