@@ -31,6 +31,10 @@ public:
     glm::mat4 model() const override { return planet_.modelMatrix(); }
     void panel() override {
         if (ImGui::Button("storm")) planet_.addStorm(0.5f, 0.5f, true);
+        float scale = planet_.timeScale();
+        if (ImGui::SliderFloat("time scale", &scale, 1.0f, 1e4f, "%.0fx", ImGuiSliderFlags_Logarithmic))
+            planet_.setTimeScale(scale);
+        ImGui::Text("click: a storm there, E: a big one");
     }
 
 private:
@@ -42,6 +46,7 @@ private:
             c.gas.initialBands = std::min(c.gas.initialBands, float(c.gas.height) / 4.0f);
         }
         c.gas.seed = o.seed;
+        c.timeScale = o.timeScale;
         c.seed = o.seed;
         c.surface = o.surfaceOptions();
         return c;

@@ -45,6 +45,7 @@ struct SceneOptions {
     float choppiness = 1.0f;           ///< water: horizontal displacement lambda
     int cascades = 0;                  ///< water: 0: the ocean's default (4)
     float cameraPitch = 8.0f;          ///< water: degrees the camera looks below the horizon
+    float timeScale = 1.0f;            ///< planet: simulated seconds per second, 1 to 10^4
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image

@@ -40,11 +40,21 @@ __kernel void splat(__global float* u, __global float* v, __global float* dye, i
     dye[k] = clamp(dye[k] + amount * w, 0.0f, 1.0f);
 }
 
-/* Zonal jets: u relaxes towards speed * sin(2 pi bands y / H) at `rate` per second. */
-__kernel void jets(__global float* u, int W, int H, float speed, float bands, float rate, float dt) {
+/* Zonal jets: u relaxes towards speed * sin(2 pi bands y / H) at `rate` per second, faded
+   towards the walls by sin(pi y / H)^polar (polar = 0: no fade). */
+__kernel void jets(__global float* u, int W, int H, float speed, float bands, float rate, float dt, float polar) {
     ID
-    float target = speed * sin(6.28318530717958647692f * bands * ((float)j + 0.5f) / (float)H);
+    float y = ((float)j + 0.5f) / (float)H;
+    float target = speed * sin(6.28318530717958647692f * bands * y);
+    if (polar > 0.0f) target *= pow(sin(3.14159265358979323846f * y), polar);
     u[k] += (target - u[k]) * (1.0f - exp(-rate * dt));
+}
+
+/* Bounds the velocity: each component to +-limit cells per second. */
+__kernel void clamp_speed(__global float* u, __global float* v, int W, int H, float limit) {
+    ID
+    u[k] = clamp(u[k], -limit, limit);
+    v[k] = clamp(v[k], -limit, limit);
 }
 
 __kernel void curl(__global const float* u, __global const float* v, __global float* w, int W, int H) {

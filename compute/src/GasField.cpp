@@ -25,6 +25,10 @@ void GasConfig::validate() const {
     if (!std::isfinite(jetSpeed) || !(jetBands >= 0.0f) || !(jetRate >= 0.0f) || !std::isfinite(jetRate))
         throw Error(str("GasConfig jets must be finite and non-negative, got speed ", jetSpeed, " bands ",
                         jetBands, " rate ", jetRate));
+    if (!(jetPolar >= 0.0f && jetPolar <= 16.0f))
+        throw Error(str("GasConfig.jetPolar must be in [0, 16], got ", jetPolar));
+    if (!(maxSpeed >= 0.0f) || !std::isfinite(maxSpeed))
+        throw Error(str("GasConfig.maxSpeed must be >= 0 and finite, got ", maxSpeed));
     if (!(initialBands >= 0.0f) || initialBands > float(height))
         throw Error(str("GasConfig.initialBands must be in [0, height], got ", initialBands));
 }
@@ -44,6 +48,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         maccormack_ = cl::Kernel(program, "maccormack");
         splat_ = cl::Kernel(program, "splat");
         jets_ = cl::Kernel(program, "jets");
+        clampSpeed_ = cl::Kernel(program, "clamp_speed");
         curlKernel_ = cl::Kernel(program, "curl");
         confine_ = cl::Kernel(program, "confine");
         diffuse_ = cl::Kernel(program, "diffuse");
@@ -126,11 +131,13 @@ void GasField::step(double dtSeconds) {
         }
         splats_.clear();
         if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f)
-            run(jets_, {arg(u_), arg(W), arg(H), arg(config_.jetSpeed), arg(config_.jetBands), arg(config_.jetRate), arg(dt)});
+            run(jets_, {arg(u_), arg(W), arg(H), arg(config_.jetSpeed), arg(config_.jetBands), arg(config_.jetRate), arg(dt),
+                        arg(config_.jetPolar)});
         if (config_.vorticity > 0.0f) {
             run(curlKernel_, {arg(u_), arg(v_), arg(curl_), arg(W), arg(H)});
             run(confine_, {arg(curl_), arg(u_), arg(v_), arg(W), arg(H), arg(config_.vorticity), arg(dt)});
         }
+        if (config_.maxSpeed > 0.0f) run(clampSpeed_, {arg(u_), arg(v_), arg(W), arg(H), arg(config_.maxSpeed)});
         // Self-advection: both components read the old velocity, so the new u waits in work_[3].
         // Results change places with the state by swapping handles, not by copying.
         advectField(u_, 0.0f, 0.5f, dt, false);

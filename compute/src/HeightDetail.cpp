@@ -14,8 +14,10 @@ float checkedAmount(float amount) {
 }
 } // namespace
 
-HeightDetail::HeightDetail(ClContext& cl, const NoiseConfig& noise, float amount)
-    : cl_(cl), noise_(cl, noise), amount_(checkedAmount(amount)) {
+HeightDetail::HeightDetail(ClContext& cl, const NoiseConfig& noise, float amount, float capRows)
+    : cl_(cl), noise_(cl, noise), amount_(checkedAmount(amount)), capRows_(capRows) {
+    if (!(capRows >= 0.0f && capRows <= 0.5f * float(noise.height)))
+        throw Error(str("HeightDetail: capRows must be in [0, ", 0.5f * float(noise.height), "], got ", capRows));
     clGuard("creating the height detail", [&] {
         output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, size_t(noise.width) * noise.height * sizeof(float));
         kernel_ = cl.kernel("detail.cl", "add_height_detail");
@@ -29,7 +31,9 @@ void HeightDetail::run(const cl::Buffer& base) {
         kernel_.setArg(1, noise_.buffer());
         kernel_.setArg(2, output_);
         kernel_.setArg(3, amount_);
-        kernel_.setArg(4, n);
+        kernel_.setArg(4, noise_.width());
+        kernel_.setArg(5, noise_.height());
+        kernel_.setArg(6, capRows_);
         cl_.enqueue(kernel_, cl::NDRange(size_t(n)));
     });
 }

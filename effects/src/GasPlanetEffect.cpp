@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace hfx {
 
@@ -26,7 +27,17 @@ void GasPlanetConfig::validate() const {
     if (!std::isfinite(stormForce) || !std::isfinite(rotationSpeed))
         throw Error("GasPlanetConfig.stormForce and rotationSpeed must be finite");
     if (!(detail >= 0.0f && detail <= 1.0f)) throw Error(str("GasPlanetConfig.detail must be in [0, 1], got ", detail));
-    if (detail > 0.0f) {
+    if (!(stormShear > 0.0f && stormShear <= 1.0f))
+        throw Error(str("GasPlanetConfig.stormShear must be in (0, 1], got ", stormShear));
+    if (!(timeScale >= 1.0f && timeScale <= 1e4f))
+        throw Error(str("GasPlanetConfig.timeScale must be in [1, 10000], got ", timeScale));
+    if (!(maxSubstep > 0.0f && maxSubstep <= 60.0f))
+        throw Error(str("GasPlanetConfig.maxSubstep must be in (0, 60] seconds, got ", maxSubstep));
+    if (maxSubsteps < 1 || maxSubsteps > 256)
+        throw Error(str("GasPlanetConfig.maxSubsteps must be in [1, 256], got ", maxSubsteps));
+    if (!(poleCap >= 0.0f && poleCap <= 0.25f))
+        throw Error(str("GasPlanetConfig.poleCap must be in [0, 0.25], got ", poleCap));
+    if (detail > 0.0f || poleCap > 0.0f) {
         NoiseConfig noise = detailNoise;
         noise.width = gas.width;
         noise.height = gas.height;
@@ -37,11 +48,11 @@ void GasPlanetConfig::validate() const {
 
 namespace {
 std::unique_ptr<HeightDetail> makeDetail(ClContext& cl, const GasPlanetConfig& config) {
-    if (config.detail <= 0.0f) return nullptr;
+    if (config.detail <= 0.0f && config.poleCap <= 0.0f) return nullptr;
     NoiseConfig noise = config.detailNoise;
     noise.width = config.gas.width;
     noise.height = config.gas.height;
-    return std::make_unique<HeightDetail>(cl, noise, config.detail);
+    return std::make_unique<HeightDetail>(cl, noise, config.detail, config.poleCap * float(config.gas.height));
 }
 } // namespace
 
@@ -49,6 +60,12 @@ GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
     : Effect(validated(config).material), cl_(cl), config_(config), gas_(cl, config.gas), detail_(makeDetail(cl, config)),
       colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed),
       surface_(cl, SurfacePipelineConfig::of(gas_, config.material.depthScale, config.surface)) {
+    float largest = 0.0f;
+    for (int i = 1; i < 4096; ++i) {
+        const double v = i / 4096.0, h = 1e-4;
+        largest = std::max(largest, float(std::abs(jetProfile(v + h) - jetProfile(v - h)) / (2.0 * h)));
+    }
+    maxShear_ = largest > 0.0f ? largest : 1.0f;
     refresh();
 }
 
@@ -65,19 +82,50 @@ void GasPlanetEffect::addStorm(float u, float v, bool clockwise, float strength)
     gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r, .dye = clockwise ? 1.0f : 0.05f});
 }
 
+float GasPlanetEffect::jetProfile(double v) const {
+    const GasConfig& g = config_.gas;
+    double u = double(g.jetSpeed) * std::sin(2.0 * std::numbers::pi * g.jetBands * v);
+    if (g.jetPolar > 0.0f) u *= std::pow(std::sin(std::numbers::pi * v), double(g.jetPolar));
+    return float(u);
+}
+
+float GasPlanetEffect::relativeShear(double v) const {
+    const double h = 1e-4;
+    return float(std::abs(jetProfile(v + h) - jetProfile(v - h)) / (2.0 * h) / maxShear_);
+}
+
+void GasPlanetEffect::setTimeScale(float scale) {
+    GasPlanetConfig c = config_;
+    c.timeScale = scale;
+    c.validate();
+    config_.timeScale = scale;
+}
+
 void GasPlanetEffect::advance(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error(str("GasPlanetEffect::update: dt must be positive and finite, got ", dt));
-    time_ += dt;
-    stormClock_ += dt * config_.stormsPerSecond;
-    for (int storms = 0; stormClock_ >= 1.0 && storms < 8; ++storms) {
-        stormClock_ -= 1.0;
-        const float u = float(random_.next());
-        const float v = float(random_.uniform(0.2, 0.8));
-        addStorm(u, v, random_.next() < 0.5);
+    const double simulated = dt * config_.timeScale;
+    const int substeps = std::clamp(int(std::ceil(simulated / config_.maxSubstep)), 1, config_.maxSubsteps);
+    const double step = simulated / substeps;
+    for (int s = 0; s < substeps; ++s) {
+        time_ += step;
+        stormClock_ += step * config_.stormsPerSecond;
+        for (int storms = 0; stormClock_ >= 1.0 && storms < 8; ++storms) {
+            stormClock_ -= 1.0;
+            // In a band's middle: latitudes drawn until the shear there is low (or none is found).
+            const float u = float(random_.next());
+            for (int attempt = 0; attempt < 32; ++attempt) {
+                const double v = random_.uniform(0.15, 0.85);
+                if (relativeShear(v) > config_.stormShear) continue;
+                addStorm(u, float(v), random_.next() < 0.5);
+                if (seeded_.size() == 64) seeded_.erase(seeded_.begin());
+                seeded_.emplace_back(u, float(v));
+                break;
+            }
+        }
+        gas_.step(step);
+        if (detail_) detail_->step(step);
     }
-    gas_.step(dt);
-    if (detail_) detail_->step(dt);
 }
 
 void GasPlanetEffect::enqueueSurface() {

@@ -29,6 +29,11 @@ struct GasConfig {
     float jetSpeed = 0.0f;        ///< zonal jets: u relaxes to jetSpeed sin(2 pi jetBands y / H)
     float jetBands = 3.0f;
     float jetRate = 0.05f;        ///< relaxation rate of the jets, per second
+    /// The jets fade towards the walls as sin(pi y / H)^jetPolar (a planet's poles); 0: no fade.
+    float jetPolar = 0.0f;
+    /// After the forces, each velocity component is clamped to +-maxSpeed cells per second, so
+    /// steps of any length stay bounded (the planet's large time scales); 0: no clamp.
+    float maxSpeed = 0.0f;
     float initialBands = 0.0f;    ///< dye starts as 0.5 + 0.5 sin(2 pi bands y / H) plus noise
     std::uint64_t seed = 1;
     void validate() const;
@@ -76,7 +81,7 @@ private:
     GasConfig config_;
     std::vector<GasSplat> splats_;
     cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_;
-    cl::Kernel advect_, maccormack_, splat_, jets_, curlKernel_, confine_, diffuse_, divergence_,
+    cl::Kernel advect_, maccormack_, splat_, jets_, clampSpeed_, curlKernel_, confine_, diffuse_, divergence_,
         pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_;
 };
 

@@ -1,7 +1,8 @@
 #pragma once
 // Noise put on a changing field: each run() writes base + amount (noise - 0.5), clamped to
 // [0,1], the noise being an animated NoiseField of the field's size and edges (the gas giant's
-// cloud tops get their fine relief from it). The noise steps with the field.
+// cloud tops get their fine relief from it), optionally faded to 0.5 within capRows of the
+// first and last rows (a longitude-latitude map's poles). The noise steps with the field.
 //
 // Owns its noise, its output buffer and kernel. Thread: the thread that owns the ClContext.
 
@@ -11,8 +12,8 @@ namespace hfx {
 
 class HeightDetail {
 public:
-    /// noise: its size and edges are the field's; amount in [0, 1].
-    HeightDetail(ClContext& cl, const NoiseConfig& noise, float amount);
+    /// noise: its size and edges are the field's; amount in [0, 1]; capRows in [0, rows / 2].
+    HeightDetail(ClContext& cl, const NoiseConfig& noise, float amount, float capRows = 0.0f);
 
     /// Moves the noise on by dt seconds.
     void step(double dt) { noise_.step(dt); }
@@ -21,11 +22,12 @@ public:
     const cl::Buffer& output() const { return output_; }
     const NoiseField& noise() const { return noise_; }
     float amount() const { return amount_; }
+    float capRows() const { return capRows_; }
 
 private:
     ClContext& cl_;
     NoiseField noise_;
-    float amount_;
+    float amount_, capRows_;
     cl::Buffer output_;
     cl::Kernel kernel_;
 };

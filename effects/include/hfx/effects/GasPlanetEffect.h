@@ -14,6 +14,7 @@
 #include "hfx/effects/Effect.h"
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 #include <memory>
 #include <vector>
@@ -25,11 +26,24 @@ std::vector<ColorStop> gasGiantPalette();
 
 struct GasPlanetConfig {
     GasConfig gas{.width = 512, .height = 256, .pressureIterations = 30, .vorticity = 0.35f,
-                  .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .initialBands = 9.0f};
+                  .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f,
+                  .initialBands = 9.0f};
     std::vector<ColorStop> palette = gasGiantPalette();
     float stormsPerSecond = 0.6f;  ///< new storms (vortex pairs of force plus dye)
     float stormRadius = 0.025f;    ///< in map widths
     float stormForce = 900.0f;     ///< cells per second^2 over a step
+    /// Storms are seeded only where the jets' shear |dU/dy| is at most this fraction of its
+    /// largest: in the middle of a band, where a vortex is not torn apart at once.
+    float stormShear = 0.35f;
+    /// Simulated seconds per second, 1 to 10^4; a frame's time is split into substeps of at most
+    /// maxSubstep seconds, at most maxSubsteps of them (beyond, the substeps lengthen: the
+    /// semi-Lagrangian advection and the speed limit, gas.maxSpeed, keep them stable).
+    float timeScale = 1.0f;
+    float maxSubstep = 0.5f;
+    int maxSubsteps = 8;
+    /// The last fraction of rows at each pole fades to a flat 0.5, so the poles, where all the
+    /// columns meet in one point, show no pinched seam. 0: none.
+    float poleCap = 0.04f;
     float rotationSpeed = 0.08f;   ///< radians per second about +Y
     /// Fine relief of the cloud tops: a slowly drifting noise (HeightDetail) added to the dye's
     /// heights, detail * (noise - 0.5); 0 draws the gas alone. Its size and edges are the gas's.
@@ -57,6 +71,15 @@ public:
     const HeightDetail* detail() const { return detail_.get(); }
     const ColorRamp& colors() const { return colors_; }
     double time() const { return time_; }
+    /// Live time scale (validated as the config's); throws and keeps the old one on a bad value.
+    void setTimeScale(float scale);
+    float timeScale() const { return config_.timeScale; }
+    /// The jets' zonal speed (cells per second) at texcoord v: what the gas relaxes towards.
+    float jetProfile(double v) const;
+    /// |dU/dv| of jetProfile relative to its largest over the planet (0 in a band's middle).
+    float relativeShear(double v) const;
+    /// Where the last seeded storms (not impacts) went, oldest first, at most 64.
+    const std::vector<glm::vec2>& seededStorms() const { return seeded_; }
     /// Rotation about +Y after time() seconds: the planet's model matrix (scale not included).
     glm::mat4 modelMatrix() const;
 
@@ -70,10 +93,12 @@ private:
     ClContext& cl_;
     GasPlanetConfig config_;
     GasField gas_;
-    std::unique_ptr<HeightDetail> detail_; ///< none when config.detail is 0
+    std::unique_ptr<HeightDetail> detail_; ///< none when config.detail and poleCap are 0
     ColorRamp colors_;
     SplitMix64 random_;
     double time_ = 0.0, stormClock_ = 0.0;
+    float maxShear_ = 1.0f;
+    std::vector<glm::vec2> seeded_;
     SurfacePipeline surface_;
 };
 
