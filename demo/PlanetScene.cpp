@@ -19,7 +19,7 @@ public:
         applyOptions(o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.3f, 0.25f);
         camera_.aspect = o.aspect();
-        light_.direction = {1.0f, 0.2f, 0.1f};
+        light_.direction = {0.95f, 0.15f, -0.2f}; // 83 degrees from the view: the terminator crosses the disc
         light_.color = {1.0f, 0.97f, 0.92f};
         light_.ambient = {0.03f, 0.03f, 0.04f};
     }

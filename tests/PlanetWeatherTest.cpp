@@ -1,13 +1,17 @@
 // The gas giant's weather: storms are seeded only in the middle of the bands, the jets fade at
-// the poles, and a 10^4 time scale stays finite and bounded.
+// the poles, a 10^4 time scale stays finite and bounded, and a seeded vortex outlives twenty
+// rotations.
 
 #include "support/Fixtures.h"
 
+#include "hfx/compute/shared/GasMath.h"
 #include "hfx/core/Error.h"
 #include "hfx/effects/GasPlanetEffect.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 
 namespace hfx::test {
 namespace {
@@ -45,6 +49,47 @@ TEST_F(PlanetWeather, ATimeScaleOfTenThousandRunsAThousandStepsWithoutNaN) {
         ASSERT_TRUE(dye[i] >= 0.0f && dye[i] <= 1.0f) << i;
     }
     for (float h : planet.readHeights()) ASSERT_TRUE(h >= 0.0f && h <= 1.0f) << h;
+}
+
+TEST_F(PlanetWeather, ASeededVortexIsStillThereAfterTwentyRotations) {
+    constexpr int W = 128, H = 64;
+    GasPlanetConfig config{.gas = {.width = W, .height = H, .pressureIterations = 30, .vorticity = 0.35f,
+                                   .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,
+                                   .maxSpeed = 56.0f, .initialBands = 6.0f},
+                           .stormsPerSecond = 0.0f, .stormRadius = 0.04f, .timeScale = 60.0f};
+    GasPlanetEffect planet(cl(), config);
+    // The quietest latitude near the equator: the middle of a band.
+    double v0 = 0.5, quiet = 1e9;
+    for (int i = 0; i <= 400; ++i) {
+        const double v = 0.3 + 0.4 * i / 400.0;
+        if (planet.relativeShear(v) < quiet) quiet = planet.relativeShear(v), v0 = v;
+    }
+    planet.addStorm(0.5f, float(v0), true, 2.0f);
+    const double rotation = 2.0 * std::numbers::pi / config.rotationSpeed;
+    std::vector<float> u, v, dye;
+    auto vortexRatio = [&] {
+        planet.gas().readState(u, v, dye);
+        const GasPlanetEffect::Storm& storm = planet.storms().at(0);
+        const int ci = int(storm.u * W), cj = int(storm.v * H), reach = int(2.0f * storm.radius * W);
+        // The storm's neighbourhood against its band's typical vorticity (all longitudes).
+        double extremum = 0.0;
+        std::vector<double> band;
+        for (int j = std::max(1, cj - reach); j <= std::min(H - 2, cj + reach); ++j)
+            for (int i = 0; i < W; ++i) {
+                const double w = std::abs(hfx_gas_curl(u.data(), v.data(), W, H, i, j));
+                band.push_back(w);
+                const int di = std::min(std::abs(i - ci), W - std::abs(i - ci));
+                if (di <= reach) extremum = std::max(extremum, w);
+            }
+        std::nth_element(band.begin(), band.begin() + long(band.size() / 2), band.end());
+        return extremum / std::max(band[band.size() / 2], 1e-6);
+    };
+    for (int r = 1; r <= 20; ++r) {
+        while (planet.time() < r * rotation) planet.update(1.0 / 30.0);
+        if (r == 1 || r % 5 == 0) std::printf("rotation %d: vortex / band median %.2f\n", r, vortexRatio());
+    }
+    ASSERT_EQ(planet.storms().size(), 1u) << "its life is 40 rotations";
+    EXPECT_GT(vortexRatio(), 3.0) << "the vortex stands out of its band after 20 rotations";
 }
 
 } // namespace

@@ -35,6 +35,12 @@ void GasPlanetConfig::validate() const {
         throw Error(str("GasPlanetConfig.maxSubstep must be in (0, 60] seconds, got ", maxSubstep));
     if (maxSubsteps < 1 || maxSubsteps > 256)
         throw Error(str("GasPlanetConfig.maxSubsteps must be in [1, 256], got ", maxSubsteps));
+    if (!(stormMaintain >= 0.0f && stormMaintain <= 1.0f))
+        throw Error(str("GasPlanetConfig.stormMaintain must be in [0, 1], got ", stormMaintain));
+    if (!(stormLifeRotations > 0.0f && stormLifeRotations <= 1e4f))
+        throw Error(str("GasPlanetConfig.stormLifeRotations must be in (0, 10000], got ", stormLifeRotations));
+    if (maxStorms < 1 || maxStorms > 1024)
+        throw Error(str("GasPlanetConfig.maxStorms must be in [1, 1024], got ", maxStorms));
     if (!(poleCap >= 0.0f && poleCap <= 0.25f))
         throw Error(str("GasPlanetConfig.poleCap must be in [0, 0.25], got ", poleCap));
     if (detail > 0.0f || poleCap > 0.0f) {
@@ -72,14 +78,24 @@ GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
 void GasPlanetEffect::addStorm(float u, float v, bool clockwise, float strength) {
     if (!(strength > 0.0f) || !std::isfinite(strength))
         throw Error(str("GasPlanetEffect::addStorm: strength must be positive and finite, got ", strength));
-    // Two opposite pushes a radius apart in latitude: a shear that rolls up into a vortex.
+    if (!(u >= 0.0f && u < 1.0f && v >= 0.0f && v <= 1.0f))
+        throw Error(str("GasPlanetEffect::addStorm: texcoords must lie in [0, 1), got ", u, ", ", v));
     const float size = std::cbrt(strength);
     const float r = std::min(config_.stormRadius * size, 0.2f), dv = 0.5f * r * float(config_.gas.width) / float(config_.gas.height);
-    const float force = (clockwise ? config_.stormForce : -config_.stormForce) * size;
     const float v0 = std::fmin(std::fmax(v, dv + 0.01f), 0.99f - dv);
-    gas_.addSplat({.u = u, .v = v0 + dv, .radius = r, .forceX = force, .dye = 0.0f});
-    gas_.addSplat({.u = u, .v = v0 - dv, .radius = r, .forceX = -force, .dye = 0.0f});
+    const Storm storm{.u = u, .v = v0, .radius = r, .strength = size, .clockwise = clockwise, .born = time_};
+    spin(storm, config_.stormForce * size);
     gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r, .dye = clockwise ? 1.0f : 0.05f});
+    if (int(storms_.size()) == config_.maxStorms) storms_.erase(storms_.begin());
+    storms_.push_back(storm);
+}
+
+void GasPlanetEffect::spin(const Storm& storm, float force) {
+    // Two opposite pushes a radius apart in latitude: a shear that rolls up into a vortex.
+    const float dv = 0.5f * storm.radius * float(config_.gas.width) / float(config_.gas.height);
+    const float signed_ = storm.clockwise ? force : -force;
+    gas_.addSplat({.u = float(storm.u), .v = float(storm.v) + dv, .radius = storm.radius, .forceX = signed_});
+    gas_.addSplat({.u = float(storm.u), .v = float(storm.v) - dv, .radius = storm.radius, .forceX = -signed_});
 }
 
 float GasPlanetEffect::jetProfile(double v) const {
@@ -122,6 +138,16 @@ void GasPlanetEffect::advance(double dt) {
                 seeded_.emplace_back(u, float(v));
                 break;
             }
+        }
+        // The living storms drift with their band and are kept spinning, fading with age.
+        const double life = config_.stormLifeRotations * 2.0 * std::numbers::pi / std::max(config_.rotationSpeed, 1e-6f);
+        std::erase_if(storms_, [&](const Storm& st) { return time_ - st.born > life; });
+        for (Storm& st : storms_) {
+            st.u += double(jetProfile(st.v)) * step / double(config_.gas.width);
+            st.u -= std::floor(st.u);
+            if (st.u >= 1.0) st.u = 0.0;
+            const float fade = float(1.0 - (time_ - st.born) / life);
+            spin(st, config_.stormForce * config_.stormMaintain * st.strength * fade);
         }
         gas_.step(step);
         if (detail_) detail_->step(step);

@@ -32,6 +32,12 @@ struct GasPlanetConfig {
     float stormsPerSecond = 0.6f;  ///< new storms (vortex pairs of force plus dye)
     float stormRadius = 0.025f;    ///< in map widths
     float stormForce = 900.0f;     ///< cells per second^2 over a step
+    /// A storm lives on as a vortex the flow carries along its band, kept spinning by a force
+    /// of stormMaintain * stormForce that fades with its age over stormLifeRotations turns of the
+    /// planet; at most maxStorms at once (the oldest goes).
+    float stormMaintain = 0.02f;
+    float stormLifeRotations = 40.0f;
+    int maxStorms = 32;
     /// Storms are seeded only where the jets' shear |dU/dy| is at most this fraction of its
     /// largest: in the middle of a band, where a vortex is not torn apart at once.
     float stormShear = 0.35f;
@@ -78,6 +84,14 @@ public:
     float jetProfile(double v) const;
     /// |dU/dv| of jetProfile relative to its largest over the planet (0 in a band's middle).
     float relativeShear(double v) const;
+    /// A living storm: where it is now (texcoords), its size and spin, its age.
+    struct Storm {
+        double u, v;
+        float radius, strength;
+        bool clockwise;
+        double born;
+    };
+    const std::vector<Storm>& storms() const { return storms_; }
     /// Where the last seeded storms (not impacts) went, oldest first, at most 64.
     const std::vector<glm::vec2>& seededStorms() const { return seeded_; }
     /// Rotation about +Y after time() seconds: the planet's model matrix (scale not included).
@@ -98,6 +112,9 @@ private:
     SplitMix64 random_;
     double time_ = 0.0, stormClock_ = 0.0;
     float maxShear_ = 1.0f;
+    std::vector<Storm> storms_;
+    /// Queues the two opposite zonal pushes that spin `storm` (force in cells per second^2).
+    void spin(const Storm& storm, float force);
     std::vector<glm::vec2> seeded_;
     SurfacePipeline surface_;
 };
