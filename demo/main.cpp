@@ -25,6 +25,7 @@
 namespace hfx::demo {
 int runBench(const SceneOptions& scene, int width, int height, int frames, const std::vector<std::string>& only);
 int runBenchAccuracy(const std::string& outDir, int field);
+int runBenchTracers(const std::string& outDir, int field, const std::vector<std::string>& only, int rounds);
 int runBenchMesh(int width, int height, int frames);
 }
 
@@ -118,6 +119,11 @@ int run(const Options& o) {
         if (field & (field - 1)) throw Error(str("bench-accuracy needs a power-of-two --field, got ", field));
         return runBenchAccuracy(o.out.empty() ? "docs" : o.out, field);
     }
+    if (o.scene == "bench-tracers") {
+        const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
+        if (field & (field - 1)) throw Error(str("bench-tracers needs a power-of-two --field, got ", field));
+        return runBenchTracers(o.out, field, o.benchOnly, o.frames > 0 ? o.frames : 5);
+    }
     if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet" && o.scene != "noise")
         throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));
     if (!o.video.empty()) checkVideoEncoder();
@@ -150,7 +156,7 @@ int main(int argc, char** argv) {
     app.add_option("scene", o.scene,
                    "scene: water (FFT ocean), decals (damage on a wall), planet (gas giant), noise (any noise as a "
                    "lit relief), maps "
-                   "(a surface from image files), techniques (print the table of surface techniques), bench (frame-time benchmark), bench-accuracy (every technique "
+                   "(a surface from image files), techniques (print the table of surface techniques), bench (frame-time benchmark), bench-tracers (the exact tracer's draw time against POM's, --bench-only MAP...), bench-accuracy (every technique "
                    "against the exact intersection; writes --out/ACCURACY.md, default docs) or bench-mesh (a POM "
                    "quad against a tessellated mesh of the same 1024² heights)")
         ->capture_default_str();
@@ -245,8 +251,9 @@ int main(int argc, char** argv) {
     app.add_option("--color-map", s.colorMap, "maps, decals: colour map");
     app.add_option("--window-shot", o.windowShot,
                    "window runs with --frames: save the last frame as the window shows it, panel included");
-    app.add_option("--bench-only", o.benchOnly, "bench: only these tables (default all)")
-        ->check(CLI::IsMember({"water", "decals", "planet", "transfer", "scaling"}))
+    app.add_option("--bench-only", o.benchOnly, "bench: only these tables (default all); bench-tracers: only these maps")
+        ->check(CLI::IsMember({"water", "decals", "planet", "transfer", "scaling", "smooth waves", "bricks", "noise",
+                               "damaged wall"}))
         ->delimiter(',');
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);

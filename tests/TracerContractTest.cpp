@@ -189,6 +189,102 @@ TEST_F(TracerContract, EveryTracerRunsInAComputeHarnessAndHitsWhereTheExactInter
     }
 }
 
+/// Traces a batch of rays with one technique through the compute harness; returns the depth
+/// fraction of each hit.
+std::vector<float> traceInHarness(const AccuracyProbe& probe, Technique technique, const std::vector<glm::vec4>& rays) {
+    const int count = int(rays.size() / 2);
+    GlBuffer rayBuffer = GlBuffer::create(), hitBuffer = GlBuffer::create();
+    glNamedBufferStorage(rayBuffer.id(), GLsizeiptr(rays.size() * sizeof(glm::vec4)), rays.data(), 0);
+    glNamedBufferStorage(hitBuffer.id(), GLsizeiptr(size_t(count) * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    const ShaderProgram p = ShaderProgram::compute(
+        {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kHarnessMain});
+    p.set("u_levels", probe.textures().pyramidLevels());
+    p.set("u_wrap", glm::ivec2(1, 1));
+    p.set("u_count", count);
+    glBindTextureUnit(0, probe.textures().surface());
+    glBindTextureUnit(3, probe.textures().pyramid());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, rayBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, hitBuffer.id());
+    p.use();
+    glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> hits(static_cast<size_t>(count));
+    glGetNamedBufferSubData(hitBuffer.id(), 0, GLsizeiptr(hits.size() * sizeof(glm::vec4)), hits.data());
+    glUseProgram(0);
+    std::vector<float> depth(hits.size());
+    for (size_t i = 0; i < hits.size(); ++i) depth[i] = hits[i].z;
+    return depth;
+}
+
+/// A field built to trip a hierarchical walk: walls one texel wide at the top of the relief
+/// (h = 1) every 16 texels, broad plateaus exactly at the top and at the bottom, and a slope
+/// between them, 512 x 512.
+std::vector<float> thinWallsAndPlateaus(int n) {
+    std::vector<float> h(size_t(n) * n);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            float v;
+            if (x < n / 4) v = 1.0f;                               // top plateau
+            else if (x < n / 2) v = 0.0f;                          // bottom plateau
+            else v = 0.5f + 0.3f * float(y % 64) / 64.0f;          // ramps
+            if ((x % 16 == 7 && y % 32 < 24) || (y % 16 == 3 && x % 32 >= 8)) v = 1.0f; // thin walls
+            h[size_t(y) * n + x] = v;
+        }
+    return h;
+}
+
+TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
+    constexpr int N = 512;
+    constexpr double depth = 0.1;
+    const auto heights = thinWallsAndPlateaus(N);
+    AccuracyProbe probe(cl(), heights, N, float(depth));
+    // Entry points on texel centres, on the corners the gather shares and anywhere between;
+    // view angles up to 89 degrees, any azimuth (axis-aligned ones included).
+    constexpr int kRays = 1 << 20;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<glm::vec4> rays;
+    rays.reserve(2 * kRays);
+    for (int i = 0; i < kRays; ++i) {
+        glm::dvec2 uv0(unit(random), unit(random));
+        if (i % 3 == 0) uv0 = (glm::floor(uv0 * double(N)) + 0.5) / double(N);
+        else if (i % 3 == 1) uv0 = glm::floor(uv0 * double(N)) / double(N);
+        const double angle = std::acos(unit(random)) * 89.0 / 90.0;
+        const double azimuth = i % 16 == 0 ? std::numbers::pi / 2 * double(i / 16 % 4) : 2 * std::numbers::pi * unit(random);
+        const glm::dvec2 parallax = glm::dvec2(std::cos(azimuth), std::sin(azimuth)) * std::tan(angle) * depth;
+        rays.emplace_back(float(uv0.x), float(uv0.y), float(parallax.x), float(parallax.y));
+        rays.emplace_back(float(std::cos(angle)), 0.0f, 32.0f, 0.0f);
+    }
+    const std::vector<float> traced = traceInHarness(probe, Technique::Hierarchical, rays);
+    int deeper = 0, off = 0;
+    double worst = 0.0;
+    for (int i = 0; i < kRays; ++i) {
+        const glm::vec4 a = rays[2 * size_t(i)];
+        const glm::dvec3 toEye(double(a.z) / depth, double(a.w) / depth, 1.0);
+        const auto hit = probe.exact().traceView(glm::dvec2(a.x, a.y), toEye, depth);
+        const double exactDepth = hit ? hit->t : 1.0;
+        // In texels along the ray: how far past (or short of) the exact first hit.
+        const double texels = (double(traced[i]) - exactDepth) * glm::length(glm::dvec2(a.z, a.w)) * N;
+        if (texels > 0.05) {
+            if (deeper < 5)
+                std::printf("[tunnel] uv (%.9g, %.9g) parallax (%.9g, %.9g): %.4f vs exact %.4f (%.2f texels)\n", a.x,
+                            a.y, a.z, a.w, traced[i], exactDepth, texels);
+            ++deeper;
+        }
+        if (std::abs(texels) > 0.05) {
+            if (off < 12)
+                std::printf("[off] uv (%.9g, %.9g) parallax (%.9g, %.9g) angle %.2f: %.4f vs exact %.4f (%.2f texels)\n", a.x,
+                            a.y, a.z, a.w, std::acos(double(rays[2 * size_t(i) + 1].x)) * 180 / std::numbers::pi, traced[i], exactDepth, texels);
+            ++off;
+        }
+        worst = std::max(worst, std::abs(texels));
+    }
+    std::printf("[tunnel] %d of %d rays deeper than the exact hit, %d off by > 0.05 texel, worst %.3f texels\n",
+                deeper, kRays, off, worst);
+    EXPECT_EQ(deeper, 0);
+    EXPECT_EQ(off, 0);
+}
+
 TEST_F(TracerContract, TheTechniqueTableNamesItsShadersAndParsesItsNames) {
     for (const TechniqueInfo& t : kTechniqueTable) {
         EXPECT_EQ(parseTechnique(t.name), t.technique);
