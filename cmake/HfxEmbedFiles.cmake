@@ -10,6 +10,12 @@ foreach(file IN LISTS FILES)
     endif()
     file(READ ${file} hex HEX)
     string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
+    # GLSL and OpenCL C sources are ASCII: a stray UTF-8 character (a "²" in a comment) is named
+    # here rather than failing as a narrowing error in the generated file.
+    string(REGEX MATCH "0x[89a-f][0-9a-f]," wide "${bytes}")
+    if(wide)
+        message(FATAL_ERROR "${file}: non-ASCII byte ${wide} (shader and kernel sources must be ASCII)")
+    endif()
     string(LENGTH "${hex}" hexLength)
     math(EXPR size "${hexLength} / 2")
     string(APPEND body "const char data${i}[] = {${bytes}0};\n")
