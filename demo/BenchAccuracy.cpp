@@ -1,6 +1,7 @@
 // hfx-demo bench-accuracy: every technique against the exact intersection, on four maps at five
-// view angles; writes docs/ACCURACY.md (the table), a plot of error against fetches and crops of
-// each technique at 80 degrees. Depth scale 0.1 texture widths, mip level 0, 8..32 samples.
+// view angles; writes docs/ACCURACY.md (the tables), crops of
+// each technique at 80 degrees, and docs/accuracy/accuracy.csv (every row) for
+// scripts/plot_accuracy.py. Depth scale 0.1 texture widths, mip level 0, 8..32 samples.
 
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/NoiseField.h"
@@ -58,38 +59,6 @@ std::vector<Map> makeMaps(ClContext& cl, int n) {
     return maps;
 }
 
-/// A scatter plot, log10 error (texels) against fetches, one colour per technique, drawn into
-/// an RGB image: axes, a grid line per decade and every 10 fetches.
-Image plot(const std::vector<std::tuple<Technique, double, double>>& points, const std::map<Technique, glm::vec3>& colors) {
-    constexpr int W = 720, H = 480, left = 50, bottom = 40, right = 20, top = 20;
-    Image image{W, H, 3, std::vector<float>(size_t(W) * H * 3, 1.0f)};
-    double maxFetch = 10.0;
-    for (const auto& [t, f, e] : points) maxFetch = std::max(maxFetch, f);
-    maxFetch = std::ceil(maxFetch / 10.0) * 10.0;
-    const double minLog = -4.0, maxLog = 2.0;
-    auto px = [&](double f) { return left + int((W - left - right) * f / maxFetch); };
-    auto py = [&](double e) {
-        const double l = std::clamp(std::log10(std::max(e, 1e-4)), minLog, maxLog);
-        return H - bottom - int((H - top - bottom) * (l - minLog) / (maxLog - minLog));
-    };
-    auto set = [&](int x, int y, glm::vec3 c) {
-        if (x >= 0 && y >= 0 && x < W && y < H)
-            for (int k = 0; k < 3; ++k) image.at(x, y, k) = c[k];
-    };
-    for (int d = int(minLog); d <= int(maxLog); ++d)
-        for (int x = left; x < W - right; ++x) set(x, py(std::pow(10.0, d)), glm::vec3(d == 0 ? 0.6f : 0.85f));
-    for (double f = 0; f <= maxFetch; f += 10)
-        for (int y = top; y < H - bottom; ++y) set(px(f), y, glm::vec3(0.85f));
-    for (int x = left; x < W - right; ++x) set(x, H - bottom, glm::vec3(0.0f));
-    for (int y = top; y < H - bottom; ++y) set(left, y, glm::vec3(0.0f));
-    for (const auto& [t, f, e] : points) {
-        const int cx = px(f), cy = py(e);
-        for (int dy = -3; dy <= 3; ++dy)
-            for (int dx = -3; dx <= 3; ++dx) set(cx + dx, cy + dy, colors.at(t));
-    }
-    return image;
-}
-
 } // namespace
 
 int runBenchAccuracy(const std::string& outDir, int field) {
@@ -97,14 +66,6 @@ int runBenchAccuracy(const std::string& outDir, int field) {
     ClContext cl;
     const std::vector<Map> maps = makeMaps(cl, field);
     const double angles[] = {0, 45, 70, 80, 85};
-    // One colour per row of the technique table, in its order.
-    const std::pair<const char*, glm::vec3> palette[] = {
-        {"grey", {0.5f, 0.5f, 0.5f}},   {"orange", {0.9f, 0.6f, 0.0f}}, {"red", {0.8f, 0.1f, 0.1f}},
-        {"green", {0.1f, 0.6f, 0.1f}},  {"purple", {0.6f, 0.2f, 0.8f}}, {"blue", {0.1f, 0.3f, 0.9f}},
-        {"black", {0.0f, 0.0f, 0.0f}},  {"brown", {0.55f, 0.3f, 0.1f}}, {"cyan", {0.0f, 0.7f, 0.8f}}};
-    static_assert(std::size(palette) >= kTechniqueCount, "a colour for every technique");
-    std::map<Technique, glm::vec3> colors;
-    for (size_t i = 0; i < kTechniqueCount; ++i) colors[kTechniques[i]] = palette[i].second;
     const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f); // 60 degrees
 
     std::ostringstream md;
@@ -114,20 +75,24 @@ int runBenchAccuracy(const std::string& outDir, int field) {
        << "precision); fields " << field << "x" << field << ", depth scale 0.1 texture widths, mip level 0, 8..32\n"
        << "samples (the shadow pass: 8 samples, light 60 degrees off the normal), a 192x192 render of a plane\n"
        << "spanning one texture. Columns: texcoord error in texels (mean, 95th percentile), share of pixels\n"
-       << "more than 4 texels off, mean height fetches per pixel counted in the shader (without shadows),\n"
+       << "more than 4 texels off, the same error on the screen (the texcoord error at the hit's height,\n"
+       << "projected: mean pixels of the 192x192 image, share more than one pixel off), mean height fetches per pixel counted in the shader (without shadows),\n"
        << "mean error of the depth fraction written to gl_FragDepth, agreement of the self-shadow with exact\n"
        << "shadow rays outside a 1.5-texel band around shadow edges (techniques without shadows: n/a),\n"
        << "and the median draw time of a 1280x720 frame filled by the plane at that angle (with the\n"
        << "technique's shadows: soft for pom, secant and hier, hard for steep and relief).\n\n";
-    std::vector<std::tuple<Technique, double, double>> points;
+    std::ostringstream csv; // every row of the tables, for scripts/plot_accuracy.py
+    csv << "map,angle,technique,mean_texels,p95_texels,over4_share,max_texels,fetches,depth_error,shadow_agreement,"
+           "ms_1280x720,mean_pixels,p95_pixels,over1px_share\n";
     constexpr int kCropW = 180, kCropH = 180;
     Image strip{kCropW * int(std::size(kTechniques)), kCropH, 3,
                 std::vector<float>(size_t(kCropW) * std::size(kTechniques) * kCropH * 3)};
     std::map<std::pair<std::string, double>, double> hierMean, hierFetches;
     for (const Map& map : maps) {
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
-        md << "## " << map.name << "\n\n| angle | technique | mean | p95 | > 4 texels | fetches | depth error | shadow agreement | ms 1280x720 |\n"
-           << "|---|---|---|---|---|---|---|---|---|\n";
+        md << "## " << map.name
+           << "\n\n| angle | technique | mean | p95 | > 4 texels | mean px | > 1 px | fetches | depth error | shadow agreement | "
+              "ms 1280x720 |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
         for (double angle : angles) {
             for (size_t ti = 0; ti < std::size(kTechniques); ++ti) {
                 const Technique t = kTechniques[ti];
@@ -142,10 +107,15 @@ int runBenchAccuracy(const std::string& outDir, int field) {
                     std::snprintf(ms, sizeof ms, "%.1f",
                                   probe.timeDraw(t, {.angleDegrees = angle, .shadows = hasShadows, .light = light}, 1280, 720, 3));
                 char line[400];
-                std::snprintf(line, sizeof line, "| %.0f | %s | %.3f | %.3f | %.2f%% | %.1f | %.4f | %s | %s |\n", angle,
-                              techniqueName(t), r.mean, r.p95, 100.0 * r.over4, r.fetches, r.depthMean, shadow, ms);
+                std::snprintf(line, sizeof line, "| %.0f | %s | %.3f | %.3f | %.2f%% | %.3f | %.2f%% | %.1f | %.4f | %s | %s |\n",
+                              angle, techniqueName(t), r.mean, r.p95, 100.0 * r.over4, r.meanPixels, 100.0 * r.overPixel,
+                              r.fetches, r.depthMean, shadow, ms);
                 md << line;
-                if (techniqueInfo(t).traces) points.emplace_back(t, r.fetches, r.mean);
+                csv << map.name << "," << angle << "," << techniqueName(t) << "," << r.mean << "," << r.p95 << ","
+                    << r.over4 << "," << r.max << "," << r.fetches << "," << r.depthMean << ","
+                    << (hasShadows ? std::to_string(s.shadowAgreement) : std::string()) << ","
+                    << (angle <= 80 ? std::string(ms) : std::string()) << "," << r.meanPixels << "," << r.p95Pixels << ","
+                    << r.overPixel << "\n";
                 if (t == Technique::Hierarchical) {
                     hierMean[{map.name, angle}] = r.mean;
                     hierFetches[{map.name, angle}] = r.fetches;
@@ -199,20 +169,14 @@ int runBenchAccuracy(const std::string& outDir, int field) {
         }
     }
     md << "\n";
-    md << "## Plot and crops\n\n![error against fetches](accuracy/plot.png)\n\n"
-       << "Mean error (texels, log scale, 1e-4 to 100; grid lines per decade, the darker one at 1 texel)\n"
-       << "against mean fetches per pixel (grid every 10), one point per map and angle. Colours: ";
-    std::string legend, order;
-    for (size_t i = 0; i < kTechniqueCount; ++i) {
-        if (techniqueInfo(kTechniques[i]).traces)
-            legend += str(legend.empty() ? "" : ", ", techniqueName(kTechniques[i]), " ", palette[i].first);
-        order += str(order.empty() ? "" : ", ", techniqueName(kTechniques[i]));
-    }
-    md << legend << ".\n\n![crops at 80 degrees](accuracy/crops_80.jpg)\n\nThe bricks map at 80 degrees, left to right: "
-       << order << ".\n";
+    md << "## Figures\n\nDrawn by `python3 scripts/plot_accuracy.py docs` from `docs/accuracy/accuracy.csv` (every row "
+          "above) and the crops this run wrote.\n\n"
+       << "![error against view angle](accuracy/error_vs_angle.png)\n\n"
+       << "![error against fetches and draw time](accuracy/cost_vs_error.png)\n\n"
+       << "![the bricks map at 80 degrees, one crop per technique](accuracy/crops_80.png)\n";
     std::filesystem::create_directories(std::filesystem::path(outDir) / "accuracy");
-    writeImage((std::filesystem::path(outDir) / "accuracy" / "plot.png").string(), plot(points, colors));
     writeImage((std::filesystem::path(outDir) / "accuracy" / "crops_80.jpg").string(), strip);
+    std::ofstream(std::filesystem::path(outDir) / "accuracy" / "accuracy.csv") << csv.str();
     const std::string mdPath = (std::filesystem::path(outDir) / "ACCURACY.md").string();
     std::ofstream(mdPath) << md.str();
     std::printf("%s", md.str().c_str());

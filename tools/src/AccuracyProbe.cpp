@@ -85,8 +85,16 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
         return exact_.intersect(origin, lightUVH, tMax).has_value();
     };
 
+    const glm::dmat4 viewProj(camera.viewProjection());
+    auto toPixel = [&](glm::dvec3 uvh) {
+        const glm::dvec4 world((uvh.x - 0.5) * kPlaneSize, -(1.0 - uvh.z) * config.depthScale * kPlaneSize,
+                               (0.5 - uvh.y) * kPlaneSize, 1.0);
+        const glm::dvec4 clip = viewProj * world;
+        return (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * double(n);
+    };
+
     AccuracyResult r;
-    std::vector<double> errors;
+    std::vector<double> errors, pixelErrors;
     double depthSum = 0.0, fetchSum = 0.0;
     size_t over4 = 0, agree = 0;
     for (int y = 0; y < n; ++y)
@@ -102,6 +110,12 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
             if (!hit) continue;
             const double error = glm::length(glm::dvec2(t.x, t.y) - hit->uv) * size_;
             errors.push_back(error);
+            // The same error on the screen: the texcoord error moved to the exact hit's height and
+            // projected, i.e. how many pixels the texture's content is displaced. (The traced
+            // point itself lies on the pixel's ray, so projecting it would hide a tracer's error.)
+            const glm::dvec2 traced = toPixel(glm::dvec3(t.x, t.y, hit->height));
+            const glm::dvec2 truth = toPixel(glm::dvec3(hit->uv, hit->height));
+            pixelErrors.push_back(glm::length(traced - truth));
             over4 += error > 4.0;
             depthSum += std::abs(double(t.z) - hit->t);
             const double fetches = std::floor(double(t.w));
@@ -145,6 +159,16 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
         r.over4 = double(over4) / errors.size();
         r.depthMean = depthSum / errors.size();
         r.fetches = fetchSum / errors.size();
+        std::sort(pixelErrors.begin(), pixelErrors.end());
+        double pixelSum = 0.0;
+        size_t overPixel = 0;
+        for (double e : pixelErrors) {
+            pixelSum += e;
+            overPixel += e > 1.0;
+        }
+        r.meanPixels = pixelSum / pixelErrors.size();
+        r.p95Pixels = pixelErrors[std::min(pixelErrors.size() - 1, size_t(0.95 * pixelErrors.size()))];
+        r.overPixel = double(overPixel) / pixelErrors.size();
     }
     r.shadowAgreement = r.shadowPixels ? double(agree) / r.shadowPixels : 1.0;
     return r;

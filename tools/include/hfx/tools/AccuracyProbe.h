@@ -46,6 +46,9 @@ struct AccuracyResult {
     size_t pixels = 0;              ///< pixels on the plane compared
     double mean = 0, p95 = 0, max = 0; ///< texcoord error in texels
     double over4 = 0;               ///< fraction of pixels more than 4 texels off
+    /// The same error on the screen: the traced and the exact point on the relief, both projected,
+    /// in pixels of the measured image (mean, 95th percentile, fraction more than a pixel off).
+    double meanPixels = 0, p95Pixels = 0, overPixel = 0;
     double depthMean = 0;           ///< |depth fraction - exact| (what gl_FragDepth is made of)
     double fetches = 0;             ///< mean height fetches per pixel, counted in the shader
     double shadowAgreement = 1.0;   ///< fraction of compared points whose shadow state agrees
