@@ -114,6 +114,24 @@ TEST_F(Techniques, RankingByErrorAt80Degrees) {
     EXPECT_LT(mean[Technique::ParallaxOffset], mean[Technique::NormalMapping]);
 }
 
+TEST_F(Techniques, ScreenErrorIsTheTexelErrorAtTheImagesScale) {
+    AccuracyProbe probe(cl(), blocks(kField, 4), kField, 0.1f);
+    // Seen from straight above, a texel covers the same pixels everywhere: the pixel error over
+    // the texel error is that scale for any technique; at 80 degrees foreshortening shrinks it.
+    const AccuracyResult nm = probe.measure(Technique::NormalMapping, {.angleDegrees = 0});
+    const AccuracyResult offset = probe.measure(Technique::ParallaxOffset, {.angleDegrees = 0});
+    ASSERT_GT(nm.mean, 0.1);
+    ASSERT_GT(offset.mean, 0.01);
+    const double scale = nm.meanPixels / nm.mean;
+    EXPECT_GT(scale, 0.2);
+    EXPECT_NEAR(offset.meanPixels / offset.mean, scale, 0.1 * scale);
+    const AccuracyResult grazing = probe.measure(Technique::NormalMapping, {.angleDegrees = 80});
+    EXPECT_LT(grazing.meanPixels / grazing.mean, 0.5 * scale);
+    EXPECT_GT(grazing.meanPixels, 0.1);
+    // The exact tracer is exact on the screen too.
+    EXPECT_LT(probe.measure(Technique::Hierarchical, {.angleDegrees = 80}).meanPixels, 1e-3);
+}
+
 TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {
     // One box-shaped bump on a floor, lit from 60 degrees off the normal.
     std::vector<float> box(kField * kField, 0.2f);
