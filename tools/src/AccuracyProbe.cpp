@@ -25,6 +25,26 @@ SurfaceMaterial materialOf(const AccuracyConfig& config) {
             .shadows = config.shadows};
 }
 
+struct Spread {
+    double mean = 0, p95 = 0, max = 0, over = 0; ///< over: the share above the threshold
+};
+
+/// Mean, 95th percentile, maximum and the share above `threshold` of a non-empty sample.
+Spread spreadOf(std::vector<double>& values, double threshold) {
+    std::sort(values.begin(), values.end());
+    Spread s;
+    size_t over = 0;
+    for (double v : values) {
+        s.mean += v;
+        over += v > threshold;
+    }
+    s.mean /= double(values.size());
+    s.p95 = values[std::min(values.size() - 1, size_t(0.95 * double(values.size())))];
+    s.max = values.back();
+    s.over = double(over) / double(values.size());
+    return s;
+}
+
 } // namespace
 
 Camera accuracyCamera(double angleDegrees, float distance, float aspect) {
@@ -96,7 +116,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     AccuracyResult r;
     std::vector<double> errors, pixelErrors;
     double depthSum = 0.0, fetchSum = 0.0;
-    size_t over4 = 0, agree = 0;
+    size_t agree = 0;
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
             const glm::vec4 t = trace[size_t(y) * n + x];
@@ -116,7 +136,6 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
             const glm::dvec2 traced = toPixel(glm::dvec3(t.x, t.y, hit->height));
             const glm::dvec2 truth = toPixel(glm::dvec3(hit->uv, hit->height));
             pixelErrors.push_back(glm::length(traced - truth));
-            over4 += error > 4.0;
             depthSum += std::abs(double(t.z) - hit->t);
             const double fetches = std::floor(double(t.w));
             fetchSum += fetches;
@@ -150,25 +169,16 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
         }
     r.pixels = errors.size();
     if (!errors.empty()) {
-        std::sort(errors.begin(), errors.end());
-        double sum = 0.0;
-        for (double e : errors) sum += e;
-        r.mean = sum / errors.size();
-        r.p95 = errors[std::min(errors.size() - 1, size_t(0.95 * errors.size()))];
-        r.max = errors.back();
-        r.over4 = double(over4) / errors.size();
+        const Spread texels = spreadOf(errors, 4.0), pixels = spreadOf(pixelErrors, 1.0);
+        r.mean = texels.mean;
+        r.p95 = texels.p95;
+        r.max = texels.max;
+        r.over4 = texels.over;
+        r.meanPixels = pixels.mean;
+        r.p95Pixels = pixels.p95;
+        r.overPixel = pixels.over;
         r.depthMean = depthSum / errors.size();
         r.fetches = fetchSum / errors.size();
-        std::sort(pixelErrors.begin(), pixelErrors.end());
-        double pixelSum = 0.0;
-        size_t overPixel = 0;
-        for (double e : pixelErrors) {
-            pixelSum += e;
-            overPixel += e > 1.0;
-        }
-        r.meanPixels = pixelSum / pixelErrors.size();
-        r.p95Pixels = pixelErrors[std::min(pixelErrors.size() - 1, size_t(0.95 * pixelErrors.size()))];
-        r.overPixel = double(overPixel) / pixelErrors.size();
     }
     r.shadowAgreement = r.shadowPixels ? double(agree) / r.shadowPixels : 1.0;
     return r;
