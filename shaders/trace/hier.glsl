@@ -25,6 +25,22 @@
 
 const int HFX_MAX_TRACE_STEPS = 1 << 18; // only against a NaN ray; the real bound is per ray
 
+// Past the current cell: onto its exit, the crossed axes snapped to the boundary. A level up
+// only where the boundary is also the parent's: the ray only descends, so a parent it has dipped
+// into is never skipped later, and testing it again is waste.
+void hfx_pass_cell(vec2 p0, vec2 dir, vec2 bound, vec2 tCross, float tExit, int topLevel, inout vec2 p, inout float t,
+                   inout int level, inout float cellSize, inout float invCellSize) {
+    const bvec2 crossed = lessThanEqual(tCross, vec2(tExit));
+    p = mix(p0 + dir * tExit, bound, crossed);
+    t = tExit;
+    const vec2 parentEdge = mix(vec2(1.0), fract(bound * (0.5 * invCellSize)), crossed);
+    if (min(parentEdge.x, parentEdge.y) == 0.0 && level < topLevel) {
+        ++level;
+        cellSize *= 2.0;
+        invCellSize *= 0.5;
+    }
+}
+
 float hfx_trace_depth(vec2 uv0, vec2 parallax) {
     const ivec2 size = hfx_size();
     const vec2 p0 = uv0 * vec2(size) - 0.5;
@@ -62,18 +78,7 @@ float hfx_trace_depth(vec2 uv0, vec2 parallax) {
                 cellSize *= 0.5;
                 invCellSize *= 2.0;
             } else {
-                // Past the cell: onto its exit, the crossed axes snapped to the boundary. A level
-                // up only where the boundary is also the parent's: the ray only descends, so a
-                // parent it has dipped into is never skipped later, and testing it again is waste.
-                const bvec2 crossed = lessThanEqual(tCross, vec2(tExit));
-                p = mix(p0 + dir * tExit, bound, crossed);
-                t = tExit;
-                const vec2 parentEdge = mix(vec2(1.0), fract(bound * (0.5 * invCellSize)), crossed);
-                if (min(parentEdge.x, parentEdge.y) == 0.0 && level < topLevel) {
-                    ++level;
-                    cellSize *= 2.0;
-                    invCellSize *= 0.5;
-                }
+                hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
             }
         }
         if (!found) return t;
@@ -98,16 +103,8 @@ float hfx_trace_depth(vec2 uv0, vec2 parallax) {
             }
         }
         if (root <= tExit - t) return t + root;
-        // Past the cell: onto its exit, the crossed axes snapped to the boundary, a level up.
-        const bvec2 crossed = lessThanEqual(tCross, vec2(tExit));
-        p = mix(p0 + dir * tExit, bound, crossed);
-        t = tExit;
-        const vec2 parentEdge = mix(vec2(1.0), fract(bound * 0.5), crossed);
-        if (min(parentEdge.x, parentEdge.y) == 0.0 && topLevel > 0) {
-            level = 1;
-            cellSize = 2.0;
-            invCellSize = 0.5;
-        }
+        // The ray passes over the patch: on past the cell, as a skip.
+        hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
         ++steps;
     }
     return t;
