@@ -78,9 +78,9 @@ int runBenchAccuracy(const std::string& outDir, int field) {
        << "more than 4 texels off, the same error on the screen (the texcoord error at the hit's height,\n"
        << "projected: mean pixels of the 192x192 image, share more than one pixel off), mean height fetches per pixel counted in the shader (without shadows),\n"
        << "mean error of the depth fraction written to gl_FragDepth, agreement of the self-shadow with exact\n"
-       << "shadow rays outside a 1.5-texel band around shadow edges (techniques without shadows: n/a),\n"
+       << "shadow rays outside a 1.5-texel band around shadow edges and outside the penumbra band (the light ray clear, the ray lowered by 1/sharpness of its climb not; techniques without shadows: n/a),\n"
        << "and the median draw time of a 1280x720 frame filled by the plane at that angle (with the\n"
-       << "technique's shadows: soft for pom, secant and hier, hard for steep and relief).\n\n";
+       << "technique's shadows: soft for pom and secant, hard for steep and relief, exact for hier).\n\n";
     std::ostringstream csv; // every row of the tables, for scripts/plot_accuracy.py
     csv << "map,angle,technique,mean_texels,p95_texels,over4_share,max_texels,fetches,depth_error,shadow_agreement,"
            "ms_1280x720,mean_pixels,p95_pixels,over1px_share\n";

@@ -209,14 +209,16 @@ void main() {
     const vec3 lightDir = normalize(u_lightDir);
     const float nDotL = dot(normal, lightDir);
 
-    // Self-shadows: the technique's, from the displaced point towards the light, skipped facing
-    // away, and faded in from the geometric terminator, where the N.L skip would otherwise cut
-    // from fully shadowed (grazing light) to unshadowed in one pixel.
+    // Self-shadows: the technique's, from the displaced point towards the light, skipped where the
+    // polygon faces away, and faded in from the geometric terminator, where that skip would
+    // otherwise cut from fully shadowed (grazing light) to unshadowed in one pixel. Not skipped
+    // where the shading normal faces away: it is smoothed over texels (Sobel, mip levels), so at
+    // the foot of a wall it turns away while the light ray, traced, still meets the wall.
     float lit = 1.0;
 #if HFX_SELF_SHADOW
     const vec3 lightTS = textureFromWorld * lightDir;
     const float h0 = 1.0 - depthFraction;
-    if (u_shadows != 0 && lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && nDotL > 0.0 && h0 < 1.0 &&
+    if (u_shadows != 0 && lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && h0 < 1.0 &&
         mipLevel <= u_lodThreshold && depthScale > 0.0) {
         HfxShadowRay shadowRay;
         shadowRay.uv = uv;

@@ -126,15 +126,37 @@ void main() {
 )",
                               "test"};
 
+const SourceFile kShadowMain{"harness_shadow.comp", R"(
+layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; }; // 2 per ray: uv, span | h0, level, samples, sharpness
+layout(std430, binding = 1) writeonly buffer Hits { vec4 hits[]; };
+uniform int u_count;
+void main() {
+    const uint i = gl_GlobalInvocationID.x;
+    if (i >= uint(u_count)) return;
+    const vec4 a = rays[2 * i], b = rays[2 * i + 1];
+    HfxShadowRay ray;
+    ray.uv = a.xy;
+    ray.span = a.zw;
+    ray.h0 = b.x;
+    ray.level = b.y;
+    ray.samples = int(b.z);
+    ray.sharpness = b.w;
+    hits[i] = vec4(hfx_shadow(ray), 0.0, 0.0, 0.0);
+}
+)",
+                             "test"};
+
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
-/// harness; returns each hit as (u, v, depth fraction, 0).
-std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique technique, const std::vector<glm::vec4>& rays) {
+/// harness; returns each hit as (u, v, depth fraction, 0), or with kShadowMain each shadow ray's
+/// hfx_shadow in x.
+std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique technique, const std::vector<glm::vec4>& rays,
+                                      const SourceFile& main = kHarnessMain) {
     const int count = int(rays.size() / 2);
     GlBuffer rayBuffer = GlBuffer::create(), hitBuffer = GlBuffer::create();
     glNamedBufferStorage(rayBuffer.id(), GLsizeiptr(rays.size() * sizeof(glm::vec4)), rays.data(), 0);
     glNamedBufferStorage(hitBuffer.id(), GLsizeiptr(size_t(count) * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     const ShaderProgram p = ShaderProgram::compute(
-        {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kHarnessMain});
+        {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), main});
     p.set("u_levels", probe.textures().pyramidLevels());
     p.set("u_wrap", glm::ivec2(1, 1));
     p.set("u_count", count);
@@ -258,6 +280,69 @@ TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
                 deeper, kRays, off, worst);
     EXPECT_EQ(deeper, 0);
     EXPECT_EQ(off, 0);
+}
+
+TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
+    // Light rays from points on the same field of thin walls and plateaus, any azimuth, up to 85
+    // degrees from the normal, with a sharpness so high that the penumbra vanishes: the exact
+    // tracer's hfx_shadow is 1 exactly where the exact CPU ray meets the surface.
+    constexpr int N = 512;
+    constexpr double depth = 0.1;
+    const auto heights = thinWallsAndPlateaus(N);
+    AccuracyProbe probe(cl(), heights, N, float(depth));
+    constexpr int kRays = 1 << 20;
+    std::mt19937 random(12);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<glm::vec4> rays;
+    std::vector<glm::dvec3> origins, directions;
+    rays.reserve(2 * kRays);
+    while (origins.size() < size_t(kRays)) {
+        glm::dvec2 uv(unit(random), unit(random));
+        if (origins.size() % 3 == 0) uv = (glm::floor(uv * double(N)) + 0.5) / double(N);
+        const double h0 = probe.exact().heightAt(uv);
+        if (h0 > 0.999) continue; // on top: nothing can be above (the shader does not ask)
+        const double angle = std::acos(unit(random)) * 85.0 / 90.0;
+        const double azimuth = origins.size() % 16 == 0 ? std::numbers::pi / 2 * double(origins.size() / 16 % 4)
+                                                        : 2 * std::numbers::pi * unit(random);
+        // Per unit of height climbed the light ray moves tan(angle) * depth in texcoords.
+        const glm::dvec3 direction(std::cos(azimuth) * std::tan(angle) * depth,
+                                   std::sin(azimuth) * std::tan(angle) * depth, 1.0);
+        const glm::dvec2 span = glm::dvec2(direction) * (1.0 - h0);
+        rays.emplace_back(float(uv.x), float(uv.y), float(span.x), float(span.y));
+        rays.emplace_back(float(h0), 0.0f, 8.0f, 1e6f);
+        origins.emplace_back(uv, h0);
+        directions.push_back(direction);
+    }
+    const std::vector<glm::vec4> shadow = traceInHarness(probe, Technique::Hierarchical, rays, kShadowMain);
+    int missed = 0, invented = 0, blocked = 0, grazing = 0;
+    for (int i = 0; i < kRays; ++i) {
+        const glm::dvec3 o = origins[size_t(i)], d = directions[size_t(i)];
+        const double tMax = 1.0 - o.z;
+        // Clearly blocked: the ray raised by 2e-3 of the depth still meets the surface. Clear:
+        // the ray itself (from just above the point) meets nothing.
+        const bool deep = probe.exact().intersect(o + glm::dvec3(0, 0, 2e-3), d, tMax).has_value();
+        const bool touches = probe.exact().intersect(o + glm::dvec3(0, 0, 1e-7), d, tMax).has_value();
+        const bool dark = shadow[size_t(i)].x >= 1.0f;
+        blocked += deep;
+        grazing += touches && !deep;
+        if (deep && !dark) {
+            if (missed < 8)
+                std::printf("[missed] uv (%.9g, %.9g) h0 %.6f span (%.6g, %.6g): shadow %.4f\n", o.x, o.y, o.z,
+                            rays[2 * size_t(i)].z, rays[2 * size_t(i)].w, shadow[size_t(i)].x);
+            ++missed;
+        }
+        if (!touches && dark) {
+            if (invented < 8)
+                std::printf("[invented] uv (%.9g, %.9g) h0 %.6f span (%.6g, %.6g) %.6f\n", o.x, o.y, o.z,
+                            rays[2 * size_t(i)].z, rays[2 * size_t(i)].w, shadow[size_t(i)].x);
+            ++invented;
+        }
+    }
+    std::printf("[shadow] %d of %d rays blocked, %d grazing; %d blockers missed, %d invented\n", blocked, kRays,
+                grazing, missed, invented);
+    EXPECT_GT(blocked, kRays / 10);
+    EXPECT_EQ(missed, 0);
+    EXPECT_EQ(invented, 0);
 }
 
 TEST_F(TracerContract, TheTechniqueTableNamesItsShadersAndParsesItsNames) {

@@ -27,7 +27,8 @@ Technique parseTechnique(const std::string& name) {
 
 namespace {
 constexpr NamedValue<SelfShadow> kShadowNames[] = {
-    {SelfShadow::None, "none"}, {SelfShadow::Hard, "hard"}, {SelfShadow::Soft, "soft"}};
+    {SelfShadow::None, "none"}, {SelfShadow::Hard, "hard"}, {SelfShadow::Soft, "soft"},
+    {SelfShadow::Exact, "exact"}};
 constexpr NamedValue<Shading> kShadingShaders[] = {
     {Shading::Lit, "shade/lit.glsl"}, {Shading::Water, "shade/water.glsl"}, {Shading::Planet, "shade/planet.glsl"}};
 } // namespace

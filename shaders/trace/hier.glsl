@@ -5,7 +5,8 @@
 // a cell the ray dips into is opened a level down. A level-0 cell the ray dips into is solved:
 // the bilinear patch between four samples (hfx_gather) in closed form (the height along the ray
 // is quadratic in t); if the ray passes the patch the walk goes on. Cell space:
-// x = u * width - 0.5, so cell i spans the samples i and i + 1. Soft self-shadows.
+// x = u * width - 0.5, so cell i spans the samples i and i + 1. Exact self-shadows with a
+// blocker-distance penumbra (hfx_shadow, below).
 //
 // Why it cannot step over a surface (tests/TracerContractTest.cpp, a million rays):
 // - a point on a cell boundary belongs to the cell ahead (floor going +, ceil - 1 going -), and
@@ -41,16 +42,36 @@ void hfx_pass_cell(vec2 p0, vec2 dir, vec2 bound, vec2 tCross, float tExit, int 
     }
 }
 
+// The cell of the level (cellSize = 2^level) that the ray is in at p, going on along dir: its
+// corner ahead (bound), where the ray meets that corner's lines (tCross; an axis the ray does not
+// move along: far ahead) and leaves the cell (tExit, within [t, 1]). On a boundary: the cell ahead.
+void hfx_cell_at(vec2 p0, vec2 p, vec2 invDir, bvec2 back, float t, float cellSize, float invCellSize, out vec2 cell,
+                 out vec2 bound, out vec2 tCross, out float tExit) {
+    const vec2 q = p * invCellSize;
+    cell = mix(floor(q), ceil(q) - 1.0, back);
+    bound = (cell + vec2(not(back))) * cellSize;
+    tCross = (bound - p0) * invDir;
+    tExit = clamp(min(tCross.x, tCross.y), t, 1.0);
+}
+
+// The walk's bounds for a ray moving by dir (in texels) over t in [0, 1]: the highest level it
+// climbs to (cells as wide as its footprint) and its step bound (see the header).
+int hfx_top_level(vec2 dir) {
+    return clamp(int(ceil(log2(max(max(abs(dir.x), abs(dir.y)), 1.0)))), 0, hfx_levels() - 1);
+}
+int hfx_max_steps(vec2 dir, int topLevel) {
+    return int(min(4.0 * (abs(dir.x) + abs(dir.y)) + float(4 * topLevel + 24), float(HFX_MAX_TRACE_STEPS)));
+}
+vec2 hfx_inverse(vec2 dir) { return vec2(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30); }
+
 float hfx_trace_depth(vec2 uv0, vec2 parallax) {
     const ivec2 size = hfx_size();
     const vec2 p0 = uv0 * vec2(size) - 0.5;
     const vec2 dir = -parallax * vec2(size);
     const bvec2 back = lessThan(dir, vec2(0.0));
-    const vec2 ahead = vec2(not(back));
-    const vec2 invDir = vec2(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30);
-    const vec2 span = abs(dir);
-    const int topLevel = clamp(int(ceil(log2(max(max(span.x, span.y), 1.0)))), 0, hfx_levels() - 1);
-    const int maxSteps = int(min(4.0 * (span.x + span.y) + float(4 * topLevel + 24), float(HFX_MAX_TRACE_STEPS)));
+    const vec2 invDir = hfx_inverse(dir);
+    const int topLevel = hfx_top_level(dir);
+    const int maxSteps = hfx_max_steps(dir, topLevel);
     int level = 0;
     float cellSize = 1.0, invCellSize = 1.0; // 2^level and its inverse
     float t = 0.0;
@@ -63,11 +84,7 @@ float hfx_trace_depth(vec2 uv0, vec2 parallax) {
         bool found = false;
         for (; steps < maxSteps; ++steps) {
             if (t >= 1.0) return 1.0;
-            const vec2 q = p * invCellSize;
-            cell = mix(floor(q), ceil(q) - 1.0, back); // on a boundary: the cell ahead
-            bound = (cell + ahead) * cellSize;
-            tCross = (bound - p0) * invDir; // an axis the ray does not move along: far ahead
-            tExit = clamp(min(tCross.x, tCross.y), t, 1.0);
+            hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
             const float tDown = 1.0 - hfx_bound(ivec2(cell), level); // where the ray comes down to the bound
             if (tDown < tExit) {
                 const float tIn = max(t, tDown);
@@ -111,4 +128,79 @@ float hfx_trace_depth(vec2 uv0, vec2 parallax) {
 }
 
 HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray.uv, ray.parallax)); }
-float hfx_shadow(HfxShadowRay ray) { return clamp(hfx_occlusion(ray) * ray.sharpness, 0.0, 1.0); }
+
+// Exact self-shadow: the light ray from the shaded point walked through the same pyramid. The
+// ray climbs from h0 to 1 over its span; its clearance ratio r = (ray - surface) / (the ray's
+// climb so far) is Tatarchuk's occlusion measure with the sign turned (blocker distance
+// weighting: a blocker as high but twice as far darkens half as much). r < 0 anywhere is hard
+// shadow; otherwise the penumbra is 1 - r * sharpness at the smallest r, fully lit from
+// r = 1 / sharpness. The walk opens every cell whose bound reaches the cone edge (the ray
+// lowered by 1 / sharpness of its climb), so every blocker that can darken the point is
+// solved at level 0, where the patch's height along the ray less the ray's is quadratic in t:
+// its maximum (ends and vertex) decides hard shadow exactly, and r's minimum over the cell is at
+// an end or at u* = sqrt(C'/A) (d/du of f(u)/u = 0). r counts from a texel away from the point:
+// nearer, it is the surface's own slope towards the light (N.L's business), and f's rounding
+// over a tiny climb would speckle it. Only a blocker above the ray returns 1; the penumbra stops
+// just short of it.
+const float HFX_SHADOW_EPSILON = 1e-4; // relief depths: above the rounding of h0 and of the patch
+const float HFX_PENUMBRA_MAX = 0.999;   // 1 means a blocker above the ray, nothing less
+
+float hfx_shadow(HfxShadowRay ray) {
+    const float climb = 1.0 - ray.h0;
+    if (!(climb > 0.0)) return 0.0; // at the top of the relief nothing is above it
+    const ivec2 size = hfx_size();
+    const vec2 p0 = ray.uv * vec2(size) - 0.5;
+    const vec2 dir = ray.span * vec2(size);
+    const bvec2 back = lessThan(dir, vec2(0.0));
+    const vec2 invDir = hfx_inverse(dir);
+    const int topLevel = hfx_top_level(dir);
+    const int maxSteps = hfx_max_steps(dir, topLevel);
+    const float penumbra = 1.0 / max(ray.sharpness, 1e-3); // r from which on the point is lit
+    const float coneSlope = climb * (1.0 - penumbra);        // the cone edge's rise per unit t
+    int level = 0;
+    float cellSize = 1.0, invCellSize = 1.0;
+    float t = 0.0;
+    vec2 p = p0;
+    const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
+    float nearest = 1e30; // the smallest clearance ratio met
+    int steps = 0;
+    for (int candidate = 0; candidate < maxSteps; ++candidate) {
+        vec2 cell, bound, tCross;
+        float tExit;
+        bool found = false;
+        for (; steps < maxSteps && t < 1.0; ++steps) {
+            hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
+            const float coneLow = ray.h0 + min(coneSlope * t, coneSlope * tExit);
+            if (hfx_bound(ivec2(cell), level) >= coneLow) {
+                if (level == 0) { found = true; break; }
+                --level;
+                cellSize *= 0.5;
+                invCellSize *= 2.0;
+            } else {
+                hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
+            }
+        }
+        if (!found) break;
+        // f(s) = patch - ray along the cell, s in [0, S]: A s^2 + B s + C.
+        const vec4 s = hfx_gather((cell + 1.0) / vec2(size));
+        const float a = s.w, b = s.z - s.w, c = s.x - s.w, e = s.y - s.x - s.z + s.w;
+        const vec2 local = p - cell;
+        const float A = e * dir.x * dir.y;
+        const float B = b * dir.x + c * dir.y + e * (local.x * dir.y + local.y * dir.x) - climb;
+        const float C = a + b * local.x + c * local.y + e * local.x * local.y - (ray.h0 + climb * t);
+        const float S = tExit - t;
+        const float sv = A < 0.0 ? clamp(-0.5 * B / A, 0.0, S) : 0.0; // the maximum's place
+        if (max(max(C, (A * S + B) * S + C), (A * sv + B) * sv + C) > HFX_SHADOW_EPSILON) return 1.0;
+        if (tExit > uNear) {
+            // In u = t + s: f = A u^2 + B' u + C', r(u) = -f / (climb u), over [max(t, uNear), tExit].
+            const float B1 = B - 2.0 * A * t, C1 = C - B * t + A * t * t, u0 = max(t, uNear);
+            const float uStar = A != 0.0 && C1 / A > 0.0 ? clamp(sqrt(C1 / A), u0, tExit) : u0;
+            const vec3 u = vec3(u0, tExit, uStar);
+            const vec3 r = -((A * u + B1) * u + C1) / (climb * u);
+            nearest = min(nearest, min(min(r.x, r.y), r.z));
+        }
+        hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
+        ++steps;
+    }
+    return clamp(1.0 - nearest * ray.sharpness, 0.0, HFX_PENUMBRA_MAX);
+}

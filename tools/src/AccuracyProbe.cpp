@@ -22,7 +22,8 @@ SurfaceMaterial materialOf(const AccuracyConfig& config) {
             .minSamples = config.minSamples,
             .maxSamples = config.maxSamples,
             .lodThreshold = 100.0f, // mip level 0: the figures speak of the search, not the filter
-            .shadows = config.shadows};
+            .shadows = config.shadows,
+            .shadowSharpness = config.shadowSharpness};
 }
 
 struct Spread {
@@ -104,6 +105,16 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
         const double tMax = (1.0 - origin.z) / lightUVH.z;
         return exact_.intersect(origin, lightUVH, tMax).has_value();
     };
+    // The cone edge (trace/hier.glsl's hfx_shadow): from a texel away, the light ray lowered by
+    // 1 / sharpness of its climb; where it meets the surface and the ray does not, a soft shadow's
+    // penumbra darkens the point.
+    const glm::dvec3 coneEdge(lightUVH.x, lightUVH.y, lightUVH.z * (1.0 - 1.0 / double(config.shadowSharpness)));
+    const double texelStep = 1.0 / size_ / std::max(std::max(std::abs(lightUVH.x), std::abs(lightUVH.y)), 1e-12);
+    auto inPenumbra = [&](glm::dvec2 uv, double h) {
+        const double tMax = (1.0 - h) / lightUVH.z;
+        if (texelStep >= tMax) return false;
+        return exact_.intersect(glm::dvec3(uv, h) + coneEdge * texelStep, coneEdge, tMax - texelStep).has_value();
+    };
 
     const glm::dmat4 viewProj(camera.viewProjection());
     auto toPixel = [&](glm::dvec3 uvh) {
@@ -162,6 +173,10 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
                     }
                 }
                 if (!stable) continue;
+                if (!state && inPenumbra(hit->uv, h)) {
+                    ++r.penumbraPixels;
+                    continue;
+                }
                 const double lit = 2.0 * (double(t.w) - fetches);
                 ++r.shadowPixels;
                 agree += (lit < 0.5) == state;

@@ -23,9 +23,10 @@ enum class Technique {
     Hierarchical,      ///< "hier"
 };
 
-/// How a technique shadows itself: not at all, any blocker darkens fully, or blockers weighted
-/// by distance (Tatarchuk's soft shadows).
-enum class SelfShadow { None, Hard, Soft };
+/// How a technique shadows itself: not at all, any blocker darkens fully, blockers weighted by
+/// distance (Tatarchuk's soft shadows, sampled along the light ray), or the light ray traced
+/// exactly (hard visibility) with a penumbra from the blocker distance.
+enum class SelfShadow { None, Hard, Soft, Exact };
 
 struct TechniqueInfo {
     Technique technique;
@@ -52,7 +53,7 @@ inline constexpr TechniqueInfo kTechniqueTable[] = {
      "parallax occlusion mapping: linear search, piecewise-linear hit (Tatarchuk 2006)", SelfShadow::Soft, true,
      false},
     {Technique::Hierarchical, "hier", "trace/hier.glsl",
-     "maximum-height pyramid walk to the exact bilinear hit (per-frame pyramid)", SelfShadow::Soft, true, true},
+     "maximum-height pyramid walk to the exact bilinear hit (per-frame pyramid)", SelfShadow::Exact, true, true},
 };
 
 inline constexpr std::size_t kTechniqueCount = std::size(kTechniqueTable);

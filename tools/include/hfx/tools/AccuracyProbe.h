@@ -37,8 +37,11 @@ struct AccuracyConfig {
     int minSamples = 8, maxSamples = 32;
     bool shadows = false;        ///< compare the self-shadow with exact shadow rays
     glm::vec3 light{0.6f, 0.55f, 0.3f}; ///< world direction towards the light (plane normal +Y)
-    /// Shadow comparison skips points whose exact shadow changes within this many texels
-    /// (the penumbra band of soft shadows, and the texel the boundary falls in).
+    float shadowSharpness = 2.0f; ///< the material's: its penumbra is where the clearance ratio < 1 / this
+    /// Shadow comparison skips points whose exact shadow changes within this many texels (the
+    /// texel the boundary falls in, where a hit a little off flips it), and points in the
+    /// penumbra band: the light ray is clear, but the cone edge (the ray lowered by
+    /// 1 / shadowSharpness of its climb, from a texel away) is not.
     double penumbraTexels = 1.5;
 };
 
@@ -52,7 +55,8 @@ struct AccuracyResult {
     double depthMean = 0;           ///< |depth fraction - exact| (what gl_FragDepth is made of)
     double fetches = 0;             ///< mean height fetches per pixel, counted in the shader
     double shadowAgreement = 1.0;   ///< fraction of compared points whose shadow state agrees
-    size_t shadowPixels = 0;        ///< points compared for the shadow
+    size_t shadowPixels = 0;        ///< points compared for the shadow (outside the penumbra band)
+    size_t penumbraPixels = 0;      ///< points left out as in the penumbra band
 };
 
 class AccuracyProbe {
