@@ -1,12 +1,14 @@
 // The decal-damage user: a brick wall (or the user's maps) seen at a grazing angle, shot at by
 // clicks (picked on the displaced surface), a key's explosions, or a replayed shot list. A flat
-// shelf stands half sunk into the wall, so the depth output's clipping by the damage shows.
+// shelf stands half sunk into the wall, so the depth output's clipping by the damage shows, and
+// a shadow map of the traced relief lets the shelf and the bricks shadow each other.
 
 #include "Scene.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Random.h"
 #include "hfx/effects/DecalWallEffect.h"
+#include "hfx/effects/ShadowMap.h"
 #include "hfx/tools/ShotList.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -54,10 +56,19 @@ public:
         }
     }
     void draw() override {
-        drawSurface(renderer_, light_);
-        // A shelf half sunk into the wall: clipped where the relief is, by POM's depth output.
+        // A shelf half sunk into the wall: clipped where the relief is, by the traced depth.
         const glm::mat4 post = glm::translate(glm::mat4(1.0f), {0.9f, -0.6f, 0.0f});
-        renderer_.drawFlat(post_, post, camera_, {0.75f, 0.72f, 0.2f, 1.0f});
+        // The light's shadow map: the wall casts its traced relief and the shelf itself, so the
+        // shelf's shadow falls into the mortar and the holes, and the bricks shade the shelf.
+        shadowMap_.fit(light_.direction, {0.0f, 0.0f, 0.0f}, 2.9f);
+        shadowMap_.begin();
+        renderer_.drawShadow(mesh(), model(), effect().layers(), effect().material(), shadowMap_, {.technique = technique});
+        renderer_.drawFlatShadow(post_, post, shadowMap_);
+        shadowMap_.end();
+        DirectionalLight light = light_;
+        light.shadowMap = &shadowMap_;
+        drawSurface(renderer_, light);
+        renderer_.drawFlat(post_, post, camera_, {0.75f, 0.72f, 0.2f, 1.0f}, &light);
     }
     Effect& effect() override { return wall_; }
     const char* name() const override { return "decals"; }
@@ -138,6 +149,7 @@ private:
     Mesh plane_, post_;
     DirectionalLight light_;
     SurfaceRenderer renderer_;
+    ShadowMap shadowMap_{1024};
     SplitMix64 random_;
     std::vector<Shot> shots_;
     bool replaying_ = false;

@@ -3,6 +3,7 @@
 // the fragment stage from, in order:
 //   surface/uniforms.glsl   the per-draw uniform block (hfx::SurfaceUniforms)
 //   surface/heights.glsl    the height accessors over the surface texture and the pyramid
+//   surface/shadowmap.glsl  receiving a light's shadow map (hfx::ShadowMap)
 //   trace/common.glsl       ray, hit and shadow-ray types, the linear search, shadow occlusion
 //   trace/<technique>.glsl  hfx_trace and hfx_shadow: one file per technique (trace/README.md)
 //   shade/common.glsl       the shaded point
@@ -17,6 +18,9 @@
 //                     slope (surface/heights.glsl); 1 is an ordinary surface
 //   HFX_TRACED_LAYERS 1 to HFX_LAYERS: the leading layers the tracers see; the rest only shade
 //   HFX_RINGS         1 for the water shading: impact rings (HfxRings) in height, slope and foam
+//   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap): the view ray is the light's
+//                     (u_lightDir reversed), u_viewProj the light's; only the traced depth is
+//                     written, nothing is shaded
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction
@@ -33,6 +37,9 @@
 #endif
 #ifndef HFX_TRACE_OUTPUT
 #define HFX_TRACE_OUTPUT 0
+#endif
+#ifndef HFX_SHADOW_CASTER
+#define HFX_SHADOW_CASTER 0
 #endif
 
 in vec3 v_worldPos;
@@ -92,7 +99,11 @@ void main() {
     // World from texture space: columns dP/du, dP/dv and the normal scaled to the same units.
     const float unitsPerTexcoord = sqrt(length(v_tangent) * length(v_bitangent));
     const mat3 worldFromTexture = mat3(v_tangent, v_bitangent, geometricNormal * unitsPerTexcoord);
+#if HFX_SHADOW_CASTER
+    const vec3 toEye = u_lightDir; // the light is the eye, infinitely far
+#else
     const vec3 toEye = u_cameraPos - v_worldPos;
+#endif
     const float cosView = clamp(dot(geometricNormal, normalize(toEye)), 0.0, 1.0);
     // A degenerate frame (a sphere's poles, where dP/du vanishes) has no texture space: there the
     // surface is normal mapped. Silhouettes of curved meshes fade the relief out.
@@ -147,6 +158,9 @@ void main() {
     const vec4 clip = u_viewProj * vec4(displacedWorld, 1.0);
     const float ndcDepth = clip.z / clip.w;
     gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+#endif
+#if HFX_SHADOW_CASTER
+    return; // the map holds the traced depth; nothing to shade
 #endif
 
 #if HFX_LAYERS == 1
@@ -230,6 +244,9 @@ void main() {
         lit = 1.0 - hfx_shadow(shadowRay) * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
     }
 #endif
+
+    // Other geometry's shadow (and the relief's own at a distance, through the map's rounding).
+    lit *= hfx_shadow_map(displacedWorld, geometricNormal);
 
     HfxSurfacePoint point;
     point.albedo = albedo;

@@ -1,6 +1,7 @@
 #include "hfx/effects/SurfaceRenderer.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/effects/ShadowMap.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -92,8 +93,8 @@ public:
 
 private:
     GLboolean depthTest_;
-    // surface, albedo, environment, pyramid, layers 1-3, their albedos, shading channels
-    static constexpr int kUnits = 11;
+    // surface, albedo, environment, pyramid, layers 1-3, their albedos, shading channels, shadow map
+    static constexpr int kUnits = 12;
     static constexpr GLuint kBlocks = 3; // surface, water, rings
     GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
@@ -134,8 +135,13 @@ void SurfaceMaterial::validate() const {
 }
 
 const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading, int layers, int traced) {
+    return variant(options, shading, layers, traced, false);
+}
+
+const ShaderProgram& SurfaceRenderer::variant(const DrawOptions& options, Shading shading, int layers, int traced,
+                                              bool caster) {
     if (traced <= 0 || traced > layers) traced = layers;
-    const auto key = std::make_tuple(options.technique, options.traceOutput, shading, layers, traced);
+    const auto key = std::make_tuple(options.technique, options.traceOutput && !caster, shading, layers, traced, caster);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         // The fragment stage: the common declarations, the technique's tracer, the shading model,
@@ -143,12 +149,14 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shadin
         const TechniqueInfo& info = techniqueInfo(options.technique);
         const std::vector<ShaderDefine> defines = {{"HFX_TRACES", info.traces ? "1" : "0"},
                                                    {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None ? "1" : "0"},
-                                                   {"HFX_TRACE_OUTPUT", options.traceOutput ? "1" : "0"},
+                                                   {"HFX_TRACE_OUTPUT", options.traceOutput && !caster ? "1" : "0"},
+                                                   {"HFX_SHADOW_CASTER", caster ? "1" : "0"},
                                                    {"HFX_LAYERS", std::to_string(layers)},
                                                    {"HFX_TRACED_LAYERS", std::to_string(traced)},
                                                    {"HFX_RINGS", shading == Shading::Water ? "1" : "0"}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
-                        {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("trace/common.glsl"),
+                        {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("surface/shadowmap.glsl"),
+                         shader("trace/common.glsl"),
                          shader(info.shader), shader("shade/common.glsl"), shader("shade/sky.glsl"),
                          shader(shadingShader(shading)),
                          shader("surface.frag")},
@@ -158,9 +166,9 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shadin
     return it->second;
 }
 
-void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const Camera& camera) {
+void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj) {
     u.model = model;
-    u.viewProj = camera.viewProjection();
+    u.viewProj = viewProj;
     u.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))));
     updateBlock(surfaceBlock_, 0, u);
 }
@@ -215,12 +223,45 @@ void validateLayers(std::span<const SurfaceLayer> layers, const TechniqueInfo& t
 void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                            const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
                            const DrawOptions& options) {
+    drawSurface(mesh, model, layers, material, camera, light, options, nullptr);
+}
+
+void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
+                                 const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options) {
+    const SurfaceLayer layer{.textures = &textures};
+    drawShadow(mesh, model, std::span(&layer, 1), material, map, options);
+}
+
+void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+                                 const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options) {
+    DirectionalLight light;
+    light.direction = map.towardsLight();
+    drawSurface(mesh, model, layers, material, Camera{}, light, options, &map);
+}
+
+namespace {
+/// The receiving side of a light's shadow map: its transform, filter and biases.
+void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
+    if (!light.shadowMap) return;
+    const ShadowMap& map = *light.shadowMap;
+    u.shadowViewProj = map.viewProj();
+    u.shadowMap = 1;
+    u.shadowOffset = 1.5f * map.texelWorld();
+    u.shadowBias = 1.5f * map.texelWorld() * map.depthPerWorld();
+    u.shadowTexel = 1.0f / float(map.size());
+    glBindTextureUnit(11, map.texture());
+}
+} // namespace
+
+void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+                                  const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
+                                  const DrawOptions& options, const ShadowMap* caster) {
     material.validate();
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
     const int traced = int(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
-    const ShaderProgram& p = program(options, material.shading, int(layers.size()), traced);
+    const ShaderProgram& p = variant(options, material.shading, int(layers.size()), traced, caster != nullptr);
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -257,7 +298,8 @@ void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<c
         u.layerLevel[int(i)] = std::log2(l.texcoordScale * float(l.textures->config().width) / base);
         if (!l.traced) u.untracedHeight += l.weight * l.restHeight;
     }
-    bindUniforms(u, model, camera);
+    if (!caster) receiveShadows(u, light);
+    bindUniforms(u, model, caster ? caster->viewProj() : camera.viewProjection());
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
         updateBlock(waterBlock_, 1, waterUniforms(w));
@@ -294,7 +336,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
         throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
     GlStateGuard guard;
     SurfaceUniforms u{.cameraPos = camera.position, .lightDir = glm::normalize(light.direction), .lightColor = light.color};
-    bindUniforms(u, glm::mat4(1.0f), camera);
+    bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
     updateBlock(waterBlock_, 1, waterUniforms(look));
     glBindTextureUnit(2, look.environment);
     sky_.set("u_inverseViewProj", glm::inverse(camera.viewProjection()));
@@ -305,17 +347,38 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
 }
 
 void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
-                               const glm::vec4& color) {
+                               const glm::vec4& color, const DirectionalLight* light) {
+    drawFlatSeenBy(mesh, model, camera.viewProjection(), camera.position, color, light);
+}
+
+void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj,
+                                     glm::vec3 eye, const glm::vec4& color, const DirectionalLight* light) {
     if (!flat_.id())
-        flat_ = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")}, {shader("flat.frag")});
+        flat_ = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")},
+                              {shader("surface/uniforms.glsl"), shader("surface/shadowmap.glsl"), shader("flat.frag")});
     GlStateGuard guard;
-    SurfaceUniforms u;
-    bindUniforms(u, model, camera);
+    SurfaceUniforms u{.cameraPos = eye};
+    if (light) {
+        u.lightDir = glm::normalize(light->direction);
+        u.lightColor = light->color;
+        u.ambient = light->ambient;
+        receiveShadows(u, *light);
+    }
+    bindUniforms(u, model, viewProj);
     flat_.set("u_color", color);
+    flat_.set("u_flatLit", light ? 1 : 0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     flat_.use();
     mesh.draw();
+}
+
+} // namespace hfx
+
+namespace hfx {
+
+void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map) {
+    drawFlatSeenBy(mesh, model, map.viewProj(), map.towardsLight(), glm::vec4(1.0f), nullptr);
 }
 
 } // namespace hfx

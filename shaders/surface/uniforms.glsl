@@ -33,6 +33,12 @@ layout(std140, binding = 0) uniform HfxSurface {
     vec4 u_layerWeight;       // its share of the height: h = sum weight * h_layer
     vec4 u_layerSlope;        // depthScale * weight * scale / the layer's normal depth: its slopes' share
     vec4 u_layerLevel;        // its mip level minus layer 0's read unscaled: log2(scale * size / size0)
+    // Receiving a shadow map (hfx::ShadowMap, s_shadowMap on unit 11):
+    mat4 u_shadowViewProj;    // world to the light's clip space
+    int u_shadowMap;          // 1: the light is multiplied by the map's visibility
+    float u_shadowBias;       // depth bias, in the map's window depth
+    float u_shadowOffset;     // normal offset of the lookup, world units
+    float u_shadowTexel;      // 1 / the map's size
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

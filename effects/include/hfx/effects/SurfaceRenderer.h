@@ -90,10 +90,15 @@ struct SurfaceMaterial {
 /// the renderer (shaders/trace/README.md). Throws hfx::Error for an unknown name.
 SourceFile surfaceShader(std::string_view name);
 
+class ShadowMap;
+
 struct DirectionalLight {
     glm::vec3 direction{0.4f, 0.6f, 0.3f}; ///< towards the light, need not be unit length
     glm::vec3 color{1.0f, 0.97f, 0.9f};
     glm::vec3 ambient{0.18f, 0.2f, 0.24f};
+    /// Optional: the light's shadow map (drawn this frame by the caller); surfaces and lit flat
+    /// meshes drawn under this light receive its shadows. The caller keeps it alive.
+    const ShadowMap* shadowMap = nullptr;
 };
 
 /// One layer of a layered surface (the ocean's cascades): its textures, read at the mesh's
@@ -135,9 +140,19 @@ public:
     /// what the water reflects and fades into at the horizon. Writes no depth.
     void drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look);
 
-    /// Draws a mesh in one flat colour with its own depth (for scenes and tests).
+    /// Draws a mesh in one flat colour with its own depth (for scenes and tests); with a light,
+    /// Lambert-lit (two-sided) and receiving the light's shadow map.
     void drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
-                  const glm::vec4& color);
+                  const glm::vec4& color, const DirectionalLight* light = nullptr);
+
+    /// Shadow casters, drawn into `map` between its begin() and end(): a surface writes the depth
+    /// its technique traces along the light's rays (the relief, not the polygon; shaders/
+    /// surface.frag, HFX_SHADOW_CASTER), a flat mesh its own.
+    void drawShadow(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+                    const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options = {});
+    void drawShadow(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
+                    const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options = {});
+    void drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map);
 
     /// Builds the shader variant now (start-up) instead of on the first draw.
     /// `traced` is the count of traced layers (0: all of them).
@@ -146,9 +161,18 @@ public:
 
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).
-    void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const Camera& camera);
+    void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj);
+    /// The program of a variant; `caster`: the shadow-map variant (HFX_SHADOW_CASTER).
+    const ShaderProgram& variant(const DrawOptions& options, Shading shading, int layers, int traced, bool caster);
+    /// A surface draw: the uniforms of the layers and material, seen by viewProj from the camera
+    /// (or, casting, from the light), then the mesh.
+    void drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+                     const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
+                     const DrawOptions& options, const ShadowMap* caster);
+    void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, glm::vec3 eye,
+                        const glm::vec4& color, const DirectionalLight* light);
 
-    std::map<std::tuple<Technique, bool, Shading, int, int>, ShaderProgram> programs_;
+    std::map<std::tuple<Technique, bool, Shading, int, int, bool>, ShaderProgram> programs_;
     ShaderProgram flat_, sky_;
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data

@@ -47,6 +47,12 @@ struct SurfaceUniforms {
     glm::vec4 layerWeight{1.0f, 0.0f, 0.0f, 0.0f};
     glm::vec4 layerSlope{0.0f};
     glm::vec4 layerLevel{0.0f};
+    // Receiving a shadow map (ShadowMap; sampler unit 11):
+    glm::mat4 shadowViewProj{1.0f}; ///< world to the light's clip space
+    int shadowMap = 0;              ///< 1: multiply the light by the map's visibility
+    float shadowBias = 0.0f;        ///< depth bias, in the map's window depth
+    float shadowOffset = 0.0f;      ///< normal offset of the lookup, world units (about 1.5 map texels)
+    float shadowTexel = 0.0f;       ///< 1 / the map's size (the filter's tap spacing)
 };
 
 struct WaterUniforms {
@@ -84,7 +90,8 @@ static_assert(offsetof(SurfaceUniforms, silhouetteFade) == 288);
 static_assert(offsetof(SurfaceUniforms, shadows) == 304);
 static_assert(offsetof(SurfaceUniforms, wrap) == 320);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
-static_assert(sizeof(SurfaceUniforms) == 400);
+static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
+static_assert(sizeof(SurfaceUniforms) == 480);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, hasEnvironment) == 64);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);

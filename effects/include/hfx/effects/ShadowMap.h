@@ -1,0 +1,57 @@
+#pragma once
+// A directional light's shadow map: a depth texture seen from the light (orthographic, fitted
+// around a sphere that holds the casters and receivers). Casters are drawn into it between
+// begin() and end() with SurfaceRenderer::drawShadow / drawFlatShadow; a relief surface writes
+// the depth its tracer finds along the light's rays (not its polygon's), so relief shadows other
+// geometry where the relief is, and geometry shadows the relief at the relief's depth.
+// Receivers read it through DirectionalLight::shadowMap: the light is multiplied by the map's
+// visibility (3x3 taps of hardware 2x2 comparison), with a depth bias and a normal offset of
+// about a map texel so a surface does not shadow itself through the map's rounding (the
+// relief's own self-shadow is its tracer's, exact).
+//
+// Owns its framebuffer and depth texture. Thread: the thread whose GL context is current.
+
+#include "hfx/core/Camera.h"
+#include "hfx/core/GlObject.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace hfx {
+
+class ShadowMap {
+public:
+    /// size: texels per edge, 16..16384; throws hfx::Error naming the value otherwise.
+    explicit ShadowMap(int size = 2048);
+
+    /// Points the light's view along -towardsLight at the sphere (centre, radius) that holds
+    /// everything casting or receiving; throws hfx::Error for a zero direction or radius <= 0.
+    void fit(glm::vec3 towardsLight, glm::vec3 centre, float radius);
+
+    /// Binds the map's framebuffer and viewport and clears the depth; end() puts back the
+    /// framebuffer and viewport that were bound.
+    void begin();
+    void end();
+
+    int size() const { return size_; }
+    GLuint texture() const { return depth_.id(); }
+    /// World to the light's clip space (orthographic: window depth is linear in distance).
+    const glm::mat4& viewProj() const { return viewProj_; }
+    /// Unit vector towards the light (what the casters' tracers trace along, reversed).
+    glm::vec3 towardsLight() const { return towardsLight_; }
+    /// World units per map texel.
+    float texelWorld() const { return 2.0f * radius_ / float(size_); }
+    /// Window depth per world unit along the light.
+    float depthPerWorld() const { return 1.0f / (4.0f * radius_); }
+
+private:
+    int size_;
+    GlFramebuffer fbo_;
+    GlTexture depth_;
+    glm::mat4 viewProj_{1.0f};
+    glm::vec3 towardsLight_{0.0f, 1.0f, 0.0f};
+    float radius_ = 1.0f;
+    GLint savedFramebuffer_ = 0, savedViewport_[4] = {0, 0, 0, 0};
+};
+
+} // namespace hfx

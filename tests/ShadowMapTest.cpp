@@ -1,0 +1,163 @@
+// The shadow-map pass against known occluders, seen from straight above: a flat board above a
+// relief whose floor lies the full depth under its polygon casts its edge where the light meets
+// the floor (the receiver's traced depth), not the polygon; and a relief plateau next to a pit
+// shadows a flat board inside the pit only where the traced relief stands between it and the
+// light (a caster writing its polygon's depth would darken all of the board: the board lies
+// under that polygon).
+
+#include "support/Fixtures.h"
+
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/ShadowMap.h"
+#include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/AccuracyProbe.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+namespace hfx::test {
+namespace {
+
+constexpr int kField = 256, kImage = 256;
+constexpr float kPlane = 2.0f, kDepthScale = 0.1f; // the floor: depthScale * plane = 0.2 world units down
+constexpr float kFloor = -kDepthScale * kPlane;
+
+class ShadowMaps : public DeviceTest {
+protected:
+    /// Light from -X, 45 degrees off the plane's normal (+Y); no ambient, so shadow is black.
+    DirectionalLight light() const {
+        DirectionalLight l;
+        l.direction = {-std::sqrt(0.5f), std::sqrt(0.5f), 0.0f};
+        l.color = glm::vec3(1.0f);
+        l.ambient = glm::vec3(0.0f);
+        return l;
+    }
+
+    /// Grey level of every pixel whose ray meets the plane y = receiverY at x in [x0, x1] and
+    /// |z| < 0.5, as (world x, brightness) pairs.
+    std::vector<std::pair<double, double>> profile(const RenderTarget& target, const Camera& camera, double receiverY,
+                                                   double x0, double x1) {
+        const Image image = target.readColor();
+        std::vector<std::pair<double, double>> out;
+        for (int y = 0; y < kImage; ++y)
+            for (int x = 0; x < kImage; ++x) {
+                const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, kImage, kImage);
+                const double t = (receiverY - ray.origin.y) / ray.direction.y;
+                const glm::dvec3 p = ray.origin + t * ray.direction;
+                if (p.x < x0 || p.x > x1 || std::abs(p.z) > 0.5) continue;
+                out.emplace_back(p.x, image.at(x, kImage - 1 - y, 1));
+            }
+        return out;
+    }
+
+    /// Counts pixels of the profile that are lit (> 0.2) where x < edge - margin or dark (< 0.05)
+    /// where x > edge + margin; prints the first few.
+    static int misplaced(const std::vector<std::pair<double, double>>& profile, double edge, double margin,
+                         const char* what) {
+        int wrong = 0, dark = 0, lit = 0;
+        for (const auto& [x, grey] : profile) {
+            if (x < edge - margin) {
+                ++dark;
+                wrong += grey > 0.2;
+            } else if (x > edge + margin) {
+                ++lit;
+                wrong += grey < 0.05;
+            }
+        }
+        std::printf("[%s] edge at x = %.3f: %d shadowed and %d lit pixels checked, %d misplaced\n", what, edge, dark, lit,
+                    wrong);
+        EXPECT_GT(dark, 200) << what;
+        EXPECT_GT(lit, 200) << what;
+        return wrong;
+    }
+};
+
+TEST_F(ShadowMaps, ABoardAboveTheReliefShadowsItsTracedFloor) {
+    // A flat floor the full depth down (h = 0 everywhere); a board at y = 0.3 over x in [-1, 0].
+    // Towards the light (-x, +y at 45 degrees) a floor point at x sees the board's edge when
+    // x < (0.3 - y) * tan 45: at x = 0.5 on the floor, where the polygon (y = 0) would put it at 0.3.
+    AccuracyProbe probe(cl(), std::vector<float>(size_t(kField) * kField, 0.0f), kField, kDepthScale);
+    const Mesh plane(makePlane({.size = kPlane}));
+    const Mesh board(makePlane({.size = 1.0f}));
+    const glm::mat4 boardModel = glm::translate(glm::mat4(1.0f), {-0.5f, 0.3f, 0.0f});
+    const Camera camera = accuracyCamera(0.0, 8.0f);
+    const SurfaceMaterial material{.depthScale = kDepthScale, .lodThreshold = 100.0f};
+    for (Technique technique : {Technique::ParallaxOcclusion, Technique::Hierarchical}) {
+        SurfaceRenderer renderer;
+        ShadowMap map(1024);
+        DirectionalLight sun = light();
+        map.fit(sun.direction, {0.0f, 0.0f, 0.0f}, 1.6f);
+        map.begin();
+        renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map, {.technique = technique});
+        renderer.drawFlatShadow(board, boardModel, map);
+        map.end();
+        sun.shadowMap = &map;
+        RenderTarget target(kImage, kImage);
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, camera, sun, {.technique = technique});
+        // Margin: two map texels and two pixels' worth of world (a pixel is about 0.011 here).
+        const double margin = 2.0 * map.texelWorld() + 0.025;
+        const auto floor = profile(target, camera, kFloor, 0.02, 0.98);
+        EXPECT_EQ(misplaced(floor, 0.3 - kFloor, margin, techniqueName(technique)), 0);
+        // Between the polygon's edge and the floor's, the floor is in shadow: the edge has moved.
+        int betweenLit = 0, between = 0;
+        for (const auto& [x, grey] : floor)
+            if (x > 0.3 + margin && x < 0.3 - kFloor - margin) {
+                ++between;
+                betweenLit += grey > 0.2;
+            }
+        EXPECT_GT(between, 500);
+        EXPECT_EQ(betweenLit, 0) << techniqueName(technique);
+    }
+}
+
+TEST_F(ShadowMaps, TheTracedReliefShadowsABoardInItsPit) {
+    // A plateau at the polygon (h = 1) for x < 0, a pit the full depth down (h = 0) for x > 0; a
+    // board half-way down the pit (y = -0.1) over x in [0, 1]. The plateau's wall, from y = 0
+    // down, shades a board point at x when x < 0.1 * tan 45: only the first 0.1 of the board.
+    std::vector<float> heights(size_t(kField) * kField);
+    for (int v = 0; v < kField; ++v)
+        for (int u = 0; u < kField; ++u) heights[size_t(v) * kField + u] = u < kField / 2 ? 1.0f : 0.0f;
+    AccuracyProbe probe(cl(), heights, kField, kDepthScale);
+    const Mesh plane(makePlane({.size = kPlane}));
+    const Mesh board(makePlane({.size = 1.0f}));
+    const glm::mat4 boardModel = glm::translate(glm::mat4(1.0f), {0.5f, -0.1f, 0.0f});
+    const Camera camera = accuracyCamera(0.0, 8.0f);
+    const SurfaceMaterial material{.depthScale = kDepthScale, .lodThreshold = 100.0f};
+    for (Technique technique : {Technique::ParallaxOcclusion, Technique::Hierarchical}) {
+        SurfaceRenderer renderer;
+        ShadowMap map(1024);
+        DirectionalLight sun = light();
+        map.fit(sun.direction, {0.0f, 0.0f, 0.0f}, 1.6f);
+        map.begin();
+        renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map, {.technique = technique});
+        renderer.drawFlatShadow(board, boardModel, map);
+        map.end();
+        sun.shadowMap = &map;
+        RenderTarget target(kImage, kImage);
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, camera, sun, {.technique = technique});
+        renderer.drawFlat(board, boardModel, camera, {1.0f, 1.0f, 1.0f, 1.0f}, &sun);
+        // The wall's foot spreads over one field texel (bilinear): margin two map texels, one
+        // field texel and two pixels.
+        const double margin = 2.0 * map.texelWorld() + kPlane / kField + 0.025;
+        const auto boardProfile = profile(target, camera, -0.1, 0.02, 0.98);
+        EXPECT_EQ(misplaced(boardProfile, 0.1, margin, techniqueName(technique)), 0);
+    }
+}
+
+TEST_F(ShadowMaps, BadFitsAndSizesAreRefusedByName) {
+    EXPECT_NE(messageOf([] { ShadowMap m(8); }).find("16..16384"), std::string::npos);
+    ShadowMap map(64);
+    EXPECT_NE(messageOf([&] { map.fit({0, 0, 0}, {0, 0, 0}, 1.0f); }).find("direction"), std::string::npos);
+    EXPECT_NE(messageOf([&] { map.fit({0, 1, 0}, {0, 0, 0}, -1.0f); }).find("radius"), std::string::npos);
+}
+
+} // namespace
+} // namespace hfx::test
