@@ -54,6 +54,24 @@ void hfx_cell_at(vec2 p0, vec2 p, vec2 invDir, bvec2 back, float t, float cellSi
     tExit = clamp(min(tCross.x, tCross.y), t, 1.0);
 }
 
+// One level down: the cell the ray dips into is opened.
+void hfx_open_cell(inout int level, inout float cellSize, inout float invCellSize) {
+    --level;
+    cellSize *= 0.5;
+    invCellSize *= 2.0;
+}
+
+// The bilinear patch of a level-0 cell along the ray from p (in the cell): its height at
+// p + dir * s is A s^2 + B s + C, returned as (A, B, C). The four samples come in one gather at
+// the point all four texels share (x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)).
+vec3 hfx_patch_along(vec2 cell, vec2 p, vec2 dir, ivec2 size) {
+    const vec4 s = hfx_gather((cell + 1.0) / vec2(size));
+    const float a = s.w, b = s.z - s.w, c = s.x - s.w, e = s.y - s.x - s.z + s.w;
+    const vec2 local = p - cell;
+    return vec3(e * dir.x * dir.y, b * dir.x + c * dir.y + e * (local.x * dir.y + local.y * dir.x),
+                a + b * local.x + c * local.y + e * local.x * local.y);
+}
+
 // The walk's bounds for a ray moving by dir (in texels) over t in [0, 1]: the highest level it
 // climbs to (cells as wide as its footprint) and its step bound (see the header).
 int hfx_top_level(vec2 dir) {
@@ -91,22 +109,15 @@ float hfx_trace_depth(vec2 uv0, vec2 parallax) {
                 if (tIn > t) p = p0 + dir * tIn;
                 t = tIn;
                 if (level == 0) { found = true; break; }
-                --level;
-                cellSize *= 0.5;
-                invCellSize *= 2.0;
+                hfx_open_cell(level, cellSize, invCellSize);
             } else {
                 hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
             }
         }
         if (!found) return t;
-        // Level 0: the four samples of the cell in one gather (x: (i, j+1), y: (i+1, j+1),
-        // z: (i+1, j), w: (i, j)), at the point all four texels share.
-        const vec4 s = hfx_gather((cell + 1.0) / vec2(size));
-        const float a = s.w, b = s.z - s.w, c = s.x - s.w, e = s.y - s.x - s.z + s.w;
-        const vec2 local = p - cell;
-        const float A = e * dir.x * dir.y;
-        const float B = b * dir.x + c * dir.y + e * (local.x * dir.y + local.y * dir.x) + 1.0;
-        const float C = a + b * local.x + c * local.y + e * local.x * local.y - (1.0 - t);
+        // Level 0: height minus the ray's (1 - t, falling) along the cell: A s^2 + B s + C.
+        const vec3 along = hfx_patch_along(cell, p, dir, size);
+        const float A = along.x, B = along.y + 1.0, C = along.z - (1.0 - t);
         if (C >= 0.0) return t;
         float root = 1e30;
         if (abs(A) < 1e-9) {
@@ -173,21 +184,15 @@ float hfx_shadow(HfxShadowRay ray) {
             const float coneLow = ray.h0 + min(coneSlope * t, coneSlope * tExit);
             if (hfx_bound(ivec2(cell), level) >= coneLow) {
                 if (level == 0) { found = true; break; }
-                --level;
-                cellSize *= 0.5;
-                invCellSize *= 2.0;
+                hfx_open_cell(level, cellSize, invCellSize);
             } else {
                 hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
             }
         }
         if (!found) break;
-        // f(s) = patch - ray along the cell, s in [0, S]: A s^2 + B s + C.
-        const vec4 s = hfx_gather((cell + 1.0) / vec2(size));
-        const float a = s.w, b = s.z - s.w, c = s.x - s.w, e = s.y - s.x - s.z + s.w;
-        const vec2 local = p - cell;
-        const float A = e * dir.x * dir.y;
-        const float B = b * dir.x + c * dir.y + e * (local.x * dir.y + local.y * dir.x) - climb;
-        const float C = a + b * local.x + c * local.y + e * local.x * local.y - (ray.h0 + climb * t);
+        // f(s) = patch - ray (h0 + climb t, rising) along the cell, s in [0, S]: A s^2 + B s + C.
+        const vec3 along = hfx_patch_along(cell, p, dir, size);
+        const float A = along.x, B = along.y - climb, C = along.z - (ray.h0 + climb * t);
         const float S = tExit - t;
         const float sv = A < 0.0 ? clamp(-0.5 * B / A, 0.0, S) : 0.0; // the maximum's place
         if (max(max(C, (A * S + B) * S + C), (A * sv + B) * sv + C) > HFX_SHADOW_EPSILON) return 1.0;
