@@ -111,14 +111,26 @@ float hfx_bound(ivec2 cell, int level) {
 }
 )",
                           "test"};
-const SourceFile kHarnessMain{"harness_main.comp", R"(
-layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; }; // 2 per ray: uv, parallax | cos, level, samples
+/// The harness's buffers: two vec4 of input per ray (a, b: what each main below says), one vec4
+/// out, and the invocation's ray index (false past the count).
+const SourceFile kHarnessBuffers{"harness_buffers.comp", R"(
+layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; };
 layout(std430, binding = 1) writeonly buffer Hits { vec4 hits[]; };
 uniform int u_count;
-void main() {
-    const uint i = gl_GlobalInvocationID.x;
-    if (i >= uint(u_count)) return;
-    const vec4 a = rays[2 * i], b = rays[2 * i + 1];
+bool hfx_harness_ray(out uint i, out vec4 a, out vec4 b) {
+    i = gl_GlobalInvocationID.x;
+    if (i >= uint(u_count)) return false;
+    a = rays[2 * i];
+    b = rays[2 * i + 1];
+    return true;
+}
+)",
+                               "test"};
+const SourceFile kHarnessMain{"harness_main.comp", R"(
+void main() { // a: uv, parallax; b: cos, level, samples
+    uint i;
+    vec4 a, b;
+    if (!hfx_harness_ray(i, a, b)) return;
     HfxRay ray;
     ray.uv = a.xy;
     ray.parallax = a.zw;
@@ -132,13 +144,10 @@ void main() {
                               "test"};
 
 const SourceFile kShadowMain{"harness_shadow.comp", R"(
-layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; }; // 2 per ray: uv, span | h0, level, samples, sharpness
-layout(std430, binding = 1) writeonly buffer Hits { vec4 hits[]; };
-uniform int u_count;
-void main() {
-    const uint i = gl_GlobalInvocationID.x;
-    if (i >= uint(u_count)) return;
-    const vec4 a = rays[2 * i], b = rays[2 * i + 1];
+void main() { // a: uv, span; b: h0, level, samples, sharpness
+    uint i;
+    vec4 a, b;
+    if (!hfx_harness_ray(i, a, b)) return;
     HfxShadowRay ray;
     ray.uv = a.xy;
     ray.span = a.zw;
@@ -161,7 +170,7 @@ std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique tech
     glNamedBufferStorage(rayBuffer.id(), GLsizeiptr(rays.size() * sizeof(glm::vec4)), rays.data(), 0);
     glNamedBufferStorage(hitBuffer.id(), GLsizeiptr(size_t(count) * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     const ShaderProgram p = ShaderProgram::compute(
-        {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), main});
+        {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kHarnessBuffers, main});
     p.set("u_levels", probe.textures().pyramidLevels());
     p.set("u_wrap", glm::ivec2(1, 1));
     p.set("u_count", count);
