@@ -37,6 +37,30 @@ protected:
         return l;
     }
 
+    /// One frame as a scene draws it: the relief plane and the board cast into a 1024² map fitted
+    /// around the origin; the plane is drawn under the light with that map, and the board too
+    /// where `showBoard`. Returns the map's world units per texel.
+    float drawWithShadowMap(RenderTarget& target, const AccuracyProbe& probe, const Mesh& board,
+                            const glm::mat4& boardModel, Technique technique, bool showBoard) {
+        const Mesh plane(makePlane({.size = kPlane}));
+        const SurfaceMaterial material{.depthScale = kDepthScale, .lodThreshold = 100.0f};
+        SurfaceRenderer renderer;
+        ShadowMap map(1024);
+        DirectionalLight sun = light();
+        map.fit(sun.direction, {0.0f, 0.0f, 0.0f}, 1.6f);
+        map.begin();
+        renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map, {.technique = technique});
+        renderer.drawFlatShadow(board, boardModel, map);
+        map.end();
+        sun.shadowMap = &map;
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, camera(), sun, {.technique = technique});
+        if (showBoard) renderer.drawFlat(board, boardModel, camera(), {1.0f, 1.0f, 1.0f, 1.0f}, &sun);
+        return map.texelWorld();
+    }
+    static Camera camera() { return accuracyCamera(0.0, 8.0f); }
+
     /// Grey level of every pixel whose ray meets the plane y = receiverY at x in [x0, x1] and
     /// |z| < 0.5, as (world x, brightness) pairs.
     std::vector<std::pair<double, double>> profile(const RenderTarget& target, const Camera& camera, double receiverY,
@@ -81,28 +105,14 @@ TEST_F(ShadowMaps, ABoardAboveTheReliefShadowsItsTracedFloor) {
     // Towards the light (-x, +y at 45 degrees) a floor point at x sees the board's edge when
     // x < (0.3 - y) * tan 45: at x = 0.5 on the floor, where the polygon (y = 0) would put it at 0.3.
     AccuracyProbe probe(cl(), std::vector<float>(size_t(kField) * kField, 0.0f), kField, kDepthScale);
-    const Mesh plane(makePlane({.size = kPlane}));
     const Mesh board(makePlane({.size = 1.0f}));
     const glm::mat4 boardModel = glm::translate(glm::mat4(1.0f), {-0.5f, 0.3f, 0.0f});
-    const Camera camera = accuracyCamera(0.0, 8.0f);
-    const SurfaceMaterial material{.depthScale = kDepthScale, .lodThreshold = 100.0f};
     for (Technique technique : {Technique::ParallaxOcclusion, Technique::Hierarchical}) {
-        SurfaceRenderer renderer;
-        ShadowMap map(1024);
-        DirectionalLight sun = light();
-        map.fit(sun.direction, {0.0f, 0.0f, 0.0f}, 1.6f);
-        map.begin();
-        renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map, {.technique = technique});
-        renderer.drawFlatShadow(board, boardModel, map);
-        map.end();
-        sun.shadowMap = &map;
         RenderTarget target(kImage, kImage);
-        target.bind();
-        target.clear();
-        renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, camera, sun, {.technique = technique});
+        const float mapTexel = drawWithShadowMap(target, probe, board, boardModel, technique, false);
         // Margin: two map texels and two pixels' worth of world (a pixel is about 0.011 here).
-        const double margin = 2.0 * map.texelWorld() + 0.025;
-        const auto floor = profile(target, camera, kFloor, 0.02, 0.98);
+        const double margin = 2.0 * mapTexel + 0.025;
+        const auto floor = profile(target, camera(), kFloor, 0.02, 0.98);
         EXPECT_EQ(misplaced(floor, 0.3 - kFloor, margin, techniqueName(technique)), 0);
         // Between the polygon's edge and the floor's, the floor is in shadow: the edge has moved.
         int betweenLit = 0, between = 0;
@@ -124,30 +134,15 @@ TEST_F(ShadowMaps, TheTracedReliefShadowsABoardInItsPit) {
     for (int v = 0; v < kField; ++v)
         for (int u = 0; u < kField; ++u) heights[size_t(v) * kField + u] = u < kField / 2 ? 1.0f : 0.0f;
     AccuracyProbe probe(cl(), heights, kField, kDepthScale);
-    const Mesh plane(makePlane({.size = kPlane}));
     const Mesh board(makePlane({.size = 1.0f}));
     const glm::mat4 boardModel = glm::translate(glm::mat4(1.0f), {0.5f, -0.1f, 0.0f});
-    const Camera camera = accuracyCamera(0.0, 8.0f);
-    const SurfaceMaterial material{.depthScale = kDepthScale, .lodThreshold = 100.0f};
     for (Technique technique : {Technique::ParallaxOcclusion, Technique::Hierarchical}) {
-        SurfaceRenderer renderer;
-        ShadowMap map(1024);
-        DirectionalLight sun = light();
-        map.fit(sun.direction, {0.0f, 0.0f, 0.0f}, 1.6f);
-        map.begin();
-        renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map, {.technique = technique});
-        renderer.drawFlatShadow(board, boardModel, map);
-        map.end();
-        sun.shadowMap = &map;
         RenderTarget target(kImage, kImage);
-        target.bind();
-        target.clear();
-        renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, camera, sun, {.technique = technique});
-        renderer.drawFlat(board, boardModel, camera, {1.0f, 1.0f, 1.0f, 1.0f}, &sun);
+        const float mapTexel = drawWithShadowMap(target, probe, board, boardModel, technique, true);
         // The wall's foot spreads over one field texel (bilinear): margin two map texels, one
         // field texel and two pixels.
-        const double margin = 2.0 * map.texelWorld() + kPlane / kField + 0.025;
-        const auto boardProfile = profile(target, camera, -0.1, 0.02, 0.98);
+        const double margin = 2.0 * mapTexel + kPlane / kField + 0.025;
+        const auto boardProfile = profile(target, camera(), -0.1, 0.02, 0.98);
         EXPECT_EQ(misplaced(boardProfile, 0.1, margin, techniqueName(technique)), 0);
     }
 }
