@@ -7,6 +7,7 @@
 
 #include "support/Fixtures.h"
 
+#include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/ShadowMap.h"
@@ -152,6 +153,28 @@ TEST_F(ShadowMaps, BadFitsAndSizesAreRefusedByName) {
     ShadowMap map(64);
     EXPECT_NE(messageOf([&] { map.fit({0, 0, 0}, {0, 0, 0}, 1.0f); }).find("direction"), std::string::npos);
     EXPECT_NE(messageOf([&] { map.fit({0, 1, 0}, {0, 0, 0}, -1.0f); }).find("radius"), std::string::npos);
+}
+
+TEST_F(ShadowMaps, APassPutsBackTheFramebuffersAndViewportItFound) {
+    RenderTarget drawn(64, 48), read(32, 32);
+    drawn.bind();
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, read.framebuffer());
+    ShadowMap map(128);
+    map.begin();
+    GLint draw = 0, viewport[4] = {};
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    EXPECT_NE(GLuint(draw), drawn.framebuffer());
+    EXPECT_EQ(viewport[2], 128);
+    map.end();
+    GLint readBack = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readBack);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    EXPECT_EQ(GLuint(draw), drawn.framebuffer());
+    EXPECT_EQ(GLuint(readBack), read.framebuffer());
+    EXPECT_EQ(viewport[2], 64);
+    EXPECT_EQ(viewport[3], 48);
 }
 
 } // namespace

@@ -49,16 +49,18 @@ void ShadowMap::fit(glm::vec3 towardsLight, glm::vec3 centre, float radius) {
 }
 
 void ShadowMap::begin() {
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &savedFramebuffer_);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &savedDraw_);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &savedRead_);
     glGetIntegerv(GL_VIEWPORT, savedViewport_);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, size_, size_);
     const float one = 1.0f;
     glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &one);
 }
 
 void ShadowMap::end() {
-    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(savedFramebuffer_));
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(savedDraw_));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(savedRead_));
     glViewport(savedViewport_[0], savedViewport_[1], savedViewport_[2], savedViewport_[3]);
 }
 

@@ -28,8 +28,8 @@ public:
     /// everything casting or receiving; throws hfx::Error for a zero direction or radius <= 0.
     void fit(glm::vec3 towardsLight, glm::vec3 centre, float radius);
 
-    /// Binds the map's framebuffer and viewport and clears the depth; end() puts back the
-    /// framebuffer and viewport that were bound.
+    /// Binds the map's framebuffer for drawing, sets its viewport and clears the depth; end()
+    /// puts back the draw and read framebuffers and the viewport that were bound.
     void begin();
     void end();
 
@@ -51,7 +51,7 @@ private:
     glm::mat4 viewProj_{1.0f};
     glm::vec3 towardsLight_{0.0f, 1.0f, 0.0f};
     float radius_ = 1.0f;
-    GLint savedFramebuffer_ = 0, savedViewport_[4] = {0, 0, 0, 0};
+    GLint savedDraw_ = 0, savedRead_ = 0, savedViewport_[4] = {0, 0, 0, 0};
 };
 
 } // namespace hfx
