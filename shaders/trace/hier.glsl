@@ -152,7 +152,10 @@ HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray.uv, ra
 // an end or at u* = sqrt(C'/A) (d/du of f(u)/u = 0). r counts from a texel away from the point:
 // nearer, it is the surface's own slope towards the light (N.L's business), and f's rounding
 // over a tiny climb would speckle it. Only a blocker above the ray returns 1; the penumbra stops
-// just short of it.
+// just short of it. Two cuts that keep all this exact: once a blocker has set r below
+// 1 / sharpness, only cells that could set it lower are opened (the cone edge rises to the ray
+// lowered by r of its climb), and the walk ends where the cone edge passes the field's maximum
+// (the pyramid's top texel).
 const float HFX_SHADOW_EPSILON = 1e-4; // relief depths: above the rounding of h0 and of the patch
 const float HFX_PENUMBRA_MAX = 0.999;   // 1 means a blocker above the ray, nothing less
 
@@ -174,14 +177,17 @@ float hfx_shadow(HfxShadowRay ray) {
     vec2 p = p0;
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
     float nearest = 1e30; // the smallest clearance ratio met
+    const float fieldMax = hfx_bound(ivec2(0), hfx_levels() - 1);
+    const float tEnd = coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0;
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
         vec2 cell, bound, tCross;
         float tExit;
         bool found = false;
-        for (; steps < maxSteps && t < 1.0; ++steps) {
+        for (; steps < maxSteps && t < tEnd; ++steps) {
             hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
-            const float coneLow = ray.h0 + min(coneSlope * t, coneSlope * tExit);
+            const float slope = climb * (1.0 - min(nearest, penumbra));
+            const float coneLow = ray.h0 + min(slope * t, slope * tExit);
             if (hfx_bound(ivec2(cell), level) >= coneLow) {
                 if (level == 0) { found = true; break; }
                 hfx_open_cell(level, cellSize, invCellSize);
