@@ -1,10 +1,10 @@
-// The max-height pyramid against a CPU reference, and its promise: no bilinearly interpolated
-// height inside a texel's footprint exceeds the texel.
+// The height-bounds pyramid against a CPU reference, and its promise: every bilinearly
+// interpolated height inside a texel's footprint lies between the texel's min and max.
 
 #include "support/Fixtures.h"
 #include "support/References.h"
 
-#include "hfx/compute/MaxPyramid.h"
+#include "hfx/compute/BoundsPyramid.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/HeightFieldTracer.h"
 
@@ -16,11 +16,11 @@ namespace {
 
 class Pyramid : public ClTest {
 protected:
-    std::vector<float> build(const std::vector<float>& heights, MaxPyramid& pyramid) {
+    std::vector<float> build(const std::vector<float>& heights, BoundsPyramid& pyramid) {
         cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                          heights.size() * sizeof(float), const_cast<float*>(heights.data()));
         pyramid.build(input);
-        std::vector<float> out(pyramid.totalFloats());
+        std::vector<float> out(2 * pyramid.totalTexels()); // (max, min) pairs
         cl().queue().enqueueReadBuffer(pyramid.buffer(), CL_TRUE, 0, out.size() * sizeof(float),
                                        out.data());
         return out;
@@ -40,7 +40,7 @@ TEST_F(Pyramid, MatchesCpuReferenceAtEveryLevel) {
     for (const EdgeMode edges : kEdgeModes) {
         const int W = 37, H = 20; // odd sizes: lone last rows and columns
         const auto heights = randomField(W, H, 4);
-        MaxPyramid pyramid(cl(), W, H, edges);
+        BoundsPyramid pyramid(cl(), W, H, edges);
         const auto out = build(heights, pyramid);
         const auto& levels = pyramid.levels();
         ASSERT_EQ(levels.back().width, 1);
@@ -51,27 +51,32 @@ TEST_F(Pyramid, MatchesCpuReferenceAtEveryLevel) {
             return heights[size_t(y) * W + x];
         };
         for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x)
-                ASSERT_EQ(out[size_t(y) * W + x],
-                          std::max({sample(x, y), sample(x + 1, y), sample(x, y + 1),
-                                    sample(x + 1, y + 1)}));
-        // Each coarser texel is the max of the level-0 cells in its footprint.
+            for (int x = 0; x < W; ++x) {
+                const auto corners = {sample(x, y), sample(x + 1, y), sample(x, y + 1), sample(x + 1, y + 1)};
+                ASSERT_EQ(out[2 * (size_t(y) * W + x)], std::max(corners));
+                ASSERT_EQ(out[2 * (size_t(y) * W + x) + 1], std::min(corners));
+            }
+        // Each coarser texel is the max and the min of the level-0 cells in its footprint.
         for (size_t k = 1; k < levels.size(); ++k)
             for (int y = 0; y < levels[k].height; ++y)
                 for (int x = 0; x < levels[k].width; ++x) {
-                    float expected = 0;
+                    float hi = 0, lo = 1;
                     const int span = 1 << k;
                     for (int cy = y * span; cy < std::min(H, (y + 1) * span); ++cy)
-                        for (int cx = x * span; cx < std::min(W, (x + 1) * span); ++cx)
-                            expected = std::max(expected, out[size_t(cy) * W + cx]);
-                    ASSERT_EQ(out[levels[k].offset + size_t(y) * levels[k].width + x], expected)
-                        << "level " << k << " texel " << x << "," << y;
+                        for (int cx = x * span; cx < std::min(W, (x + 1) * span); ++cx) {
+                            hi = std::max(hi, out[2 * (size_t(cy) * W + cx)]);
+                            lo = std::min(lo, out[2 * (size_t(cy) * W + cx) + 1]);
+                        }
+                    const size_t texel = levels[k].offset + size_t(y) * levels[k].width + x;
+                    ASSERT_EQ(out[2 * texel], hi) << "max, level " << k << " texel " << x << "," << y;
+                    ASSERT_EQ(out[2 * texel + 1], lo) << "min, level " << k << " texel " << x << "," << y;
                 }
         if (edges == EdgeMode::Wrap) {
             EXPECT_EQ(out, pyramidReference(heights, W, H));
         }
         // The top bounds the whole field.
-        EXPECT_EQ(out.back(), *std::max_element(heights.begin(), heights.end()));
+        EXPECT_EQ(out[out.size() - 2], *std::max_element(heights.begin(), heights.end()));
+        EXPECT_EQ(out.back(), *std::min_element(heights.begin(), heights.end()));
     }
 }
 
@@ -81,7 +86,7 @@ TEST_F(Pyramid, ConservativeForTheBilinearSurface) {
     const int N = 64;
     const auto heights = randomField(N, N, 8);
     for (const EdgeMode edges : kEdgeModes) {
-        MaxPyramid pyramid(cl(), N, N, edges);
+        BoundsPyramid pyramid(cl(), N, N, edges);
         const auto out = build(heights, pyramid);
         const HeightFieldTracer surface(heights, N, N, edges);
         std::mt19937 random(2);
@@ -93,16 +98,17 @@ TEST_F(Pyramid, ConservativeForTheBilinearSurface) {
             for (size_t k = 0; k < pyramid.levels().size(); ++k) {
                 const PyramidLevel& l = pyramid.levels()[k];
                 const int tx = int(x) >> k, ty = int(y) >> k;
-                ASSERT_LE(h, out[l.offset + size_t(ty) * l.width + tx] + 1e-6)
-                    << "level " << k << ", " << edgeModeName(edges);
+                const size_t texel = l.offset + size_t(ty) * l.width + tx;
+                ASSERT_LE(h, out[2 * texel] + 1e-6) << "max, level " << k << ", " << edgeModeName(edges);
+                ASSERT_GE(h, out[2 * texel + 1] - 1e-6) << "min, level " << k << ", " << edgeModeName(edges);
             }
         }
     }
 }
 
 TEST_F(Pyramid, RefusesBadSizes) {
-    EXPECT_THROW(MaxPyramid(cl(), 0, 4, EdgeMode::Wrap), Error);
-    MaxPyramid pyramid(cl(), 64, 64, EdgeMode::Wrap);
+    EXPECT_THROW(BoundsPyramid(cl(), 0, 4, EdgeMode::Wrap), Error);
+    BoundsPyramid pyramid(cl(), 64, 64, EdgeMode::Wrap);
     cl::Buffer small(cl().context(), CL_MEM_READ_WRITE, 16);
     EXPECT_THROW(pyramid.build(small), Error);
 }

@@ -152,10 +152,10 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
             EXPECT_LE(worst, bound) << surfaceFormatName(format) << ", " << transferPathName(path);
             ASSERT_EQ(surface.textures().pyramid() != 0, hasPyramid);
             if (!hasPyramid) continue;
-            std::vector<float> level0(size_t(N) * N);
-            glGetTextureImage(surface.textures().pyramid(), 0, GL_RED, GL_FLOAT, GLsizei(level0.size() * sizeof(float)),
+            std::vector<float> level0(2 * size_t(N) * N); // (max, min) pairs
+            glGetTextureImage(surface.textures().pyramid(), 0, GL_RG, GL_FLOAT, GLsizei(level0.size() * sizeof(float)),
                               level0.data());
-            EXPECT_EQ(level0, std::vector<float>(pyramid.begin(), pyramid.begin() + N * N)) << surfaceFormatName(format);
+            EXPECT_EQ(level0, std::vector<float>(pyramid.begin(), pyramid.begin() + 2 * N * N)) << surfaceFormatName(format);
         }
 }
 

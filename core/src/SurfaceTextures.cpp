@@ -76,12 +76,14 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     if (config.pyramid) {
         pyramid_ = GlTexture::create();
         pyramidLevels_ = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(config.width, config.height))));
-        HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_R32F, config.width, config.height));
+        HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_RG32F, config.width, config.height));
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAX_LEVEL, pyramidLevels_ - 1);
-        std::vector<float> top(static_cast<size_t>(config.width) * config.height * 2, 1.0f);
-        uploadPyramid(top.data()); // conservative until the first real upload
+        // Conservative until the first real upload: every cell spans the whole relief (max 1, min 0).
+        std::vector<float> whole(static_cast<size_t>(config.width) * config.height * 4);
+        for (size_t i = 0; i < whole.size(); i += 2) whole[i] = 1.0f;
+        uploadPyramid(whole.data());
     }
 }
 
@@ -91,8 +93,8 @@ void SurfaceTextures::uploadPyramid(const float* levels) {
     size_t offset = 0;
     for (int level = 0; level < pyramidLevels_; ++level) {
         const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
-        HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RED, GL_FLOAT, levels + offset));
-        offset += static_cast<size_t>(w) * h;
+        HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RG, GL_FLOAT, levels + offset));
+        offset += 2 * static_cast<size_t>(w) * h;
     }
 }
 

@@ -71,7 +71,7 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
       textures_{std::make_unique<SurfaceTextures>(texturesConfig(config)),
                 std::make_unique<SurfaceTextures>(texturesConfig(config))} {
     if (config.options.pyramid)
-        pyramid_ = std::make_unique<MaxPyramid>(cl, config.width, config.height, config.edges);
+        pyramid_ = std::make_unique<BoundsPyramid>(cl, config.width, config.height, config.edges);
     if (config.options.format != SurfaceFormat::Float32)
         packer_ = std::make_unique<SurfacePacker>(cl, config.width, config.height, config.options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);
@@ -178,7 +178,7 @@ void SurfacePipeline::finish() {
                      [&](const void* mapped) { back.uploadTexels(mapped); });
     }
     if (pyramid_)
-        mapAndUpload(cl_, pyramid_->buffer(), pyramid_->totalFloats() * sizeof(float), "uploading the pyramid",
+        mapAndUpload(cl_, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float), "uploading the pyramid",
                      [&](const void* mapped) { back.uploadPyramid(static_cast<const float*>(mapped)); });
     if (albedo_())
         mapAndUpload(cl_, albedo_, 4 * texels, "uploading the albedo",

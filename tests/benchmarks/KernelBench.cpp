@@ -9,7 +9,7 @@
 #include "hfx/compute/DamageLog.h"
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/GasField.h"
-#include "hfx/compute/MaxPyramid.h"
+#include "hfx/compute/BoundsPyramid.h"
 #include "hfx/compute/NoiseField.h"
 #include "hfx/compute/OceanField.h"
 #include "hfx/compute/OceanQuery.h"
@@ -232,7 +232,7 @@ void BM_Pyramid(benchmark::State& state) {
     const auto heights = randomHeights(n);
     cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
                      const_cast<float*>(heights.data()));
-    MaxPyramid pyramid(cl(), n, n, EdgeMode::Wrap);
+    BoundsPyramid pyramid(cl(), n, n, EdgeMode::Wrap);
     measure(state, [&] { pyramid.build(input); }, 4.0 * n * n * (1.0 + 4.0 / 3.0),
             [&] { benchmark::DoNotOptimize(pyramidReference(heights, n, n)); });
 }

@@ -66,22 +66,32 @@ void decalsReference(const DecalConfig& c, const std::vector<float>& base, std::
 }
 
 std::vector<float> pyramidReference(const std::vector<float>& heights, int width, int height) {
-    std::vector<float> out(size_t(width) * height);
+    // (max, min) pairs, level after level.
+    std::vector<float> out(2 * size_t(width) * height);
     auto at = [&](int x, int y) { return heights[size_t(y % height) * width + size_t(x % width)]; };
     for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            out[size_t(y) * width + x] = std::max({at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)});
+        for (int x = 0; x < width; ++x) {
+            const auto corners = {at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)};
+            out[2 * (size_t(y) * width + x)] = std::max(corners);
+            out[2 * (size_t(y) * width + x) + 1] = std::min(corners);
+        }
     size_t offset = 0;
     for (int w = width, h = height; w > 1 || h > 1;) {
         const int cw = (w + 1) / 2, ch = (h + 1) / 2;
         const size_t next = offset + size_t(w) * h;
-        out.resize(next + size_t(cw) * ch);
+        out.resize(2 * (next + size_t(cw) * ch));
         for (int y = 0; y < ch; ++y)
             for (int x = 0; x < cw; ++x) {
                 const int xa = 2 * x, ya = 2 * y, xb = std::min(xa + 1, w - 1), yb = std::min(ya + 1, h - 1);
-                out[next + size_t(y) * cw + x] =
-                    std::max({out[offset + size_t(ya) * w + xa], out[offset + size_t(ya) * w + xb],
-                              out[offset + size_t(yb) * w + xa], out[offset + size_t(yb) * w + xb]});
+                const size_t finer[] = {offset + size_t(ya) * w + xa, offset + size_t(ya) * w + xb,
+                                        offset + size_t(yb) * w + xa, offset + size_t(yb) * w + xb};
+                float hi = out[2 * finer[0]], lo = out[2 * finer[0] + 1];
+                for (size_t f : finer) {
+                    hi = std::max(hi, out[2 * f]);
+                    lo = std::min(lo, out[2 * f + 1]);
+                }
+                out[2 * (next + size_t(y) * cw + x)] = hi;
+                out[2 * (next + size_t(y) * cw + x) + 1] = lo;
             }
         offset = next;
         w = cw;

@@ -22,7 +22,8 @@ std::vector<float> sobelReference(const std::vector<float>& heights, int size, f
 void decalsReference(const DecalConfig& config, const std::vector<float>& base, std::vector<float>& damage,
                      const std::vector<BulletHole>& stamps);
 
-/// Level 0 and the reductions of the max-height pyramid, concatenated like MaxPyramid's buffer.
+/// Level 0 and the reductions of the height-bounds pyramid as (max, min) pairs, concatenated like
+/// BoundsPyramid's buffer.
 std::vector<float> pyramidReference(const std::vector<float>& heights, int width, int height);
 
 // One step of GasField, written out on the host with the same per-cell functions (without the

@@ -1,7 +1,7 @@
 #pragma once
 // What every generated height field is to the rest of the frame: a float buffer of
 // width x height texels, row y at v = (y + 0.5) / height, h in [0,1], refreshed by step(dt).
-// The Sobel filter, the max-height pyramid and the GL upload consume it as it is.
+// The Sobel filter, the height-bounds pyramid and the GL upload consume it as it is.
 //
 // Thread: the thread that owns the ClContext it was made with.
 

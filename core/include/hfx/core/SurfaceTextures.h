@@ -24,7 +24,7 @@ struct SurfaceTexturesConfig {
     int height = 512;
     bool mipmaps = true; ///< POM's level-of-detail switch needs them; tests of the search don't
     EdgeMode edges = EdgeMode::Wrap; ///< the textures' wrap modes, and the pyramid walk's
-    /// Also a maximum-height pyramid texture (R32F, full mip chain) for the hierarchical tracer;
+    /// Also a height-bounds pyramid texture (RG32F: max, min; full mip chain) for the hierarchical tracer;
     /// needs power-of-two sizes.
     bool pyramid = false;
     /// Storage of normal + height: Float16 halves the memory and the transfer, Unorm8 quarters
@@ -46,8 +46,8 @@ public:
     /// them), row 0 at v = 0: a plain copy, no conversion. Regenerates the mip chain when there
     /// is one. With a buffer bound to GL_PIXEL_UNPACK_BUFFER, `texels` is the offset into it.
     void uploadTexels(const void* texels);
-    /// Replaces the pyramid: every level back to back, level 0 (width x height) first, each
-    /// level half the one before, as MaxPyramid lays them out.
+    /// Replaces the pyramid: (max, min) float pairs, every level back to back, level 0
+    /// (width x height) first, each level half the one before, as BoundsPyramid lays them out.
     void uploadPyramid(const float* levels);
     /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
     /// field), and regenerates its mip chain.

@@ -2,7 +2,7 @@
 // The one path from a height buffer on the compute device to the textures a renderer draws:
 //
 //   heights --Sobel--> normals (float4: normal.xyz, h) --[passes]--> pack --transfer--> textures
-//           \--------> max-height pyramid (optional) ---------------------transfer-->/
+//           \--------> height-bounds pyramid (optional) -----------------transfer-->/
 //
 // Every user goes down it: the generated fields (ocean, waves, gas, decals), a static map from
 // files (ImageSurface, via StaticField) and the accuracy probe. A frame is five calls, in order:
@@ -22,7 +22,7 @@
 // both the ClContext and the current GL context.
 
 #include "hfx/compute/HeightSource.h"
-#include "hfx/compute/MaxPyramid.h"
+#include "hfx/compute/BoundsPyramid.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/Image.h"
@@ -38,7 +38,7 @@ namespace hfx {
 /// How a surface is stored and moved; each effect's configuration holds one as `surface`.
 struct SurfaceOptions {
     bool mipmaps = true;
-    /// Also build the maximum-height pyramid each frame (for Technique::Hierarchical; the
+    /// Also build the height-bounds pyramid each frame (for Technique::Hierarchical; the
     /// field's sizes must be powers of two and the format a float one).
     bool pyramid = false;
     /// The surface textures' storage; other than Float32, a SurfacePacker packs the texels on
@@ -131,7 +131,7 @@ private:
     TransferPath transfer_;
     std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
     SobelNormals sobel_;
-    std::unique_ptr<MaxPyramid> pyramid_;
+    std::unique_ptr<BoundsPyramid> pyramid_;
     std::unique_ptr<SurfacePacker> packer_; ///< null for Float32: the normals are the texels
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;

@@ -1,37 +1,37 @@
-#include "hfx/compute/MaxPyramid.h"
+#include "hfx/compute/BoundsPyramid.h"
 
 #include "hfx/core/Error.h"
 
 namespace hfx {
 
-MaxPyramid::MaxPyramid(ClContext& cl, int width, int height, EdgeMode edges)
+BoundsPyramid::BoundsPyramid(ClContext& cl, int width, int height, EdgeMode edges)
     : cl_(cl), width_(width), height_(height) {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
-        throw Error(str("MaxPyramid size must be in 1..16384, got ", width, "x", height));
+        throw Error(str("BoundsPyramid size must be in 1..16384, got ", width, "x", height));
     size_t offset = 0;
     for (int w = width, h = height;; w = (w + 1) / 2, h = (h + 1) / 2) {
         levels_.push_back({w, h, offset});
         offset += size_t(w) * h;
         if (w == 1 && h == 1) break;
     }
-    clGuard("creating the max-height pyramid", [&] {
+    clGuard("creating the height-bounds pyramid", [&] {
         buffer_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
-                             offset * sizeof(float));
+                             offset * 2 * sizeof(float));
         const std::string options = edgeOptions(edges);
-        cells_ = cl.kernel("pyramid.cl", "max_cells", options);
-        reduce_ = cl.kernel("pyramid.cl", "max_reduce", options);
+        cells_ = cl.kernel("pyramid.cl", "bounds_cells", options);
+        reduce_ = cl.kernel("pyramid.cl", "bounds_reduce", options);
     });
 }
 
-size_t MaxPyramid::totalFloats() const {
+size_t BoundsPyramid::totalTexels() const {
     const PyramidLevel& last = levels_.back();
     return last.offset + size_t(last.width) * last.height;
 }
 
-void MaxPyramid::build(const cl::Buffer& height) {
+void BoundsPyramid::build(const cl::Buffer& height) {
     if (height.getInfo<CL_MEM_SIZE>() < sizeof(float) * size_t(width_) * height_)
-        throw Error(str("MaxPyramid::build: the height buffer is smaller than ", width_, "x", height_, " floats"));
-    clGuard("MaxPyramid::build", [&] {
+        throw Error(str("BoundsPyramid::build: the height buffer is smaller than ", width_, "x", height_, " floats"));
+    clGuard("BoundsPyramid::build", [&] {
         cells_.setArg(0, height);
         cells_.setArg(1, buffer_); // level 0 starts at offset 0
         cells_.setArg(2, width_);
