@@ -94,6 +94,22 @@ vec2 hfx_add_layer(sampler2D s, sampler2D a, vec2 uv, float level, float scale, 
 // bilinear surface, cheaper than a trilinear textureGrad fetch (docs/BENCHMARKS.md,
 // "textureGrad"). Shading fetches keep trilinear filtering.
 
+// The pixel budget as a depth fraction along the view ray: a hit t off by dt moves the point shown
+// by parallax * dt in texcoords, which the pixel's texcoord derivatives (dx, dy per pixel) turn
+// into pixels. Measured at the polygon: the hit lies farther from the eye, where the same offset
+// covers fewer pixels, so the budget holds there too. 0 where the derivatives are degenerate and
+// in the shadow map (its texels are no screen pixels).
+float hfx_depth_tolerance(vec2 parallax, vec2 dx, vec2 dy) {
+#if HFX_SHADOW_CASTER
+    return 0.0;
+#else
+    const float det = dx.x * dy.y - dx.y * dy.x;
+    if (!(u_pixelBudget > 0.0) || abs(det) < 1e-20) return 0.0;
+    const vec2 pixels = vec2(dy.y * parallax.x - dy.x * parallax.y, dx.x * parallax.y - dx.y * parallax.x) / det;
+    return u_pixelBudget / max(length(pixels), 1e-6);
+#endif
+}
+
 void main() {
     const vec3 geometricNormal = normalize(v_normal);
     // World from texture space: columns dP/du, dP/dv and the normal scaled to the same units.
@@ -137,6 +153,7 @@ void main() {
         ray.level = searchLevel;
         // Dynamic sample rate: more steps the more grazing the view.
         ray.samples = clamp(int(mix(float(u_maxSamples), float(u_minSamples), cosView)), 1, HFX_MAX_SAMPLES);
+        ray.tolerance = hfx_depth_tolerance(ray.parallax, dx, dy);
         const HfxHit hit = hfx_trace(ray);
         // Level of detail: within one mip level of the threshold, fade the parallax out so the
         // change to normal mapping is not seen as a seam.

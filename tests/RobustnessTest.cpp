@@ -67,7 +67,8 @@ TEST_F(Robustness, BadMaterialsDrawNothing) {
           std::pair{SurfaceMaterial{.depthScale = -0.01f}, "depthScale"},
           std::pair{SurfaceMaterial{.shadowSamples = 0}, "shadowSamples"},
           std::pair{SurfaceMaterial{.specularPower = std::nanf("")}, "specularPower"},
-          std::pair{SurfaceMaterial{.silhouetteFade = 1.5f}, "silhouetteFade"}}) {
+          std::pair{SurfaceMaterial{.silhouetteFade = 1.5f}, "silhouetteFade"},
+          std::pair{SurfaceMaterial{.pixelBudget = -0.5f}, "pixelBudget"}}) {
         const std::string m = messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), material, camera, {}); });
         EXPECT_NE(m.find(field), std::string::npos) << m;
     }

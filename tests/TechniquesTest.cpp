@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <string>
 
 namespace hfx::test {
 namespace {
@@ -68,6 +69,45 @@ TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
                 EXPECT_GT(pom.mean, r.mean) << name << " at " << angle;
                 EXPECT_GT(pom.fetches, r.fetches) << name << " at " << angle;
             }
+        }
+    }
+}
+
+TEST_F(Techniques, APixelBudgetKeepsTheScreenErrorWithinItAndFetchesLess) {
+    // The probe's 192-pixel image of a 256-texel field: texels smaller than pixels, where the
+    // budget should save work. On flat tops (the blocks' plateaus) the exact walk stops early too.
+    constexpr int N = 256;
+    NoiseField noise(cl(), {.width = N, .height = N, .frequency = 6.0f, .octaves = 5});
+    std::vector<float> noisy(size_t(N) * N);
+    cl().queue().enqueueReadBuffer(noise.buffer(), CL_TRUE, 0, noisy.size() * sizeof(float), noisy.data());
+    const auto waves = sumOfSines(N, {{0.22, 3, 1, 0.3}, {0.13, -2, 5, 1.1}, {0.07, 7, 4, 2.0}});
+    for (const auto& [name, heights] : {std::pair{"smooth", waves}, std::pair{"blocks", blocks(N, 4)}, std::pair{"noise", noisy}}) {
+        AccuracyProbe probe(cl(), heights, N, 0.1f);
+        double exactFetches = 0.0, budgetFetches = 0.0;
+        double aboveFetches[2] = {0.0, 0.0}; // exact, 1 px: at 0 and 45 degrees
+        for (double angle : {0.0, 45.0, 70.0, 80.0, 85.0}) {
+            const AccuracyResult exact = probe.measure(Technique::Hierarchical, {.angleDegrees = angle});
+            for (float budget : {0.25f, 1.0f}) {
+                const AccuracyResult r = probe.measure(Technique::Hierarchical, {.angleDegrees = angle, .pixelBudget = budget});
+                std::printf("[budget %-6s %2.0f deg %.2f px] mean %.3f px, p95 %.3f px, > 1 px %.3f%%, fetches %.1f (exact %.1f)\n",
+                            name, angle, budget, r.meanPixels, r.p95Pixels, 100.0 * r.overPixel, r.fetches, exact.fetches);
+                ASSERT_GT(r.pixels, 1000u);
+                EXPECT_LE(r.p95Pixels, budget) << name << " at " << angle;
+                EXPECT_LE(r.meanPixels, 0.5 * budget) << name << " at " << angle;
+                if (budget < 1.0f) EXPECT_EQ(r.overPixel, 0.0) << name << " at " << angle;
+                EXPECT_LE(r.fetches, exact.fetches + 1e-9) << name << " at " << angle;
+                if (budget == 1.0f) budgetFetches += r.fetches;
+                if (budget == 1.0f && angle <= 45.0) aboveFetches[1] += r.fetches;
+            }
+            exactFetches += exact.fetches;
+            if (angle <= 45.0) aboveFetches[0] += exact.fetches;
+        }
+        // Slopes gain, most where the relief is seen from above, least at grazing angles (there
+        // the walk to the hit's cell is the work); the blocks' tops are flat cells, on which the
+        // exact walk already ends at once.
+        if (std::string(name) != "blocks") {
+            EXPECT_LT(budgetFetches, 0.95 * exactFetches) << name;
+            EXPECT_LT(aboveFetches[1], 0.8 * aboveFetches[0]) << name;
         }
     }
 }

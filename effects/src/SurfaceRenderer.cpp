@@ -120,6 +120,8 @@ void SurfaceMaterial::validate() const {
         throw Error(str("SurfaceMaterial.specularPower must be >= 1, got ", specularPower));
     if (!(silhouetteFade >= 0.0f && silhouetteFade < 1.0f))
         throw Error(str("SurfaceMaterial.silhouetteFade must be in [0, 1), got ", silhouetteFade));
+    if (!(pixelBudget >= 0.0f) || !std::isfinite(pixelBudget))
+        throw Error(str("SurfaceMaterial.pixelBudget must be >= 0 (pixels; 0 = exact), got ", pixelBudget));
     if (shading == Shading::Water) {
         if (!(water.fresnelF0 >= 0.0f && water.fresnelF0 <= 1.0f))
             throw Error(str("WaterLook.fresnelF0 must be in [0, 1], got ", water.fresnelF0));
@@ -285,7 +287,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .clipToPatch = material.clipToPatch ? 1 : 0,
                       .pyramidLevels = textures.pyramidLevels(),
                       .varianceFloor = varianceFloor(textures.config().format),
-                      .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0}};
+                      .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0},
+                      .pixelBudget = material.pixelBudget};
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
     // texture read at the mesh's own texcoords (the level surface.frag computes).

@@ -28,6 +28,7 @@ layout(std140, binding = 0) uniform HfxSurface {
     float u_varianceFloor;    // slope variance the storage format's rounding alone shows (not roughness)
     ivec2 u_wrap;             // per axis: 1 where the field's edges wrap, 0 where they clamp
     float u_untracedHeight;   // the untraced layers' share of the height: sum weight * rest height
+    float u_pixelBudget;      // the screen error the exact tracer may leave, pixels (0: exact)
     // Layered surfaces (HFX_LAYERS > 1, the ocean's cascades), one component per layer:
     vec4 u_layerScale;        // layer texcoords = the mesh's texcoords * scale
     vec4 u_layerWeight;       // its share of the height: h = sum weight * h_layer

@@ -9,6 +9,8 @@ struct HfxRay {
     float cosTheta; // z of the unit texture-space vector towards the eye (offset limiting)
     float level;    // mip level the search's fetches read
     int samples;    // linear-search steps for this pixel (the dynamic sample rate, the caller's)
+    float tolerance; // depth fraction the hit may lie above the exact one (the exact tracer's
+                     // pixel budget; 0: exact); tracers that are not exact ignore it
 };
 
 struct HfxHit {

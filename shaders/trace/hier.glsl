@@ -1,5 +1,5 @@
 // Hierarchical tracer: the exact first hit of the ray with the bilinear surface, walking the
-// maximum-height pyramid (hfx_bound). The walk starts at the entry's level-0 cell (a ray that
+// height-bounds pyramid (hfx_bounds: max and min per cell). The walk starts at the entry's level-0 cell (a ray that
 // meets the relief at once costs two fetches, as POM's does); a cell whose bound the ray passes
 // above is skipped whole, and where its exit is also its parent's edge the walk climbs a level;
 // a cell the ray dips into is opened a level down. A level-0 cell the ray dips into is solved:
@@ -7,6 +7,12 @@
 // is quadratic in t); if the ray passes the patch the walk goes on. Cell space:
 // x = u * width - 0.5, so cell i spans the samples i and i + 1. Exact self-shadows with a
 // blocker-distance penumbra (hfx_shadow, below).
+//
+// A cell of any level the ray dips into and leaves below the cell's minimum surely holds the hit,
+// between where the ray comes down to its maximum and where it passes its minimum. Where that
+// span is no longer than ray.tolerance (the pixel budget; 0 on flat tops, whose hit is then
+// exact) the walk returns its start: never below the surface, at most the tolerance above the
+// hit, and no descent to level 0.
 //
 // Why it cannot step over a surface (tests/TracerContractTest.cpp, a million rays):
 // - a point on a cell boundary belongs to the cell ahead (floor going +, ceil - 1 going -), and
@@ -82,7 +88,8 @@ int hfx_max_steps(vec2 dir, int topLevel) {
 }
 vec2 hfx_inverse(vec2 dir) { return vec2(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30); }
 
-float hfx_trace_depth(vec2 uv0, vec2 parallax) {
+float hfx_trace_depth(HfxRay ray) {
+    const vec2 uv0 = ray.uv, parallax = ray.parallax;
     const ivec2 size = hfx_size();
     const vec2 p0 = uv0 * vec2(size) - 0.5;
     const vec2 dir = -parallax * vec2(size);
@@ -103,9 +110,12 @@ float hfx_trace_depth(vec2 uv0, vec2 parallax) {
         for (; steps < maxSteps; ++steps) {
             if (t >= 1.0) return 1.0;
             hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
-            const float tDown = 1.0 - hfx_bound(ivec2(cell), level); // where the ray comes down to the bound
+            const vec2 bounds = hfx_bounds(ivec2(cell), level);
+            const float tDown = 1.0 - bounds.x; // where the ray comes down to the cell's maximum
             if (tDown < tExit) {
                 const float tIn = max(t, tDown);
+                const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
+                if (tBelow < tExit && tBelow - tIn <= ray.tolerance) return tIn;
                 if (tIn > t) p = p0 + dir * tIn;
                 t = tIn;
                 if (level == 0) { found = true; break; }
@@ -138,7 +148,7 @@ float hfx_trace_depth(vec2 uv0, vec2 parallax) {
     return t;
 }
 
-HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray.uv, ray.parallax)); }
+HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray)); }
 
 // Exact self-shadow: the light ray from the shaded point walked through the same pyramid. The
 // ray climbs from h0 to 1 over its span; its clearance ratio r = (ray - surface) / (the ray's
@@ -177,7 +187,7 @@ float hfx_shadow(HfxShadowRay ray) {
     vec2 p = p0;
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
     float nearest = 1e30; // the smallest clearance ratio met
-    const float fieldMax = hfx_bound(ivec2(0), hfx_levels() - 1);
+    const float fieldMax = hfx_bounds(ivec2(0), hfx_levels() - 1).x;
     const float tEnd = coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0;
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
@@ -188,7 +198,8 @@ float hfx_shadow(HfxShadowRay ray) {
             hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
             const float slope = climb * (1.0 - min(nearest, penumbra));
             const float coneLow = ray.h0 + min(slope * t, slope * tExit);
-            if (hfx_bound(ivec2(cell), level) >= coneLow) {
+            const vec2 bounds = hfx_bounds(ivec2(cell), level);
+            if (bounds.x >= coneLow) {
                 if (level == 0) { found = true; break; }
                 hfx_open_cell(level, cellSize, invCellSize);
             } else {

@@ -23,7 +23,8 @@ SurfaceMaterial materialOf(const AccuracyConfig& config) {
             .maxSamples = config.maxSamples,
             .lodThreshold = 100.0f, // mip level 0: the figures speak of the search, not the filter
             .shadows = config.shadows,
-            .shadowSharpness = config.shadowSharpness};
+            .shadowSharpness = config.shadowSharpness,
+            .pixelBudget = config.pixelBudget};
 }
 
 struct Spread {

@@ -42,7 +42,7 @@ struct SurfaceUniforms {
     float varianceFloor = 0.0f;
     glm::ivec2 wrap{1, 1};
     float untracedHeight = 0.0f;
-    float padding = 0.0f; ///< std140 puts the next vec4 on 16 bytes
+    float pixelBudget = 0.0f; ///< SurfaceMaterial::pixelBudget
     glm::vec4 layerScale{1.0f};
     glm::vec4 layerWeight{1.0f, 0.0f, 0.0f, 0.0f};
     glm::vec4 layerSlope{0.0f};
@@ -89,6 +89,7 @@ static_assert(offsetof(SurfaceUniforms, normalDecode) == 272);
 static_assert(offsetof(SurfaceUniforms, silhouetteFade) == 288);
 static_assert(offsetof(SurfaceUniforms, shadows) == 304);
 static_assert(offsetof(SurfaceUniforms, wrap) == 320);
+static_assert(offsetof(SurfaceUniforms, pixelBudget) == 332);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
 static_assert(sizeof(SurfaceUniforms) == 480);
