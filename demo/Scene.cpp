@@ -2,7 +2,10 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "hfx/core/Image.h"
 
+#include <algorithm>
+#include <bit>
 #include <cstdio>
 
 namespace hfx::demo {
@@ -52,6 +55,19 @@ void ImpactScene::fire(ImpactKind kind, double x, double y, int width, int heigh
     if (const auto hit = routeImpact({.origin = ray.origin, .direction = ray.direction, .kind = kind, .seed = seed}, targets))
         std::printf("impact: %s at (%.3f, %.3f, %.3f) on the %s\n", impactKindName(kind), hit->hit.world.x,
                     hit->hit.world.y, hit->hit.world.z, targets[hit->receiver]->name());
+}
+
+Technique defaultTechnique(const std::string& scene, const SceneOptions& o) {
+    if (scene == "water" || o.surfaceFormat == SurfaceFormat::Unorm8) return Technique::ParallaxOcclusion;
+    auto powerOfTwo = [](int n) { return n > 0 && std::has_single_bit(unsigned(n)); };
+    if (o.fieldSize > 0 && (!powerOfTwo(o.fieldSize) || (scene == "planet" && !powerOfTwo(std::max(4, o.fieldSize / 2)))))
+        return Technique::ParallaxOcclusion;
+    if (scene == "maps" && o.heightMap.empty()) return Technique::ParallaxOcclusion; // a normal map alone
+    if ((scene == "maps" || scene == "decals") && !o.heightMap.empty()) {
+        const ImageSize size = readImageSize(o.heightMap);
+        if (!powerOfTwo(size.width) || !powerOfTwo(size.height)) return Technique::ParallaxOcclusion;
+    }
+    return Technique::Hierarchical;
 }
 
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options) {

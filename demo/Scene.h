@@ -139,4 +139,10 @@ std::unique_ptr<Scene> makeNoiseScene(ClContext& cl, const SceneOptions& options
 /// Throws hfx::Error naming the scene and listing the known ones.
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options);
 
+/// --technique auto, every scene's default: the exact tracer (hier) wherever the scene's surface
+/// can carry its pyramid (one grid of power-of-two sizes in a float format); POM for the ocean,
+/// whose cascades are layers on different grids (no common cells to walk), and for fields or
+/// height maps of other sizes. Reads a height map's header (maps, decals) for its size.
+Technique defaultTechnique(const std::string& scene, const SceneOptions& options);
+
 } // namespace hfx::demo

@@ -106,7 +106,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     int screenshots = 0;
     double drawMs = 0.0, frameMs = 0.0, last = nowMs();
     // The techniques this scene can draw: those that need the per-frame pyramid only when it was
-    // started with one (--technique hier).
+    // started with one (--technique hier, or auto where the surface can carry it).
     std::vector<Technique> offered;
     for (const TechniqueInfo& t : kTechniqueTable)
         if (!t.needsPyramid || scene.effect().textures().pyramid() != 0) offered.push_back(t.technique);

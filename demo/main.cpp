@@ -41,7 +41,7 @@ struct Options {
     std::string out, video, exportMaps, windowShot;
     int width = 1280, height = 720;
     double dt = 1.0 / 30.0;
-    std::string technique = "pom";
+    std::string technique = "auto";
     std::string surfaceFormat = "float32";
     std::string transfer = "auto";
     std::string format = "png";
@@ -103,8 +103,8 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
 
 int run(const Options& o) {
     SceneOptions sceneOptions = o.sceneOptions;
-    sceneOptions.technique = parseTechnique(o.technique);
     sceneOptions.surfaceFormat = parseSurfaceFormat(o.surfaceFormat);
+    sceneOptions.technique = o.technique == "auto" ? defaultTechnique(o.scene, sceneOptions) : parseTechnique(o.technique);
     sceneOptions.transfer = parseTransferPath(o.transfer);
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
@@ -131,8 +131,9 @@ int run(const Options& o) {
     auto gl = createContext({.width = o.width, .height = o.height, .title = "HFX " + o.scene}, !o.headless);
     ClContext cl;
     auto scene = makeScene(o.scene, cl, sceneOptions);
-    std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\n", cl.programReport().c_str(),
-                 scene->effect().transferDescription().c_str());
+    std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\nhfx: technique: %s%s\n", cl.programReport().c_str(),
+                 scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
+                 o.technique == "auto" ? " (auto: the scene's default)" : "");
     if (gl->headless()) return runHeadless(o, *gl, *scene);
     std::fprintf(stderr, "hfx-demo: window, %s\n", gl->description().c_str());
     WindowLoop loop({.width = o.width,
@@ -174,8 +175,10 @@ int main(int argc, char** argv) {
     app.add_option("--dt", o.dt, "seconds between frames")->check(kFinite)->check(CLI::Range(1e-6, 10.0))->capture_default_str();
     app.add_option("--field", s.fieldSize, "height-field texels per edge (default: the scene's; ocean: a power of two)")
         ->check(CLI::Range(8, 8192));
-    std::vector<std::string> techniques;
-    std::string techniqueHelp = "surface technique (hfx-demo techniques lists them):";
+    std::vector<std::string> techniques{"auto"};
+    std::string techniqueHelp = "surface technique (hfx-demo techniques lists them):\n  auto: hier where the scene's surface "
+                                "can carry its pyramid (one power-of-two grid, float storage), pom elsewhere (the ocean's "
+                                "cascades)";
     for (const TechniqueInfo& t : kTechniqueTable) {
         techniques.emplace_back(t.name);
         techniqueHelp += str("\n  ", t.name, ": ", t.summary);

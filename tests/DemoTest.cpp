@@ -120,6 +120,33 @@ TEST(Demo, EveryTechniqueDrawsTheDecalWall) {
     }
 }
 
+TEST(Demo, TheExactTracerIsTheDefaultWhereTheSurfaceCanCarryItsPyramid) {
+    // One power-of-two grid in a float format: hier. The ocean's cascades, other sizes, 8-bit
+    // storage and height maps of other sizes: pom. An explicit --technique wins.
+    Image odd{48, 40, 1, std::vector<float>(48 * 40, 0.5f)};
+    odd.pixels[100] = 0.9f;
+    const std::string oddMap = outputPath("demo_auto_odd.exr");
+    writeImage(oddMap, odd);
+    Image square{64, 64, 1, std::vector<float>(64 * 64, 0.5f)};
+    square.pixels[100] = 0.9f;
+    const std::string squareMap = outputPath("demo_auto_square.exr");
+    writeImage(squareMap, square);
+    const std::string common = " --headless --frames 1 --width 96 --height 64 --out " + outputPath("demo_auto") + " ";
+    for (const auto& [args, technique] :
+         {std::pair{"decals --field 64", "hier"}, std::pair{"planet --field 64", "hier"}, std::pair{"noise --field 64", "hier"},
+          std::pair{"water --field 64", "pom"}, std::pair{"decals --field 96", "pom"},
+          std::pair{"decals --field 64 --surface-format unorm8", "pom"}, std::pair{"decals --field 64 --technique relief", "relief"}}) {
+        const Result r = runDemo(std::string(args) + common);
+        ASSERT_EQ(r.exitCode, 0) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(std::string("technique: ") + technique), std::string::npos) << args << "\n" << r.output;
+    }
+    for (const auto& [map, technique] : {std::pair{squareMap, "hier"}, std::pair{oddMap, "pom"}}) {
+        const Result r = runDemo("maps --height-map " + map + common);
+        ASSERT_EQ(r.exitCode, 0) << map << "\n" << r.output;
+        EXPECT_NE(r.output.find(std::string("technique: ") + technique), std::string::npos) << map << "\n" << r.output;
+    }
+}
+
 TEST(Demo, EverySurfaceFormatRendersAndUnorm8RefusesTheTracer) {
     for (const char* scene : {"water", "decals", "planet"})
         for (const char* format : {"float16", "unorm8"}) {

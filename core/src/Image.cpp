@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 namespace hfx {
 
@@ -22,9 +23,8 @@ void limitReaders(const ImageReadLimits& limits) {
     OIIO::attribute("openexr:core", 1);
 }
 
-} // namespace
-
-Image readImage(const std::string& path, const ImageReadLimits& limits) {
+/// The file opened, its header checked against the limits.
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const ImageReadLimits& limits) {
     if (!std::filesystem::exists(path)) throw Error(str("image '", path, "' does not exist"));
     limitReaders(limits);
     auto in = OIIO::ImageInput::open(path);
@@ -36,6 +36,19 @@ Image readImage(const std::string& path, const ImageReadLimits& limits) {
     if (static_cast<long long>(spec.width) * spec.height > limits.maxPixels)
         throw Error(str("image '", path, "' is ", spec.width, "x", spec.height,
                         ", above the limit of ", limits.maxPixels, " pixels"));
+    return in;
+}
+
+} // namespace
+
+ImageSize readImageSize(const std::string& path, const ImageReadLimits& limits) {
+    const OIIO::ImageSpec& spec = openImage(path, limits)->spec();
+    return {spec.width, spec.height, std::min(spec.nchannels, 4)};
+}
+
+Image readImage(const std::string& path, const ImageReadLimits& limits) {
+    const auto in = openImage(path, limits);
+    const OIIO::ImageSpec& spec = in->spec();
     Image image;
     image.width = spec.width;
     image.height = spec.height;

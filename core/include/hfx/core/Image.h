@@ -35,6 +35,13 @@ struct ImageReadLimits {
 /// missing, unreadable, corrupt or truncated file, a zero or oversized resolution, or NaN/Inf.
 Image readImage(const std::string& path, const ImageReadLimits& limits = {});
 
+struct ImageSize {
+    int width = 0, height = 0, channels = 0;
+};
+/// The first subimage's size from the file's header, no pixels read; the same errors as
+/// readImage for a missing, unreadable, empty or oversized image.
+ImageSize readImageSize(const std::string& path, const ImageReadLimits& limits = {});
+
 /// Writes by extension: .png as 8-bit (values clamped to [0,1]), .exr as 32-bit float, anything
 /// else OpenImageIO knows in its default format. Throws hfx::Error on failure.
 void writeImage(const std::string& path, const Image& image);

@@ -15,7 +15,7 @@ enum class SurfaceFormat {
     Float32, ///< RGBA32F, texel = 4 floats (16 bytes): exact
     Float16, ///< RGBA16F, texel = 4 halves (8 bytes): heights to 2^-11 near 1, round to nearest even
     /// RGBA8, texel = 4 bytes (n/2 + 1/2, h), round to nearest: heights in steps of 1/255. Its
-    /// rounding can lift a height above a float maximum-height pyramid, so it takes no pyramid.
+    /// rounding can lift a height above a float pyramid's maximum, so it takes no pyramid.
     Unorm8,
 };
 

@@ -35,7 +35,7 @@ struct TechniqueInfo {
     const char* summary;     ///< what it does, one line
     SelfShadow shadow;
     bool traces;             ///< displaces the texcoords (and writes gl_FragDepth); false: plain normal mapping
-    bool needsPyramid;       ///< reads the per-frame maximum-height pyramid (SurfaceOptions::pyramid)
+    bool needsPyramid;       ///< reads the per-frame height-bounds pyramid (SurfaceOptions::pyramid)
 };
 
 /// Every technique, in the order the docs and menus list them (cheapest first).
@@ -53,7 +53,7 @@ inline constexpr TechniqueInfo kTechniqueTable[] = {
      "parallax occlusion mapping: linear search, piecewise-linear hit (Tatarchuk 2006)", SelfShadow::Soft, true,
      false},
     {Technique::Hierarchical, "hier", "trace/hier.glsl",
-     "maximum-height pyramid walk to the exact bilinear hit (per-frame pyramid)", SelfShadow::Exact, true, true},
+     "height-bounds pyramid walk to the exact bilinear hit (per-frame pyramid)", SelfShadow::Exact, true, true},
 };
 
 inline constexpr std::size_t kTechniqueCount = std::size(kTechniqueTable);
