@@ -17,7 +17,8 @@
 //   HFX_LAYERS        1 to 4: the surface's layers (the ocean's cascades), summed in height and
 //                     slope (surface/heights.glsl); 1 is an ordinary surface
 //   HFX_TRACED_LAYERS 1 to HFX_LAYERS: the leading layers the tracers see; the rest only shade
-//   HFX_RINGS         1 for the water shading: impact rings (HfxRings) in height, slope and foam
+//   HFX_RINGS         1 for water with impact rings (HfxRings) in height, slope and foam (the
+//                     renderer picks it while WaterLook::ringCount > 0)
 //   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap): the view ray is the light's
 //                     (u_lightDir reversed), u_viewProj the light's; only the traced depth is
 //                     written, nothing is shaded

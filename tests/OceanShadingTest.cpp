@@ -78,5 +78,36 @@ TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
     EXPECT_LT(filtered, 0.8 * plain) << "the variance did not calm the far field";
 }
 
+TEST_F(OceanShading, ImpactRingsShowWhileTheyLiveAndTheCalmSeaDrawsAsBefore) {
+    // A ring switches the draw to the variant that adds the rings to every height fetch (their
+    // loop nearly doubled the water's search time when it ran without rings too); without one
+    // the draw is the ring-free variant's again, pixel for pixel.
+    OceanEffect ocean(cl(), {.ocean = {.size = 64, .cascades = 1}});
+    constexpr int W = 160, H = 120;
+    const Mesh sea(makePlane({.size = 10.0f}));
+    RenderTarget target(W, H);
+    SurfaceRenderer renderer;
+    const Camera camera = Camera::orbit({0, 0, 0}, 9.0f, 0.3f, 1.2f);
+    auto draw = [&](const SurfaceMaterial& material) {
+        target.bind();
+        target.clear();
+        const std::vector<SurfaceLayer> layers = ocean.layers();
+        renderer.draw(sea, glm::mat4(1.0f), layers, material, camera, {});
+        return target.readColor();
+    };
+    SurfaceMaterial material = ocean.material();
+    ASSERT_EQ(material.water.ringCount, 0);
+    const Image calm = draw(material);
+    material.water.rings[0] = {.centre = {0.5f, 0.5f}, .radius = 0.2f, .width = 0.04f, .wavenumber = 150.0f,
+                               .amplitude = 0.4f, .foam = 1.0f};
+    material.water.ringCount = 1;
+    const Image ringed = draw(material);
+    size_t changed = 0;
+    for (size_t i = 0; i < calm.pixels.size(); ++i) changed += std::abs(calm.pixels[i] - ringed.pixels[i]) > 0.05f;
+    EXPECT_GT(changed, calm.pixels.size() / 50) << "the ring does not show";
+    material.water.ringCount = 0;
+    EXPECT_EQ(draw(material).pixels, calm.pixels);
+}
+
 } // namespace
 } // namespace hfx::test

@@ -137,13 +137,15 @@ void SurfaceMaterial::validate() const {
 }
 
 const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading, int layers, int traced) {
-    return variant(options, shading, layers, traced, false);
+    if (shading == Shading::Water) variant(options, shading, layers, traced, false, true);
+    return variant(options, shading, layers, traced, false, false);
 }
 
 const ShaderProgram& SurfaceRenderer::variant(const DrawOptions& options, Shading shading, int layers, int traced,
-                                              bool caster) {
+                                              bool caster, bool rings) {
     if (traced <= 0 || traced > layers) traced = layers;
-    const auto key = std::make_tuple(options.technique, options.traceOutput && !caster, shading, layers, traced, caster);
+    rings = rings && shading == Shading::Water;
+    const auto key = std::make_tuple(options.technique, options.traceOutput && !caster, shading, layers, traced, caster, rings);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         // The fragment stage: the common declarations, the technique's tracer, the shading model,
@@ -155,7 +157,7 @@ const ShaderProgram& SurfaceRenderer::variant(const DrawOptions& options, Shadin
                                                    {"HFX_SHADOW_CASTER", caster ? "1" : "0"},
                                                    {"HFX_LAYERS", std::to_string(layers)},
                                                    {"HFX_TRACED_LAYERS", std::to_string(traced)},
-                                                   {"HFX_RINGS", shading == Shading::Water ? "1" : "0"}};
+                                                   {"HFX_RINGS", rings ? "1" : "0"}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("surface/shadowmap.glsl"),
                          shader("trace/common.glsl"),
@@ -263,7 +265,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
     const int traced = int(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
-    const ShaderProgram& p = variant(options, material.shading, int(layers.size()), traced, caster != nullptr);
+    const ShaderProgram& p = variant(options, material.shading, int(layers.size()), traced, caster != nullptr,
+                                     material.water.ringCount > 0);
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,

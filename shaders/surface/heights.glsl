@@ -9,7 +9,7 @@
 #endif
 
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
-layout(binding = 3) uniform sampler2D s_pyramid; // R32F, level k texel bounds the bilinear cells it covers
+layout(binding = 3) uniform sampler2D s_pyramid; // RG32F: level k texel's (max, min) over the bilinear cells it covers
 #if HFX_LAYERS > 1
 layout(binding = 4) uniform sampler2D s_surface1;
 #endif
@@ -54,10 +54,13 @@ float g_fetches = 0.0;
 float hfx_layers_height(vec2 uv, float level);
 
 float hfx_height(vec2 uv, float level) {
+    // One read of the layers either way: a CPU rasteriser runs both sides of a branch, so a
+    // branch that returned the layers' height on each side read every layer twice per step.
+    float h = hfx_layers_height(uv, level);
 #if HFX_RINGS
-    if (u_ringCount > 0) return hfx_layers_height(uv, level) + hfx_rings(uv).x;
+    if (u_ringCount > 0) h += hfx_rings(uv).x;
 #endif
-    return hfx_layers_height(uv, level);
+    return h;
 }
 
 float hfx_layers_height(vec2 uv, float level) {

@@ -161,15 +161,19 @@ public:
     void drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map);
 
     /// Builds the shader variant now (start-up) instead of on the first draw.
-    /// `traced` is the count of traced layers (0: all of them).
+    /// `traced` is the count of traced layers (0: all of them). Water also gets its variant with
+    /// impact rings (drawn while WaterLook::ringCount > 0); the one without is returned.
     const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit, int layers = 1,
                                  int traced = 0);
 
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).
     void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj);
-    /// The program of a variant; `caster`: the shadow-map variant (HFX_SHADOW_CASTER).
-    const ShaderProgram& variant(const DrawOptions& options, Shading shading, int layers, int traced, bool caster);
+    /// The program of a variant; `caster`: the shadow-map variant (HFX_SHADOW_CASTER); `rings`:
+    /// water with impact rings in its heights (HFX_RINGS; a variant of its own because the rings'
+    /// loop in every height fetch nearly doubled the search's time on llvmpipe, even with none).
+    const ShaderProgram& variant(const DrawOptions& options, Shading shading, int layers, int traced, bool caster,
+                                 bool rings);
     /// A surface draw: the uniforms of the layers and material, seen by viewProj from the camera
     /// (or, casting, from the light), then the mesh.
     void drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
@@ -178,7 +182,7 @@ private:
     void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, glm::vec3 eye,
                         const glm::vec4& color, const DirectionalLight* light);
 
-    std::map<std::tuple<Technique, bool, Shading, int, int, bool>, ShaderProgram> programs_;
+    std::map<std::tuple<Technique, bool, Shading, int, int, bool, bool>, ShaderProgram> programs_;
     ShaderProgram flat_, sky_;
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
