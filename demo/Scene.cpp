@@ -18,6 +18,7 @@ void Scene::applyOptions(const SceneOptions& o) {
     if (m.maxSamples < m.minSamples) m.maxSamples = m.minSamples;
     m.shadows = o.shadows;
     m.lodThreshold = o.lodThreshold;
+    if (o.pixelBudget >= 0.0f) m.pixelBudget = o.pixelBudget;
     effect().setMaterial(m);
     technique = o.technique;
 }

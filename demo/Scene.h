@@ -25,6 +25,7 @@ struct SceneOptions {
     float depthScale = 0.0f;           ///< 0: the scene's default
     bool shadows = true;
     float lodThreshold = 4.0f;
+    float pixelBudget = -1.0f;         ///< SurfaceMaterial::pixelBudget (-1: the scene's default)
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }

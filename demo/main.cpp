@@ -190,6 +190,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 256));
     app.add_option("--depth-scale", s.depthScale, "relief depth in texture units (default: the scene's)")
         ->check(kFinite)->check(CLI::Range(0.0001, 1.0));
+    app.add_option("--pixel-budget", s.pixelBudget,
+                   "the screen error the tracers may leave, pixels (0: full effort; default: the scene's): hier stops "
+                   "short of the exact hit by at most this much, the searches take no more steps than keep each within it")
+        ->check(CLI::Range(0.0f, 64.0f));
     app.add_option("--lod-threshold", s.lodThreshold, "mip level where POM has faded to normal mapping")
         ->check(kFinite)->check(CLI::Range(0.0, 16.0))->capture_default_str();
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();

@@ -95,20 +95,26 @@ vec2 hfx_add_layer(sampler2D s, sampler2D a, vec2 uv, float level, float scale, 
 // bilinear surface, cheaper than a trilinear textureGrad fetch (docs/BENCHMARKS.md,
 // "textureGrad"). Shading fetches keep trilinear filtering.
 
-// The pixel budget as a depth fraction along the view ray: a hit t off by dt moves the point shown
-// by parallax * dt in texcoords, which the pixel's texcoord derivatives (dx, dy per pixel) turn
-// into pixels. Measured at the polygon: the hit lies farther from the eye, where the same offset
-// covers fewer pixels, so the budget holds there too. 0 where the derivatives are degenerate and
-// in the shadow map (its texels are no screen pixels).
-float hfx_depth_tolerance(vec2 parallax, vec2 dx, vec2 dy) {
+// The pixel budget (u_pixelBudget > 0) picks the tracers' effort from the screen. A texcoord
+// offset v at the polygon covers |J^-1 v| pixels, J the pixel's texcoord derivatives (dx, dy per
+// pixel); the relief lies farther from the eye, where the same offset covers fewer, so what holds
+// at the polygon holds there too. Returns 0 where there is no budget, the derivatives are
+// degenerate, or in the shadow map (its texels are no screen pixels): the caller then does the
+// full work.
+float hfx_screen_pixels(vec2 v, vec2 dx, vec2 dy) {
 #if HFX_SHADOW_CASTER
     return 0.0;
 #else
     const float det = dx.x * dy.y - dx.y * dy.x;
     if (!(u_pixelBudget > 0.0) || abs(det) < 1e-20) return 0.0;
-    const vec2 pixels = vec2(dy.y * parallax.x - dy.x * parallax.y, dx.x * parallax.y - dx.y * parallax.x) / det;
-    return u_pixelBudget / max(length(pixels), 1e-6);
+    return length(vec2(dy.y * v.x - dy.x * v.y, dx.x * v.y - dx.y * v.x)) / abs(det);
 #endif
+}
+
+// The sampled tracers' steps under the budget: no more than keep each step within the budget on
+// the screen (the whole ray, or light ray, spans `pixels`), never more than the caller's count.
+int hfx_budget_samples(int samples, float pixels) {
+    return pixels > 0.0 ? clamp(int(ceil(pixels / u_pixelBudget)), 1, samples) : samples;
 }
 
 void main() {
@@ -154,7 +160,12 @@ void main() {
         ray.level = searchLevel;
         // Dynamic sample rate: more steps the more grazing the view.
         ray.samples = clamp(int(mix(float(u_maxSamples), float(u_minSamples), cosView)), 1, HFX_MAX_SAMPLES);
-        ray.tolerance = hfx_depth_tolerance(ray.parallax, dx, dy);
+        // The budget: hier stops short of the hit by at most its share of the ray's screen length
+        // (a depth fraction dt moves the point shown by parallax * dt), the searches take no more
+        // steps than keep each within it.
+        const float rayPixels = hfx_screen_pixels(ray.parallax, dx, dy);
+        ray.tolerance = rayPixels > 0.0 ? u_pixelBudget / rayPixels : 0.0;
+        ray.samples = hfx_budget_samples(ray.samples, rayPixels);
         const HfxHit hit = hfx_trace(ray);
         // Level of detail: within one mip level of the threshold, fade the parallax out so the
         // change to normal mapping is not seen as a seam.
@@ -257,7 +268,10 @@ void main() {
         shadowRay.h0 = h0;
         shadowRay.span = lightTS.xy / lightTS.z * depthScale * (1.0 - h0);
         shadowRay.level = searchLevel;
-        shadowRay.samples = u_shadowSamples;
+        // On the screen the light ray runs from the point to its top: a point (x, h) shows where the
+        // view ray through x + parallax * (1 - h) does, so its extent is span - parallax * (1 - h0).
+        const vec2 parallax = viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
+        shadowRay.samples = hfx_budget_samples(u_shadowSamples, hfx_screen_pixels(shadowRay.span - parallax * (1.0 - h0), dx, dy));
         shadowRay.sharpness = u_shadowSharpness;
         lit = 1.0 - hfx_shadow(shadowRay) * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
     }

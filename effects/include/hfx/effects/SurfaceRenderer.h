@@ -81,11 +81,13 @@ struct SurfaceMaterial {
     /// Curved meshes: the relief fades out where the view grazes the geometry (cos below this),
     /// so silhouettes keep the mesh's outline instead of smearing texels. 0 = off.
     float silhouetteFade = 0.0f;
-    /// The exact tracer (Technique::Hierarchical): the screen error it may leave, in pixels. It
-    /// then stops at the first pyramid cell that surely holds the hit within that error (the ray
-    /// leaves the cell below the cell's lowest height soon enough), instead of solving level 0:
-    /// less work where texels are smaller than pixels and on flat tops. The point it returns is
-    /// never below the surface. 0 = exact. Other techniques ignore it.
+    /// The effort picked from the screen, in pixels (0 = full effort). The exact tracer
+    /// (Technique::Hierarchical) stops at the first pyramid cell that surely holds the hit within
+    /// that screen error (the ray leaves the cell below the cell's lowest height soon enough)
+    /// instead of solving level 0; the point it returns is never below the surface. The sampled
+    /// tracers take no more search and shadow steps than keep each step within it on the screen
+    /// (at most the samples above): a bound on the step, not on their error. Less work where the
+    /// relief is small on the screen (far away, seen from above).
     float pixelBudget = 0.0f;
     void validate() const; ///< throws hfx::Error naming the field and its value
     bool operator==(const SurfaceMaterial&) const = default;
