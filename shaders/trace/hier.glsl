@@ -1,12 +1,12 @@
 // Hierarchical tracer: the exact first hit of the ray with the bilinear surface, walking the
-// height-bounds pyramid (hfx_bounds: max and min per cell). The walk starts at the entry's level-0 cell (a ray that
-// meets the relief at once costs two fetches, as POM's does); a cell whose bound the ray passes
-// above is skipped whole, and where its exit is also its parent's edge the walk climbs a level;
-// a cell the ray dips into is opened a level down. A level-0 cell the ray dips into is solved:
-// the bilinear patch between four samples (hfx_gather) in closed form (the height along the ray
-// is quadratic in t); if the ray passes the patch the walk goes on. Cell space:
-// x = u * width - 0.5, so cell i spans the samples i and i + 1. Exact self-shadows with a
-// blocker-distance penumbra (hfx_shadow, below).
+// height-bounds pyramid (hfx_bounds: max and min per cell). The walk starts at the entry's
+// level-0 cell (a ray that meets the relief at once costs two fetches, as POM's does); a cell
+// whose maximum the ray passes above is skipped whole, and where its exit is also its parent's
+// edge the walk climbs a level; a cell the ray dips into is opened a level down. A level-0 cell
+// the ray dips into is solved: the bilinear patch between four samples (hfx_gather) in closed
+// form (the height along the ray is quadratic in t); if the ray passes the patch the walk goes
+// on. Cell space: x = u * width - 0.5, so cell i spans the samples i and i + 1. Exact
+// self-shadows with a blocker-distance penumbra (hfx_shadow, below).
 //
 // A cell of any level the ray dips into and leaves below the cell's minimum surely holds the hit,
 // between where the ray comes down to its maximum and where it passes its minimum. Where that
