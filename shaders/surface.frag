@@ -138,6 +138,8 @@ void main() {
 #if HFX_TRACES
     const mat3 textureFromWorld = frameOk ? inverse(worldFromTexture) : mat3(1.0);
     const vec3 viewTS = textureFromWorld * toEye;
+    // Parallax offset vector: where the view ray has moved in uv when it reaches h = 0.
+    const vec2 parallax = viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
 #endif
 
     const vec2 uv0 = v_texcoord;
@@ -154,8 +156,7 @@ void main() {
     if (mipLevel <= u_lodThreshold && viewTS.z > 0.0 && depthScale > 0.0) {
         HfxRay ray;
         ray.uv = uv0;
-        // Parallax offset vector: where the ray has moved in uv when it reaches h = 0.
-        ray.parallax = viewTS.xy / viewTS.z * depthScale;
+        ray.parallax = parallax;
         ray.cosTheta = normalize(viewTS).z;
         ray.level = searchLevel;
         // Dynamic sample rate: more steps the more grazing the view.
@@ -232,13 +233,12 @@ void main() {
 #endif
 #if HFX_RINGS
     // The impact rings: their slope (slope form: x/z, y/z of the normal) and foam on top.
+    // (This variant is drawn only while a ring lives: WaterLook::ringCount > 0.)
+    const vec4 rings = hfx_rings(uv);
     vec3 ringNormal = storedNormal;
+    ringNormal.xy -= depthScale * rings.yz * storedNormal.z;
     vec4 ringFoam = layerFoam;
-    if (u_ringCount > 0) {
-        const vec4 rings = hfx_rings(uv);
-        ringNormal.xy -= depthScale * rings.yz * storedNormal.z;
-        ringFoam.x = max(ringFoam.x, rings.w);
-    }
+    ringFoam.x = max(ringFoam.x, rings.w);
 #define HFX_SHADED_NORMAL ringNormal
 #define HFX_SHADED_FOAM ringFoam
 #else
@@ -270,7 +270,6 @@ void main() {
         shadowRay.level = searchLevel;
         // On the screen the light ray runs from the point to its top: a point (x, h) shows where the
         // view ray through x + parallax * (1 - h) does, so its extent is span - parallax * (1 - h0).
-        const vec2 parallax = viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
         shadowRay.samples = hfx_budget_samples(u_shadowSamples, hfx_screen_pixels(shadowRay.span - parallax * (1.0 - h0), dx, dy));
         shadowRay.sharpness = u_shadowSharpness;
         lit = 1.0 - hfx_shadow(shadowRay) * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));

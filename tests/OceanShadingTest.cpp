@@ -79,9 +79,10 @@ TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
 }
 
 TEST_F(OceanShading, ImpactRingsShowWhileTheyLiveAndTheCalmSeaDrawsAsBefore) {
-    // A ring switches the draw to the variant that adds the rings to every height fetch (their
-    // loop nearly doubled the water's search time when it ran without rings too); without one
-    // the draw is the ring-free variant's again, pixel for pixel.
+    // A ring switches the draw to the variant that adds the rings to every height fetch and to the
+    // shading (their loop nearly doubled the water's search time when it ran without rings too:
+    // docs/BENCHMARKS.md); once it is gone nothing of it is left in the image. Which variant draws
+    // is not observable here; the bench measures what it costs.
     OceanEffect ocean(cl(), {.ocean = {.size = 64, .cascades = 1}});
     constexpr int W = 160, H = 120;
     const Mesh sea(makePlane({.size = 10.0f}));

@@ -357,6 +357,11 @@ void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const C
     drawFlatSeenBy(mesh, model, camera.viewProjection(), camera.position, color, light);
 }
 
+void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map) {
+    // Depth only (the map has no colour): the eye's position feeds nothing that is written.
+    drawFlatSeenBy(mesh, model, map.viewProj(), map.towardsLight(), glm::vec4(1.0f), nullptr);
+}
+
 void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj,
                                      glm::vec3 eye, const glm::vec4& color, const DirectionalLight* light) {
     if (!flat_.id())
@@ -377,14 +382,6 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
     glDepthFunc(GL_LESS);
     flat_.use();
     mesh.draw();
-}
-
-} // namespace hfx
-
-namespace hfx {
-
-void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map) {
-    drawFlatSeenBy(mesh, model, map.viewProj(), map.towardsLight(), glm::vec4(1.0f), nullptr);
 }
 
 } // namespace hfx

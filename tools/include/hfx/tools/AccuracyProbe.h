@@ -38,7 +38,7 @@ struct AccuracyConfig {
     bool shadows = false;        ///< compare the self-shadow with exact shadow rays
     glm::vec3 light{0.6f, 0.55f, 0.3f}; ///< world direction towards the light (plane normal +Y)
     float shadowSharpness = 2.0f; ///< the material's: its penumbra is where the clearance ratio < 1 / this
-    float pixelBudget = 0.0f;     ///< the material's: the exact tracer's screen error budget (0: exact)
+    float pixelBudget = 0.0f;     ///< the material's: the tracers' screen budget, pixels (0: full effort)
     /// Shadow comparison skips points whose exact shadow changes within this many texels (the
     /// texel the boundary falls in, where a hit a little off flips it), and points in the
     /// penumbra band: the light ray is clear, but the cone edge (the ray lowered by
