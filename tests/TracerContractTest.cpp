@@ -7,7 +7,9 @@
 #include "support/Fixtures.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/compute/StaticField.h"
 #include "hfx/core/Gl.h"
+#include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/tools/AccuracyProbe.h"
@@ -69,6 +71,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_shadowBias", offsetof(SurfaceUniforms, shadowBias)},
         {"u_shadowOffset", offsetof(SurfaceUniforms, shadowOffset)},
         {"u_shadowTexel", offsetof(SurfaceUniforms, shadowTexel)},
+        {"u_boundedSearch", offsetof(SurfaceUniforms, boundedSearch)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},
@@ -110,6 +113,7 @@ vec2 hfx_bounds(ivec2 cell, int level) {
     const ivec2 n = max(hfx_size() >> level, ivec2(1));
     return texelFetch(s_pyramid, mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap)), level).rg;
 }
+vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); } // searches span [0, 1]
 )",
                           "test"};
 /// The harness's buffers: two vec4 of input per ray (a, b: what each main below says), one vec4
@@ -372,6 +376,105 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
     EXPECT_GT(blocked, kRays / 10);
     EXPECT_EQ(missed, 0);
     EXPECT_EQ(invented, 0);
+}
+
+/// The searches' bounds (surface/heights.glsl, hfx_segment_bounds) in a compute harness: per
+/// segment (a: from, to; b: level) the bounds, and how far any height the search reads along it
+/// (65 points, ends included) stands above their maximum or below their minimum.
+const SourceFile kBoundsMain{"harness_bounds.comp", R"(#version 450 core
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Segments { vec4 segments[]; };
+layout(std430, binding = 1) writeonly buffer Out { vec4 result[]; };
+uniform int u_count;
+void main() {
+    const uint i = gl_GlobalInvocationID.x;
+    if (i >= uint(u_count)) return;
+    const vec4 a = segments[2 * i], b = segments[2 * i + 1];
+    const vec2 bounds = hfx_segment_bounds(a.xy, a.zw, b.x);
+    float above = -1.0, below = -1.0;
+    for (int k = 0; k <= 64; ++k) {
+        const float h = hfx_height(mix(a.xy, a.zw, float(k) / 64.0), b.x);
+        above = max(above, h - bounds.x);
+        below = max(below, bounds.y - h);
+    }
+    result[i] = vec4(above, below, bounds);
+}
+)",
+                              "test"};
+
+TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment) {
+    // Lone spikes and pits on a flat field (a mip texel near one, and only it, leaves the flat
+    // height: bounds that miss the spike's reach fail) and smooth sines; a 64^2 layer and a 32^2
+    // one repeated 2.7 times (a fractional mip offset), mipmapped, wrapping or clamped.
+    constexpr int N = 64;
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> noise(size_t(N) * N, 0.5f);
+    for (float& h : noise)
+        if (const float r = unit(random); r < 0.01f) h = r < 0.005f ? 1.0f : 0.0f;
+    const auto smooth = sumOfSines(N / 2, {{0.3, 1, 2, 0.8}, {0.12, 3, -2, 0.1}});
+    const SurfaceOptions options{.mipmaps = true, .pyramid = true};
+    for (const EdgeMode edges : {EdgeMode::Wrap, EdgeMode::Clamp}) {
+        StaticField fieldA(cl(), N, N, edges, noise), fieldB(cl(), N / 2, N / 2, EdgeMode::Wrap, smooth);
+        SurfacePipeline a(cl(), SurfacePipelineConfig::of(fieldA, 0.05f, options));
+        SurfacePipeline b(cl(), SurfacePipelineConfig::of(fieldB, 0.05f, options));
+        a.run(fieldA.buffer());
+        b.run(fieldB.buffer());
+        const int layers = edges == EdgeMode::Wrap ? 2 : 1; // layers tile: only one clamps
+        const float scaleB = 2.7f;
+        SurfaceUniforms u{.pyramidLevels = a.textures().pyramidLevels(),
+                          .wrap = glm::ivec2(edges == EdgeMode::Wrap ? 1 : 0),
+                          .untracedHeight = 0.0f,
+                          .layerScale = {1.0f, scaleB, 1.0f, 1.0f},
+                          .layerWeight = layers == 2 ? glm::vec4(0.6f, 0.4f, 0.0f, 0.0f) : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
+                          .layerLevel = {0.0f, std::log2(scaleB * float(N / 2) / float(N)), 0.0f, 0.0f},
+                          .boundedSearch = 1};
+        GlBuffer block = GlBuffer::create();
+        glNamedBufferStorage(block.id(), sizeof u, &u, 0);
+        // Segments of every length up to half the field, from anywhere (beyond [0, 1] too), at
+        // mip levels 0..3, halves of levels included.
+        constexpr int kSegments = 20000;
+        std::vector<glm::vec4> segments;
+        for (int i = 0; i < kSegments; ++i) {
+            const glm::vec2 from(unit(random) * 3.0f - 1.0f, unit(random) * 3.0f - 1.0f);
+            const float length = 0.5f * unit(random) * unit(random), angle = 6.2831853f * unit(random);
+            segments.emplace_back(from, from + length * glm::vec2(std::cos(angle), std::sin(angle)));
+            segments.emplace_back(float(i % 7) * 0.5f, 0.0f, 0.0f, 0.0f);
+        }
+        GlBuffer in = GlBuffer::create(), out = GlBuffer::create();
+        glNamedBufferStorage(in.id(), GLsizeiptr(segments.size() * sizeof(glm::vec4)), segments.data(), 0);
+        glNamedBufferStorage(out.id(), GLsizeiptr(kSegments * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        const ShaderProgram p = ShaderProgram::compute(
+            {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kBoundsMain},
+            {{"HFX_LAYERS", std::to_string(layers)}});
+        p.set("u_count", kSegments);
+        glBindTextureUnit(0, a.textures().surface());
+        glBindTextureUnit(3, a.textures().pyramid());
+        glBindTextureUnit(4, b.textures().surface());
+        glBindTextureUnit(12, b.textures().pyramid());
+        glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+        p.use();
+        glDispatchCompute(GLuint((kSegments + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::vector<glm::vec4> result(kSegments);
+        glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(result.size() * sizeof(glm::vec4)), result.data());
+        glUseProgram(0);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+        float worstAbove = -1.0f, worstBelow = -1.0f, meanWidth = 0.0f;
+        for (const glm::vec4& r : result) {
+            worstAbove = std::max(worstAbove, r.x);
+            worstBelow = std::max(worstBelow, r.y);
+            meanWidth += (r.z - r.w) / float(kSegments);
+        }
+        EXPECT_LE(worstAbove, 0.0f) << edgeModeName(edges) << ": a height above the bounds' maximum";
+        EXPECT_LE(worstBelow, 0.0f) << edgeModeName(edges) << ": a height below the bounds' minimum";
+        // Bounds that hold by being the whole relief would say nothing: with the smooth layer,
+        // narrower than the two layers' full range (the noise's own bounds cannot be).
+        std::printf("[bounds] %s: mean width %.3f\n", edgeModeName(edges), meanWidth);
+        if (layers == 2) EXPECT_LT(meanWidth, 0.95f);
+    }
 }
 
 TEST_F(TracerContract, TheTechniqueTableNamesItsShadersAndParsesItsNames) {

@@ -93,8 +93,9 @@ public:
 
 private:
     GLboolean depthTest_;
-    // surface, albedo, environment, pyramid, layers 1-3, their albedos, shading channels, shadow map
-    static constexpr int kUnits = 12;
+    // surface, albedo, environment, pyramid, layers 1-3, their albedos, shading channels, shadow map,
+    // the pyramids of layers 1-3
+    static constexpr int kUnits = 15;
     static constexpr GLuint kBlocks = 3; // surface, water, rings
     GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
@@ -292,6 +293,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .varianceFloor = varianceFloor(textures.config().format),
                       .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0},
                       .pixelBudget = material.pixelBudget};
+    // Bounded searches where asked and every traced layer has its pyramid.
+    u.boundedSearch = material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
+                          return !l.traced || l.textures->pyramid() != 0;
+                      }) ? 1 : 0;
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
     // texture read at the mesh's own texcoords (the level surface.frag computes).
@@ -325,8 +330,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     for (size_t i = 1; i < layers.size(); ++i) {
         glBindTextureUnit(GLuint(3 + i), layers[i].textures->surface());
         glBindTextureUnit(GLuint(6 + i), layers[i].textures->albedo());
+        glBindTextureUnit(GLuint(11 + i), layers[i].textures->pyramid());
     }
-    if (info.needsPyramid) glBindTextureUnit(3, textures.pyramid());
+    glBindTextureUnit(3, textures.pyramid());
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();

@@ -12,12 +12,15 @@ layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 
 layout(binding = 3) uniform sampler2D s_pyramid; // RG32F: level k texel's (max, min) over the bilinear cells it covers
 #if HFX_LAYERS > 1
 layout(binding = 4) uniform sampler2D s_surface1;
+layout(binding = 12) uniform sampler2D s_pyramid1; // the layers' own pyramids (bounded searches)
 #endif
 #if HFX_LAYERS > 2
 layout(binding = 5) uniform sampler2D s_surface2;
+layout(binding = 13) uniform sampler2D s_pyramid2;
 #endif
 #if HFX_LAYERS > 3
 layout(binding = 6) uniform sampler2D s_surface3;
+layout(binding = 14) uniform sampler2D s_pyramid3;
 #endif
 
 // A layered surface traces its first HFX_TRACED_LAYERS layers (all unless told): the others
@@ -101,4 +104,61 @@ vec2 hfx_bounds(ivec2 cell, int level) {
     const ivec2 index = mix(clamp(cell, ivec2(0), levelSize - 1), ivec2(c - n * floor(c / n)), bvec2(u_wrap));
     g_fetches += 1.0;
     return texelFetch(s_pyramid, index, level).rg;
+}
+
+// Bounds of the heights the searches read (hfx_height at `level`) anywhere on the texcoord segment
+// from a to b: (max, min), from the pyramids where the material asks (u_boundedSearch: every
+// traced layer has one); else (1, 0), the whole relief. Per layer, in its sample coordinates (x = u * width - 0.5,
+// pyramid cell i between samples i and i + 1), the segment's box is widened by what its fetches
+// reach: the bilinear cell at mip 0; at mip m, whose texels average 2^m-wide blocks, 1.5 * 2^m
+// samples. The pyramid level whose cells are at least as wide as that box covers it with two
+// cells per axis: four fetches per layer. The layers' bounds add, with the untraced layers' rest
+// height and, in the ring variant, the rings' amplitudes.
+vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) {
+    const float reach = mip > 0.0 ? 1.5 * exp2(ceil(mip)) : 0.0;
+    const vec2 lo = min(a, b) * vec2(size) - 0.5 - reach, hi = max(a, b) * vec2(size) - 0.5 + reach;
+    const int levels = textureQueryLevels(pyramid);
+    const float extent = max(hi.x - lo.x, hi.y - lo.y);
+    const int level = min(int(ceil(log2(max(extent, 1.0)))), levels - 1);
+    const ivec2 levelSize = max(size >> level, ivec2(1));
+    const vec2 n = vec2(levelSize), width = vec2(size) / n;
+    // Cells of the level under the box's corners, wrapped or clamped to the field as hfx_bounds does.
+    const vec2 c0 = floor(lo / width), c1 = floor(hi / width);
+    const vec4 cx = vec4(c0.x, c1.x, c0.x, c1.x), cy = vec4(c0.y, c0.y, c1.y, c1.y);
+    const vec4 ix = u_wrap.x != 0 ? cx - n.x * floor(cx / n.x) : clamp(cx, 0.0, n.x - 1.0);
+    const vec4 iy = u_wrap.y != 0 ? cy - n.y * floor(cy / n.y) : clamp(cy, 0.0, n.y - 1.0);
+    g_fetches += 4.0;
+    const vec2 b0 = texelFetch(pyramid, ivec2(ix.x, iy.x), level).rg, b1 = texelFetch(pyramid, ivec2(ix.y, iy.y), level).rg;
+    const vec2 b2 = texelFetch(pyramid, ivec2(ix.z, iy.z), level).rg, b3 = texelFetch(pyramid, ivec2(ix.w, iy.w), level).rg;
+    return vec2(max(max(b0.x, b1.x), max(b2.x, b3.x)), min(min(b0.y, b1.y), min(b2.y, b3.y)));
+}
+
+vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) {
+    if (u_boundedSearch == 0) return vec2(1.0, 0.0);
+#if HFX_LAYERS == 1
+    vec2 bounds = hfx_layer_bounds(s_pyramid, hfx_size(), a, b, level);
+#else
+    vec2 bounds = vec2(u_untracedHeight) +
+                  u_layerWeight.x * hfx_layer_bounds(s_pyramid, hfx_size(), a * u_layerScale.x, b * u_layerScale.x,
+                                                     max(level + u_layerLevel.x, 0.0));
+#if HFX_TRACED_LAYERS > 1
+    bounds += u_layerWeight.y * hfx_layer_bounds(s_pyramid1, textureSize(s_surface1, 0), a * u_layerScale.y,
+                                                 b * u_layerScale.y, max(level + u_layerLevel.y, 0.0));
+#endif
+#if HFX_TRACED_LAYERS > 2
+    bounds += u_layerWeight.z * hfx_layer_bounds(s_pyramid2, textureSize(s_surface2, 0), a * u_layerScale.z,
+                                                 b * u_layerScale.z, max(level + u_layerLevel.z, 0.0));
+#endif
+#if HFX_TRACED_LAYERS > 3
+    bounds += u_layerWeight.w * hfx_layer_bounds(s_pyramid3, textureSize(s_surface3, 0), a * u_layerScale.w,
+                                                 b * u_layerScale.w, max(level + u_layerLevel.w, 0.0));
+#endif
+#endif
+#if HFX_RINGS
+    float rings = 0.0;
+    for (int i = 0; i < u_ringCount; ++i) rings += abs(u_ringWave[i].y);
+    bounds += vec2(rings, -rings);
+#endif
+    // A margin for the storage's rounding (float16 rounds a height by up to 2^-11 of itself).
+    return bounds + vec2(1e-3, -1e-3);
 }

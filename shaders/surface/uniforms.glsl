@@ -40,6 +40,7 @@ layout(std140, binding = 0) uniform HfxSurface {
     float u_shadowBias;       // depth bias, in the map's window depth
     float u_shadowOffset;     // normal offset of the lookup, world units
     float u_shadowTexel;      // 1 / the map's size
+    int u_boundedSearch;      // 1: the searches are bounded by the layers' pyramids (hfx_segment_bounds)
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

@@ -32,23 +32,36 @@ const int HFX_MAX_SHADOW_SAMPLES = 32;
 
 HfxHit hfx_hit_at(HfxRay ray, float t) { return HfxHit(ray.uv - ray.parallax * t, t); }
 
-// Linear search in depth fraction t (ray height 1 - t): the first of ray.samples equal steps
-// whose sample is at or above the ray. On a hit, [t0, t1] brackets it with d = surface - ray
-// heights d0 < 0 <= d1; t0 == t1 == 0 when the ray starts inside the relief.
+// Linear search in depth fraction t (ray height 1 - t): the first of its equal steps whose sample
+// is at or above the ray. On a hit, [t0, t1] brackets it with d = surface - ray heights
+// d0 < 0 <= d1; t0 == t1 when the ray meets the relief at its first sample. The search spans
+// only the depths where the heights on the ray's path can be (hfx_segment_bounds: the ray
+// reaches their maximum at 1 - max and is below every height from 1 - min on), in steps no longer
+// than 1 / ray.samples: where the bounds are tight that is fewer steps, each as fine as before.
+// Without bounds (1, 0) it is the plain search of [0, 1].
 bool hfx_linear_search(HfxRay ray, out float t0, out float t1, out float d0, out float d1) {
-    const float stepSize = 1.0 / float(ray.samples);
-    t0 = 0.0;
-    d0 = hfx_height(ray.uv, ray.level) - 1.0;
-    t1 = 0.0;
+    const vec2 bounds = hfx_segment_bounds(ray.uv, ray.uv - ray.parallax, ray.level);
+    const float tStart = clamp(1.0 - bounds.x, 0.0, 1.0), tEnd = clamp(1.0 - bounds.y, tStart, 1.0);
+    const int steps = max(int(ceil(float(ray.samples) * (tEnd - tStart))), 1);
+    const float stepSize = (tEnd - tStart) / float(steps);
+    t0 = tStart;
+    d0 = hfx_height(ray.uv - ray.parallax * tStart, ray.level) - (1.0 - tStart);
+    t1 = t0;
     d1 = d0;
     if (d0 >= 0.0) return true;
     for (int i = 1; i <= HFX_MAX_SAMPLES; ++i) {
-        if (i > ray.samples) break;
-        t1 = float(i) * stepSize;
+        if (i > steps) break;
+        t1 = i == steps ? tEnd : tStart + float(i) * stepSize;
         d1 = hfx_height(ray.uv - ray.parallax * t1, ray.level) - (1.0 - t1);
         if (d1 >= 0.0) return true;
         t0 = t1;
         d0 = d1;
+    }
+    // Below the bounds' minimum the ray is under the surface: a sample found short of it there
+    // can only be the storage's rounding. Without bounds the ray has left the relief.
+    if (tEnd < 1.0) {
+        d1 = 0.0;
+        return true;
     }
     return false;
 }
@@ -56,13 +69,17 @@ bool hfx_linear_search(HfxRay ray, out float t0, out float t1, out float d0, out
 // Tatarchuk's occlusion: heights along the light ray from the displaced point; a blocker's
 // occlusion is its rise above the ray relative to the ray's own climb there, so a close blocker
 // (small climb) counts fully and a far one weakly. The largest over the samples; > 0 means some
-// sample stood above the ray.
+// sample stood above the ray. The samples lie where a blocker can be: on the part of the ray
+// below the heights' maximum on its path (hfx_segment_bounds), none where it is above them, and
+// no closer together than ray.samples over the whole ray would be.
 float hfx_occlusion(HfxShadowRay ray) {
-    const int samples = clamp(ray.samples, 1, HFX_MAX_SHADOW_SAMPLES);
+    const float top = hfx_segment_bounds(ray.uv, ray.uv + ray.span, ray.level).x;
+    const float reach = clamp((top - ray.h0) / max(1.0 - ray.h0, 1e-6), 0.0, 1.0);
+    const int samples = clamp(int(ceil(float(ray.samples) * reach)), 0, HFX_MAX_SHADOW_SAMPLES);
     float occlusion = 0.0;
     for (int i = 1; i <= HFX_MAX_SHADOW_SAMPLES; ++i) {
         if (i > samples) break;
-        const float f = float(i) / float(samples + 1);
+        const float f = reach * float(i) / float(samples + 1);
         const float rayHeight = ray.h0 + f * (1.0 - ray.h0);
         const float blocker = hfx_height(ray.uv + ray.span * f, ray.level) - rayHeight;
         occlusion = max(occlusion, blocker / (f * (1.0 - ray.h0)));

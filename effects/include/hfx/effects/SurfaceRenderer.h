@@ -89,6 +89,13 @@ struct SurfaceMaterial {
     /// (at most the samples above): a bound on the step, not on their error. Less work where the
     /// relief is small on the screen (far away, seen from above).
     float pixelBudget = 0.0f;
+    /// Bound the sampled searches (pom, secant, relief, steep) by the height pyramid, where every
+    /// traced layer has one: each ray steps only through the depths the heights on its path reach
+    /// (four pyramid fetches per layer give them), and each shadow ray only below their top,
+    /// with steps no longer than without. It pays where rays take many steps through a relief
+    /// whose range along them is small against its depth (the ocean's cascades: OceanEffect sets
+    /// it); on a single map with large texels the four fetches cost what they save.
+    bool boundedSearch = false;
     void validate() const; ///< throws hfx::Error naming the field and its value
     bool operator==(const SurfaceMaterial&) const = default;
 };

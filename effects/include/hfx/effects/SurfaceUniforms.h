@@ -53,6 +53,8 @@ struct SurfaceUniforms {
     float shadowBias = 0.0f;        ///< depth bias, in the map's window depth
     float shadowOffset = 0.0f;      ///< normal offset of the lookup, world units (about 1.5 map texels)
     float shadowTexel = 0.0f;       ///< 1 / the map's size (the filter's tap spacing)
+    int boundedSearch = 0;          ///< 1: the searches are bounded by the layers' pyramids
+    int padding[3] = {};            ///< std140 rounds the block up to 16 bytes
 };
 
 struct WaterUniforms {
@@ -92,7 +94,8 @@ static_assert(offsetof(SurfaceUniforms, wrap) == 320);
 static_assert(offsetof(SurfaceUniforms, pixelBudget) == 332);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
-static_assert(sizeof(SurfaceUniforms) == 480);
+static_assert(offsetof(SurfaceUniforms, boundedSearch) == 480);
+static_assert(sizeof(SurfaceUniforms) == 496);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, hasEnvironment) == 64);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);
