@@ -170,6 +170,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         ImGui::SliderFloat("depth scale", &m.depthScale, 0.001f, 0.3f, "%.4f", ImGuiSliderFlags_Logarithmic);
         ImGui::Checkbox("soft shadows", &m.shadows);
         ImGui::SliderInt("shadow samples", &m.shadowSamples, 1, 32);
+        ImGui::Checkbox("bounded search", &m.boundedSearch);
         ImGui::SliderFloat("LOD threshold", &m.lodThreshold, 0.0f, 12.0f);
         ImGui::Checkbox("wireframe of the base mesh", &scene.wireframe);
         if (!(before == m)) scene.effect().setMaterial(m);

@@ -28,10 +28,12 @@ struct Layers {
     std::unique_ptr<SurfacePipeline> surfaceA, surfaceB, surfaceSum;
 };
 
-Layers makeLayers(ClContext& cl) {
+/// `relief` scales the waves' amplitudes: at 1 the sum spans most of the depth; the ocean's
+/// cascades, whose depth is 8 sigma, keep most of their heights within the middle half.
+Layers makeLayers(ClContext& cl, bool pyramids = false, double relief = 1.0) {
     Layers l;
-    l.a = sumOfSines(N, {{0.25, 2, 1, 0.3}, {0.1, -1, 4, 1.0}});
-    l.b = sumOfSines(N / 2, {{0.3, 1, 2, 0.8}, {0.12, 3, -2, 0.1}});
+    l.a = sumOfSines(N, {{0.25 * relief, 2, 1, 0.3}, {0.1 * relief, -1, 4, 1.0}});
+    l.b = sumOfSines(N / 2, {{0.3 * relief, 1, 2, 0.8}, {0.12 * relief, 3, -2, 0.1}});
     l.sum.resize(size_t(N) * N);
     for (int y = 0; y < N; ++y)
         for (int x = 0; x < N; ++x)
@@ -40,8 +42,8 @@ Layers makeLayers(ClContext& cl) {
     l.fieldB = std::make_unique<StaticField>(cl, N / 2, N / 2, EdgeMode::Wrap, l.b);
     l.fieldSum = std::make_unique<StaticField>(cl, N, N, EdgeMode::Wrap, l.sum);
     // Each with normals for a depth of its own: the renderer combines their slopes.
-    l.surfaceA = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldA, 0.05f, {.mipmaps = false}));
-    l.surfaceB = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldB, 0.02f, {.mipmaps = false}));
+    l.surfaceA = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldA, 0.05f, {.mipmaps = false, .pyramid = pyramids}));
+    l.surfaceB = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldB, 0.02f, {.mipmaps = false, .pyramid = pyramids}));
     l.surfaceSum = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldSum, 0.08f, {.mipmaps = false}));
     l.surfaceA->run(l.fieldA->buffer());
     l.surfaceB->run(l.fieldB->buffer());
@@ -160,6 +162,60 @@ TEST_F(LayeredSurface, AnUntracedLayerIsFlatInTheTraceAndStillShades) {
     EXPECT_NEAR(fetchesUntraced / fetchesFull, 0.5, 0.1) << "one fetch per step instead of two";
     ASSERT_GT(pixels, 100u);
     EXPECT_GT(double(shadedAlike) / double(pixels), 0.95) << "of the pixels hit alike shade alike";
+}
+
+// Bounded searches (SurfaceMaterial::boundedSearch, each layer's pyramid) on waves that keep to the
+// middle of the depth, as the ocean's do, with the ocean's 8..40 samples: the hits keep the exact
+// intersection of the sum, the shadows agree with the unbounded search's, and fewer heights are
+// read (the steps are no longer; the depths above the path's maximum and below its minimum go).
+TEST_F(LayeredSurface, BoundedSearchesKeepTheHitsAndReadFewerHeights) {
+    const Layers l = makeLayers(cl(), true, 0.4);
+    const SurfaceLayer layered[] = {{.textures = &l.surfaceA->textures(), .weight = kWeightA},
+                                    {.textures = &l.surfaceB->textures(), .texcoordScale = 2.0f, .weight = kWeightB}};
+    DirectionalLight light;
+    light.direction = {0.6f, 0.55f, 0.3f};
+    LayerShot shot;
+    const Camera& camera = shot.camera;
+    constexpr int image = kImage;
+    const HeightFieldTracer exact(l.sum, N, N, EdgeMode::Wrap);
+    for (const Technique technique : {Technique::ParallaxOcclusion, Technique::Relief}) {
+        SurfaceMaterial material{.depthScale = 0.1f, .minSamples = 8, .maxSamples = 40, .lodThreshold = 100.0f, .shadows = true};
+        const auto traceWith = [&](bool bounded) {
+            material.boundedSearch = bounded;
+            shot.target.bind();
+            shot.target.clear();
+            shot.renderer.draw(shot.plane, glm::mat4(1.0f), layered, material, camera, light,
+                               {.technique = technique, .traceOutput = true});
+            return shot.target.readTrace();
+        };
+        const std::vector<glm::vec4> bounded = traceWith(true), plain = traceWith(false);
+        std::vector<double> toExact;
+        double fetchesBounded = 0.0, fetchesPlain = 0.0;
+        size_t lit = 0, litAlike = 0;
+        for (int y = 0; y < image; ++y)
+            for (int x = 0; x < image; ++x) {
+                const glm::vec4 a = bounded[size_t(y) * image + x], b = plain[size_t(y) * image + x];
+                if (a.w == 0.0f) continue;
+                fetchesBounded += std::floor(a.w);
+                fetchesPlain += std::floor(b.w);
+                ++lit;
+                litAlike += std::abs(2.0f * (a.w - std::floor(a.w)) - 2.0f * (b.w - std::floor(b.w))) < 0.1f;
+                glm::dvec2 uv0;
+                glm::dvec3 toEye;
+                if (!planePixelRay(camera, 2.0f, x, y, image, image, uv0, toEye)) continue;
+                if (const auto hit = exact.traceView(uv0, toEye, material.depthScale))
+                    toExact.push_back(glm::length(glm::dvec2(a.x, a.y) - hit->uv) * N);
+            }
+        const char* name = techniqueName(technique);
+        std::printf("[bounded %s] mean %.4f texels, fetches %.1f vs %.1f, light alike %.2f%%\n", name,
+                    statistics(toExact).mean, fetchesBounded / double(lit), fetchesPlain / double(lit),
+                    100.0 * double(litAlike) / double(lit));
+        ASSERT_GT(toExact.size(), 1000u);
+        // (Measured 0.0004 and 0.0014 texels; bounds 0.05 too tight on the heights give 0.012.)
+        EXPECT_LT(statistics(toExact).mean, 0.005) << name << ": texels from the exact intersection";
+        EXPECT_LT(fetchesBounded, 0.9 * fetchesPlain) << name << ": heights read, the bounds' own included";
+        EXPECT_GT(double(litAlike) / double(lit), 0.97) << name << ": light within 0.1 of the unbounded shadow's";
+    }
 }
 
 TEST_F(LayeredSurface, RefusesWhatItCannotDraw) {

@@ -24,17 +24,24 @@ void OceanEffectConfig::validate() const {
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
     : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration),
       windBlendSeconds_(config.windBlendSeconds), untracedShare_(config.untracedShare) {
-    // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
-    // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
+    const std::vector<bool> traced = tracedCascades();
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
+        // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
+        // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
         const OceanCascade& c = ocean_.cascade(i);
         const float depth = std::max(8.0f * c.sigma / c.patchMeters, 1e-6f);
+        // The cascades traced now get a bounds pyramid each (boundedSearch; unorm8 takes none:
+        // its rounding exceeds the bounds' margin). A sea whose wind later brings another
+        // cascade into the trace draws with unbounded searches (SurfaceRenderer).
+        SurfaceOptions options = config.surface;
+        options.pyramid = options.pyramid || (config.boundedSearch && traced[size_t(i)] &&
+                                              options.format != SurfaceFormat::Unorm8);
         surfaces_.push_back(std::make_unique<SurfacePipeline>(
             cl, SurfacePipelineConfig{.width = ocean_.config().size,
                                       .height = ocean_.config().size,
                                       .edges = EdgeMode::Wrap,
                                       .normalDepth = depth,
-                                      .options = config.surface}));
+                                      .options = options}));
     }
     material_.depthScale = physicalDepthScale();
     refresh();
@@ -52,24 +59,40 @@ float OceanEffect::physicalDepthScale() const {
     return std::clamp(8.0f * sum / ocean_.config().patchMeters * exaggeration_, 1e-5f, 1.0f);
 }
 
-std::vector<SurfaceLayer> OceanEffect::layers() const {
+std::vector<float> OceanEffect::cascadeWeights() const {
     float sum = 0.0f;
     for (int i = 0; i < ocean_.cascadeCount(); ++i) sum += ocean_.cascade(i).sigma;
+    std::vector<float> weights;
+    for (int i = 0; i < ocean_.cascadeCount(); ++i)
+        weights.push_back(sum > 0.0f ? ocean_.cascade(i).sigma / sum : 1.0f / float(ocean_.cascadeCount()));
+    return weights;
+}
+
+std::vector<bool> OceanEffect::tracedCascades() const {
+    // From the finest up, while the untraced weights stay within the share.
+    const std::vector<float> weights = cascadeWeights();
+    std::vector<bool> traced(weights.size(), true);
+    float untraced = 0.0f;
+    for (size_t i = weights.size() - 1; i > 0; --i) {
+        untraced += weights[i];
+        if (untraced > untracedShare_) break;
+        traced[i] = false;
+    }
+    return traced;
+}
+
+std::vector<SurfaceLayer> OceanEffect::layers() const {
+    const std::vector<float> weights = cascadeWeights();
+    const std::vector<bool> traced = tracedCascades();
     std::vector<SurfaceLayer> layers;
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
         const OceanCascade& c = ocean_.cascade(i);
+        // Untraced, a cascade stands at its stored rest height (0.5: OceanCascade::scale).
         layers.push_back({.textures = &surfaces_[size_t(i)]->textures(),
                           .texcoordScale = ocean_.config().patchMeters / c.patchMeters,
-                          .weight = sum > 0.0f ? c.sigma / sum : 1.0f / float(ocean_.cascadeCount())});
-    }
-    // From the finest up, while the untraced weights stay within the share (stored heights rest
-    // at 0.5: OceanCascade::scale).
-    float untraced = 0.0f;
-    for (size_t i = layers.size() - 1; i > 0; --i) {
-        untraced += layers[i].weight;
-        if (untraced > untracedShare_) break;
-        layers[i].traced = false;
-        layers[i].restHeight = 0.5f;
+                          .weight = weights[size_t(i)],
+                          .traced = traced[size_t(i)],
+                          .restHeight = 0.5f});
     }
     return layers;
 }

@@ -24,7 +24,8 @@ struct OceanEffectConfig {
     OceanConfig ocean;
     /// The look; its depthScale is replaced by the sea state's (physicalDepthScale()).
     SurfaceMaterial material{.minSamples = 8, .maxSamples = 40, .shadowSharpness = 1.0f,
-                             .specularStrength = 0.0f, .shading = Shading::Water, .water = {.foam = true}};
+                             .specularStrength = 0.0f, .shading = Shading::Water, .water = {.foam = true},
+                             .boundedSearch = true};
     float reliefExaggeration = 1.0f; ///< multiplies the physical depth scale
     /// How long a wind change (setWind) takes to blend in, seconds of the sea's time: a gust
     /// that takes the sea over at once reads as a cut.
@@ -34,6 +35,11 @@ struct OceanEffectConfig {
     /// a fetch per search and shadow step; their height moves the hit by at most half their share
     /// of the depth. 0 traces every cascade.
     float untracedShare = 0.05f;
+    /// A height-bounds pyramid on each traced cascade, built every frame, for the material's
+    /// boundedSearch: the searches (POM and the other sampled techniques) then step only through
+    /// the depths the waves reach on each ray's path, and shadow rays only below the waves' top
+    /// there (hfx_segment_bounds). It costs a pyramid build and upload per traced cascade.
+    bool boundedSearch = true;
     /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
     SurfaceOptions surface;
     void validate() const; ///< throws hfx::Error naming the bad field and its value
@@ -73,6 +79,10 @@ private:
     void advance(double dt) override;
     void enqueueSurface() override;
 
+    /// Each cascade's share of the relief depth, sigma_i / sum(sigma).
+    std::vector<float> cascadeWeights() const;
+    /// Which cascades the searches trace (untracedShare).
+    std::vector<bool> tracedCascades() const;
     /// Writes the live rings into material_.water for the sea's time now.
     void updateRings();
 
