@@ -71,7 +71,7 @@ bool hfx_linear_search(HfxRay ray, out float t0, out float t1, out float d0, out
 // (small climb) counts fully and a far one weakly. The largest over the samples; > 0 means some
 // sample stood above the ray. The samples lie where a blocker can be: on the part of the ray
 // below the heights' maximum on its path (hfx_segment_bounds), none where it is above them, and
-// no closer together than ray.samples over the whole ray would be.
+// no farther apart than ray.samples over the whole ray would be.
 float hfx_occlusion(HfxShadowRay ray) {
     const float top = hfx_segment_bounds(ray.uv, ray.uv + ray.span, ray.level).x;
     const float reach = clamp((top - ray.h0) / max(1.0 - ray.h0, 1e-6), 0.0, 1.0);
