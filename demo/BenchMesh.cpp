@@ -2,6 +2,10 @@
 // height samples (one vertex per sample, two triangles per cell), drawn in the same run at the
 // same view: median draw times and the memory each side needs (textures with their mips for
 // POM; vertex and index buffers for the mesh, with only what it needs: position and normal).
+// With shadows, each side the way it gets them: the quad traces its own shadow rays; the mesh
+// has no relief to trace, so it draws itself into a shadow map first (hfx::ShadowMap, 2048²)
+// and reads it as the module's receivers do (3x3 taps of 2x2 comparison, bias and normal offset
+// of 1.5 map texels).
 
 #include "Timing.h"
 
@@ -13,11 +17,13 @@
 #include "hfx/core/RenderTarget.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/effects/OceanEffect.h"
+#include "hfx/effects/ShadowMap.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -29,21 +35,42 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 uniform mat4 u_viewProj;
 out vec3 v_normal;
+out vec3 v_world;
 void main() {
     v_normal = a_normal;
+    v_world = a_position;
     gl_Position = u_viewProj * vec4(a_position, 1.0);
 }
 )";
 
 const char* kFragment = R"(#version 450 core
 in vec3 v_normal;
+in vec3 v_world;
 uniform vec3 u_lightDir;
 uniform vec3 u_albedo;
+uniform int u_shadowed;
+uniform mat4 u_shadowViewProj;
+uniform float u_shadowOffset, u_shadowBias, u_shadowTexel;
+layout(binding = 11) uniform sampler2DShadow s_shadowMap;
 out vec4 o_color;
 void main() {
-    const float diffuse = max(dot(normalize(v_normal), u_lightDir), 0.0);
+    const vec3 n = normalize(v_normal);
+    float lit = 1.0;
+    if (u_shadowed != 0) {
+        const vec4 clip = u_shadowViewProj * vec4(v_world + n * u_shadowOffset, 1.0);
+        const vec3 p = clip.xyz / clip.w * 0.5 + 0.5;
+        float sum = 0.0;
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x)
+                sum += texture(s_shadowMap, vec3(p.xy + vec2(x, y) * u_shadowTexel, p.z - u_shadowBias));
+        lit = sum / 9.0;
+    }
+    const float diffuse = max(dot(n, u_lightDir), 0.0) * lit;
     o_color = vec4(pow(u_albedo * (0.25 + diffuse), vec3(1.0 / 2.2)), 1.0);
 }
+)";
+const char* kDepthFragment = R"(#version 450 core
+void main() {}
 )";
 
 struct MeshVertex {
@@ -97,12 +124,17 @@ int runBenchMesh(int width, int height, int frames) {
         glVertexArrayAttribBinding(vao.id(), a, 0);
     }
     ShaderProgram meshProgram({"bench-mesh.vert", kVertex, "embedded"}, {"bench-mesh.frag", kFragment, "embedded"});
+    ShaderProgram depthProgram({"bench-mesh.vert", kVertex, "embedded"}, {"bench-mesh-depth.frag", kDepthFragment, "embedded"});
 
     const Mesh quad(makePlane({.size = kSize}));
     Camera camera = Camera::orbit({0, 0, 0}, 7.0f, 0.5f, 0.52f); // 60 degrees from the normal
     camera.aspect = float(width) / float(height);
     DirectionalLight light;
     light.direction = {-0.35f, 0.5f, -0.8f};
+    ShadowMap map;
+    // The sphere that holds the mesh: the plane and its depth below it.
+    map.fit(glm::normalize(light.direction), {0.0f, -0.5f * depthScale * kSize, 0.0f},
+            std::sqrt(0.5f * kSize * kSize + 0.25f * depthScale * depthScale * kSize * kSize));
     SurfaceRenderer renderer;
     SurfaceMaterial pom = oceans.front()->material();
     SurfaceMaterial unshadowed = pom;
@@ -112,7 +144,32 @@ int runBenchMesh(int width, int height, int frames) {
     // Per format: POM with and without shadows; then the mesh. Interleaved frame by frame, so a
     // noisy neighbour hits every side alike.
     std::vector<std::vector<double>> pomMs(oceans.size()), plainMs(oceans.size());
-    std::vector<double> meshMs;
+    std::vector<double> meshMs, meshShadowedMs;
+    const auto drawMesh = [&](bool shadowed) {
+        glEnable(GL_DEPTH_TEST);
+        glBindVertexArray(vao.id());
+        if (shadowed) {
+            map.begin();
+            depthProgram.set("u_viewProj", map.viewProj());
+            depthProgram.use();
+            glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+            map.end();
+            glBindTextureUnit(11, map.texture());
+            meshProgram.set("u_shadowViewProj", map.viewProj());
+            meshProgram.set("u_shadowOffset", 1.5f * map.texelWorld());
+            meshProgram.set("u_shadowBias", 1.5f * map.texelWorld() * map.depthPerWorld());
+            meshProgram.set("u_shadowTexel", 1.0f / float(map.size()));
+        }
+        target.clear();
+        meshProgram.set("u_shadowed", shadowed ? 1 : 0);
+        meshProgram.set("u_viewProj", camera.viewProjection());
+        meshProgram.set("u_lightDir", glm::normalize(light.direction));
+        meshProgram.set("u_albedo", glm::vec3(0.05f, 0.22f, 0.30f));
+        meshProgram.use();
+        glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(0);
+        glBindTextureUnit(11, 0);
+    };
     for (int frame = -2; frame < frames; ++frame) {
         for (size_t f = 0; f < oceans.size(); ++f) {
             const double p = timeMs([&] {
@@ -128,18 +185,12 @@ int runBenchMesh(int width, int height, int frames) {
                 plainMs[f].push_back(q);
             }
         }
-        const double m = timeMs([&] {
-            target.clear();
-            glEnable(GL_DEPTH_TEST);
-            meshProgram.set("u_viewProj", camera.viewProjection());
-            meshProgram.set("u_lightDir", glm::normalize(light.direction));
-            meshProgram.set("u_albedo", glm::vec3(0.05f, 0.22f, 0.30f));
-            meshProgram.use();
-            glBindVertexArray(vao.id());
-            glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
-            glBindVertexArray(0);
-        });
-        if (frame >= 0) meshMs.push_back(m);
+        const double m = timeMs([&] { drawMesh(false); });
+        const double ms = timeMs([&] { drawMesh(true); });
+        if (frame >= 0) {
+            meshMs.push_back(m);
+            meshShadowedMs.push_back(ms);
+        }
     }
     // Memory each side needs on the GPU: the surface texture and the albedo (RGBA8) with their
     // mip chains and the quad for POM; positions, normals and indices for the mesh.
@@ -148,7 +199,7 @@ int runBenchMesh(int width, int height, int frames) {
         return double(N) * N * double(texelBytes(f) + 4) * mipFactor + 4 * sizeof(Vertex) + 6 * sizeof(uint32_t);
     };
     const double meshBytes = double(vertices.size()) * sizeof(MeshVertex) + double(indices.size()) * sizeof(uint32_t);
-    const double mt = median(meshMs);
+    const double mt = median(meshMs), mst = median(meshShadowedMs);
     std::printf("hfx-demo bench-mesh: %dx%d, %d frames (medians), %s\n", width, height, frames, gl->description().c_str());
     std::printf("| side | draw ms (soft shadows / none) | memory MiB | mesh / side: time (shadows / none) | mesh / side: "
                 "memory |\n|---|---|---|---|---|\n");
@@ -156,9 +207,10 @@ int runBenchMesh(int width, int height, int frames) {
         const SurfaceFormat format = kSurfaceFormats[f];
         const double pt = median(pomMs[f]), qt = median(plainMs[f]);
         std::printf("| POM quad, %s surface | %.1f / %.1f | %.1f | %.2fx / %.2fx | %.2fx |\n", surfaceFormatName(format), pt,
-                    qt, mib(pomBytes(format)), mt / pt, mt / qt, meshBytes / pomBytes(format));
+                    qt, mib(pomBytes(format)), mst / pt, mt / qt, meshBytes / pomBytes(format));
     }
-    std::printf("| mesh, %zu triangles | %.1f | %.1f | | |\n", indices.size() / 3, mt, mib(meshBytes));
+    std::printf("| mesh, %zu triangles (shadow map %d² + draw / draw alone) | %.1f / %.1f | %.1f | | |\n", indices.size() / 3,
+                map.size(), mst, mt, mib(meshBytes));
     return 0;
 }
 
