@@ -42,8 +42,9 @@ Layers makeLayers(ClContext& cl, bool pyramids = false, double relief = 1.0) {
     l.fieldB = std::make_unique<StaticField>(cl, N / 2, N / 2, EdgeMode::Wrap, l.b);
     l.fieldSum = std::make_unique<StaticField>(cl, N, N, EdgeMode::Wrap, l.sum);
     // Each with normals for a depth of its own: the renderer combines their slopes.
-    l.surfaceA = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldA, 0.05f, {.mipmaps = false, .pyramid = pyramids}));
-    l.surfaceB = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldB, 0.02f, {.mipmaps = false, .pyramid = pyramids}));
+    const SurfaceOptions options{.mipmaps = false, .pyramid = pyramids};
+    l.surfaceA = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldA, 0.05f, options));
+    l.surfaceB = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldB, 0.02f, options));
     l.surfaceSum = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldSum, 0.08f, {.mipmaps = false}));
     l.surfaceA->run(l.fieldA->buffer());
     l.surfaceB->run(l.fieldB->buffer());

@@ -77,7 +77,8 @@ float hfx_layers_height(vec2 uv, float level) {
 #if HFX_LAYERS == 1
     return textureLod(s_surface, uv, level).w;
 #else
-    float h = u_untracedHeight + u_layerWeight.x * textureLod(s_surface, uv * u_layerScale.x, hfx_layer_level(level, u_layerLevel.x)).w;
+    float h = u_untracedHeight +
+              u_layerWeight.x * textureLod(s_surface, uv * u_layerScale.x, hfx_layer_level(level, u_layerLevel.x)).w;
 #if HFX_TRACED_LAYERS > 1
     h += u_layerWeight.y * textureLod(s_surface1, uv * u_layerScale.y, hfx_layer_level(level, u_layerLevel.y)).w;
 #endif
@@ -114,10 +115,10 @@ vec2 hfx_bounds(ivec2 cell, int level) {
 
 // Bounds of the heights the searches read (hfx_height at `level`) anywhere on the texcoord segment
 // from a to b: (max, min), from the pyramids where the material asks (u_boundedSearch: every
-// traced layer has one); else (1, 0), the whole relief. Per layer, in its sample coordinates (x = u * width - 0.5,
-// pyramid cell i between samples i and i + 1), the segment's box is widened by what its fetches
-// reach: the bilinear cell at mip 0; at mip m, whose texels average 2^m-wide blocks, 1.5 * 2^m
-// samples. The pyramid level whose cells are at least as wide as that box covers it with two
+// traced layer has one); else (1, 0), the whole relief. Per layer, in its sample coordinates
+// (x = u * width - 0.5, pyramid cell i between samples i and i + 1), the segment's box is widened
+// by what its fetches reach: the bilinear cell at mip 0; at mip m, whose texels average 2^m-wide
+// blocks, 1.5 * 2^m samples. The pyramid level whose cells are at least as wide as that box covers it with two
 // cells per axis: four fetches per layer. The layers' bounds add, with the untraced layers' rest
 // height and, in the ring variant, the rings' amplitudes.
 vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) {
@@ -134,8 +135,10 @@ vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) 
     const vec4 ix = u_wrap.x != 0 ? cx - n.x * floor(cx / n.x) : clamp(cx, 0.0, n.x - 1.0);
     const vec4 iy = u_wrap.y != 0 ? cy - n.y * floor(cy / n.y) : clamp(cy, 0.0, n.y - 1.0);
     g_fetches += 4.0;
-    const vec2 b0 = texelFetch(pyramid, ivec2(ix.x, iy.x), level).rg, b1 = texelFetch(pyramid, ivec2(ix.y, iy.y), level).rg;
-    const vec2 b2 = texelFetch(pyramid, ivec2(ix.z, iy.z), level).rg, b3 = texelFetch(pyramid, ivec2(ix.w, iy.w), level).rg;
+    const vec2 b0 = texelFetch(pyramid, ivec2(ix.x, iy.x), level).rg;
+    const vec2 b1 = texelFetch(pyramid, ivec2(ix.y, iy.y), level).rg;
+    const vec2 b2 = texelFetch(pyramid, ivec2(ix.z, iy.z), level).rg;
+    const vec2 b3 = texelFetch(pyramid, ivec2(ix.w, iy.w), level).rg;
     return vec2(max(max(b0.x, b1.x), max(b2.x, b3.x)), min(min(b0.y, b1.y), min(b2.y, b3.y)));
 }
 
