@@ -18,6 +18,7 @@
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/ShadowMap.h"
+#include "hfx/effects/SurfaceUniforms.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -33,39 +34,27 @@ namespace {
 const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
-uniform mat4 u_viewProj;
+uniform mat4 u_meshViewProj;
 out vec3 v_normal;
 out vec3 v_world;
 void main() {
     v_normal = a_normal;
     v_world = a_position;
-    gl_Position = u_viewProj * vec4(a_position, 1.0);
+    gl_Position = u_meshViewProj * vec4(a_position, 1.0);
 }
 )";
 
+/// Composed after the module's surface/uniforms.glsl and surface/shadowmap.glsl: the light and
+/// the shadow map come in the surface block (u_lightDir, u_shadowMap...), received by
+/// hfx_shadow_map as every surface and flat mesh receives it.
 const char* kFragment = R"(#version 450 core
 in vec3 v_normal;
 in vec3 v_world;
-uniform vec3 u_lightDir;
 uniform vec3 u_albedo;
-uniform int u_shadowed;
-uniform mat4 u_shadowViewProj;
-uniform float u_shadowOffset, u_shadowBias, u_shadowTexel;
-layout(binding = 11) uniform sampler2DShadow s_shadowMap;
 out vec4 o_color;
 void main() {
     const vec3 n = normalize(v_normal);
-    float lit = 1.0;
-    if (u_shadowed != 0) {
-        const vec4 clip = u_shadowViewProj * vec4(v_world + n * u_shadowOffset, 1.0);
-        const vec3 p = clip.xyz / clip.w * 0.5 + 0.5;
-        float sum = 0.0;
-        for (int y = -1; y <= 1; ++y)
-            for (int x = -1; x <= 1; ++x)
-                sum += texture(s_shadowMap, vec3(p.xy + vec2(x, y) * u_shadowTexel, p.z - u_shadowBias));
-        lit = sum / 9.0;
-    }
-    const float diffuse = max(dot(n, u_lightDir), 0.0) * lit;
+    const float diffuse = max(dot(n, u_lightDir), 0.0) * hfx_shadow_map(v_world, n);
     o_color = vec4(pow(u_albedo * (0.25 + diffuse), vec3(1.0 / 2.2)), 1.0);
 }
 )";
@@ -123,7 +112,9 @@ int runBenchMesh(int width, int height, int frames) {
         glVertexArrayAttribFormat(vao.id(), a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
         glVertexArrayAttribBinding(vao.id(), a, 0);
     }
-    ShaderProgram meshProgram({"bench-mesh.vert", kVertex, "embedded"}, {"bench-mesh.frag", kFragment, "embedded"});
+    ShaderProgram meshProgram({{"bench-mesh.vert", kVertex, "embedded"}},
+                              {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/shadowmap.glsl"),
+                               {"bench-mesh.frag", kFragment, "embedded"}});
     ShaderProgram depthProgram({"bench-mesh.vert", kVertex, "embedded"}, {"bench-mesh-depth.frag", kDepthFragment, "embedded"});
 
     const Mesh quad(makePlane({.size = kSize}));
@@ -145,25 +136,32 @@ int runBenchMesh(int width, int height, int frames) {
     // noisy neighbour hits every side alike.
     std::vector<std::vector<double>> pomMs(oceans.size()), plainMs(oceans.size());
     std::vector<double> meshMs, meshShadowedMs;
+    // The mesh's surface blocks, unshadowed and receiving the map, made once: the light and the
+    // receiver's lookup as the renderer's own draws get them.
+    GlBuffer meshBlocks[2] = {GlBuffer::create(), GlBuffer::create()};
+    for (int shadowed = 0; shadowed < 2; ++shadowed) {
+        const SurfaceUniforms u{.lightDir = glm::normalize(light.direction),
+                                .shadowViewProj = map.viewProj(),
+                                .shadowMap = shadowed,
+                                .shadowBias = map.depthBias(),
+                                .shadowOffset = map.normalOffset(),
+                                .shadowTexel = 1.0f / float(map.size())};
+        glNamedBufferStorage(meshBlocks[shadowed].id(), sizeof u, &u, 0);
+    }
     const auto drawMesh = [&](bool shadowed) {
         glEnable(GL_DEPTH_TEST);
         glBindVertexArray(vao.id());
         if (shadowed) {
             map.begin();
-            depthProgram.set("u_viewProj", map.viewProj());
+            depthProgram.set("u_meshViewProj", map.viewProj());
             depthProgram.use();
             glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
             map.end();
             glBindTextureUnit(11, map.texture());
-            meshProgram.set("u_shadowViewProj", map.viewProj());
-            meshProgram.set("u_shadowOffset", 1.5f * map.texelWorld());
-            meshProgram.set("u_shadowBias", 1.5f * map.texelWorld() * map.depthPerWorld());
-            meshProgram.set("u_shadowTexel", 1.0f / float(map.size()));
         }
         target.clear();
-        meshProgram.set("u_shadowed", shadowed ? 1 : 0);
-        meshProgram.set("u_viewProj", camera.viewProjection());
-        meshProgram.set("u_lightDir", glm::normalize(light.direction));
+        glBindBufferBase(GL_UNIFORM_BUFFER, 0, meshBlocks[shadowed ? 1 : 0].id());
+        meshProgram.set("u_meshViewProj", camera.viewProjection());
         meshProgram.set("u_albedo", glm::vec3(0.05f, 0.22f, 0.30f));
         meshProgram.use();
         glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);

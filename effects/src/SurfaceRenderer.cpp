@@ -251,8 +251,8 @@ void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
     const ShadowMap& map = *light.shadowMap;
     u.shadowViewProj = map.viewProj();
     u.shadowMap = 1;
-    u.shadowOffset = 1.5f * map.texelWorld();
-    u.shadowBias = 1.5f * map.texelWorld() * map.depthPerWorld();
+    u.shadowOffset = map.normalOffset();
+    u.shadowBias = map.depthBias();
     u.shadowTexel = 1.0f / float(map.size());
     glBindTextureUnit(11, map.texture());
 }

@@ -43,6 +43,11 @@ public:
     float texelWorld() const { return 2.0f * radius_ / float(size_); }
     /// Window depth per world unit along the light.
     float depthPerWorld() const { return 1.0f / (4.0f * radius_); }
+    /// A receiver's lookup: moved off the surface along its normal by normalOffset() (world
+    /// units) and compared depthBias() (window depth) nearer, 1.5 map texels each, so a surface
+    /// does not shadow itself through the map's rounding (surface/shadowmap.glsl).
+    float normalOffset() const { return 1.5f * texelWorld(); }
+    float depthBias() const { return normalOffset() * depthPerWorld(); }
 
 private:
     int size_;
