@@ -24,7 +24,7 @@ void OceanEffectConfig::validate() const {
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
     : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration),
       windBlendSeconds_(config.windBlendSeconds), untracedShare_(config.untracedShare) {
-    const std::vector<bool> traced = tracedCascades();
+    const std::vector<bool> traced = tracedCascades(cascadeWeights());
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
         // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
         // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
@@ -68,9 +68,8 @@ std::vector<float> OceanEffect::cascadeWeights() const {
     return weights;
 }
 
-std::vector<bool> OceanEffect::tracedCascades() const {
+std::vector<bool> OceanEffect::tracedCascades(const std::vector<float>& weights) const {
     // From the finest up, while the untraced weights stay within the share.
-    const std::vector<float> weights = cascadeWeights();
     std::vector<bool> traced(weights.size(), true);
     float untraced = 0.0f;
     for (size_t i = weights.size() - 1; i > 0; --i) {
@@ -83,7 +82,7 @@ std::vector<bool> OceanEffect::tracedCascades() const {
 
 std::vector<SurfaceLayer> OceanEffect::layers() const {
     const std::vector<float> weights = cascadeWeights();
-    const std::vector<bool> traced = tracedCascades();
+    const std::vector<bool> traced = tracedCascades(weights);
     std::vector<SurfaceLayer> layers;
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
         const OceanCascade& c = ocean_.cascade(i);

@@ -81,8 +81,8 @@ private:
 
     /// Each cascade's share of the relief depth, sigma_i / sum(sigma).
     std::vector<float> cascadeWeights() const;
-    /// Which cascades the searches trace (untracedShare).
-    std::vector<bool> tracedCascades() const;
+    /// Which cascades the searches trace, given their weights (untracedShare).
+    std::vector<bool> tracedCascades(const std::vector<float>& weights) const;
     /// Writes the live rings into material_.water for the sea's time now.
     void updateRings();
 
