@@ -45,7 +45,7 @@ void main() {
 )";
 
 /// Composed after the module's surface/uniforms.glsl and surface/shadowmap.glsl: the light and
-/// the shadow map come in the surface block (u_lightDir, u_shadowMap...), received by
+/// the shadow map come in the surface block (u_lightDir, u_shadowViewProj...), received by
 /// hfx_shadow_map as every surface and flat mesh receives it.
 const char* kFragment = R"(#version 450 core
 in vec3 v_normal;
@@ -112,9 +112,13 @@ int runBenchMesh(int width, int height, int frames) {
         glVertexArrayAttribFormat(vao.id(), a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
         glVertexArrayAttribBinding(vao.id(), a, 0);
     }
-    ShaderProgram meshProgram({{"bench-mesh.vert", kVertex, "embedded"}},
-                              {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/shadowmap.glsl"),
-                               {"bench-mesh.frag", kFragment, "embedded"}});
+    // The mesh's programs, unshadowed and receiving the map (HFX_SHADOW_MAP, as the renderer's variants).
+    ShaderProgram meshPrograms[2];
+    for (int shadowed = 0; shadowed < 2; ++shadowed)
+        meshPrograms[shadowed] = ShaderProgram({{"bench-mesh.vert", kVertex, "embedded"}},
+                                               {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/shadowmap.glsl"),
+                                                {"bench-mesh.frag", kFragment, "embedded"}},
+                                               {{"HFX_SHADOW_MAP", shadowed ? "1" : "0"}});
     ShaderProgram depthProgram({"bench-mesh.vert", kVertex, "embedded"}, {"bench-mesh-depth.frag", kDepthFragment, "embedded"});
 
     const Mesh quad(makePlane({.size = kSize}));
@@ -142,7 +146,6 @@ int runBenchMesh(int width, int height, int frames) {
     for (int shadowed = 0; shadowed < 2; ++shadowed) {
         const SurfaceUniforms u{.lightDir = glm::normalize(light.direction),
                                 .shadowViewProj = map.viewProj(),
-                                .shadowMap = shadowed,
                                 .shadowBias = map.depthBias(),
                                 .shadowOffset = map.normalOffset(),
                                 .shadowTexel = 1.0f / float(map.size())};
@@ -161,6 +164,7 @@ int runBenchMesh(int width, int height, int frames) {
         }
         target.clear();
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, meshBlocks[shadowed ? 1 : 0].id());
+        const ShaderProgram& meshProgram = meshPrograms[shadowed ? 1 : 0];
         meshProgram.set("u_meshViewProj", camera.viewProjection());
         meshProgram.set("u_albedo", glm::vec3(0.05f, 0.22f, 0.30f));
         meshProgram.use();

@@ -10,21 +10,26 @@
 //   shade/sky.glsl          the sky (reflections, haze), its look's uniform block
 //   shade/<model>.glsl      hfx_shade: one file per shading model (lit, water, planet)
 //   surface.frag            this file: the texture-space frame, level of detail, depth output
-// Prepended #defines, from the C++ technique table (hfx::techniqueInfo):
+// Prepended #defines, from the C++ technique table (hfx::techniqueInfo) and the draw:
 //   HFX_TRACES        1 when the technique displaces the texcoords (all but normal mapping):
 //                     the view ray goes into texture space and gl_FragDepth is written
-//   HFX_SELF_SHADOW   1 when it has self-shadows (hfx_shadow is called)
+//   HFX_SELF_SHADOW   1 when it has self-shadows and the material asks for them (hfx_shadow is
+//                     called)
 //   HFX_LAYERS        1 to 4: the surface's layers (the ocean's cascades), summed in height and
 //                     slope (surface/heights.glsl); 1 is an ordinary surface
 //   HFX_TRACED_LAYERS 1 to HFX_LAYERS: the leading layers the tracers see; the rest only shade
 //   HFX_RINGS         1 for water with impact rings (HfxRings) in height, slope and foam (the
 //                     renderer picks it while WaterLook::ringCount > 0)
+//   HFX_BOUNDED_SEARCH 1 when the searches are bounded by the layers' pyramids (surface/heights.glsl)
+//   HFX_SHADOW_MAP    1 when the light's shadow map is received (surface/shadowmap.glsl)
 //   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap): the view ray is the light's
 //                     (u_lightDir reversed), u_viewProj the light's; only the traced depth is
 //                     written, nothing is shaded
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction
+// Switches are defines (hfx::SurfaceVariant), not uniforms: llvmpipe runs both sides of a branch,
+// even one on a uniform, so a feature switched off by a uniform still costs its fetches.
 //
 // Conventions: s_surface holds the tangent-space normal in xyz and the height h in w, h = 1 at the
 // polygon and 0 at the deepest point, u_depthScale texture units below it. Texture space has
@@ -261,7 +266,7 @@ void main() {
 #if HFX_SELF_SHADOW
     const vec3 lightTS = textureFromWorld * lightDir;
     const float h0 = 1.0 - depthFraction;
-    if (u_shadows != 0 && lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && h0 < 1.0 &&
+    if (lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && h0 < 1.0 &&
         mipLevel <= u_lodThreshold && depthScale > 0.0) {
         HfxShadowRay shadowRay;
         shadowRay.uv = uv;

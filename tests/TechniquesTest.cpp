@@ -8,6 +8,8 @@
 #include "hfx/compute/NoiseField.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/BrickWall.h"
 #include "hfx/tools/AccuracyProbe.h"
 
@@ -203,6 +205,43 @@ TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {
         if (t == Technique::Hierarchical) {
             EXPECT_GE(r.shadowAgreement, 0.995);
         }
+    }
+}
+
+TEST_F(Techniques, TheMaterialsShadowSwitchTurnsSelfShadowsOnAndOff) {
+    // Self-shadows are a program variant (HFX_SELF_SHADOW), not a uniform: the box's shadow must
+    // come and go with SurfaceMaterial::shadows. Shadows only take light away.
+    std::vector<float> box(kField * kField, 0.2f);
+    for (int y = 48; y < 80; ++y)
+        for (int x = 48; x < 80; ++x) box[y * kField + x] = 0.9f;
+    AccuracyProbe probe(cl(), box, kField, 0.1f);
+    const Mesh plane(makePlane({.size = 2.0f}));
+    DirectionalLight light;
+    light.direction = {0.8f, 0.35f, 0.3f}; // 67 degrees off the normal: the box casts about 15 texels
+    light.ambient = glm::vec3(0.1f);
+    SurfaceRenderer renderer;
+    for (Technique t : {Technique::ParallaxOcclusion, Technique::Hierarchical}) {
+        Image images[2];
+        for (int shadows = 0; shadows < 2; ++shadows) {
+            RenderTarget target(256, 256);
+            target.bind();
+            target.clear();
+            renderer.draw(plane, glm::mat4(1.0f), probe.textures(),
+                          {.depthScale = 0.1f, .lodThreshold = 100.0f, .shadows = shadows == 1}, accuracyCamera(30.0),
+                          light, {.technique = t});
+            images[shadows] = target.readColor();
+        }
+        int darkened = 0, brightened = 0;
+        for (int y = 0; y < 256; ++y)
+            for (int x = 0; x < 256; ++x) {
+                const float change = images[1].at(x, y, 1) - images[0].at(x, y, 1);
+                darkened += change < -0.1f;
+                brightened += change > 1e-3f;
+            }
+        std::printf("[shadow switch %-4s] %d pixels darkened by the shadows, %d brightened\n", techniqueName(t), darkened,
+                    brightened);
+        EXPECT_GT(darkened, 400) << techniqueName(t); // about 800 (POM) and 1300 (hier) pixels
+        EXPECT_EQ(brightened, 0) << techniqueName(t);
     }
 }
 

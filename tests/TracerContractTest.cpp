@@ -34,8 +34,12 @@ GLint offsetOf(GLuint program, const char* name) {
 
 TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
     SurfaceRenderer renderer;
-    // Water shading with the hierarchical tracer: the variant that reads every member.
-    const GLuint p = renderer.program({.technique = Technique::Hierarchical}, Shading::Water).id();
+    // Water shading with the hierarchical tracer, bounded searches on two layers and a shadow map
+    // received: the variant that reads every member.
+    const GLuint p = renderer
+                         .program({.technique = Technique::Hierarchical},
+                                  {.shading = Shading::Water, .layers = 2, .boundedSearch = true, .shadowMap = true})
+                         .id();
     const std::pair<const char*, size_t> surface[] = {
         {"u_model", offsetof(SurfaceUniforms, model)},
         {"u_viewProj", offsetof(SurfaceUniforms, viewProj)},
@@ -56,7 +60,6 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_minSamples", offsetof(SurfaceUniforms, minSamples)},
         {"u_maxSamples", offsetof(SurfaceUniforms, maxSamples)},
         {"u_shadowSamples", offsetof(SurfaceUniforms, shadowSamples)},
-        {"u_shadows", offsetof(SurfaceUniforms, shadows)},
         {"u_clipToPatch", offsetof(SurfaceUniforms, clipToPatch)},
         {"u_pyramidLevels", offsetof(SurfaceUniforms, pyramidLevels)},
         {"u_varianceFloor", offsetof(SurfaceUniforms, varianceFloor)},
@@ -67,11 +70,9 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_layerSlope", offsetof(SurfaceUniforms, layerSlope)},
         {"u_layerLevel", offsetof(SurfaceUniforms, layerLevel)},
         {"u_shadowViewProj", offsetof(SurfaceUniforms, shadowViewProj)},
-        {"u_shadowMap", offsetof(SurfaceUniforms, shadowMap)},
         {"u_shadowBias", offsetof(SurfaceUniforms, shadowBias)},
         {"u_shadowOffset", offsetof(SurfaceUniforms, shadowOffset)},
         {"u_shadowTexel", offsetof(SurfaceUniforms, shadowTexel)},
-        {"u_boundedSearch", offsetof(SurfaceUniforms, boundedSearch)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},
@@ -427,8 +428,7 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
                           .untracedHeight = 0.0f,
                           .layerScale = {1.0f, scaleB, 1.0f, 1.0f},
                           .layerWeight = layers == 2 ? glm::vec4(0.6f, 0.4f, 0.0f, 0.0f) : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
-                          .layerLevel = {0.0f, std::log2(scaleB * float(N / 2) / float(N)), 0.0f, 0.0f},
-                          .boundedSearch = 1};
+                          .layerLevel = {0.0f, std::log2(scaleB * float(N / 2) / float(N)), 0.0f, 0.0f}};
         GlBuffer block = GlBuffer::create();
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         // Segments of every length up to half the field, from anywhere (beyond [0, 1] too), at
@@ -446,7 +446,7 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         glNamedBufferStorage(out.id(), GLsizeiptr(kSegments * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
         const ShaderProgram p = ShaderProgram::compute(
             {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kBoundsMain},
-            {{"HFX_LAYERS", std::to_string(layers)}});
+            {{"HFX_LAYERS", std::to_string(layers)}, {"HFX_BOUNDED_SEARCH", "1"}});
         p.set("u_count", kSegments);
         glBindTextureUnit(0, a.textures().surface());
         glBindTextureUnit(3, a.textures().pyramid());

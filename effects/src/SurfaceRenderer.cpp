@@ -137,33 +137,33 @@ void SurfaceMaterial::validate() const {
     }
 }
 
-const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, Shading shading, int layers, int traced) {
-    if (shading == Shading::Water) variant(options, shading, layers, traced, false, true);
-    return variant(options, shading, layers, traced, false, false);
-}
-
-const ShaderProgram& SurfaceRenderer::variant(const DrawOptions& options, Shading shading, int layers, int traced,
-                                              bool caster, bool rings) {
-    if (traced <= 0 || traced > layers) traced = layers;
-    rings = rings && shading == Shading::Water;
-    const auto key = std::make_tuple(options.technique, options.traceOutput && !caster, shading, layers, traced, caster, rings);
+const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const SurfaceVariant& variant) {
+    SurfaceVariant v = variant;
+    if (v.layers < 1 || v.layers > kMaxSurfaceLayers)
+        throw Error(str("SurfaceVariant.layers must be 1 to ", kMaxSurfaceLayers, ", got ", v.layers));
+    if (v.traced <= 0 || v.traced > v.layers) v.traced = v.layers;
+    v.rings = v.rings && v.shading == Shading::Water;
+    v.shadowMap = v.shadowMap && !v.caster; // a caster writes depth only
+    const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
         // The fragment stage: the common declarations, the technique's tracer, the shading model,
         // and the main (shaders/surface.frag explains the order); the table says the defines.
         const TechniqueInfo& info = techniqueInfo(options.technique);
         const std::vector<ShaderDefine> defines = {{"HFX_TRACES", info.traces ? "1" : "0"},
-                                                   {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None ? "1" : "0"},
-                                                   {"HFX_TRACE_OUTPUT", options.traceOutput && !caster ? "1" : "0"},
-                                                   {"HFX_SHADOW_CASTER", caster ? "1" : "0"},
-                                                   {"HFX_LAYERS", std::to_string(layers)},
-                                                   {"HFX_TRACED_LAYERS", std::to_string(traced)},
-                                                   {"HFX_RINGS", rings ? "1" : "0"}};
+                                                   {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None && v.selfShadows ? "1" : "0"},
+                                                   {"HFX_TRACE_OUTPUT", options.traceOutput && !v.caster ? "1" : "0"},
+                                                   {"HFX_SHADOW_CASTER", v.caster ? "1" : "0"},
+                                                   {"HFX_LAYERS", std::to_string(v.layers)},
+                                                   {"HFX_TRACED_LAYERS", std::to_string(v.traced)},
+                                                   {"HFX_RINGS", v.rings ? "1" : "0"},
+                                                   {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
+                                                   {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("surface/shadowmap.glsl"),
                          shader("trace/common.glsl"),
                          shader(info.shader), shader("shade/common.glsl"), shader("shade/sky.glsl"),
-                         shader(shadingShader(shading)),
+                         shader(shadingShader(v.shading)),
                          shader("surface.frag")},
                         defines);
         it = programs_.emplace(key, std::move(p)).first;
@@ -250,7 +250,6 @@ void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
     if (!light.shadowMap) return;
     const ShadowMap& map = *light.shadowMap;
     u.shadowViewProj = map.viewProj();
-    u.shadowMap = 1;
     u.shadowOffset = map.normalOffset();
     u.shadowBias = map.depthBias();
     u.shadowTexel = 1.0f / float(map.size());
@@ -266,8 +265,18 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
     const int traced = int(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
-    const ShaderProgram& p = variant(options, material.shading, int(layers.size()), traced, caster != nullptr,
-                                     material.water.ringCount > 0);
+    // Bounded searches where asked and every traced layer has its pyramid.
+    const bool bounded = material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
+                             return !l.traced || l.textures->pyramid() != 0;
+                         });
+    const ShaderProgram& p = program(options, {.shading = material.shading,
+                                               .layers = int(layers.size()),
+                                               .traced = traced,
+                                               .selfShadows = material.shadows,
+                                               .boundedSearch = bounded,
+                                               .shadowMap = light.shadowMap != nullptr,
+                                               .rings = material.water.ringCount > 0,
+                                               .caster = caster != nullptr});
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -287,16 +296,11 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .minSamples = material.minSamples,
                       .maxSamples = material.maxSamples,
                       .shadowSamples = material.shadowSamples,
-                      .shadows = material.shadows ? 1 : 0,
                       .clipToPatch = material.clipToPatch ? 1 : 0,
                       .pyramidLevels = textures.pyramidLevels(),
                       .varianceFloor = varianceFloor(textures.config().format),
                       .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0},
                       .pixelBudget = material.pixelBudget};
-    // Bounded searches where asked and every traced layer has its pyramid.
-    u.boundedSearch = material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
-                          return !l.traced || l.textures->pyramid() != 0;
-                      }) ? 1 : 0;
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
     // texture read at the mesh's own texcoords (the level surface.frag computes).
@@ -370,9 +374,12 @@ void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, c
 
 void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj,
                                      glm::vec3 eye, const glm::vec4& color, const DirectionalLight* light) {
-    if (!flat_.id())
-        flat_ = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")},
-                              {shader("surface/uniforms.glsl"), shader("surface/shadowmap.glsl"), shader("flat.frag")});
+    const bool receives = light && light->shadowMap;
+    ShaderProgram& flat = flat_[receives ? 1 : 0];
+    if (!flat.id())
+        flat = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")},
+                             {shader("surface/uniforms.glsl"), shader("surface/shadowmap.glsl"), shader("flat.frag")},
+                             {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
     GlStateGuard guard;
     SurfaceUniforms u{.cameraPos = eye};
     if (light) {
@@ -382,11 +389,11 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
         receiveShadows(u, *light);
     }
     bindUniforms(u, model, viewProj);
-    flat_.set("u_color", color);
-    flat_.set("u_flatLit", light ? 1 : 0);
+    flat.set("u_color", color);
+    flat.set("u_flatLit", light ? 1 : 0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    flat_.use();
+    flat.use();
     mesh.draw();
 }
 

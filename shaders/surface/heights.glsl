@@ -7,6 +7,13 @@
 #ifndef HFX_LAYERS
 #define HFX_LAYERS 1
 #endif
+// HFX_BOUNDED_SEARCH 1: hfx_segment_bounds reads the layers' pyramids (SurfaceMaterial::
+// boundedSearch where every traced layer has one). A define, not a uniform: a CPU rasteriser
+// (llvmpipe) runs both sides of a branch even on a uniform, so a switched-off uniform path
+// still cost POM its four pyramid fetches per search (about a quarter of its draw).
+#ifndef HFX_BOUNDED_SEARCH
+#define HFX_BOUNDED_SEARCH 0
+#endif
 
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 layout(binding = 3) uniform sampler2D s_pyramid; // RG32F: level k texel's (max, min) over the bilinear cells it covers
@@ -114,7 +121,7 @@ vec2 hfx_bounds(ivec2 cell, int level) {
 }
 
 // Bounds of the heights the searches read (hfx_height at `level`) anywhere on the texcoord segment
-// from a to b: (max, min), from the pyramids where the material asks (u_boundedSearch: every
+// from a to b: (max, min), from the pyramids where the material asks (HFX_BOUNDED_SEARCH: every
 // traced layer has one); else (1, 0), the whole relief. Per layer, in its sample coordinates
 // (x = u * width - 0.5, pyramid cell i between samples i and i + 1), the segment's box is widened
 // by what its fetches reach: the bilinear cell at mip 0; at mip m, whose texels average 2^m-wide
@@ -143,7 +150,9 @@ vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) 
 }
 
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) {
-    if (u_boundedSearch == 0) return vec2(1.0, 0.0);
+#if !HFX_BOUNDED_SEARCH
+    return vec2(1.0, 0.0);
+#else
 #if HFX_LAYERS == 1
     vec2 bounds = hfx_layer_bounds(s_pyramid, hfx_size(), a, b, level);
 #else
@@ -170,4 +179,5 @@ vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) {
 #endif
     // A margin for the storage's rounding (float16 rounds a height by up to 2^-11 of itself).
     return bounds + vec2(1e-3, -1e-3);
+#endif
 }

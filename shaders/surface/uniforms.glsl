@@ -22,7 +22,6 @@ layout(std140, binding = 0) uniform HfxSurface {
     int u_minSamples;         // linear-search steps looking straight down
     int u_maxSamples;         // ... and at grazing angles
     int u_shadowSamples;
-    int u_shadows;            // 1: self-shadows
     int u_clipToPatch;        // 1: discard rays that leave u_patchBounds (finite patches)
     int u_pyramidLevels;      // levels of s_pyramid, 0 without one
     float u_varianceFloor;    // slope variance the storage format's rounding alone shows (not roughness)
@@ -34,13 +33,11 @@ layout(std140, binding = 0) uniform HfxSurface {
     vec4 u_layerWeight;       // its share of the height: h = sum weight * h_layer
     vec4 u_layerSlope;        // depthScale * weight * scale / the layer's normal depth: its slopes' share
     vec4 u_layerLevel;        // its mip level minus layer 0's read unscaled: log2(scale * size / size0)
-    // Receiving a shadow map (hfx::ShadowMap, s_shadowMap on unit 11):
+    // Receiving a shadow map (hfx::ShadowMap, s_shadowMap on unit 11; read where HFX_SHADOW_MAP is 1):
     mat4 u_shadowViewProj;    // world to the light's clip space
-    int u_shadowMap;          // 1: the light is multiplied by the map's visibility
     float u_shadowBias;       // depth bias, in the map's window depth
     float u_shadowOffset;     // normal offset of the lookup, world units
     float u_shadowTexel;      // 1 / the map's size
-    int u_boundedSearch;      // 1: the searches are bounded by the layers' pyramids (hfx_segment_bounds)
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

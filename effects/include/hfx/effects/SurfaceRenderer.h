@@ -136,6 +136,22 @@ struct DrawOptions {
     bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
 };
 
+/// What picks a surface program besides DrawOptions: each field is a define of its own, so a
+/// switched-off feature costs nothing (on a CPU rasteriser a branch on a uniform still runs its
+/// body). draw() derives it from the material, layers and light; program() takes it to build a
+/// variant ahead of its first draw.
+struct SurfaceVariant {
+    Shading shading = Shading::Lit;
+    int layers = 1;             ///< HFX_LAYERS
+    int traced = 0;             ///< HFX_TRACED_LAYERS (0: all the layers)
+    bool selfShadows = true;    ///< HFX_SELF_SHADOW where the technique has them: SurfaceMaterial::shadows
+    bool boundedSearch = false; ///< HFX_BOUNDED_SEARCH: SurfaceMaterial::boundedSearch, every traced layer with a pyramid
+    bool shadowMap = false;     ///< HFX_SHADOW_MAP: the light has a ShadowMap
+    bool rings = false;         ///< HFX_RINGS: water with impact rings (WaterLook::ringCount > 0)
+    bool caster = false;        ///< HFX_SHADOW_CASTER: drawing into a shadow map
+    auto operator<=>(const SurfaceVariant&) const = default;
+};
+
 class SurfaceRenderer {
 public:
     SurfaceRenderer() = default;
@@ -169,20 +185,12 @@ public:
                     const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options = {});
     void drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map);
 
-    /// Builds the shader variant now (start-up) instead of on the first draw.
-    /// `traced` is the count of traced layers (0: all of them). Water also gets its variant with
-    /// impact rings (drawn while WaterLook::ringCount > 0); the one without is returned.
-    const ShaderProgram& program(const DrawOptions& options, Shading shading = Shading::Lit, int layers = 1,
-                                 int traced = 0);
+    /// Builds a shader variant now (start-up) instead of on its first draw, and returns it.
+    const ShaderProgram& program(const DrawOptions& options, const SurfaceVariant& variant = {});
 
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).
     void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj);
-    /// The program of a variant; `caster`: the shadow-map variant (HFX_SHADOW_CASTER); `rings`:
-    /// water with impact rings in its heights (HFX_RINGS; a variant of its own because the rings'
-    /// loop in every height fetch nearly doubled the search's time on llvmpipe, even with none).
-    const ShaderProgram& variant(const DrawOptions& options, Shading shading, int layers, int traced, bool caster,
-                                 bool rings);
     /// A surface draw: the uniforms of the layers and material, seen by viewProj from the camera
     /// (or, casting, from the light), then the mesh.
     void drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
@@ -191,8 +199,8 @@ private:
     void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, glm::vec3 eye,
                         const glm::vec4& color, const DirectionalLight* light);
 
-    std::map<std::tuple<Technique, bool, Shading, int, int, bool, bool>, ShaderProgram> programs_;
-    ShaderProgram flat_, sky_;
+    std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
+    ShaderProgram flat_[2], sky_; ///< flat: [1] receives a shadow map
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
 };

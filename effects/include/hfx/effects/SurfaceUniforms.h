@@ -36,25 +36,22 @@ struct SurfaceUniforms {
     int minSamples = 1;
     int maxSamples = 1;
     int shadowSamples = 1;
-    int shadows = 0;
     int clipToPatch = 0;
     int pyramidLevels = 0;
     float varianceFloor = 0.0f;
-    glm::ivec2 wrap{1, 1};
+    alignas(8) glm::ivec2 wrap{1, 1}; ///< std140 aligns an ivec2 to 8 bytes
     float untracedHeight = 0.0f;
     float pixelBudget = 0.0f; ///< SurfaceMaterial::pixelBudget
     glm::vec4 layerScale{1.0f};
     glm::vec4 layerWeight{1.0f, 0.0f, 0.0f, 0.0f};
     glm::vec4 layerSlope{0.0f};
     glm::vec4 layerLevel{0.0f};
-    // Receiving a shadow map (ShadowMap; sampler unit 11):
+    // Receiving a shadow map (ShadowMap; sampler unit 11; the HFX_SHADOW_MAP variant reads them):
     glm::mat4 shadowViewProj{1.0f}; ///< world to the light's clip space
-    int shadowMap = 0;              ///< 1: multiply the light by the map's visibility
     float shadowBias = 0.0f;        ///< depth bias, in the map's window depth
     float shadowOffset = 0.0f;      ///< normal offset of the lookup, world units (about 1.5 map texels)
     float shadowTexel = 0.0f;       ///< 1 / the map's size (the filter's tap spacing)
-    int boundedSearch = 0;          ///< 1: the searches are bounded by the layers' pyramids
-    int padding[3] = {};            ///< std140 rounds the block up to 16 bytes
+    int padding = 0;                ///< std140 rounds the block up to 16 bytes
 };
 
 struct WaterUniforms {
@@ -89,13 +86,13 @@ static_assert(offsetof(SurfaceUniforms, depthScale) == 220);
 static_assert(offsetof(SurfaceUniforms, shadowSharpness) == 268);
 static_assert(offsetof(SurfaceUniforms, normalDecode) == 272);
 static_assert(offsetof(SurfaceUniforms, silhouetteFade) == 288);
-static_assert(offsetof(SurfaceUniforms, shadows) == 304);
+static_assert(offsetof(SurfaceUniforms, varianceFloor) == 312);
 static_assert(offsetof(SurfaceUniforms, wrap) == 320);
 static_assert(offsetof(SurfaceUniforms, pixelBudget) == 332);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
-static_assert(offsetof(SurfaceUniforms, boundedSearch) == 480);
-static_assert(sizeof(SurfaceUniforms) == 496);
+static_assert(offsetof(SurfaceUniforms, shadowBias) == 464);
+static_assert(sizeof(SurfaceUniforms) == 480);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, hasEnvironment) == 64);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);
