@@ -312,7 +312,9 @@ TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
                     tolerance, deeper, kRays, off, worst, early);
         EXPECT_EQ(deeper, 0) << "tolerance " << tolerance;
         EXPECT_EQ(off, 0) << "tolerance " << tolerance;
-        if (tolerance > 0.0f) EXPECT_GT(early, kRays / 100) << "the tolerance was not used";
+        if (tolerance > 0.0f) {
+            EXPECT_GT(early, kRays / 100) << "the tolerance was not used";
+        }
     }
 }
 
@@ -473,7 +475,9 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         // Bounds that hold by being the whole relief would say nothing: with the smooth layer,
         // narrower than the two layers' full range (the noise's own bounds cannot be).
         std::printf("[bounds] %s: mean width %.3f\n", edgeModeName(edges), meanWidth);
-        if (layers == 2) EXPECT_LT(meanWidth, 0.95f);
+        if (layers == 2) {
+            EXPECT_LT(meanWidth, 0.95f);
+        }
     }
 }
 
