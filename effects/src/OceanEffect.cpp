@@ -30,11 +30,12 @@ OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
         // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
         const OceanCascade& c = ocean_.cascade(i);
         const float depth = std::max(8.0f * c.sigma / c.patchMeters, 1e-6f);
-        // The cascades traced now get a bounds pyramid each (boundedSearch; unorm8 takes none:
-        // its rounding exceeds the bounds' margin). A sea whose wind later brings another
-        // cascade into the trace draws with unbounded searches (SurfaceRenderer).
+        // The cascades traced now get a bounds pyramid each where the material bounds its
+        // searches (unorm8 takes none: its rounding exceeds the bounds' margin). A sea whose wind
+        // later brings another cascade into the trace, or whose material turns the bounds on
+        // later, draws with unbounded searches (SurfaceRenderer).
         SurfaceOptions options = config.surface;
-        options.pyramid = options.pyramid || (config.boundedSearch && traced[size_t(i)] &&
+        options.pyramid = options.pyramid || (config.material.boundedSearch && traced[size_t(i)] &&
                                               options.format != SurfaceFormat::Unorm8);
         surfaces_.push_back(std::make_unique<SurfacePipeline>(
             cl, SurfacePipelineConfig{.width = ocean_.config().size,

@@ -22,7 +22,11 @@ namespace hfx {
 
 struct OceanEffectConfig {
     OceanConfig ocean;
-    /// The look; its depthScale is replaced by the sea state's (physicalDepthScale()).
+    /// The look; its depthScale is replaced by the sea state's (physicalDepthScale()). With
+    /// boundedSearch (on by default) each traced cascade gets a height-bounds pyramid, built every
+    /// frame: the searches (POM and the other sampled techniques) then step only through the
+    /// depths the waves reach on each ray's path, and shadow rays only below the waves' top there
+    /// (hfx_segment_bounds). It costs a pyramid build and upload per traced cascade.
     SurfaceMaterial material{.minSamples = 8, .maxSamples = 40, .shadowSharpness = 1.0f,
                              .specularStrength = 0.0f, .shading = Shading::Water, .water = {.foam = true},
                              .boundedSearch = true};
@@ -35,11 +39,6 @@ struct OceanEffectConfig {
     /// a fetch per search and shadow step; their height moves the hit by at most half their share
     /// of the depth. 0 traces every cascade.
     float untracedShare = 0.05f;
-    /// A height-bounds pyramid on each traced cascade, built every frame, for the material's
-    /// boundedSearch: the searches (POM and the other sampled techniques) then step only through
-    /// the depths the waves reach on each ray's path, and shadow rays only below the waves' top
-    /// there (hfx_segment_bounds). It costs a pyramid build and upload per traced cascade.
-    bool boundedSearch = true;
     /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
     SurfaceOptions surface;
     void validate() const; ///< throws hfx::Error naming the bad field and its value
