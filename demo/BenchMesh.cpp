@@ -144,11 +144,8 @@ int runBenchMesh(int width, int height, int frames) {
     // receiver's lookup as the renderer's own draws get them.
     GlBuffer meshBlocks[2] = {GlBuffer::create(), GlBuffer::create()};
     for (int shadowed = 0; shadowed < 2; ++shadowed) {
-        const SurfaceUniforms u{.lightDir = glm::normalize(light.direction),
-                                .shadowViewProj = map.viewProj(),
-                                .shadowBias = map.depthBias(),
-                                .shadowOffset = map.normalOffset(),
-                                .shadowTexel = 1.0f / float(map.size())};
+        SurfaceUniforms u{.lightDir = glm::normalize(light.direction)};
+        map.fillReceiver(u);
         glNamedBufferStorage(meshBlocks[shadowed].id(), sizeof u, &u, 0);
     }
     const auto drawMesh = [&](bool shadowed) {

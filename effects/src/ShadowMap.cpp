@@ -64,4 +64,11 @@ void ShadowMap::end() {
     glViewport(savedViewport_[0], savedViewport_[1], savedViewport_[2], savedViewport_[3]);
 }
 
+void ShadowMap::fillReceiver(SurfaceUniforms& u) const {
+    u.shadowViewProj = viewProj_;
+    u.shadowOffset = normalOffset();
+    u.shadowBias = depthBias();
+    u.shadowTexel = 1.0f / float(size_);
+}
+
 } // namespace hfx

@@ -248,12 +248,8 @@ namespace {
 /// The receiving side of a light's shadow map: its transform, filter and biases.
 void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
     if (!light.shadowMap) return;
-    const ShadowMap& map = *light.shadowMap;
-    u.shadowViewProj = map.viewProj();
-    u.shadowOffset = map.normalOffset();
-    u.shadowBias = map.depthBias();
-    u.shadowTexel = 1.0f / float(map.size());
-    glBindTextureUnit(11, map.texture());
+    light.shadowMap->fillReceiver(u);
+    glBindTextureUnit(11, light.shadowMap->texture());
 }
 } // namespace
 

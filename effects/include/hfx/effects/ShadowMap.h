@@ -13,6 +13,7 @@
 
 #include "hfx/core/Camera.h"
 #include "hfx/core/GlObject.h"
+#include "hfx/effects/SurfaceUniforms.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -48,6 +49,10 @@ public:
     /// does not shadow itself through the map's rounding (surface/shadowmap.glsl).
     float normalOffset() const { return 1.5f * texelWorld(); }
     float depthBias() const { return normalOffset() * depthPerWorld(); }
+    /// Fills the receiver's fields of a surface block (shadowViewProj, the offset, the bias and
+    /// the filter's tap spacing), as every receiver of this map reads them; the caller binds
+    /// texture() on unit 11 and draws with HFX_SHADOW_MAP.
+    void fillReceiver(SurfaceUniforms& u) const;
 
 private:
     int size_;
