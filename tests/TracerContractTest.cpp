@@ -167,31 +167,37 @@ void main() { // a: uv, span; b: h0, level, samples, sharpness
 )",
                              "test"};
 
+/// Runs a harness program (64 invocations per group) over `input`, two vec4 per item, on storage
+/// buffer 0; returns the vec4 per item it writes to buffer 1. The caller has bound the textures.
+std::vector<glm::vec4> runHarness(const ShaderProgram& p, const std::vector<glm::vec4>& input) {
+    const int count = int(input.size() / 2);
+    GlBuffer in = GlBuffer::create(), out = GlBuffer::create();
+    glNamedBufferStorage(in.id(), GLsizeiptr(input.size() * sizeof(glm::vec4)), input.data(), 0);
+    glNamedBufferStorage(out.id(), GLsizeiptr(size_t(count) * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    p.set("u_count", count);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+    p.use();
+    glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> result(static_cast<size_t>(count));
+    glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(result.size() * sizeof(glm::vec4)), result.data());
+    glUseProgram(0);
+    return result;
+}
+
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
 /// harness; returns each hit as (u, v, depth fraction, 0), or with kShadowMain each shadow ray's
 /// hfx_shadow in x.
 std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain) {
-    const int count = int(rays.size() / 2);
-    GlBuffer rayBuffer = GlBuffer::create(), hitBuffer = GlBuffer::create();
-    glNamedBufferStorage(rayBuffer.id(), GLsizeiptr(rays.size() * sizeof(glm::vec4)), rays.data(), 0);
-    glNamedBufferStorage(hitBuffer.id(), GLsizeiptr(size_t(count) * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     const ShaderProgram p = ShaderProgram::compute(
         {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kHarnessBuffers, main});
     p.set("u_levels", probe.textures().pyramidLevels());
     p.set("u_wrap", glm::ivec2(1, 1));
-    p.set("u_count", count);
     glBindTextureUnit(0, probe.textures().surface());
     glBindTextureUnit(3, probe.textures().pyramid());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, rayBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, hitBuffer.id());
-    p.use();
-    glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<glm::vec4> hits(static_cast<size_t>(count));
-    glGetNamedBufferSubData(hitBuffer.id(), 0, GLsizeiptr(hits.size() * sizeof(glm::vec4)), hits.data());
-    glUseProgram(0);
-    return hits;
+    return runHarness(p, rays);
 }
 
 TEST_F(TracerContract, EveryTracerRunsInAComputeHarnessAndHitsWhereTheExactIntersectionSays) {
@@ -386,13 +392,10 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
 /// (65 points, ends included) stands above their maximum or below their minimum.
 const SourceFile kBoundsMain{"harness_bounds.comp", R"(#version 450 core
 layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Segments { vec4 segments[]; };
-layout(std430, binding = 1) writeonly buffer Out { vec4 result[]; };
-uniform int u_count;
 void main() {
-    const uint i = gl_GlobalInvocationID.x;
-    if (i >= uint(u_count)) return;
-    const vec4 a = segments[2 * i], b = segments[2 * i + 1];
+    uint i;
+    vec4 a, b;
+    if (!hfx_harness_ray(i, a, b)) return;
     const vec2 bounds = hfx_segment_bounds(a.xy, a.zw, b.x);
     float above = -1.0, below = -1.0;
     for (int k = 0; k <= 64; ++k) {
@@ -400,7 +403,7 @@ void main() {
         above = max(above, h - bounds.x);
         below = max(below, bounds.y - h);
     }
-    result[i] = vec4(above, below, bounds);
+    hits[i] = vec4(above, below, bounds);
 }
 )",
                               "test"};
@@ -443,26 +446,15 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
             segments.emplace_back(from, from + length * glm::vec2(std::cos(angle), std::sin(angle)));
             segments.emplace_back(float(i % 7) * 0.5f, 0.0f, 0.0f, 0.0f);
         }
-        GlBuffer in = GlBuffer::create(), out = GlBuffer::create();
-        glNamedBufferStorage(in.id(), GLsizeiptr(segments.size() * sizeof(glm::vec4)), segments.data(), 0);
-        glNamedBufferStorage(out.id(), GLsizeiptr(kSegments * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
         const ShaderProgram p = ShaderProgram::compute(
-            {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kBoundsMain},
+            {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kHarnessBuffers, kBoundsMain},
             {{"HFX_LAYERS", std::to_string(layers)}, {"HFX_BOUNDED_SEARCH", "1"}});
-        p.set("u_count", kSegments);
         glBindTextureUnit(0, a.textures().surface());
         glBindTextureUnit(3, a.textures().pyramid());
         glBindTextureUnit(4, b.textures().surface());
         glBindTextureUnit(12, b.textures().pyramid());
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
-        p.use();
-        glDispatchCompute(GLuint((kSegments + 63) / 64), 1, 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        std::vector<glm::vec4> result(kSegments);
-        glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(result.size() * sizeof(glm::vec4)), result.data());
-        glUseProgram(0);
+        const std::vector<glm::vec4> result = runHarness(p, segments);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
         float worstAbove = -1.0f, worstBelow = -1.0f, meanWidth = 0.0f;
         for (const glm::vec4& r : result) {

@@ -125,9 +125,9 @@ vec2 hfx_bounds(ivec2 cell, int level) {
 // traced layer has one); else (1, 0), the whole relief. Per layer, in its sample coordinates
 // (x = u * width - 0.5, pyramid cell i between samples i and i + 1), the segment's box is widened
 // by what its fetches reach: the bilinear cell at mip 0; at mip m, whose texels average 2^m-wide
-// blocks, 1.5 * 2^m samples. The pyramid level whose cells are at least as wide as that box covers it with two
-// cells per axis: four fetches per layer. The layers' bounds add, with the untraced layers' rest
-// height and, in the ring variant, the rings' amplitudes.
+// blocks, 1.5 * 2^m samples. The pyramid level whose cells are at least as wide as that box
+// covers it with two cells per axis: four fetches per layer. The layers' bounds add, with the
+// untraced layers' rest height and, in the ring variant, the rings' amplitudes.
 vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) {
     const float reach = mip > 0.0 ? 1.5 * exp2(ceil(mip)) : 0.0;
     const vec2 lo = min(a, b) * vec2(size) - 0.5 - reach, hi = max(a, b) * vec2(size) - 0.5 + reach;
