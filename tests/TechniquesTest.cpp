@@ -197,12 +197,15 @@ TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {
         for (int x = 48; x < 80; ++x) box[y * kField + x] = 0.9f;
     AccuracyProbe probe(cl(), box, kField, 0.1f);
     const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f);
-    for (Technique t : {Technique::ParallaxOcclusion, Technique::Relief, Technique::Hierarchical}) {
+    // Every technique with self-shadows. (Steep's hit lies under the surface: its light ray once
+    // started there, inside the relief, and agreed on 95.5% here, 13-58% on bricks at 0-45 degrees.)
+    for (Technique t : {Technique::SteepParallax, Technique::Relief, Technique::Secant, Technique::ParallaxOcclusion,
+                        Technique::Hierarchical}) {
         const AccuracyResult r = probe.measure(t, {.angleDegrees = 30, .shadows = true, .light = light});
         std::printf("[box %-8s] shadow agreement %.2f%% over %zu points (%zu in the penumbra band)\n",
                     techniqueName(t), 100.0 * r.shadowAgreement, r.shadowPixels, r.penumbraPixels);
         EXPECT_GT(r.shadowPixels, 2000u);
-        EXPECT_GE(r.shadowAgreement, 0.95) << techniqueName(t);
+        EXPECT_GE(r.shadowAgreement, 0.99) << techniqueName(t); // 99.6-100%
         // The exact tracer's shadow rays are exact: the target outside the penumbra band.
         if (t == Technique::Hierarchical) {
             EXPECT_GE(r.shadowAgreement, 0.995);
@@ -263,6 +266,10 @@ TEST_F(Techniques, ExactShadowsAgreeWithShadowRaysOnBricksUnderALowLight) {
                     hier.penumbraPixels);
         EXPECT_GT(hier.shadowPixels, 1500u);
         EXPECT_GE(hier.shadowAgreement, 0.995) << "at " << angle;
+        // POM's 8 samples can step over a thin blocker, but most of its misses were its own hit:
+        // under the surface, where a light ray started inside the relief (96.9% at 80 degrees
+        // before its light ray started on the surface above the hit, 99.6% after).
+        EXPECT_GE(pom.shadowAgreement, 0.99) << "at " << angle;
     }
 }
 
