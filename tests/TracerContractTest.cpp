@@ -97,11 +97,16 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
     }
 }
 
-/// A compute-shader harness of the tracer contract: the accessors over the same textures the
+/// Every harness program starts with this: 64 invocations per group.
+const SourceFile kComputeHeader{"harness_header.comp", R"(#version 450 core
+layout(local_size_x = 64) in;
+)",
+                                "test"};
+
+/// A compute-shader harness of the tracer contract: its own accessors over the same textures the
 /// renderer reads, then trace/common.glsl and a technique's file, then a main that traces one
 /// ray per invocation from a buffer of rays into a buffer of hits.
-const SourceFile kHarness{"harness.comp", R"(#version 450 core
-layout(local_size_x = 64) in;
+const SourceFile kHarness{"harness.comp", R"(
 layout(binding = 0) uniform sampler2D s_surface;
 layout(binding = 3) uniform sampler2D s_pyramid;
 uniform int u_levels;
@@ -186,18 +191,37 @@ std::vector<glm::vec4> runHarness(const ShaderProgram& p, const std::vector<glm:
     return result;
 }
 
+/// Whose height accessors a harness traces with: its own (kHarness: the contract, outside the
+/// renderer) or the renderer's (surface/heights.glsl and its uniform block: what draws use,
+/// the pyramid's wrapping across the tile's edges included).
+enum class Accessors { Harness, Renderer };
+
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
 /// harness; returns each hit as (u, v, depth fraction, 0), or with kShadowMain each shadow ray's
-/// hfx_shadow in x.
+/// hfx_shadow in x. The field wraps.
 std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique technique, const std::vector<glm::vec4>& rays,
-                                      const SourceFile& main = kHarnessMain) {
-    const ShaderProgram p = ShaderProgram::compute(
-        {kHarness, surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kHarnessBuffers, main});
-    p.set("u_levels", probe.textures().pyramidLevels());
-    p.set("u_wrap", glm::ivec2(1, 1));
+                                      const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness) {
+    const SourceFile trace[] = {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
+                                kHarnessBuffers, main};
+    std::vector<SourceFile> parts{kComputeHeader};
+    if (accessors == Accessors::Harness) parts.push_back(kHarness);
+    else parts.insert(parts.end(), {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl")});
+    parts.insert(parts.end(), std::begin(trace), std::end(trace));
+    const ShaderProgram p = ShaderProgram::compute(parts);
+    GlBuffer block = GlBuffer::create();
+    if (accessors == Accessors::Harness) {
+        p.set("u_levels", probe.textures().pyramidLevels());
+        p.set("u_wrap", glm::ivec2(1, 1));
+    } else {
+        const SurfaceUniforms u{.pyramidLevels = probe.textures().pyramidLevels(), .wrap = glm::ivec2(1, 1)};
+        glNamedBufferStorage(block.id(), sizeof u, &u, 0);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
+    }
     glBindTextureUnit(0, probe.textures().surface());
     glBindTextureUnit(3, probe.textures().pyramid());
-    return runHarness(p, rays);
+    std::vector<glm::vec4> hits = runHarness(p, rays);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+    return hits;
 }
 
 TEST_F(TracerContract, EveryTracerRunsInAComputeHarnessAndHitsWhereTheExactIntersectionSays) {
@@ -294,7 +318,9 @@ TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
     // of the exact one by up to the tolerance, never more and never past it.
     for (const float tolerance : {0.0f, 0.01f}) {
         for (int i = 0; i < kRays; ++i) rays[2 * size_t(i) + 1].w = tolerance;
-        const std::vector<glm::vec4> hits = traceInHarness(probe, Technique::Hierarchical, rays);
+        // The renderer's accessors: rays run up to 5.7 texcoords, across the tile's edges.
+        const std::vector<glm::vec4> hits =
+            traceInHarness(probe, Technique::Hierarchical, rays, kHarnessMain, Accessors::Renderer);
         int deeper = 0, off = 0, early = 0;
         double worst = 0.0;
         for (int i = 0; i < kRays; ++i) {
@@ -355,7 +381,8 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
         origins.emplace_back(uv, h0);
         directions.push_back(direction);
     }
-    const std::vector<glm::vec4> shadow = traceInHarness(probe, Technique::Hierarchical, rays, kShadowMain);
+    const std::vector<glm::vec4> shadow =
+        traceInHarness(probe, Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer);
     int missed = 0, invented = 0, blocked = 0, grazing = 0;
     for (int i = 0; i < kRays; ++i) {
         const glm::dvec3 o = origins[size_t(i)], d = directions[size_t(i)];
@@ -390,8 +417,7 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
 /// The searches' bounds (surface/heights.glsl, hfx_segment_bounds) in a compute harness: per
 /// segment (a: from, to; b: level) the bounds, and how far any height the search reads along it
 /// (65 points, ends included) stands above their maximum or below their minimum.
-const SourceFile kBoundsMain{"harness_bounds.comp", R"(#version 450 core
-layout(local_size_x = 64) in;
+const SourceFile kBoundsMain{"harness_bounds.comp", R"(
 void main() {
     uint i;
     vec4 a, b;
@@ -447,7 +473,8 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
             segments.emplace_back(float(i % 7) * 0.5f, 0.0f, 0.0f, 0.0f);
         }
         const ShaderProgram p = ShaderProgram::compute(
-            {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kHarnessBuffers, kBoundsMain},
+            {kComputeHeader, surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kHarnessBuffers,
+             kBoundsMain},
             {{"HFX_LAYERS", std::to_string(layers)}, {"HFX_BOUNDED_SEARCH", "1"}});
         glBindTextureUnit(0, a.textures().surface());
         glBindTextureUnit(3, a.textures().pyramid());
