@@ -72,8 +72,8 @@ Budget measure(Scene& scene, RenderTarget& target, int frames) {
         nm.push_back(n);
         own.push_back(o);
     }
-    return {median(field), median(normals), median(extra),     median(upload),
-            median(pom),   median(unshadowed), median(nm), median(own)};
+    return {median(field), median(normals),    median(extra), median(upload),
+            median(pom),   median(unshadowed), median(nm),    median(own)};
 }
 
 /// Wall time per frame of update + POM draw, run one after the other and overlapped (the next
