@@ -134,13 +134,14 @@ vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) 
     const int levels = textureQueryLevels(pyramid);
     const float extent = max(hi.x - lo.x, hi.y - lo.y);
     const int level = min(int(ceil(log2(max(extent, 1.0)))), levels - 1);
-    const ivec2 levelSize = max(size >> level, ivec2(1));
-    const vec2 n = vec2(levelSize), width = vec2(size) / n;
-    // Cells of the level under the box's corners, wrapped or clamped to the field as hfx_bounds does.
-    const vec2 c0 = floor(lo / width), c1 = floor(hi / width);
-    const vec4 cx = vec4(c0.x, c1.x, c0.x, c1.x), cy = vec4(c0.y, c0.y, c1.y, c1.y);
-    const vec4 ix = u_wrap.x != 0 ? cx - n.x * floor(cx / n.x) : clamp(cx, 0.0, n.x - 1.0);
-    const vec4 iy = u_wrap.y != 0 ? cy - n.y * floor(cy / n.y) : clamp(cy, 0.0, n.y - 1.0);
+    const ivec2 last = max(size >> level, ivec2(1)) - 1;
+    // Cells of the level under the box's corners, wrapped or clamped to the field as hfx_bounds
+    // does (power-of-two sizes: the cell width 2^level scales exactly, a wrap is a bitwise and).
+    const vec2 invWidth = vec2(size >> level) / vec2(size);
+    const ivec2 c0 = ivec2(floor(lo * invWidth)), c1 = ivec2(floor(hi * invWidth));
+    const ivec4 cx = ivec4(c0.x, c1.x, c0.x, c1.x), cy = ivec4(c0.y, c0.y, c1.y, c1.y);
+    const ivec4 ix = u_wrap.x != 0 ? cx & last.x : clamp(cx, 0, last.x);
+    const ivec4 iy = u_wrap.y != 0 ? cy & last.y : clamp(cy, 0, last.y);
     g_fetches += 4.0;
     const vec2 b0 = texelFetch(pyramid, ivec2(ix.x, iy.x), level).rg;
     const vec2 b1 = texelFetch(pyramid, ivec2(ix.y, iy.y), level).rg;
