@@ -66,26 +66,23 @@ bool hfx_linear_search(HfxRay ray, out float t0, out float t1, out float d0, out
     return false;
 }
 
-// A sampled search's hit can lie under the surface (up to a step deep for steep parallax, less
-// for POM's segment where the relief bends), and a light ray from there starts inside the relief:
-// the surface right above it reads as a blocker (steep parallax's flat tops came out dark almost
-// everywhere). The light ray starts on the surface above the hit instead (one fetch), its span
-// shortened to the climb left; false where that is the top of the relief (nothing above it).
-bool hfx_shadow_from_surface(inout HfxShadowRay ray) {
-    const float h = max(ray.h0, hfx_height(ray.uv, ray.level));
-    if (h >= 1.0) return false;
-    ray.span *= (1.0 - h) / (1.0 - ray.h0);
-    ray.h0 = h;
-    return true;
-}
-
 // Tatarchuk's occlusion: heights along the light ray from the displaced point; a blocker's
 // occlusion is its rise above the ray relative to the ray's own climb there, so a close blocker
 // (small climb) counts fully and a far one weakly. The largest over the samples; > 0 means some
 // sample stood above the ray. The samples lie where a blocker can be: on the part of the ray
 // below the heights' maximum on its path (hfx_segment_bounds), none where it is above them, and
 // no farther apart than ray.samples over the whole ray would be.
+//
+// The ray starts on the surface above the point (one fetch): a sampled search's hit can lie under
+// the surface (up to a step deep for steep parallax, less for POM's segment where the relief
+// bends), and a light ray from there started inside the relief, where the surface right above
+// read as a blocker (steep's flat tops came out dark almost everywhere). Its span shrinks to the
+// climb left; at the top of the relief nothing is above it.
 float hfx_occlusion(HfxShadowRay ray) {
+    const float surface = max(ray.h0, hfx_height(ray.uv, ray.level));
+    if (surface >= 1.0) return 0.0;
+    ray.span *= (1.0 - surface) / (1.0 - ray.h0);
+    ray.h0 = surface;
     const float top = hfx_segment_bounds(ray.uv, ray.uv + ray.span, ray.level).x;
     const float reach = clamp((top - ray.h0) / max(1.0 - ray.h0, 1e-6), 0.0, 1.0);
     const int samples = clamp(int(ceil(float(ray.samples) * reach)), 0, HFX_MAX_SHADOW_SAMPLES);

@@ -11,7 +11,4 @@ HfxHit hfx_trace(HfxRay ray) {
     }
     return hfx_hit_at(ray, 0.5 * (t0 + t1));
 }
-float hfx_shadow(HfxShadowRay ray) {
-    if (!hfx_shadow_from_surface(ray)) return 0.0;
-    return hfx_occlusion(ray) > 0.0 ? 1.0 : 0.0;
-}
+float hfx_shadow(HfxShadowRay ray) { return hfx_occlusion(ray) > 0.0 ? 1.0 : 0.0; }

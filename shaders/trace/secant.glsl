@@ -11,7 +11,4 @@ HfxHit hfx_trace(HfxRay ray) {
     }
     return hfx_hit_at(ray, t0 + (t1 - t0) * d0 / (d0 - d1));
 }
-float hfx_shadow(HfxShadowRay ray) {
-    if (!hfx_shadow_from_surface(ray)) return 0.0;
-    return clamp(hfx_occlusion(ray) * ray.sharpness, 0.0, 1.0);
-}
+float hfx_shadow(HfxShadowRay ray) { return clamp(hfx_occlusion(ray) * ray.sharpness, 0.0, 1.0); }

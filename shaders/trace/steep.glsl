@@ -5,7 +5,4 @@ HfxHit hfx_trace(HfxRay ray) {
     if (!hfx_linear_search(ray, t0, t1, d0, d1)) return hfx_hit_at(ray, 1.0);
     return hfx_hit_at(ray, t1);
 }
-float hfx_shadow(HfxShadowRay ray) {
-    if (!hfx_shadow_from_surface(ray)) return 0.0;
-    return hfx_occlusion(ray) > 0.0 ? 1.0 : 0.0;
-}
+float hfx_shadow(HfxShadowRay ray) { return hfx_occlusion(ray) > 0.0 ? 1.0 : 0.0; }
