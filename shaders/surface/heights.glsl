@@ -110,14 +110,15 @@ ivec2 hfx_size() { return textureSize(s_surface, 0); }
 
 int hfx_levels() { return u_pyramidLevels; }
 
+// A pyramid cell's texel at a level whose last texel is `last`: wrapped or clamped as the field's
+// edges are. The pyramid's sizes are powers of two (SurfaceTexturesConfig::pyramid), so a wrap is
+// a bitwise and, negative cells included (two's complement); integer % has no vector form on a
+// CPU rasteriser, and the float wrap this replaced cost the walk 1.4%.
+ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) { return mix(clamp(cell, ivec2(0), last), cell & last, bvec2(u_wrap)); }
+
 vec2 hfx_bounds(ivec2 cell, int level) {
-    const ivec2 levelSize = max(hfx_size() >> level, ivec2(1));
-    // The pyramid's sizes are powers of two (SurfaceTexturesConfig::pyramid): a wrap is a bitwise
-    // and, negative cells included (two's complement). (Integer % has no vector form on a CPU
-    // rasteriser; the float wrap it replaced cost the walk 1.4%.)
-    const ivec2 index = mix(clamp(cell, ivec2(0), levelSize - 1), cell & (levelSize - 1), bvec2(u_wrap));
     g_fetches += 1.0;
-    return texelFetch(s_pyramid, index, level).rg;
+    return texelFetch(s_pyramid, hfx_pyramid_texel(cell, max(hfx_size() >> level, ivec2(1)) - 1), level).rg;
 }
 
 // Bounds of the heights the searches read (hfx_height at `level`) anywhere on the texcoord segment
@@ -134,19 +135,17 @@ vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) 
     const int levels = textureQueryLevels(pyramid);
     const float extent = max(hi.x - lo.x, hi.y - lo.y);
     const int level = min(int(ceil(log2(max(extent, 1.0)))), levels - 1);
+    // The level's texels under the box's corners (power-of-two sizes: the cell width 2^level
+    // scales exactly).
     const ivec2 last = max(size >> level, ivec2(1)) - 1;
-    // Cells of the level under the box's corners, wrapped or clamped to the field as hfx_bounds
-    // does (power-of-two sizes: the cell width 2^level scales exactly, a wrap is a bitwise and).
     const vec2 invWidth = vec2(size >> level) / vec2(size);
-    const ivec2 c0 = ivec2(floor(lo * invWidth)), c1 = ivec2(floor(hi * invWidth));
-    const ivec4 cx = ivec4(c0.x, c1.x, c0.x, c1.x), cy = ivec4(c0.y, c0.y, c1.y, c1.y);
-    const ivec4 ix = u_wrap.x != 0 ? cx & last.x : clamp(cx, 0, last.x);
-    const ivec4 iy = u_wrap.y != 0 ? cy & last.y : clamp(cy, 0, last.y);
+    const ivec2 c0 = hfx_pyramid_texel(ivec2(floor(lo * invWidth)), last);
+    const ivec2 c1 = hfx_pyramid_texel(ivec2(floor(hi * invWidth)), last);
     g_fetches += 4.0;
-    const vec2 b0 = texelFetch(pyramid, ivec2(ix.x, iy.x), level).rg;
-    const vec2 b1 = texelFetch(pyramid, ivec2(ix.y, iy.y), level).rg;
-    const vec2 b2 = texelFetch(pyramid, ivec2(ix.z, iy.z), level).rg;
-    const vec2 b3 = texelFetch(pyramid, ivec2(ix.w, iy.w), level).rg;
+    const vec2 b0 = texelFetch(pyramid, c0, level).rg;
+    const vec2 b1 = texelFetch(pyramid, ivec2(c1.x, c0.y), level).rg;
+    const vec2 b2 = texelFetch(pyramid, ivec2(c0.x, c1.y), level).rg;
+    const vec2 b3 = texelFetch(pyramid, c1, level).rg;
     return vec2(max(max(b0.x, b1.x), max(b2.x, b3.x)), min(min(b0.y, b1.y), min(b2.y, b3.y)));
 }
 
