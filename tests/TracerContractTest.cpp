@@ -201,19 +201,19 @@ enum class Accessors { Harness, Renderer };
 /// hfx_shadow in x. The field wraps.
 std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness) {
-    const SourceFile trace[] = {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
-                                kHarnessBuffers, main};
+    const bool own = accessors == Accessors::Harness;
     std::vector<SourceFile> parts{kComputeHeader};
-    if (accessors == Accessors::Harness) parts.push_back(kHarness);
+    if (own) parts.push_back(kHarness);
     else parts.insert(parts.end(), {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl")});
-    parts.insert(parts.end(), std::begin(trace), std::end(trace));
+    parts.insert(parts.end(), {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
+                               kHarnessBuffers, main});
     const ShaderProgram p = ShaderProgram::compute(parts);
-    GlBuffer block = GlBuffer::create();
-    if (accessors == Accessors::Harness) {
-        p.set("u_levels", probe.textures().pyramidLevels());
-        p.set("u_wrap", glm::ivec2(1, 1));
+    const SurfaceUniforms u{.pyramidLevels = probe.textures().pyramidLevels(), .wrap = glm::ivec2(1, 1)};
+    const GlBuffer block = own ? GlBuffer() : GlBuffer::create();
+    if (own) {
+        p.set("u_levels", u.pyramidLevels);
+        p.set("u_wrap", u.wrap);
     } else {
-        const SurfaceUniforms u{.pyramidLevels = probe.textures().pyramidLevels(), .wrap = glm::ivec2(1, 1)};
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
     }
