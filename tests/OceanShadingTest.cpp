@@ -7,6 +7,7 @@
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/OceanEffect.h"
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +109,54 @@ TEST_F(OceanShading, ImpactRingsShowWhileTheyLiveAndTheCalmSeaDrawsAsBefore) {
     EXPECT_GT(changed, calm.pixels.size() / 50) << "the ring does not show";
     material.water.ringCount = 0;
     EXPECT_EQ(draw(material).pixels, calm.pixels);
+}
+
+TEST_F(OceanShading, AnEnvironmentImageIsTheSkyTheWaterReflectsAndTheSkyPassDraws) {
+    // WaterLook::environment picks the program variant that reads the image (HFX_ENVIRONMENT) in
+    // place of the procedural sky, for the sky pass and for the water's reflection and haze.
+    OceanEffect ocean(cl(), {.ocean = {.size = 64, .cascades = 1}});
+    constexpr int W = 160, H = 120;
+    const Mesh sea(makePlane({.size = 10.0f}));
+    RenderTarget target(W, H);
+    SurfaceRenderer renderer;
+    const Camera camera = Camera::orbit({0, 0, 0}, 9.0f, 0.3f, 1.2f);
+    const DirectionalLight light{.direction = {-0.35f, 0.5f, -1.0f}};
+    // A red sky: an image the procedural gradient (blue above, grey-blue at the horizon) is not.
+    GlTexture redSky = GlTexture::create();
+    glTextureStorage2D(redSky.id(), 1, GL_RGB32F, 8, 4);
+    glClearTexImage(redSky.id(), 0, GL_RGB, GL_FLOAT, std::array{1.0f, 0.0f, 0.0f}.data());
+    auto draw = [&](unsigned environment, bool water) {
+        target.bind();
+        target.clear();
+        SurfaceMaterial material = ocean.material();
+        material.water.environment = environment;
+        if (water) {
+            const std::vector<SurfaceLayer> layers = ocean.layers();
+            renderer.draw(sea, glm::mat4(1.0f), layers, material, camera, light);
+        } else {
+            renderer.drawSky(camera, light, material.water);
+        }
+        return target.readColor();
+    };
+    auto meanRedOverBlue = [](const Image& image) {
+        double red = 0.0, blue = 0.0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                red += image.at(x, y, 0);
+                blue += image.at(x, y, 2);
+            }
+        return red / std::max(blue, 1e-9);
+    };
+    const Image sky = draw(redSky.id(), false);
+    size_t notRed = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) notRed += !(sky.at(x, y, 0) > 0.99f && sky.at(x, y, 1) < 0.01f && sky.at(x, y, 2) < 0.01f);
+    EXPECT_EQ(notRed, 0u) << "the sky pass does not show the environment image";
+    EXPECT_LT(meanRedOverBlue(draw(0, false)), 1.0) << "the procedural sky should be bluer than red";
+
+    const double plain = meanRedOverBlue(draw(0, true)), reflecting = meanRedOverBlue(draw(redSky.id(), true));
+    std::printf("[environment] water red/blue: %.3f under the procedural sky, %.3f under a red image\n", plain, reflecting);
+    EXPECT_GT(reflecting, 1.5 * plain) << "the water does not reflect the environment image";
 }
 
 } // namespace

@@ -81,7 +81,6 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_glintStrength", offsetof(WaterUniforms, glintStrength)},
         {"u_skyHorizon", offsetof(WaterUniforms, skyHorizon)},
         {"u_hazeDistance", offsetof(WaterUniforms, hazeDistance)},
-        {"u_hasEnvironment", offsetof(WaterUniforms, hasEnvironment)},
         {"u_foam", offsetof(WaterUniforms, foam)},
         {"u_sunGlow", offsetof(WaterUniforms, sunGlow)},
         {"u_foamColor", offsetof(WaterUniforms, foamColor)},

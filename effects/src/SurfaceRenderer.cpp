@@ -31,7 +31,6 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .glintStrength = w.glintStrength,
             .skyHorizon = w.skyHorizon,
             .hazeDistance = w.hazeDistance,
-            .hasEnvironment = w.environment != 0 ? 1 : 0,
             .foam = w.foam ? 1 : 0,
             .sunGlow = w.sunGlow,
             .foamColor = w.foamColor,
@@ -143,6 +142,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
         throw Error(str("SurfaceVariant.layers must be 1 to ", kMaxSurfaceLayers, ", got ", v.layers));
     if (v.traced <= 0 || v.traced > v.layers) v.traced = v.layers;
     v.rings = v.rings && v.shading == Shading::Water;
+    v.environment = v.environment && v.shading == Shading::Water;
     v.shadowMap = v.shadowMap && !v.caster; // a caster writes depth only
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
@@ -157,6 +157,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_LAYERS", std::to_string(v.layers)},
                                                    {"HFX_TRACED_LAYERS", std::to_string(v.traced)},
                                                    {"HFX_RINGS", v.rings ? "1" : "0"},
+                                                   {"HFX_ENVIRONMENT", v.environment ? "1" : "0"},
                                                    {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
                                                    {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
@@ -272,6 +273,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                                .boundedSearch = bounded,
                                                .shadowMap = light.shadowMap != nullptr,
                                                .rings = material.water.ringCount > 0,
+                                               .environment = material.water.environment != 0,
                                                .caster = caster != nullptr});
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
@@ -340,20 +342,22 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
 }
 
 void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look) {
-    if (!sky_.id()) {
-        sky_ = ShaderProgram({shader("sky.vert")}, {shader("surface/uniforms.glsl"), shader("shade/sky.glsl"), shader("sky.frag")});
-        empty_ = GlVertexArray::create();
-    }
     if (look.environment != 0 && !glIsTexture(look.environment))
         throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
+    ShaderProgram& sky = sky_[look.environment != 0 ? 1 : 0];
+    if (!sky.id()) {
+        sky = ShaderProgram({shader("sky.vert")}, {shader("surface/uniforms.glsl"), shader("shade/sky.glsl"), shader("sky.frag")},
+                            {{"HFX_ENVIRONMENT", look.environment != 0 ? "1" : "0"}});
+    }
+    if (!empty_) empty_ = GlVertexArray::create();
     GlStateGuard guard;
     SurfaceUniforms u{.cameraPos = camera.position, .lightDir = glm::normalize(light.direction), .lightColor = light.color};
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
     updateBlock(waterBlock_, 1, waterUniforms(look));
     glBindTextureUnit(2, look.environment);
-    sky_.set("u_inverseViewProj", glm::inverse(camera.viewProjection()));
+    sky.set("u_inverseViewProj", glm::inverse(camera.viewProjection()));
     glDisable(GL_DEPTH_TEST);
-    sky_.use();
+    sky.use();
     glBindVertexArray(empty_.id());
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
 }

@@ -1,6 +1,8 @@
 // The sky the water reflects and the sky pass draws (SurfaceRenderer::drawSky), from the look in
-// the HfxWater block (mirrored by hfx::WaterUniforms): an equirectangular environment image, or
-// a gradient from the horizon's colour up to the zenith's with the sun's glow around the light.
+// the HfxWater block (mirrored by hfx::WaterUniforms): an equirectangular environment image
+// (HFX_ENVIRONMENT, a define of the program: on a CPU rasteriser a branch on a uniform runs both
+// sides, and each water pixel asks for the sky twice), or a gradient from the horizon's colour up
+// to the zenith's with the sun's glow around the light.
 // Below the horizon the horizon's colour continues: what distant water fades into, so the sea
 // meets the sky without a seam.
 
@@ -13,26 +15,26 @@ layout(std140, binding = 1) uniform HfxWater {
     float u_glintStrength;
     vec3 u_skyHorizon;
     float u_hazeDistance; // world units where half the colour is haze
-    int u_hasEnvironment; // 1: s_environment holds an equirectangular sky
     int u_foam;           // 1: the albedo's alpha is foam coverage (the ocean writes it)
     float u_sunGlow;      // strength of the glow around the sun in the sky
-    float u_waterReserved;
+    vec2 u_waterReserved;
     vec3 u_foamColor;
     float u_foamRoughness; // how much foam widens and dims the sun's glint (0..1)
 };
 layout(binding = 2) uniform sampler2D s_environment;
 
 vec3 hfx_sky(vec3 dir) {
-    if (u_hasEnvironment != 0) {
-        const float pi = 3.14159265;
-        const vec2 uv = vec2(atan(dir.z, dir.x) / (2.0 * pi) + 0.5, acos(clamp(dir.y, -1.0, 1.0)) / pi);
-        return textureLod(s_environment, vec2(uv.x, 1.0 - uv.y), 0.0).rgb;
-    }
+#if HFX_ENVIRONMENT
+    const float pi = 3.14159265;
+    const vec2 uv = vec2(atan(dir.z, dir.x) / (2.0 * pi) + 0.5, acos(clamp(dir.y, -1.0, 1.0)) / pi);
+    return textureLod(s_environment, vec2(uv.x, 1.0 - uv.y), 0.0).rgb;
+#else
     // Most of the change happens near the horizon, as in a clear sky.
     const float up = clamp(dir.y, 0.0, 1.0);
     const vec3 base = mix(u_skyHorizon, u_skyZenith, pow(up, 0.4));
     const float sun = max(dot(normalize(dir), normalize(u_lightDir)), 0.0);
     return base + u_sunGlow * u_lightColor * (0.5 * pow(sun, 48.0) + 0.12 * pow(sun, 6.0));
+#endif
 }
 
 /// The haze at a distance: the sky at the horizon in the direction of the point.

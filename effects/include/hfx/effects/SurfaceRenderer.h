@@ -148,6 +148,7 @@ struct SurfaceVariant {
     bool boundedSearch = false; ///< HFX_BOUNDED_SEARCH: SurfaceMaterial::boundedSearch, every traced layer with a pyramid
     bool shadowMap = false;     ///< HFX_SHADOW_MAP: the light has a ShadowMap
     bool rings = false;         ///< HFX_RINGS: water with impact rings (WaterLook::ringCount > 0)
+    bool environment = false;   ///< HFX_ENVIRONMENT: water reflecting an image (WaterLook::environment)
     bool caster = false;        ///< HFX_SHADOW_CASTER: drawing into a shadow map
     auto operator<=>(const SurfaceVariant&) const = default;
 };
@@ -200,7 +201,7 @@ private:
                         const glm::vec4& color, const DirectionalLight* light);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
-    ShaderProgram flat_[2], sky_; ///< flat: [1] receives a shadow map
+    ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
 };
