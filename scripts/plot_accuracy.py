@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Figures of docs/ACCURACY.md, drawn from the CSV that `hfx-demo bench-accuracy` writes.
 
-    python3 scripts/plot_accuracy.py docs        # reads docs/accuracy/accuracy.csv and crops_80.jpg
+    /usr/bin/python3 scripts/plot_accuracy.py docs   # reads docs/accuracy/accuracy.csv and crops_80.jpg
 
 Writes docs/accuracy/error_vs_angle.png (mean error in texels and in screen pixels against the
 view angle, per technique and map), cost_vs_error.png (mean error against height fetches and
@@ -12,7 +12,11 @@ import csv
 import sys
 from pathlib import Path
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    sys.exit(f"plot_accuracy.py: {sys.executable} has no matplotlib. Debian's (apt-get install "
+             "python3-matplotlib) belongs to /usr/bin/python3: run the script with that, or pip install matplotlib")
 
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
