@@ -79,64 +79,63 @@ TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
     EXPECT_LT(filtered, 0.8 * plain) << "the variance did not calm the far field";
 }
 
+/// A small sea for looks: one 64² cascade on a 10 m plane seen from above at an angle, 160x120.
+struct SmallSea {
+    static constexpr int W = 160, H = 120;
+    explicit SmallSea(ClContext& cl) : ocean(cl, {.ocean = {.size = 64, .cascades = 1}}) {}
+    Image draw(const SurfaceMaterial& material, const DirectionalLight& light = {}) {
+        target.bind();
+        target.clear();
+        const std::vector<SurfaceLayer> layers = ocean.layers();
+        renderer.draw(plane, glm::mat4(1.0f), layers, material, camera, light);
+        return target.readColor();
+    }
+    Image drawSky(const WaterLook& look, const DirectionalLight& light) {
+        target.bind();
+        target.clear();
+        renderer.drawSky(camera, light, look);
+        return target.readColor();
+    }
+    OceanEffect ocean;
+    Mesh plane{makePlane({.size = 10.0f})};
+    RenderTarget target{W, H};
+    SurfaceRenderer renderer;
+    Camera camera = Camera::orbit({0, 0, 0}, 9.0f, 0.3f, 1.2f);
+};
+
 TEST_F(OceanShading, ImpactRingsShowWhileTheyLiveAndTheCalmSeaDrawsAsBefore) {
     // A ring switches the draw to the variant that adds the rings to every height fetch and to the
     // shading (their loop nearly doubled the water's search time when it ran without rings too:
     // docs/BENCHMARKS.md); once it is gone nothing of it is left in the image. Which variant draws
     // is not observable here; the bench measures what it costs.
-    OceanEffect ocean(cl(), {.ocean = {.size = 64, .cascades = 1}});
-    constexpr int W = 160, H = 120;
-    const Mesh sea(makePlane({.size = 10.0f}));
-    RenderTarget target(W, H);
-    SurfaceRenderer renderer;
-    const Camera camera = Camera::orbit({0, 0, 0}, 9.0f, 0.3f, 1.2f);
-    auto draw = [&](const SurfaceMaterial& material) {
-        target.bind();
-        target.clear();
-        const std::vector<SurfaceLayer> layers = ocean.layers();
-        renderer.draw(sea, glm::mat4(1.0f), layers, material, camera, {});
-        return target.readColor();
-    };
-    SurfaceMaterial material = ocean.material();
+    SmallSea sea(cl());
+    SurfaceMaterial material = sea.ocean.material();
     ASSERT_EQ(material.water.ringCount, 0);
-    const Image calm = draw(material);
+    const Image calm = sea.draw(material);
     material.water.rings[0] = {.centre = {0.5f, 0.5f}, .radius = 0.2f, .width = 0.04f, .wavenumber = 150.0f,
                                .amplitude = 0.4f, .foam = 1.0f};
     material.water.ringCount = 1;
-    const Image ringed = draw(material);
+    const Image ringed = sea.draw(material);
     size_t changed = 0;
     for (size_t i = 0; i < calm.pixels.size(); ++i) changed += std::abs(calm.pixels[i] - ringed.pixels[i]) > 0.05f;
     EXPECT_GT(changed, calm.pixels.size() / 50) << "the ring does not show";
     material.water.ringCount = 0;
-    EXPECT_EQ(draw(material).pixels, calm.pixels);
+    EXPECT_EQ(sea.draw(material).pixels, calm.pixels);
 }
 
 TEST_F(OceanShading, AnEnvironmentImageIsTheSkyTheWaterReflectsAndTheSkyPassDraws) {
     // WaterLook::environment picks the program variant that reads the image (HFX_ENVIRONMENT) in
     // place of the procedural sky, for the sky pass and for the water's reflection and haze.
-    OceanEffect ocean(cl(), {.ocean = {.size = 64, .cascades = 1}});
-    constexpr int W = 160, H = 120;
-    const Mesh sea(makePlane({.size = 10.0f}));
-    RenderTarget target(W, H);
-    SurfaceRenderer renderer;
-    const Camera camera = Camera::orbit({0, 0, 0}, 9.0f, 0.3f, 1.2f);
+    SmallSea sea(cl());
     const DirectionalLight light{.direction = {-0.35f, 0.5f, -1.0f}};
     // A red sky: an image the procedural gradient (blue above, grey-blue at the horizon) is not.
     GlTexture redSky = GlTexture::create();
     glTextureStorage2D(redSky.id(), 1, GL_RGB32F, 8, 4);
     glClearTexImage(redSky.id(), 0, GL_RGB, GL_FLOAT, std::array{1.0f, 0.0f, 0.0f}.data());
-    auto draw = [&](unsigned environment, bool water) {
-        target.bind();
-        target.clear();
-        SurfaceMaterial material = ocean.material();
+    auto withEnvironment = [&](unsigned environment) {
+        SurfaceMaterial material = sea.ocean.material();
         material.water.environment = environment;
-        if (water) {
-            const std::vector<SurfaceLayer> layers = ocean.layers();
-            renderer.draw(sea, glm::mat4(1.0f), layers, material, camera, light);
-        } else {
-            renderer.drawSky(camera, light, material.water);
-        }
-        return target.readColor();
+        return material;
     };
     auto meanRedOverBlue = [](const Image& image) {
         double red = 0.0, blue = 0.0;
@@ -147,14 +146,15 @@ TEST_F(OceanShading, AnEnvironmentImageIsTheSkyTheWaterReflectsAndTheSkyPassDraw
             }
         return red / std::max(blue, 1e-9);
     };
-    const Image sky = draw(redSky.id(), false);
+    const Image sky = sea.drawSky(withEnvironment(redSky.id()).water, light);
     size_t notRed = 0;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) notRed += !(sky.at(x, y, 0) > 0.99f && sky.at(x, y, 1) < 0.01f && sky.at(x, y, 2) < 0.01f);
+    for (int y = 0; y < sky.height; ++y)
+        for (int x = 0; x < sky.width; ++x) notRed += !(sky.at(x, y, 0) > 0.99f && sky.at(x, y, 1) < 0.01f && sky.at(x, y, 2) < 0.01f);
     EXPECT_EQ(notRed, 0u) << "the sky pass does not show the environment image";
-    EXPECT_LT(meanRedOverBlue(draw(0, false)), 1.0) << "the procedural sky should be bluer than red";
+    EXPECT_LT(meanRedOverBlue(sea.drawSky(withEnvironment(0).water, light)), 1.0) << "the procedural sky should be bluer than red";
 
-    const double plain = meanRedOverBlue(draw(0, true)), reflecting = meanRedOverBlue(draw(redSky.id(), true));
+    const double plain = meanRedOverBlue(sea.draw(withEnvironment(0), light));
+    const double reflecting = meanRedOverBlue(sea.draw(withEnvironment(redSky.id()), light));
     std::printf("[environment] water red/blue: %.3f under the procedural sky, %.3f under a red image\n", plain, reflecting);
     EXPECT_GT(reflecting, 1.5 * plain) << "the water does not reflect the environment image";
 }
