@@ -3,11 +3,9 @@
 // each technique at 80 degrees, and docs/accuracy/accuracy.csv (every row) for
 // scripts/plot_accuracy.py. Depth scale 0.1 texture widths, mip level 0, 8..32 samples.
 
-#include "hfx/compute/DecalMap.h"
-#include "hfx/compute/NoiseField.h"
 #include "hfx/core/Error.h"
-#include "hfx/effects/BrickWall.h"
 #include "hfx/platform/GlContext.h"
+#include "hfx/tools/AccuracyMaps.h"
 #include "hfx/tools/AccuracyProbe.h"
 
 #include <algorithm>
@@ -16,55 +14,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <numbers>
 #include <sstream>
 
 namespace hfx::demo {
-namespace {
-
-struct Map {
-    std::string name;
-    std::vector<float> heights;
-};
-
-std::vector<float> readBuffer(ClContext& cl, const cl::Buffer& buffer, size_t n) {
-    std::vector<float> out(n);
-    cl.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, n * sizeof(float), out.data());
-    return out;
-}
-
-std::vector<Map> makeMaps(ClContext& cl, int n) {
-    std::vector<Map> maps;
-    std::vector<float> sines(size_t(n) * n);
-    const double k = 2.0 * std::numbers::pi / n;
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x)
-            sines[size_t(y) * n + x] = float(0.5 + 0.22 * std::sin(k * (3 * x + 1 * y) + 0.3) +
-                                             0.13 * std::sin(k * (-2 * x + 5 * y) + 1.1) +
-                                             0.07 * std::sin(k * (7 * x + 4 * y) + 2.0));
-    maps.push_back({"smooth waves", sines});
-    BrickWallMaps bricks = makeBrickWall({.size = n});
-    maps.push_back({"bricks", bricks.heights});
-    NoiseField noise(cl, {.width = n, .height = n, .frequency = 6.0f, .octaves = 5});
-    std::vector<float> noisy = readBuffer(cl, noise.buffer(), size_t(n) * n);
-    for (float& h : noisy) h = std::clamp(0.5f + 0.9f * (h - 0.5f), 0.0f, 1.0f);
-    maps.push_back({"noise", noisy});
-    DecalMap decals(cl, {.width = n, .height = n}, bricks.heights);
-    for (int i = 0; i < 40; ++i)
-        decals.addBulletHole({.u = float(std::fmod(0.137 * i * 7.3, 1.0)), .v = float(std::fmod(0.291 * i * 3.1, 1.0)),
-                              .radius = 0.02f, .depth = 0.5f});
-    decals.addExplosion({.u = 0.6f, .v = 0.4f, .radius = 0.08f, .debris = 30});
-    decals.step(1.0 / 30.0);
-    maps.push_back({"damaged wall", readBuffer(cl, decals.buffer(), size_t(n) * n)});
-    return maps;
-}
-
-} // namespace
 
 int runBenchAccuracy(const std::string& outDir, int field) {
     auto gl = createHeadlessContext({.width = 64, .height = 64});
     ClContext cl;
-    const std::vector<Map> maps = makeMaps(cl, field);
+    const std::vector<AccuracyMap> maps = accuracyMaps(cl, field);
     const double angles[] = {0, 45, 70, 80, 85};
     const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f); // 60 degrees
 
@@ -88,7 +45,7 @@ int runBenchAccuracy(const std::string& outDir, int field) {
     Image strip{kCropW * int(std::size(kTechniques)), kCropH, 3,
                 std::vector<float>(size_t(kCropW) * std::size(kTechniques) * kCropH * 3)};
     std::map<std::pair<std::string, double>, double> hierMean, hierFetches;
-    for (const Map& map : maps) {
+    for (const AccuracyMap& map : maps) {
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
         md << "## " << map.name
            << "\n\n| angle | technique | mean | p95 | > 4 texels | mean px | > 1 px | fetches | depth error | shadow agreement | "
@@ -169,7 +126,7 @@ int runBenchAccuracy(const std::string& outDir, int field) {
           "mean texel error, and POM's p95.\n\n"
        << "| map | angle | pom float32 | pom float16 | pom unorm8 | pom p95 float32 / unorm8 | hier float32 | "
           "hier float16 |\n|---|---|---|---|---|---|---|---|\n";
-    for (const Map& map : maps) {
+    for (const AccuracyMap& map : maps) {
         AccuracyProbe full(cl, map.heights, field, 0.1f);
         AccuracyProbe half(cl, map.heights, field, 0.1f, SurfaceFormat::Float16);
         AccuracyProbe bytes(cl, map.heights, field, 0.1f, SurfaceFormat::Unorm8);
@@ -222,7 +179,7 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
     std::printf("%s, field %dx%d, 1280x720, median of %d interleaved draws\n\n"
                 "| map | angle | pom ms | hier ms | hier / pom | hier 1px ms | hier 1px / pom |\n"
                 "|---|---|---|---|---|---|---|\n", gl->description().c_str(), field, field, rounds);
-    for (const Map& map : makeMaps(cl, field)) {
+    for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
         for (double angle : {0.0, 45.0, 70.0, 80.0}) {
