@@ -1,5 +1,5 @@
 // The surface techniques against ground truth: every pixel's hit against the exact bilinear
-// intersection, per view angle, on a smooth and a sharp map (issue targets at depth scale 0.1,
+// intersection, per view angle, on smooth, sharp, noisy and damaged maps (issue targets at depth scale 0.1,
 // mip level 0), the ranking at 80 degrees, and the self-shadow against exact shadow rays.
 
 #include "support/Fields.h"
