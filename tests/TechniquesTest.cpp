@@ -205,6 +205,21 @@ TEST_F(Techniques, ScreenErrorIsTheTexelErrorAtTheImagesScale) {
     EXPECT_LT(probe.measure(Technique::Hierarchical, {.angleDegrees = 80}).meanPixels, 1e-3);
 }
 
+// The probe's lockstep counts (bench-tracers' divergence columns): a block of lanes pays for its
+// longest, so they equal the mean where every pixel fetches alike and exceed it where rays differ,
+// the wider block the more.
+TEST_F(Techniques, LockstepFetchCountsAreEachBlocksLongestLane) {
+    AccuracyProbe probe(cl(), smooth(), kField, 0.1f);
+    const AccuracyResult parallax = run(probe, Technique::ParallaxOffset, 70, "smooth");
+    EXPECT_EQ(parallax.fetches, 1.0);
+    EXPECT_EQ(parallax.fetchesLanes8, 1.0);
+    EXPECT_EQ(parallax.fetchesLanes32, 1.0);
+    const AccuracyResult hier = run(probe, Technique::Hierarchical, {.angleDegrees = 70, .shadows = true}, "smooth");
+    std::printf("hier lockstep: 8 lanes %.1f, 32 lanes %.1f fetches per pixel\n", hier.fetchesLanes8, hier.fetchesLanes32);
+    EXPECT_GT(hier.fetchesLanes8, 1.1 * hier.fetches);
+    EXPECT_GT(hier.fetchesLanes32, hier.fetchesLanes8);
+}
+
 TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {
     // One box-shaped bump on a floor, lit from 60 degrees off the normal.
     std::vector<float> box(kField * kField, 0.2f);

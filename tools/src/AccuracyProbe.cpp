@@ -47,6 +47,29 @@ Spread spreadOf(std::vector<double>& values, double threshold) {
     return s;
 }
 
+// The fetches per drawn pixel when the pixels of each w x h block (from the image's corner) run
+// in lockstep, every lane as long as the block's longest: a loop on a SIMD machine runs until its
+// last lane is done.
+double lockstepFetches(const std::vector<glm::vec4>& trace, int n, int w, int h) {
+    double sum = 0.0;
+    size_t drawn = 0;
+    for (int by = 0; by < n; by += h)
+        for (int bx = 0; bx < n; bx += w) {
+            double most = 0.0;
+            size_t count = 0;
+            for (int y = by; y < std::min(by + h, n); ++y)
+                for (int x = bx; x < std::min(bx + w, n); ++x) {
+                    const float f = trace[size_t(y) * n + x].w;
+                    if (f == 0.0f) continue; // not drawn
+                    most = std::max(most, std::floor(double(f)));
+                    ++count;
+                }
+            sum += most * double(count);
+            drawn += count;
+        }
+    return drawn ? sum / double(drawn) : 0.0;
+}
+
 } // namespace
 
 Camera accuracyCamera(double angleDegrees, float distance, float aspect) {
@@ -197,6 +220,8 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
         r.fetches = fetchSum / errors.size();
     }
     r.shadowAgreement = r.shadowPixels ? double(agree) / r.shadowPixels : 1.0;
+    r.fetchesLanes8 = lockstepFetches(trace, n, 4, 2);
+    r.fetchesLanes32 = lockstepFetches(trace, n, 8, 4);
     return r;
 }
 

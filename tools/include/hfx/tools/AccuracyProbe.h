@@ -55,6 +55,10 @@ struct AccuracyResult {
     double meanPixels = 0, p95Pixels = 0, overPixel = 0;
     double depthMean = 0;           ///< |depth fraction - exact| (what gl_FragDepth is made of)
     double fetches = 0;             ///< mean height fetches per pixel, counted in the shader
+    /// The same per drawn pixel when each block of pixels runs in lockstep and pays for its
+    /// longest lane: 4x2 blocks (llvmpipe's 256-bit vectors: two 2x2 quads) and 8x4 blocks (a
+    /// 32-lane GPU warp). Over `fetches`, what divergence costs a SIMD machine.
+    double fetchesLanes8 = 0, fetchesLanes32 = 0;
     double shadowAgreement = 1.0;   ///< fraction of compared points whose shadow state agrees
     size_t shadowPixels = 0;        ///< points compared for the shadow (outside the penumbra band)
     size_t penumbraPixels = 0;      ///< points left out as in the penumbra band
