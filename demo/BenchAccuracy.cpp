@@ -175,10 +175,14 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
                                 {Technique::Hierarchical, 0.0f, "hier"},
                                 {Technique::Hierarchical, 1.0f, "hier 1px"}};
     std::ostringstream csv;
-    csv << "map,angle,technique,pixel_budget,shadows,ms,ratio_to_pom\n";
-    std::printf("%s, field %dx%d, 1280x720, median of %d interleaved draws\n\n"
-                "| map | angle | pom ms | hier ms | hier / pom | hier 1px ms | hier 1px / pom |\n"
-                "|---|---|---|---|---|---|---|\n", gl->description().c_str(), field, field, rounds);
+    csv << "map,angle,technique,pixel_budget,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,fetches_lanes32\n";
+    std::printf("%s, field %dx%d, 1280x720, median of %d interleaved draws.\n"
+                "Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in the shader\n"
+                "(192x192, the same angle): the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
+                "blocks (a 32-lane GPU warp) each run as long as their longest pixel. Ratios are hier's over pom's.\n\n"
+                "| map | angle | pom ms | hier ms | hier / pom | hier 1px ms | hier 1px / pom | fetches pom, hier "
+                "| fetches | 8 lanes | 32 lanes | ms per 8-lane fetch |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|\n", gl->description().c_str(), field, field, rounds);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
@@ -196,12 +200,20 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
                 std::sort(v.begin(), v.end());
                 median.push_back(v[v.size() / 2]);
             }
+            // Where the time goes: how many fetches each makes (the view and the light walk), how
+            // many its lanes wait for in lockstep, and what one costs in its loop, against POM's.
+            std::vector<AccuracyResult> counts;
+            for (const Variant& v : variants) counts.push_back(probe.measure(v.technique, configOf(v)));
             const double pom = median[0];
             for (size_t i = 0; i < std::size(variants); ++i)
                 csv << map.name << "," << angle << "," << techniqueName(variants[i].technique) << "," << variants[i].pixelBudget
-                    << ",soft," << median[i] << "," << median[i] / pom << "\n";
-            std::printf("| %s | %.0f | %.1f | %.1f | %.2fx | %.1f | %.2fx |\n", map.name.c_str(), angle, pom, median[1],
-                        median[1] / pom, median[2], median[2] / pom);
+                    << ",soft," << median[i] << "," << median[i] / pom << "," << counts[i].fetches << ","
+                    << counts[i].fetchesLanes8 << "," << counts[i].fetchesLanes32 << "\n";
+            const AccuracyResult &p = counts[0], &h = counts[1];
+            std::printf("| %s | %.0f | %.1f | %.1f | %.2fx | %.1f | %.2fx | %.1f, %.1f | %.2fx | %.2fx | %.2fx | %.2fx |\n",
+                        map.name.c_str(), angle, pom, median[1], median[1] / pom, median[2], median[2] / pom, p.fetches,
+                        h.fetches, h.fetches / p.fetches, h.fetchesLanes8 / p.fetchesLanes8,
+                        h.fetchesLanes32 / p.fetchesLanes32, (median[1] / h.fetchesLanes8) / (pom / p.fetchesLanes8));
             std::fflush(stdout);
         }
     }
