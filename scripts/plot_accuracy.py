@@ -6,7 +6,10 @@
 Writes docs/accuracy/error_vs_angle.png (mean error in texels and in screen pixels against the
 view angle, per technique and map), cost_vs_error.png (mean error against height fetches and
 against the 1280x720 draw time) and crops_80.png (the bricks map at 80 degrees, one labelled crop
-per technique). Needs matplotlib (Debian: apt-get install python3-matplotlib).
+per technique), and, where `hfx-demo bench-tracers --out docs/accuracy` has written
+docs/accuracy/tracers.csv, time_vs_fetches.png (hier's draw time over POM's against its fetches
+over POM's, mean and in lockstep lanes; what a 32-lane warp would wait for, per angle).
+Needs matplotlib (Debian: apt-get install python3-matplotlib).
 """
 import csv
 import sys
@@ -113,6 +116,51 @@ def crops(rows, strip_path, out):
     plt.close(fig)
 
 
+def time_vs_fetches(path, out):
+    """hier over POM, both with soft shadows: draw time against fetches, per map and angle."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows or "fetches_lanes8" not in rows[0]:
+        print(f"{path}: no fetch counts (written before bench-tracers counted them); time_vs_fetches.png not drawn")
+        return False
+    pom = {(r["map"], r["angle"]): r for r in rows if r["technique"] == "pom"}
+    hier = [r for r in rows if r["technique"] == "hier" and float(r["pixel_budget"]) == 0.0]
+    maps = ordered(r["map"] for r in hier)
+    colors = {m: f"C{i}" for i, m in enumerate(maps)}
+
+    def ratio(r, key):
+        return float(r[key]) / float(pom[(r["map"], r["angle"])][key])
+
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5))
+    for m in maps:
+        mine = [r for r in hier if r["map"] == m]
+        left.scatter([ratio(r, "fetches") for r in mine], [ratio(r, "ms") for r in mine], facecolors="none",
+                     edgecolors=colors[m], label=f"{m}: mean fetches")
+        left.scatter([ratio(r, "fetches_lanes8") for r in mine], [ratio(r, "ms") for r in mine], color=colors[m],
+                     label=f"{m}: 8 lanes in lockstep")
+        right.plot([float(r["angle"]) for r in mine], [ratio(r, "fetches_lanes32") for r in mine], marker="o",
+                   color=colors[m], label=m)
+    top = 3.6
+    left.plot([0.5, top], [0.5, top], color="grey", linestyle=":", label="time in proportion to fetches")
+    for ax in (left, right):
+        ax.axhline(1.25, color="red", linestyle="--", linewidth=1, label="1.25x, the draw-time target")
+        ax.set_ylim(0.5, top)
+        ax.grid(True, alpha=0.4)
+    left.set_xlim(0.5, top)
+    left.set_xlabel("hier's fetches per pixel over POM's (view and light walk)")
+    left.set_ylabel("hier's draw time over POM's (1280x720, llvmpipe)")
+    left.set_title("draw time follows the fetches lanes wait for")
+    right.set_xlabel("view angle from the normal (degrees)")
+    right.set_ylabel("hier's fetches over POM's, 8x4 blocks in lockstep")
+    right.set_title("what a 32-lane GPU warp would wait for")
+    left.legend(fontsize=7)
+    right.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+    plt.close(fig)
+    return True
+
+
 def main():
     docs = Path(sys.argv[1] if len(sys.argv) > 1 else "docs")
     folder = docs / "accuracy"
@@ -120,7 +168,10 @@ def main():
     error_vs_angle(rows, folder / "error_vs_angle.png")
     cost_vs_error(rows, folder / "cost_vs_error.png")
     crops(rows, folder / "crops_80.jpg", folder / "crops_80.png")
-    print(f"wrote {folder}/error_vs_angle.png, cost_vs_error.png, crops_80.png")
+    drawn = ["error_vs_angle.png", "cost_vs_error.png", "crops_80.png"]
+    if (folder / "tracers.csv").exists() and time_vs_fetches(folder / "tracers.csv", folder / "time_vs_fetches.png"):
+        drawn.append("time_vs_fetches.png")
+    print(f"wrote {folder}/" + ", ".join(drawn))
 
 
 if __name__ == "__main__":
