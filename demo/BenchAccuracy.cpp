@@ -159,8 +159,10 @@ int runBenchAccuracy(const std::string& outDir, int field) {
 }
 
 /// hfx-demo bench-tracers: the exact tracer's draw time against POM 8..32's, both with their soft
-/// self-shadows, at 1280x720 in one run: rounds of one draw each, interleaved, medians. Prints a
-/// table and, with --out, writes tracers.csv. `only` restricts the maps by name.
+/// self-shadows, at 1280x720 in one run: rounds of one draw each, interleaved, medians; beside
+/// them each one's fetches per pixel from the accuracy probe at the same angle (the mean and in
+/// lockstep blocks, AccuracyResult::fetchesLanes8/32). Prints a table and, with --out, writes
+/// tracers.csv. `only` restricts the maps by name.
 int runBenchTracers(const std::string& outDir, int field, const std::vector<std::string>& only, int rounds) {
     auto gl = createHeadlessContext({.width = 64, .height = 64});
     ClContext cl;
