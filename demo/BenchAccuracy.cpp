@@ -23,7 +23,7 @@ int runBenchAccuracy(const std::string& outDir, int field) {
     ClContext cl;
     const std::vector<AccuracyMap> maps = accuracyMaps(cl, field);
     const double angles[] = {0, 45, 70, 80, 85};
-    const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f); // 60 degrees
+    const glm::vec3 light = accuracyLight(); // 60 degrees off the normal
 
     std::ostringstream md;
     md << "# Accuracy of the surface techniques\n\n"
@@ -166,7 +166,7 @@ int runBenchAccuracy(const std::string& outDir, int field) {
 int runBenchTracers(const std::string& outDir, int field, const std::vector<std::string>& only, int rounds) {
     auto gl = createHeadlessContext({.width = 64, .height = 64});
     ClContext cl;
-    const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f); // 60 degrees
+    const glm::vec3 light = accuracyLight(); // 60 degrees off the normal
     // POM, the exact tracer, and the exact tracer with a one-pixel error budget.
     struct Variant {
         Technique technique;

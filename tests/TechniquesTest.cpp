@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <numbers>
 #include <string>
 
 namespace hfx::test {
@@ -27,9 +26,7 @@ constexpr int kField = 128;
 
 class Techniques : public DeviceTest {
 protected:
-    std::vector<float> smooth() {
-        return sumOfSines(kField, {{0.22, 3, 1, 0.3}, {0.13, -2, 5, 1.1}, {0.07, 7, 4, 2.0}});
-    }
+    std::vector<float> smooth() { return smoothWaves(kField); }
     AccuracyResult run(AccuracyProbe& probe, Technique t, const AccuracyConfig& config, const char* map) {
         const AccuracyResult r = probe.measure(t, config);
         std::printf("[%-12s %-8s %2.0f deg] %5zu px  mean %.4f  p95 %.4f  >4 texels %.3f%%  fetches %.1f", map,
@@ -65,8 +62,7 @@ TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
     // self-shadow is held on every map and angle too.
     std::vector<AccuracyMap> maps = accuracyMaps(cl(), kField);
     maps.push_back({"blocks", blocks(kField, 4)});
-    const float off = 60.0f * std::numbers::pi_v<float> / 180.0f;
-    const glm::vec3 light(std::sin(off) * 0.8f, std::cos(off), std::sin(off) * 0.6f);
+    const glm::vec3 light = accuracyLight(60.0f);
     for (const AccuracyMap& map : maps) {
         const char* name = map.name.c_str();
         AccuracyProbe probe(cl(), map.heights, kField, 0.1f);
@@ -99,7 +95,7 @@ TEST_F(Techniques, APixelBudgetKeepsTheScreenErrorWithinItAndFetchesLess) {
     NoiseField noise(cl(), {.width = N, .height = N, .frequency = 6.0f, .octaves = 5});
     std::vector<float> noisy(size_t(N) * N);
     cl().queue().enqueueReadBuffer(noise.buffer(), CL_TRUE, 0, noisy.size() * sizeof(float), noisy.data());
-    const auto waves = sumOfSines(N, {{0.22, 3, 1, 0.3}, {0.13, -2, 5, 1.1}, {0.07, 7, 4, 2.0}});
+    const std::vector<float> waves = smoothWaves(N);
     for (const auto& [name, heights] : {std::pair{"smooth", waves}, std::pair{"blocks", blocks(N, 4)}, std::pair{"noise", noisy}}) {
         AccuracyProbe probe(cl(), heights, N, 0.1f);
         double exactFetches = 0.0, budgetFetches = 0.0;
@@ -226,7 +222,7 @@ TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {
     for (int y = 48; y < 80; ++y)
         for (int x = 48; x < 80; ++x) box[y * kField + x] = 0.9f;
     AccuracyProbe probe(cl(), box, kField, 0.1f);
-    const glm::vec3 light(std::sin(1.0472f) * 0.8f, std::cos(1.0472f), std::sin(1.0472f) * 0.6f);
+    const glm::vec3 light = accuracyLight(60.0f);
     // Every technique with self-shadows. (Steep's hit lies under the surface: its light ray once
     // started there, inside the relief, and agreed on 95.5% here, 13-35% on bricks at 0-45 degrees.)
     for (Technique t : {Technique::SteepParallax, Technique::Relief, Technique::Secant, Technique::ParallaxOcclusion,
@@ -285,8 +281,7 @@ TEST_F(Techniques, ExactShadowsAgreeWithShadowRaysOnBricksUnderALowLight) {
     // thin blockers, which a fixed number of samples along the light ray steps over.
     constexpr int N = 256;
     AccuracyProbe probe(cl(), makeBrickWall({.size = N}).heights, N, 0.1f);
-    const float off = 75.0f * std::numbers::pi_v<float> / 180.0f;
-    const glm::vec3 light(std::sin(off) * 0.8f, std::cos(off), std::sin(off) * 0.6f);
+    const glm::vec3 light = accuracyLight(75.0f);
     for (double angle : {0.0, 45.0, 70.0, 80.0}) {
         const AccuracyConfig config{.angleDegrees = angle, .shadows = true, .light = light, .shadowSharpness = 3.0f};
         const AccuracyResult hier = probe.measure(Technique::Hierarchical, config);

@@ -10,6 +10,8 @@
 
 #include "hfx/compute/ClContext.h"
 
+#include <glm/glm.hpp>
+
 #include <string>
 #include <vector>
 
@@ -23,5 +25,13 @@ struct AccuracyMap {
 /// The four maps at n x n texels (n a power of two from 16 up; the noise and decal kernels run on
 /// `cl`); throws hfx::Error naming n otherwise.
 std::vector<AccuracyMap> accuracyMaps(ClContext& cl, int n);
+
+/// The first of them alone, made on the CPU: 0.5 plus three sines periodic on n texels.
+std::vector<float> smoothWaves(int n);
+
+/// The direction towards the light the accuracy figures, the tracer timing and their tests use,
+/// for the plane whose normal is +Y: `degreesOffNormal` from it, its azimuth fixed ((0.8, 0.6) in
+/// x and z, so shadows fall along neither texture axis). Unit length.
+glm::vec3 accuracyLight(float degreesOffNormal = 60.0f);
 
 } // namespace hfx
