@@ -57,7 +57,8 @@ struct AccuracyResult {
     double fetches = 0;             ///< mean height fetches per pixel, counted in the shader
     /// The same per drawn pixel when each block of pixels runs in lockstep and pays for its
     /// longest lane: 4x2 blocks (llvmpipe's 256-bit vectors: two 2x2 quads) and 8x4 blocks (a
-    /// 32-lane GPU warp). Over `fetches`, what divergence costs a SIMD machine.
+    /// 32-lane GPU warp). Over `fetches`, what divergence costs a SIMD machine (`fetches`
+    /// averages the compared pixels, these every drawn one: the few at the plane's edge differ).
     double fetchesLanes8 = 0, fetchesLanes32 = 0;
     double shadowAgreement = 1.0;   ///< fraction of compared points whose shadow state agrees
     size_t shadowPixels = 0;        ///< points compared for the shadow (outside the penumbra band)
