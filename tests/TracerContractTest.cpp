@@ -288,63 +288,81 @@ std::vector<float> thinWallsAndPlateaus(int n) {
 TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
     constexpr int N = 512;
     constexpr double depth = 0.1;
-    const auto heights = thinWallsAndPlateaus(N);
-    AccuracyProbe probe(cl(), heights, N, float(depth));
-    // Entry points on texel centres, on the corners the gather shares and anywhere between;
-    // view angles up to 89 degrees, any azimuth (axis-aligned ones included).
-    constexpr int kRays = 1 << 20;
-    std::mt19937 random(11);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::vector<glm::vec4> rays;
-    rays.reserve(2 * kRays);
-    for (int i = 0; i < kRays; ++i) {
-        glm::dvec2 uv0(unit(random), unit(random));
-        if (i % 3 == 0) uv0 = (glm::floor(uv0 * double(N)) + 0.5) / double(N);
-        else if (i % 3 == 1) uv0 = glm::floor(uv0 * double(N)) / double(N);
-        const double angle = std::acos(unit(random)) * 89.0 / 90.0;
-        const double azimuth = i % 16 == 0 ? std::numbers::pi / 2 * double(i / 16 % 4) : 2 * std::numbers::pi * unit(random);
-        const glm::dvec2 parallax = glm::dvec2(std::cos(azimuth), std::sin(azimuth)) * std::tan(angle) * depth;
-        rays.emplace_back(float(uv0.x), float(uv0.y), float(parallax.x), float(parallax.y));
-        rays.emplace_back(float(std::cos(angle)), 0.0f, 32.0f, 0.0f);
-    }
-    std::vector<double> exactDepth(kRays);
-    for (int i = 0; i < kRays; ++i) {
-        const glm::vec4 a = rays[2 * size_t(i)];
-        const auto hit = probe.exact().traceView(glm::dvec2(a.x, a.y), glm::dvec3(double(a.z) / depth, double(a.w) / depth, 1.0), depth);
-        exactDepth[i] = hit ? hit->t : 1.0;
-    }
-    // Exact, then with a tolerance (a pixel budget's depth fraction): the hit may then stop short
-    // of the exact one by up to the tolerance, never more and never past it.
-    for (const float tolerance : {0.0f, 0.01f}) {
-        for (int i = 0; i < kRays; ++i) rays[2 * size_t(i) + 1].w = tolerance;
-        // The renderer's accessors: rays run up to 5.7 texcoords, across the tile's edges.
-        const std::vector<glm::vec4> hits =
-            traceInHarness(probe, Technique::Hierarchical, rays, kHarnessMain, Accessors::Renderer);
-        int deeper = 0, off = 0, early = 0;
-        double worst = 0.0;
+    // The field as it is (walls and plateau at 1, the polygon) and lowered to 0.8: there the walk
+    // starts where the ray comes down to the field's maximum, below the polygon.
+    for (const float top : {1.0f, 0.8f}) {
+        auto heights = thinWallsAndPlateaus(N);
+        for (float& h : heights) h *= top;
+        AccuracyProbe probe(cl(), heights, N, float(depth));
+        // Entry points on texel centres, on the corners the gather shares and anywhere between;
+        // view angles up to 89 degrees, any azimuth (axis-aligned ones included).
+        constexpr int kRays = 1 << 20;
+        std::mt19937 random(11);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        std::vector<glm::vec4> rays;
+        rays.reserve(2 * kRays);
+        for (int i = 0; i < kRays; ++i) {
+            glm::dvec2 uv0(unit(random), unit(random));
+            if (i % 3 == 0) uv0 = (glm::floor(uv0 * double(N)) + 0.5) / double(N);
+            else if (i % 3 == 1) uv0 = glm::floor(uv0 * double(N)) / double(N);
+            const double angle = std::acos(unit(random)) * 89.0 / 90.0;
+            const double azimuth = i % 16 == 0 ? std::numbers::pi / 2 * double(i / 16 % 4) : 2 * std::numbers::pi * unit(random);
+            const glm::dvec2 parallax = glm::dvec2(std::cos(azimuth), std::sin(azimuth)) * std::tan(angle) * depth;
+            rays.emplace_back(float(uv0.x), float(uv0.y), float(parallax.x), float(parallax.y));
+            rays.emplace_back(float(std::cos(angle)), 0.0f, 32.0f, 0.0f);
+        }
+        std::vector<double> exactDepth(kRays);
         for (int i = 0; i < kRays; ++i) {
             const glm::vec4 a = rays[2 * size_t(i)];
-            // In texels along the ray: how far past (or short of) the exact first hit.
-            const double perDepth = glm::length(glm::dvec2(a.z, a.w)) * N;
-            const double texels = (double(hits[i].z) - exactDepth[i]) * perDepth;
-            const double allowed = double(tolerance) * perDepth; // how far short it may stop
-            early += texels < -0.05 && -texels <= allowed + 0.05;
-            if (texels > 0.05 || -texels > allowed + 0.05) {
-                if (off < 8) // the first few, to reproduce (negative: the tracer stopped short)
-                    std::printf("[off] tolerance %g, uv (%.9g, %.9g) parallax (%.9g, %.9g): %.4f vs exact %.4f (%.2f texels)\n",
-                                tolerance, a.x, a.y, a.z, a.w, hits[i].z, exactDepth[i], texels);
-                ++off;
-                deeper += texels > 0.0;
-            }
-            worst = std::max(worst, std::abs(texels) - (texels < 0.0 ? allowed : 0.0));
+            const auto hit = probe.exact().traceView(glm::dvec2(a.x, a.y), glm::dvec3(double(a.z) / depth, double(a.w) / depth, 1.0), depth);
+            exactDepth[i] = hit ? hit->t : 1.0;
         }
-        std::printf("[tunnel] tolerance %g: %d of %d rays deeper than the exact hit, %d off by > 0.05 texel beyond the "
-                    "tolerance (worst %.3f texels), %d stopped short within it\n",
-                    tolerance, deeper, kRays, off, worst, early);
-        EXPECT_EQ(deeper, 0) << "tolerance " << tolerance;
-        EXPECT_EQ(off, 0) << "tolerance " << tolerance;
-        if (tolerance > 0.0f) {
-            EXPECT_GT(early, kRays / 100) << "the tolerance was not used";
+        // Exact, then with a tolerance (a pixel budget's depth fraction): the hit may then stop short
+        // of the exact one by up to the tolerance, never more and never past it.
+        for (const float tolerance : {0.0f, 0.01f}) {
+            for (int i = 0; i < kRays; ++i) rays[2 * size_t(i) + 1].w = tolerance;
+            // The renderer's accessors: rays run up to 5.7 texcoords, across the tile's edges.
+            const std::vector<glm::vec4> hits =
+                traceInHarness(probe, Technique::Hierarchical, rays, kHarnessMain, Accessors::Renderer);
+            int deeper = 0, off = 0, early = 0, touches = 0;
+            double worst = 0.0;
+            for (int i = 0; i < kRays; ++i) {
+                const glm::vec4 a = rays[2 * size_t(i)];
+                // In texels along the ray: how far past (or short of) the exact first hit.
+                const double perDepth = glm::length(glm::dvec2(a.z, a.w)) * N;
+                const double texels = (double(hits[i].z) - exactDepth[i]) * perDepth;
+                const double allowed = double(tolerance) * perDepth; // how far short it may stop
+                early += texels < -0.05 && -texels <= allowed + 0.05;
+                // A ray that passes a ridge's or an edge's top within the shader's rounding (its
+                // float position times the slope there: 1e-4 of the relief) touches it in float and
+                // misses it in double: a stop short on the surface there is no error. On the
+                // lowered field a few rays of a million graze a wall's top so (3 of them here).
+                if (texels < -allowed - 0.05) {
+                    const double t = double(hits[i].z);
+                    const glm::dvec2 at = glm::dvec2(a.x, a.y) - glm::dvec2(a.z, a.w) * t;
+                    if (probe.exact().heightAt(at) - (1.0 - t) > -1e-4) {
+                        ++touches;
+                        continue;
+                    }
+                }
+                if (texels > 0.05 || -texels > allowed + 0.05) {
+                    if (off < 8) // the first few, to reproduce (negative: the tracer stopped short)
+                        std::printf("[off] tolerance %g, uv (%.9g, %.9g) parallax (%.9g, %.9g): %.4f vs exact %.4f (%.2f texels)\n",
+                                    tolerance, a.x, a.y, a.z, a.w, hits[i].z, exactDepth[i], texels);
+                    ++off;
+                    deeper += texels > 0.0;
+                }
+                worst = std::max(worst, std::abs(texels) - (texels < 0.0 ? allowed : 0.0));
+            }
+            std::printf("[tunnel] top %g, tolerance %g: %d of %d rays deeper than the exact hit, %d off by > 0.05 texel beyond the "
+                        "tolerance (worst %.3f texels), %d stopped short within it, %d on a top they graze\n",
+                        top, tolerance, deeper, kRays, off, worst, early, touches);
+            EXPECT_EQ(deeper, 0) << "top " << top << ", tolerance " << tolerance;
+            EXPECT_EQ(off, 0) << "top " << top << ", tolerance " << tolerance;
+            EXPECT_LT(touches, kRays / 10000) << "top " << top << ", tolerance " << tolerance;
+            if (tolerance > 0.0f) {
+                EXPECT_GT(early, kRays / 100) << "the tolerance was not used";
+            }
         }
     }
 }

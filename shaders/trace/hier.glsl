@@ -1,8 +1,10 @@
 // Hierarchical tracer: the exact first hit of the ray with the bilinear surface, walking the
-// height-bounds pyramid (hfx_bounds: max and min per cell). The walk starts at the entry's
-// level-0 cell (a ray that meets the relief at once costs two fetches, as POM's does); a cell
-// whose maximum the ray passes above is skipped whole, and where its exit is also its parent's
-// edge the walk climbs a level; a cell the ray dips into is opened a level down. A level-0 cell
+// height-bounds pyramid (hfx_bounds: max and min per cell). The walk starts at the level-0 cell
+// where the ray comes down to the field's maximum (the pyramid's top texel: above it the ray meets
+// nothing; skipping that stretch by climbing levels cost hier 0-9% of its draw at 45-80 degrees,
+// docs/BENCHMARKS.md), so a ray that meets the relief at once costs three fetches. A cell whose
+// maximum the ray passes above is skipped whole, and where its exit is also its parent's edge
+// the walk climbs a level; a cell the ray dips into is opened a level down. A level-0 cell
 // the ray dips into is solved: the bilinear patch between four samples (hfx_gather) in closed
 // form (the height along the ray is quadratic in t); if the ray passes the patch the walk goes
 // on. Cell space: x = u * width - 0.5, so cell i spans the samples i and i + 1. Exact
@@ -86,6 +88,8 @@ int hfx_top_level(vec2 dir) {
 int hfx_max_steps(vec2 dir, int topLevel) {
     return int(min(4.0 * (abs(dir.x) + abs(dir.y)) + float(4 * topLevel + 24), float(HFX_MAX_TRACE_STEPS)));
 }
+// The highest height anywhere on the field: the pyramid's top texel (one fetch).
+float hfx_field_max() { return hfx_bounds(ivec2(0), hfx_levels() - 1).x; }
 vec2 hfx_inverse(vec2 dir) { return vec2(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30); }
 
 float hfx_trace_depth(HfxRay ray) {
@@ -99,8 +103,8 @@ float hfx_trace_depth(HfxRay ray) {
     const int maxSteps = hfx_max_steps(dir, topLevel);
     int level = 0;
     float cellSize = 1.0, invCellSize = 1.0; // 2^level and its inverse
-    float t = 0.0;
-    vec2 p = p0; // the ray's point at t; a just-crossed axis holds the boundary exactly
+    float t = clamp(1.0 - hfx_field_max(), 0.0, 1.0);
+    vec2 p = p0 + dir * t; // the ray's point at t; a just-crossed axis holds the boundary exactly
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
         // The walk: one bound per step, until a level-0 cell the ray dips into (or the end).
@@ -187,7 +191,7 @@ float hfx_shadow(HfxShadowRay ray) {
     vec2 p = p0;
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
     float nearest = 1e30; // the smallest clearance ratio met
-    const float fieldMax = hfx_bounds(ivec2(0), hfx_levels() - 1).x;
+    const float fieldMax = hfx_field_max();
     const float tEnd = coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0;
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
