@@ -66,9 +66,11 @@ def error_vs_angle(rows, out):
                 ax.set_xlabel("view angle from the normal (degrees)")
             if col == 0:
                 ax.set_ylabel(label)
-    axes[0][0].legend(title="technique", fontsize=8)
+    # One legend for all panels, beside them: inside a panel it hid the first points' lines.
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, title="technique", fontsize=9, loc="center right")
     fig.suptitle(f"Error against the exact hit (floor {FLOOR:g}: exact to float precision)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 0.93, 1))
     fig.savefig(out, dpi=90)
     plt.close(fig)
 
