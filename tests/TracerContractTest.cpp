@@ -73,6 +73,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_shadowBias", offsetof(SurfaceUniforms, shadowBias)},
         {"u_shadowOffset", offsetof(SurfaceUniforms, shadowOffset)},
         {"u_shadowTexel", offsetof(SurfaceUniforms, shadowTexel)},
+        {"u_clearance", offsetof(SurfaceUniforms, clearance)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},
@@ -119,6 +120,7 @@ vec2 hfx_bounds(ivec2 cell, int level) {
     return texelFetch(s_pyramid, mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap)), level).rg;
 }
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); } // searches span [0, 1]
+float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) { return 1e30; } // no clearance map
 )",
                           "test"};
 /// The harness's buffers: two vec4 of input per ray (a, b: what each main below says), one vec4
@@ -196,18 +198,26 @@ std::vector<glm::vec4> runHarness(const ShaderProgram& p, const std::vector<glm:
 enum class Accessors { Harness, Renderer };
 
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
-/// harness; returns each hit as (u, v, depth fraction, 0), or with kShadowMain each shadow ray's
-/// hfx_shadow in x. The field wraps.
-std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique technique, const std::vector<glm::vec4>& rays,
-                                      const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness) {
+/// harness over `textures` (wrapping); returns each hit as (u, v, depth fraction, 0), or with
+/// kShadowMain each shadow ray's hfx_shadow in x. With the renderer's accessors and `clearance`,
+/// the textures' clearance map is read as a draw reads it (HFX_CLEARANCE, its light's uniforms).
+std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
+                                      const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
+                                      bool clearance = false) {
     const bool own = accessors == Accessors::Harness;
+    HFX_CHECK(!(own && clearance));
     std::vector<SourceFile> parts{kComputeHeader};
+    if (clearance) parts.push_back({"harness_defines.comp", "#define HFX_CLEARANCE 1\n", "test"});
     if (own) parts.push_back(kHarness);
     else parts.insert(parts.end(), {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl")});
     parts.insert(parts.end(), {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
                                kHarnessBuffers, main});
     const ShaderProgram p = ShaderProgram::compute(parts);
-    const SurfaceUniforms u{.pyramidLevels = probe.textures().pyramidLevels(), .wrap = glm::ivec2(1, 1)};
+    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(), .wrap = glm::ivec2(1, 1)};
+    if (clearance) {
+        const ClearanceLight& c = textures.clearanceLight().value();
+        u.clearance = {c.uvPerClimb, c.penumbra, c.slack};
+    }
     const GlBuffer block = own ? GlBuffer() : GlBuffer::create();
     if (own) {
         p.set("u_levels", u.pyramidLevels);
@@ -216,8 +226,9 @@ std::vector<glm::vec4> traceInHarness(const AccuracyProbe& probe, Technique tech
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
     }
-    glBindTextureUnit(0, probe.textures().surface());
-    glBindTextureUnit(3, probe.textures().pyramid());
+    glBindTextureUnit(0, textures.surface());
+    glBindTextureUnit(3, textures.pyramid());
+    glBindTextureUnit(15, textures.clearance());
     std::vector<glm::vec4> hits = runHarness(p, rays);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
     return hits;
@@ -245,7 +256,7 @@ TEST_F(TracerContract, EveryTracerRunsInAComputeHarnessAndHitsWhereTheExactInter
         rays.emplace_back(float(toEye.z), 0.0f, 32.0f, 0.0f);
     }
     auto meanError = [&](const TechniqueInfo& t) {
-        const std::vector<glm::vec4> hits = traceInHarness(probe, t.technique, rays);
+        const std::vector<glm::vec4> hits = traceInHarness(probe.textures(), t.technique, rays);
         double sum = 0.0;
         for (int i = 0; i < kRays; ++i) sum += glm::length(glm::dvec2(hits[i].x, hits[i].y) - exact[i]) * N;
         return sum / kRays;
@@ -323,7 +334,7 @@ TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
             for (int i = 0; i < kRays; ++i) rays[2 * size_t(i) + 1].w = tolerance;
             // The renderer's accessors: rays run up to 5.7 texcoords, across the tile's edges.
             const std::vector<glm::vec4> hits =
-                traceInHarness(probe, Technique::Hierarchical, rays, kHarnessMain, Accessors::Renderer);
+                traceInHarness(probe.textures(), Technique::Hierarchical, rays, kHarnessMain, Accessors::Renderer);
             int deeper = 0, off = 0, early = 0, touches = 0;
             double worst = 0.0;
             for (int i = 0; i < kRays; ++i) {
@@ -399,7 +410,7 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
         directions.push_back(direction);
     }
     const std::vector<glm::vec4> shadow =
-        traceInHarness(probe, Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer);
+        traceInHarness(probe.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer);
     int missed = 0, invented = 0, blocked = 0, grazing = 0;
     for (int i = 0; i < kRays; ++i) {
         const glm::dvec3 o = origins[size_t(i)], d = directions[size_t(i)];
@@ -429,6 +440,127 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
     EXPECT_GT(blocked, kRays / 10);
     EXPECT_EQ(missed, 0);
     EXPECT_EQ(invented, 0);
+}
+
+/// hfx_shadow and the fetches it made (x, y), through the renderer's accessors (which count them).
+const SourceFile kShadowFetchesMain{"harness_shadow_fetches.comp", R"(
+void main() { // a: uv, span; b: h0, level, samples, sharpness
+    uint i;
+    vec4 a, b;
+    if (!hfx_harness_ray(i, a, b)) return;
+    HfxShadowRay ray;
+    ray.uv = a.xy;
+    ray.span = a.zw;
+    ray.h0 = b.x;
+    ray.level = b.y;
+    ray.samples = int(b.z);
+    ray.sharpness = b.w;
+    const float shadow = hfx_shadow(ray);
+    hits[i] = vec4(shadow, g_fetches, 0.0, 0.0);
+}
+)",
+                                    "test"};
+
+TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
+    // The exact shadow walk with a clearance map (compute/ClearanceMap.h) built by the frame's
+    // own path must return what it returns without, to the bit, for the map's light: on the
+    // field of thin walls and plateaus and on a smooth one, lights of several directions and
+    // penumbrae, 2^18 points each. It must also save fetches (else it is dead weight), and a map
+    // cut to half its climbs must change shadows (else this comparison could not fail), but
+    // only for rays of its own light: a ray of another light walks without it.
+    constexpr int N = 256;
+    constexpr float depth = 0.1f;
+    struct Case {
+        const char* name;
+        std::vector<float> heights;
+    };
+    const Case fields[] = {{"walls", thinWallsAndPlateaus(N)},
+                           {"sines", sumOfSines(N, {{0.3, 3, 1, 0.0}, {0.12, -4, 7, 0.7}, {0.05, 11, -9, 0.3}})}};
+    const glm::vec3 lights[] = {{0.6f, 0.55f, 0.3f}, {-0.2f, 0.3f, -0.9f}, {0.0f, 0.8f, 0.6f}, {1.0f, 0.12f, 0.0f}};
+    constexpr int kRays = 1 << 18;
+    double sinesMapped = 0, sinesPlain = 0, wallsMapped = 0, wallsPlain = 0;
+    for (const Case& field : fields) {
+        StaticField source(cl(), N, N, EdgeMode::Wrap, field.heights);
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .pyramid = true}));
+        const HeightFieldTracer exact(field.heights, N, N, EdgeMode::Wrap);
+        for (size_t li = 0; li < std::size(lights); ++li) {
+            const float sharpness = li % 2 ? 8.0f : 2.0f;
+            DirectionalLight light;
+            light.direction = lights[li];
+            const std::optional<ClearanceLight> c = flatSurfaceLight(
+                {2, 0, 0}, {0, 0, -2}, light, {.depthScale = depth, .shadowSharpness = sharpness});
+            ASSERT_TRUE(c);
+            surface.setShadowLight(c);
+            surface.run(source.buffer());
+            ASSERT_EQ(surface.textures().clearanceLight(), c);
+            std::mt19937 random(21 + unsigned(li));
+            std::uniform_real_distribution<double> unit(0.0, 1.0);
+            std::vector<glm::vec4> rays, otherRays;
+            while (rays.size() < 2 * size_t(kRays)) {
+                const glm::dvec2 uv(unit(random), unit(random));
+                const double h0 = exact.heightAt(uv);
+                if (h0 > 0.999) continue;
+                const glm::vec2 span = c->uvPerClimb * float(1.0 - h0);
+                rays.emplace_back(float(uv.x), float(uv.y), span.x, span.y);
+                rays.emplace_back(float(h0), 0.0f, 8.0f, sharpness);
+                // Another light: turned by 0.1 radian.
+                const glm::vec2 turned(span.x * std::cos(0.1f) - span.y * std::sin(0.1f),
+                                       span.x * std::sin(0.1f) + span.y * std::cos(0.1f));
+                otherRays.emplace_back(float(uv.x), float(uv.y), turned.x, turned.y);
+                otherRays.emplace_back(float(h0), 0.0f, 8.0f, sharpness);
+            }
+            const SurfaceTextures& textures = surface.textures();
+            const auto walk = [&](const std::vector<glm::vec4>& r, bool map) {
+                return traceInHarness(textures, Technique::Hierarchical, r, kShadowFetchesMain, Accessors::Renderer, map);
+            };
+            const std::vector<glm::vec4> plain = walk(rays, false), mapped = walk(rays, true);
+            int differ = 0, shadowed = 0, skipped = 0;
+            double fetchesPlain = 0, fetchesMapped = 0;
+            for (int i = 0; i < kRays; ++i) {
+                if (plain[size_t(i)].x != mapped[size_t(i)].x) {
+                    if (differ < 5)
+                        std::printf("[differs] ray %d: %.9g without the map, %.9g with\n", i, plain[size_t(i)].x,
+                                    mapped[size_t(i)].x);
+                    ++differ;
+                }
+                shadowed += plain[size_t(i)].x > 0.0f;
+                fetchesPlain += plain[size_t(i)].y;
+                fetchesMapped += mapped[size_t(i)].y;
+                skipped += mapped[size_t(i)].y <= 2.0f; // the map's fetch and the field's maximum: no walk
+            }
+            std::printf("[clearance] %s light %zu sharpness %.0f: %d of %d rays shadowed, %d walks skipped, fetches "
+                        "%.2f -> %.2f per ray\n",
+                        field.name, li, sharpness, shadowed, kRays, skipped, fetchesPlain / kRays, fetchesMapped / kRays);
+            EXPECT_EQ(differ, 0) << field.name << " light " << li;
+            EXPECT_GT(shadowed, kRays / 50) << field.name << " light " << li;
+            // At most the map's own fetch more per ray, where it saves nothing.
+            EXPECT_LE(fetchesMapped, fetchesPlain + kRays) << field.name << " light " << li;
+            (field.name == std::string("sines") ? sinesMapped : wallsMapped) += fetchesMapped;
+            (field.name == std::string("sines") ? sinesPlain : wallsPlain) += fetchesPlain;
+
+            // The comparison can fail: a map cut to half its climbs ends walks too soon.
+            std::vector<float> map(size_t(N) * N);
+            glGetTextureImage(textures.clearance(), 0, GL_RED, GL_FLOAT, GLsizei(map.size() * sizeof(float)), map.data());
+            for (float& v : map) v *= 0.5f;
+            // The test owns the pipeline: its textures are ours to spoil (the next run() replaces them).
+            SurfaceTextures& writable = const_cast<SurfaceTextures&>(textures);
+            writable.uploadClearance(map.data(), *c);
+            const std::vector<glm::vec4> cut = walk(rays, true);
+            int changed = 0;
+            for (int i = 0; i < kRays; ++i) changed += cut[size_t(i)].x != plain[size_t(i)].x;
+            EXPECT_GT(changed, kRays / 1000) << field.name << " light " << li;
+            // ... and only for rays of its own light.
+            const std::vector<glm::vec4> otherPlain = walk(otherRays, false), otherCut = walk(otherRays, true);
+            int otherChanged = 0;
+            for (int i = 0; i < kRays; ++i) otherChanged += otherCut[size_t(i)].x != otherPlain[size_t(i)].x;
+            EXPECT_EQ(otherChanged, 0) << field.name << " light " << li;
+        }
+    }
+    // On the smooth field the map saves the walk a tenth of its fetches over these lights (the
+    // walls end most walks at once in hard shadow; there it only costs its own fetch).
+    std::printf("[clearance] fetches with the map over without: sines %.3f, walls %.3f\n", sinesMapped / sinesPlain,
+                wallsMapped / wallsPlain);
+    EXPECT_LT(sinesMapped, 0.95 * sinesPlain);
 }
 
 /// The searches' bounds (surface/heights.glsl, hfx_segment_bounds) in a compute harness: per

@@ -95,6 +95,18 @@ void SurfacePipeline::setAlbedo(const Image& albedo) {
     for (auto& t : textures_) t->setAlbedo(albedo);
 }
 
+void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light) {
+    if (light) {
+        if (!pyramid_)
+            throw Error("SurfacePipeline::setShadowLight: the clearance map needs the height pyramid "
+                        "(SurfaceOptions::pyramid)");
+        light->validate();
+        if (!clearance_)
+            clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
+    }
+    light_ = light;
+}
+
 void SurfacePipeline::wait() {
     clGuard("SurfacePipeline: waiting for the device", [&] { cl_.queue().finish(); });
 }
@@ -120,6 +132,8 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
     if (pyramid_) pyramid_->build(heights);
+    builtFor_ = light_;
+    if (light_) clearance_->build(heights, *pyramid_, *light_);
     state_ = State::Derived;
 }
 
@@ -180,6 +194,11 @@ void SurfacePipeline::finish() {
     if (pyramid_)
         mapAndUpload(cl_, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float), "uploading the pyramid",
                      [&](const void* mapped) { back.uploadPyramid(static_cast<const float*>(mapped)); });
+    if (builtFor_)
+        mapAndUpload(cl_, clearance_->buffer(), texels * sizeof(float), "uploading the clearance map",
+                     [&](const void* mapped) { back.uploadClearance(static_cast<const float*>(mapped), *builtFor_); });
+    else
+        back.dropClearance();
     if (albedo_())
         mapAndUpload(cl_, albedo_, 4 * texels, "uploading the albedo",
                      [&](const void* mapped) { back.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });

@@ -93,8 +93,8 @@ public:
 private:
     GLboolean depthTest_;
     // surface, albedo, environment, pyramid, layers 1-3, their albedos, shading channels, shadow map,
-    // the pyramids of layers 1-3
-    static constexpr int kUnits = 15;
+    // the pyramids of layers 1-3, the clearance map
+    static constexpr int kUnits = 16;
     static constexpr GLuint kBlocks = 3; // surface, water, rings
     GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
@@ -144,6 +144,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.rings = v.rings && v.shading == Shading::Water;
     v.environment = v.environment && v.shading == Shading::Water;
     v.shadowMap = v.shadowMap && !v.caster; // a caster writes depth only
+    // Only the exact tracer's shadow walk reads the clearance map.
+    v.clearance = v.clearance && !v.caster && v.selfShadows && v.layers == 1 && options.technique == Technique::Hierarchical;
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -159,7 +161,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_RINGS", v.rings ? "1" : "0"},
                                                    {"HFX_ENVIRONMENT", v.environment ? "1" : "0"},
                                                    {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
-                                                   {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"}};
+                                                   {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"},
+                                                   {"HFX_CLEARANCE", v.clearance ? "1" : "0"}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("surface/shadowmap.glsl"),
                          shader("trace/common.glsl"),
@@ -274,7 +277,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                                .shadowMap = light.shadowMap != nullptr,
                                                .rings = material.water.ringCount > 0,
                                                .environment = material.water.environment != 0,
-                                               .caster = caster != nullptr});
+                                               .caster = caster != nullptr,
+                                               .clearance = textures.clearanceLight().has_value()});
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -311,6 +315,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         u.layerLevel[int(i)] = std::log2(l.texcoordScale * float(l.textures->config().width) / base);
         if (!l.traced) u.untracedHeight += l.weight * l.restHeight;
     }
+    if (const auto& c = textures.clearanceLight()) u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
     if (!caster) receiveShadows(u, light);
     bindUniforms(u, model, caster ? caster->viewProj() : camera.viewProjection());
     if (material.shading == Shading::Water) {
@@ -335,10 +340,23 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         glBindTextureUnit(GLuint(11 + i), layers[i].textures->pyramid());
     }
     glBindTextureUnit(3, textures.pyramid());
+    glBindTextureUnit(15, textures.clearance());
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();
     mesh.draw();
+}
+
+std::optional<ClearanceLight> flatSurfaceLight(glm::vec3 tangent, glm::vec3 bitangent, const DirectionalLight& light,
+                                               const SurfaceMaterial& material) {
+    if (!material.shadows || !(material.depthScale > 0.0f) || !(material.shadowSharpness > 1.0f)) return std::nullopt;
+    // shaders/surface.frag: world from texture = (dP/du, dP/dv, the normal at the same scale).
+    const glm::dvec3 t(tangent), b(bitangent), n = glm::normalize(glm::cross(t, b));
+    if (!(glm::length(t) > 0.0) || !(glm::length(b) > 0.0)) return std::nullopt;
+    const glm::dmat3 worldFromTexture(t, b, n * std::sqrt(glm::length(t) * glm::length(b)));
+    const glm::dvec3 l = glm::inverse(worldFromTexture) * glm::normalize(glm::dvec3(light.direction));
+    if (!(l.z > 0.0)) return std::nullopt;
+    return ClearanceLight::of(glm::vec2(glm::dvec2(l) / l.z * double(material.depthScale)), material.shadowSharpness);
 }
 
 void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look) {

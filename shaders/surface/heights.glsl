@@ -14,9 +14,17 @@
 #ifndef HFX_BOUNDED_SEARCH
 #define HFX_BOUNDED_SEARCH 0
 #endif
+// HFX_CLEARANCE 1: the surface has a clearance map for the light (SurfaceTextures::
+// clearanceLight; the hierarchical tracer's shadow walk stops where it says).
+#ifndef HFX_CLEARANCE
+#define HFX_CLEARANCE 0
+#endif
 
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 layout(binding = 3) uniform sampler2D s_pyramid; // RG32F: level k texel's (max, min) over the bilinear cells it covers
+#if HFX_CLEARANCE
+layout(binding = 15) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
+#endif
 #if HFX_LAYERS > 1
 layout(binding = 4) uniform sampler2D s_surface1;
 layout(binding = 12) uniform sampler2D s_pyramid1; // the layers' own pyramids (bounded searches)
@@ -119,6 +127,19 @@ ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) { return mix(clamp(cell, ivec2(0
 vec2 hfx_bounds(ivec2 cell, int level) {
     g_fetches += 1.0;
     return texelFetch(s_pyramid, hfx_pyramid_texel(cell, max(hfx_size() >> level, ivec2(1)) - 1), level).rg;
+}
+
+// The clearance map's climb for a light ray from `cell` (trace/README.md): read only for rays of
+// the map's light (their move per climb within its slack, a penumbra no wider), else no limit.
+float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
+#if HFX_CLEARANCE
+    if (all(lessThanEqual(abs(perClimb - u_clearance.xy), vec2(u_clearance.w))) &&
+        penumbra <= u_clearance.z * (1.0 + 1e-6)) {
+        g_fetches += 1.0;
+        return texelFetch(s_clearance, hfx_pyramid_texel(cell, hfx_size() - 1), 0).r;
+    }
+#endif
+    return 1e30;
 }
 
 // Bounds of the heights the searches read (hfx_height at `level`) anywhere on the texcoord segment

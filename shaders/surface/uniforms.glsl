@@ -38,6 +38,9 @@ layout(std140, binding = 0) uniform HfxSurface {
     float u_shadowBias;       // depth bias, in the map's window depth
     float u_shadowOffset;     // normal offset of the lookup, world units
     float u_shadowTexel;      // 1 / the map's size
+    // The clearance map's light (hfx::ClearanceLight; s_clearance on unit 15, read where
+    // HFX_CLEARANCE is 1): texcoords per unit climbed, penumbra, slack
+    vec4 u_clearance;
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

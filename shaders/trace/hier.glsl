@@ -169,7 +169,7 @@ HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray)); }
 // just short of it. Two cuts that keep all this exact: once a blocker has set r below
 // 1 / sharpness, only cells that could set it lower are opened (the cone edge rises to the ray
 // lowered by r of its climb), and the walk ends where the cone edge passes the field's maximum
-// (the pyramid's top texel).
+// (the pyramid's top texel), or sooner where a clearance map says nothing further can darken it.
 const float HFX_SHADOW_EPSILON = 1e-4; // relief depths: above the rounding of h0 and of the patch
 const float HFX_PENUMBRA_MAX = 0.999;   // 1 means a blocker above the ray, nothing less
 
@@ -192,7 +192,10 @@ float hfx_shadow(HfxShadowRay ray) {
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
     float nearest = 1e30; // the smallest clearance ratio met
     const float fieldMax = hfx_field_max();
-    const float tEnd = coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0;
+    // A clearance map (trace/README.md) ends the walk sooner where it knows nothing further can
+    // darken the point: at 0, before it starts.
+    const float tClear = hfx_clearance(ivec2(floor(p0)), ray.span / climb, penumbra) / climb;
+    const float tEnd = min(coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0, tClear);
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
         vec2 cell, bound, tCross;

@@ -10,6 +10,7 @@
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/GasField.h"
 #include "hfx/compute/BoundsPyramid.h"
+#include "hfx/compute/ClearanceMap.h"
 #include "hfx/compute/NoiseField.h"
 #include "hfx/compute/OceanField.h"
 #include "hfx/compute/OceanQuery.h"
@@ -237,6 +238,24 @@ void BM_Pyramid(benchmark::State& state) {
             [&] { benchmark::DoNotOptimize(pyramidReference(heights, n, n)); });
 }
 
+/// The clearance map for the accuracy benches' light (60 degrees off the normal, depth 0.1 of the
+/// field's width: tan 60 * 0.1 * n texels per unit climbed) on random heights, from a built
+/// pyramid. Its steps per cell grow with n, so its time grows as n^3.
+void BM_ClearanceMap(benchmark::State& state) {
+    const int n = int(state.range(0));
+    const auto heights = randomHeights(n);
+    cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
+                     const_cast<float*>(heights.data()));
+    BoundsPyramid pyramid(cl(), n, n, EdgeMode::Wrap);
+    pyramid.build(input);
+    ClearanceMap map(cl(), n, n, EdgeMode::Wrap);
+    const float perClimb = std::tan(60.0f * 3.14159265f / 180.0f) * 0.1f;
+    const ClearanceLight light = ClearanceLight::of({perClimb * 0.8f, perClimb * 0.6f}, 2.0f);
+    measure(state, [&] { map.build(input, pyramid, light); }, 4.0 * n * n * 2.0, // heights and map (the boxes hit the cache)
+            n <= 256 ? std::function<void()>([&] { benchmark::DoNotOptimize(clearanceReference(heights, n, EdgeMode::Wrap, light)); })
+                     : std::function<void()>());
+}
+
 void BM_Gas(benchmark::State& state) {
     // A full step: jets, confinement, advection of u, v and dye (semi-Lagrangian, or MacCormack
     // when the second argument is 1), 40 pressure sweeps.
@@ -305,6 +324,7 @@ BENCHMARK(BM_DecalRebuild)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClearanceMap)->Arg(256)->Arg(512)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Noise)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Ocean)

@@ -4,6 +4,9 @@
 #include "hfx/compute/shared/SobelMath.h"
 #include "hfx/compute/shared/WavesMath.h"
 
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -97,6 +100,60 @@ std::vector<float> pyramidReference(const std::vector<float>& heights, int width
         w = cw;
         h = ch;
     }
+    return out;
+}
+
+std::vector<double> clearanceReference(const std::vector<float>& h, int n, EdgeMode edges, const ClearanceLight& light) {
+    const bool wrapU = wrapsU(edges), wrapV = wrapsV(edges);
+    auto index = [&](int i, bool wrap) { return wrap ? (i & (n - 1)) : std::clamp(i, 0, n - 1); };
+    auto H = [&](int x, int y) { return double(h[size_t(index(y, wrapV)) * n + index(x, wrapU)]); };
+    // A cell past an edge that clamps is the edge's cell (samples n - 2..n - 1 and 0..1 are the
+    // pyramid's last and first cells; the last one's far corner clamps to itself).
+    auto corners = [&](int x, int y) {
+        const int cx = index(x, wrapU), cy = index(y, wrapV);
+        const int nx = wrapU ? cx + 1 : std::min(cx + 1, n - 1), ny = wrapV ? cy + 1 : std::min(cy + 1, n - 1);
+        return glm::dvec4(H(cx, cy), H(nx, cy), H(cx, ny), H(nx, ny));
+    };
+    auto cellMax = [&](int x, int y) { const glm::dvec4 c = corners(x, y); return std::max(std::max(c.x, c.y), std::max(c.z, c.w)); };
+    auto cellMin = [&](int x, int y) { const glm::dvec4 c = corners(x, y); return std::min(std::min(c.x, c.y), std::min(c.z, c.w)); };
+    double fieldMax = 0.0;
+    for (float v : h) fieldMax = std::max(fieldMax, double(v));
+    const glm::dvec2 g = glm::dvec2(light.uvPerClimb) * double(n);
+    const double slack = double(light.slack) * n, pen = light.penumbra, reach = 1e-3;
+    const double step = 1.0 / std::max(std::max(std::abs(g.x), std::abs(g.y)), 1e-3);
+    std::vector<double> out(size_t(n) * n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const double lo = cellMin(i, j);
+            double clear = 0.0;
+            auto box = [&](double d0, double d1, int& x0, int& x1, int& y0, int& y1) {
+                x0 = int(std::floor(i + std::min(g.x * d0, g.x * d1) - slack * d1 - reach));
+                x1 = int(std::floor(i + 1 + std::max(g.x * d0, g.x * d1) + slack * d1 + reach));
+                y0 = int(std::floor(j + std::min(g.y * d0, g.y * d1) - slack * d1 - reach));
+                y1 = int(std::floor(j + 1 + std::max(g.y * d0, g.y * d1) + slack * d1 + reach));
+            };
+            int x0, x1, y0, y1;
+            box(0.0, step, x0, x1, y0, y1);
+            double rise = -1.0;
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x)
+                    for (int cy = 0; cy <= 1; ++cy)
+                        for (int cx = 0; cx <= 1; ++cx) {
+                            // The patch's gradient at its corner (cx, cy).
+                            const double dx = H(x + 1, y + cy) - H(x, y + cy), dy = H(x + cx, y + 1) - H(x + cx, y);
+                            rise = std::max(rise, dx * g.x + dy * g.y + slack * (std::abs(dx) + std::abs(dy)));
+                        }
+            if (rise > 1.0 - 1e-4) clear = step;
+            const double end = std::min((fieldMax - lo) / (1.0 - pen), 1.0 - lo);
+            for (int k = 1; k * step < end; ++k) {
+                box(k * step, (k + 1) * step, x0, x1, y0, y1);
+                double top = -1e30;
+                for (int y = y0; y <= y1; ++y)
+                    for (int x = x0; x <= x1; ++x) top = std::max(top, cellMax(x, y));
+                if (top > lo + k * step * (1.0 - pen) - 1e-5) clear = (k + 1) * step;
+            }
+            out[size_t(j) * n + i] = clear;
+        }
     return out;
 }
 

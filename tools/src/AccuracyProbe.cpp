@@ -107,6 +107,41 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
     surface_.run(field_.buffer());
 }
 
+void AccuracyProbe::useClearance(const AccuracyConfig& config) {
+    std::optional<ClearanceLight> light;
+    if (config.shadows && config.clearance && textures().pyramid() != 0) {
+        DirectionalLight l;
+        l.direction = config.light;
+        // makePlane's texture frame: u along +X, v along -Z, the plane's size per texcoord.
+        light = flatSurfaceLight({kPlaneSize, 0, 0}, {0, 0, -kPlaneSize}, l, materialOf(config));
+    }
+    if (light == clearance_) return;
+    surface_.setShadowLight(light);
+    surface_.run(field_.buffer());
+    clearance_ = light;
+}
+
+double AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
+    useClearance(config);
+    if (!clearance_) return 0.0;
+    std::vector<double> with, without;
+    auto frame = [&](const std::optional<ClearanceLight>& light) {
+        surface_.setShadowLight(light);
+        surface_.run(field_.buffer());
+        const StageTimes t = surface_.lastTimes();
+        return t.compute + t.upload;
+    };
+    for (int i = -1; i < repeats; ++i) { // one warm-up each: the kernel's build
+        const double a = frame(clearance_), b = frame(std::nullopt);
+        if (i >= 0) with.push_back(a), without.push_back(b);
+    }
+    surface_.setShadowLight(clearance_);
+    surface_.run(field_.buffer());
+    std::sort(with.begin(), with.end());
+    std::sort(without.begin(), without.end());
+    return with[with.size() / 2] - without[without.size() / 2];
+}
+
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
     const int n = config.image;
     if (!target_ || target_->width() != n) target_ = std::make_unique<RenderTarget>(n, n, true);
@@ -114,6 +149,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
+    useClearance(config);
     target_->bind();
     target_->clear();
     renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, camera, light,
@@ -232,6 +268,7 @@ double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
     const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
+    useClearance(config);
     std::vector<double> times;
     for (int i = -1; i < repeats; ++i) { // one warm-up draw builds the shader
         target.bind();

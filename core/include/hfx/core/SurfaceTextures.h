@@ -10,11 +10,13 @@
 //
 // Owns its textures. Thread: the thread whose GL context is current.
 
+#include "hfx/core/ClearanceLight.h"
 #include "hfx/core/EdgeMode.h"
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/SurfaceFormat.h"
 
+#include <optional>
 #include <vector>
 
 namespace hfx {
@@ -49,6 +51,13 @@ public:
     /// Replaces the pyramid: (max, min) float pairs, every level back to back, level 0
     /// (width x height) first, each level half the one before, as BoundsPyramid lays them out.
     void uploadPyramid(const float* levels);
+    /// Replaces the clearance map (compute/ClearanceMap.h: width*height floats, row 0 at v = 0)
+    /// and records the light it was built for; the exact tracer's shadow walk reads it where a
+    /// ray's direction and penumbra match that light. Needs the pyramid (the map is its walk's).
+    void uploadClearance(const float* map, const ClearanceLight& light);
+    /// Forgets the clearance map: nothing reads it until the next upload (the heights changed
+    /// and no map was built for them).
+    void dropClearance() { clearanceLight_.reset(); }
     /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
     /// field), and regenerates its mip chain.
     void uploadAlbedo(const unsigned char* rgba);
@@ -64,6 +73,9 @@ public:
     GLuint surface() const { return surface_.id(); }
     GLuint pyramid() const { return pyramid_.id(); } ///< 0 without a pyramid
     int pyramidLevels() const { return pyramidLevels_; }
+    GLuint clearance() const { return clearance_.id(); } ///< 0 before the first uploadClearance
+    /// The light of the current clearance map; empty when there is none to read.
+    const std::optional<ClearanceLight>& clearanceLight() const { return clearanceLight_; }
     GLuint albedo() const { return albedo_.id(); }
     GLuint channels() const { return channels_.id(); }
     const SurfaceTexturesConfig& config() const { return config_; }
@@ -73,7 +85,8 @@ private:
     SurfaceTexturesConfig config_;
     int levels_ = 1;
     int pyramidLevels_ = 0;
-    GlTexture surface_, albedo_, channels_, pyramid_;
+    GlTexture surface_, albedo_, channels_, pyramid_, clearance_;
+    std::optional<ClearanceLight> clearanceLight_;
 };
 
 } // namespace hfx

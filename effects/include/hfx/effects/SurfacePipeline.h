@@ -23,6 +23,7 @@
 
 #include "hfx/compute/HeightSource.h"
 #include "hfx/compute/BoundsPyramid.h"
+#include "hfx/compute/ClearanceMap.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/Image.h"
@@ -70,7 +71,7 @@ struct StageTimes {
     // The parts of compute, each waited for on its own (so they add up to compute):
     double field = 0.0;   ///< the source's step
     double normals = 0.0; ///< Sobel
-    double extra = 0.0;   ///< the height pyramid, the effect's passes, packing
+    double extra = 0.0;   ///< the height pyramid (and clearance map), the effect's passes, packing
     // With StageTiming::Overlapped the parts are not waited for one by one: compute is then the
     // time finish() still had to wait, the part the draw did not hide.
     bool staged = true; ///< the parts above were waited for one by one
@@ -110,6 +111,11 @@ public:
     /// begin(Staged), derive, submit, finish: a whole frame of `heights` now.
     void run(const cl::Buffer& heights, const cl::Buffer* albedo = nullptr);
 
+    /// The light the exact tracer's shadows come from, for a surface drawn flat (one light
+    /// direction in its texture space; ClearanceLight says how to get it): from the next
+    /// derive() on, each frame also builds the clearance map for it (needs the pyramid), which
+    /// shortens the shadow walk and changes nothing it returns. Empty: no map (the default).
+    void setShadowLight(const std::optional<ClearanceLight>& light);
     /// The textures to draw now (they change at each finish(): ask every frame).
     const SurfaceTextures& textures() const { return *textures_[front_]; }
     /// A fixed albedo for both texture pairs (an image of the surface's size, or 1x1).
@@ -132,6 +138,9 @@ private:
     std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
     SobelNormals sobel_;
     std::unique_ptr<BoundsPyramid> pyramid_;
+    std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setShadowLight
+    std::optional<ClearanceLight> light_;      ///< the map's light from the next derive()
+    std::optional<ClearanceLight> builtFor_;   ///< the light of this frame's map, if it has one
     std::unique_ptr<SurfacePacker> packer_; ///< null for Float32: the normals are the texels
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;

@@ -4,7 +4,7 @@
 // and the model's shade file, built per variant on first use and kept. Per-draw uniforms go in
 // one uniform buffer (SurfaceUniforms). It draws into whatever framebuffer and context the
 // caller has bound and restores the GL state it changes (program, vertex array, depth test,
-// texture units 0-3, uniform-buffer bindings 0 and 1).
+// texture units 0-15, uniform-buffer bindings 0-2).
 //
 // Thread: the thread whose GL context is current.
 
@@ -21,6 +21,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <span>
 #include <tuple>
 #include <string>
@@ -116,6 +117,14 @@ struct DirectionalLight {
     const ShadowMap* shadowMap = nullptr;
 };
 
+/// The light as the exact tracer's shadow rays see it on a flat surface: world-space tangent
+/// (dP/du) and bitangent (dP/dv) of the mesh through its model matrix (constant on a flat one),
+/// the light and the material, as shaders/surface.frag derives each ray. What SurfacePipeline::
+/// setShadowLight takes to build the clearance map. Empty where no shadow ray is traced (the
+/// light at or below the surface's plane, no self-shadows, no depth).
+std::optional<ClearanceLight> flatSurfaceLight(glm::vec3 tangent, glm::vec3 bitangent, const DirectionalLight& light,
+                                               const SurfaceMaterial& material);
+
 /// One layer of a layered surface (the ocean's cascades): its textures, read at the mesh's
 /// texcoords times `texcoordScale`, contributing `weight` of the height (h = sum weight_i h_i,
 /// the weights summing to 1) and, through it, of the slopes. Layers must tile (wrap both ways).
@@ -150,6 +159,9 @@ struct SurfaceVariant {
     bool rings = false;         ///< HFX_RINGS: water with impact rings (WaterLook::ringCount > 0)
     bool environment = false;   ///< HFX_ENVIRONMENT: water reflecting an image (WaterLook::environment)
     bool caster = false;        ///< HFX_SHADOW_CASTER: drawing into a shadow map
+    /// HFX_CLEARANCE: hier's self-shadows with the surface's clearance map (SurfaceTextures::
+    /// clearanceLight; rays of other lights walk without it)
+    bool clearance = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 

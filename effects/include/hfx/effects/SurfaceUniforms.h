@@ -51,7 +51,10 @@ struct SurfaceUniforms {
     float shadowBias = 0.0f;        ///< depth bias, in the map's window depth
     float shadowOffset = 0.0f;      ///< normal offset of the lookup, world units (about 1.5 map texels)
     float shadowTexel = 0.0f;       ///< 1 / the map's size (the filter's tap spacing)
-    int padding = 0;                ///< std140 rounds the block up to 16 bytes
+    int padding = 0;                ///< std140 aligns the vec4 below to 16 bytes
+    /// The clearance map's light (ClearanceLight: uvPerClimb, penumbra, slack; sampler unit 15,
+    /// read where HFX_CLEARANCE is 1).
+    glm::vec4 clearance{0.0f};
 };
 
 struct WaterUniforms {
@@ -91,7 +94,8 @@ static_assert(offsetof(SurfaceUniforms, pixelBudget) == 332);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
 static_assert(offsetof(SurfaceUniforms, shadowBias) == 464);
-static_assert(sizeof(SurfaceUniforms) == 480);
+static_assert(offsetof(SurfaceUniforms, clearance) == 480);
+static_assert(sizeof(SurfaceUniforms) == 496);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);

@@ -39,6 +39,9 @@ struct AccuracyConfig {
     glm::vec3 light{0.6f, 0.55f, 0.3f}; ///< world direction towards the light (plane normal +Y)
     float shadowSharpness = 2.0f; ///< the material's: its penumbra is where the clearance ratio < 1 / this
     float pixelBudget = 0.0f;     ///< the material's: the tracers' screen budget, pixels (0: full effort)
+    /// With shadows: the surface carries a clearance map for the light, as a scene's flat surface
+    /// does (SurfacePipeline::setShadowLight); the exact tracer's shadow walk stops where it says.
+    bool clearance = true;
     /// Shadow comparison skips points whose exact shadow changes within this many texels (the
     /// texel the boundary falls in, where a hit a little off flips it), and points in the
     /// penumbra band: the light ray is clear, but the cone edge (the ray lowered by
@@ -80,12 +83,19 @@ public:
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
     /// config's angle (the plane fills the view; clear and glFinish included).
     double timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats);
+    /// Median milliseconds that building the clearance map for config's light adds to a frame of
+    /// the surface's compute and upload (StageTiming::Staged frames with and without it,
+    /// interleaved). 0 where config asks for none.
+    double timeClearance(const AccuracyConfig& config, int repeats);
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
     const HeightFieldTracer& exact() const { return exact_; }
     const SurfaceTextures& textures() const { return surface_.textures(); }
 
 private:
+    /// Rebuilds the surface with the clearance map config asks for, where that changed.
+    void useClearance(const AccuracyConfig& config);
+
     int size_;
     HeightFieldTracer exact_;
     StaticField field_;
@@ -94,6 +104,7 @@ private:
     std::unique_ptr<RenderTarget> target_;
     Image lastFrame_;
     Mesh plane_, timedPlane_;
+    std::optional<ClearanceLight> clearance_; ///< the light the surface's map is built for
 };
 
 } // namespace hfx
