@@ -29,7 +29,8 @@ def run(demo, shaders, extra, out):
             key = (row["map"], int(row["angle"]))
             if row["technique"] == "pom":
                 pom[key] = float(row["ms"])
-            elif row["technique"] == "hier" and float(row["pixel_budget"]) == 0.0:
+            elif (row["technique"] == "hier" and float(row["pixel_budget"]) == 0.0
+                  and row.get("clearance_map", "1") == "1"):
                 hier[key] = float(row["ms"])
     return pom, hier
 

@@ -126,7 +126,9 @@ def time_vs_fetches(path, out):
         print(f"{path}: no fetch counts (written before bench-tracers counted them); time_vs_fetches.png not drawn")
         return False
     pom = {(r["map"], r["angle"]): r for r in rows if r["technique"] == "pom"}
-    hier = [r for r in rows if r["technique"] == "hier" and float(r["pixel_budget"]) == 0.0]
+    # The default: full effort, with the clearance map (files written before it had no column).
+    hier = [r for r in rows if r["technique"] == "hier" and float(r["pixel_budget"]) == 0.0
+            and r.get("clearance_map", "1") == "1"]
     maps = ordered(r["map"] for r in hier)
     colors = {m: f"C{i}" for i, m in enumerate(maps)}
 
