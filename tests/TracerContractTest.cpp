@@ -121,6 +121,7 @@ vec2 hfx_bounds(ivec2 cell, int level) {
 }
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); } // searches span [0, 1]
 float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) { return 1e30; } // no clearance map
+float g_fetches = 0.0; // the renderer's accessors count their reads; these do not
 )",
                           "test"};
 /// The harness's buffers: two vec4 of input per ray (a, b: what each main below says), one vec4
@@ -168,7 +169,8 @@ void main() { // a: uv, span; b: h0, level, samples, sharpness
     ray.level = b.y;
     ray.samples = int(b.z);
     ray.sharpness = b.w;
-    hits[i] = vec4(hfx_shadow(ray), 0.0, 0.0, 0.0);
+    const float shadow = hfx_shadow(ray);
+    hits[i] = vec4(shadow, g_fetches, 0.0, 0.0);
 }
 )",
                              "test"};
@@ -199,7 +201,8 @@ enum class Accessors { Harness, Renderer };
 
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
 /// harness over `textures` (wrapping); returns each hit as (u, v, depth fraction, 0), or with
-/// kShadowMain each shadow ray's hfx_shadow in x. With the renderer's accessors and `clearance`,
+/// kShadowMain each shadow ray's hfx_shadow in x and, with the renderer's accessors, the reads
+/// it made in y. With the renderer's accessors and `clearance`,
 /// the textures' clearance map is read as a draw reads it (HFX_CLEARANCE, its light's uniforms).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
@@ -442,25 +445,6 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
     EXPECT_EQ(invented, 0);
 }
 
-/// hfx_shadow and the fetches it made (x, y), through the renderer's accessors (which count them).
-const SourceFile kShadowFetchesMain{"harness_shadow_fetches.comp", R"(
-void main() { // a: uv, span; b: h0, level, samples, sharpness
-    uint i;
-    vec4 a, b;
-    if (!hfx_harness_ray(i, a, b)) return;
-    HfxShadowRay ray;
-    ray.uv = a.xy;
-    ray.span = a.zw;
-    ray.h0 = b.x;
-    ray.level = b.y;
-    ray.samples = int(b.z);
-    ray.sharpness = b.w;
-    const float shadow = hfx_shadow(ray);
-    hits[i] = vec4(shadow, g_fetches, 0.0, 0.0);
-}
-)",
-                                    "test"};
-
 TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
     // The exact shadow walk with a clearance map (compute/ClearanceMap.h) built by the frame's
     // own path must return what it returns without, to the bit, for the map's light: on the
@@ -511,7 +495,7 @@ TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
             }
             const SurfaceTextures& textures = surface.textures();
             const auto walk = [&](const std::vector<glm::vec4>& r, bool map) {
-                return traceInHarness(textures, Technique::Hierarchical, r, kShadowFetchesMain, Accessors::Renderer, map);
+                return traceInHarness(textures, Technique::Hierarchical, r, kShadowMain, Accessors::Renderer, map);
             };
             const std::vector<glm::vec4> plain = walk(rays, false), mapped = walk(rays, true);
             int differ = 0, shadowed = 0, skipped = 0;
