@@ -8,10 +8,13 @@
 namespace hfx::demo {
 namespace {
 
+/// The plane the surface repeats on, twice each way.
+constexpr PlaneConfig kPlane{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};
+
 class MapsScene final : public Scene {
 public:
     MapsScene(ClContext& cl, const SceneOptions& o)
-        : surface_(cl, config(o)), plane_(makePlane({.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1})) {
+        : surface_(cl, config(o)), plane_(makePlane(kPlane)) {
         applyOptions(o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.2f, 0.5f, 0.55f);
         camera_.aspect = o.aspect();
@@ -20,6 +23,7 @@ public:
 
     void draw() override { drawSurface(renderer_, light_); }
     Effect& effect() override { return surface_; }
+    std::optional<FlatSurface> flatSurface() const override { return planeSurface(kPlane, light_); }
     const char* name() const override { return "maps"; }
     const Mesh& mesh() const override { return plane_; }
 

@@ -21,6 +21,22 @@ void Scene::applyOptions(const SceneOptions& o) {
     if (o.pixelBudget >= 0.0f) m.pixelBudget = o.pixelBudget;
     effect().setMaterial(m);
     technique = o.technique;
+    clearanceMap = o.clearanceMap;
+}
+
+Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const {
+    // makePlane: u along +X, v along -Z, size / texcoordScale world units per texcoord.
+    const float perTexcoord = plane.size / plane.texcoordScale;
+    const glm::mat3 m(model());
+    return {m * glm::vec3(perTexcoord, 0.0f, 0.0f), m * glm::vec3(0.0f, 0.0f, -perTexcoord), light};
+}
+
+void Scene::prepareShadowLight() {
+    std::optional<ClearanceLight> light;
+    if (clearanceMap && technique == Technique::Hierarchical)
+        if (const std::optional<FlatSurface> flat = flatSurface())
+            light = flatSurfaceLight(flat->tangent, flat->bitangent, flat->light, effect().material());
+    effect().setShadowLight(light);
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {

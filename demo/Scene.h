@@ -12,6 +12,7 @@
 #include "hfx/tools/ShotList.h"
 
 #include <cstdint>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ struct SceneOptions {
     bool shadows = true;
     float lodThreshold = 4.0f;
     float pixelBudget = -1.0f;         ///< SurfaceMaterial::pixelBudget (-1: the scene's default)
+    /// A flat surface drawn by hier builds a clearance map for its light each frame
+    /// (Effect::setShadowLight): shorter shadow walks, the same shadows.
+    bool clearanceMap = true;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -64,12 +68,14 @@ public:
     /// uploaded before this returns.
     void update(double dt) {
         prepare(dt);
+        prepareShadowLight();
         effect().update(dt);
     }
     /// Overlapped: start the next field on the compute device (after the scene's own per-frame
     /// work, prepare()), draw the current one, then endUpdate() to take the new one to GL.
     void beginUpdate(double dt) {
         prepare(dt);
+        prepareShadowLight();
         effect().beginUpdate(dt);
     }
     void endUpdate() { effect().endUpdate(); }
@@ -96,10 +102,24 @@ public:
     /// The mesh and model matrix drawn (for the wireframe overlay and for picking).
     virtual const Mesh& mesh() const = 0;
     virtual glm::mat4 model() const { return glm::mat4(1.0f); }
+    /// A flat surface's texture frame in world space (dP/du, dP/dv through model()) and its one
+    /// light; empty where the surface is curved or lit otherwise.
+    struct FlatSurface {
+        glm::vec3 tangent, bitangent;
+        DirectionalLight light;
+    };
+    virtual std::optional<FlatSurface> flatSurface() const { return std::nullopt; }
+    /// The frame of a makePlane(plane) drawn with model(), under `light`.
+    FlatSurface planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const;
+    bool clearanceMap = true; ///< SceneOptions::clearanceMap
 
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).
     void drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light);
+    /// Hands the effect the light its clearance map is built for: a flat surface's under hier
+    /// (clearanceMap on), else none. Every frame, before the update: the material, the light or
+    /// the technique may have changed, and an effect may have rebuilt its pipeline.
+    void prepareShadowLight();
     /// The command line's overrides of the effect's material (samples, depth, shadows, LOD) and
     /// its technique.
     void applyOptions(const SceneOptions& options);

@@ -8,6 +8,9 @@
 #include "hfx/compute/shared/ColorMath.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "hfx/core/Image.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
 #include "hfx/effects/BrickWall.h"
 #include "hfx/effects/DecalWallEffect.h"
 #include "hfx/effects/GasPlanetEffect.h"
@@ -131,6 +134,65 @@ TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find(small), std::string::npos) << e.what();
     }
+}
+
+TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFetches) {
+    // The decal scene's set-up: the wall standing in the XY plane, lit from the side, drawn by
+    // hier with self-shadows, after a volley. Two walls take the same shots; one builds the
+    // clearance map for the light (Effect::setShadowLight, as the scene does). The map may only
+    // shorten the shadow walks: the same image to the bit, fewer fetches.
+    const DecalWallConfig config{.bricks = {.size = 128}, .surface = {.pyramid = true}};
+    DecalWallEffect plain(cl(), config), mapped(cl(), config);
+    const glm::mat4 model = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+    const PlaneConfig planeConfig{.size = 4.0f, .texcoordScale = 2.0f};
+    const Mesh plane(makePlane(planeConfig));
+    DirectionalLight light;
+    light.direction = {-0.8f, 0.55f, 0.45f};
+    const float perTexcoord = planeConfig.size / planeConfig.texcoordScale;
+    const std::optional<ClearanceLight> clearance =
+        flatSurfaceLight(glm::mat3(model) * glm::vec3(perTexcoord, 0, 0), glm::mat3(model) * glm::vec3(0, 0, -perTexcoord),
+                         light, mapped.material());
+    ASSERT_TRUE(clearance);
+    mapped.setShadowLight(clearance);
+    for (DecalWallEffect* wall : {&plain, &mapped}) {
+        for (int i = 0; i < 6; ++i) wall->shoot(0.2 + 0.27 * i, 0.3 + 0.23 * i);
+        wall->explode(1.0, 1.0, 7);
+        wall->update(1.0 / 30.0);
+    }
+    ASSERT_FALSE(plain.textures().clearanceLight());
+    ASSERT_EQ(mapped.textures().clearanceLight(), clearance);
+
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.4f, 1.15f, 0.15f);
+    camera.aspect = 1.0f;
+    SurfaceRenderer renderer;
+    RenderTarget target(256, 256, true);
+    auto draw = [&](const DecalWallEffect& wall) {
+        target.bind();
+        target.clear();
+        renderer.draw(plane, model, wall.textures(), wall.material(), camera, light,
+                      {.technique = Technique::Hierarchical, .traceOutput = true});
+        return std::pair{target.readColor(), target.readTrace()};
+    };
+    const auto [plainImage, plainTrace] = draw(plain);
+    const auto [mappedImage, mappedTrace] = draw(mapped);
+    ASSERT_EQ(plainImage.pixels.size(), mappedImage.pixels.size());
+    int differ = 0, drawn = 0;
+    for (size_t i = 0; i < plainImage.pixels.size(); ++i) differ += plainImage.pixels[i] != mappedImage.pixels[i];
+    double fetchesPlain = 0, fetchesMapped = 0;
+    for (size_t i = 0; i < plainTrace.size(); ++i) {
+        fetchesPlain += plainTrace[i].w;
+        fetchesMapped += mappedTrace[i].w;
+        drawn += plainTrace[i].w > 0.0f;
+    }
+    std::printf("[clearance] decal wall: %d of %d pixels drawn; fetches per pixel %.2f without the map, %.2f with\n",
+                drawn, int(plainTrace.size()), fetchesPlain / std::max(drawn, 1), fetchesMapped / std::max(drawn, 1));
+    if (differ) {
+        writeImage(outputPath("users_clearance_plain.png"), plainImage);
+        writeImage(outputPath("users_clearance_mapped.png"), mappedImage);
+    }
+    EXPECT_EQ(differ, 0) << "colour channels differ (images in the test output folder)";
+    EXPECT_GT(drawn, 256 * 256 / 2); // the wall fills most of the frame
+    EXPECT_LT(fetchesMapped, 0.95 * fetchesPlain);
 }
 
 TEST_F(Users, PickingMissesOutsideThePatchAndLookingAway) {

@@ -2,7 +2,9 @@
 
 #include "hfx/core/Error.h"
 
+#include <algorithm>
 #include <bit>
+#include <vector>
 
 namespace hfx {
 
@@ -38,7 +40,14 @@ void ClearanceMap::build(const cl::Buffer& heights, const BoundsPyramid& pyramid
         kernel_.setArg(5, g);
         kernel_.setArg(6, light.penumbra);
         kernel_.setArg(7, slack);
-        kernel_.setArg(8, int(levels.back().offset)); // the top texel: the field's maximum
+        if (!offsets_()) {
+            std::vector<cl_int> offsets;
+            for (const PyramidLevel& l : levels) offsets.push_back(cl_int(l.offset));
+            offsets_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, offsets.size() * sizeof(cl_int),
+                                  offsets.data());
+        }
+        kernel_.setArg(8, offsets_);
+        kernel_.setArg(9, int(levels.size()));
         cl_.enqueue(kernel_, cl::NDRange(width_, height_));
     });
 }

@@ -9,6 +9,10 @@ void Effect::setMaterial(const SurfaceMaterial& material) {
     material_ = material;
 }
 
+void Effect::setShadowLight(const std::optional<ClearanceLight>& light) {
+    const_cast<SurfacePipeline&>(surface()).setShadowLight(light);
+}
+
 // The pipelines are the derived class's members; the base only sequences them.
 void Effect::begin(StageTiming timing) {
     for (const SurfacePipeline* s : surfaces()) const_cast<SurfacePipeline*>(s)->begin(timing);

@@ -21,7 +21,7 @@ public:
     ClearanceMap(ClContext& cl, int width, int height, EdgeMode edges);
 
     /// Enqueues the map of `heights` (width x height floats) for `light`; `pyramid` must be
-    /// built from the same heights first (its level 0 and top texel are read). Does not wait.
+    /// built from the same heights first (its levels are read). Does not wait.
     void build(const cl::Buffer& heights, const BoundsPyramid& pyramid, const ClearanceLight& light);
 
     const cl::Buffer& buffer() const { return buffer_; }
@@ -32,6 +32,7 @@ private:
     ClContext& cl_;
     int width_, height_;
     cl::Buffer buffer_;
+    cl::Buffer offsets_; ///< the pyramid's level offsets (texels), made by the first build
     cl::Kernel kernel_;
 };
 
