@@ -28,8 +28,9 @@ struct SceneOptions {
     float lodThreshold = 4.0f;
     float pixelBudget = -1.0f;         ///< SurfaceMaterial::pixelBudget (-1: the scene's default)
     /// A flat surface drawn by hier builds a clearance map for its light each frame
-    /// (Effect::setShadowLight): shorter shadow walks, the same shadows.
-    bool clearanceMap = true;
+    /// (Effect::setShadowLight): shorter shadow walks, the same shadows. Off by default: on
+    /// PoCL the decal wall's build (25 ms at 512², 140 at 1024²) costs more than its draw saves.
+    bool clearanceMap = false;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -111,7 +112,7 @@ public:
     virtual std::optional<FlatSurface> flatSurface() const { return std::nullopt; }
     /// The frame of a makePlane(plane) drawn with model(), under `light`.
     FlatSurface planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const;
-    bool clearanceMap = true; ///< SceneOptions::clearanceMap
+    bool clearanceMap = false; ///< SceneOptions::clearanceMap
 
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).

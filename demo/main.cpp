@@ -199,9 +199,10 @@ int main(int argc, char** argv) {
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
-    bool noClearanceMap = false;
-    app.add_flag("--no-clearance-map", noClearanceMap,
-                 "flat surfaces drawn by hier build no clearance map for their light (the same shadows, longer walks)");
+    bool clearanceMap = false;
+    app.add_flag("--clearance-map", clearanceMap,
+                 "flat surfaces drawn by hier (decals, noise, maps) build a clearance map for their light each frame: "
+                 "the same shadows in shorter walks (on PoCL the decal wall's build costs more than its draw saves)");
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
@@ -268,7 +269,7 @@ int main(int argc, char** argv) {
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
     s.shadows = !noShadows;
-    s.clearanceMap = !noClearanceMap;
+    s.clearanceMap = clearanceMap;
     if (s.maxSamples > 0 && s.minSamples > 0 && s.maxSamples < s.minSamples) {
         std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n", s.maxSamples,
                      s.minSamples);

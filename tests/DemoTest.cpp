@@ -192,6 +192,25 @@ TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
 
 // Save and load: a run that loads the damage log another run saved draws, on its first frame,
 // exactly the last frame of the run that saved it (a late-joining client sees the same wall).
+TEST(Demo, TheClearanceMapLeavesTheFlatScenesFramesAsTheyWere) {
+    // --clearance-map only shortens hier's shadow walks: the decal wall's and the noise plane's
+    // frames (hier by default, shadows on) are the same bytes with it as without.
+    for (const std::string scene : {"decals", "noise"}) {
+        const std::string args = scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out ";
+        const std::string a = outputPath("demo_clearance_" + scene + "_a"), b = outputPath("demo_clearance_" + scene + "_b");
+        for (const auto& dir : {a, b}) std::filesystem::remove_all(dir);
+        const Result plain = runDemo(args + a);
+        ASSERT_EQ(plain.exitCode, 0) << plain.output;
+        const Result mapped = runDemo(args + b + " --clearance-map");
+        ASSERT_EQ(mapped.exitCode, 0) << mapped.output;
+        for (int frame = 0; frame < 2; ++frame) {
+            const std::string name = scene + "_000" + std::to_string(frame) + ".png";
+            // A boolean: on failure the bytes of two PNGs would flood the log.
+            EXPECT_TRUE(readBytes(a + "/" + name) == readBytes(b + "/" + name)) << name << " differs with the clearance map";
+        }
+    }
+}
+
 TEST(Demo, ASavedDamageLogLoadsIntoTheSameWall) {
     const std::string a = outputPath("demo_damage_a"), b = outputPath("demo_damage_b"), c = outputPath("demo_damage_c");
     const std::string log = outputPath("demo_damage.log");
