@@ -25,17 +25,14 @@ void Scene::applyOptions(const SceneOptions& o) {
 }
 
 Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const {
-    // makePlane: u along +X, v along -Z, size / texcoordScale world units per texcoord.
-    const float perTexcoord = plane.size / plane.texcoordScale;
-    const glm::mat3 m(model());
-    return {m * glm::vec3(perTexcoord, 0.0f, 0.0f), m * glm::vec3(0.0f, 0.0f, -perTexcoord), light};
+    return {SurfaceFrame::ofPlane(plane, model()), light};
 }
 
 void Scene::prepareShadowLight() {
     std::optional<ClearanceLight> light;
     if (clearanceMap && technique == Technique::Hierarchical)
         if (const std::optional<FlatSurface> flat = flatSurface())
-            light = flatSurfaceLight(flat->tangent, flat->bitangent, flat->light, effect().material());
+            light = flatSurfaceLight(flat->frame, flat->light, effect().material());
     effect().setShadowLight(light);
 }
 

@@ -103,10 +103,10 @@ public:
     /// The mesh and model matrix drawn (for the wireframe overlay and for picking).
     virtual const Mesh& mesh() const = 0;
     virtual glm::mat4 model() const { return glm::mat4(1.0f); }
-    /// A flat surface's texture frame in world space (dP/du, dP/dv through model()) and its one
-    /// light; empty where the surface is curved or lit otherwise.
+    /// A flat surface's texture frame in world space and its one light; empty where the surface
+    /// is curved or lit otherwise.
     struct FlatSurface {
-        glm::vec3 tangent, bitangent;
+        SurfaceFrame frame;
         DirectionalLight light;
     };
     virtual std::optional<FlatSurface> flatSurface() const { return std::nullopt; }

@@ -472,7 +472,7 @@ TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
             DirectionalLight light;
             light.direction = lights[li];
             const std::optional<ClearanceLight> c = flatSurfaceLight(
-                {2, 0, 0}, {0, 0, -2}, light, {.depthScale = depth, .shadowSharpness = sharpness});
+                SurfaceFrame::ofPlane({}), light, {.depthScale = depth, .shadowSharpness = sharpness});
             ASSERT_TRUE(c);
             surface.setShadowLight(c);
             surface.run(source.buffer());

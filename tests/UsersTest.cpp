@@ -148,10 +148,8 @@ TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFet
     const Mesh plane(makePlane(planeConfig));
     DirectionalLight light;
     light.direction = {-0.8f, 0.55f, 0.45f};
-    const float perTexcoord = planeConfig.size / planeConfig.texcoordScale;
     const std::optional<ClearanceLight> clearance =
-        flatSurfaceLight(glm::mat3(model) * glm::vec3(perTexcoord, 0, 0), glm::mat3(model) * glm::vec3(0, 0, -perTexcoord),
-                         light, mapped.material());
+        flatSurfaceLight(SurfaceFrame::ofPlane(planeConfig, model), light, mapped.material());
     ASSERT_TRUE(clearance);
     mapped.setShadowLight(clearance);
     for (DecalWallEffect* wall : {&plain, &mapped}) {

@@ -8,10 +8,11 @@
    The climb is cut into steps of one texel along g's major axis; a step [d0, d1] sweeps a box of
    cells (the cell moved by g d0 .. g d1, widened by slack d1 and a rounding margin), whose highest
    corner (pyramid level 0) is compared with the edge at d0. The clearance is the end of the last
-   step whose box reaches it (0: none), found walking back from the far end in runs of steps. The first step is special: there the walk only asks for
-   hard shadow (the surface above the ray itself; shaders/trace/hier.glsl counts the penumbra from
-   a texel away), and the ray starts on the surface, so it is clear when the surface rises slower
-   than the ray along g over the step's box: the bilinear patch's derivative along g (plus slack
+   step whose box reaches it (0: none), found walking back from the far end in runs of steps.
+   The first step is special: there the walk only asks for hard shadow (the surface above the ray
+   itself; shaders/trace/hier.glsl counts the penumbra from a texel away), and the ray starts on
+   the surface, so it is clear when the surface rises slower than the ray along g over the step's
+   box: the bilinear patch's derivative along g (plus slack
    times its gradient's magnitude), at its largest on a corner, below 1. Steps end where the edge
    passes the field's maximum. Cells past the field wrap (power-of-two sizes) or clamp, as the
    field's edges do. `cells` is the whole pyramid (level 0 first, level k at levelOffsets[k]);
@@ -61,8 +62,8 @@ __kernel void clearance_map(__global const float* height, __global const float2*
        back: the first that reaches the edge is the last along the ray. Runs of 2^L steps are
        tested at once (their box's top, read from a coarse level, against the edge at their
        start: if that passes, every step in them does), doubled after each that passes and
-       halved where one does not, the far half first; a single step is tested as it is. So the result is the single steps' sweep's,
-       in about log2 of its tests. */
+       halved where one does not, the far half first; a single step is tested as it is. So the
+       result is the single steps' sweep's, in about log2 of its tests. */
     const float end = fmin((fieldMax - lo) / (1.0f - penumbra), 1.0f - lo);
     int last = end > step ? (int)ceil(end / step) - 1 : 0;
     while (last >= 1 && !(last * step < end)) --last;

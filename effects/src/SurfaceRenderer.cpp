@@ -347,13 +347,13 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     mesh.draw();
 }
 
-std::optional<ClearanceLight> flatSurfaceLight(glm::vec3 tangent, glm::vec3 bitangent, const DirectionalLight& light,
+std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
                                                const SurfaceMaterial& material) {
     if (!material.shadows || !(material.depthScale > 0.0f) || !(material.shadowSharpness > 1.0f)) return std::nullopt;
+    const double t = glm::length(frame.tangent), b = glm::length(frame.bitangent);
+    if (!(t > 0.0) || !(b > 0.0)) return std::nullopt;
     // shaders/surface.frag: world from texture = (dP/du, dP/dv, the normal at the same scale).
-    const glm::dvec3 t(tangent), b(bitangent), n = glm::normalize(glm::cross(t, b));
-    if (!(glm::length(t) > 0.0) || !(glm::length(b) > 0.0)) return std::nullopt;
-    const glm::dmat3 worldFromTexture(t, b, n * std::sqrt(glm::length(t) * glm::length(b)));
+    const glm::dmat3 worldFromTexture(frame.tangent, frame.bitangent, frame.normal * std::sqrt(t * b));
     const glm::dvec3 l = glm::inverse(worldFromTexture) * glm::normalize(glm::dvec3(light.direction));
     if (!(l.z > 0.0)) return std::nullopt;
     return ClearanceLight::of(glm::vec2(glm::dvec2(l) / l.z * double(material.depthScale)), material.shadowSharpness);

@@ -4,6 +4,7 @@
 //
 //   build/tests/hfx-bench-kernels --benchmark_counters_tabular=true
 
+#include "support/Fields.h"
 #include "support/References.h"
 
 #include "hfx/compute/DamageLog.h"
@@ -246,20 +247,14 @@ void BM_Pyramid(benchmark::State& state) {
 /// wavelengths of a quarter to a tenth of the field; cells stay clear for long stretches).
 void BM_ClearanceMap(benchmark::State& state) {
     const int n = int(state.range(0));
-    std::vector<float> heights = randomHeights(n);
-    if (state.range(1) == 1)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const double u = 2 * std::numbers::pi * x / n, v = 2 * std::numbers::pi * y / n;
-                heights[size_t(y) * n + x] =
-                    float(0.5 + 0.25 * std::sin(4 * u + v) + 0.12 * std::sin(-3 * u + 7 * v) + 0.05 * std::sin(10 * u + 3 * v));
-            }
+    const std::vector<float> heights =
+        state.range(1) == 1 ? sumOfSines(n, {{0.25, 4, 1, 0.0}, {0.12, -3, 7, 0.0}, {0.05, 10, 3, 0.0}}) : randomHeights(n);
     cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
                      const_cast<float*>(heights.data()));
     BoundsPyramid pyramid(cl(), n, n, EdgeMode::Wrap);
     pyramid.build(input);
     ClearanceMap map(cl(), n, n, EdgeMode::Wrap);
-    const float perClimb = std::tan(60.0f * 3.14159265f / 180.0f) * 0.1f;
+    const float perClimb = float(std::tan(std::numbers::pi / 3) * 0.1);
     const ClearanceLight light = ClearanceLight::of({perClimb * 0.8f, perClimb * 0.6f}, 2.0f);
     measure(state, [&] { map.build(input, pyramid, light); }, 4.0 * n * n * 2.0, // heights and map (the boxes hit the cache)
             n <= 256 ? std::function<void()>([&] { benchmark::DoNotOptimize(clearanceReference(heights, n, EdgeMode::Wrap, light)); })

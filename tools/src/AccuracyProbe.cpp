@@ -112,8 +112,7 @@ void AccuracyProbe::useClearance(const AccuracyConfig& config) {
     if (config.shadows && config.clearance && textures().pyramid() != 0) {
         DirectionalLight l;
         l.direction = config.light;
-        // makePlane's texture frame: u along +X, v along -Z, the plane's size per texcoord.
-        light = flatSurfaceLight({kPlaneSize, 0, 0}, {0, 0, -kPlaneSize}, l, materialOf(config));
+        light = flatSurfaceLight(SurfaceFrame::ofPlane({.size = kPlaneSize}), l, materialOf(config));
     }
     if (light == clearance_) return;
     surface_.setShadowLight(light);

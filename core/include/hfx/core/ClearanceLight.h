@@ -29,7 +29,7 @@ struct ClearanceLight {
     /// the move (a flat mesh's tangent frames agree to about 1e-7).
     static ClearanceLight of(glm::vec2 uvPerClimb, float sharpness) {
         const float move = std::max(std::abs(uvPerClimb.x), std::abs(uvPerClimb.y));
-        return {uvPerClimb, sharpness > 0.0f ? 1.0f / sharpness : 2.0f, 1e-3f * move + 1e-7f};
+        return {uvPerClimb, 1.0f / sharpness, 1e-3f * move + 1e-7f}; // validate() refuses a sharpness <= 1
     }
     void validate() const {
         if (!std::isfinite(uvPerClimb.x) || !std::isfinite(uvPerClimb.y))

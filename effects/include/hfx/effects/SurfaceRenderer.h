@@ -12,6 +12,7 @@
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/Technique.h"
 
@@ -117,12 +118,12 @@ struct DirectionalLight {
     const ShadowMap* shadowMap = nullptr;
 };
 
-/// The light as the exact tracer's shadow rays see it on a flat surface: world-space tangent
-/// (dP/du) and bitangent (dP/dv) of the mesh through its model matrix (constant on a flat one),
-/// the light and the material, as shaders/surface.frag derives each ray. What SurfacePipeline::
-/// setShadowLight takes to build the clearance map. Empty where no shadow ray is traced (the
-/// light at or below the surface's plane, no self-shadows, no depth).
-std::optional<ClearanceLight> flatSurfaceLight(glm::vec3 tangent, glm::vec3 bitangent, const DirectionalLight& light,
+/// The light as the exact tracer's shadow rays see it on a flat surface: its texture frame in
+/// world space (SurfaceFrame::ofPlane for a makePlane mesh and its model matrix), the light and
+/// the material, as shaders/surface.frag derives each ray. What SurfacePipeline::setShadowLight
+/// takes to build the clearance map. Empty where no shadow ray is traced (the light at or below
+/// the surface's plane, no self-shadows, no depth).
+std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
                                                const SurfaceMaterial& material);
 
 /// One layer of a layered surface (the ocean's cascades): its textures, read at the mesh's
