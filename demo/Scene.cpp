@@ -22,6 +22,7 @@ void Scene::applyOptions(const SceneOptions& o) {
     effect().setMaterial(m);
     technique = o.technique;
     clearanceMap = o.clearanceMap;
+    texelShadows = o.texelShadows;
 }
 
 Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const {
@@ -30,10 +31,10 @@ Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const Direction
 
 void Scene::prepareShadowLight() {
     std::optional<ClearanceLight> light;
-    if (clearanceMap && technique == Technique::Hierarchical)
+    if ((clearanceMap || texelShadows) && technique == Technique::Hierarchical)
         if (const std::optional<FlatSurface> flat = flatSurface())
             light = flatSurfaceLight(flat->frame, flat->light, effect().material());
-    effect().setShadowLight(light);
+    effect().setShadowLight(light, {.clearanceMap = clearanceMap, .texelShadows = texelShadows});
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {

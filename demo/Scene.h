@@ -31,6 +31,10 @@ struct SceneOptions {
     /// (Effect::setShadowLight): shorter shadow walks, the same shadows. Off by default: on
     /// PoCL the decal wall's build (25 ms at 512², 140 at 1024²) costs more than its draw saves.
     bool clearanceMap = false;
+    /// A flat surface drawn by hier draws its texel shadows for its light each frame
+    /// (TexelShadowPass): its pixels walk their light rays only where a hard shadow's edge
+    /// passes between the samples around them.
+    bool texelShadows = false;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -113,6 +117,7 @@ public:
     /// The frame of a makePlane(plane) drawn with model(), under `light`.
     FlatSurface planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const;
     bool clearanceMap = false; ///< SceneOptions::clearanceMap
+    bool texelShadows = false; ///< SceneOptions::texelShadows
 
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).

@@ -203,6 +203,10 @@ int main(int argc, char** argv) {
     app.add_flag("--clearance-map", clearanceMap,
                  "flat surfaces drawn by hier (decals, noise, maps) build a clearance map for their light each frame: "
                  "the same shadows in shorter walks (on PoCL the decal wall's build costs more than its draw saves)");
+    bool texelShadows = false;
+    app.add_flag("--texel-shadows", texelShadows,
+                 "flat surfaces drawn by hier (decals, noise, maps) draw their self-shadow at every texel each frame "
+                 "(TexelShadowPass): pixels walk their light ray only where a hard shadow's edge crosses their cell");
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
@@ -270,6 +274,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     s.shadows = !noShadows;
     s.clearanceMap = clearanceMap;
+    s.texelShadows = texelShadows;
     if (s.maxSamples > 0 && s.minSamples > 0 && s.maxSamples < s.minSamples) {
         std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n", s.maxSamples,
                      s.minSamples);

@@ -211,6 +211,48 @@ TEST(Demo, TheClearanceMapLeavesTheFlatScenesFramesAsTheyWere) {
     }
 }
 
+TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
+    // --texel-shadows reads hier's self-shadow from the texel shadows where the hard shadow does
+    // not change between samples (the penumbra blended): the decal wall's and the noise plane's
+    // frames stay within a small difference of the walked ones; the wall's far closer than its
+    // frame without self-shadows is (the noise plane's shadows are faint at this size).
+    for (const std::string scene : {"decals", "noise"}) {
+        const std::string args = scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out ";
+        const std::string a = outputPath("demo_texels_" + scene + "_a"), b = outputPath("demo_texels_" + scene + "_b"),
+                          c = outputPath("demo_texels_" + scene + "_c");
+        for (const auto& dir : {a, b, c}) std::filesystem::remove_all(dir);
+        for (const auto& [dir, flags] : {std::pair{a, ""}, std::pair{b, " --texel-shadows"}, std::pair{c, " --no-shadows"}}) {
+            const Result r = runDemo(args + dir + flags);
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+        }
+        // Mean difference (0..255 levels) and the share of pixels more than 16 levels apart.
+        const auto compare = [](const Image& x, const Image& y) {
+            double sum = 0;
+            size_t far = 0;
+            const size_t n = x.pixels.size() / size_t(x.channels);
+            for (size_t p = 0; p < n; ++p) {
+                double d = 0;
+                for (int k = 0; k < std::min(x.channels, 3); ++k)
+                    d = std::max(d, 255.0 * std::abs(double(x.pixels[p * size_t(x.channels) + size_t(k)]) -
+                                                     y.pixels[p * size_t(y.channels) + size_t(k)]));
+                sum += d;
+                far += d > 16.0;
+            }
+            return std::pair{sum / double(n), double(far) / double(n)};
+        };
+        const std::string name = "/" + scene + "_0001.png";
+        const Image walked = readImage(a + name), read = readImage(b + name), unshadowed = readImage(c + name);
+        const auto [mean, far] = compare(walked, read);
+        const auto [meanOff, farOff] = compare(walked, unshadowed);
+        std::printf("[texels] %s: %.3f levels apart on average, %.3f%% of pixels > 16 (without self-shadows: %.3f, "
+                    "%.3f%%)\n", scene.c_str(), mean, 100.0 * far, meanOff, 100.0 * farOff);
+        EXPECT_LE(mean, 0.25) << scene;
+        EXPECT_LE(far, 0.002) << scene;
+        if (scene == "decals")
+            EXPECT_GT(meanOff, 10.0 * std::max(mean, 0.05)) << scene << ": the comparison could not tell shadows apart";
+    }
+}
+
 TEST(Demo, ASavedDamageLogLoadsIntoTheSameWall) {
     const std::string a = outputPath("demo_damage_a"), b = outputPath("demo_damage_b"), c = outputPath("demo_damage_c");
     const std::string log = outputPath("demo_damage.log");

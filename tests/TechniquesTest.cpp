@@ -27,6 +27,13 @@ constexpr int kField = 128;
 class Techniques : public DeviceTest {
 protected:
     std::vector<float> smooth() { return smoothWaves(kField); }
+    /// The issue's four maps (docs/ACCURACY.md's) and blocks: broad plateaus at the top and the
+    /// bottom of the relief.
+    std::vector<AccuracyMap> issueMapsAndBlocks() {
+        std::vector<AccuracyMap> maps = accuracyMaps(cl(), kField);
+        maps.push_back({"blocks", blocks(kField, 4)});
+        return maps;
+    }
     AccuracyResult run(AccuracyProbe& probe, Technique t, const AccuracyConfig& config, const char* map) {
         const AccuracyResult r = probe.measure(t, config);
         std::printf("[%-12s %-8s %2.0f deg] %5zu px  mean %.4f  p95 %.4f  >4 texels %.3f%%  fetches %.1f", map,
@@ -60,10 +67,8 @@ TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
     // docs/ACCURACY.md reports) and blocks: broad plateaus at the top and the bottom of the
     // relief. Lit as bench-accuracy lights them (60 degrees off the normal), so the exact
     // self-shadow is held on every map and angle too.
-    std::vector<AccuracyMap> maps = accuracyMaps(cl(), kField);
-    maps.push_back({"blocks", blocks(kField, 4)});
     const glm::vec3 light = accuracyLight(60.0f);
-    for (const AccuracyMap& map : maps) {
+    for (const AccuracyMap& map : issueMapsAndBlocks()) {
         const char* name = map.name.c_str();
         AccuracyProbe probe(cl(), map.heights, kField, 0.1f);
         for (double angle : {0.0, 45.0, 70.0, 80.0, 85.0}) {
@@ -83,6 +88,34 @@ TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
                 EXPECT_GT(pom.mean, r.mean) << name << " at " << angle;
                 EXPECT_GT(pom.fetches, r.fetches) << name << " at " << angle;
             }
+        }
+    }
+}
+
+TEST_F(Techniques, TexelShadowsKeepTheExactTracersShadowBoundOnEveryMapInFewerFetches) {
+    // The same maps and light with the texel shadows of the light (ShadowLightOptions::
+    // texelShadows, no clearance map): the issue's bound on exact shadows outside the penumbra
+    // band still holds, the hits are untouched, and the pixels fetch less than walking every
+    // light ray (the blocks' walks end at once in hard shadow: no saving there).
+    const glm::vec3 light = accuracyLight(60.0f);
+    for (const AccuracyMap& map : issueMapsAndBlocks()) {
+        const char* name = map.name.c_str();
+        AccuracyProbe probe(cl(), map.heights, kField, 0.1f);
+        for (double angle : {0.0, 45.0, 80.0}) {
+            const AccuracyConfig walked{.angleDegrees = angle, .shadows = true, .light = light, .clearance = false};
+            AccuracyConfig read = walked;
+            read.texelShadows = true;
+            const AccuracyResult w = run(probe, Technique::Hierarchical, walked, name);
+            const AccuracyResult r = run(probe, Technique::Hierarchical, read, name);
+            EXPECT_LT(r.mean, 0.05) << name << " at " << angle;
+            EXPECT_LT(r.over4, 0.0005) << name << " at " << angle;
+            EXPECT_GT(r.shadowPixels, 200u) << name << " at " << angle;
+            EXPECT_GE(r.shadowAgreement, 0.995) << name << " at " << angle;
+            // The blocks' light walks mostly end at once in hard shadow: there the texels' read is one more.
+            if (map.name == "blocks")
+                EXPECT_LE(r.fetches, w.fetches + 1.0) << name << " at " << angle;
+            else
+                EXPECT_LT(r.fetches, w.fetches) << name << " at " << angle;
         }
     }
 }

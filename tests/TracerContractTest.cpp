@@ -121,6 +121,10 @@ vec2 hfx_bounds(ivec2 cell, int level) {
 }
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); } // searches span [0, 1]
 float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) { return 1e30; } // no clearance map
+bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) { // no texel shadows
+    shadow = 0.0;
+    return false;
+}
 float g_fetches = 0.0; // the renderer's accessors count their reads; these do not
 )",
                           "test"};
@@ -203,14 +207,17 @@ enum class Accessors { Harness, Renderer };
 /// harness over `textures` (wrapping); returns each hit as (u, v, depth fraction, 0), or with
 /// kShadowMain each shadow ray's hfx_shadow in x and, with the renderer's accessors, the reads
 /// it made in y. With the renderer's accessors and `clearance`,
-/// the textures' clearance map is read as a draw reads it (HFX_CLEARANCE, its light's uniforms).
+/// the textures' clearance map is read as a draw reads it (HFX_CLEARANCE, its light's uniforms),
+/// and with `texelShadows` their texel shadows too (HFX_TEXEL_SHADOWS).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
-                                      bool clearance = false) {
+                                      bool clearance = false, bool texelShadows = false) {
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && clearance));
+    HFX_CHECK(clearance || !texelShadows);
     std::vector<SourceFile> parts{kComputeHeader};
     if (clearance) parts.push_back({"harness_defines.comp", "#define HFX_CLEARANCE 1\n", "test"});
+    if (texelShadows) parts.push_back({"harness_texels.comp", "#define HFX_TEXEL_SHADOWS 1\n", "test"});
     if (own) parts.push_back(kHarness);
     else parts.insert(parts.end(), {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl")});
     parts.insert(parts.end(), {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
@@ -218,7 +225,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     const ShaderProgram p = ShaderProgram::compute(parts);
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(), .wrap = glm::ivec2(1, 1)};
     if (clearance) {
-        const ClearanceLight& c = textures.clearanceLight().value();
+        const ClearanceLight& c = (texelShadows ? textures.texelShadowLight() : textures.clearanceLight()).value();
         u.clearance = {c.uvPerClimb, c.penumbra, c.slack};
     }
     const GlBuffer block = own ? GlBuffer() : GlBuffer::create();
@@ -232,6 +239,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(3, textures.pyramid());
     glBindTextureUnit(15, textures.clearance());
+    glBindTextureUnit(4, texelShadows ? textures.texelShadows() : 0);
     std::vector<glm::vec4> hits = runHarness(p, rays);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
     return hits;
@@ -445,6 +453,17 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
     EXPECT_EQ(invented, 0);
 }
 
+/// The fields the shadow walk's shortcuts are held on: one-texel walls and plateaus (hard
+/// shadows, blockers finer than a texel) and a smooth sum of sines (long penumbrae).
+struct ShadowField {
+    const char* name;
+    std::vector<float> heights;
+};
+std::vector<ShadowField> shadowFields(int n) {
+    return {{"walls", thinWallsAndPlateaus(n)},
+            {"sines", sumOfSines(n, {{0.3, 3, 1, 0.0}, {0.12, -4, 7, 0.7}, {0.05, 11, -9, 0.3}})}};
+}
+
 TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
     // The exact shadow walk with a clearance map (compute/ClearanceMap.h) built by the frame's
     // own path must return what it returns without, to the bit, for the map's light: on the
@@ -454,16 +473,11 @@ TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
     // only for rays of its own light: a ray of another light walks without it.
     constexpr int N = 256;
     constexpr float depth = 0.1f;
-    struct Case {
-        const char* name;
-        std::vector<float> heights;
-    };
-    const Case fields[] = {{"walls", thinWallsAndPlateaus(N)},
-                           {"sines", sumOfSines(N, {{0.3, 3, 1, 0.0}, {0.12, -4, 7, 0.7}, {0.05, 11, -9, 0.3}})}};
+    const std::vector<ShadowField> fields = shadowFields(N);
     const glm::vec3 lights[] = {{0.6f, 0.55f, 0.3f}, {-0.2f, 0.3f, -0.9f}, {0.0f, 0.8f, 0.6f}, {1.0f, 0.12f, 0.0f}};
     constexpr int kRays = 1 << 18;
     double sinesMapped = 0, sinesPlain = 0, wallsMapped = 0, wallsPlain = 0;
-    for (const Case& field : fields) {
+    for (const ShadowField& field : fields) {
         StaticField source(cl(), N, N, EdgeMode::Wrap, field.heights);
         SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .pyramid = true}));
         const HeightFieldTracer exact(field.heights, N, N, EdgeMode::Wrap);
@@ -545,6 +559,124 @@ TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
     std::printf("[clearance] fetches with the map over without: sines %.3f, walls %.3f\n", sinesMapped / sinesPlain,
                 wallsMapped / wallsPlain);
     EXPECT_LT(sinesMapped, 0.95 * sinesPlain);
+}
+
+TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTheHardShadowAgrees) {
+    // The texel shadows (TexelShadowPass) must hold the exact walk's shadow at every sample of
+    // the field, drawn by the frame's own path; and a ray of their light that reads them must
+    // come out as its walk does: the same hard shadow, except where that changes inside a cell
+    // between samples that agree (a sliver finer than the samples: counted and bounded), the
+    // penumbra blended within a bound, in fewer fetches. Texels one sample off must fail the
+    // bounds (else the comparison could not fail).
+    constexpr int N = 256;
+    constexpr float depth = 0.1f;
+    const std::vector<ShadowField> fields = shadowFields(N);
+    const glm::vec3 lights[] = {{0.6f, 0.55f, 0.3f}, {-0.2f, 0.3f, -0.9f}};
+    constexpr int kRays = 1 << 18;
+    for (const ShadowField& field : fields) {
+        StaticField source(cl(), N, N, EdgeMode::Wrap, field.heights);
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .pyramid = true}));
+        const HeightFieldTracer exact(field.heights, N, N, EdgeMode::Wrap);
+        for (size_t li = 0; li < std::size(lights); ++li) {
+            for (const float sharpness : {2.0f, 8.0f}) {
+                DirectionalLight light;
+                light.direction = lights[li];
+                const std::optional<ClearanceLight> c = flatSurfaceLight(
+                    SurfaceFrame::ofPlane({}), light, {.depthScale = depth, .shadowSharpness = sharpness});
+                ASSERT_TRUE(c);
+                surface.setShadowLight(c, {.clearanceMap = true, .texelShadows = true});
+                surface.run(source.buffer());
+                const SurfaceTextures& textures = surface.textures();
+                ASSERT_NE(textures.texelShadows(), 0u);
+                std::vector<float> texels(size_t(N) * N);
+                glGetTextureImage(textures.texelShadows(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
+                                  texels.data());
+                const auto walk = [&](const std::vector<glm::vec4>& r, bool read) {
+                    return traceInHarness(textures, Technique::Hierarchical, r, kShadowMain, Accessors::Renderer, true,
+                                          read);
+                };
+                const auto rayFrom = [&](std::vector<glm::vec4>& r, glm::vec2 uv, float h0) {
+                    const glm::vec2 span = c->uvPerClimb * (1.0f - h0);
+                    r.emplace_back(uv.x, uv.y, span.x, span.y);
+                    r.emplace_back(h0, 0.0f, 8.0f, sharpness);
+                };
+                // Every sample: the walk from it, as the pass ran it.
+                std::vector<glm::vec4> sampleRays;
+                std::vector<size_t> sampleOf;
+                for (int j = 0; j < N; ++j)
+                    for (int i = 0; i < N; ++i) {
+                        const float h0 = field.heights[size_t(j) * N + size_t(i)];
+                        if (h0 >= 1.0f) continue;
+                        rayFrom(sampleRays, (glm::vec2(i, j) + 0.5f) / float(N), h0);
+                        sampleOf.push_back(size_t(j) * N + size_t(i));
+                    }
+                const std::vector<glm::vec4> atSamples = walk(sampleRays, false);
+                double worst = 0;
+                for (size_t k = 0; k < sampleOf.size(); ++k)
+                    worst = std::max(worst, double(std::abs(atSamples[k].x - texels[sampleOf[k]])));
+                EXPECT_LE(worst, 1e-5) << field.name << " light " << li << " sharpness " << sharpness;
+
+                // Anywhere: the walk against the ray that reads the texels.
+                std::mt19937 random(31 + unsigned(li));
+                std::uniform_real_distribution<double> unit(0.0, 1.0);
+                std::vector<glm::vec4> rays;
+                while (rays.size() < 2 * size_t(kRays)) {
+                    const glm::dvec2 uv(unit(random), unit(random));
+                    const double h0 = exact.heightAt(uv);
+                    if (h0 < 0.999) rayFrom(rays, glm::vec2(uv), float(h0));
+                }
+                struct Tally {
+                    int hardDiffer = 0, hard = 0, soft = 0;
+                    double error = 0, worst = 0, fetches = 0;
+                };
+                const std::vector<glm::vec4> walked = walk(rays, false);
+                const auto compare = [&](const std::vector<glm::vec4>& read) {
+                    Tally t;
+                    for (int i = 0; i < kRays; ++i) {
+                        const float a = walked[size_t(i)].x, b = read[size_t(i)].x;
+                        t.hard += a == 1.0f;
+                        t.fetches += read[size_t(i)].y;
+                        if ((a == 1.0f) != (b == 1.0f)) {
+                            ++t.hardDiffer;
+                        } else if (a < 1.0f) {
+                            ++t.soft;
+                            t.error += std::abs(a - b);
+                            t.worst = std::max(t.worst, double(std::abs(a - b)));
+                        }
+                    }
+                    t.error /= std::max(t.soft, 1);
+                    return t;
+                };
+                const Tally t = compare(walk(rays, true));
+                double fetchesWalked = 0;
+                for (int i = 0; i < kRays; ++i) fetchesWalked += walked[size_t(i)].y;
+                std::printf("[texels] %s light %zu sharpness %.0f: %d of %d rays in hard shadow, %d differ there; "
+                            "penumbra off by %.4f on average, %.3f at most; fetches %.2f -> %.2f per ray\n",
+                            field.name, li, sharpness, t.hard, kRays, t.hardDiffer, t.error, t.worst,
+                            fetchesWalked / kRays, t.fetches / kRays);
+                EXPECT_GT(t.hard, kRays / 50) << field.name;
+                EXPECT_LE(t.hardDiffer, kRays / 1000) << field.name << " light " << li << " sharpness " << sharpness;
+                // The blend is used where the four samples differ by at most 0.25 (HFX_TEXEL_SPREAD).
+                EXPECT_LE(t.error, 0.005) << field.name << " light " << li << " sharpness " << sharpness;
+                EXPECT_LE(t.worst, 0.3) << field.name << " light " << li << " sharpness " << sharpness;
+                EXPECT_LT(t.fetches, 0.8 * fetchesWalked) << field.name << " light " << li;
+
+                // The texels one sample off along u: the same comparison must fail.
+                std::vector<float> shifted(texels.size());
+                for (int j = 0; j < N; ++j)
+                    for (int i = 0; i < N; ++i)
+                        shifted[size_t(j) * N + size_t(i)] = texels[size_t(j) * N + size_t((i + 1) % N)];
+                // The test owns the pipeline: its textures are ours to spoil (the next run() redraws them).
+                glTextureSubImage2D(textures.texelShadows(), 0, 0, 0, N, N, GL_RED, GL_FLOAT, shifted.data());
+                const Tally off = compare(walk(rays, true));
+                std::printf("[texels] ... one sample off: %d differ in hard shadow, penumbra off by %.4f on average, "
+                            "%.3f at most\n", off.hardDiffer, off.error, off.worst);
+                EXPECT_TRUE(off.hardDiffer > kRays / 1000 || off.error > 0.005 || off.worst > 0.3)
+                    << field.name << " light " << li << ": shifted texels pass (" << off.hardDiffer << " differ, "
+                    << off.error << " penumbra error)";
+            }
+        }
+    }
 }
 
 /// The searches' bounds (surface/heights.glsl, hfx_segment_bounds) in a compute harness: per

@@ -112,6 +112,27 @@ void SurfaceTextures::uploadClearance(const float* map, const ClearanceLight& li
     clearanceLight_ = light;
 }
 
+GLuint SurfaceTextures::texelShadowTarget() {
+    if (!texelShadows_.id()) {
+        texelShadows_ = GlTexture::create();
+        HFX_GL_CHECK(glTextureStorage2D(texelShadows_.id(), 1, GL_R32F, config_.width, config_.height));
+        // Read by textureGather around a point: the four samples of its cell, wrapped or clamped
+        // as the heights are.
+        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_WRAP_S, wrapsU(config_.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_WRAP_T, wrapsV(config_.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+    }
+    return texelShadows_.id();
+}
+
+void SurfaceTextures::texelShadowsDrawn(const ClearanceLight& light) {
+    if (!pyramid_.id()) throw Error("texelShadowsDrawn: these surface textures were made without a pyramid");
+    if (!texelShadows_.id()) throw Error("texelShadowsDrawn: no texel shadows were drawn (texelShadowTarget)");
+    light.validate();
+    texelShadowLight_ = light;
+}
+
 void SurfaceTextures::uploadTexels(const void* texels) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     HFX_GL_CHECK(glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,

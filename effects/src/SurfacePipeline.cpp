@@ -95,16 +95,17 @@ void SurfacePipeline::setAlbedo(const Image& albedo) {
     for (auto& t : textures_) t->setAlbedo(albedo);
 }
 
-void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light) {
+void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options) {
     if (light) {
         if (!pyramid_)
-            throw Error("SurfacePipeline::setShadowLight: the clearance map needs the height pyramid "
-                        "(SurfaceOptions::pyramid)");
+            throw Error("SurfacePipeline::setShadowLight: the clearance map and the texel shadows need the height "
+                        "pyramid (SurfaceOptions::pyramid)");
         light->validate();
-        if (!clearance_)
+        if (!clearance_ && options.clearanceMap)
             clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
     }
     light_ = light;
+    lightOptions_ = options;
 }
 
 void SurfacePipeline::wait() {
@@ -132,8 +133,9 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
     if (pyramid_) pyramid_->build(heights);
-    builtFor_ = light_;
-    if (light_) clearance_->build(heights, *pyramid_, *light_);
+    builtFor_ = lightOptions_.clearanceMap ? light_ : std::nullopt;
+    texelsFor_ = lightOptions_.texelShadows ? light_ : std::nullopt;
+    if (builtFor_) clearance_->build(heights, *pyramid_, *builtFor_);
     state_ = State::Derived;
 }
 
@@ -199,6 +201,13 @@ void SurfacePipeline::finish() {
                      [&](const void* mapped) { back.uploadClearance(static_cast<const float*>(mapped), *builtFor_); });
     else
         back.dropClearance();
+    // The texel shadows: a GL pass over the heights, pyramid and map just uploaded.
+    if (texelsFor_) {
+        if (!texelPass_) texelPass_ = std::make_unique<TexelShadowPass>();
+        texelPass_->draw(back, *texelsFor_);
+    } else {
+        back.dropTexelShadows();
+    }
     if (albedo_())
         mapAndUpload(cl_, albedo_, 4 * texels, "uploading the albedo",
                      [&](const void* mapped) { back.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });

@@ -3,6 +3,8 @@
 #include "hfx/core/Error.h"
 #include "hfx/effects/ShadowMap.h"
 
+#include "GlStateGuard.h"
+
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
@@ -43,62 +45,7 @@ float varianceFloor(SurfaceFormat format) {
     return format == SurfaceFormat::Float32 ? 0.0f : format == SurfaceFormat::Float16 ? 1e-3f : 8e-3f;
 }
 
-/// Writes a uniform block's data into its buffer (made on first use) and binds it at `binding`.
-template <typename Block>
-void updateBlock(GlBuffer& buffer, GLuint binding, const Block& data) {
-    if (!buffer) {
-        buffer = GlBuffer::create();
-        HFX_GL_CHECK(glNamedBufferStorage(buffer.id(), sizeof(Block), nullptr, GL_DYNAMIC_STORAGE_BIT));
-    }
-    HFX_GL_CHECK(glNamedBufferSubData(buffer.id(), 0, sizeof(Block), &data));
-    glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer.id());
-}
 
-/// Saves what draw() changes and puts it back, so the caller's state survives.
-class GlStateGuard {
-public:
-    GlStateGuard() {
-        depthTest_ = glIsEnabled(GL_DEPTH_TEST);
-        glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
-        glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
-        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
-        glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
-        for (int unit = 0; unit < kUnits; ++unit) {
-            glActiveTexture(GL_TEXTURE0 + unit);
-            glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
-        }
-        for (GLuint index = 0; index < kBlocks; ++index) {
-            glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, index, &blocks_[index]);
-            glGetInteger64i_v(GL_UNIFORM_BUFFER_START, index, &blockStart_[index]);
-            glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, index, &blockSize_[index]);
-        }
-    }
-    ~GlStateGuard() {
-        (depthTest_ ? glEnable : glDisable)(GL_DEPTH_TEST);
-        glDepthFunc(static_cast<GLenum>(depthFunc_));
-        glUseProgram(static_cast<GLuint>(program_));
-        glBindVertexArray(static_cast<GLuint>(vao_));
-        for (int unit = 0; unit < kUnits; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
-        glActiveTexture(static_cast<GLenum>(activeTexture_));
-        for (GLuint index = 0; index < kBlocks; ++index) {
-            if (blocks_[index] != 0 && blockSize_[index] > 0)
-                glBindBufferRange(GL_UNIFORM_BUFFER, index, GLuint(blocks_[index]), blockStart_[index], blockSize_[index]);
-            else
-                glBindBufferBase(GL_UNIFORM_BUFFER, index, GLuint(blocks_[index]));
-        }
-    }
-    GlStateGuard(const GlStateGuard&) = delete;
-    GlStateGuard& operator=(const GlStateGuard&) = delete;
-
-private:
-    GLboolean depthTest_;
-    // surface, albedo, environment, pyramid, layers 1-3, their albedos, shading channels, shadow map,
-    // the pyramids of layers 1-3, the clearance map
-    static constexpr int kUnits = 16;
-    static constexpr GLuint kBlocks = 3; // surface, water, rings
-    GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
-    GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
-};
 
 } // namespace
 
@@ -146,6 +93,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.shadowMap = v.shadowMap && !v.caster; // a caster writes depth only
     // Only the exact tracer's shadow walk reads the clearance map.
     v.clearance = v.clearance && !v.caster && v.selfShadows && v.layers == 1 && options.technique == Technique::Hierarchical;
+    v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
+                     options.technique == Technique::Hierarchical;
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -162,7 +111,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_ENVIRONMENT", v.environment ? "1" : "0"},
                                                    {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
                                                    {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"},
-                                                   {"HFX_CLEARANCE", v.clearance ? "1" : "0"}};
+                                                   {"HFX_CLEARANCE", v.clearance ? "1" : "0"},
+                                                   {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("surface/shadowmap.glsl"),
                          shader("trace/common.glsl"),
@@ -269,6 +219,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const bool bounded = material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
                              return !l.traced || l.textures->pyramid() != 0;
                          });
+    // The clearance map and the texel shadows share their light's uniforms: both are read only
+    // where they were derived for the same light (SurfacePipeline derives them so).
+    const std::optional<ClearanceLight>& texelLight = textures.texelShadowLight();
+    const bool clearance = textures.clearanceLight() && (!texelLight || textures.clearanceLight() == texelLight);
     const ShaderProgram& p = program(options, {.shading = material.shading,
                                                .layers = int(layers.size()),
                                                .traced = traced,
@@ -278,7 +232,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                                .rings = material.water.ringCount > 0,
                                                .environment = material.water.environment != 0,
                                                .caster = caster != nullptr,
-                                               .clearance = textures.clearanceLight().has_value()});
+                                               .clearance = clearance,
+                                               .texelShadows = textures.texelShadows() != 0});
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -315,7 +270,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         u.layerLevel[int(i)] = std::log2(l.texcoordScale * float(l.textures->config().width) / base);
         if (!l.traced) u.untracedHeight += l.weight * l.restHeight;
     }
-    if (const auto& c = textures.clearanceLight()) u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
+    if (const auto& c = texelLight ? texelLight : textures.clearanceLight())
+        u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
     if (!caster) receiveShadows(u, light);
     bindUniforms(u, model, caster ? caster->viewProj() : camera.viewProjection());
     if (material.shading == Shading::Water) {
@@ -341,6 +297,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     }
     glBindTextureUnit(3, textures.pyramid());
     glBindTextureUnit(15, textures.clearance());
+    if (layers.size() == 1) glBindTextureUnit(4, textures.texelShadows()); // layer 1's unit, unused here
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();

@@ -19,11 +19,25 @@
 #ifndef HFX_CLEARANCE
 #define HFX_CLEARANCE 0
 #endif
+// HFX_TEXEL_SHADOWS 1: the surface also has the exact self-shadow of the same light at every
+// texel (SurfaceTextures::texelShadows, drawn by hfx::TexelShadowPass with the walk itself);
+// hier's shadow reads it inside cells whose four samples agree. Never in the pass itself.
+#ifndef HFX_TEXEL_SHADOWS
+#define HFX_TEXEL_SHADOWS 0
+#endif
+#ifndef HFX_TEXEL_SPREAD
+#define HFX_TEXEL_SPREAD 0.25
+#endif
 
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 layout(binding = 3) uniform sampler2D s_pyramid; // RG32F: level k texel's (max, min) over the bilinear cells it covers
 #if HFX_CLEARANCE
 layout(binding = 15) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
+#endif
+#if HFX_TEXEL_SHADOWS
+// R32F: the shadow at each sample. Unit 4 is layer 1's surface, which a surface with texel
+// shadows (one layer) never has: the units a GL 4.5 fragment stage surely has are 16.
+layout(binding = 4) uniform sampler2D s_texelShadows;
 #endif
 #if HFX_LAYERS > 1
 layout(binding = 4) uniform sampler2D s_surface1;
@@ -140,6 +154,30 @@ float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
     }
 #endif
     return 1e30;
+}
+
+// The texel shadows (HFX_TEXEL_SHADOWS) for a light ray from p (cell space) of the map's light
+// exactly (its move per climb within the slack, the same penumbra). The walk's shadow is 1 where a
+// blocker stands above the ray (hard shadow) and below 1 elsewhere, continuous in the point
+// there. Where the four samples around p are all in hard shadow, or none is, `shadow` is their
+// bilinear blend and the walk is not needed; where the hard shadow's edge crosses the cell (some
+// samples are in it, some not), false: the ray is walked.
+bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) {
+    shadow = 0.0;
+#if HFX_TEXEL_SHADOWS
+    if (all(lessThanEqual(abs(perClimb - u_clearance.xy), vec2(u_clearance.w))) &&
+        abs(penumbra - u_clearance.z) <= 1e-6 * u_clearance.z) {
+        g_fetches += 1.0;
+        const vec2 cell = floor(p), f = p - cell;
+        // x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)
+        const vec4 s = textureGather(s_texelShadows, (cell + 1.0) / vec2(hfx_size()), 0);
+        const bvec4 hard = equal(s, vec4(1.0));
+        shadow = mix(mix(s.w, s.z, f.x), mix(s.x, s.y, f.x), f.y);
+        const float spread = max(max(s.x, s.y), max(s.z, s.w)) - min(min(s.x, s.y), min(s.z, s.w));
+        return all(hard) || (!any(hard) && spread <= HFX_TEXEL_SPREAD);
+    }
+#endif
+    return false;
 }
 
 // Bounds of the heights the searches read (hfx_height at `level`) anywhere on the texcoord segment

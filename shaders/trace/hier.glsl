@@ -185,6 +185,8 @@ float hfx_shadow(HfxShadowRay ray) {
     const int maxSteps = hfx_max_steps(dir, topLevel);
     const float penumbra = 1.0 / max(ray.sharpness, 1e-3); // r from which on the point is lit
     const float coneSlope = climb * (1.0 - penumbra);        // the cone edge's rise per unit t
+    float known;
+    if (hfx_texel_shadow(p0, ray.span / climb, penumbra, known)) return known;
     int level = 0;
     float cellSize = 1.0, invCellSize = 1.0;
     float t = 0.0;

@@ -109,32 +109,37 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
 
 void AccuracyProbe::useClearance(const AccuracyConfig& config) {
     std::optional<ClearanceLight> light;
-    if (config.shadows && config.clearance && textures().pyramid() != 0) {
+    const ShadowLightOptions options{.clearanceMap = config.clearance, .texelShadows = config.texelShadows};
+    if (config.shadows && (options.clearanceMap || options.texelShadows) && textures().pyramid() != 0) {
         DirectionalLight l;
         l.direction = config.light;
         light = flatSurfaceLight(SurfaceFrame::ofPlane({.size = kPlaneSize}), l, materialOf(config));
     }
-    if (light == clearance_) return;
-    surface_.setShadowLight(light);
+    if (light == clearance_ && (!light || options == lightOptions_)) return;
+    surface_.setShadowLight(light, options);
     surface_.run(field_.buffer());
     clearance_ = light;
+    lightOptions_ = options;
 }
 
 double AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
     useClearance(config);
     if (!clearance_) return 0.0;
     std::vector<double> with, without;
+    // A whole frame of the surface, GL's share included (the texel shadows are a draw).
     auto frame = [&](const std::optional<ClearanceLight>& light) {
-        surface_.setShadowLight(light);
+        surface_.setShadowLight(light, lightOptions_);
+        glFinish();
+        const auto start = std::chrono::steady_clock::now();
         surface_.run(field_.buffer());
-        const StageTimes t = surface_.lastTimes();
-        return t.compute + t.upload;
+        glFinish();
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     };
-    for (int i = -1; i < repeats; ++i) { // one warm-up each: the kernel's build
+    for (int i = -1; i < repeats; ++i) { // one warm-up each: the kernel's and the pass's builds
         const double a = frame(clearance_), b = frame(std::nullopt);
         if (i >= 0) with.push_back(a), without.push_back(b);
     }
-    surface_.setShadowLight(clearance_);
+    surface_.setShadowLight(clearance_, lightOptions_);
     surface_.run(field_.buffer());
     std::sort(with.begin(), with.end());
     std::sort(without.begin(), without.end());

@@ -58,6 +58,15 @@ public:
     /// Forgets the clearance map: nothing reads it until the next upload (the heights changed
     /// and no map was built for them).
     void dropClearance() { clearanceLight_.reset(); }
+    /// The texel shadows' render target (R32F, width x height: the exact self-shadow at each
+    /// sample for one light), made on the first call; hfx::TexelShadowPass draws into it after
+    /// the heights' upload and then calls texelShadowsDrawn() with the light.
+    GLuint texelShadowTarget();
+    /// The texel shadows now hold `light`'s shadows of these heights: the renderer reads them
+    /// for rays of that light. Needs the pyramid (the walk's).
+    void texelShadowsDrawn(const ClearanceLight& light);
+    /// Forgets the texel shadows (the heights changed and none were drawn for them).
+    void dropTexelShadows() { texelShadowLight_.reset(); }
     /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
     /// field), and regenerates its mip chain.
     void uploadAlbedo(const unsigned char* rgba);
@@ -76,6 +85,9 @@ public:
     GLuint clearance() const { return clearance_.id(); } ///< 0 before the first uploadClearance
     /// The light of the current clearance map; empty when there is none to read.
     const std::optional<ClearanceLight>& clearanceLight() const { return clearanceLight_; }
+    /// The texel shadows, 0 when there are none to read, and their light.
+    GLuint texelShadows() const { return texelShadowLight_ ? texelShadows_.id() : 0; }
+    const std::optional<ClearanceLight>& texelShadowLight() const { return texelShadowLight_; }
     GLuint albedo() const { return albedo_.id(); }
     GLuint channels() const { return channels_.id(); }
     const SurfaceTexturesConfig& config() const { return config_; }
@@ -85,8 +97,8 @@ private:
     SurfaceTexturesConfig config_;
     int levels_ = 1;
     int pyramidLevels_ = 0;
-    GlTexture surface_, albedo_, channels_, pyramid_, clearance_;
-    std::optional<ClearanceLight> clearanceLight_;
+    GlTexture surface_, albedo_, channels_, pyramid_, clearance_, texelShadows_;
+    std::optional<ClearanceLight> clearanceLight_, texelShadowLight_;
 };
 
 } // namespace hfx

@@ -50,9 +50,9 @@ public:
     void setMaterial(const SurfaceMaterial& material);
     /// The light the exact tracer's self-shadows come from, where the effect's surface is drawn
     /// flat (flatSurfaceLight; SurfacePipeline::setShadowLight, which needs the pyramid): from
-    /// the next update on each frame also builds the clearance map for it. Empty: none. The
-    /// effect's first surface only (hier draws no layered surface).
-    void setShadowLight(const std::optional<ClearanceLight>& light);
+    /// the next update on each frame also derives what `options` asks for it (the clearance map,
+    /// the texel shadows). Empty: none. The effect's first surface only (hier draws no layered surface).
+    void setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options = {});
     /// The last frame's stage times, over all the effect's surfaces.
     StageTimes lastTimes() const;
     TransferPath transferPath() const { return surface().transferPath(); }

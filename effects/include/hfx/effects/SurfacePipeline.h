@@ -24,6 +24,7 @@
 #include "hfx/compute/HeightSource.h"
 #include "hfx/compute/BoundsPyramid.h"
 #include "hfx/compute/ClearanceMap.h"
+#include "hfx/effects/TexelShadowPass.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/Image.h"
@@ -82,6 +83,20 @@ enum class StageTiming {
     Overlapped, ///< nothing waits before finish(): the compute runs beside whatever GL does
 };
 
+/// What a frame derives for the shadow light (SurfacePipeline::setShadowLight).
+struct ShadowLightOptions {
+    /// Build the clearance map on the device (ClearanceMap): hier's light walks end where it says
+    /// nothing further can darken the point; the same shadows, to the bit.
+    bool clearanceMap = true;
+    /// Draw the texel shadows in GL after the upload (TexelShadowPass): hier's shadow is read
+    /// from the four samples around the point wherever the hard shadow does not change between
+    /// them (within a cell, a hard shadow finer than the samples can be missed; the penumbra is
+    /// their bilinear blend), walked elsewhere. Pays where the texels are fewer than the pixels
+    /// that show them.
+    bool texelShadows = false;
+    bool operator==(const ShadowLightOptions&) const = default;
+};
+
 class SurfacePipeline {
 public:
     SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& config);
@@ -112,10 +127,10 @@ public:
     void run(const cl::Buffer& heights, const cl::Buffer* albedo = nullptr);
 
     /// The light the exact tracer's shadows come from, for a surface drawn flat (one light
-    /// direction in its texture space; ClearanceLight says how to get it): from the next
-    /// derive() on, each frame also builds the clearance map for it (needs the pyramid), which
-    /// shortens the shadow walk and changes nothing it returns. Empty: no map (the default).
-    void setShadowLight(const std::optional<ClearanceLight>& light);
+    /// direction in its texture space; ClearanceLight says how to get it), and what each frame
+    /// derives for it from the next derive() on (both need the pyramid; see ShadowLightOptions).
+    /// Empty: nothing (the default).
+    void setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options = {});
     /// The textures to draw now (they change at each finish(): ask every frame).
     const SurfaceTextures& textures() const { return *textures_[front_]; }
     /// A fixed albedo for both texture pairs (an image of the surface's size, or 1x1).
@@ -141,6 +156,9 @@ private:
     std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setShadowLight
     std::optional<ClearanceLight> light_;      ///< the map's light from the next derive()
     std::optional<ClearanceLight> builtFor_;   ///< the light of this frame's map, if it has one
+    ShadowLightOptions lightOptions_;          ///< what setShadowLight asked for
+    std::optional<ClearanceLight> texelsFor_;  ///< the light of this frame's texel shadows, if any
+    std::unique_ptr<TexelShadowPass> texelPass_; ///< made by the first finish() that needs it
     std::unique_ptr<SurfacePacker> packer_; ///< null for Float32: the normals are the texels
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;

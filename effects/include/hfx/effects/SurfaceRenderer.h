@@ -163,6 +163,10 @@ struct SurfaceVariant {
     /// HFX_CLEARANCE: hier's self-shadows with the surface's clearance map (SurfaceTextures::
     /// clearanceLight; rays of other lights walk without it)
     bool clearance = false;
+    /// HFX_TEXEL_SHADOWS: hier's self-shadows with the surface's texel shadows (SurfaceTextures::
+    /// texelShadowLight, TexelShadowPass): a ray of their light walks only where the hard shadow
+    /// changes between the four samples around its point
+    bool texelShadows = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 

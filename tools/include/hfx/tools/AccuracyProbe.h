@@ -42,6 +42,9 @@ struct AccuracyConfig {
     /// With shadows: the surface carries a clearance map for the light, as a scene's flat surface
     /// does (SurfacePipeline::setShadowLight); the exact tracer's shadow walk stops where it says.
     bool clearance = true;
+    /// With shadows: the surface carries the texel shadows of the light (ShadowLightOptions::
+    /// texelShadows); hier walks only where the hard shadow changes between the samples.
+    bool texelShadows = false;
     /// Shadow comparison skips points whose exact shadow changes within this many texels (the
     /// texel the boundary falls in, where a hit a little off flips it), and points in the
     /// penumbra band: the light ray is clear, but the cone edge (the ray lowered by
@@ -83,9 +86,9 @@ public:
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
     /// config's angle (the plane fills the view; clear and glFinish included).
     double timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats);
-    /// Median milliseconds that building the clearance map for config's light adds to a frame of
-    /// the surface's compute and upload (StageTiming::Staged frames with and without it,
-    /// interleaved). 0 where config asks for none.
+    /// Median milliseconds that building the clearance map and drawing the texel shadows for
+    /// config's light, where config asks for them, add to a whole frame of the surface (compute,
+    /// upload and GL's work; frames with and without, interleaved). 0 where it asks for neither.
     double timeClearance(const AccuracyConfig& config, int repeats);
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
@@ -104,7 +107,8 @@ private:
     std::unique_ptr<RenderTarget> target_;
     Image lastFrame_;
     Mesh plane_, timedPlane_;
-    std::optional<ClearanceLight> clearance_; ///< the light the surface's map is built for
+    std::optional<ClearanceLight> clearance_; ///< the light the surface's map or texel shadows are for
+    ShadowLightOptions lightOptions_;         ///< ... and which of them it has
 };
 
 } // namespace hfx

@@ -1,0 +1,34 @@
+#pragma once
+// The texel shadows of a flat surface under one light: the exact tracer's self-shadow (shaders/
+// trace/hier.glsl's walk, run by shaders/surface/texelshadows.frag) from every sample of the
+// field at its own height, towards the light, into the surface's texel-shadow texture. A shadow
+// depends on the point, not on the pixel that sees it: where a texel covers many pixels, each
+// pixel's walk repeats its neighbours'. The renderer then walks only the light rays from cells
+// where the hard shadow's edge passes between the four samples, and blends the samples
+// elsewhere. SurfacePipeline runs it each frame where setShadowLight asks for texel shadows.
+//
+// Thread: the thread whose GL context is current.
+
+#include "hfx/core/ClearanceLight.h"
+#include "hfx/core/GlObject.h"
+#include "hfx/core/ShaderProgram.h"
+#include "hfx/core/SurfaceTextures.h"
+
+namespace hfx {
+
+class TexelShadowPass {
+public:
+    TexelShadowPass(); ///< builds the programs
+    /// Draws `textures`' texel shadows for `light` (the walks read the textures' clearance map
+    /// where it is built for the same light) and marks them drawn. Throws hfx::Error without a
+    /// pyramid or for an invalid light. Restores the GL state it changes.
+    void draw(SurfaceTextures& textures, const ClearanceLight& light);
+
+private:
+    ShaderProgram programs_[2]; ///< [1]: the walks read the clearance map
+    GlFramebuffer framebuffer_;
+    GlVertexArray empty_;
+    GlBuffer block_;
+};
+
+} // namespace hfx

@@ -1,0 +1,61 @@
+#include "hfx/effects/TexelShadowPass.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/effects/SurfaceUniforms.h"
+
+#include "GlStateGuard.h"
+
+namespace hfx {
+
+namespace {
+ShaderProgram texelProgram(bool clearance) {
+    return ShaderProgram({surfaceShader("sky.vert")},
+                         {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"),
+                          surfaceShader("trace/common.glsl"), surfaceShader("trace/hier.glsl"),
+                          surfaceShader("surface/texelshadows.frag")},
+                         {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", clearance ? "1" : "0"}, {"HFX_TEXEL_SHADOWS", "0"}});
+}
+} // namespace
+
+TexelShadowPass::TexelShadowPass()
+    : programs_{texelProgram(false), texelProgram(true)}, framebuffer_(GlFramebuffer::create()),
+      empty_(GlVertexArray::create()) {}
+
+void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& light) {
+    if (!textures.pyramid())
+        throw Error("TexelShadowPass::draw: the surface needs its height pyramid (SurfaceOptions::pyramid)");
+    light.validate();
+    const bool clearance = textures.clearanceLight() == light;
+    const SurfaceTexturesConfig& config = textures.config();
+    const GLuint target = textures.texelShadowTarget();
+    GlStateGuard guard;
+    GLint savedDraw = 0, savedViewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &savedDraw);
+    glGetIntegerv(GL_VIEWPORT, savedViewport);
+
+    HFX_GL_CHECK(glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, target, 0));
+    const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.id(), GL_DRAW_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error(str("TexelShadowPass: the ", config.width, "x", config.height,
+                        " R32F target is incomplete (status 0x", std::hex, status, ")"));
+    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
+                      .wrap = {wrapsU(config.edges) ? 1 : 0, wrapsV(config.edges) ? 1 : 0},
+                      .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
+    updateBlock(block_, 0, u);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_.id());
+    glViewport(0, 0, config.width, config.height);
+    glDisable(GL_DEPTH_TEST);
+    programs_[clearance ? 1 : 0].use();
+    glBindTextureUnit(0, textures.surface());
+    glBindTextureUnit(3, textures.pyramid());
+    glBindTextureUnit(15, clearance ? textures.clearance() : 0);
+    glBindVertexArray(empty_.id());
+    HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
+
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(savedDraw));
+    glViewport(savedViewport[0], savedViewport[1], savedViewport[2], savedViewport[3]);
+    textures.texelShadowsDrawn(light);
+}
+
+} // namespace hfx

@@ -1,0 +1,23 @@
+#version 450 core
+// The texel shadows of a flat surface under one light (hfx::TexelShadowPass): one fragment per
+// sample of the field, the exact tracer's self-shadow (trace/hier.glsl's hfx_shadow, the walk
+// every pixel would make) of a light ray from the sample at its own height, towards the light
+// the surface's clearance map was built for (u_clearance: texcoords per unit climbed, penumbra).
+// Composed after surface/uniforms.glsl, surface/heights.glsl, trace/common.glsl and
+// trace/hier.glsl, with HFX_CLEARANCE 1 (the walks read the map) and HFX_TEXEL_SHADOWS 0.
+// Sample (i, j) sits at texcoords ((i, j) + 0.5) / size, the viewport is the field's size.
+
+layout(location = 0) out vec4 o_shadow;
+
+void main() {
+    const ivec2 texel = ivec2(gl_FragCoord.xy);
+    const ivec2 size = hfx_size();
+    HfxShadowRay ray;
+    ray.h0 = texelFetch(s_surface, texel, 0).w;
+    ray.uv = (vec2(texel) + 0.5) / vec2(size);
+    ray.span = u_clearance.xy * (1.0 - ray.h0);
+    ray.level = 0.0;
+    ray.samples = 0;
+    ray.sharpness = 1.0 / u_clearance.z;
+    o_shadow = vec4(ray.h0 < 1.0 ? hfx_shadow(ray) : 0.0, 0.0, 0.0, 1.0);
+}
