@@ -128,7 +128,9 @@ def time_vs_fetches(path, out):
     pom = {(r["map"], r["angle"]): r for r in rows if r["technique"] == "pom"}
     # The default: full effort, with the clearance map (files written before it had no column).
     hier = [r for r in rows if r["technique"] == "hier" and float(r["pixel_budget"]) == 0.0
-            and r.get("clearance_map", "1") == "1"]
+            and r.get("clearance_map", "1") == "1" and r.get("texel_shadows", "0") == "0"]
+    # hier reading the texel shadows of the light (no clearance map), where the file has them.
+    texels = [r for r in rows if r["technique"] == "hier" and r.get("texel_shadows", "0") == "1"]
     maps = ordered(r["map"] for r in hier)
     colors = {m: f"C{i}" for i, m in enumerate(maps)}
 
@@ -142,8 +144,15 @@ def time_vs_fetches(path, out):
                      edgecolors=colors[m], label=f"{m}: mean fetches")
         left.scatter([ratio(r, "fetches_lanes8") for r in mine], [ratio(r, "ms") for r in mine], color=colors[m],
                      label=f"{m}: 8 lanes in lockstep")
+        read = [r for r in texels if r["map"] == m]
+        if read:
+            left.scatter([ratio(r, "fetches_lanes8") for r in read], [ratio(r, "ms") for r in read], color=colors[m],
+                         marker="^", label=f"{m}: with texel shadows, 8 lanes")
         right.plot([float(r["angle"]) for r in mine], [ratio(r, "fetches_lanes32") for r in mine], marker="o",
                    color=colors[m], label=m)
+        if read:
+            right.plot([float(r["angle"]) for r in read], [ratio(r, "fetches_lanes32") for r in read], marker="^",
+                       linestyle="--", color=colors[m], label=f"{m}, texel shadows")
     top = 3.6
     left.plot([0.5, top], [0.5, top], color="grey", linestyle=":", label="time in proportion to fetches")
     for ax in (left, right):

@@ -170,6 +170,9 @@ HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray)); }
 // 1 / sharpness, only cells that could set it lower are opened (the cone edge rises to the ray
 // lowered by r of its climb), and the walk ends where the cone edge passes the field's maximum
 // (the pyramid's top texel), or sooner where a clearance map says nothing further can darken it.
+// Where the caller has this walk's shadow at the field's samples for the ray's light (texel
+// shadows, hfx_texel_shadow) and the four around the point agree on the hard shadow, their blend
+// is returned without a walk.
 const float HFX_SHADOW_EPSILON = 1e-4; // relief depths: above the rounding of h0 and of the patch
 const float HFX_PENUMBRA_MAX = 0.999;   // 1 means a blocker above the ray, nothing less
 
