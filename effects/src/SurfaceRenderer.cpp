@@ -45,8 +45,6 @@ float varianceFloor(SurfaceFormat format) {
     return format == SurfaceFormat::Float32 ? 0.0f : format == SurfaceFormat::Float16 ? 1e-3f : 8e-3f;
 }
 
-
-
 } // namespace
 
 void SurfaceMaterial::validate() const {
