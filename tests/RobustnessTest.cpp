@@ -1,17 +1,21 @@
 // Bad input at the module's entry points: each call is refused with a message naming the
 // problem, and the object it was made on is left exactly as it was.
 
+#include "support/Fields.h"
 #include "support/Fixtures.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
+#include "hfx/compute/StaticField.h"
 #include "hfx/effects/DecalWallEffect.h"
 #include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/ImageSurface.h"
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
+#include "hfx/effects/SurfacePipeline.h"
+#include "hfx/effects/TexelShadowPass.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -51,6 +55,48 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
         EXPECT_EQ(effect->material(), material);
     }
     EXPECT_EQ(water.time(), 0.02);
+}
+
+TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsNeverOutliveTheirHeights) {
+    // The clearance map and the texel shadows are the pyramid's walk: a surface without one
+    // refuses them by name. A bad light is refused before anything is drawn, and a frame drawn
+    // without texel shadows drops the last ones (they belong to other heights).
+    constexpr int N = 32;
+    const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}});
+    const ClearanceLight light = ClearanceLight::of({0.05f, 0.02f}, 2.0f);
+    ClearanceLight bad = light;
+    bad.penumbra = 2.0f;
+    StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
+    SurfacePipeline flat(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = false}));
+    std::string m = messageOf([&] { flat.setShadowLight(light, {.clearanceMap = false, .texelShadows = true}); });
+    EXPECT_NE(m.find("height pyramid"), std::string::npos) << m;
+    TexelShadowPass pass;
+    // The test owns these pipelines: their textures are ours to hand to the pass.
+    SurfaceTextures& flatTextures = const_cast<SurfaceTextures&>(flat.textures());
+    m = messageOf([&] { pass.draw(flatTextures, light); });
+    EXPECT_NE(m.find("height pyramid"), std::string::npos) << m;
+
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    SurfaceTextures& untouched = const_cast<SurfaceTextures&>(surface.textures());
+    m = messageOf([&] { untouched.texelShadowsDrawn(light); });
+    EXPECT_NE(m.find("no texel shadows were drawn"), std::string::npos) << m;
+    EXPECT_EQ(untouched.texelShadows(), 0u);
+    m = messageOf([&] { surface.setShadowLight(bad, {.clearanceMap = false, .texelShadows = true}); });
+    EXPECT_NE(m.find("ClearanceLight.penumbra"), std::string::npos) << m;
+    surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = true});
+    surface.run(field.buffer());
+    SurfaceTextures& drawn = const_cast<SurfaceTextures&>(surface.textures());
+    ASSERT_NE(drawn.texelShadows(), 0u);
+    EXPECT_EQ(drawn.texelShadowLight(), light);
+    EXPECT_FALSE(drawn.clearanceLight()) << "no clearance map was asked for";
+    m = messageOf([&] { pass.draw(drawn, bad); });
+    EXPECT_NE(m.find("ClearanceLight.penumbra"), std::string::npos) << m;
+    EXPECT_EQ(drawn.texelShadowLight(), light);
+    surface.setShadowLight(std::nullopt);
+    surface.run(field.buffer());
+    surface.run(field.buffer()); // both texture pairs have had a frame without
+    EXPECT_EQ(surface.textures().texelShadows(), 0u);
+    EXPECT_FALSE(surface.textures().texelShadowLight());
 }
 
 TEST_F(Robustness, BadMaterialsDrawNothing) {
