@@ -21,8 +21,7 @@ void Scene::applyOptions(const SceneOptions& o) {
     if (o.pixelBudget >= 0.0f) m.pixelBudget = o.pixelBudget;
     effect().setMaterial(m);
     technique = o.technique;
-    clearanceMap = o.clearanceMap;
-    texelShadows = o.texelShadows;
+    shadowLight = o.shadowLight;
 }
 
 Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const {
@@ -31,10 +30,10 @@ Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const Direction
 
 void Scene::prepareShadowLight() {
     std::optional<ClearanceLight> light;
-    if ((clearanceMap || texelShadows) && technique == Technique::Hierarchical)
+    if ((shadowLight.clearanceMap || shadowLight.texelShadows) && technique == Technique::Hierarchical)
         if (const std::optional<FlatSurface> flat = flatSurface())
             light = flatSurfaceLight(flat->frame, flat->light, effect().material());
-    effect().setShadowLight(light, {.clearanceMap = clearanceMap, .texelShadows = texelShadows});
+    effect().setShadowLight(light, shadowLight);
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {

@@ -27,14 +27,13 @@ struct SceneOptions {
     bool shadows = true;
     float lodThreshold = 4.0f;
     float pixelBudget = -1.0f;         ///< SurfaceMaterial::pixelBudget (-1: the scene's default)
-    /// A flat surface drawn by hier builds a clearance map for its light each frame
-    /// (Effect::setShadowLight): shorter shadow walks, the same shadows. Off by default: on
-    /// PoCL the decal wall's build (25 ms at 512², 140 at 1024²) costs more than its draw saves.
-    bool clearanceMap = false;
-    /// A flat surface drawn by hier draws its texel shadows for its light each frame
-    /// (TexelShadowPass): its pixels walk their light rays only where a hard shadow's edge
-    /// passes between the samples around them.
-    bool texelShadows = false;
+    /// What a flat surface drawn by hier derives for its light each frame (Effect::
+    /// setShadowLight): the clearance map (shorter shadow walks, the same shadows) and the texel
+    /// shadows (pixels walk their light rays only where a hard shadow's edge passes between the
+    /// samples around them). Both off by default: on the decal wall, whose field changes every
+    /// frame, the map's build (25 ms at 512², 140 at 1024²) costs more than the draw saves, and
+    /// the texel pass breaks even at 512² and loses at 1024² (docs/BENCHMARKS.md).
+    ShadowLightOptions shadowLight{.clearanceMap = false, .texelShadows = false};
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -116,15 +115,15 @@ public:
     virtual std::optional<FlatSurface> flatSurface() const { return std::nullopt; }
     /// The frame of a makePlane(plane) drawn with model(), under `light`.
     FlatSurface planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const;
-    bool clearanceMap = false; ///< SceneOptions::clearanceMap
-    bool texelShadows = false; ///< SceneOptions::texelShadows
+    ShadowLightOptions shadowLight{.clearanceMap = false, .texelShadows = false}; ///< SceneOptions::shadowLight
 
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).
     void drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light);
-    /// Hands the effect the light its clearance map is built for: a flat surface's under hier
-    /// (clearanceMap on), else none. Every frame, before the update: the material, the light or
-    /// the technique may have changed, and an effect may have rebuilt its pipeline.
+    /// Hands the effect the light its clearance map and texel shadows are derived for: a flat
+    /// surface's under hier (where shadowLight asks for either), else none. Every frame, before
+    /// the update: the material, the light or the technique may have changed, and an effect may
+    /// have rebuilt its pipeline.
     void prepareShadowLight();
     /// The command line's overrides of the effect's material (samples, depth, shadows, LOD) and
     /// its technique.

@@ -199,12 +199,10 @@ int main(int argc, char** argv) {
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
-    bool clearanceMap = false;
-    app.add_flag("--clearance-map", clearanceMap,
+    app.add_flag("--clearance-map", s.shadowLight.clearanceMap,
                  "flat surfaces drawn by hier (decals, noise, maps) build a clearance map for their light each frame: "
                  "the same shadows in shorter walks (on PoCL the decal wall's build costs more than its draw saves)");
-    bool texelShadows = false;
-    app.add_flag("--texel-shadows", texelShadows,
+    app.add_flag("--texel-shadows", s.shadowLight.texelShadows,
                  "flat surfaces drawn by hier (decals, noise, maps) draw their self-shadow at every texel each frame "
                  "(TexelShadowPass): pixels walk their light ray only where a hard shadow's edge crosses their cell");
     app.add_option("--surface-format", o.surfaceFormat,
@@ -273,8 +271,6 @@ int main(int argc, char** argv) {
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
     s.shadows = !noShadows;
-    s.clearanceMap = clearanceMap;
-    s.texelShadows = texelShadows;
     if (s.maxSamples > 0 && s.minSamples > 0 && s.maxSamples < s.minSamples) {
         std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n", s.maxSamples,
                      s.minSamples);

@@ -143,13 +143,11 @@ TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFet
     // shorten the shadow walks: the same image to the bit, fewer fetches.
     const DecalWallConfig config{.bricks = {.size = 128}, .surface = {.pyramid = true}};
     DecalWallEffect plain(cl(), config), mapped(cl(), config);
-    const glm::mat4 model = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
-    const PlaneConfig planeConfig{.size = 4.0f, .texcoordScale = 2.0f};
-    const Mesh plane(makePlane(planeConfig));
+    const Mesh plane(makePlane(kWall));
     DirectionalLight light;
     light.direction = {-0.8f, 0.55f, 0.45f};
     const std::optional<ClearanceLight> clearance =
-        flatSurfaceLight(SurfaceFrame::ofPlane(planeConfig, model), light, mapped.material());
+        flatSurfaceLight(SurfaceFrame::ofPlane(kWall, kWallModel), light, mapped.material());
     ASSERT_TRUE(clearance);
     mapped.setShadowLight(clearance);
     for (DecalWallEffect* wall : {&plain, &mapped}) {
@@ -167,7 +165,7 @@ TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFet
     auto draw = [&](const DecalWallEffect& wall) {
         target.bind();
         target.clear();
-        renderer.draw(plane, model, wall.textures(), wall.material(), camera, light,
+        renderer.draw(plane, kWallModel, wall.textures(), wall.material(), camera, light,
                       {.technique = Technique::Hierarchical, .traceOutput = true});
         return std::pair{target.readColor(), target.readTrace()};
     };

@@ -18,15 +18,15 @@ ShaderProgram texelProgram(bool clearance) {
 }
 } // namespace
 
-TexelShadowPass::TexelShadowPass()
-    : programs_{texelProgram(false), texelProgram(true)}, framebuffer_(GlFramebuffer::create()),
-      empty_(GlVertexArray::create()) {}
+TexelShadowPass::TexelShadowPass() : framebuffer_(GlFramebuffer::create()), empty_(GlVertexArray::create()) {}
 
 void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& light) {
     if (!textures.pyramid())
         throw Error("TexelShadowPass::draw: the surface needs its height pyramid (SurfaceOptions::pyramid)");
     light.validate();
     const bool clearance = textures.clearanceLight() == light;
+    std::optional<ShaderProgram>& program = programs_[clearance ? 1 : 0];
+    if (!program) program = texelProgram(clearance);
     const SurfaceTexturesConfig& config = textures.config();
     const GLuint target = textures.texelShadowTarget();
     GlStateGuard guard;
@@ -46,7 +46,7 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_.id());
     glViewport(0, 0, config.width, config.height);
     glDisable(GL_DEPTH_TEST);
-    programs_[clearance ? 1 : 0].use();
+    program->use();
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(3, textures.pyramid());
     glBindTextureUnit(15, clearance ? textures.clearance() : 0);

@@ -19,9 +19,10 @@
 #ifndef HFX_CLEARANCE
 #define HFX_CLEARANCE 0
 #endif
-// HFX_TEXEL_SHADOWS 1: the surface also has the exact self-shadow of the same light at every
-// texel (SurfaceTextures::texelShadows, drawn by hfx::TexelShadowPass with the walk itself);
-// hier's shadow reads it inside cells whose four samples agree. Never in the pass itself.
+// HFX_TEXEL_SHADOWS 1: the surface has the exact self-shadow of its light at every sample
+// (SurfaceTextures::texelShadows, drawn by hfx::TexelShadowPass with the walk itself); hier's
+// shadow reads it inside cells whose four samples agree. Never in the pass itself. Its light and
+// the clearance map's, where both are read, are one (u_clearance).
 #ifndef HFX_TEXEL_SHADOWS
 #define HFX_TEXEL_SHADOWS 0
 #endif
@@ -143,12 +144,17 @@ vec2 hfx_bounds(ivec2 cell, int level) {
     return texelFetch(s_pyramid, hfx_pyramid_texel(cell, max(hfx_size() >> level, ivec2(1)) - 1), level).rg;
 }
 
+// A light ray moving perClimb texcoords per unit of height climbed goes the way of the surface's
+// shadow light (u_clearance: its move per climb, penumbra, slack), within its slack.
+bool hfx_along_shadow_light(vec2 perClimb) {
+    return all(lessThanEqual(abs(perClimb - u_clearance.xy), vec2(u_clearance.w)));
+}
+
 // The clearance map's climb for a light ray from `cell` (trace/README.md): read only for rays of
 // the map's light (their move per climb within its slack, a penumbra no wider), else no limit.
 float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
 #if HFX_CLEARANCE
-    if (all(lessThanEqual(abs(perClimb - u_clearance.xy), vec2(u_clearance.w))) &&
-        penumbra <= u_clearance.z * (1.0 + 1e-6)) {
+    if (hfx_along_shadow_light(perClimb) && penumbra <= u_clearance.z * (1.0 + 1e-6)) {
         g_fetches += 1.0;
         return texelFetch(s_clearance, hfx_pyramid_texel(cell, hfx_size() - 1), 0).r;
     }
@@ -156,8 +162,8 @@ float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
     return 1e30;
 }
 
-// The texel shadows (HFX_TEXEL_SHADOWS) for a light ray from p (cell space) of the map's light
-// exactly (its move per climb within the slack, the same penumbra). The walk's shadow is 1 where a
+// The texel shadows (HFX_TEXEL_SHADOWS) for a light ray from p (cell space) of their light (its
+// move per climb within the slack, the same penumbra: the samples hold that penumbra's shadow). The walk's shadow is 1 where a
 // blocker stands above the ray (hard shadow) and below 1 elsewhere, continuous in the point
 // there. Where the four samples around p are all in hard shadow, or none is, `shadow` is their
 // bilinear blend and the walk is not needed; where the hard shadow's edge crosses the cell (some
@@ -165,8 +171,7 @@ float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
 bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) {
     shadow = 0.0;
 #if HFX_TEXEL_SHADOWS
-    if (all(lessThanEqual(abs(perClimb - u_clearance.xy), vec2(u_clearance.w))) &&
-        abs(penumbra - u_clearance.z) <= 1e-6 * u_clearance.z) {
+    if (hfx_along_shadow_light(perClimb) && abs(penumbra - u_clearance.z) <= 1e-6 * u_clearance.z) {
         g_fetches += 1.0;
         const vec2 cell = floor(p), f = p - cell;
         // x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)

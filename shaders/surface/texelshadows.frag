@@ -1,10 +1,10 @@
 #version 450 core
 // The texel shadows of a flat surface under one light (hfx::TexelShadowPass): one fragment per
 // sample of the field, the exact tracer's self-shadow (trace/hier.glsl's hfx_shadow, the walk
-// every pixel would make) of a light ray from the sample at its own height, towards the light
-// the surface's clearance map was built for (u_clearance: texcoords per unit climbed, penumbra).
-// Composed after surface/uniforms.glsl, surface/heights.glsl, trace/common.glsl and
-// trace/hier.glsl, with HFX_CLEARANCE 1 (the walks read the map) and HFX_TEXEL_SHADOWS 0.
+// every pixel would make) of a light ray from the sample at its own height, towards the pass's
+// light (u_clearance: texcoords per unit climbed, penumbra). Composed after surface/uniforms.glsl,
+// surface/heights.glsl, trace/common.glsl and trace/hier.glsl, with HFX_TEXEL_SHADOWS 0 and
+// HFX_CLEARANCE 1 where the surface has a clearance map for the same light (the walks read it).
 // Sample (i, j) sits at texcoords ((i, j) + 0.5) / size, the viewport is the field's size.
 
 layout(location = 0) out vec4 o_shadow;

@@ -24,12 +24,12 @@
 #include "hfx/compute/HeightSource.h"
 #include "hfx/compute/BoundsPyramid.h"
 #include "hfx/compute/ClearanceMap.h"
-#include "hfx/effects/TexelShadowPass.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/PixelBuffer.h"
 #include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/TexelShadowPass.h"
 #include "hfx/effects/TransferPath.h"
 
 #include <memory>

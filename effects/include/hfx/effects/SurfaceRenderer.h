@@ -121,7 +121,7 @@ struct DirectionalLight {
 /// The light as the exact tracer's shadow rays see it on a flat surface: its texture frame in
 /// world space (SurfaceFrame::ofPlane for a makePlane mesh and its model matrix), the light and
 /// the material, as shaders/surface.frag derives each ray. What SurfacePipeline::setShadowLight
-/// takes to build the clearance map. Empty where no shadow ray is traced (the light at or below
+/// takes to derive the clearance map and the texel shadows. Empty where no shadow ray is traced (the light at or below
 /// the surface's plane, no self-shadows, no depth).
 std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
                                                const SurfaceMaterial& material);

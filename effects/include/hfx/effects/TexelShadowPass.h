@@ -14,18 +14,22 @@
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
 
+#include <optional>
+
 namespace hfx {
 
 class TexelShadowPass {
 public:
-    TexelShadowPass(); ///< builds the programs
+    TexelShadowPass();
     /// Draws `textures`' texel shadows for `light` (the walks read the textures' clearance map
     /// where it is built for the same light) and marks them drawn. Throws hfx::Error without a
     /// pyramid or for an invalid light. Restores the GL state it changes.
     void draw(SurfaceTextures& textures, const ClearanceLight& light);
 
 private:
-    ShaderProgram programs_[2]; ///< [1]: the walks read the clearance map
+    /// [1]: the walks read the clearance map; each built by its first draw (a surface with texel
+    /// shadows and no map never compiles the other).
+    std::optional<ShaderProgram> programs_[2];
     GlFramebuffer framebuffer_;
     GlVertexArray empty_;
     GlBuffer block_;
