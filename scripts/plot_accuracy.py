@@ -166,7 +166,8 @@ def time_vs_fetches(path, out):
     right.set_xlabel("view angle from the normal (degrees)")
     right.set_ylabel("hier's fetches over POM's, 8x4 blocks in lockstep")
     right.set_title("what a 32-lane GPU warp would wait for")
-    left.legend(fontsize=7)
+    left.set_ylim(0.5, top + 1.2)  # room above the points for the legend
+    left.legend(fontsize=6, loc="upper left", ncol=2)
     right.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=90)
