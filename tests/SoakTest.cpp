@@ -1,5 +1,7 @@
-// Long runs: each user for HFX_SOAK_STEPS updates (default 20,000) with random parameter changes
-// and stamp storms. Nothing may go NaN or leave [0,1], and memory must stay flat: the resident set
+// Long runs: each user for HFX_SOAK_STEPS updates (default 20,000; the planet 8,000: each of its
+// updates is a gas step of some 40 kernel launches, about 20 ms alone on two cores against 5-8 ms
+// for the others, and at 20,000 its soak alone set the test run's wall time, 12.7 minutes) with
+// random parameter changes and stamp storms. Nothing may go NaN or leave [0,1], and memory must stay flat: the resident set
 // at the end is within a bound of the one after warm-up (both printed; scripts/soak.sh shows
 // them).
 
@@ -30,9 +32,9 @@ long residentKiB() {
     return -1;
 }
 
-int soakSteps() {
+int soakSteps(int userDefault) {
     const char* env = std::getenv("HFX_SOAK_STEPS");
-    return env ? std::max(100, std::atoi(env)) : 20000;
+    return env ? std::max(100, std::atoi(env)) : userDefault;
 }
 
 /// Every texel finite, heights in [0,1], normals unit length.
@@ -50,8 +52,8 @@ void checkField(const SurfaceTextures& textures, const char* what, int step) {
 class Soak : public DeviceTest {
 protected:
     template <typename Effect, typename Disturb>
-    void soak(const char* what, Effect& effect, const Mesh& mesh, Disturb&& disturb) {
-        const int steps = soakSteps();
+    void soak(const char* what, int defaultSteps, Effect& effect, const Mesh& mesh, Disturb&& disturb) {
+        const int steps = soakSteps(defaultSteps);
         RenderTarget target(160, 90);
         SurfaceRenderer renderer;
         const Camera camera = Camera::orbit({0, 0, 0}, 3.0f, 0.4f, 0.4f);
@@ -83,7 +85,7 @@ TEST_F(Soak, OceanWithWindChanges) {
     OceanEffect ocean(cl(), {.ocean = {.size = 128, .cascades = 2, .cascadeRatio = 2.6f}});
     SplitMix64 random(11);
     const Mesh plane(makePlane({.size = 8.0f, .texcoordScale = 2.0f}));
-    soak("ocean", ocean, plane, [&](int step) {
+    soak("ocean", 20000, ocean, plane, [&](int step) {
         if (step % 50 == 0) ocean.setWind(float(random.uniform(1.0, 40.0)), float(random.uniform(-3.2, 3.2)));
     });
 }
@@ -96,7 +98,7 @@ TEST_F(Soak, DecalWallUnderStampStorms) {
     DecalWallEffect wall(cl(), {.bricks = {.size = 128}, .damage = damage});
     SplitMix64 random(12);
     const Mesh plane(makePlane({.size = 4.0f, .texcoordScale = 2.0f}));
-    soak("decals", wall, plane, [&](int step) {
+    soak("decals", 20000, wall, plane, [&](int step) {
         const int burst = step % 97 == 0 ? 3000 : 20;
         std::vector<ImpactEvent> holes(static_cast<size_t>(burst));
         for (ImpactEvent& h : holes)
@@ -119,7 +121,7 @@ TEST_F(Soak, GasPlanetWithStorms) {
                                   .stormsPerSecond = 6.0f});
     SplitMix64 random(13);
     const Mesh sphere(makeSphere({.segments = 32, .rings = 16}));
-    soak("planet", planet, sphere, [&](int step) {
+    soak("planet", 8000, planet, sphere, [&](int step) {
         if (step % 40 == 0) planet.addStorm(float(random.next()), float(random.uniform(0.05, 0.95)), random.next() < 0.5);
     });
 }
