@@ -4,6 +4,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cmath>
+#include <vector>
 
 namespace hfx {
 
@@ -30,6 +31,45 @@ Camera Camera::orbit(glm::vec3 target, float distance, float azimuth, float elev
                                                 std::sin(elevation),
                                                 std::cos(elevation) * std::cos(azimuth));
     return c;
+}
+
+namespace {
+
+/// Sutherland-Hodgman: the part of `polygon` where distance(point) >= 0 (a plane's signed
+/// distance, linear in the point, so the crossing is where it interpolates to 0).
+template <typename Distance>
+std::vector<glm::dvec4> clipPolygon(const std::vector<glm::dvec4>& polygon, Distance&& distance) {
+    std::vector<glm::dvec4> out;
+    for (size_t i = 0; i < polygon.size(); ++i) {
+        const glm::dvec4& a = polygon[i];
+        const glm::dvec4& b = polygon[(i + 1) % polygon.size()];
+        const double da = distance(a), db = distance(b);
+        if (da >= 0.0) out.push_back(a);
+        if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+    }
+    return out;
+}
+
+} // namespace
+
+double screenArea(std::span<const glm::vec3> polygon, const glm::mat4& viewProjection, int width, int height) {
+    const glm::dmat4 m(viewProjection);
+    std::vector<glm::dvec4> clip;
+    for (const glm::vec3& p : polygon) clip.push_back(m * glm::dvec4(glm::dvec3(p), 1.0));
+    // In clip space, before the divide, so a polygon through the camera's plane clips right: the
+    // near plane, then the image's four edges (-w <= x, y <= w, which also leave w > 0 only).
+    clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.z + c.w; });
+    clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w - c.x; });
+    clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w + c.x; });
+    clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w - c.y; });
+    clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w + c.y; });
+    double twiceArea = 0.0; // in normalized device coordinates (the image is 2 x 2)
+    for (size_t i = 0; i < clip.size(); ++i) {
+        const glm::dvec4& a = clip[i];
+        const glm::dvec4& b = clip[(i + 1) % clip.size()];
+        twiceArea += a.x / a.w * (b.y / b.w) - b.x / b.w * (a.y / a.w);
+    }
+    return std::abs(twiceArea) * 0.5 * (0.25 * double(width) * double(height));
 }
 
 } // namespace hfx

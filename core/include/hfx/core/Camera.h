@@ -6,6 +6,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <span>
+
 namespace hfx {
 
 struct Ray {
@@ -33,5 +35,10 @@ struct Camera {
     /// and `azimuth` radians around +Y.
     static Camera orbit(glm::vec3 target, float distance, float azimuth, float elevation);
 };
+
+/// The pixels of a width x height image that a convex planar polygon (world space, its corners
+/// in order) covers under `viewProjection`: clipped at the near plane and at the image's edges,
+/// either side facing. 0 where it is behind the camera or off the image.
+double screenArea(std::span<const glm::vec3> polygon, const glm::mat4& viewProjection, int width, int height);
 
 } // namespace hfx

@@ -1,0 +1,97 @@
+// The camera's screen area of a polygon (what the demo weighs the texel shadows' pass against):
+// against the analytic area of a square facing the camera, and against counting the pixels whose
+// centre ray meets the polygon, for quads crossing the near plane and the image's edges.
+
+#include "hfx/core/Camera.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+
+namespace hfx::test {
+namespace {
+
+constexpr int kWidth = 320, kHeight = 180;
+
+Camera lookingDownMinusZ() {
+    Camera c;
+    c.position = {0.0f, 0.0f, 0.0f};
+    c.target = {0.0f, 0.0f, -1.0f};
+    c.aspect = float(kWidth) / float(kHeight);
+    return c;
+}
+
+std::array<glm::vec3, 4> square(glm::vec3 centre, float half) {
+    return {centre + glm::vec3(-half, -half, 0.0f), centre + glm::vec3(half, -half, 0.0f),
+            centre + glm::vec3(half, half, 0.0f), centre + glm::vec3(-half, half, 0.0f)};
+}
+
+/// Pixel centres whose ray meets the convex quad (corners in order, one plane).
+int pixelsHit(const Camera& camera, const std::array<glm::vec3, 4>& quad) {
+    const glm::dvec3 a(quad[0]), n = glm::normalize(glm::cross(glm::dvec3(quad[1]) - a, glm::dvec3(quad[2]) - a));
+    int count = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, kWidth, kHeight);
+            const double denominator = glm::dot(ray.direction, n);
+            if (std::abs(denominator) < 1e-12) continue;
+            const double t = glm::dot(a - ray.origin, n) / denominator;
+            if (t <= camera.nearPlane) continue;
+            const glm::dvec3 p = ray.origin + ray.direction * t;
+            bool inside = true;
+            for (int i = 0; i < 4; ++i) {
+                const glm::dvec3 e0(quad[i]), e1(quad[(i + 1) % 4]);
+                if (glm::dot(glm::cross(e1 - e0, p - e0), n) < 0.0) inside = false;
+            }
+            count += inside;
+        }
+    return count;
+}
+
+TEST(ScreenArea, ASquareFacingTheCameraCoversItsProjectedArea) {
+    const Camera camera = lookingDownMinusZ();
+    const float distance = 5.0f, half = 0.5f;
+    const double t = std::tan(camera.fovY / 2.0);
+    const double hy = half / (distance * t), hx = hy / camera.aspect; // half extents in NDC
+    const double expected = hx * hy * kWidth * kHeight;
+    const auto quad = square({0.0f, 0.0f, -distance}, half);
+    EXPECT_NEAR(screenArea(quad, camera.viewProjection(), kWidth, kHeight), expected, 1e-6 * expected);
+    // Shifted right by its own half width in NDC terms: the image's edge cuts off half of it.
+    const float shift = float(1.0 * distance * t * camera.aspect); // NDC x = 1
+    const auto halfOff = square({shift, 0.0f, -distance}, half);
+    EXPECT_NEAR(screenArea(halfOff, camera.viewProjection(), kWidth, kHeight), expected / 2.0, 1e-4 * expected);
+}
+
+TEST(ScreenArea, AQuadLargerThanTheViewCoversTheWholeImageAndOneBehindTheCameraNothing) {
+    const Camera camera = lookingDownMinusZ();
+    EXPECT_NEAR(screenArea(square({0.0f, 0.0f, -2.0f}, 50.0f), camera.viewProjection(), kWidth, kHeight),
+                double(kWidth) * kHeight, 1e-6 * kWidth * kHeight);
+    EXPECT_EQ(screenArea(square({0.0f, 0.0f, 3.0f}, 1.0f), camera.viewProjection(), kWidth, kHeight), 0.0);
+    EXPECT_EQ(screenArea(square({40.0f, 0.0f, -2.0f}, 1.0f), camera.viewProjection(), kWidth, kHeight), 0.0);
+}
+
+TEST(ScreenArea, AgreesWithThePixelsWhoseRayMeetsAQuadThroughTheNearPlaneAndTheEdges) {
+    // An orbiting camera over floors that run from behind it to past the image's edges, and a
+    // tilted quad: the area counted by rays agrees within the pixels along the outline.
+    const Camera camera = [] {
+        Camera c = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.0f, 0.4f, 0.5f);
+        c.aspect = float(kWidth) / float(kHeight);
+        return c;
+    }();
+    const std::array<glm::vec3, 4> quads[] = {
+        {glm::vec3(-2, 0, 2), glm::vec3(2, 0, 2), glm::vec3(2, 0, -2), glm::vec3(-2, 0, -2)},     // in view
+        {glm::vec3(-20, 0, 20), glm::vec3(20, 0, 20), glm::vec3(20, 0, -20), glm::vec3(-20, 0, -20)}, // past it
+        {glm::vec3(-1, -1, 0), glm::vec3(1.5f, -0.5f, 0.3f), glm::vec3(1, 1, 0.5f), glm::vec3(-1.5f, 0.5f, 0.2f)},
+    };
+    for (const auto& quad : quads) {
+        const double area = screenArea(quad, camera.viewProjection(), kWidth, kHeight);
+        const int hits = pixelsHit(camera, quad);
+        ASSERT_GT(hits, 1000);
+        EXPECT_NEAR(area, double(hits), 0.01 * hits) << "quad from (" << quad[0].x << ", " << quad[0].z << ")";
+    }
+}
+
+} // namespace
+} // namespace hfx::test
