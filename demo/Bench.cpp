@@ -1,9 +1,10 @@
 // hfx-demo bench: the frame budget of every scene, measured in one run. For each scene at two
-// field sizes: per-stage medians (field step, normals, pyramid/colours, transfer to GL, draw with
-// POM, POM without shadows, normal mapping and the scene's own technique where that is not POM
-// (hier: what the decal and planet scenes ship with), interleaved frame by frame so a noisy
-// neighbour hits them alike), frames per second, the ratios issue 7 asks for, and the process's peak
-// resident memory. Then the scaling of the water frame with field size and output resolution.
+// field sizes (the noise scene at three): per-stage medians (field step, normals, pyramid/colours,
+// transfer to GL, draw with POM, POM without shadows, normal mapping and the scene's own technique
+// where that is not POM (hier: what the decal, planet and noise scenes ship with), interleaved
+// frame by frame so a noisy neighbour hits them alike), frames per second, the ratios issue 7 asks
+// for, the process's peak resident memory and whether the flat scenes drew texel shadows. Then the
+// scaling of the water frame with field size and output resolution.
 
 #include "Scene.h"
 #include "Timing.h"
@@ -114,13 +115,15 @@ int runBench(const SceneOptions& options, int width, int height, int frames, con
     std::printf("OpenCL: %s\n\n", cl.description().c_str());
 
     std::printf("| scene | field | step | normals | pyramid/extra | upload | POM draw | POM no shadows | NM draw | "
-                "frame | fps | POM/NM | compute+upload share | overlapped frame | peak RSS MiB | own technique draw |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "frame | fps | POM/NM | compute+upload share | overlapped frame | peak RSS MiB | own technique draw | "
+                "texel shadows |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     RenderTarget target(width, height);
     target.bind();
-    for (const char* name : {"water", "decals", "planet"})
-        for (int size : {512, 1024}) {
-            if (!wanted(name)) continue;
+    for (const char* name : {"water", "decals", "planet", "noise"})
+        for (int size : {256, 512, 1024}) {
+            // The noise scene from its own default size (256²), the others from 512².
+            if (!wanted(name) || (size == 256 && std::string(name) != "noise")) continue;
             SceneOptions o = options;
             o.fieldSize = size;
             // The pyramid (hier) is built each frame, so its cost shows; the ocean as shipped has
@@ -130,16 +133,23 @@ int runBench(const SceneOptions& options, int width, int height, int frames, con
             o.height = height;
             auto scene = makeScene(name, cl, o);
             const Budget b = measure(*scene, target, frames);
+            // The texel shadows drawn or not in measure()'s frames (their pass is in the upload,
+            // their reads in hier's draw; sequentialAndOverlapped draws POM) and the pixels per
+            // texel that chose it: the surface's quad on this image over the field's texels.
+            char texels[64] = "-";
+            if (scene->pixelsPerTexel() > 0.0)
+                std::snprintf(texels, sizeof texels, "%s (%.2f px/texel)", scene->texelShadowsDrawn() ? "on" : "off",
+                              scene->pixelsPerTexel());
             const auto [sequential, overlapped] = sequentialAndOverlapped(*scene, target, frames);
             const auto& config = scene->effect().textures().config();
             char ownDraw[64] = "(POM)";
             if (b.own > 0.0) std::snprintf(ownDraw, sizeof ownDraw, "%s %.2f", techniqueName(o.technique), b.own);
             std::printf("| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2fx | %.1f%% | "
-                        "%.1f (%.1f sequential) | %ld | %s |\n",
+                        "%.1f (%.1f sequential) | %ld | %s | %s |\n",
                         name, config.width, config.height, b.field, b.normals, b.extra, b.upload, b.pom,
                         b.unshadowed, b.nm, b.frame(), 1000.0 / b.frame(), b.pom / b.nm,
                         100.0 * (b.compute() + b.upload) / b.frame(), overlapped, sequential, peakResidentMiB(),
-                        ownDraw);
+                        ownDraw, texels);
             std::fflush(stdout);
         }
 

@@ -3,6 +3,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Image.h"
+#include "hfx/effects/TexelShadowPass.h"
 
 #include <algorithm>
 #include <bit>
@@ -21,19 +22,36 @@ void Scene::applyOptions(const SceneOptions& o) {
     if (o.pixelBudget >= 0.0f) m.pixelBudget = o.pixelBudget;
     effect().setMaterial(m);
     technique = o.technique;
-    shadowLight = o.shadowLight;
+    clearanceMap = o.clearanceMap;
+    texelShadows = o.texelShadows;
+    imageWidth_ = o.width;
+    imageHeight_ = o.height;
 }
 
 Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const {
-    return {SurfaceFrame::ofPlane(plane, model()), light};
+    const glm::mat4 m = model();
+    const float h = 0.5f * plane.size;
+    auto corner = [&](float x, float z) { return glm::vec3(m * glm::vec4(x, 0.0f, z, 1.0f)); };
+    return {SurfaceFrame::ofPlane(plane, m), light, {corner(-h, h), corner(h, h), corner(h, -h), corner(-h, -h)}};
 }
 
 void Scene::prepareShadowLight() {
+    ShadowLightOptions options{.clearanceMap = clearanceMap, .texelShadows = false};
     std::optional<ClearanceLight> light;
-    if ((shadowLight.clearanceMap || shadowLight.texelShadows) && technique == Technique::Hierarchical)
-        if (const std::optional<FlatSurface> flat = flatSurface())
+    pixelsPerTexel_ = 0.0;
+    const std::optional<FlatSurface> flat = technique == Technique::Hierarchical ? flatSurface() : std::nullopt;
+    if (flat) {
+        const SurfaceTexturesConfig& field = effect().textures().config();
+        const double texels = double(field.width) * field.height;
+        const double pixels = screenArea(flat->corners, camera_.viewProjection(), imageWidth_, imageHeight_);
+        pixelsPerTexel_ = pixels / texels;
+        options.texelShadows = texelShadows == TexelShadowChoice::On ||
+                               (texelShadows == TexelShadowChoice::Auto && texelShadowsPay(pixels, texels, texelShadowsOn_));
+        if (options.clearanceMap || options.texelShadows)
             light = flatSurfaceLight(flat->frame, flat->light, effect().material());
-    effect().setShadowLight(light, shadowLight);
+    }
+    texelShadowsOn_ = options.texelShadows;
+    effect().setShadowLight(light, options);
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {

@@ -11,6 +11,7 @@
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/tools/ShotList.h"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <memory>
@@ -18,6 +19,12 @@
 #include <vector>
 
 namespace hfx::demo {
+
+enum class TexelShadowChoice {
+    Auto, ///< where texelShadowsPay says they pay, frame by frame
+    On,
+    Off,
+};
 
 struct SceneOptions {
     int fieldSize = 0;                 ///< 0: the scene's default
@@ -28,12 +35,14 @@ struct SceneOptions {
     float lodThreshold = 4.0f;
     float pixelBudget = -1.0f;         ///< SurfaceMaterial::pixelBudget (-1: the scene's default)
     /// What a flat surface drawn by hier derives for its light each frame (Effect::
-    /// setShadowLight): the clearance map (shorter shadow walks, the same shadows) and the texel
-    /// shadows (pixels walk their light rays only where a hard shadow's edge passes between the
-    /// samples around them). Both off by default: on the decal wall, whose field changes every
-    /// frame, the map's build (25 ms at 512², 140 at 1024²) costs more than the draw saves, and
-    /// the texel pass breaks even at 512² and loses at 1024² (docs/BENCHMARKS.md).
-    ShadowLightOptions shadowLight{.clearanceMap = false, .texelShadows = false};
+    /// setShadowLight). The clearance map (shorter shadow walks, the same shadows) is off by
+    /// default: on the decal wall, whose field changes every frame, its build (25 ms at 512², 140
+    /// at 1024²) costs more than the draw saves (docs/BENCHMARKS.md).
+    bool clearanceMap = false;
+    /// The texel shadows (pixels walk their light rays only where a hard shadow's edge passes
+    /// between the samples around them): by default wherever they pay (texelShadowsPay, from
+    /// the surface's pixels on this frame's image and its field's texels).
+    TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -111,24 +120,35 @@ public:
     struct FlatSurface {
         SurfaceFrame frame;
         DirectionalLight light;
+        std::array<glm::vec3, 4> corners; ///< the quad drawn, world space, in order
     };
     virtual std::optional<FlatSurface> flatSurface() const { return std::nullopt; }
     /// The frame of a makePlane(plane) drawn with model(), under `light`.
     FlatSurface planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const;
-    ShadowLightOptions shadowLight{.clearanceMap = false, .texelShadows = false}; ///< SceneOptions::shadowLight
+    bool clearanceMap = false;                                ///< SceneOptions::clearanceMap
+    TexelShadowChoice texelShadows = TexelShadowChoice::Auto; ///< SceneOptions::texelShadows
+    /// Whether this frame's field has texel shadows (the last prepareShadowLight's choice), and
+    /// the flat surface's pixels per field texel it was made from (0 where not flat or not hier).
+    bool texelShadowsDrawn() const { return texelShadowsOn_; }
+    double pixelsPerTexel() const { return pixelsPerTexel_; }
 
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).
     void drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light);
     /// Hands the effect the light its clearance map and texel shadows are derived for: a flat
-    /// surface's under hier (where shadowLight asks for either), else none. Every frame, before
-    /// the update: the material, the light or the technique may have changed, and an effect may
-    /// have rebuilt its pipeline.
+    /// surface's under hier (where either is asked for or, for the texel shadows, pays on this
+    /// image), else none. Every frame, before the update: the material, the light, the camera
+    /// or the technique may have changed, and an effect may have rebuilt its pipeline.
     void prepareShadowLight();
     /// The command line's overrides of the effect's material (samples, depth, shadows, LOD) and
     /// its technique.
     void applyOptions(const SceneOptions& options);
     Camera camera_;
+
+private:
+    int imageWidth_ = 1280, imageHeight_ = 720; ///< SceneOptions::width, height
+    bool texelShadowsOn_ = false;
+    double pixelsPerTexel_ = 0.0;
 };
 
 /// A scene whose surface takes impacts through routeImpact (water, planet): a click fires a

@@ -199,12 +199,16 @@ int main(int argc, char** argv) {
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
-    app.add_flag("--clearance-map", s.shadowLight.clearanceMap,
+    app.add_flag("--clearance-map", s.clearanceMap,
                  "flat surfaces drawn by hier (decals, noise, maps) build a clearance map for their light each frame: "
                  "the same shadows in shorter walks (on PoCL the decal wall's build costs more than its draw saves)");
-    app.add_flag("--texel-shadows", s.shadowLight.texelShadows,
+    bool texelShadowsOn = false, texelShadowsOff = false;
+    app.add_flag("--texel-shadows", texelShadowsOn,
                  "flat surfaces drawn by hier (decals, noise, maps) draw their self-shadow at every texel each frame "
-                 "(TexelShadowPass): pixels walk their light ray only where a hard shadow's edge crosses their cell");
+                 "(TexelShadowPass): pixels walk their light ray only where a hard shadow's edge crosses their cell; "
+                 "by default they do wherever the surface shows on two pixels or more per texel, where the pass pays");
+    app.add_flag("--no-texel-shadows", texelShadowsOff, "never draw the texel shadows (every pixel walks its light ray)")
+        ->excludes("--texel-shadows");
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
@@ -271,6 +275,7 @@ int main(int argc, char** argv) {
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
     s.shadows = !noShadows;
+    s.texelShadows = texelShadowsOn ? TexelShadowChoice::On : texelShadowsOff ? TexelShadowChoice::Off : TexelShadowChoice::Auto;
     if (s.maxSamples > 0 && s.minSamples > 0 && s.maxSamples < s.minSamples) {
         std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n", s.maxSamples,
                      s.minSamples);

@@ -211,6 +211,29 @@ TEST(Demo, TheClearanceMapLeavesTheFlatScenesFramesAsTheyWere) {
     }
 }
 
+TEST(Demo, TheTexelShadowsAreDrawnByDefaultWhereTheSurfaceHasFewerTexelsThanPixels) {
+    // The noise plane covers most of a 320x180 image: a 64² field shows on about ten pixels per
+    // texel (the texel shadows pay), a 256² one on well under one (they do not). The default
+    // frame is the forced one's, to the byte, and the two forced frames differ (so the
+    // comparison can tell them apart).
+    for (const auto& [field, pays] : {std::pair{64, true}, std::pair{256, false}}) {
+        const std::string args = "noise --headless --frames 2 --width 320 --height 180 --field " + std::to_string(field) +
+                                 " --out ";
+        std::string frames[3];
+        const char* flags[3] = {"", " --texel-shadows", " --no-texel-shadows"};
+        for (int k = 0; k < 3; ++k) {
+            const std::string dir = outputPath("demo_auto_texels_" + std::to_string(field) + "_" + std::to_string(k));
+            std::filesystem::remove_all(dir);
+            const Result r = runDemo(args + dir + flags[k]);
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+            frames[k] = readBytes(dir + "/noise_0001.png");
+        }
+        EXPECT_FALSE(frames[1] == frames[2]) << field << "²: the texel shadows change nothing here";
+        EXPECT_TRUE(frames[0] == frames[pays ? 1 : 2])
+            << field << "²: the default frame is not the one " << (pays ? "with" : "without") << " texel shadows";
+    }
+}
+
 TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
     // --texel-shadows reads hier's self-shadow from the texel shadows where the hard shadow does
     // not change between samples (the penumbra blended): the decal wall's and the noise plane's
@@ -221,7 +244,8 @@ TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
         const std::string a = outputPath("demo_texels_" + scene + "_a"), b = outputPath("demo_texels_" + scene + "_b"),
                           c = outputPath("demo_texels_" + scene + "_c");
         for (const auto& dir : {a, b, c}) std::filesystem::remove_all(dir);
-        for (const auto& [dir, flags] : {std::pair{a, ""}, std::pair{b, " --texel-shadows"}, std::pair{c, " --no-shadows"}}) {
+        for (const auto& [dir, flags] : {std::pair{a, " --no-texel-shadows"}, std::pair{b, " --texel-shadows"},
+                                         std::pair{c, " --no-shadows"}}) {
             const Result r = runDemo(args + dir + flags);
             ASSERT_EQ(r.exitCode, 0) << r.output;
         }
@@ -248,8 +272,9 @@ TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
                     "%.3f%%)\n", scene.c_str(), mean, 100.0 * far, meanOff, 100.0 * farOff);
         EXPECT_LE(mean, 0.25) << scene;
         EXPECT_LE(far, 0.002) << scene;
-        if (scene == "decals")
+        if (scene == "decals") {
             EXPECT_GT(meanOff, 10.0 * std::max(mean, 0.05)) << scene << ": the comparison could not tell shadows apart";
+        }
     }
 }
 
@@ -412,7 +437,7 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
                              "water --wind-speed -4", "water --depth-scale 2", "water --lod-threshold -1",
                              "water --dt 0", "water --field 100", "decals --shots /no/such/shots.txt",
                              "decals --normal-map n.png",  /* a normal map without a height map */ "water --environment /no/such/sky.exr",
-                             "planet --field 4", "water --height 9"}) {
+                             "planet --field 4", "water --height 9", "noise --texel-shadows --no-texel-shadows"}) {
         const Result r = runDemo(std::string(args) + " --headless");
         EXPECT_NE(r.exitCode, 0) << args;
         EXPECT_FALSE(r.output.empty()) << args << " printed nothing";
@@ -437,7 +462,8 @@ TEST(Demo, HelpListsTheOptions) {
                                "--height", "--dt", "--field", "--technique", "--samples-min", "--samples-max",
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
-                               "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format", "water", "decals", "planet",
+                               "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format",
+                               "--clearance-map", "--texel-shadows", "--no-texel-shadows", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }

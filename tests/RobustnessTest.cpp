@@ -99,6 +99,18 @@ TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsNeverOutliveTheirHei
     EXPECT_FALSE(surface.textures().texelShadowLight());
 }
 
+TEST(TexelShadowsPay, FromEnoughPixelsPerTexelHeldOnJustBelowAndNeverOnBadCounts) {
+    const double texels = 256.0 * 256.0;
+    EXPECT_TRUE(texelShadowsPay(1.8 * texels, texels, false));
+    EXPECT_FALSE(texelShadowsPay(1.6 * texels, texels, false)); // the decal wall at 512²: even
+    EXPECT_TRUE(texelShadowsPay(1.6 * texels, texels, true));   // held on near the line
+    EXPECT_FALSE(texelShadowsPay(1.4 * texels, texels, true));
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const auto& [pixels, count] : {std::pair{nan, texels}, std::pair{1e6, nan}, std::pair{1e6, 0.0},
+                                        std::pair{-1.0, texels}, std::pair{1e6, -5.0}})
+        EXPECT_FALSE(texelShadowsPay(pixels, count, true)) << pixels << " pixels, " << count << " texels";
+}
+
 TEST_F(Robustness, BadMaterialsDrawNothing) {
     SineWavesEffect water(cl(), {.waves = {.size = 64}});
     RenderTarget target(64, 64);

@@ -18,6 +18,11 @@ ShaderProgram texelProgram(bool clearance) {
 }
 } // namespace
 
+bool texelShadowsPay(double pixels, double texels, bool drawing) {
+    if (!(texels > 0.0) || !(pixels >= 0.0)) return false;
+    return pixels >= (drawing ? 1.5 : 1.75) * texels;
+}
+
 TexelShadowPass::TexelShadowPass() : framebuffer_(GlFramebuffer::create()), empty_(GlVertexArray::create()) {}
 
 void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& light) {

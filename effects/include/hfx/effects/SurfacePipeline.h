@@ -92,7 +92,7 @@ struct ShadowLightOptions {
     /// from the four samples around the point wherever the hard shadow does not change between
     /// them (within a cell, a hard shadow finer than the samples can be missed; the penumbra is
     /// their bilinear blend), walked elsewhere. Pays where the texels are fewer than the pixels
-    /// that show them.
+    /// that show them (texelShadowsPay).
     bool texelShadows = false;
     bool operator==(const ShadowLightOptions&) const = default;
 };

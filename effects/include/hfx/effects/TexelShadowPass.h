@@ -18,6 +18,16 @@
 
 namespace hfx {
 
+/// Whether drawing the texel shadows pays for a surface whose field has `texels` samples and
+/// shows on `pixels` screen pixels (screenArea of its quad; a repeating surface counts every
+/// copy): the pass walks every sample once, and each pixel then walks only where a hard shadow's
+/// edge crosses its cell. On llvmpipe they broke even at about 1.6 pixels per texel (the decal
+/// wall at 512²), paid at 1.8 and more and lost at 0.4-0.45 (the demo's scenes at 256² to 1024²,
+/// docs/BENCHMARKS.md): true from 1.75 pixels per texel. `drawing` is the last frame's answer:
+/// once on, they stay on down to 1.5, so a camera near the line does not switch them (and the
+/// frame's look, slightly) every frame.
+bool texelShadowsPay(double pixels, double texels, bool drawing);
+
 class TexelShadowPass {
 public:
     TexelShadowPass();
