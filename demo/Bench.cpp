@@ -7,11 +7,11 @@
 // scaling of the water frame with field size and output resolution.
 
 #include "Scene.h"
-#include "Timing.h"
 
 #include "hfx/core/Gl.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/core/RenderTarget.h"
+#include "hfx/tools/Timing.h"
 
 #include <algorithm>
 #include <chrono>

@@ -7,7 +7,6 @@
 // and reads it as the module's receivers do (3x3 taps of 2x2 comparison, bias and normal offset
 // of 1.5 map texels).
 
-#include "Timing.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
@@ -19,6 +18,7 @@
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/ShadowMap.h"
 #include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/tools/Timing.h"
 
 #include <glm/gtc/type_ptr.hpp>
 

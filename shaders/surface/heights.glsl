@@ -163,9 +163,9 @@ float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
 }
 
 // The texel shadows (HFX_TEXEL_SHADOWS) for a light ray from p (cell space) of their light (its
-// move per climb within the slack, the same penumbra: the samples hold that penumbra's shadow). The walk's shadow is 1 where a
-// blocker stands above the ray (hard shadow) and below 1 elsewhere, continuous in the point
-// there. Where the four samples around p are all in hard shadow, or none is, `shadow` is their
+// move per climb within the slack, the same penumbra: the samples hold that penumbra's shadow).
+// The walk's shadow is 1 where a blocker stands above the ray (hard shadow) and below 1
+// elsewhere, continuous in the point there. Where the four samples around p are all in hard shadow, or none is, `shadow` is their
 // bilinear blend and the walk is not needed; where the hard shadow's edge crosses the cell (some
 // samples are in it, some not), false: the ray is walked.
 bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) {

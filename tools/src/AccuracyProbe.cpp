@@ -3,11 +3,11 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
+#include "hfx/tools/Timing.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -129,11 +129,7 @@ double AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
     // A whole frame of the surface, GL's share included (the texel shadows are a draw).
     auto frame = [&](const std::optional<ClearanceLight>& light) {
         surface_.setShadowLight(light, lightOptions_);
-        glFinish();
-        const auto start = std::chrono::steady_clock::now();
-        surface_.run(field_.buffer());
-        glFinish();
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        return timeMs([&] { surface_.run(field_.buffer()); });
     };
     for (int i = -1; i < repeats; ++i) { // one warm-up each: the kernel's and the pass's builds
         const double a = frame(clearance_), b = frame(std::nullopt);
@@ -141,9 +137,7 @@ double AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
     }
     surface_.setShadowLight(clearance_, lightOptions_);
     surface_.run(field_.buffer());
-    std::sort(with.begin(), with.end());
-    std::sort(without.begin(), without.end());
-    return with[with.size() / 2] - without[without.size() / 2];
+    return median(with) - median(without);
 }
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
@@ -276,17 +270,14 @@ double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
     std::vector<double> times;
     for (int i = -1; i < repeats; ++i) { // one warm-up draw builds the shader
         target.bind();
-        glFinish();
-        const auto start = std::chrono::steady_clock::now();
-        target.clear();
-        renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), material, camera, light, {.technique = technique});
-        glFinish();
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const double ms = timeMs([&] {
+            target.clear();
+            renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), material, camera, light, {.technique = technique});
+        });
         if (i >= 0) times.push_back(ms);
     }
     lastFrame_ = target.readColor();
-    std::sort(times.begin(), times.end());
-    return times[times.size() / 2];
+    return median(times);
 }
 
 } // namespace hfx

@@ -1,6 +1,7 @@
 #pragma once
-// Timing for the demo's benchmarks: GL work bracketed by glFinish, and medians (this machine is
-// shared and noisy; medians of interleaved runs are what the benchmarks report).
+// Timing for the benchmarks (the demo's and the accuracy probe's): GL work bracketed by glFinish,
+// and medians (this machine is shared and noisy; medians of interleaved runs are what the
+// benchmarks report).
 
 #include "hfx/core/Gl.h"
 
@@ -8,7 +9,7 @@
 #include <chrono>
 #include <vector>
 
-namespace hfx::demo {
+namespace hfx {
 
 inline double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
@@ -25,4 +26,4 @@ double timeMs(F&& f) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-} // namespace hfx::demo
+} // namespace hfx
