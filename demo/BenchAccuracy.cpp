@@ -176,15 +176,17 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
         bool clearance;
         const char* name;
         bool texels = false;
+        bool beam = true;
     };
     const Variant variants[] = {{Technique::ParallaxOcclusion, 0.0f, true, "pom"},
                                 {Technique::Hierarchical, 0.0f, true, "hier"},
                                 {Technique::Hierarchical, 0.0f, false, "hier, no map"},
                                 {Technique::Hierarchical, 1.0f, true, "hier 1px"},
-                                {Technique::Hierarchical, 0.0f, false, "hier, texel shadows", true}};
+                                {Technique::Hierarchical, 0.0f, false, "hier, texel shadows", true},
+                                {Technique::Hierarchical, 0.0f, false, "hier, texel shadows, no beam start", true, false}};
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,clearance_map,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
-           "fetches_lanes32,map_build_ms,texel_shadows_ms\n";
+           "fetches_lanes32,map_build_ms,texel_shadows_ms,beam_start\n";
     std::printf("%s, field %dx%d, 1280x720, median of %d interleaved draws.\n"
                 "hier draws with the clearance map for the light; 'no map' without it; 'texels' with the texel shadows\n"
                 "of the light instead (no map). map ms, texels ms: what building the map, drawing the texel shadows\n"
@@ -192,9 +194,9 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
                 "Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in the shader\n"
                 "(192x192, the same angle): the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
                 "blocks (a 32-lane GPU warp) each run as long as their longest pixel. Ratios are hier's over pom's.\n\n"
-                "| map | angle | pom ms | hier ms | hier / pom | no map / pom | hier 1px / pom | texels / pom | map ms "
-                "| texels ms | fetches pom, hier, no map, texels | fetches | 8 lanes | 32 lanes | ms per 8-lane fetch |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", gl->description().c_str(), field, field, rounds);
+                "| map | angle | pom ms | hier ms | hier / pom | no map / pom | hier 1px / pom | texels / pom | texels, no beam / pom | map ms "
+                "| texels ms | fetches pom, hier, no map, texels, no beam | fetches | 8 lanes | 32 lanes | ms per 8-lane fetch |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", gl->description().c_str(), field, field, rounds);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
@@ -204,7 +206,7 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
         for (double angle : {0.0, 45.0, 70.0, 80.0}) {
             auto configOf = [&](const Variant& v) {
                 return AccuracyConfig{.angleDegrees = angle, .shadows = true, .light = light, .pixelBudget = v.pixelBudget,
-                                      .clearance = v.clearance, .texelShadows = v.texels};
+                                      .clearance = v.clearance, .texelShadows = v.texels, .beamStart = v.beam};
             };
             std::vector<std::vector<double>> times(std::size(variants));
             for (const Variant& v : variants) probe.timeDraw(v.technique, configOf(v), 1280, 720, 1); // shaders built, caches warm
@@ -226,12 +228,13 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
                     << "," << (variants[i].technique == Technique::Hierarchical && variants[i].clearance ? 1 : 0) << ","
                     << (variants[i].texels ? 1 : 0) << ",soft," << median[i] << "," << median[i] / pom << ","
                     << counts[i].fetches << "," << counts[i].fetchesLanes8 << "," << counts[i].fetchesLanes32 << ","
-                    << mapMs << "," << texelMs << "\n";
-            const AccuracyResult &p = counts[0], &h = counts[1], &n = counts[2], &x = counts[4];
-            std::printf("| %s | %.0f | %.1f | %.1f | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f | %.1f, %.1f, %.1f, %.1f "
-                        "| %.2fx | %.2fx | %.2fx | %.2fx |\n",
+                    << mapMs << "," << texelMs << "," << (variants[i].beam ? 1 : 0) << "\n";
+            const AccuracyResult &p = counts[0], &h = counts[1], &n = counts[2], &x = counts[4], &b = counts[5];
+            std::printf("| %s | %.0f | %.1f | %.1f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f | %.1f, %.1f, %.1f, %.1f, "
+                        "%.1f | %.2fx | %.2fx | %.2fx | %.2fx |\n",
                         map.name.c_str(), angle, pom, median[1], median[1] / pom, median[2] / pom, median[3] / pom,
-                        median[4] / pom, mapMs, texelMs, p.fetches, h.fetches, n.fetches, x.fetches, h.fetches / p.fetches,
+                        median[4] / pom, median[5] / pom, mapMs, texelMs, p.fetches, h.fetches, n.fetches, x.fetches,
+                        b.fetches, h.fetches / p.fetches,
                         h.fetchesLanes8 / p.fetchesLanes8,
                         h.fetchesLanes32 / p.fetchesLanes32, (median[1] / h.fetchesLanes8) / (pom / p.fetchesLanes8));
             std::fflush(stdout);

@@ -25,6 +25,8 @@
 //   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap): the view ray is the light's
 //                     (u_lightDir reversed), u_viewProj the light's; only the traced depth is
 //                     written, nothing is shaded
+//   HFX_BEAM_START    1 when the exact tracer's rays start where the renderer's beam prepass
+//                     (surface/beam.frag) found for their block of HFX_BEAM_BLOCK pixels
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction
@@ -47,6 +49,9 @@
 #ifndef HFX_SHADOW_CASTER
 #define HFX_SHADOW_CASTER 0
 #endif
+#ifndef HFX_BEAM_START
+#define HFX_BEAM_START 0
+#endif
 
 in vec3 v_worldPos;
 in vec3 v_normal;
@@ -61,6 +66,9 @@ layout(location = 1) out vec4 o_trace;
 
 layout(binding = 1) uniform sampler2D s_albedo;
 layout(binding = 10) uniform sampler2D s_channels; // roughness, ambient occlusion (layer 0's)
+#if HFX_BEAM_START
+layout(binding = 5) uniform sampler2D s_beamStart; // a single layer's; unit 5 is layer 2's surface
+#endif
 #if HFX_LAYERS > 1
 layout(binding = 7) uniform sampler2D s_albedo1;
 #endif
@@ -172,6 +180,11 @@ void main() {
         const float rayPixels = hfx_screen_pixels(ray.parallax, dx, dy);
         ray.tolerance = rayPixels > 0.0 ? u_pixelBudget / rayPixels : 0.0;
         ray.samples = hfx_budget_samples(ray.samples, rayPixels);
+#if HFX_BEAM_START
+        ray.start = texelFetch(s_beamStart, ivec2(gl_FragCoord.xy) / HFX_BEAM_BLOCK, 0).r;
+#else
+        ray.start = 0.0;
+#endif
         const HfxHit hit = hfx_trace(ray);
         // Level of detail: within one mip level of the threshold, fade the parallax out so the
         // change to normal mapping is not seen as a seam.

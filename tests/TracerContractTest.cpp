@@ -155,6 +155,7 @@ void main() { // a: uv, parallax; b: cos, level, samples, tolerance
     ray.level = b.y;
     ray.samples = int(b.z);
     ray.tolerance = b.w;
+    ray.start = 0.0;
     const HfxHit hit = hfx_trace(ray);
     hits[i] = vec4(hit.uv, hit.depth, 0.0);
 }

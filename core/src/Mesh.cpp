@@ -2,6 +2,9 @@
 
 #include "hfx/core/Error.h"
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -75,9 +78,31 @@ MeshData makeSphere(const SphereConfig& config) {
     return mesh;
 }
 
+bool isFlatPatch(const MeshData& data) {
+    if (data.vertices.empty()) return false;
+    const Vertex& first = data.vertices.front();
+    double extent = 0.0;
+    for (const Vertex& v : data.vertices)
+        extent = std::max(extent, double(glm::length(v.position - first.position)));
+    const double tolerance = 1e-5 * std::max(extent, 1e-6);
+    const auto same = [&](glm::vec3 a, glm::vec3 b) {
+        return double(glm::length(a - b)) <= 1e-5 * std::max(double(glm::length(b)), 1e-6);
+    };
+    for (const Vertex& v : data.vertices) {
+        if (!same(v.normal, first.normal) || !same(v.tangent, first.tangent) || !same(v.bitangent, first.bitangent))
+            return false;
+        const glm::dvec2 d = glm::dvec2(v.texcoord) - glm::dvec2(first.texcoord);
+        const glm::dvec3 placed = glm::dvec3(first.position) + glm::dvec3(first.tangent) * d.x +
+                                  glm::dvec3(first.bitangent) * d.y;
+        if (!(glm::length(placed - glm::dvec3(v.position)) <= tolerance)) return false;
+    }
+    return true;
+}
+
 Mesh::Mesh(const MeshData& data)
     : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
-      vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())) {
+      vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())),
+      flatPatch_(isFlatPatch(data)) {
     if (data.vertices.empty() || data.indices.empty() || data.indices.size() % 3 != 0)
         throw Error(str("mesh needs triangles, got ", data.vertices.size(), " vertices and ",
                         data.indices.size(), " indices"));

@@ -58,7 +58,8 @@ public:
 
 private:
     GLboolean depthTest_;
-    // surface, albedo, environment, pyramid, layers 1-3 (a single layer's texel shadows on 4),
+    // surface, albedo, environment, pyramid, layers 1-3 (a single layer's texel shadows on 4, its beam
+    // start on 5),
     // their albedos, shading channels, shadow map, the pyramids of layers 1-3, the clearance map
     static constexpr int kUnits = 16;
     static constexpr GLuint kBlocks = 3; // surface, water, rings

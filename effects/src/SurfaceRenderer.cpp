@@ -93,6 +93,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.clearance = v.clearance && !v.caster && v.selfShadows && v.layers == 1 && options.technique == Technique::Hierarchical;
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
+    v.beamStart = v.beamStart && !v.caster && v.layers == 1 && options.technique == Technique::Hierarchical;
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -110,7 +111,9 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
                                                    {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"},
                                                    {"HFX_CLEARANCE", v.clearance ? "1" : "0"},
-                                                   {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"}};
+                                                   {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
+                                                   {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
+                                                   {"HFX_BEAM_BLOCK", std::to_string(kBeamBlock)}};
         ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
                         {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("surface/shadowmap.glsl"),
                          shader("trace/common.glsl"),
@@ -221,6 +224,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     // where they were derived for the same light (SurfacePipeline derives them so).
     const std::optional<ClearanceLight>& texelLight = textures.texelShadowLight();
     const bool clearance = textures.clearanceLight() && (!texelLight || textures.clearanceLight() == texelLight);
+    // The beam start holds only where a block's rays meet one plane in one frame at one depth.
+    const bool beam = options.beamStart && options.technique == Technique::Hierarchical && !caster &&
+                      layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
+                      material.depthScale > 0.0f;
     const ShaderProgram& p = program(options, {.shading = material.shading,
                                                .layers = int(layers.size()),
                                                .traced = traced,
@@ -231,7 +238,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                                .environment = material.water.environment != 0,
                                                .caster = caster != nullptr,
                                                .clearance = clearance,
-                                               .texelShadows = textures.texelShadows() != 0});
+                                               .texelShadows = textures.texelShadows() != 0,
+                                               .beamStart = beam});
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -271,6 +279,12 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     if (const auto& c = texelLight ? texelLight : textures.clearanceLight())
         u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
     if (!caster) receiveShadows(u, light);
+    if (beam) {
+        glBindTextureUnit(0, textures.surface());
+        glBindTextureUnit(3, textures.pyramid());
+        drawBeamStart(mesh, model, u, camera.viewProjection());
+        glBindTextureUnit(5, beamTarget_.id()); // layer 2's unit: a single layer leaves it free
+    }
     bindUniforms(u, model, caster ? caster->viewProj() : camera.viewProjection());
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
@@ -300,6 +314,68 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     glDepthFunc(GL_LESS);
     p.use();
     mesh.draw();
+}
+
+void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u,
+                                    const glm::mat4& viewProj) {
+    GLint savedDraw = 0, viewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &savedDraw);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    const bool blend = glIsEnabled(GL_BLEND), scissor = glIsEnabled(GL_SCISSOR_TEST);
+    GLboolean mask[4];
+    glGetBooleani_v(GL_COLOR_WRITEMASK, 0, mask); // the target's one buffer; the caller's others untouched
+    // Texel (i, j) covers the window's pixels [B i, B i + B) x [B j, B j + B): the target spans
+    // the viewport's far corner, and the transform maps the draw's NDC onto the target's.
+    const int width = std::max((viewport[0] + viewport[2] + kBeamBlock - 1) / kBeamBlock, 1);
+    const int height = std::max((viewport[1] + viewport[3] + kBeamBlock - 1) / kBeamBlock, 1);
+    if (width > beamWidth_ || height > beamHeight_ || !beamTarget_) {
+        beamWidth_ = std::max(width, beamWidth_);
+        beamHeight_ = std::max(height, beamHeight_);
+        beamTarget_ = GlTexture::create();
+        HFX_GL_CHECK(glTextureStorage2D(beamTarget_.id(), 1, GL_R32F, beamWidth_, beamHeight_));
+        glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        if (!beamFramebuffer_) beamFramebuffer_ = GlFramebuffer::create();
+        HFX_GL_CHECK(glNamedFramebufferTexture(beamFramebuffer_.id(), GL_COLOR_ATTACHMENT0, beamTarget_.id(), 0));
+        const GLenum status = glCheckNamedFramebufferStatus(beamFramebuffer_.id(), GL_DRAW_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE)
+            throw Error(str("SurfaceRenderer: the beam start's ", beamWidth_, "x", beamHeight_,
+                            " R32F target is incomplete (status 0x", std::hex, status, ")"));
+    }
+    if (!beam_.id())
+        beam_ = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")},
+                              {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"),
+                               shader("trace/common.glsl"), shader("trace/hier.glsl"), shader("surface/beam.frag")},
+                              {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", "0"}, {"HFX_TEXEL_SHADOWS", "0"}});
+    // NDC x of the draw -> window x = vx + (x + 1) vw / 2 -> target x = window x / B.
+    const glm::vec2 scale = glm::vec2(viewport[2], viewport[3]) / (float(kBeamBlock) * glm::vec2(width, height));
+    const glm::vec2 offset = (2.0f * glm::vec2(viewport[0], viewport[1]) + glm::vec2(viewport[2], viewport[3])) /
+                                 (float(kBeamBlock) * glm::vec2(width, height)) -
+                             1.0f;
+    glm::mat4 toTarget(1.0f);
+    toTarget[0][0] = scale.x;
+    toTarget[1][1] = scale.y;
+    toTarget[3][0] = offset.x;
+    toTarget[3][1] = offset.y;
+    const glm::mat4 beamViewProj = toTarget * viewProj;
+    bindUniforms(u, model, beamViewProj);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, beamFramebuffer_.id());
+    glViewport(0, 0, width, height);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}; // 0: no start, where no block ray was walked
+    glClearNamedFramebufferfv(beamFramebuffer_.id(), GL_COLOR, 0, none);
+    beam_.use();
+    beam_.set("u_beamInverseViewProj", glm::inverse(beamViewProj));
+    beam_.set("u_beamPixel", 2.0f / glm::vec2(width, height));
+    mesh.draw();
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(savedDraw));
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    if (blend) glEnable(GL_BLEND);
+    if (scissor) glEnable(GL_SCISSOR_TEST);
+    glColorMaski(0, mask[0], mask[1], mask[2], mask[3]);
 }
 
 std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,

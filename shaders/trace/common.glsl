@@ -11,6 +11,8 @@ struct HfxRay {
     int samples;    // linear-search steps for this pixel (the dynamic sample rate, the caller's)
     float tolerance; // depth fraction the hit may lie above the exact one (the exact tracer's
                      // pixel budget; 0: exact); tracers that are not exact ignore it
+    float start;     // a depth fraction the caller knows lies at or above the first hit (0: none;
+                     // the exact tracer's beam start, trace/hier.glsl); the others ignore it
 };
 
 struct HfxHit {

@@ -2,7 +2,9 @@
 // height-bounds pyramid (hfx_bounds: max and min per cell). The walk starts at the level-0 cell
 // where the ray comes down to the field's maximum (the pyramid's top texel: above it the ray meets
 // nothing; skipping that stretch by climbing levels cost hier 0-9% of its draw at 45-80 degrees,
-// docs/BENCHMARKS.md), so a ray that meets the relief at once costs three fetches. A cell whose
+// docs/BENCHMARKS.md), or later where the caller knows no hit comes sooner (HfxRay.start: the
+// beam prepass's depth for the pixel's block, hfx_beam_depth below), so a ray that meets the
+// relief at once costs three fetches. A cell whose
 // maximum the ray passes above is skipped whole, and where its exit is also its parent's edge
 // the walk climbs a level; a cell the ray dips into is opened a level down. A level-0 cell
 // the ray dips into is solved: the bilinear patch between four samples (hfx_gather) in closed
@@ -103,7 +105,7 @@ float hfx_trace_depth(HfxRay ray) {
     const int maxSteps = hfx_max_steps(dir, topLevel);
     int level = 0;
     float cellSize = 1.0, invCellSize = 1.0; // 2^level and its inverse
-    float t = clamp(1.0 - hfx_field_max(), 0.0, 1.0);
+    float t = clamp(max(1.0 - hfx_field_max(), ray.start), 0.0, 1.0);
     vec2 p = p0 + dir * t; // the ray's point at t; a just-crossed axis holds the boundary exactly
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
@@ -153,6 +155,49 @@ float hfx_trace_depth(HfxRay ray) {
 }
 
 HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray)); }
+
+// The beam start (SurfaceRenderer's prepass over blocks of pixels): a depth fraction at or above
+// the first hit of every ray that stays within `reach` texels of the ray p0 + dir t on each axis
+// for all t in [0, 1] (cell space, as hfx_trace_depth's). The walk is hfx_trace_depth's over
+// levels from k up, where cells are at least `reach` wide, against the largest maximum of the 3x3
+// cells around the ray's: a ray within reach is in one of them wherever this one is, at the same
+// height, so where this one passes above their maximum none of them can meet the surface. It
+// returns where it first comes down to such a maximum at level k (no solve); the walk per pixel
+// starts there (HfxRay.start). Nine bounds per step: run once per block, it costs each pixel
+// 0.4-1.2 fetches at 8x8 pixels per block and saves it 20-45% of the view walk at 45-80 degrees
+// (docs/BENCHMARKS.md, fourteenth part).
+float hfx_beam_depth(vec2 p0, vec2 dir, float reach) {
+    const bvec2 back = lessThan(dir, vec2(0.0));
+    const vec2 invDir = hfx_inverse(dir);
+    const int levels = hfx_levels();
+    const int k = clamp(int(ceil(log2(max(reach, 1.0 / 64.0)))), 0, levels - 1);
+    const int topLevel = max(hfx_top_level(dir), k);
+    const int maxSteps = hfx_max_steps(dir, topLevel);
+    int level = k;
+    float cellSize = exp2(float(k)), invCellSize = 1.0 / cellSize;
+    float t = clamp(1.0 - hfx_field_max(), 0.0, 1.0);
+    vec2 p = p0 + dir * t;
+    for (int steps = 0; steps < maxSteps; ++steps) {
+        if (t >= 1.0) return 1.0;
+        vec2 cell, bound, tCross;
+        float tExit;
+        hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
+        const ivec2 c = ivec2(cell);
+        float highest = 0.0;
+        for (int j = -1; j <= 1; ++j)
+            for (int i = -1; i <= 1; ++i) highest = max(highest, hfx_bounds(c + ivec2(i, j), level).x);
+        const float tDown = 1.0 - highest;
+        if (tDown < tExit) {
+            if (tDown > t) p = p0 + dir * tDown;
+            t = max(t, tDown);
+            if (level == k) return t;
+            hfx_open_cell(level, cellSize, invCellSize);
+        } else {
+            hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
+        }
+    }
+    return 0.0; // out of steps (a NaN ray): no start
+}
 
 // Exact self-shadow: the light ray from the shaded point walked through the same pyramid. The
 // ray climbs from h0 to 1 over its span; its clearance ratio r = (ray - surface) / (the ray's

@@ -143,7 +143,7 @@ double AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
     const int n = config.image;
     if (!target_ || target_->width() != n) target_ = std::make_unique<RenderTarget>(n, n, true);
-    const Camera camera = accuracyCamera(config.angleDegrees, kDistance);
+    const Camera camera = accuracyCamera(config.angleDegrees, config.cameraDistance > 0.0f ? config.cameraDistance : kDistance);
     const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
@@ -151,7 +151,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     target_->bind();
     target_->clear();
     renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, camera, light,
-                   {.technique = technique, .traceOutput = true});
+                   {.technique = technique, .traceOutput = true, .beamStart = config.beamStart});
     const std::vector<glm::vec4> trace = target_->readTrace();
 
     // The light in texture space, in (u, v, h) units: h spans depthScale texture units.
@@ -272,7 +272,8 @@ double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
         target.bind();
         const double ms = timeMs([&] {
             target.clear();
-            renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), material, camera, light, {.technique = technique});
+            renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), material, camera, light,
+                           {.technique = technique, .beamStart = config.beamStart});
         });
         if (i >= 0) times.push_back(ms);
     }

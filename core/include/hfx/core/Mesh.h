@@ -52,6 +52,13 @@ struct SphereConfig {
 /// T = dP/du, B = dP/dv exactly, so T x B points outwards; at the poles T vanishes.
 MeshData makeSphere(const SphereConfig& config = {});
 
+/// True where the mesh is one flat patch with one texture frame: every vertex has the first's
+/// normal, tangent and bitangent, and lies where its texcoords put it in that frame (position =
+/// p0 + T (u - u0) + B (v - v0), within 1e-5 of the mesh's extent). makePlane's are; a sphere's
+/// are not. What the exact tracer's beam start needs (SurfaceRenderer): the rays of a block of
+/// pixels then meet one plane in one frame.
+bool isFlatPatch(const MeshData& data);
+
 /// Vertex and index buffers plus a vertex array, laid out as Vertex (locations 0..4).
 class Mesh {
 public:
@@ -59,11 +66,13 @@ public:
     explicit Mesh(const MeshData& data);
     void draw() const;
     GLsizei indexCount() const { return indexCount_; }
+    bool flatPatch() const { return flatPatch_; } ///< isFlatPatch of its data
 
 private:
     GlBuffer vertices_, indices_;
     GlVertexArray vao_;
     GLsizei indexCount_ = 0;
+    bool flatPatch_ = false;
 };
 
 } // namespace hfx

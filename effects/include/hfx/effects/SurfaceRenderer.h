@@ -144,7 +144,16 @@ inline constexpr int kMaxSurfaceLayers = 4;
 struct DrawOptions {
     Technique technique = Technique::ParallaxOcclusion;
     bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
+    /// The exact tracer's beam start: before a hier draw of a flat patch (Mesh::flatPatch, one
+    /// layer, no silhouette fade) a prepass walks one ray per block of kBeamBlock x kBeamBlock
+    /// pixels against the pyramid's maxima widened to cover the block's rays, and the draw's rays
+    /// start where it found the block's first possible hit: the same hits, fewer steps at
+    /// grazing angles (docs/BENCHMARKS.md, fourteenth part). false: every ray walks from the top.
+    bool beamStart = true;
 };
+
+/// The side of the beam start's blocks, in pixels (DrawOptions::beamStart).
+inline constexpr int kBeamBlock = 8;
 
 /// What picks a surface program besides DrawOptions: each field is a define of its own, so a
 /// switched-off feature costs nothing (on a CPU rasteriser a branch on a uniform still runs its
@@ -167,6 +176,9 @@ struct SurfaceVariant {
     /// texelShadowLight, TexelShadowPass): a ray of their light walks only where the hard shadow
     /// changes between the four samples around its point
     bool texelShadows = false;
+    /// HFX_BEAM_START: hier's view rays start at the beam prepass's depth for their block
+    /// (DrawOptions::beamStart on a flat patch)
+    bool beamStart = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 
@@ -216,11 +228,18 @@ private:
                      const DrawOptions& options, const ShadowMap* caster);
     void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, glm::vec3 eye,
                         const glm::vec4& color, const DirectionalLight* light);
+    /// The beam prepass (shaders/surface/beam.frag) into beamTarget_, one texel per block of the
+    /// bound framebuffer's viewport, with the draw's uniforms `u` (their transform replaced).
+    void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u, const glm::mat4& viewProj);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
     ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
+    ShaderProgram beam_;
+    GlFramebuffer beamFramebuffer_;
+    GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
+    int beamWidth_ = 0, beamHeight_ = 0;
 };
 
 } // namespace hfx

@@ -45,6 +45,11 @@ struct AccuracyConfig {
     /// With shadows: the surface carries the texel shadows of the light (ShadowLightOptions::
     /// texelShadows); hier walks only where the hard shadow changes between the samples.
     bool texelShadows = false;
+    /// The exact tracer's beam start (DrawOptions::beamStart; the probe's planes are flat patches).
+    bool beamStart = true;
+    /// measure()'s camera distance from the plane's centre, world units (the plane is 2 wide);
+    /// 0: the default, 8, from where the whole plane is seen.
+    float cameraDistance = 0.0f;
     /// Shadow comparison skips points whose exact shadow changes within this many texels (the
     /// texel the boundary falls in, where a hit a little off flips it), and points in the
     /// penumbra band: the light ray is clear, but the cone edge (the ray lowered by
