@@ -161,9 +161,9 @@ int runBenchAccuracy(const std::string& outDir, int field) {
 /// hfx-demo bench-tracers: the exact tracer's draw time against POM 8..32's, both with their soft
 /// self-shadows, at 1280x720 in one run: rounds of one draw each, interleaved, medians; the
 /// exact tracer with the surface's clearance map for the light, without it, with a one-pixel
-/// budget, and with the texel shadows of the light (no map); what building the map and drawing
-/// the texel shadows add to a frame; beside them each one's fetches per pixel from the accuracy
-/// probe at the same angle (the mean and in lockstep blocks, AccuracyResult::fetchesLanes8/32).
+/// budget, and with the texel shadows of the light (no map), with and without the beam start;
+/// what building the map and drawing the texel shadows add to a frame; beside them each one's
+/// fetches per pixel in the same draw (AccuracyProbe::countFetches: the mean and in lockstep blocks).
 /// Prints a table and, with --out, writes tracers.csv. `only` restricts the maps by name.
 int runBenchTracers(const std::string& outDir, int field, const std::vector<std::string>& only, int rounds) {
     auto gl = createHeadlessContext({.width = 64, .height = 64});
@@ -189,13 +189,15 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
            "fetches_lanes32,map_build_ms,texel_shadows_ms,beam_start\n";
     std::printf("%s, field %dx%d, 1280x720, median of %d interleaved draws.\n"
                 "hier draws with the clearance map for the light; 'no map' without it; 'texels' with the texel shadows\n"
-                "of the light instead (no map). map ms, texels ms: what building the map, drawing the texel shadows\n"
+                "of the light instead (no map), 'no beam' the same without the beam start (DrawOptions::beamStart).\n"
+                "map ms, texels ms: what building the map, drawing the texel shadows\n"
                 "add to a frame of the surface (compute, upload, GL; median of 9 frames with and without).\n"
                 "Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in the shader\n"
-                "(192x192, the same angle): the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
-                "blocks (a 32-lane GPU warp) each run as long as their longest pixel. Ratios are hier's over pom's.\n\n"
+                "of the timed draw itself (1280x720): the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
+                "blocks (a 32-lane GPU warp) each run as long as their longest pixel. The last four columns: hier with\n"
+                "texel shadows (the scenes' default where they pay) over pom.\n\n"
                 "| map | angle | pom ms | hier ms | hier / pom | no map / pom | hier 1px / pom | texels / pom | texels, no beam / pom | map ms "
-                "| texels ms | fetches pom, hier, no map, texels, no beam | fetches | 8 lanes | 32 lanes | ms per 8-lane fetch |\n"
+                "| texels ms | fetches pom, hier, no map, texels, no beam | texels: fetches | 8 lanes | 32 lanes | ms per 8-lane fetch |\n"
                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", gl->description().c_str(), field, field, rounds);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
@@ -220,23 +222,22 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
             }
             // Where the time goes: how many fetches each makes (the view and the light walk), how
             // many its lanes wait for in lockstep, and what one costs in its loop, against POM's.
-            std::vector<AccuracyResult> counts;
-            for (const Variant& v : variants) counts.push_back(probe.measure(v.technique, configOf(v)));
+            std::vector<FetchCounts> counts;
+            for (const Variant& v : variants) counts.push_back(probe.countFetches(v.technique, configOf(v), 1280, 720));
             const double pom = median[0];
             for (size_t i = 0; i < std::size(variants); ++i)
                 csv << map.name << "," << angle << "," << techniqueName(variants[i].technique) << "," << variants[i].pixelBudget
                     << "," << (variants[i].technique == Technique::Hierarchical && variants[i].clearance ? 1 : 0) << ","
                     << (variants[i].texels ? 1 : 0) << ",soft," << median[i] << "," << median[i] / pom << ","
-                    << counts[i].fetches << "," << counts[i].fetchesLanes8 << "," << counts[i].fetchesLanes32 << ","
+                    << counts[i].mean << "," << counts[i].lanes8 << "," << counts[i].lanes32 << ","
                     << mapMs << "," << texelMs << "," << (variants[i].beam ? 1 : 0) << "\n";
-            const AccuracyResult &p = counts[0], &h = counts[1], &n = counts[2], &x = counts[4], &b = counts[5];
+            const FetchCounts &p = counts[0], &h = counts[1], &n = counts[2], &x = counts[4], &b = counts[5];
             std::printf("| %s | %.0f | %.1f | %.1f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f | %.1f, %.1f, %.1f, %.1f, "
                         "%.1f | %.2fx | %.2fx | %.2fx | %.2fx |\n",
                         map.name.c_str(), angle, pom, median[1], median[1] / pom, median[2] / pom, median[3] / pom,
-                        median[4] / pom, median[5] / pom, mapMs, texelMs, p.fetches, h.fetches, n.fetches, x.fetches,
-                        b.fetches, h.fetches / p.fetches,
-                        h.fetchesLanes8 / p.fetchesLanes8,
-                        h.fetchesLanes32 / p.fetchesLanes32, (median[1] / h.fetchesLanes8) / (pom / p.fetchesLanes8));
+                        median[4] / pom, median[5] / pom, mapMs, texelMs, p.mean, h.mean, n.mean, x.mean, b.mean,
+                        x.mean / p.mean, x.lanes8 / p.lanes8, x.lanes32 / p.lanes32,
+                        (median[4] / x.lanes8) / (pom / p.lanes8));
             std::fflush(stdout);
         }
     }

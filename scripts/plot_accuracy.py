@@ -129,8 +129,10 @@ def time_vs_fetches(path, out):
     # The default: full effort, with the clearance map (files written before it had no column).
     hier = [r for r in rows if r["technique"] == "hier" and float(r["pixel_budget"]) == 0.0
             and r.get("clearance_map", "1") == "1" and r.get("texel_shadows", "0") == "0"]
-    # hier reading the texel shadows of the light (no clearance map), where the file has them.
-    texels = [r for r in rows if r["technique"] == "hier" and r.get("texel_shadows", "0") == "1"]
+    # hier reading the texel shadows of the light (no clearance map), where the file has them, with
+    # the beam start (files written before it had no column: theirs had none).
+    texels = [r for r in rows if r["technique"] == "hier" and r.get("texel_shadows", "0") == "1"
+              and r.get("beam_start", "1") == "1"]
     maps = ordered(r["map"] for r in hier)
     colors = {m: f"C{i}" for i, m in enumerate(maps)}
 
@@ -159,14 +161,14 @@ def time_vs_fetches(path, out):
         ax.axhline(1.25, color="red", linestyle="--", linewidth=1, label="1.25x, the draw-time target")
         ax.set_ylim(0.5, top)
         ax.grid(True, alpha=0.4)
-    left.set_xlim(0.5, top)
+    left.set_xlim(0.3, 2.6)
     left.set_xlabel("hier's fetches per pixel over POM's (view and light walk)")
     left.set_ylabel("hier's draw time over POM's (1280x720, llvmpipe)")
-    left.set_title("draw time follows the fetches lanes wait for")
+    left.set_title("draw time against the fetches the lanes wait for")
     right.set_xlabel("view angle from the normal (degrees)")
     right.set_ylabel("hier's fetches over POM's, 8x4 blocks in lockstep")
     right.set_title("what a 32-lane GPU warp would wait for")
-    left.set_ylim(0.5, top + 1.2)  # room above the points for the legend
+    left.set_ylim(0.5, top + 0.8)  # room above the points for the legend
     left.legend(fontsize=6, loc="upper left", ncol=2)
     right.legend(fontsize=8)
     fig.tight_layout()

@@ -50,16 +50,16 @@ Spread spreadOf(std::vector<double>& values, double threshold) {
 // The fetches per drawn pixel when the pixels of each w x h block (from the image's corner) run
 // in lockstep, every lane as long as the block's longest: a loop on a SIMD machine runs until its
 // last lane is done.
-double lockstepFetches(const std::vector<glm::vec4>& trace, int n, int w, int h) {
+double lockstepFetches(const std::vector<glm::vec4>& trace, int width, int height, int w, int h) {
     double sum = 0.0;
     size_t drawn = 0;
-    for (int by = 0; by < n; by += h)
-        for (int bx = 0; bx < n; bx += w) {
+    for (int by = 0; by < height; by += h)
+        for (int bx = 0; bx < width; bx += w) {
             double most = 0.0;
             size_t count = 0;
-            for (int y = by; y < std::min(by + h, n); ++y)
-                for (int x = bx; x < std::min(bx + w, n); ++x) {
-                    const float f = trace[size_t(y) * n + x].w;
+            for (int y = by; y < std::min(by + h, height); ++y)
+                for (int x = bx; x < std::min(bx + w, width); ++x) {
+                    const float f = trace[size_t(y) * width + x].w;
                     if (f == 0.0f) continue; // not drawn
                     most = std::max(most, std::floor(double(f)));
                     ++count;
@@ -254,15 +254,44 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
         r.fetches = fetchSum / errors.size();
     }
     r.shadowAgreement = r.shadowPixels ? double(agree) / r.shadowPixels : 1.0;
-    r.fetchesLanes8 = lockstepFetches(trace, n, 4, 2);
-    r.fetchesLanes32 = lockstepFetches(trace, n, 8, 4);
+    r.fetchesLanes8 = lockstepFetches(trace, n, n, 4, 2);
+    r.fetchesLanes32 = lockstepFetches(trace, n, n, 8, 4);
     return r;
+}
+
+namespace {
+// Closer than measure()'s camera, so the plane covers the frame at every angle up to 80.
+Camera timedCamera(const AccuracyConfig& config, int width, int height) {
+    return accuracyCamera(config.angleDegrees, kDistance * 0.22f, float(width) / float(height));
+}
+} // namespace
+
+FetchCounts AccuracyProbe::countFetches(Technique technique, const AccuracyConfig& config, int width, int height) {
+    RenderTarget target(width, height, true);
+    DirectionalLight light;
+    light.direction = config.light;
+    useClearance(config);
+    target.bind();
+    target.clear();
+    renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), materialOf(config), timedCamera(config, width, height),
+                   light, {.technique = technique, .traceOutput = true, .beamStart = config.beamStart});
+    const std::vector<glm::vec4> trace = target.readTrace();
+    FetchCounts c;
+    size_t drawn = 0;
+    for (const glm::vec4& t : trace)
+        if (t.w != 0.0f) {
+            c.mean += std::floor(double(t.w));
+            ++drawn;
+        }
+    c.mean = drawn ? c.mean / double(drawn) : 0.0;
+    c.lanes8 = lockstepFetches(trace, width, height, 4, 2);
+    c.lanes32 = lockstepFetches(trace, width, height, 8, 4);
+    return c;
 }
 
 double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats) {
     RenderTarget target(width, height);
-    // Closer than measure()'s camera, so the plane covers the frame at every angle up to 80.
-    Camera camera = accuracyCamera(config.angleDegrees, kDistance * 0.22f, float(width) / float(height));
+    const Camera camera = timedCamera(config, width, height);
     const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;

@@ -57,6 +57,13 @@ struct AccuracyConfig {
     double penumbraTexels = 1.5;
 };
 
+/// Height and bound fetches per drawn pixel, the view's and the light walk's together: the mean,
+/// and per pixel when the pixels of each 4x2 block (llvmpipe's 8 lanes) or 8x4 block (a 32-lane
+/// GPU warp) run in lockstep, each as long as its block's longest.
+struct FetchCounts {
+    double mean = 0, lanes8 = 0, lanes32 = 0;
+};
+
 struct AccuracyResult {
     size_t pixels = 0;              ///< pixels on the plane compared
     double mean = 0, p95 = 0, max = 0; ///< texcoord error in texels
@@ -91,6 +98,9 @@ public:
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
     /// config's angle (the plane fills the view; clear and glFinish included).
     double timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats);
+    /// The height and bound fetches per pixel of that same draw (timeDraw's view and size),
+    /// counted in the shader: what the timed pixels fetch, which measure()'s far view does not show.
+    FetchCounts countFetches(Technique technique, const AccuracyConfig& config, int width, int height);
     /// Median milliseconds that building the clearance map and drawing the texel shadows for
     /// config's light, where config asks for them, add to a whole frame of the surface (compute,
     /// upload and GL's work; frames with and without, interleaved). 0 where it asks for neither.
