@@ -285,6 +285,17 @@ TEST_F(Techniques, LockstepFetchCountsAreEachBlocksLongestLane) {
     std::printf("hier lockstep: 8 lanes %.1f, 32 lanes %.1f fetches per pixel\n", hier.fetchesLanes8, hier.fetchesLanes32);
     EXPECT_GT(hier.fetchesLanes8, 1.1 * hier.fetches);
     EXPECT_GT(hier.fetchesLanes32, hier.fetchesLanes8);
+    // The same counts of the timed draw itself (bench-tracers' 1280x720 view: a wide image, where
+    // measure()'s is square, so a row-major mix-up of width and height would show).
+    const FetchCounts one = probe.countFetches(Technique::ParallaxOffset, {.angleDegrees = 70}, 1280, 720);
+    EXPECT_EQ(one.mean, 1.0);
+    EXPECT_EQ(one.lanes8, 1.0);
+    EXPECT_EQ(one.lanes32, 1.0);
+    const FetchCounts timed = probe.countFetches(Technique::Hierarchical, {.angleDegrees = 70, .shadows = true}, 1280, 720);
+    std::printf("hier at 1280x720: %.1f fetches, 8 lanes %.1f, 32 lanes %.1f\n", timed.mean, timed.lanes8, timed.lanes32);
+    EXPECT_GT(timed.mean, 3.0);
+    EXPECT_GT(timed.lanes8, 1.05 * timed.mean);
+    EXPECT_GT(timed.lanes32, timed.lanes8);
 }
 
 TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {
