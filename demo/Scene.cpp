@@ -24,6 +24,7 @@ void Scene::applyOptions(const SceneOptions& o) {
     technique = o.technique;
     clearanceMap = o.clearanceMap;
     texelShadows = o.texelShadows;
+    beamStart = o.beamStart;
     imageWidth_ = o.width;
     imageHeight_ = o.height;
 }
@@ -56,7 +57,8 @@ void Scene::prepareShadowLight() {
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {
     const std::vector<SurfaceLayer> layers = effect().layers();
-    renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, {.technique = technique});
+    renderer.draw(mesh(), model(), layers, effect().material(), camera_, light,
+                  {.technique = technique, .beamStart = beamStart});
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

@@ -43,6 +43,8 @@ struct SceneOptions {
     /// between the samples around them): by default wherever they pay (texelShadowsPay, from
     /// the surface's pixels on this frame's image and its field's texels).
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
+    /// hier's beam start on flat surfaces (DrawOptions::beamStart): the same hits in shorter walks.
+    bool beamStart = true;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -127,6 +129,7 @@ public:
     FlatSurface planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const;
     bool clearanceMap = false;                                ///< SceneOptions::clearanceMap
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto; ///< SceneOptions::texelShadows
+    bool beamStart = true;                                    ///< SceneOptions::beamStart
     /// Whether this frame's field has texel shadows (the last prepareShadowLight's choice), and
     /// the flat surface's pixels per field texel it was made from (0 where not flat or not hier).
     bool texelShadowsDrawn() const { return texelShadowsOn_; }

@@ -209,6 +209,10 @@ int main(int argc, char** argv) {
                  "by default they do wherever the surface shows on two pixels or more per texel, where the pass pays");
     app.add_flag("--no-texel-shadows", texelShadowsOff, "never draw the texel shadows (every pixel walks its light ray)")
         ->excludes("--texel-shadows");
+    bool noBeamStart = false;
+    app.add_flag("--no-beam-start", noBeamStart,
+                 "flat surfaces drawn by hier walk every view ray from the top, without the beam prepass that starts "
+                 "each 8x8-pixel block's rays where they may first meet the relief (the same image, more steps)");
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
@@ -276,6 +280,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     s.shadows = !noShadows;
     s.texelShadows = texelShadowsOn ? TexelShadowChoice::On : texelShadowsOff ? TexelShadowChoice::Off : TexelShadowChoice::Auto;
+    s.beamStart = !noBeamStart;
     if (s.maxSamples > 0 && s.minSamples > 0 && s.maxSamples < s.minSamples) {
         std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n", s.maxSamples,
                      s.minSamples);

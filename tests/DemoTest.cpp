@@ -278,6 +278,35 @@ TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
     }
 }
 
+TEST(Demo, TheBeamStartDrawsTheFlatScenesAsTheWalkFromTheTopDoes) {
+    // hier's beam start (on by default, --no-beam-start off) changes where the walks begin, not
+    // what they hit: the decal wall's and the noise plane's frames with and without it are the
+    // same image to the shading's rounding. Their frames without self-shadows differ (so the
+    // comparison can tell frames apart).
+    for (const std::string scene : {"decals", "noise"}) {
+        const std::string args = scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out ";
+        const std::string a = outputPath("demo_beam_" + scene + "_a"), b = outputPath("demo_beam_" + scene + "_b"),
+                          c = outputPath("demo_beam_" + scene + "_c");
+        for (const auto& dir : {a, b, c}) std::filesystem::remove_all(dir);
+        for (const auto& [dir, flags] :
+             {std::pair{a, ""}, std::pair{b, " --no-beam-start"}, std::pair{c, " --no-beam-start --no-shadows"}}) {
+            const Result r = runDemo(args + dir + flags);
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+        }
+        const std::string name = "/" + scene + "_0001.png";
+        const Image started = readImage(a + name), walked = readImage(b + name), unshadowed = readImage(c + name);
+        ASSERT_EQ(started.pixels.size(), walked.pixels.size());
+        double most = 0.0, mostOff = 0.0;
+        for (size_t i = 0; i < started.pixels.size(); ++i) {
+            most = std::max(most, 255.0 * std::abs(double(started.pixels[i]) - walked.pixels[i]));
+            mostOff = std::max(mostOff, 255.0 * std::abs(double(unshadowed.pixels[i]) - walked.pixels[i]));
+        }
+        std::printf("[beam] %s: at most %.1f levels apart (without self-shadows: %.1f)\n", scene.c_str(), most, mostOff);
+        EXPECT_LE(most, 2.0) << scene;
+        EXPECT_GT(mostOff, 16.0) << scene << ": the comparison could not tell frames apart";
+    }
+}
+
 TEST(Demo, ASavedDamageLogLoadsIntoTheSameWall) {
     const std::string a = outputPath("demo_damage_a"), b = outputPath("demo_damage_b"), c = outputPath("demo_damage_c");
     const std::string log = outputPath("demo_damage.log");
