@@ -9,6 +9,7 @@
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
+#include "hfx/effects/ShadowMap.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
@@ -94,6 +95,44 @@ TEST_F(BeamStart, AnOffsetViewportGetsTheSameHitsInFewerFetchesAndItsStateBack) 
                     fetchesWalked / double(drawn), fetchesStarted / double(drawn));
         // Measured: 20% fewer at 50 degrees, 2% at 78 (a block there spans many texels).
         EXPECT_LT(fetchesStarted, (angle < 60.0 ? 0.9 : 1.0) * fetchesWalked) << angle;
+    }
+}
+
+TEST_F(BeamStart, AShadowMapCastsTheSameTracedDepthWithItAsWithout) {
+    // drawShadow traces the light's parallel rays; the prepass finds its blocks' rays by
+    // unprojecting at the near and the far plane, which an orthographic light's view makes
+    // parallel. The traced depth the map holds must be the walk's from the top, texel for texel.
+    constexpr int N = 64, size = 256;
+    const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}});
+    StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    surface.run(field.buffer());
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f, .shadows = false};
+    SurfaceRenderer renderer;
+    for (const glm::vec3 towardsLight : {glm::vec3(0.3f, 1.0f, 0.2f), glm::vec3(-0.9f, 0.35f, 0.5f)}) {
+        std::vector<float> depth[2];
+        size_t texels = 0;
+        for (int beam = 0; beam < 2; ++beam) {
+            ShadowMap map(size);
+            map.fit(towardsLight, {0.0f, 0.0f, 0.0f}, 1.5f);
+            map.begin();
+            renderer.drawShadow(plane, glm::mat4(1.0f), surface.textures(), material, map,
+                                {.technique = Technique::Hierarchical, .beamStart = beam == 1});
+            map.end();
+            depth[beam].resize(size_t(size) * size);
+            glGetTextureImage(map.texture(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(depth[beam].size() * sizeof(float)),
+                              depth[beam].data());
+        }
+        size_t apart = 0;
+        for (size_t i = 0; i < depth[0].size(); ++i) {
+            if (depth[0][i] < 1.0f) ++texels;
+            if (std::abs(depth[0][i] - depth[1][i]) > 1e-6f) ++apart;
+        }
+        // The plane covers 42% of the map under the high light, 14% under the grazing one.
+        ASSERT_GT(texels, size_t(size * size / 10)) << "the plane covers too little of the map";
+        EXPECT_EQ(apart, 0u) << "of " << texels << " texels, light (" << towardsLight.x << ", " << towardsLight.y << ", "
+                             << towardsLight.z << ")";
     }
 }
 

@@ -93,7 +93,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.clearance = v.clearance && !v.caster && v.selfShadows && v.layers == 1 && options.technique == Technique::Hierarchical;
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
-    v.beamStart = v.beamStart && !v.caster && v.layers == 1 && options.technique == Technique::Hierarchical;
+    v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -225,9 +225,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const std::optional<ClearanceLight>& texelLight = textures.texelShadowLight();
     const bool clearance = textures.clearanceLight() && (!texelLight || textures.clearanceLight() == texelLight);
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
-    const bool beam = options.beamStart && options.technique == Technique::Hierarchical && !caster &&
-                      layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
-                      material.depthScale > 0.0f;
+    const bool beam = options.beamStart && options.technique == Technique::Hierarchical && layers.size() == 1 &&
+                      mesh.flatPatch() && material.silhouetteFade == 0.0f && material.depthScale > 0.0f;
     const ShaderProgram& p = program(options, {.shading = material.shading,
                                                .layers = int(layers.size()),
                                                .traced = traced,
@@ -282,7 +281,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     if (beam) {
         glBindTextureUnit(0, textures.surface());
         glBindTextureUnit(3, textures.pyramid());
-        drawBeamStart(mesh, model, u, camera.viewProjection());
+        drawBeamStart(mesh, model, u, caster ? caster->viewProj() : camera.viewProjection());
         glBindTextureUnit(5, beamTarget_.id()); // layer 2's unit: a single layer leaves it free
     }
     bindUniforms(u, model, caster ? caster->viewProj() : camera.viewProjection());

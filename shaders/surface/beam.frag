@@ -1,6 +1,7 @@
 #version 450 core
-// The exact tracer's beam start (hfx::SurfaceRenderer, before a hier draw of a flat patch): one
-// fragment per block of HFX_BEAM_BLOCK x HFX_BEAM_BLOCK pixels of the draw, writing the depth
+// The exact tracer's beam start (hfx::SurfaceRenderer, before a hier draw of a flat patch, seen
+// by a camera or, casting into a shadow map, by the light): one fragment per block of
+// HFX_BEAM_BLOCK x HFX_BEAM_BLOCK pixels of the draw, writing the depth
 // fraction from which on every view ray of the block may meet the relief (trace/hier.glsl,
 // hfx_beam_depth); the draw's rays start there (HfxRay.start). Composed after
 // surface/uniforms.glsl, surface/heights.glsl, trace/common.glsl and trace/hier.glsl; drawn with
@@ -8,7 +9,8 @@
 // (texel (i, j) covers the draw's pixels [B i, B i + B) x [B j, B j + B) of the window).
 //
 // The block's rays are found from the screen, not from the interpolated attributes: each of its
-// corners is unprojected (u_beamInverseViewProj) onto the patch's plane, which a flat patch's one
+// corners is unprojected (u_beamInverseViewProj, at the near and the far plane: a perspective
+// camera's rays or an orthographic light's alike) onto the patch's plane, which a flat patch's one
 // texture frame maps to texcoords and a parallax vector exactly as surface.frag maps a pixel.
 // At any depth the points of the block's rays lie in the quadrilateral of its corner rays' (the
 // screen maps to each plane of constant depth projectively, keeping the block's convex outline),
@@ -31,14 +33,16 @@ layout(location = 0) out vec4 o_start;
 // cell space (uv * size - 0.5) at the polygon (xy) and at the bottom of the relief (zw). False
 // where it does not come down onto the plane from the side the normal faces.
 bool hfx_block_ray(vec2 ndc, mat3 textureFromWorld, vec3 normal, out vec4 cells) {
-    const vec4 near = u_beamInverseViewProj * vec4(ndc, -1.0, 1.0);
-    const vec3 along = near.xyz / near.w - u_cameraPos;
+    const vec4 nearH = u_beamInverseViewProj * vec4(ndc, -1.0, 1.0);
+    const vec4 farH = u_beamInverseViewProj * vec4(ndc, 1.0, 1.0);
+    const vec3 near = nearH.xyz / nearH.w;
+    const vec3 along = farH.xyz / farH.w - near;
     const float across = dot(along, normal);
     cells = vec4(0.0);
     if (!(across < 0.0)) return false;
-    const vec3 onPlane = u_cameraPos + along * (dot(v_worldPos - u_cameraPos, normal) / across);
+    const vec3 onPlane = near + along * (dot(v_worldPos - near, normal) / across);
     const vec2 uv = v_texcoord + (textureFromWorld * (onPlane - v_worldPos)).xy;
-    const vec3 viewTS = textureFromWorld * (u_cameraPos - onPlane);
+    const vec3 viewTS = textureFromWorld * -along;
     if (!(viewTS.z > 0.0)) return false;
     const vec2 size = vec2(hfx_size());
     const vec2 top = uv * size - 0.5;

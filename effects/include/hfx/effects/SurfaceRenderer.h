@@ -144,7 +144,7 @@ inline constexpr int kMaxSurfaceLayers = 4;
 struct DrawOptions {
     Technique technique = Technique::ParallaxOcclusion;
     bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
-    /// The exact tracer's beam start: before a hier draw of a flat patch (Mesh::flatPatch, one
+    /// The exact tracer's beam start: before a hier draw of a flat patch (a camera's or drawShadow's; Mesh::flatPatch, one
     /// layer, no silhouette fade) a prepass walks one ray per block of kBeamBlock x kBeamBlock
     /// pixels against the pyramid's maxima widened to cover the block's rays, and the draw's rays
     /// start where it found the block's first possible hit: the same hits, fewer steps at
