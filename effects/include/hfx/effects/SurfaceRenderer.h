@@ -4,7 +4,8 @@
 // and the model's shade file, built per variant on first use and kept. Per-draw uniforms go in
 // one uniform buffer (SurfaceUniforms). It draws into whatever framebuffer and context the
 // caller has bound and restores the GL state it changes (program, vertex array, depth test,
-// texture units 0-15, uniform-buffer bindings 0-2).
+// texture units 0-15, uniform-buffer bindings 0-2; around the beam start's prepass, the draw
+// framebuffer, viewport, blending, scissor test and draw buffer 0's colour mask).
 //
 // Thread: the thread whose GL context is current.
 
