@@ -62,7 +62,7 @@ public:
         // shelf's shadow falls into the mortar and the holes, and the bricks shade the shelf.
         shadowMap_.fit(light_.direction, {0.0f, 0.0f, 0.0f}, 2.9f);
         shadowMap_.begin();
-        renderer_.drawShadow(mesh(), model(), effect().layers(), effect().material(), shadowMap_, {.technique = technique});
+        renderer_.drawShadow(mesh(), model(), effect().layers(), effect().material(), shadowMap_, drawOptions());
         renderer_.drawFlatShadow(post_, post, shadowMap_);
         shadowMap_.end();
         DirectionalLight light = light_;

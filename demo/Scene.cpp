@@ -57,8 +57,7 @@ void Scene::prepareShadowLight() {
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {
     const std::vector<SurfaceLayer> layers = effect().layers();
-    renderer.draw(mesh(), model(), layers, effect().material(), camera_, light,
-                  {.technique = technique, .beamStart = beamStart});
+    renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, drawOptions());
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

@@ -130,6 +130,8 @@ public:
     bool clearanceMap = false;                                ///< SceneOptions::clearanceMap
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto; ///< SceneOptions::texelShadows
     bool beamStart = true;                                    ///< SceneOptions::beamStart
+    /// How this scene's surface is drawn, by the camera and into a shadow map alike.
+    DrawOptions drawOptions() const { return {.technique = technique, .beamStart = beamStart}; }
     /// Whether this frame's field has texel shadows (the last prepareShadowLight's choice), and
     /// the flat surface's pixels per field texel it was made from (0 where not flat or not hier).
     bool texelShadowsDrawn() const { return texelShadowsOn_; }
