@@ -278,13 +278,6 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     if (const auto& c = texelLight ? texelLight : textures.clearanceLight())
         u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
     if (!caster) receiveShadows(u, light);
-    if (beam) {
-        glBindTextureUnit(0, textures.surface());
-        glBindTextureUnit(3, textures.pyramid());
-        drawBeamStart(mesh, model, u, caster ? caster->viewProj() : camera.viewProjection());
-        glBindTextureUnit(5, beamTarget_.id()); // layer 2's unit: a single layer leaves it free
-    }
-    bindUniforms(u, model, caster ? caster->viewProj() : camera.viewProjection());
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
         updateBlock(waterBlock_, 1, waterUniforms(w));
@@ -309,6 +302,12 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     glBindTextureUnit(3, textures.pyramid());
     glBindTextureUnit(15, textures.clearance());
     if (layers.size() == 1) glBindTextureUnit(4, textures.texelShadows()); // layer 1's unit, unused here
+    const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
+    if (beam) { // the prepass reads the surface and the pyramid bound above, and the block's uniforms
+        drawBeamStart(mesh, model, u, viewProj);
+        glBindTextureUnit(5, beamTarget_.id()); // layer 2's unit: a single layer leaves it free
+    }
+    bindUniforms(u, model, viewProj);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();
