@@ -132,9 +132,7 @@ int hfx_budget_samples(int samples, float pixels) {
 
 void main() {
     const vec3 geometricNormal = normalize(v_normal);
-    // World from texture space: columns dP/du, dP/dv and the normal scaled to the same units.
-    const float unitsPerTexcoord = sqrt(length(v_tangent) * length(v_bitangent));
-    const mat3 worldFromTexture = mat3(v_tangent, v_bitangent, geometricNormal * unitsPerTexcoord);
+    const mat3 worldFromTexture = hfx_world_from_texture(geometricNormal, v_tangent, v_bitangent);
 #if HFX_SHADOW_CASTER
     const vec3 toEye = u_lightDir; // the light is the eye, infinitely far
 #else

@@ -52,8 +52,7 @@ bool hfx_block_ray(vec2 ndc, mat3 textureFromWorld, vec3 normal, out vec4 cells)
 
 void main() {
     const vec3 normal = normalize(v_normal);
-    const float unitsPerTexcoord = sqrt(length(v_tangent) * length(v_bitangent));
-    const mat3 textureFromWorld = inverse(mat3(v_tangent, v_bitangent, normal * unitsPerTexcoord));
+    const mat3 textureFromWorld = inverse(hfx_world_from_texture(normal, v_tangent, v_bitangent));
     const vec2 centre = gl_FragCoord.xy * u_beamPixel - 1.0;
     vec4 ray, corner;
     bool ok = hfx_block_ray(centre, textureFromWorld, normal, ray);

@@ -30,6 +30,14 @@
 #define HFX_TEXEL_SPREAD 0.25
 #endif
 
+// World from texture space at a point of the mesh: columns dP/du, dP/dv and the unit normal scaled
+// to the same units (texture space's z is the depth, one unit = one texture repeat). The draw
+// (surface.frag) turns its pixel's view ray into texture space with it, and the beam prepass
+// (surface/beam.frag) its block's rays: they must agree, or a block's start could pass a hit.
+mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
+    return mat3(tangent, bitangent, unitNormal * sqrt(length(tangent) * length(bitangent)));
+}
+
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 layout(binding = 3) uniform sampler2D s_pyramid; // RG32F: level k texel's (max, min) over the bilinear cells it covers
 #if HFX_CLEARANCE
