@@ -1,6 +1,7 @@
 // The exact tracer's beam start (DrawOptions::beamStart): the renderer's prepass over blocks of
-// pixels must change no hit wherever the draw's viewport sits, give back the GL state it found,
-// and stay off where its geometry does not hold (meshes that are not one flat patch).
+// pixels must change no hit wherever the draw's viewport sits, for the camera and a shadow map,
+// and give back the GL state it found. It runs only on one flat patch (tests/MeshTest.cpp,
+// FlatPatch).
 
 #include "support/Fields.h"
 #include "support/Fixtures.h"
@@ -134,22 +135,6 @@ TEST_F(BeamStart, AShadowMapCastsTheSameTracedDepthWithItAsWithout) {
         EXPECT_EQ(apart, 0u) << "of " << texels << " texels, light (" << towardsLight.x << ", " << towardsLight.y << ", "
                              << towardsLight.z << ")";
     }
-}
-
-TEST(FlatPatch, PlanesAreOneFlatPatchAndSpheresAndBentOrMislabelledPlanesAreNot) {
-    EXPECT_TRUE(isFlatPatch(makePlane({})));
-    EXPECT_TRUE(isFlatPatch(makePlane({.size = 40.0f, .texcoordScale = 7.0f, .subdivisions = 16})));
-    EXPECT_FALSE(isFlatPatch(makeSphere({})));
-    EXPECT_FALSE(isFlatPatch(MeshData{}));
-    MeshData bent = makePlane({.subdivisions = 4});
-    bent.vertices[7].position.y += 0.01f; // off the plane
-    EXPECT_FALSE(isFlatPatch(bent));
-    MeshData slid = makePlane({.subdivisions = 4});
-    slid.vertices[7].texcoord.x += 0.01f; // texcoords no longer where the frame puts the vertex
-    EXPECT_FALSE(isFlatPatch(slid));
-    MeshData turned = makePlane({.subdivisions = 4});
-    turned.vertices[7].tangent = glm::vec3(0.0f, 0.0f, 2.0f); // a second texture frame
-    EXPECT_FALSE(isFlatPatch(turned));
 }
 
 } // namespace

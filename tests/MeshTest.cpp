@@ -65,5 +65,21 @@ TEST(Sphere, TangentsAreTexcoordDerivativesAndFaceOutwards) {
     EXPECT_THROW(makeSphere({.radius = 0.0f}), Error);
 }
 
+TEST(FlatPatch, PlanesAreOneFlatPatchAndSpheresAndBentOrMislabelledPlanesAreNot) {
+    EXPECT_TRUE(isFlatPatch(makePlane({})));
+    EXPECT_TRUE(isFlatPatch(makePlane({.size = 40.0f, .texcoordScale = 7.0f, .subdivisions = 16})));
+    EXPECT_FALSE(isFlatPatch(makeSphere({})));
+    EXPECT_FALSE(isFlatPatch(MeshData{}));
+    MeshData bent = makePlane({.subdivisions = 4});
+    bent.vertices[7].position.y += 0.01f; // off the plane
+    EXPECT_FALSE(isFlatPatch(bent));
+    MeshData slid = makePlane({.subdivisions = 4});
+    slid.vertices[7].texcoord.x += 0.01f; // texcoords no longer where the frame puts the vertex
+    EXPECT_FALSE(isFlatPatch(slid));
+    MeshData turned = makePlane({.subdivisions = 4});
+    turned.vertices[7].tangent = glm::vec3(0.0f, 0.0f, 2.0f); // a second texture frame
+    EXPECT_FALSE(isFlatPatch(turned));
+}
+
 } // namespace
 } // namespace hfx
