@@ -38,6 +38,16 @@ Result runDemo(const std::string& arguments, const std::string& prefix = "env -u
     return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), text.str()};
 }
 
+/// The second frame of a flat scene drawn at 320x180 from a 128² field with `flags`, rendered into
+/// a fresh folder named by `tag` and the scene.
+Image flatSceneFrame(const std::string& scene, const std::string& tag, const std::string& flags) {
+    const std::string dir = outputPath("demo_" + tag + "_" + scene);
+    std::filesystem::remove_all(dir);
+    const Result r = runDemo(scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out " + dir + flags);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return readImage(dir + "/" + scene + "_0001.png");
+}
+
 std::string readBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream s;
@@ -240,15 +250,9 @@ TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
     // frames stay within a small difference of the walked ones; the wall's far closer than its
     // frame without self-shadows is (the noise plane's shadows are faint at this size).
     for (const std::string scene : {"decals", "noise"}) {
-        const std::string args = scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out ";
-        const std::string a = outputPath("demo_texels_" + scene + "_a"), b = outputPath("demo_texels_" + scene + "_b"),
-                          c = outputPath("demo_texels_" + scene + "_c");
-        for (const auto& dir : {a, b, c}) std::filesystem::remove_all(dir);
-        for (const auto& [dir, flags] : {std::pair{a, " --no-texel-shadows"}, std::pair{b, " --texel-shadows"},
-                                         std::pair{c, " --no-shadows"}}) {
-            const Result r = runDemo(args + dir + flags);
-            ASSERT_EQ(r.exitCode, 0) << r.output;
-        }
+        const Image walked = flatSceneFrame(scene, "texels_walked", " --no-texel-shadows"),
+                    read = flatSceneFrame(scene, "texels_read", " --texel-shadows"),
+                    unshadowed = flatSceneFrame(scene, "texels_unshadowed", " --no-shadows");
         // Mean difference (0..255 levels) and the share of pixels more than 16 levels apart.
         const auto compare = [](const Image& x, const Image& y) {
             double sum = 0;
@@ -264,8 +268,6 @@ TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
             }
             return std::pair{sum / double(n), double(far) / double(n)};
         };
-        const std::string name = "/" + scene + "_0001.png";
-        const Image walked = readImage(a + name), read = readImage(b + name), unshadowed = readImage(c + name);
         const auto [mean, far] = compare(walked, read);
         const auto [meanOff, farOff] = compare(walked, unshadowed);
         std::printf("[texels] %s: %.3f levels apart on average, %.3f%% of pixels > 16 (without self-shadows: %.3f, "
@@ -284,17 +286,9 @@ TEST(Demo, TheBeamStartDrawsTheFlatScenesAsTheWalkFromTheTopDoes) {
     // same image to the shading's rounding. Their frames without self-shadows differ (so the
     // comparison can tell frames apart).
     for (const std::string scene : {"decals", "noise"}) {
-        const std::string args = scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out ";
-        const std::string a = outputPath("demo_beam_" + scene + "_a"), b = outputPath("demo_beam_" + scene + "_b"),
-                          c = outputPath("demo_beam_" + scene + "_c");
-        for (const auto& dir : {a, b, c}) std::filesystem::remove_all(dir);
-        for (const auto& [dir, flags] :
-             {std::pair{a, ""}, std::pair{b, " --no-beam-start"}, std::pair{c, " --no-beam-start --no-shadows"}}) {
-            const Result r = runDemo(args + dir + flags);
-            ASSERT_EQ(r.exitCode, 0) << r.output;
-        }
-        const std::string name = "/" + scene + "_0001.png";
-        const Image started = readImage(a + name), walked = readImage(b + name), unshadowed = readImage(c + name);
+        const Image started = flatSceneFrame(scene, "beam_started", ""),
+                    walked = flatSceneFrame(scene, "beam_walked", " --no-beam-start"),
+                    unshadowed = flatSceneFrame(scene, "beam_unshadowed", " --no-beam-start --no-shadows");
         ASSERT_EQ(started.pixels.size(), walked.pixels.size());
         double most = 0.0, mostOff = 0.0;
         for (size_t i = 0; i < started.pixels.size(); ++i) {
