@@ -32,50 +32,55 @@
 //   80 degrees up to 73 texels short).
 //
 // On a CPU rasteriser (llvmpipe) a divergent branch costs both sides, so the walk's steps fetch
-// one bound and nothing else, and the patch solve sits outside the walk's loop.
+// one bound and nothing else, and the patch solve sits outside the walk's loop. There, too, every
+// variable a step writes lives in memory and is blended under the lanes' mask, and the bound's
+// texelFetch (RG32F) is a call that spills every vector live across it: a step's state is p, t
+// and the level (hfx_step; 2^level from the exponent bits), and what the solve needs is found
+// again after the loop (the level-0 cell, its maximum from the gathered samples). Against a loop
+// that carried the cell sizes, the exit and the cell: 3-10% off hier's draw at 45-80 degrees
+// with the same fetches (docs/BENCHMARKS.md, fifteenth part).
 
 const int HFX_MAX_TRACE_STEPS = 1 << 18; // only against a NaN ray; the real bound is per ray
 
-// Past the current cell: onto its exit, the crossed axes snapped to the boundary. A level up
-// only where the boundary is also the parent's: the ray only descends, so a parent it has dipped
-// into is never skipped later, and testing it again is waste.
-void hfx_pass_cell(vec2 p0, vec2 dir, vec2 bound, vec2 tCross, float tExit, int topLevel, inout vec2 p, inout float t,
-                   inout int level, inout float cellSize, inout float invCellSize) {
-    const bvec2 crossed = lessThanEqual(tCross, vec2(tExit));
-    p = mix(p0 + dir * tExit, bound, crossed);
-    t = tExit;
-    const vec2 parentEdge = mix(vec2(1.0), fract(bound * (0.5 * invCellSize)), crossed);
-    if (min(parentEdge.x, parentEdge.y) == 0.0 && level < topLevel) {
-        ++level;
-        cellSize *= 2.0;
-        invCellSize *= 0.5;
-    }
-}
+// 2^level and 2^-level, exact, from the float's exponent bits (level in [0, 126]).
+float hfx_cell_size(int level) { return intBitsToFloat((level + 127) << 23); }
+float hfx_inv_cell_size(int level) { return intBitsToFloat((127 - level) << 23); }
 
-// The cell of the level (cellSize = 2^level) that the ray is in at p, going on along dir: its
-// corner ahead (bound), where the ray meets that corner's lines (tCross; an axis the ray does not
-// move along: far ahead) and leaves the cell (tExit, within [t, 1]). On a boundary: the cell ahead.
-void hfx_cell_at(vec2 p0, vec2 p, vec2 invDir, bvec2 back, float t, float cellSize, float invCellSize, out vec2 cell,
-                 out vec2 bound, out vec2 tCross, out float tExit) {
-    const vec2 q = p * invCellSize;
+// The cell of the level that the ray is in at p, going on along dir: its corner ahead (bound),
+// where the ray meets that corner's lines (tCross; an axis the ray does not move along: far
+// ahead) and leaves the cell (tExit, within [t, 1]). On a boundary: the cell ahead.
+void hfx_cell_at(vec2 p0, vec2 p, vec2 invDir, bvec2 back, float t, int level, out vec2 cell, out vec2 bound,
+                 out vec2 tCross, out float tExit) {
+    const vec2 q = p * hfx_inv_cell_size(level);
     cell = mix(floor(q), ceil(q) - 1.0, back);
-    bound = (cell + vec2(not(back))) * cellSize;
+    bound = (cell + vec2(not(back))) * hfx_cell_size(level);
     tCross = (bound - p0) * invDir;
     tExit = clamp(min(tCross.x, tCross.y), t, 1.0);
 }
 
-// One level down: the cell the ray dips into is opened.
-void hfx_open_cell(inout int level, inout float cellSize, inout float invCellSize) {
-    --level;
-    cellSize *= 0.5;
-    invCellSize *= 2.0;
+// One step of a walk from the cell hfx_cell_at found: where the ray dips into it, down to tIn
+// (p moves only if the ray does: a just-crossed axis keeps its boundary) and a level down;
+// otherwise past it, onto its exit with the crossed axes snapped to the boundary, and a level up
+// only where that boundary is also the parent's: the ray only descends, so a parent it has
+// dipped into is never skipped later, and testing it again is waste.
+void hfx_step(vec2 p0, vec2 dir, bool dip, float tIn, vec2 bound, vec2 tCross, float tExit, int topLevel,
+              inout vec2 p, inout float t, inout int level) {
+    const bvec2 crossed = lessThanEqual(tCross, vec2(tExit));
+    const vec2 q = p0 + dir * (dip ? tIn : tExit);
+    const vec2 parentEdge = mix(vec2(1.0), fract(bound * (0.5 * hfx_inv_cell_size(level))), crossed);
+    const bool climb = min(parentEdge.x, parentEdge.y) == 0.0 && level < topLevel;
+    p = dip ? (tIn > t ? q : p) : mix(q, bound, crossed);
+    t = dip ? tIn : tExit;
+    level += dip ? -1 : (climb ? 1 : 0);
 }
 
-// The bilinear patch of a level-0 cell along the ray from p (in the cell): its height at
-// p + dir * s is A s^2 + B s + C, returned as (A, B, C). The four samples come in one gather at
-// the point all four texels share (x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)).
-vec3 hfx_patch_along(vec2 cell, vec2 p, vec2 dir, ivec2 size) {
-    const vec4 s = hfx_gather((cell + 1.0) / vec2(size));
+// The four samples of a level-0 cell, in one gather at the point all four texels share
+// (x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)).
+vec4 hfx_patch_samples(vec2 cell, ivec2 size) { return hfx_gather((cell + 1.0) / vec2(size)); }
+
+// The bilinear patch of those samples along the ray from p (in the cell): its height at
+// p + dir * s is A s^2 + B s + C, returned as (A, B, C).
+vec3 hfx_patch_along(vec4 s, vec2 cell, vec2 p, vec2 dir) {
     const float a = s.w, b = s.z - s.w, c = s.x - s.w, e = s.y - s.x - s.z + s.w;
     const vec2 local = p - cell;
     return vec3(e * dir.x * dir.y, b * dir.x + c * dir.y + e * (local.x * dir.y + local.y * dir.x),
@@ -104,35 +109,37 @@ float hfx_trace_depth(HfxRay ray) {
     const int topLevel = hfx_top_level(dir);
     const int maxSteps = hfx_max_steps(dir, topLevel);
     int level = 0;
-    float cellSize = 1.0, invCellSize = 1.0; // 2^level and its inverse
     float t = clamp(max(1.0 - hfx_field_max(), ray.start), 0.0, 1.0);
     vec2 p = p0 + dir * t; // the ray's point at t; a just-crossed axis holds the boundary exactly
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
         // The walk: one bound per step, until a level-0 cell the ray dips into (or the end).
-        vec2 cell, bound, tCross;
-        float tExit;
         bool found = false;
-        for (; steps < maxSteps; ++steps) {
-            if (t >= 1.0) return 1.0;
-            hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
+        for (; steps < maxSteps && t < 1.0; ++steps) {
+            vec2 cell, bound, tCross;
+            float tExit;
+            hfx_cell_at(p0, p, invDir, back, t, level, cell, bound, tCross, tExit);
             const vec2 bounds = hfx_bounds(ivec2(cell), level);
             const float tDown = 1.0 - bounds.x; // where the ray comes down to the cell's maximum
-            if (tDown < tExit) {
-                const float tIn = max(t, tDown);
-                const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
-                if (tBelow < tExit && tBelow - tIn <= ray.tolerance) return tIn;
-                if (tIn > t) p = p0 + dir * tIn;
-                t = tIn;
-                if (level == 0) { found = true; break; }
-                hfx_open_cell(level, cellSize, invCellSize);
-            } else {
-                hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
-            }
+            const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
+            const bool dip = tDown < tExit;
+            const float tIn = max(t, tDown);
+            if (dip && tBelow < tExit && tBelow - tIn <= ray.tolerance) { t = tIn; break; }
+            if (dip && level == 0) { found = true; break; }
+            hfx_step(p0, dir, dip, tIn, bound, tCross, tExit, topLevel, p, t, level);
         }
         if (!found) return t;
-        // Level 0: height minus the ray's (1 - t, falling) along the cell: A s^2 + B s + C.
-        const vec3 along = hfx_patch_along(cell, p, dir, size);
+        // The level-0 cell again (the same p and t: the same cell), down to its maximum (the
+        // largest of its four samples, its bound), then the patch's height minus the ray's
+        // (1 - t, falling) along the cell: A s^2 + B s + C.
+        vec2 cell, bound, tCross;
+        float tExit;
+        hfx_cell_at(p0, p, invDir, back, t, 0, cell, bound, tCross, tExit);
+        const vec4 samples = hfx_patch_samples(cell, size);
+        const float tIn = max(t, 1.0 - max(max(samples.x, samples.y), max(samples.z, samples.w)));
+        if (tIn > t) p = p0 + dir * tIn;
+        t = tIn;
+        const vec3 along = hfx_patch_along(samples, cell, p, dir);
         const float A = along.x, B = along.y + 1.0, C = along.z - (1.0 - t);
         if (C >= 0.0) return t;
         float root = 1e30;
@@ -148,7 +155,7 @@ float hfx_trace_depth(HfxRay ray) {
         }
         if (root <= tExit - t) return t + root;
         // The ray passes over the patch: on past the cell, as a skip.
-        hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
+        hfx_step(p0, dir, false, t, bound, tCross, tExit, topLevel, p, t, level);
         ++steps;
     }
     return t;
@@ -174,29 +181,23 @@ float hfx_beam_depth(vec2 p0, vec2 dir, float reach) {
     const int topLevel = max(hfx_top_level(dir), k);
     const int maxSteps = hfx_max_steps(dir, topLevel);
     int level = k;
-    float cellSize = exp2(float(k)), invCellSize = 1.0 / cellSize;
     float t = clamp(1.0 - hfx_field_max(), 0.0, 1.0);
     vec2 p = p0 + dir * t;
-    for (int steps = 0; steps < maxSteps; ++steps) {
-        if (t >= 1.0) return 1.0;
+    for (int steps = 0; steps < maxSteps && t < 1.0; ++steps) {
         vec2 cell, bound, tCross;
         float tExit;
-        hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
+        hfx_cell_at(p0, p, invDir, back, t, level, cell, bound, tCross, tExit);
         const ivec2 c = ivec2(cell);
         float highest = 0.0;
         for (int j = -1; j <= 1; ++j)
             for (int i = -1; i <= 1; ++i) highest = max(highest, hfx_bounds(c + ivec2(i, j), level).x);
         const float tDown = 1.0 - highest;
-        if (tDown < tExit) {
-            if (tDown > t) p = p0 + dir * tDown;
-            t = max(t, tDown);
-            if (level == k) return t;
-            hfx_open_cell(level, cellSize, invCellSize);
-        } else {
-            hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
-        }
+        const bool dip = tDown < tExit;
+        const float tIn = max(t, tDown);
+        if (dip && level == k) return tIn;
+        hfx_step(p0, dir, dip, tIn, bound, tCross, tExit, topLevel, p, t, level);
     }
-    return 0.0; // out of steps (a NaN ray): no start
+    return t >= 1.0 ? 1.0 : 0.0; // past the bottom, or out of steps (a NaN ray): no start
 }
 
 // Exact self-shadow: the light ray from the shaded point walked through the same pyramid. The
@@ -236,7 +237,6 @@ float hfx_shadow(HfxShadowRay ray) {
     float known;
     if (hfx_texel_shadow(p0, ray.span / climb, penumbra, known)) return known;
     int level = 0;
-    float cellSize = 1.0, invCellSize = 1.0;
     float t = 0.0;
     vec2 p = p0;
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
@@ -248,24 +248,25 @@ float hfx_shadow(HfxShadowRay ray) {
     const float tEnd = min(coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0, tClear);
     int steps = 0;
     for (int candidate = 0; candidate < maxSteps; ++candidate) {
-        vec2 cell, bound, tCross;
-        float tExit;
         bool found = false;
         for (; steps < maxSteps && t < tEnd; ++steps) {
-            hfx_cell_at(p0, p, invDir, back, t, cellSize, invCellSize, cell, bound, tCross, tExit);
+            vec2 cell, bound, tCross;
+            float tExit;
+            hfx_cell_at(p0, p, invDir, back, t, level, cell, bound, tCross, tExit);
             const float slope = climb * (1.0 - min(nearest, penumbra));
             const float coneLow = ray.h0 + min(slope * t, slope * tExit);
             const vec2 bounds = hfx_bounds(ivec2(cell), level);
-            if (bounds.x >= coneLow) {
-                if (level == 0) { found = true; break; }
-                hfx_open_cell(level, cellSize, invCellSize);
-            } else {
-                hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
-            }
+            const bool dip = bounds.x >= coneLow;
+            if (dip && level == 0) { found = true; break; }
+            hfx_step(p0, dir, dip, t, bound, tCross, tExit, topLevel, p, t, level);
         }
         if (!found) break;
+        // The level-0 cell again (the same p and t: the same cell).
+        vec2 cell, bound, tCross;
+        float tExit;
+        hfx_cell_at(p0, p, invDir, back, t, 0, cell, bound, tCross, tExit);
         // f(s) = patch - ray (h0 + climb t, rising) along the cell, s in [0, S]: A s^2 + B s + C.
-        const vec3 along = hfx_patch_along(cell, p, dir, size);
+        const vec3 along = hfx_patch_along(hfx_patch_samples(cell, size), cell, p, dir);
         const float A = along.x, B = along.y - climb, C = along.z - (ray.h0 + climb * t);
         const float S = tExit - t;
         const float sv = A < 0.0 ? clamp(-0.5 * B / A, 0.0, S) : 0.0; // the maximum's place
@@ -278,7 +279,7 @@ float hfx_shadow(HfxShadowRay ray) {
             const vec3 r = -((A * u + B1) * u + C1) / (climb * u);
             nearest = min(nearest, min(min(r.x, r.y), r.z));
         }
-        hfx_pass_cell(p0, dir, bound, tCross, tExit, topLevel, p, t, level, cellSize, invCellSize);
+        hfx_step(p0, dir, false, t, bound, tCross, tExit, topLevel, p, t, level);
         ++steps;
     }
     return clamp(1.0 - nearest * ray.sharpness, 0.0, HFX_PENUMBRA_MAX);
