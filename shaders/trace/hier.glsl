@@ -36,9 +36,9 @@
 // variable a step writes lives in memory and is blended under the lanes' mask, and the bound's
 // texelFetch (RG32F) is a call that spills every vector live across it: a step's state is p, t
 // and the level (hfx_step; 2^level from the exponent bits), and what the solve needs is found
-// again after the loop (the level-0 cell, its maximum from the gathered samples). Against a loop
-// that carried the cell sizes, the exit and the cell: 3-10% off hier's draw at 45-80 degrees
-// with the same fetches (docs/BENCHMARKS.md, fifteenth part).
+// again after the loop (the level-0 cell, the patch's maximum from the gathered samples). Against
+// a loop that carried the cell sizes, the exit and the cell: 0-11% off hier's draw at 45-80
+// degrees with the same fetches, most at 70-80 (docs/BENCHMARKS.md, fifteenth part).
 
 const int HFX_MAX_TRACE_STEPS = 1 << 18; // only against a NaN ray; the real bound is per ray
 
@@ -129,9 +129,9 @@ float hfx_trace_depth(HfxRay ray) {
             hfx_step(p0, dir, dip, tIn, bound, tCross, tExit, topLevel, p, t, level);
         }
         if (!found) return t;
-        // The level-0 cell again (the same p and t: the same cell), down to its maximum (the
-        // largest of its four samples, its bound), then the patch's height minus the ray's
-        // (1 - t, falling) along the cell: A s^2 + B s + C.
+        // The level-0 cell again (the same p and t: the same cell), down to the patch's maximum
+        // (the largest of its four samples: the ray is above the patch before it), then the
+        // patch's height minus the ray's (1 - t, falling) along the cell: A s^2 + B s + C.
         vec2 cell, bound, tCross;
         float tExit;
         hfx_cell_at(p0, p, invDir, back, t, 0, cell, bound, tCross, tExit);
