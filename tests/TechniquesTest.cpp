@@ -119,11 +119,13 @@ TEST_F(Techniques, TheBeamStartChangesNoHitAndShortensTheViewWalkAtGrazingAngles
                 EXPECT_NEAR(b.mean, w.mean, 1e-4) << name << " at " << angle << ", distance " << distance;
                 EXPECT_NEAR(b.max, w.max, 1e-3) << name << " at " << angle << ", distance " << distance;
                 EXPECT_NEAR(b.depthMean, w.depthMean, 1e-5) << name << " at " << angle << ", distance " << distance;
-                // Measured: from afar 12-33% fewer at 45-70 degrees, 8-18% at 80 and 1-8% at 85
+                // Measured: from afar 10-34% fewer at 45-70 degrees, 7-17% at 80 and 1-7% at 85
                 // (the steep foreshortening makes a block span more texels there), from close by
-                // 19-47% at 45-80; the blocks' walks end at once.
+                // 16-46% at 45-80; the blocks' walks end at once. (The bricks from afar at 45
+                // degrees saved 12% before the walk climbed only with clearance, which made the
+                // walk from the top cheaper too: 10% now.)
                 if (angle >= 45.0 && angle <= 80.0 && map.name != "blocks")
-                    EXPECT_LT(b.fetches, (angle >= 80.0 ? 0.95 : 0.9) * w.fetches) << name << " at " << angle;
+                    EXPECT_LT(b.fetches, (angle >= 80.0 ? 0.95 : 0.92) * w.fetches) << name << " at " << angle;
                 else
                     EXPECT_LE(b.fetches, w.fetches + 0.01) << name << " at " << angle;
             }
