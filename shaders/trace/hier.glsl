@@ -182,8 +182,9 @@ HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray)); }
 // height, so where this one passes above their maximum none of them can meet the surface. It
 // returns where it first comes down to such a maximum at level k (no solve); the walk per pixel
 // starts there (HfxRay.start). Nine bounds per step, once per 8x8-pixel block: 1.6-3.5 ms
-// at 1280x720 on llvmpipe, for 19-47% of the view walk's fetches at 45-80 degrees in bench-tracers'
-// view (docs/BENCHMARKS.md, fourteenth part; 4x4 blocks cost more than they saved, 16x16 saved less).
+// at 1280x720 on llvmpipe, for 16-46% of the view walk's fetches at 45-80 degrees in bench-tracers'
+// view (docs/BENCHMARKS.md, fourteenth and fifteenth parts; 4x4 blocks cost more than they saved,
+// 16x16 saved less).
 float hfx_beam_depth(vec2 p0, vec2 dir, float reach) {
     const bvec2 back = lessThan(dir, vec2(0.0));
     const vec2 invDir = hfx_inverse(dir);
