@@ -19,6 +19,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -97,6 +98,60 @@ TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsNeverOutliveTheirHei
     surface.run(field.buffer()); // both texture pairs have had a frame without
     EXPECT_EQ(surface.textures().texelShadows(), 0u);
     EXPECT_FALSE(surface.textures().texelShadowLight());
+}
+
+TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLeftAndPutsItBack) {
+    // The pass runs inside SurfacePipeline::run, wherever the caller is in its own drawing: a
+    // framebuffer bound with a small viewport, blending that zeroes what is drawn, a scissor
+    // around one texel and buffer 0's red masked off must neither change a texel nor survive
+    // the pass's own state into the caller's.
+    constexpr int N = 32;
+    const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.2, -1, 3, 0.4}});
+    const ClearanceLight light = ClearanceLight::of({0.6f, 0.25f}, 2.0f); // low: long shadows
+    StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
+    auto texels = [&](const SurfacePipeline& surface) {
+        std::vector<float> t(size_t(N) * N, -1.0f);
+        HFX_GL_CHECK(glGetTextureImage(surface.textures().texelShadows(), 0, GL_RED, GL_FLOAT,
+                                       GLsizei(t.size() * sizeof(float)), t.data()));
+        return t;
+    };
+    const auto config = SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true});
+    SurfacePipeline reference(cl(), config), surface(cl(), config);
+    for (SurfacePipeline* s : {&reference, &surface}) s->setShadowLight(light, {.clearanceMap = false, .texelShadows = true});
+    reference.run(field.buffer()); // from a clean state
+    const std::vector<float> clean = texels(reference);
+    ASSERT_GT(*std::max_element(clean.begin(), clean.end()), 0.1f) << "the light must cast some shadow";
+
+    RenderTarget caller(40, 24);
+    caller.bind();
+    glViewport(3, 2, 17, 9);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ZERO, GL_ZERO);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 1, 1);
+    glColorMaski(0, GL_FALSE, GL_TRUE, GL_TRUE, GL_TRUE);
+    GLint boundBefore = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &boundBefore);
+    surface.run(field.buffer()); // the same heights, a fresh pipeline: nothing drawn before
+    GLint bound = 0, viewport[4];
+    GLboolean mask[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glGetBooleani_v(GL_COLOR_WRITEMASK, 0, mask);
+    const bool blend = glIsEnabled(GL_BLEND), scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    EXPECT_EQ(texels(surface), clean);
+    EXPECT_EQ(bound, boundBefore);
+    EXPECT_EQ(viewport[0], 3);
+    EXPECT_EQ(viewport[1], 2);
+    EXPECT_EQ(viewport[2], 17);
+    EXPECT_EQ(viewport[3], 9);
+    EXPECT_TRUE(blend);
+    EXPECT_TRUE(scissor);
+    EXPECT_FALSE(mask[0]);
+    EXPECT_TRUE(mask[1] && mask[2] && mask[3]);
 }
 
 TEST(TexelShadowsPay, FromEnoughPixelsPerTexelHeldOnJustBelowAndNeverOnBadCounts) {

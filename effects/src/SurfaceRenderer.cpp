@@ -316,12 +316,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
 
 void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u,
                                     const glm::mat4& viewProj) {
-    GLint savedDraw = 0, viewport[4];
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &savedDraw);
+    GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
-    const bool blend = glIsEnabled(GL_BLEND), scissor = glIsEnabled(GL_SCISSOR_TEST);
-    GLboolean mask[4];
-    glGetBooleani_v(GL_COLOR_WRITEMASK, 0, mask); // the target's one buffer; the caller's others untouched
     // Texel (i, j) covers the window's pixels [B i, B i + B) x [B j, B j + B): the target spans
     // the viewport's far corner, and the transform maps the draw's NDC onto the target's.
     const int width = std::max((viewport[0] + viewport[2] + kBeamBlock - 1) / kBeamBlock, 1);
@@ -334,11 +330,8 @@ void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Su
         glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         if (!beamFramebuffer_) beamFramebuffer_ = GlFramebuffer::create();
-        HFX_GL_CHECK(glNamedFramebufferTexture(beamFramebuffer_.id(), GL_COLOR_ATTACHMENT0, beamTarget_.id(), 0));
-        const GLenum status = glCheckNamedFramebufferStatus(beamFramebuffer_.id(), GL_DRAW_FRAMEBUFFER);
-        if (status != GL_FRAMEBUFFER_COMPLETE)
-            throw Error(str("SurfaceRenderer: the beam start's ", beamWidth_, "x", beamHeight_,
-                            " R32F target is incomplete (status 0x", std::hex, status, ")"));
+        attachPassTarget(beamFramebuffer_, beamTarget_.id(), beamWidth_, beamHeight_, "R32F",
+                         "SurfaceRenderer: the beam start");
     }
     if (!beam_.id())
         beam_ = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")},
@@ -357,23 +350,14 @@ void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Su
     toTarget[3][1] = offset.y;
     const glm::mat4 beamViewProj = toTarget * viewProj;
     bindUniforms(u, model, beamViewProj);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, beamFramebuffer_.id());
-    glViewport(0, 0, width, height);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
+    const PassTarget pass(beamFramebuffer_, width, height);
     glDisable(GL_DEPTH_TEST);
-    glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}; // 0: no start, where no block ray was walked
     glClearNamedFramebufferfv(beamFramebuffer_.id(), GL_COLOR, 0, none);
     beam_.use();
     beam_.set("u_beamInverseViewProj", glm::inverse(beamViewProj));
     beam_.set("u_beamPixel", 2.0f / glm::vec2(width, height));
     mesh.draw();
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(savedDraw));
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    if (blend) glEnable(GL_BLEND);
-    if (scissor) glEnable(GL_SCISSOR_TEST);
-    glColorMaski(0, mask[0], mask[1], mask[2], mask[3]);
 }
 
 std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,

@@ -35,21 +35,12 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     const SurfaceTexturesConfig& config = textures.config();
     const GLuint target = textures.texelShadowTarget();
     GlStateGuard guard;
-    GLint savedDraw = 0, savedViewport[4];
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &savedDraw);
-    glGetIntegerv(GL_VIEWPORT, savedViewport);
-
-    HFX_GL_CHECK(glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, target, 0));
-    const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.id(), GL_DRAW_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw Error(str("TexelShadowPass: the ", config.width, "x", config.height,
-                        " R32F target is incomplete (status 0x", std::hex, status, ")"));
+    attachPassTarget(framebuffer_, target, config.width, config.height, "R32F", "TexelShadowPass");
+    const PassTarget pass(framebuffer_, config.width, config.height); // whatever blending or scissor the caller left
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
                       .wrap = {wrapsU(config.edges) ? 1 : 0, wrapsV(config.edges) ? 1 : 0},
                       .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
     updateBlock(block_, 0, u);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_.id());
-    glViewport(0, 0, config.width, config.height);
     glDisable(GL_DEPTH_TEST);
     program->use();
     glBindTextureUnit(0, textures.surface());
@@ -57,9 +48,6 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     glBindTextureUnit(15, clearance ? textures.clearance() : 0);
     glBindVertexArray(empty_.id());
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
-
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(savedDraw));
-    glViewport(savedViewport[0], savedViewport[1], savedViewport[2], savedViewport[3]);
     textures.texelShadowsDrawn(light);
 }
 

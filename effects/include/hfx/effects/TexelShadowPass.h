@@ -33,7 +33,8 @@ public:
     TexelShadowPass();
     /// Draws `textures`' texel shadows for `light` (the walks read the textures' clearance map
     /// where it is built for the same light) and marks them drawn. Throws hfx::Error without a
-    /// pyramid or for an invalid light. Restores the GL state it changes.
+    /// pyramid or for an invalid light. The same texels whatever blending, scissor test or colour
+    /// mask the caller has set; it puts those back, and every other GL state it changes.
     void draw(SurfaceTextures& textures, const ClearanceLight& light);
 
 private:
