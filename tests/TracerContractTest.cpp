@@ -454,6 +454,40 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
     EXPECT_EQ(invented, 0);
 }
 
+TEST_F(TracerContract, AGrazeWithinTheShadowToleranceDoesNotHideABlockerFurtherOn) {
+    // A light ray along a row of a flat field at 0.9, rising 5e-4 per texel: two texels on, a
+    // ridge stands 5e-5 above it (within HFX_SHADOW_EPSILON: not a blocker, but a clearance ratio
+    // below 0, -0.05), a hundred texels on a wall stands 1e-3 above it. The walk must still open
+    // the wall's cell: a negative ratio would lift the cone edge above the ray itself (by 0.05 of
+    // its climb: 2.5e-3 at the wall) and skip it, returning a penumbra for a hard shadow.
+    constexpr int N = 256, x0 = 10, y0 = 40;
+    constexpr float h0 = 0.9f, perTexel = 5e-4f;
+    std::vector<float> heights(size_t(N) * N, h0);
+    for (int y = y0 - 1; y <= y0 + 1; ++y) {
+        heights[size_t(y) * N + x0 + 2] = h0 + 2 * perTexel + 5e-5f;
+        heights[size_t(y) * N + x0 + 100] = h0 + 100 * perTexel + 1e-3f;
+    }
+    AccuracyProbe probe(cl(), heights, N, 0.1f);
+    const glm::vec2 uv = (glm::vec2(x0, y0) + 0.5f) / float(N);
+    const float climb = 1.0f - h0, texels = climb / perTexel; // the span: 200 texels over the climb
+    // The exact CPU ray meets the wall (and the ridge only within the tolerance).
+    const glm::dvec3 o(uv, h0), d(double(texels) / N / climb, 0.0, 1.0); // texcoords per unit of climb
+    ASSERT_TRUE(probe.exact().intersect(o + glm::dvec3(0, 0, 2e-4), d, 1.0 - h0).has_value());
+    std::vector<glm::vec4> rays;
+    for (const float sharpness : {2.0f, 8.0f, 1e6f}) {
+        rays.emplace_back(uv.x, uv.y, texels / float(N), 0.0f);
+        rays.emplace_back(h0, 0.0f, 8.0f, sharpness);
+    }
+    const std::vector<glm::vec4> shadow =
+        traceInHarness(probe.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer);
+    for (size_t i = 0; i < shadow.size(); ++i) EXPECT_EQ(shadow[i].x, 1.0f) << "ray " << i;
+    // Without the wall the ray is lit: the ridge alone must not shadow it.
+    heights[size_t(y0) * N + x0 + 100] = heights[size_t(y0 - 1) * N + x0 + 100] = heights[size_t(y0 + 1) * N + x0 + 100] = h0;
+    AccuracyProbe open(cl(), heights, N, 0.1f);
+    for (const glm::vec4& s : traceInHarness(open.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer))
+        EXPECT_LT(s.x, 1.0f);
+}
+
 /// The fields the shadow walk's shortcuts are held on: one-texel walls and plateaus (hard
 /// shadows, blockers finer than a texel) and a smooth sum of sines (long penumbrae).
 struct ShadowField {

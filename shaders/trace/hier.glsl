@@ -265,7 +265,8 @@ float hfx_shadow(HfxShadowRay ray) {
             vec2 cell, bound, tCross;
             float tExit;
             hfx_cell_at(p0, p, invDir, back, t, level, cell, bound, tCross, tExit);
-            const float slope = climb * (1.0 - min(nearest, penumbra));
+            // (A graze within HFX_SHADOW_EPSILON sets r < 0: the edge never rises above the ray.)
+            const float slope = climb * (1.0 - clamp(nearest, 0.0, penumbra));
             const float coneLow = ray.h0 + min(slope * t, slope * tExit);
             const vec2 bounds = hfx_bounds(ivec2(cell), level);
             const bool dip = bounds.x >= coneLow;
