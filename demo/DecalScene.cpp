@@ -61,10 +61,11 @@ public:
         // The light's shadow map: the wall casts its traced relief and the shelf itself, so the
         // shelf's shadow falls into the mortar and the holes, and the bricks shade the shelf.
         shadowMap_.fit(light_.direction, {0.0f, 0.0f, 0.0f}, 2.9f);
-        shadowMap_.begin();
-        renderer_.drawShadow(mesh(), model(), effect().layers(), effect().material(), shadowMap_, drawOptions());
-        renderer_.drawFlatShadow(post_, post, shadowMap_);
-        shadowMap_.end();
+        {
+            const auto casting = shadowMap_.scope();
+            renderer_.drawShadow(mesh(), model(), effect().layers(), effect().material(), shadowMap_, drawOptions());
+            renderer_.drawFlatShadow(post_, post, shadowMap_);
+        }
         DirectionalLight light = light_;
         light.shadowMap = &shadowMap_;
         drawSurface(renderer_, light);

@@ -5,8 +5,10 @@
 // light (a caster writing its polygon's depth would darken all of the board: the board lies
 // under that polygon).
 
+#include "support/Fields.h"
 #include "support/Fixtures.h"
 
+#include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
@@ -16,6 +18,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -175,6 +178,66 @@ TEST_F(ShadowMaps, APassPutsBackTheFramebuffersAndViewportItFound) {
     EXPECT_EQ(GLuint(readBack), read.framebuffer());
     EXPECT_EQ(viewport[2], 64);
     EXPECT_EQ(viewport[3], 48);
+}
+
+TEST_F(ShadowMaps, ACallersScissorAndDepthMaskNeitherSpoilTheMapNorOutliveItsPass) {
+    // A caller may leave a scissor around one pixel and depth writes off (a transparent pass, a
+    // UI): the map must still be cleared and cast in full, and get them back at end().
+    AccuracyProbe probe(cl(), sumOfSines(64, {{0.4, 2, 1, 0.0}}), 64, kDepthScale);
+    const Mesh plane(makePlane({.size = kPlane}));
+    const SurfaceMaterial material{.depthScale = kDepthScale};
+    SurfaceRenderer renderer;
+    const auto depths = [&](bool spoiled) {
+        ShadowMap map(64);
+        map.fit(light().direction, {0.0f, 0.0f, 0.0f}, 1.6f);
+        if (spoiled) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(0, 0, 1, 1);
+            glDepthMask(GL_FALSE);
+        }
+        {
+            const auto casting = map.scope();
+            renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map,
+                                {.technique = Technique::Hierarchical});
+        }
+        if (spoiled) {
+            EXPECT_TRUE(glIsEnabled(GL_SCISSOR_TEST));
+            GLboolean mask = GL_TRUE;
+            glGetBooleanv(GL_DEPTH_WRITEMASK, &mask);
+            EXPECT_FALSE(mask);
+            glDisable(GL_SCISSOR_TEST);
+            glDepthMask(GL_TRUE);
+        }
+        std::vector<float> d(64 * 64, -1.0f);
+        HFX_GL_CHECK(glGetTextureImage(map.texture(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(d.size() * sizeof(float)),
+                                       d.data()));
+        return d;
+    };
+    const std::vector<float> clean = depths(false);
+    ASSERT_LT(*std::min_element(clean.begin(), clean.end()), 0.9f) << "the relief must cast into the map";
+    EXPECT_EQ(depths(true), clean);
+}
+
+TEST_F(ShadowMaps, APassIsBegunOnceAndEndsEvenWhenACasterThrows) {
+    ShadowMap map(64);
+    map.begin();
+    EXPECT_NE(messageOf([&] { map.begin(); }).find("already begun"), std::string::npos);
+    map.end();
+    EXPECT_NE(messageOf([&] { map.end(); }).find("not begun"), std::string::npos);
+    RenderTarget drawn(32, 16);
+    drawn.bind();
+    EXPECT_THROW(
+        {
+            const auto casting = map.scope();
+            throw Error("a caster failed");
+        },
+        Error);
+    EXPECT_FALSE(map.begun());
+    GLint draw = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    EXPECT_EQ(GLuint(draw), drawn.framebuffer());
+    map.begin(); // and it can be begun again
+    map.end();
 }
 
 } // namespace

@@ -49,19 +49,30 @@ void ShadowMap::fit(glm::vec3 towardsLight, glm::vec3 centre, float radius) {
 }
 
 void ShadowMap::begin() {
+    if (begun_) throw Error("ShadowMap::begin: the map is already begun (end() puts back the caller's state first)");
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &savedDraw_);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &savedRead_);
     glGetIntegerv(GL_VIEWPORT, savedViewport_);
+    savedScissor_ = glIsEnabled(GL_SCISSOR_TEST);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &savedDepthMask_);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, size_, size_);
+    // The clear and the casters write the whole map, whatever scissor or depth mask the caller left.
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
     const float one = 1.0f;
     glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &one);
+    begun_ = true;
 }
 
 void ShadowMap::end() {
+    if (!begun_) throw Error("ShadowMap::end: the map was not begun");
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(savedDraw_));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(savedRead_));
     glViewport(savedViewport_[0], savedViewport_[1], savedViewport_[2], savedViewport_[3]);
+    (savedScissor_ ? glEnable : glDisable)(GL_SCISSOR_TEST);
+    glDepthMask(savedDepthMask_);
+    begun_ = false;
 }
 
 void ShadowMap::fillReceiver(SurfaceUniforms& u) const {

@@ -29,11 +29,30 @@ public:
     /// everything casting or receiving; throws hfx::Error for a zero direction or radius <= 0.
     void fit(glm::vec3 towardsLight, glm::vec3 centre, float radius);
 
-    /// Binds the map's framebuffer for drawing, sets its viewport and clears the depth; end()
-    /// puts back the draw and read framebuffers and the viewport that were bound.
+    /// Binds the map's framebuffer for drawing, sets its viewport, turns the scissor test off and
+    /// depth writes on (the casters fill the whole map whatever the caller left) and clears the
+    /// depth; end() puts back the draw and read framebuffers, the viewport, the scissor test and
+    /// the depth mask that were set. begin() twice or end() without begin() throws hfx::Error.
     void begin();
     void end();
 
+    /// begin() now and end() when it goes out of scope, also when a caster throws: the form the
+    /// demo's scenes use (`const auto casting = map.scope();`).
+    class Scope {
+    public:
+        explicit Scope(ShadowMap& map) : map_(&map) { map.begin(); }
+        ~Scope() {
+            if (map_->begun()) map_->end();
+        }
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+
+    private:
+        ShadowMap* map_;
+    };
+    [[nodiscard]] Scope scope() { return Scope(*this); }
+
+    bool begun() const { return begun_; }
     int size() const { return size_; }
     GLuint texture() const { return depth_.id(); }
     /// World to the light's clip space (orthographic: window depth is linear in distance).
@@ -62,6 +81,8 @@ private:
     glm::vec3 towardsLight_{0.0f, 1.0f, 0.0f};
     float radius_ = 1.0f;
     GLint savedDraw_ = 0, savedRead_ = 0, savedViewport_[4] = {0, 0, 0, 0};
+    GLboolean savedScissor_ = GL_FALSE, savedDepthMask_ = GL_TRUE;
+    bool begun_ = false;
 };
 
 } // namespace hfx
