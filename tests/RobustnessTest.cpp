@@ -166,6 +166,51 @@ TEST(TexelShadowsPay, FromEnoughPixelsPerTexelHeldOnJustBelowAndNeverOnBadCounts
         EXPECT_FALSE(texelShadowsPay(pixels, count, true)) << pixels << " pixels, " << count << " texels";
 }
 
+TEST(TexelShadowStride, EverySampleWhereThatPaysElseTheFewestWithinThePixelBudgetElseNone) {
+    const double texels = 1024.0 * 1024.0;
+    EXPECT_EQ(texelShadowStride(1.8 * texels, texels, 0.0f, 0), 1);
+    // The noise plane at 1024²: 0.45 pixels per texel, about 0.67 pixels apart on each axis.
+    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, 0.0f, 0), 0);  // no budget: walk
+    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, 1.0f, 0), 0);  // every 2nd: 1.34 px apart
+    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, 1.5f, 0), 2);  // and 1.8 px per sample pays
+    // The decal wall at 1024²: 0.40 per texel; every 2nd sample does not pay (1.6 per sample),
+    // every 4th does, 2.53 px apart.
+    EXPECT_EQ(texelShadowStride(0.40 * texels, texels, 2.0f, 0), 0);
+    EXPECT_EQ(texelShadowStride(0.40 * texels, texels, 3.0f, 0), 4);
+    EXPECT_EQ(texelShadowStride(0.40 * texels, texels, 2.0f, 2), 2); // held on at 1.6 per sample
+    EXPECT_EQ(texelShadowStride(1.6 * texels, texels, 0.0f, 1), 1);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, std::numeric_limits<float>::quiet_NaN(), 0), 0);
+    for (const auto& [pixels, count] : {std::pair{nan, texels}, std::pair{0.0, texels}, std::pair{1e6, 0.0},
+                                        std::pair{-1.0, texels}, std::pair{1e6, nan}})
+        EXPECT_EQ(texelShadowStride(pixels, count, 64.0f, 0), 0) << pixels << " pixels, " << count << " texels";
+}
+
+TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
+    constexpr int N = 32;
+    StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    const ClearanceLight light = ClearanceLight::of({0.05f, 0.02f}, 2.0f);
+    for (const int stride : {0, 3, 64, -2}) {
+        const std::string m =
+            messageOf([&] { surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = true, .texelStride = stride}); });
+        EXPECT_NE(m.find("texelStride"), std::string::npos) << m;
+        EXPECT_NE(m.find("32x32"), std::string::npos) << m;
+        TexelShadowPass pass;
+        SurfaceTextures& textures = const_cast<SurfaceTextures&>(surface.textures()); // the test owns it
+        EXPECT_NE(messageOf([&] { pass.draw(textures, light, stride); }).find("stride"), std::string::npos);
+    }
+    // Without texel shadows the stride is not read; a good one draws a 16x16 target.
+    surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = false, .texelStride = 3});
+    surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = true, .texelStride = 2});
+    surface.run(field.buffer());
+    ASSERT_NE(surface.textures().texelShadows(), 0u);
+    EXPECT_EQ(surface.textures().texelShadowStride(), 2);
+    GLint width = 0;
+    glGetTextureLevelParameteriv(surface.textures().texelShadows(), 0, GL_TEXTURE_WIDTH, &width);
+    EXPECT_EQ(width, 16);
+}
+
 TEST_F(Robustness, BadMaterialsDrawNothing) {
     SineWavesEffect water(cl(), {.waves = {.size = 64}});
     RenderTarget target(64, 64);

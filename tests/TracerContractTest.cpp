@@ -17,6 +17,8 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
+#include <utility>
 
 namespace hfx::test {
 namespace {
@@ -209,10 +211,11 @@ enum class Accessors { Harness, Renderer };
 /// kShadowMain each shadow ray's hfx_shadow in x and, with the renderer's accessors, the reads
 /// it made in y. With the renderer's accessors and `clearance`,
 /// the textures' clearance map is read as a draw reads it (HFX_CLEARANCE, its light's uniforms),
-/// and with `texelShadows` their texel shadows too (HFX_TEXEL_SHADOWS).
+/// and with `texelShadows` their texel shadows too (HFX_TEXEL_SHADOWS). `wrap`: per axis, whether
+/// the textures' field wraps (the renderer's u_wrap).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
-                                      bool clearance = false, bool texelShadows = false) {
+                                      bool clearance = false, bool texelShadows = false, glm::ivec2 wrap = {1, 1}) {
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && clearance));
     HFX_CHECK(clearance || !texelShadows);
@@ -224,7 +227,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     parts.insert(parts.end(), {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
                                kHarnessBuffers, main});
     const ShaderProgram p = ShaderProgram::compute(parts);
-    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(), .wrap = glm::ivec2(1, 1)};
+    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(), .wrap = wrap};
     if (clearance) {
         const ClearanceLight& c = (texelShadows ? textures.texelShadowLight() : textures.clearanceLight()).value();
         u.clearance = {c.uvPerClimb, c.penumbra, c.slack};
@@ -602,7 +605,10 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
     // come out as its walk does: the same hard shadow, except where that changes inside a cell
     // between samples that agree (a sliver finer than the samples: counted and bounded), the
     // penumbra blended within a bound, in fewer fetches. Texels one sample off must fail the
-    // bounds (else the comparison could not fail).
+    // bounds (else the comparison could not fail). At every second sample (the stride a pixel
+    // budget picks where texels are smaller than pixels) the smooth field keeps those bounds; on
+    // the one-texel walls the shadows finer than two samples are missed between them (measured:
+    // 2.7-3.0% of the rays, their penumbra off by 0.003 on average): at most 3.5%.
     constexpr int N = 256;
     constexpr float depth = 0.1f;
     const std::vector<ShadowField> fields = shadowFields(N);
@@ -613,17 +619,19 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
         SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .pyramid = true}));
         const HeightFieldTracer exact(field.heights, N, N, EdgeMode::Wrap);
         for (size_t li = 0; li < std::size(lights); ++li) {
-            for (const float sharpness : {2.0f, 8.0f}) {
+            for (const auto& [sharpness, stride] : {std::pair{2.0f, 1}, std::pair{8.0f, 1}, std::pair{2.0f, 2}, std::pair{8.0f, 2}}) {
+                const int M = N / stride; // texel-shadow samples per edge
                 DirectionalLight light;
                 light.direction = lights[li];
                 const std::optional<ClearanceLight> c = flatSurfaceLight(
                     SurfaceFrame::ofPlane({}), light, {.depthScale = depth, .shadowSharpness = sharpness});
                 ASSERT_TRUE(c);
-                surface.setShadowLight(c, {.clearanceMap = true, .texelShadows = true});
+                surface.setShadowLight(c, {.clearanceMap = true, .texelShadows = true, .texelStride = stride});
                 surface.run(source.buffer());
                 const SurfaceTextures& textures = surface.textures();
                 ASSERT_NE(textures.texelShadows(), 0u);
-                std::vector<float> texels(size_t(N) * N);
+                ASSERT_EQ(textures.texelShadowStride(), stride);
+                std::vector<float> texels(size_t(M) * M);
                 glGetTextureImage(textures.texelShadows(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
                                   texels.data());
                 const auto walk = [&](const std::vector<glm::vec4>& r, bool read) {
@@ -638,12 +646,12 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                 // Every sample: the walk from it, as the pass ran it.
                 std::vector<glm::vec4> sampleRays;
                 std::vector<size_t> sampleOf;
-                for (int j = 0; j < N; ++j)
-                    for (int i = 0; i < N; ++i) {
-                        const float h0 = field.heights[size_t(j) * N + size_t(i)];
+                for (int j = 0; j < M; ++j)
+                    for (int i = 0; i < M; ++i) {
+                        const float h0 = field.heights[size_t(j * stride) * N + size_t(i * stride)];
                         if (h0 >= 1.0f) continue;
-                        rayFrom(sampleRays, (glm::vec2(i, j) + 0.5f) / float(N), h0);
-                        sampleOf.push_back(size_t(j) * N + size_t(i));
+                        rayFrom(sampleRays, (glm::vec2(i, j) * float(stride) + 0.5f) / float(N), h0);
+                        sampleOf.push_back(size_t(j) * M + size_t(i));
                     }
                 const std::vector<glm::vec4> atSamples = walk(sampleRays, false);
                 double worst = 0;
@@ -685,33 +693,97 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                 const Tally t = compare(walk(rays, true));
                 double fetchesWalked = 0;
                 for (int i = 0; i < kRays; ++i) fetchesWalked += walked[size_t(i)].y;
-                std::printf("[texels] %s light %zu sharpness %.0f: %d of %d rays in hard shadow, %d differ there; "
+                std::printf("[texels] %s light %zu sharpness %.0f stride %d: %d of %d rays in hard shadow, %d differ there; "
                             "penumbra off by %.4f on average, %.3f at most; fetches %.2f -> %.2f per ray\n",
-                            field.name, li, sharpness, t.hard, kRays, t.hardDiffer, t.error, t.worst,
+                            field.name, li, sharpness, stride, t.hard, kRays, t.hardDiffer, t.error, t.worst,
                             fetchesWalked / kRays, t.fetches / kRays);
                 EXPECT_GT(t.hard, kRays / 50) << field.name;
-                EXPECT_LE(t.hardDiffer, kRays / 1000) << field.name << " light " << li << " sharpness " << sharpness;
+                const bool finerThanSamples = stride > 1 && std::string(field.name) == "walls";
+                const int hardBound = finerThanSamples ? kRays * 35 / 1000 : kRays / 1000;
+                const double worstBound = finerThanSamples ? 1.0 : 0.3;
+                EXPECT_LE(t.hardDiffer, hardBound) << field.name << " light " << li << " sharpness " << sharpness << " stride " << stride;
                 // The blend is used where the four samples differ by at most 0.25 (HFX_TEXEL_SPREAD).
-                EXPECT_LE(t.error, 0.005) << field.name << " light " << li << " sharpness " << sharpness;
-                EXPECT_LE(t.worst, 0.3) << field.name << " light " << li << " sharpness " << sharpness;
+                EXPECT_LE(t.error, 0.005) << field.name << " light " << li << " sharpness " << sharpness << " stride " << stride;
+                EXPECT_LE(t.worst, worstBound) << field.name << " light " << li << " sharpness " << sharpness << " stride " << stride;
                 EXPECT_LT(t.fetches, 0.8 * fetchesWalked) << field.name << " light " << li;
 
                 // The texels one sample off along u: the same comparison must fail.
                 std::vector<float> shifted(texels.size());
-                for (int j = 0; j < N; ++j)
-                    for (int i = 0; i < N; ++i)
-                        shifted[size_t(j) * N + size_t(i)] = texels[size_t(j) * N + size_t((i + 1) % N)];
+                for (int j = 0; j < M; ++j)
+                    for (int i = 0; i < M; ++i)
+                        shifted[size_t(j) * M + size_t(i)] = texels[size_t(j) * M + size_t((i + 1) % M)];
                 // The test owns the pipeline: its textures are ours to spoil (the next run() redraws them).
-                glTextureSubImage2D(textures.texelShadows(), 0, 0, 0, N, N, GL_RED, GL_FLOAT, shifted.data());
+                glTextureSubImage2D(textures.texelShadows(), 0, 0, 0, M, M, GL_RED, GL_FLOAT, shifted.data());
                 const Tally off = compare(walk(rays, true));
                 std::printf("[texels] ... one sample off: %d differ in hard shadow, penumbra off by %.4f on average, "
                             "%.3f at most\n", off.hardDiffer, off.error, off.worst);
-                EXPECT_TRUE(off.hardDiffer > kRays / 1000 || off.error > 0.005 || off.worst > 0.3)
+                EXPECT_TRUE(off.hardDiffer > hardBound || off.error > 0.005 || off.worst > worstBound)
                     << field.name << " light " << li << ": shifted texels pass (" << off.hardDiffer << " differ, "
                     << off.error << " penumbra error)";
             }
         }
     }
+}
+
+TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge) {
+    // A field that clamps at its edges, texel shadows at every second sample: between the last
+    // sample they hold and the field's edge the relief goes on, and nothing brackets a point
+    // there (a gather would clamp to the last sample's shadow twice). Those points must walk:
+    // their shadow is the walk's, to the bit. Elsewhere the smooth field keeps the usual bounds.
+    constexpr int N = 128, stride = 2;
+    const std::vector<float> heights = sumOfSines(N, {{0.3, 3, 1, 0.0}, {0.12, -4, 7, 0.7}, {0.05, 11, -9, 0.3}});
+    StaticField source(cl(), N, N, EdgeMode::Clamp, heights);
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, 0.1f, {.mipmaps = false, .pyramid = true}));
+    const HeightFieldTracer exact(heights, N, N, EdgeMode::Clamp);
+    DirectionalLight light;
+    light.direction = {0.6f, 0.35f, 0.3f}; // towards +u, +v: the rays from the far strips cross the field
+    const std::optional<ClearanceLight> c =
+        flatSurfaceLight(SurfaceFrame::ofPlane({}), light, {.depthScale = 0.1f, .shadowSharpness = 2.0f});
+    ASSERT_TRUE(c);
+    surface.setShadowLight(c, {.clearanceMap = true, .texelShadows = true, .texelStride = stride});
+    surface.run(source.buffer());
+    ASSERT_EQ(surface.textures().texelShadowStride(), stride);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<glm::vec4> rays;
+    std::vector<bool> inStrip;
+    while (inStrip.size() < 65536) {
+        glm::dvec2 uv(unit(random), unit(random));
+        // Half of them in the strips past the last held sample (N - stride) along u or v.
+        if (inStrip.size() % 2 == 0) (inStrip.size() % 4 == 0 ? uv.x : uv.y) = (N - stride + 0.5 + 1.5 * unit(random)) / N;
+        const double h0 = exact.heightAt(uv);
+        if (h0 >= 0.999) continue;
+        const glm::vec2 span = c->uvPerClimb * float(1.0 - h0);
+        rays.emplace_back(float(uv.x), float(uv.y), span.x, span.y);
+        rays.emplace_back(float(h0), 0.0f, 8.0f, 2.0f);
+        const glm::dvec2 cell = uv * double(N) - 0.5;
+        inStrip.push_back(cell.x >= N - stride || cell.y >= N - stride);
+    }
+    const auto trace = [&](bool read) {
+        return traceInHarness(surface.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer, true,
+                              read, {0, 0});
+    };
+    const std::vector<glm::vec4> walked = trace(false), read = trace(true);
+    int strip = 0, stripDiffer = 0, hardDiffer = 0, soft = 0;
+    double error = 0.0;
+    for (size_t i = 0; i < inStrip.size(); ++i) {
+        const float a = walked[i].x, b = read[i].x;
+        if (inStrip[i]) {
+            ++strip;
+            stripDiffer += a != b;
+        } else if ((a == 1.0f) != (b == 1.0f)) {
+            ++hardDiffer;
+        } else if (a < 1.0f) {
+            ++soft;
+            error += std::abs(a - b);
+        }
+    }
+    std::printf("[texels clamped] %d rays in the strips, %d differ from the walk; elsewhere %d differ in hard shadow, "
+                "penumbra off by %.4f on average\n", strip, stripDiffer, hardDiffer, error / std::max(soft, 1));
+    EXPECT_GT(strip, 16000);
+    EXPECT_EQ(stripDiffer, 0);
+    EXPECT_LE(hardDiffer, int(inStrip.size()) / 1000);
+    EXPECT_LE(error / std::max(soft, 1), 0.005);
 }
 
 /// The searches' bounds (surface/heights.glsl, hfx_segment_bounds) in a compute harness: per

@@ -112,10 +112,15 @@ void SurfaceTextures::uploadClearance(const float* map, const ClearanceLight& li
     clearanceLight_ = light;
 }
 
-GLuint SurfaceTextures::texelShadowTarget() {
-    if (!texelShadows_.id()) {
+GLuint SurfaceTextures::texelShadowTarget(int stride) {
+    if (stride < 1 || (stride & (stride - 1)) != 0 || config_.width % stride != 0 || config_.height % stride != 0)
+        throw Error(str("texelShadowTarget: the texel shadows' stride must be a power of two that divides the field's ",
+                        config_.width, "x", config_.height, " samples, got ", stride));
+    if (!texelShadows_.id() || stride != texelStride_) {
+        texelShadowLight_.reset();
         texelShadows_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(texelShadows_.id(), 1, GL_R32F, config_.width, config_.height));
+        HFX_GL_CHECK(glTextureStorage2D(texelShadows_.id(), 1, GL_R32F, config_.width / stride, config_.height / stride));
+        texelStride_ = stride;
         // Read by textureGather around a point: the four samples of its cell, wrapped or clamped
         // as the heights are.
         glTextureParameteri(texelShadows_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);

@@ -101,6 +101,11 @@ void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light,
             throw Error("SurfacePipeline::setShadowLight: the clearance map and the texel shadows need the height "
                         "pyramid (SurfaceOptions::pyramid)");
         light->validate();
+        const int stride = options.texelStride;
+        if (options.texelShadows &&
+            (stride < 1 || (stride & (stride - 1)) != 0 || config_.width % stride != 0 || config_.height % stride != 0))
+            throw Error(str("SurfacePipeline::setShadowLight: ShadowLightOptions::texelStride must be a power of two "
+                            "that divides the field's ", config_.width, "x", config_.height, " samples, got ", stride));
         if (!clearance_ && options.clearanceMap)
             clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
     }
@@ -204,7 +209,7 @@ void SurfacePipeline::finish() {
     // The texel shadows: a GL pass over the heights, pyramid and map just uploaded.
     if (texelsFor_) {
         if (!texelPass_) texelPass_ = std::make_unique<TexelShadowPass>();
-        texelPass_->draw(back, *texelsFor_);
+        texelPass_->draw(back, *texelsFor_, lightOptions_.texelStride);
     } else {
         back.dropTexelShadows();
     }

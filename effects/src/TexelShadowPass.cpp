@@ -6,6 +6,8 @@
 
 #include "GlStateGuard.h"
 
+#include <cmath>
+
 namespace hfx {
 
 namespace {
@@ -23,9 +25,20 @@ bool texelShadowsPay(double pixels, double texels, bool drawing) {
     return pixels >= (drawing ? 1.5 : 1.75) * texels;
 }
 
+int texelShadowStride(double pixels, double texels, float pixelBudget, int drawing) {
+    if (!(texels > 0.0) || !(pixels >= 0.0)) return 0;
+    if (texelShadowsPay(pixels, texels, drawing == 1)) return 1;
+    const double pixelsPerSample = std::sqrt(pixels / texels); // on each axis, at stride 1
+    for (int stride = 2; stride <= (1 << 14); stride *= 2) {
+        if (!(stride * pixelsPerSample <= pixelBudget)) return 0;
+        if (texelShadowsPay(pixels, texels / (double(stride) * stride), drawing == stride)) return stride;
+    }
+    return 0;
+}
+
 TexelShadowPass::TexelShadowPass() : framebuffer_(GlFramebuffer::create()), empty_(GlVertexArray::create()) {}
 
-void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& light) {
+void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& light, int stride) {
     if (!textures.pyramid())
         throw Error("TexelShadowPass::draw: the surface needs its height pyramid (SurfaceOptions::pyramid)");
     light.validate();
@@ -33,16 +46,18 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     std::optional<ShaderProgram>& program = programs_[clearance ? 1 : 0];
     if (!program) program = texelProgram(clearance);
     const SurfaceTexturesConfig& config = textures.config();
-    const GLuint target = textures.texelShadowTarget();
+    const GLuint target = textures.texelShadowTarget(stride); // throws for a bad stride
+    const int width = config.width / stride, height = config.height / stride;
     GlStateGuard guard;
-    attachPassTarget(framebuffer_, target, config.width, config.height, "R32F", "TexelShadowPass");
-    const PassTarget pass(framebuffer_, config.width, config.height); // whatever blending or scissor the caller left
+    attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
+    const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
                       .wrap = {wrapsU(config.edges) ? 1 : 0, wrapsV(config.edges) ? 1 : 0},
                       .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
     updateBlock(block_, 0, u);
     glDisable(GL_DEPTH_TEST);
     program->use();
+    program->set("u_texelStride", stride);
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(3, textures.pyramid());
     glBindTextureUnit(15, clearance ? textures.clearance() : 0);

@@ -173,17 +173,25 @@ float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
 // The texel shadows (HFX_TEXEL_SHADOWS) for a light ray from p (cell space) of their light (its
 // move per climb within the slack, the same penumbra: the samples hold that penumbra's shadow).
 // The walk's shadow is 1 where a blocker stands above the ray (hard shadow) and below 1
-// elsewhere, continuous in the point there. Where the four samples around p are all in hard shadow, or none is, `shadow` is their
-// bilinear blend and the walk is not needed; where the hard shadow's edge crosses the cell (some
-// samples are in it, some not), false: the ray is walked.
+// elsewhere, continuous in the point there. The samples are every stride-th of the field on each
+// axis (TexelShadowPass; 1: all). Where the four around p are all in hard shadow, or none is and
+// they differ by at most HFX_TEXEL_SPREAD, `shadow` is their bilinear blend and the walk is not
+// needed; where the hard shadow's edge crosses their cell (some samples are in it, some not), or
+// past the last sample on an edge that clamps, false: the ray is walked.
 bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) {
     shadow = 0.0;
 #if HFX_TEXEL_SHADOWS
     if (hfx_along_shadow_light(perClimb) && abs(penumbra - u_clearance.z) <= 1e-6 * u_clearance.z) {
+        // Every stride-th sample (TexelShadowPass's stride: a power of two, so q is exact).
+        const ivec2 grid = textureSize(s_texelShadows, 0);
+        const vec2 q = p * (vec2(grid) / vec2(hfx_size())), cell = floor(q), f = q - cell;
+        // Past the last sample on an edge that clamps, nothing brackets the point (at a stride
+        // above 1 the relief goes on there): walk.
+        const bvec2 past = greaterThanEqual(cell, vec2(grid - 1));
+        if ((past.x && u_wrap.x == 0) || (past.y && u_wrap.y == 0)) return false;
         g_fetches += 1.0;
-        const vec2 cell = floor(p), f = p - cell;
         // x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)
-        const vec4 s = textureGather(s_texelShadows, (cell + 1.0) / vec2(hfx_size()), 0);
+        const vec4 s = textureGather(s_texelShadows, (cell + 1.0) / vec2(grid), 0);
         const bvec4 hard = equal(s, vec4(1.0));
         shadow = mix(mix(s.w, s.z, f.x), mix(s.x, s.y, f.x), f.y);
         const float spread = max(max(s.x, s.y), max(s.z, s.w)) - min(min(s.x, s.y), min(s.z, s.w));

@@ -5,12 +5,14 @@
 // light (u_clearance: texcoords per unit climbed, penumbra). Composed after surface/uniforms.glsl,
 // surface/heights.glsl, trace/common.glsl and trace/hier.glsl, with HFX_TEXEL_SHADOWS 0 and
 // HFX_CLEARANCE 1 where the surface has a clearance map for the same light (the walks read it).
-// Sample (i, j) sits at texcoords ((i, j) + 0.5) / size, the viewport is the field's size.
+// Sample (i, j) sits at texcoords ((i, j) + 0.5) / size; the target holds every u_texelStride-th
+// sample on each axis (its texel (a, b) is sample (a, b) * stride), the viewport is its size.
 
 layout(location = 0) out vec4 o_shadow;
+uniform int u_texelStride;
 
 void main() {
-    const ivec2 texel = ivec2(gl_FragCoord.xy);
+    const ivec2 texel = ivec2(gl_FragCoord.xy) * u_texelStride;
     const ivec2 size = hfx_size();
     HfxShadowRay ray;
     ray.h0 = texelFetch(s_surface, texel, 0).w;

@@ -58,10 +58,12 @@ public:
     /// Forgets the clearance map: nothing reads it until the next upload (the heights changed
     /// and no map was built for them).
     void dropClearance() { clearanceLight_.reset(); }
-    /// The texel shadows' render target (R32F, width x height: the exact self-shadow at each
-    /// sample for one light), made on the first call; hfx::TexelShadowPass draws into it after
-    /// the heights' upload and then calls texelShadowsDrawn() with the light.
-    GLuint texelShadowTarget();
+    /// The texel shadows' render target (R32F: the exact self-shadow for one light at every
+    /// stride-th sample on each axis, width / stride x height / stride texels), made on the first
+    /// call and remade when the stride changes; hfx::TexelShadowPass draws into it after the
+    /// heights' upload and then calls texelShadowsDrawn() with the light. Throws hfx::Error unless
+    /// the stride is a power of two that divides both the width and the height.
+    GLuint texelShadowTarget(int stride = 1);
     /// The texel shadows now hold `light`'s shadows of these heights: the renderer reads them
     /// for rays of that light. Needs the pyramid (the walk's).
     void texelShadowsDrawn(const ClearanceLight& light);
@@ -87,6 +89,8 @@ public:
     const std::optional<ClearanceLight>& clearanceLight() const { return clearanceLight_; }
     /// The texel shadows, 0 when there are none to read, and their light.
     GLuint texelShadows() const { return texelShadowLight_ ? texelShadows_.id() : 0; }
+    /// Samples per texel-shadow texel on each axis (1: every sample).
+    int texelShadowStride() const { return texelStride_; }
     const std::optional<ClearanceLight>& texelShadowLight() const { return texelShadowLight_; }
     GLuint albedo() const { return albedo_.id(); }
     GLuint channels() const { return channels_.id(); }
@@ -98,6 +102,7 @@ private:
     int levels_ = 1;
     int pyramidLevels_ = 0;
     GlTexture surface_, albedo_, channels_, pyramid_, clearance_, texelShadows_;
+    int texelStride_ = 1;
     std::optional<ClearanceLight> clearanceLight_, texelShadowLight_;
 };
 

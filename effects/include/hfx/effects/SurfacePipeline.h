@@ -94,6 +94,11 @@ struct ShadowLightOptions {
     /// their bilinear blend), walked elsewhere. Pays where the texels are fewer than the pixels
     /// that show them (texelShadowsPay).
     bool texelShadows = false;
+    /// The texel shadows at every texelStride-th sample on each axis (a power of two that divides
+    /// the field's size): a pass stride^2 times shorter, and hard shadows finer than stride
+    /// samples may be missed between them. 1 (every sample) unless texels are so much smaller
+    /// than pixels that a pixel budget allows more (texelShadowStride).
+    int texelStride = 1;
     bool operator==(const ShadowLightOptions&) const = default;
 };
 

@@ -28,14 +28,25 @@ namespace hfx {
 /// frame's look, slightly) every frame.
 bool texelShadowsPay(double pixels, double texels, bool drawing);
 
+/// The texel shadows' stride for such a surface under a pixel budget (SurfaceMaterial::
+/// pixelBudget, pixels): 1 where every sample pays (texelShadowsPay); else the smallest power of
+/// two s at which every s-th sample on each axis pays (s^2 times fewer walks) while s samples
+/// stay within the budget on the screen (s * sqrt(pixels / texels) pixels apart: a hard shadow
+/// finer than that may be missed, as one finer than a texel is at stride 1); 0 where none does
+/// (walk every pixel's light ray). `drawing`: the last frame's stride (0: none), held on as
+/// texelShadowsPay holds. With no budget (0) this is texelShadowsPay's choice of 1 or 0.
+int texelShadowStride(double pixels, double texels, float pixelBudget, int drawing);
+
 class TexelShadowPass {
 public:
     TexelShadowPass();
-    /// Draws `textures`' texel shadows for `light` (the walks read the textures' clearance map
-    /// where it is built for the same light) and marks them drawn. Throws hfx::Error without a
-    /// pyramid or for an invalid light. The same texels whatever blending, scissor test or colour
-    /// mask the caller has set; it puts those back, and every other GL state it changes.
-    void draw(SurfaceTextures& textures, const ClearanceLight& light);
+    /// Draws `textures`' texel shadows for `light` at every stride-th sample on each axis (the
+    /// walks read the textures' clearance map where it is built for the same light) and marks
+    /// them drawn. Throws hfx::Error without a pyramid, for an invalid light or a stride that is
+    /// not a power of two dividing the field's size. The same texels whatever blending, scissor
+    /// test or colour mask the caller has set; it puts those back, and every other GL state it
+    /// changes.
+    void draw(SurfaceTextures& textures, const ClearanceLight& light, int stride = 1);
 
 private:
     /// [1]: the walks read the clearance map; each built by its first draw (a surface with texel
