@@ -138,7 +138,7 @@ int runBench(const SceneOptions& options, int width, int height, int frames, con
             // texel that chose it: the surface's quad on this image over the field's texels.
             char texels[64] = "-";
             if (scene->pixelsPerTexel() > 0.0)
-                std::snprintf(texels, sizeof texels, "%s (%.2f px/texel)", scene->texelShadowsDrawn() ? "on" : "off",
+                std::snprintf(texels, sizeof texels, "%s (%.2f px/texel)", scene->texelShadowsLabel().c_str(),
                               scene->pixelsPerTexel());
             const auto [sequential, overlapped] = sequentialAndOverlapped(*scene, target, frames);
             const auto& config = scene->effect().textures().config();

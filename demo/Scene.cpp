@@ -46,13 +46,24 @@ void Scene::prepareShadowLight() {
         const double texels = double(field.width) * field.height;
         const double pixels = screenArea(flat->corners, camera_.viewProjection(), imageWidth_, imageHeight_);
         pixelsPerTexel_ = pixels / texels;
-        options.texelShadows = texelShadows == TexelShadowChoice::On ||
-                               (texelShadows == TexelShadowChoice::Auto && texelShadowsPay(pixels, texels, texelShadowsOn_));
+        // Every sample where that pays; under a pixel budget, every few samples where their
+        // spacing on screen stays within it; forced on: every sample.
+        const int stride = texelShadows == TexelShadowChoice::Off
+                               ? 0
+                               : hfx::texelShadowStride(pixels, texels, effect().material().pixelBudget, texelStride_);
+        options.texelShadows = texelShadows == TexelShadowChoice::On || stride > 0;
+        options.texelStride = std::max(stride, 1);
         if (options.clearanceMap || options.texelShadows)
             light = flatSurfaceLight(flat->frame, flat->light, effect().material());
     }
     texelShadowsOn_ = options.texelShadows;
+    texelStride_ = options.texelShadows ? options.texelStride : 0;
     effect().setShadowLight(light, options);
+}
+
+std::string Scene::texelShadowsLabel() const {
+    if (!texelShadowsOn_) return "off";
+    return texelStride_ > 1 ? str("on, stride ", texelStride_) : "on";
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {

@@ -41,7 +41,9 @@ struct SceneOptions {
     bool clearanceMap = false;
     /// The texel shadows (pixels walk their light rays only where a hard shadow's edge passes
     /// between the samples around them): by default wherever they pay (texelShadowsPay, from
-    /// the surface's pixels on this frame's image and its field's texels).
+    /// the surface's pixels on this frame's image and its field's texels), and under a pixel
+    /// budget at a stride whose samples stay within it on screen where that pays
+    /// (texelShadowStride); On draws them at every sample.
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
     /// hier's beam start on flat surfaces (DrawOptions::beamStart): the same hits in shorter walks.
     bool beamStart = true;
@@ -135,6 +137,10 @@ public:
     /// Whether this frame's field has texel shadows (the last prepareShadowLight's choice), and
     /// the flat surface's pixels per field texel it was made from (0 where not flat or not hier).
     bool texelShadowsDrawn() const { return texelShadowsOn_; }
+    /// Their stride (ShadowLightOptions::texelStride; 0 where none are drawn).
+    int texelShadowStride() const { return texelStride_; }
+    /// "off", "on" or "on, stride N", for the panel and the bench table.
+    std::string texelShadowsLabel() const;
     double pixelsPerTexel() const { return pixelsPerTexel_; }
 
 protected:
@@ -153,6 +159,7 @@ protected:
 private:
     int imageWidth_ = 1280, imageHeight_ = 720; ///< SceneOptions::width, height
     bool texelShadowsOn_ = false;
+    int texelStride_ = 0;
     double pixelsPerTexel_ = 0.0;
 };
 

@@ -180,7 +180,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         ImGui::Text("compute not hidden by the draw %.2f ms  upload %.2f ms", stages.compute, stages.upload);
         ImGui::Text("draw %.2f ms  frame %.1f ms (%.1f fps)", drawMs, frameMs, frameMs > 0 ? 1000.0 / frameMs : 0.0);
         if (scene.pixelsPerTexel() > 0.0)
-            ImGui::Text("texel shadows %s (%.2f pixels per texel)", scene.texelShadowsDrawn() ? "on" : "off",
+            ImGui::Text("texel shadows %s (%.2f pixels per texel)", scene.texelShadowsLabel().c_str(),
                         scene.pixelsPerTexel());
         ImGui::Text("right-drag orbit, wheel zoom, F12 screenshot");
         ImGui::End();

@@ -96,6 +96,10 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
     if (video) video->close();
     if (!outDir.empty() && progress.enabled())
         std::printf("wrote %d frames to %s\n", frames, outDir.c_str());
+    // The last frame's texel-shadow choice, where the scene makes one (a flat surface under hier).
+    if (scene.pixelsPerTexel() > 0.0)
+        std::fprintf(stderr, "hfx: texel shadows %s (%.2f pixels per texel)\n", scene.texelShadowsLabel().c_str(),
+                     scene.pixelsPerTexel());
     if (!o.exportMaps.empty()) exportMaps(o.exportMaps, scene.effect().textures());
     scene.finish();
     return 0;
@@ -192,7 +196,8 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(0.0001, 1.0));
     app.add_option("--pixel-budget", s.pixelBudget,
                    "the screen error the tracers may leave, pixels (0: full effort; default: the scene's): hier stops "
-                   "short of the exact hit by at most this much, the searches take no more steps than keep each within it")
+                   "short of the exact hit by at most this much, the searches take no more steps than keep each within it, "
+                   "and flat scenes may draw their texel shadows at every few samples that stay this close on screen")
         ->check(CLI::Range(0.0f, 64.0f));
     app.add_option("--lod-threshold", s.lodThreshold, "mip level where POM has faded to normal mapping")
         ->check(kFinite)->check(CLI::Range(0.0, 16.0))->capture_default_str();

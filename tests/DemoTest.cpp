@@ -280,6 +280,47 @@ TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
     }
 }
 
+TEST(Demo, APixelBudgetDrawsTheTexelShadowsAtAStrideWithinItWhereEverySampleWouldNotPay) {
+    // The decal wall at 512² on a 320x180 image: about 0.1 pixels per texel, so the texel
+    // shadows at every sample do not pay and are off by default. A budget of 3 pixels takes every
+    // 8th sample on each axis (2.5 pixels apart on the screen, 6.4 pixels per sample): the frame
+    // is drawn with them (it differs from the walked one) and stays close to the walked frame,
+    // far closer than the frame without self-shadows is.
+    const auto frame = [](const std::string& tag, const std::string& flags, std::string* log = nullptr) {
+        const std::string dir = outputPath("demo_stride_" + tag);
+        std::filesystem::remove_all(dir);
+        const Result r = runDemo("decals --headless --frames 2 --width 320 --height 180 --field 512 --pixel-budget 3 --out " +
+                                 dir + flags);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        if (log) *log = r.output;
+        return readImage(dir + "/decals_0001.png");
+    };
+    std::string log;
+    const Image read = frame("read", "", &log), walked = frame("walked", " --no-texel-shadows"),
+                unshadowed = frame("unshadowed", " --no-shadows");
+    EXPECT_NE(log.find("texel shadows on, stride 8"), std::string::npos) << log;
+    double sum = 0, sumOff = 0;
+    size_t far = 0;
+    const size_t n = walked.pixels.size() / size_t(walked.channels);
+    for (size_t p = 0; p < n; ++p) {
+        double d = 0, dOff = 0;
+        for (int k = 0; k < 3; ++k) {
+            const size_t i = p * size_t(walked.channels) + size_t(k);
+            d = std::max(d, 255.0 * std::abs(double(read.pixels[i]) - walked.pixels[i]));
+            dOff = std::max(dOff, 255.0 * std::abs(double(unshadowed.pixels[i]) - walked.pixels[i]));
+        }
+        sum += d;
+        sumOff += dOff;
+        far += d > 16.0;
+    }
+    std::printf("[stride] %.3f levels apart on average, %.3f%% of pixels > 16 (without self-shadows: %.3f)\n", sum / n,
+                100.0 * double(far) / n, sumOff / n);
+    EXPECT_GT(sum, 0.0) << "the texel shadows were not read";
+    EXPECT_LE(sum / n, 0.25);
+    EXPECT_LE(double(far) / n, 0.005);
+    EXPECT_GT(sumOff, 10.0 * sum);
+}
+
 TEST(Demo, TheBeamStartDrawsTheFlatScenesAsTheWalkFromTheTopDoes) {
     // hier's beam start (on by default, --no-beam-start off) changes where the walks begin, not
     // what they hit: the decal wall's and the noise plane's frames with and without it are the
