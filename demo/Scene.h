@@ -43,7 +43,8 @@ struct SceneOptions {
     /// between the samples around them): by default wherever they pay (texelShadowsPay, from
     /// the surface's pixels on this frame's image and its field's texels), and under a pixel
     /// budget at a stride whose samples stay within it on screen where that pays
-    /// (texelShadowStride); On draws them at every sample.
+    /// (texelShadowStride); On draws them always (at that stride where the budget gives one,
+    /// else at every sample).
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
     /// hier's beam start on flat surfaces (DrawOptions::beamStart): the same hits in shorter walks.
     bool beamStart = true;

@@ -211,7 +211,8 @@ int main(int argc, char** argv) {
     app.add_flag("--texel-shadows", texelShadowsOn,
                  "flat surfaces drawn by hier (decals, noise, maps) draw their self-shadow at every texel each frame "
                  "(TexelShadowPass): pixels walk their light ray only where a hard shadow's edge crosses their cell; "
-                 "by default they do wherever the surface shows on two pixels or more per texel, where the pass pays");
+                 "by default they do wherever the pass pays (from 1.75 pixels per texel) or, under --pixel-budget, "
+                 "at every 2nd, 4th... texel where that pays and stays within the budget on screen");
     app.add_flag("--no-texel-shadows", texelShadowsOff, "never draw the texel shadows (every pixel walks its light ray)")
         ->excludes("--texel-shadows");
     bool noBeamStart = false;
