@@ -50,7 +50,8 @@ void Scene::prepareShadowLight() {
         // spacing on screen stays within it; forced on: every sample.
         const int stride = texelShadows == TexelShadowChoice::Off
                                ? 0
-                               : hfx::texelShadowStride(pixels, texels, effect().material().pixelBudget, texelStride_);
+                               : hfx::texelShadowStride(pixels, field.width, field.height, effect().material().pixelBudget,
+                                                        texelStride_);
         options.texelShadows = texelShadows == TexelShadowChoice::On || stride > 0;
         options.texelStride = std::max(stride, 1);
         if (options.clearanceMap || options.texelShadows)

@@ -167,23 +167,27 @@ TEST(TexelShadowsPay, FromEnoughPixelsPerTexelHeldOnJustBelowAndNeverOnBadCounts
 }
 
 TEST(TexelShadowStride, EverySampleWhereThatPaysElseTheFewestWithinThePixelBudgetElseNone) {
-    const double texels = 1024.0 * 1024.0;
-    EXPECT_EQ(texelShadowStride(1.8 * texels, texels, 0.0f, 0), 1);
+    constexpr int N = 1024;
+    const double texels = double(N) * N;
+    EXPECT_EQ(texelShadowStride(1.8 * texels, N, N, 0.0f, 0), 1);
     // The noise plane at 1024²: 0.45 pixels per texel, about 0.67 pixels apart on each axis.
-    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, 0.0f, 0), 0);  // no budget: walk
-    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, 1.0f, 0), 0);  // every 2nd: 1.34 px apart
-    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, 1.5f, 0), 2);  // and 1.8 px per sample pays
+    EXPECT_EQ(texelShadowStride(0.45 * texels, N, N, 0.0f, 0), 0); // no budget: walk
+    EXPECT_EQ(texelShadowStride(0.45 * texels, N, N, 1.0f, 0), 0); // every 2nd: 1.34 px apart
+    EXPECT_EQ(texelShadowStride(0.45 * texels, N, N, 1.5f, 0), 2); // and 1.8 px per sample pays
     // The decal wall at 1024²: 0.40 per texel; every 2nd sample does not pay (1.6 per sample),
     // every 4th does, 2.53 px apart.
-    EXPECT_EQ(texelShadowStride(0.40 * texels, texels, 2.0f, 0), 0);
-    EXPECT_EQ(texelShadowStride(0.40 * texels, texels, 3.0f, 0), 4);
-    EXPECT_EQ(texelShadowStride(0.40 * texels, texels, 2.0f, 2), 2); // held on at 1.6 per sample
-    EXPECT_EQ(texelShadowStride(1.6 * texels, texels, 0.0f, 1), 1);
+    EXPECT_EQ(texelShadowStride(0.40 * texels, N, N, 2.0f, 0), 0);
+    EXPECT_EQ(texelShadowStride(0.40 * texels, N, N, 3.0f, 0), 4);
+    EXPECT_EQ(texelShadowStride(0.40 * texels, N, N, 2.0f, 2), 2); // held on at 1.6 per sample
+    EXPECT_EQ(texelShadowStride(1.6 * texels, N, N, 0.0f, 1), 1);
+    // Only strides that divide the field: a 64x48 field seen on 30 pixels would need every 16th
+    // sample (48 = 16 * 3), a 64x40 one gets none (40 has no factor 16).
+    EXPECT_EQ(texelShadowStride(30.0, 64, 48, 64.0f, 0), 16);
+    EXPECT_EQ(texelShadowStride(30.0, 64, 40, 64.0f, 0), 0);
+    EXPECT_EQ(texelShadowStride(0.45 * texels, N, N, std::numeric_limits<float>::quiet_NaN(), 0), 0);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_EQ(texelShadowStride(0.45 * texels, texels, std::numeric_limits<float>::quiet_NaN(), 0), 0);
-    for (const auto& [pixels, count] : {std::pair{nan, texels}, std::pair{0.0, texels}, std::pair{1e6, 0.0},
-                                        std::pair{-1.0, texels}, std::pair{1e6, nan}})
-        EXPECT_EQ(texelShadowStride(pixels, count, 64.0f, 0), 0) << pixels << " pixels, " << count << " texels";
+    for (const auto& [pixels, width] : {std::pair{nan, N}, std::pair{0.0, N}, std::pair{1e6, 0}, std::pair{-1.0, N}})
+        EXPECT_EQ(texelShadowStride(pixels, width, N, 64.0f, 0), 0) << pixels << " pixels, width " << width;
 }
 
 TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {

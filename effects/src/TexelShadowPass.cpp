@@ -25,11 +25,12 @@ bool texelShadowsPay(double pixels, double texels, bool drawing) {
     return pixels >= (drawing ? 1.5 : 1.75) * texels;
 }
 
-int texelShadowStride(double pixels, double texels, float pixelBudget, int drawing) {
-    if (!(texels > 0.0) || !(pixels >= 0.0)) return 0;
+int texelShadowStride(double pixels, int width, int height, float pixelBudget, int drawing) {
+    if (width < 1 || height < 1 || !(pixels >= 0.0)) return 0;
+    const double texels = double(width) * height;
     if (texelShadowsPay(pixels, texels, drawing == 1)) return 1;
     const double pixelsPerSample = std::sqrt(pixels / texels); // on each axis, at stride 1
-    for (int stride = 2; stride <= (1 << 14); stride *= 2) {
+    for (int stride = 2; width % stride == 0 && height % stride == 0; stride *= 2) {
         if (!(stride * pixelsPerSample <= pixelBudget)) return 0;
         if (texelShadowsPay(pixels, texels / (double(stride) * stride), drawing == stride)) return stride;
     }

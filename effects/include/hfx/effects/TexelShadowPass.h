@@ -28,14 +28,15 @@ namespace hfx {
 /// frame's look, slightly) every frame.
 bool texelShadowsPay(double pixels, double texels, bool drawing);
 
-/// The texel shadows' stride for such a surface under a pixel budget (SurfaceMaterial::
-/// pixelBudget, pixels): 1 where every sample pays (texelShadowsPay); else the smallest power of
-/// two s at which every s-th sample on each axis pays (s^2 times fewer walks) while s samples
-/// stay within the budget on the screen (s * sqrt(pixels / texels) pixels apart: a hard shadow
-/// finer than that may be missed, as one finer than a texel is at stride 1); 0 where none does
-/// (walk every pixel's light ray). `drawing`: the last frame's stride (0: none), held on as
-/// texelShadowsPay holds. With no budget (0) this is texelShadowsPay's choice of 1 or 0.
-int texelShadowStride(double pixels, double texels, float pixelBudget, int drawing);
+/// The texel shadows' stride for a width x height field shown on `pixels` screen pixels under a
+/// pixel budget (SurfaceMaterial::pixelBudget, pixels): 1 where every sample pays
+/// (texelShadowsPay); else the smallest power of two s dividing both sizes at which every s-th
+/// sample on each axis pays (s^2 times fewer walks) while s samples stay within the budget on
+/// the screen (s * sqrt(pixels / texels) pixels apart: a hard shadow finer than that may be
+/// missed, as one finer than a texel is at stride 1); 0 where none does (walk every pixel's
+/// light ray). `drawing`: the last frame's stride (0: none), held on as texelShadowsPay holds.
+/// With no budget (0) this is texelShadowsPay's choice of 1 or 0.
+int texelShadowStride(double pixels, int width, int height, float pixelBudget, int drawing);
 
 class TexelShadowPass {
 public:
