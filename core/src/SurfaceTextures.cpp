@@ -113,7 +113,7 @@ void SurfaceTextures::uploadClearance(const float* map, const ClearanceLight& li
 }
 
 GLuint SurfaceTextures::texelShadowTarget(int stride) {
-    if (stride < 1 || (stride & (stride - 1)) != 0 || config_.width % stride != 0 || config_.height % stride != 0)
+    if (!isTexelStride(stride, config_.width, config_.height))
         throw Error(str("texelShadowTarget: the texel shadows' stride must be a power of two that divides the field's ",
                         config_.width, "x", config_.height, " samples, got ", stride));
     if (!texelShadows_.id() || stride != texelStride_) {

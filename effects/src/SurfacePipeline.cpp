@@ -101,11 +101,10 @@ void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light,
             throw Error("SurfacePipeline::setShadowLight: the clearance map and the texel shadows need the height "
                         "pyramid (SurfaceOptions::pyramid)");
         light->validate();
-        const int stride = options.texelStride;
-        if (options.texelShadows &&
-            (stride < 1 || (stride & (stride - 1)) != 0 || config_.width % stride != 0 || config_.height % stride != 0))
+        if (options.texelShadows && !SurfaceTextures::isTexelStride(options.texelStride, config_.width, config_.height))
             throw Error(str("SurfacePipeline::setShadowLight: ShadowLightOptions::texelStride must be a power of two "
-                            "that divides the field's ", config_.width, "x", config_.height, " samples, got ", stride));
+                            "that divides the field's ", config_.width, "x", config_.height, " samples, got ",
+                            options.texelStride));
         if (!clearance_ && options.clearanceMap)
             clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
     }

@@ -30,7 +30,7 @@ int texelShadowStride(double pixels, int width, int height, float pixelBudget, i
     const double texels = double(width) * height;
     if (texelShadowsPay(pixels, texels, drawing == 1)) return 1;
     const double pixelsPerSample = std::sqrt(pixels / texels); // on each axis, at stride 1
-    for (int stride = 2; width % stride == 0 && height % stride == 0; stride *= 2) {
+    for (int stride = 2; SurfaceTextures::isTexelStride(stride, width, height); stride *= 2) {
         if (!(stride * pixelsPerSample <= pixelBudget)) return 0;
         if (texelShadowsPay(pixels, texels / (double(stride) * stride), drawing == stride)) return stride;
     }

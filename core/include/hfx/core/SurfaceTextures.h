@@ -64,6 +64,11 @@ public:
     /// heights' upload and then calls texelShadowsDrawn() with the light. Throws hfx::Error unless
     /// the stride is a power of two that divides both the width and the height.
     GLuint texelShadowTarget(int stride = 1);
+    /// Whether `stride` can space a width x height field's texel shadows: a power of two that
+    /// divides both sizes.
+    static bool isTexelStride(int stride, int width, int height) {
+        return stride >= 1 && (stride & (stride - 1)) == 0 && width % stride == 0 && height % stride == 0;
+    }
     /// The texel shadows now hold `light`'s shadows of these heights: the renderer reads them
     /// for rays of that light. Needs the pyramid (the walk's).
     void texelShadowsDrawn(const ClearanceLight& light);
