@@ -109,7 +109,8 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
 
 void AccuracyProbe::useClearance(const AccuracyConfig& config) {
     std::optional<ClearanceLight> light;
-    const ShadowLightOptions options{.clearanceMap = config.clearance, .texelShadows = config.texelShadows};
+    const ShadowLightOptions options{
+        .clearanceMap = config.clearance, .texelShadows = config.texelShadows, .texelStride = config.texelStride};
     if (config.shadows && (options.clearanceMap || options.texelShadows) && textures().pyramid() != 0) {
         DirectionalLight l;
         l.direction = config.light;

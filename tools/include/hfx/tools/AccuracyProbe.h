@@ -45,6 +45,8 @@ struct AccuracyConfig {
     /// With shadows: the surface carries the texel shadows of the light (ShadowLightOptions::
     /// texelShadows); hier walks only where the hard shadow changes between the samples.
     bool texelShadows = false;
+    /// Their stride (ShadowLightOptions::texelStride): every texelStride-th sample on each axis.
+    int texelStride = 1;
     /// The exact tracer's beam start (DrawOptions::beamStart; the probe's planes are flat patches).
     bool beamStart = true;
     /// measure()'s camera distance from the plane's centre, world units (the plane is 2 wide);
