@@ -38,14 +38,38 @@ Result runDemo(const std::string& arguments, const std::string& prefix = "env -u
     return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), text.str()};
 }
 
-/// The second frame of a flat scene drawn at 320x180 from a 128² field with `flags`, rendered into
-/// a fresh folder named by `tag` and the scene.
-Image flatSceneFrame(const std::string& scene, const std::string& tag, const std::string& flags) {
+/// The second frame of a flat scene drawn at 320x180 from a field x field heights (128² unless
+/// asked) with `flags`, rendered into a fresh folder named by `tag` and the scene; the run's
+/// output into `log` where one is given.
+Image flatSceneFrame(const std::string& scene, const std::string& tag, const std::string& flags, int field = 128,
+                     std::string* log = nullptr) {
     const std::string dir = outputPath("demo_" + tag + "_" + scene);
     std::filesystem::remove_all(dir);
-    const Result r = runDemo(scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out " + dir + flags);
+    const Result r = runDemo(scene + " --headless --frames 2 --width 320 --height 180 --field " + std::to_string(field) +
+                             " --out " + dir + flags);
     EXPECT_EQ(r.exitCode, 0) << r.output;
+    if (log) *log = r.output;
     return readImage(dir + "/" + scene + "_0001.png");
+}
+
+/// How far apart two frames of one size are: per pixel the largest difference of its three
+/// colour channels in 0..255 levels; their mean and the share of pixels more than 16 levels apart.
+struct FrameDifference {
+    double mean = 0, far = 0;
+};
+FrameDifference frameDifference(const Image& x, const Image& y) {
+    double sum = 0;
+    size_t far = 0;
+    const size_t n = x.pixels.size() / size_t(x.channels);
+    for (size_t p = 0; p < n; ++p) {
+        double d = 0;
+        for (int k = 0; k < std::min(x.channels, 3); ++k)
+            d = std::max(d, 255.0 * std::abs(double(x.pixels[p * size_t(x.channels) + size_t(k)]) -
+                                             y.pixels[p * size_t(y.channels) + size_t(k)]));
+        sum += d;
+        far += d > 16.0;
+    }
+    return {sum / double(n), double(far) / double(n)};
 }
 
 std::string readBytes(const std::string& path) {
@@ -253,23 +277,8 @@ TEST(Demo, TheTexelShadowsDrawTheFlatScenesAsTheWalksDo) {
         const Image walked = flatSceneFrame(scene, "texels_walked", " --no-texel-shadows"),
                     read = flatSceneFrame(scene, "texels_read", " --texel-shadows"),
                     unshadowed = flatSceneFrame(scene, "texels_unshadowed", " --no-shadows");
-        // Mean difference (0..255 levels) and the share of pixels more than 16 levels apart.
-        const auto compare = [](const Image& x, const Image& y) {
-            double sum = 0;
-            size_t far = 0;
-            const size_t n = x.pixels.size() / size_t(x.channels);
-            for (size_t p = 0; p < n; ++p) {
-                double d = 0;
-                for (int k = 0; k < std::min(x.channels, 3); ++k)
-                    d = std::max(d, 255.0 * std::abs(double(x.pixels[p * size_t(x.channels) + size_t(k)]) -
-                                                     y.pixels[p * size_t(y.channels) + size_t(k)]));
-                sum += d;
-                far += d > 16.0;
-            }
-            return std::pair{sum / double(n), double(far) / double(n)};
-        };
-        const auto [mean, far] = compare(walked, read);
-        const auto [meanOff, farOff] = compare(walked, unshadowed);
+        const auto [mean, far] = frameDifference(walked, read);
+        const auto [meanOff, farOff] = frameDifference(walked, unshadowed);
         std::printf("[texels] %s: %.3f levels apart on average, %.3f%% of pixels > 16 (without self-shadows: %.3f, "
                     "%.3f%%)\n", scene.c_str(), mean, 100.0 * far, meanOff, 100.0 * farOff);
         EXPECT_LE(mean, 0.25) << scene;
@@ -286,39 +295,19 @@ TEST(Demo, APixelBudgetDrawsTheTexelShadowsAtAStrideWithinItWhereEverySampleWoul
     // 8th sample on each axis (2.5 pixels apart on the screen, 6.4 pixels per sample): the frame
     // is drawn with them (it differs from the walked one) and stays close to the walked frame,
     // far closer than the frame without self-shadows is.
-    const auto frame = [](const std::string& tag, const std::string& flags, std::string* log = nullptr) {
-        const std::string dir = outputPath("demo_stride_" + tag);
-        std::filesystem::remove_all(dir);
-        const Result r = runDemo("decals --headless --frames 2 --width 320 --height 180 --field 512 --pixel-budget 3 --out " +
-                                 dir + flags);
-        EXPECT_EQ(r.exitCode, 0) << r.output;
-        if (log) *log = r.output;
-        return readImage(dir + "/decals_0001.png");
-    };
     std::string log;
-    const Image read = frame("read", "", &log), walked = frame("walked", " --no-texel-shadows"),
-                unshadowed = frame("unshadowed", " --no-shadows");
+    const Image read = flatSceneFrame("decals", "stride_read", " --pixel-budget 3", 512, &log),
+                walked = flatSceneFrame("decals", "stride_walked", " --pixel-budget 3 --no-texel-shadows", 512),
+                unshadowed = flatSceneFrame("decals", "stride_unshadowed", " --pixel-budget 3 --no-shadows", 512);
     EXPECT_NE(log.find("texel shadows on, stride 8"), std::string::npos) << log;
-    double sum = 0, sumOff = 0;
-    size_t far = 0;
-    const size_t n = walked.pixels.size() / size_t(walked.channels);
-    for (size_t p = 0; p < n; ++p) {
-        double d = 0, dOff = 0;
-        for (int k = 0; k < 3; ++k) {
-            const size_t i = p * size_t(walked.channels) + size_t(k);
-            d = std::max(d, 255.0 * std::abs(double(read.pixels[i]) - walked.pixels[i]));
-            dOff = std::max(dOff, 255.0 * std::abs(double(unshadowed.pixels[i]) - walked.pixels[i]));
-        }
-        sum += d;
-        sumOff += dOff;
-        far += d > 16.0;
-    }
-    std::printf("[stride] %.3f levels apart on average, %.3f%% of pixels > 16 (without self-shadows: %.3f)\n", sum / n,
-                100.0 * double(far) / n, sumOff / n);
-    EXPECT_GT(sum, 0.0) << "the texel shadows were not read";
-    EXPECT_LE(sum / n, 0.25);
-    EXPECT_LE(double(far) / n, 0.005);
-    EXPECT_GT(sumOff, 10.0 * sum);
+    const auto [mean, far] = frameDifference(walked, read);
+    const double meanOff = frameDifference(walked, unshadowed).mean;
+    std::printf("[stride] %.3f levels apart on average, %.3f%% of pixels > 16 (without self-shadows: %.3f)\n", mean,
+                100.0 * far, meanOff);
+    EXPECT_GT(mean, 0.0) << "the texel shadows were not read";
+    EXPECT_LE(mean, 0.25);
+    EXPECT_LE(far, 0.005);
+    EXPECT_GT(meanOff, 10.0 * mean);
 }
 
 TEST(Demo, TheBeamStartDrawsTheFlatScenesAsTheWalkFromTheTopDoes) {
