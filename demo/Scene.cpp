@@ -57,13 +57,12 @@ void Scene::prepareShadowLight() {
         if (options.clearanceMap || options.texelShadows)
             light = flatSurfaceLight(flat->frame, flat->light, effect().material());
     }
-    texelShadowsOn_ = options.texelShadows;
     texelStride_ = options.texelShadows ? options.texelStride : 0;
     effect().setShadowLight(light, options);
 }
 
 std::string Scene::texelShadowsLabel() const {
-    if (!texelShadowsOn_) return "off";
+    if (texelStride_ == 0) return "off";
     return texelStride_ > 1 ? str("on, stride ", texelStride_) : "on";
 }
 

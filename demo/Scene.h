@@ -137,7 +137,7 @@ public:
     DrawOptions drawOptions() const { return {.technique = technique, .beamStart = beamStart}; }
     /// Whether this frame's field has texel shadows (the last prepareShadowLight's choice), and
     /// the flat surface's pixels per field texel it was made from (0 where not flat or not hier).
-    bool texelShadowsDrawn() const { return texelShadowsOn_; }
+    bool texelShadowsDrawn() const { return texelStride_ > 0; }
     /// Their stride (ShadowLightOptions::texelStride; 0 where none are drawn).
     int texelShadowStride() const { return texelStride_; }
     /// "off", "on" or "on, stride N", for the panel and the bench table.
@@ -159,8 +159,7 @@ protected:
 
 private:
     int imageWidth_ = 1280, imageHeight_ = 720; ///< SceneOptions::width, height
-    bool texelShadowsOn_ = false;
-    int texelStride_ = 0;
+    int texelStride_ = 0; ///< the last prepareShadowLight's texel-shadow stride; 0: none drawn
     double pixelsPerTexel_ = 0.0;
 };
 
