@@ -3,6 +3,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 
+#include <cstdlib>
 #include <filesystem>
 
 namespace hfx::test {
@@ -34,6 +35,12 @@ GlContext* acquireGl() {
         glTried = true;
         try {
             sharedGl = createHeadlessContext({.width = 64, .height = 64}).release();
+            // llvmpipe rasterises on its own threads behind the caller. Mesa's exit handler,
+            // registered before this one and so run after it, stops them and joins them; with a
+            // scene still in flight one thread can be left at the scene's barrier and the join
+            // hangs for ever (seen once in CI: a test that had passed, stuck in exit). Let the
+            // rasteriser finish first.
+            std::atexit([] { glFinish(); });
         } catch (const Error& e) {
             glError = e.what();
         }
