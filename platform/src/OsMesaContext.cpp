@@ -37,7 +37,12 @@ public:
         makeCurrent();
         loadGl(&osmesaProc);
     }
-    ~OsMesaContext() override { OSMesaDestroyContext(context_); }
+    ~OsMesaContext() override {
+        // llvmpipe rasterises behind the caller: let it finish before the context goes (Mesa's
+        // exit handler can hang joining a rasteriser thread left inside a scene).
+        if (OSMesaGetCurrentContext() == context_) glFinish();
+        OSMesaDestroyContext(context_);
+    }
 
     void makeCurrent() override {
         if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_))
