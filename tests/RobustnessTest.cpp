@@ -103,8 +103,9 @@ TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsNeverOutliveTheirHei
 TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLeftAndPutsItBack) {
     // The pass runs inside SurfacePipeline::run, wherever the caller is in its own drawing: a
     // framebuffer bound with a small viewport, blending that zeroes what is drawn, a scissor
-    // around one texel and buffer 0's red masked off must neither change a texel nor survive
-    // the pass's own state into the caller's.
+    // around one texel, buffer 0's red masked off and an image of the caller's on the unit the
+    // pass reads the pyramid from must neither change a texel nor survive the pass's own state
+    // into the caller's.
     constexpr int N = 32;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.2, -1, 3, 0.4}});
     const ClearanceLight light = ClearanceLight::of({0.6f, 0.25f}, 2.0f); // low: long shadows
@@ -130,9 +131,20 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     glEnable(GL_SCISSOR_TEST);
     glScissor(0, 0, 1, 1);
     glColorMaski(0, GL_FALSE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const GlTexture image = GlTexture::create();
+    HFX_GL_CHECK(glTextureStorage2D(image.id(), 1, GL_R32F, 4, 4));
+    glBindImageTexture(0, image.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     GLint boundBefore = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &boundBefore);
     surface.run(field.buffer()); // the same heights, a fresh pipeline: nothing drawn before
+    GLint imageName = 0, imageAccess = 0, imageFormat = 0;
+    glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &imageName);
+    glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 0, &imageAccess);
+    glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, 0, &imageFormat);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+    EXPECT_EQ(GLuint(imageName), image.id());
+    EXPECT_EQ(GLenum(imageAccess), GLenum(GL_WRITE_ONLY));
+    EXPECT_EQ(GLenum(imageFormat), GLenum(GL_R32F));
     GLint bound = 0, viewport[4];
     GLboolean mask[4];
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);

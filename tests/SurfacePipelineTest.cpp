@@ -152,10 +152,20 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
             EXPECT_LE(worst, bound) << surfaceFormatName(format) << ", " << transferPathName(path);
             ASSERT_EQ(surface.textures().pyramid() != 0, hasPyramid);
             if (!hasPyramid) continue;
-            std::vector<float> level0(2 * size_t(N) * N); // (max, min) pairs
-            glGetTextureImage(surface.textures().pyramid(), 0, GL_RG, GL_FLOAT, GLsizei(level0.size() * sizeof(float)),
-                              level0.data());
-            EXPECT_EQ(level0, std::vector<float>(pyramid.begin(), pyramid.begin() + 2 * N * N)) << surfaceFormatName(format);
+            // Every level where the image holds it (SurfaceTextures::pyramidAtlasOrigin).
+            const SurfaceTextures& t = surface.textures();
+            size_t offset = 0;
+            for (int level = 0; level < t.pyramidLevels(); ++level) {
+                const int w = std::max(N >> level, 1);
+                const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(N, N, level);
+                std::vector<float> stored(2 * size_t(w) * w); // (max, min) pairs
+                glGetTextureSubImage(t.pyramid(), 0, x, y, 0, w, w, 1, GL_RG, GL_FLOAT,
+                                     GLsizei(stored.size() * sizeof(float)), stored.data());
+                EXPECT_EQ(stored, std::vector<float>(pyramid.begin() + offset, pyramid.begin() + offset + stored.size()))
+                    << surfaceFormatName(format) << ", level " << level;
+                offset += stored.size();
+            }
+            EXPECT_EQ(offset, pyramid.size());
         }
 }
 

@@ -5,6 +5,7 @@
 
 #include "support/Fields.h"
 #include "support/Fixtures.h"
+#include "support/References.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/compute/StaticField.h"
@@ -14,6 +15,7 @@
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/tools/AccuracyProbe.h"
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -110,7 +112,7 @@ layout(local_size_x = 64) in;
 /// ray per invocation from a buffer of rays into a buffer of hits.
 const SourceFile kHarness{"harness.comp", R"(
 layout(binding = 0) uniform sampler2D s_surface;
-layout(binding = 3) uniform sampler2D s_pyramid;
+layout(rg32f, binding = 0) readonly uniform image2D i_pyramid; // SurfaceTextures::bindPyramid
 uniform int u_levels;
 uniform ivec2 u_wrap;
 float hfx_height(vec2 uv, float level) { return textureLod(s_surface, uv, level).w; }
@@ -119,7 +121,10 @@ ivec2 hfx_size() { return textureSize(s_surface, 0); }
 int hfx_levels() { return u_levels; }
 vec2 hfx_bounds(ivec2 cell, int level) {
     const ivec2 n = max(hfx_size() >> level, ivec2(1));
-    return texelFetch(s_pyramid, mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap)), level).rg;
+    // The image's layout (SurfaceTextures::pyramidAtlasOrigin), counted level by level.
+    ivec2 origin = ivec2(level > 0 ? hfx_size().x : 0, 0);
+    for (int k = 1; k < level; ++k) origin.y += max(hfx_size().y >> k, 1);
+    return imageLoad(i_pyramid, origin + mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap))).rg;
 }
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); } // searches span [0, 1]
 float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) { return 1e30; } // no clearance map
@@ -241,7 +246,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
     }
     glBindTextureUnit(0, textures.surface());
-    glBindTextureUnit(3, textures.pyramid());
+    textures.bindPyramid(0);
     glBindTextureUnit(15, textures.clearance());
     glBindTextureUnit(4, texelShadows ? textures.texelShadows() : 0);
     std::vector<glm::vec4> hits = runHarness(p, rays);
@@ -786,6 +791,66 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     EXPECT_LE(elsewhere.error, 0.005);
 }
 
+/// The renderer's pyramid read (surface/heights.glsl, hfx_bounds) in a compute harness: per item
+/// (a: cell, level) the bounds it returns.
+const SourceFile kPyramidReadMain{"harness_pyramid.comp", R"(
+void main() {
+    uint i;
+    vec4 a, b;
+    if (!hfx_harness_ray(i, a, b)) return;
+    hits[i] = vec4(hfx_bounds(ivec2(a.xy), int(a.z)), 0.0, 0.0);
+}
+)",
+                                  "test"};
+
+TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareAndOblongFields) {
+    // Every level lies inside the image and apart from the others (SurfaceTextures::
+    // pyramidAtlasOrigin), and heights.glsl's read of a level's cell, wrapped from anywhere, is
+    // the CPU pyramid's: fields wider than tall, taller than wide, square, and one row high.
+    std::mt19937 random(17);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (const auto [W, H] : {std::pair{64, 16}, std::pair{16, 64}, std::pair{32, 32}, std::pair{128, 2}, std::pair{4, 256}}) {
+        const auto [atlasW, atlasH] = SurfaceTextures::pyramidAtlasSize(W, H);
+        const int levels = int(std::bit_width(unsigned(std::max(W, H))));
+        std::vector<glm::ivec4> rects; // x, y, width, height
+        for (int level = 0; level < levels; ++level) {
+            const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(W, H, level);
+            const glm::ivec4 r(x, y, std::max(W >> level, 1), std::max(H >> level, 1));
+            EXPECT_TRUE(r.x >= 0 && r.y >= 0 && r.x + r.z <= atlasW && r.y + r.w <= atlasH)
+                << W << "x" << H << " level " << level << " at " << r.x << "," << r.y << " outside " << atlasW << "x" << atlasH;
+            for (const glm::ivec4& o : rects)
+                EXPECT_FALSE(r.x < o.x + o.z && o.x < r.x + r.z && r.y < o.y + o.w && o.y < r.y + r.w)
+                    << W << "x" << H << " level " << level << " overlaps an earlier level";
+            rects.push_back(r);
+        }
+        std::vector<float> heights(size_t(W) * H);
+        for (float& h : heights) h = unit(random);
+        StaticField field(cl(), W, H, EdgeMode::Wrap, heights);
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false, .pyramid = true}));
+        surface.run(field.buffer());
+        const std::vector<float> reference = pyramidReference(heights, W, H);
+        std::vector<glm::vec4> items;
+        std::vector<glm::vec2> expected;
+        size_t offset = 0;
+        for (int level = 0; level < levels; ++level) {
+            const int w = std::max(W >> level, 1), h = std::max(H >> level, 1);
+            for (int k = 0; k < 64; ++k) {
+                const glm::ivec2 cell(int(unit(random) * 3 * w) - w, int(unit(random) * 3 * h) - h); // [-w, 2w)
+                const size_t at = offset + size_t((cell.y % h + h) % h) * w + size_t((cell.x % w + w) % w);
+                items.emplace_back(float(cell.x), float(cell.y), float(level), 0.0f);
+                items.emplace_back(0.0f);
+                expected.emplace_back(reference[2 * at], reference[2 * at + 1]);
+            }
+            offset += size_t(w) * h;
+        }
+        const std::vector<glm::vec4> read = traceInHarness(surface.textures(), Technique::Hierarchical, items, kPyramidReadMain,
+                                                           Accessors::Renderer);
+        int wrong = 0;
+        for (size_t i = 0; i < read.size(); ++i) wrong += glm::vec2(read[i]) != expected[i];
+        EXPECT_EQ(wrong, 0) << W << "x" << H << ": " << wrong << " of " << read.size() << " reads are not the pyramid's";
+    }
+}
+
 /// The searches' bounds (surface/heights.glsl, hfx_segment_bounds) in a compute harness: per
 /// segment (a: from, to; b: level) the bounds, and how far any height the search reads along it
 /// (65 points, ends included) stands above their maximum or below their minimum.
@@ -849,9 +914,9 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
              kBoundsMain},
             {{"HFX_LAYERS", std::to_string(layers)}, {"HFX_BOUNDED_SEARCH", "1"}});
         glBindTextureUnit(0, a.textures().surface());
-        glBindTextureUnit(3, a.textures().pyramid());
+        a.textures().bindPyramid(0);
         glBindTextureUnit(4, b.textures().surface());
-        glBindTextureUnit(12, b.textures().pyramid());
+        b.textures().bindPyramid(1);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
         const std::vector<glm::vec4> result = runHarness(p, segments);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);

@@ -76,15 +76,34 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     if (config.pyramid) {
         pyramid_ = GlTexture::create();
         pyramidLevels_ = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(config.width, config.height))));
-        HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_RG32F, config.width, config.height));
-        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        const auto [atlasWidth, atlasHeight] = pyramidAtlasSize(config.width, config.height);
+        HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), 1, GL_RG32F, atlasWidth, atlasHeight));
+        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAX_LEVEL, pyramidLevels_ - 1);
         // Conservative until the first real upload: every cell spans the whole relief (max 1, min 0).
         std::vector<float> whole(static_cast<size_t>(config.width) * config.height * 4);
         for (size_t i = 0; i < whole.size(); i += 2) whole[i] = 1.0f;
         uploadPyramid(whole.data());
     }
+}
+
+std::pair<int, int> SurfaceTextures::pyramidAtlasOrigin(int width, int height, int level) {
+    if (level == 0) return {0, 0};
+    // Levels 1, 2, ... stacked in a column right of level 0: level k starts below levels 1..k-1,
+    // whose heights are height >> 1, >> 2, ... and 1 each once the halving reaches 1.
+    const int above = level - 1, halvings = std::countr_zero(static_cast<unsigned>(height));
+    return {width, height - std::max(height >> above, 1) + std::max(0, above - halvings)};
+}
+
+std::pair<int, int> SurfaceTextures::pyramidAtlasSize(int width, int height) {
+    const int levels = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(width, height))));
+    const auto [x, y] = pyramidAtlasOrigin(width, height, levels - 1);
+    return {width + std::max(width >> 1, 1), std::max(height, y + 1)};
+}
+
+void SurfaceTextures::bindPyramid(GLuint unit) const {
+    if (!pyramid_.id()) throw Error("bindPyramid: these surface textures were made without a pyramid");
+    HFX_GL_CHECK(glBindImageTexture(unit, pyramid_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
 }
 
 void SurfaceTextures::uploadPyramid(const float* levels) {
@@ -93,7 +112,8 @@ void SurfaceTextures::uploadPyramid(const float* levels) {
     size_t offset = 0;
     for (int level = 0; level < pyramidLevels_; ++level) {
         const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
-        HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RG, GL_FLOAT, levels + offset));
+        const auto [x, y] = pyramidAtlasOrigin(config_.width, config_.height, level);
+        HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), 0, x, y, w, h, GL_RG, GL_FLOAT, levels + offset));
         offset += 2 * static_cast<size_t>(w) * h;
     }
 }

@@ -36,6 +36,15 @@ public:
             glActiveTexture(GL_TEXTURE0 + unit);
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
         }
+        for (GLuint unit = 0; unit < kImages; ++unit) {
+            Image& i = images_[unit];
+            glGetIntegeri_v(GL_IMAGE_BINDING_NAME, unit, &i.name);
+            glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, unit, &i.level);
+            glGetIntegeri_v(GL_IMAGE_BINDING_LAYERED, unit, &i.layered);
+            glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, unit, &i.layer);
+            glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, unit, &i.access);
+            glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, unit, &i.format);
+        }
         for (GLuint index = 0; index < kBlocks; ++index) {
             glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, index, &blocks_[index]);
             glGetInteger64i_v(GL_UNIFORM_BUFFER_START, index, &blockStart_[index]);
@@ -49,6 +58,11 @@ public:
         glBindVertexArray(static_cast<GLuint>(vao_));
         for (int unit = 0; unit < kUnits; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
+        for (GLuint unit = 0; unit < kImages; ++unit) {
+            const Image& i = images_[unit];
+            glBindImageTexture(unit, GLuint(i.name), i.level, GLboolean(i.layered), i.layer, GLenum(i.access),
+                               GLenum(i.format));
+        }
         for (GLuint index = 0; index < kBlocks; ++index) {
             if (blocks_[index] != 0 && blockSize_[index] > 0)
                 glBindBufferRange(GL_UNIFORM_BUFFER, index, GLuint(blocks_[index]), blockStart_[index], blockSize_[index]);
@@ -61,10 +75,15 @@ public:
 
 private:
     GLboolean depthTest_;
-    // surface, albedo, environment, pyramid, layers 1-3 (a single layer's texel shadows on 4, its beam
-    // start on 5),
-    // their albedos, shading channels, shadow map, the pyramids of layers 1-3, the clearance map
+    // surface, albedo, environment, (free), layers 1-3 (a single layer's texel shadows on 4, its beam
+    // start on 5), their albedos, shading channels, shadow map, (free: 11-14), the clearance map
     static constexpr int kUnits = 16;
+    // the pyramids of layers 0-3 (SurfaceTextures::bindPyramid)
+    static constexpr GLuint kImages = 4;
+    struct Image {
+        GLint name, level, layered, layer, access, format;
+    };
+    Image images_[kImages];
     static constexpr GLuint kBlocks = 3; // surface, water, rings
     GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];

@@ -297,9 +297,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     for (size_t i = 1; i < layers.size(); ++i) {
         glBindTextureUnit(GLuint(3 + i), layers[i].textures->surface());
         glBindTextureUnit(GLuint(6 + i), layers[i].textures->albedo());
-        glBindTextureUnit(GLuint(11 + i), layers[i].textures->pyramid());
+        if (layers[i].textures->pyramid()) layers[i].textures->bindPyramid(GLuint(i));
     }
-    glBindTextureUnit(3, textures.pyramid());
+    if (textures.pyramid()) textures.bindPyramid(0);
     glBindTextureUnit(15, textures.clearance());
     if (layers.size() == 1) glBindTextureUnit(4, textures.texelShadows()); // layer 1's unit, unused here
     const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();

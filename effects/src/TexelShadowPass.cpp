@@ -60,7 +60,7 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     program->use();
     program->set("u_texelStride", stride);
     glBindTextureUnit(0, textures.surface());
-    glBindTextureUnit(3, textures.pyramid());
+    textures.bindPyramid(0);
     glBindTextureUnit(15, clearance ? textures.clearance() : 0);
     glBindVertexArray(empty_.id());
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));

@@ -39,7 +39,11 @@ mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
 }
 
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
-layout(binding = 3) uniform sampler2D s_pyramid; // RG32F: level k texel's (max, min) over the bilinear cells it covers
+// The height-bounds pyramid, RG32F: a level k texel's (max, min) over the bilinear cells it
+// covers, every level in one image (hfx_atlas_origin). Read with imageLoad: on llvmpipe a
+// texelFetch with a level per lane is a call that spills the walk's vectors, and costs 1.6x an
+// imageLoad (docs/BENCHMARKS.md, seventeenth part). Layer i's pyramid at image unit i.
+layout(rg32f, binding = 0) readonly uniform image2D i_pyramid;
 #if HFX_CLEARANCE
 layout(binding = 15) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
 #endif
@@ -50,15 +54,15 @@ layout(binding = 4) uniform sampler2D s_texelShadows;
 #endif
 #if HFX_LAYERS > 1
 layout(binding = 4) uniform sampler2D s_surface1;
-layout(binding = 12) uniform sampler2D s_pyramid1; // the layers' own pyramids (bounded searches)
+layout(rg32f, binding = 1) readonly uniform image2D i_pyramid1; // the layers' own pyramids (bounded searches)
 #endif
 #if HFX_LAYERS > 2
 layout(binding = 5) uniform sampler2D s_surface2;
-layout(binding = 13) uniform sampler2D s_pyramid2;
+layout(rg32f, binding = 2) readonly uniform image2D i_pyramid2;
 #endif
 #if HFX_LAYERS > 3
 layout(binding = 6) uniform sampler2D s_surface3;
-layout(binding = 14) uniform sampler2D s_pyramid3;
+layout(rg32f, binding = 3) readonly uniform image2D i_pyramid3;
 #endif
 
 // A layered surface traces its first HFX_TRACED_LAYERS layers (all unless told): the others
@@ -147,9 +151,33 @@ int hfx_levels() { return u_pyramidLevels; }
 // CPU rasteriser, and the float wrap this replaced cost the walk 1.4%.
 ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) { return mix(clamp(cell, ivec2(0), last), cell & last, bvec2(u_wrap)); }
 
+// Where a level's texel (0, 0) lies in the pyramid's image (SurfaceTextures::pyramidAtlasOrigin):
+// level 0 at the origin, level 1 at (width, 0), each further level below the one before.
+ivec2 hfx_atlas_origin(ivec2 size, int level) {
+    const int above = max(level - 1, 0);
+    return level == 0 ? ivec2(0) : ivec2(size.x, size.y - max(size.y >> above, 1) + max(0, above - findLSB(size.y)));
+}
+
+// Layer `layer`'s pyramid at a level's texel (wrapped or clamped already); a constant layer
+// folds the switch.
+vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
+    const ivec2 at = hfx_atlas_origin(size, level) + texel;
+#if HFX_LAYERS > 1
+    if (layer == 1) return imageLoad(i_pyramid1, at).rg;
+#endif
+#if HFX_LAYERS > 2
+    if (layer == 2) return imageLoad(i_pyramid2, at).rg;
+#endif
+#if HFX_LAYERS > 3
+    if (layer == 3) return imageLoad(i_pyramid3, at).rg;
+#endif
+    return imageLoad(i_pyramid, at).rg;
+}
+
 vec2 hfx_bounds(ivec2 cell, int level) {
     g_fetches += 1.0;
-    return texelFetch(s_pyramid, hfx_pyramid_texel(cell, max(hfx_size() >> level, ivec2(1)) - 1), level).rg;
+    const ivec2 size = hfx_size();
+    return hfx_pyramid_load(0, size, hfx_pyramid_texel(cell, max(size >> level, ivec2(1)) - 1), level);
 }
 
 // A light ray moving perClimb texcoords per unit of height climbed goes the way of the surface's
@@ -209,10 +237,10 @@ bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) {
 // blocks, 1.5 * 2^m samples. The pyramid level whose cells are at least as wide as that box
 // covers it with two cells per axis: four fetches per layer. The layers' bounds add, with the
 // untraced layers' rest height and, in the ring variant, the rings' amplitudes.
-vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) {
+vec2 hfx_layer_bounds(int layer, ivec2 size, vec2 a, vec2 b, float mip) {
     const float reach = mip > 0.0 ? 1.5 * exp2(ceil(mip)) : 0.0;
     const vec2 lo = min(a, b) * vec2(size) - 0.5 - reach, hi = max(a, b) * vec2(size) - 0.5 + reach;
-    const int levels = textureQueryLevels(pyramid);
+    const int levels = findMSB(max(size.x, size.y)) + 1;
     const float extent = max(hi.x - lo.x, hi.y - lo.y);
     const int level = min(int(ceil(log2(max(extent, 1.0)))), levels - 1);
     // The level's texels under the box's corners (power-of-two sizes: the cell width 2^level
@@ -222,10 +250,10 @@ vec2 hfx_layer_bounds(sampler2D pyramid, ivec2 size, vec2 a, vec2 b, float mip) 
     const ivec2 c0 = hfx_pyramid_texel(ivec2(floor(lo * invWidth)), last);
     const ivec2 c1 = hfx_pyramid_texel(ivec2(floor(hi * invWidth)), last);
     g_fetches += 4.0;
-    const vec2 b0 = texelFetch(pyramid, c0, level).rg;
-    const vec2 b1 = texelFetch(pyramid, ivec2(c1.x, c0.y), level).rg;
-    const vec2 b2 = texelFetch(pyramid, ivec2(c0.x, c1.y), level).rg;
-    const vec2 b3 = texelFetch(pyramid, c1, level).rg;
+    const vec2 b0 = hfx_pyramid_load(layer, size, c0, level);
+    const vec2 b1 = hfx_pyramid_load(layer, size, ivec2(c1.x, c0.y), level);
+    const vec2 b2 = hfx_pyramid_load(layer, size, ivec2(c0.x, c1.y), level);
+    const vec2 b3 = hfx_pyramid_load(layer, size, c1, level);
     return vec2(max(max(b0.x, b1.x), max(b2.x, b3.x)), min(min(b0.y, b1.y), min(b2.y, b3.y)));
 }
 
@@ -234,21 +262,21 @@ vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) {
     return vec2(1.0, 0.0);
 #else
 #if HFX_LAYERS == 1
-    vec2 bounds = hfx_layer_bounds(s_pyramid, hfx_size(), a, b, level);
+    vec2 bounds = hfx_layer_bounds(0, hfx_size(), a, b, level);
 #else
     vec2 bounds = vec2(u_untracedHeight) +
-                  u_layerWeight.x * hfx_layer_bounds(s_pyramid, hfx_size(), a * u_layerScale.x, b * u_layerScale.x,
+                  u_layerWeight.x * hfx_layer_bounds(0, hfx_size(), a * u_layerScale.x, b * u_layerScale.x,
                                                      hfx_layer_level(level, u_layerLevel.x));
 #if HFX_TRACED_LAYERS > 1
-    bounds += u_layerWeight.y * hfx_layer_bounds(s_pyramid1, textureSize(s_surface1, 0), a * u_layerScale.y,
+    bounds += u_layerWeight.y * hfx_layer_bounds(1, textureSize(s_surface1, 0), a * u_layerScale.y,
                                                  b * u_layerScale.y, hfx_layer_level(level, u_layerLevel.y));
 #endif
 #if HFX_TRACED_LAYERS > 2
-    bounds += u_layerWeight.z * hfx_layer_bounds(s_pyramid2, textureSize(s_surface2, 0), a * u_layerScale.z,
+    bounds += u_layerWeight.z * hfx_layer_bounds(2, textureSize(s_surface2, 0), a * u_layerScale.z,
                                                  b * u_layerScale.z, hfx_layer_level(level, u_layerLevel.z));
 #endif
 #if HFX_TRACED_LAYERS > 3
-    bounds += u_layerWeight.w * hfx_layer_bounds(s_pyramid3, textureSize(s_surface3, 0), a * u_layerScale.w,
+    bounds += u_layerWeight.w * hfx_layer_bounds(3, textureSize(s_surface3, 0), a * u_layerScale.w,
                                                  b * u_layerScale.w, hfx_layer_level(level, u_layerLevel.w));
 #endif
 #endif

@@ -33,12 +33,14 @@
 //
 // On a CPU rasteriser (llvmpipe) a divergent branch costs both sides, so the walk's steps fetch
 // one bound and nothing else, and the patch solve sits outside the walk's loop. There, too, every
-// variable a step writes lives in memory and is blended under the lanes' mask, and the bound's
-// texelFetch (RG32F) is a call that spills every vector live across it: a step's state is p, t
-// and the level (hfx_step; 2^level from the exponent bits), and what the solve needs is found
+// variable a step writes lives in memory and is blended under the lanes' mask: a step's state is
+// p, t and the level (hfx_step; 2^level from the exponent bits), and what the solve needs is found
 // again after the loop (the level-0 cell, the patch's maximum from the gathered samples). Against
 // a loop that carried the cell sizes, the exit and the cell: 0-11% off hier's draw at 45-80
-// degrees with the same fetches, most at 70-80 (docs/BENCHMARKS.md, fifteenth part).
+// degrees with the same fetches, most at 70-80 (docs/BENCHMARKS.md, fifteenth part). The bound
+// is an imageLoad from one image holding every level (surface/heights.glsl): a texelFetch with
+// a level per lane is a call there, which spilled every vector live across it, and cost 10-30%
+// of the draw at 45-80 degrees (seventeenth part).
 
 const int HFX_MAX_TRACE_STEPS = 1 << 18; // only against a NaN ray; the real bound is per ray
 // The view walk climbs past a cell only where the ray leaves it at least this many cells' widths

@@ -17,6 +17,7 @@
 #include "hfx/core/SurfaceFormat.h"
 
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace hfx {
@@ -26,8 +27,8 @@ struct SurfaceTexturesConfig {
     int height = 512;
     bool mipmaps = true; ///< POM's level-of-detail switch needs them; tests of the search don't
     EdgeMode edges = EdgeMode::Wrap; ///< the textures' wrap modes, and the pyramid walk's
-    /// Also a height-bounds pyramid texture (RG32F: max, min; full mip chain) for the hierarchical tracer;
-    /// needs power-of-two sizes.
+    /// Also a height-bounds pyramid (RG32F: max, min per cell, every level) for the hierarchical
+    /// tracer, laid out as one image (pyramidAtlasOrigin); needs power-of-two sizes.
     bool pyramid = false;
     /// Storage of normal + height: Float16 halves the memory and the transfer, Unorm8 quarters
     /// them (docs/ACCURACY.md measures what each costs against the exact intersection).
@@ -87,8 +88,20 @@ public:
     void uploadChannels(const unsigned char* rgba);
 
     GLuint surface() const { return surface_.id(); }
-    GLuint pyramid() const { return pyramid_.id(); } ///< 0 without a pyramid
+    /// The pyramid's texture, 0 without one: a single-level RG32F image holding every level side
+    /// by side (pyramidAtlasOrigin), which the shaders read as an image (bindPyramid).
+    GLuint pyramid() const { return pyramid_.id(); }
     int pyramidLevels() const { return pyramidLevels_; }
+    /// Binds the pyramid to image unit `unit`, read-only, as heights.glsl reads it (layer i of a
+    /// layered surface at unit i). Throws without a pyramid.
+    void bindPyramid(GLuint unit) const;
+    /// Where a pyramid level's texel (0, 0) lies in the image: level 0 (width x height) at the
+    /// origin, level 1 to its right at (width, 0), each further level below the one before
+    /// (heights.glsl's hfx_atlas_origin computes the same). llvmpipe reads an image with
+    /// imageLoad at 0.6x the cost of a texelFetch with a level per lane, which is a call.
+    static std::pair<int, int> pyramidAtlasOrigin(int width, int height, int level);
+    /// The image's size for a width x height pyramid: every level inside, none overlapping.
+    static std::pair<int, int> pyramidAtlasSize(int width, int height);
     GLuint clearance() const { return clearance_.id(); } ///< 0 before the first uploadClearance
     /// The light of the current clearance map; empty when there is none to read.
     const std::optional<ClearanceLight>& clearanceLight() const { return clearanceLight_; }
