@@ -10,6 +10,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/compute/StaticField.h"
 #include "hfx/core/Gl.h"
+#include "hfx/effects/CellsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
@@ -116,8 +117,9 @@ layout(rg32f, binding = 0) readonly uniform image2D i_pyramid; // SurfaceTexture
 uniform int u_levels;
 uniform ivec2 u_wrap;
 float hfx_height(vec2 uv, float level) { return textureLod(s_surface, uv, level).w; }
-vec4 hfx_gather(vec2 uv) { return textureGather(s_surface, uv, 3); }
 ivec2 hfx_size() { return textureSize(s_surface, 0); }
+// A cell's samples by a gather of the texture itself (the renderer reads its cells image).
+vec4 hfx_cell_samples(ivec2 cell) { return textureGather(s_surface, (vec2(cell) + 1.0) / vec2(hfx_size()), 3); }
 int hfx_levels() { return u_levels; }
 vec2 hfx_bounds(ivec2 cell, int level) {
     const ivec2 n = max(hfx_size() >> level, ivec2(1));
@@ -244,6 +246,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     } else {
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
+        CellsPass().refresh(textures); // the level-0 cells heights.glsl reads (image unit 4)
     }
     glBindTextureUnit(0, textures.surface());
     textures.bindPyramid(0);
@@ -849,6 +852,52 @@ TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareA
         for (size_t i = 0; i < read.size(); ++i) wrong += glm::vec2(read[i]) != expected[i];
         EXPECT_EQ(wrong, 0) << W << "x" << H << ": " << wrong << " of " << read.size() << " reads are not the pyramid's";
     }
+}
+
+TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
+    // The exact tracer's patch solve reads a cell's four samples from the cells image (CellsPass):
+    // they must be the stored texels a gather around the cell's centre reads (half floats as
+    // stored, the far corners across an edge wrapped or clamped), and an upload must make them
+    // stale until the next refresh rebuilds them.
+    constexpr int W = 64, H = 16;
+    std::mt19937 random(29);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (const SurfaceFormat format : {SurfaceFormat::Float32, SurfaceFormat::Float16})
+        for (const EdgeMode edges : kEdgeModes) {
+            std::vector<float> first(size_t(W) * H), second(size_t(W) * H);
+            for (float& h : first) h = unit(random);
+            for (float& h : second) h = unit(random);
+            StaticField a(cl(), W, H, edges, first), b(cl(), W, H, edges, second);
+            SurfacePipeline surface(cl(), SurfacePipelineConfig::of(a, 0.05f, {.mipmaps = false, .pyramid = true, .format = format}));
+            CellsPass cells;
+            auto check = [&](const char* which) {
+                std::vector<glm::vec4> texels(size_t(W) * H), read(size_t(W) * H);
+                const SurfaceTextures& textures = surface.textures();
+                glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(glm::vec4)), texels.data());
+                glGetTextureImage(textures.cells(), 0, GL_RGBA, GL_FLOAT, GLsizei(read.size() * sizeof(glm::vec4)), read.data());
+                auto h = [&](int i, int j) {
+                    i = wrapsU(edges) ? i % W : std::min(i, W - 1);
+                    j = wrapsV(edges) ? j % H : std::min(j, H - 1);
+                    return texels[size_t(j) * W + size_t(i)].w;
+                };
+                int wrong = 0;
+                for (int j = 0; j < H; ++j)
+                    for (int i = 0; i < W; ++i)
+                        wrong += read[size_t(j) * W + size_t(i)] != glm::vec4(h(i, j + 1), h(i + 1, j + 1), h(i + 1, j), h(i, j));
+                EXPECT_EQ(wrong, 0) << surfaceFormatName(format) << ", " << edgeModeName(edges) << ", " << which << ": "
+                                    << wrong << " of " << W * H << " cells";
+            };
+            surface.run(a.buffer());
+            EXPECT_FALSE(surface.textures().cellsCurrent());
+            cells.refresh(surface.textures());
+            EXPECT_TRUE(surface.textures().cellsCurrent());
+            check("first heights");
+            surface.run(b.buffer());
+            surface.run(b.buffer()); // both of the pipeline's texture pairs
+            EXPECT_FALSE(surface.textures().cellsCurrent()) << "an upload must leave the cells stale";
+            cells.refresh(surface.textures());
+            check("second heights");
+        }
 }
 
 /// The searches' bounds (surface/heights.glsl, hfx_segment_bounds) in a compute harness: per

@@ -80,6 +80,8 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
         HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), 1, GL_RG32F, atlasWidth, atlasHeight));
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        cells_ = GlTexture::create();
+        HFX_GL_CHECK(glTextureStorage2D(cells_.id(), 1, GL_RGBA32F, config.width, config.height));
         // Conservative until the first real upload: every cell spans the whole relief (max 1, min 0).
         std::vector<float> whole(static_cast<size_t>(config.width) * config.height * 4);
         for (size_t i = 0; i < whole.size(); i += 2) whole[i] = 1.0f;
@@ -163,6 +165,7 @@ void SurfaceTextures::uploadTexels(const void* texels) {
     HFX_GL_CHECK(glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
                         texelType(config_.format), texels));
     if (levels_ > 1) HFX_GL_CHECK(glGenerateTextureMipmap(surface_.id()));
+    ++texelsVersion_; // the cells are stale
 }
 
 void SurfaceTextures::uploadAlbedo(const unsigned char* rgba) {

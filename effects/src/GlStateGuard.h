@@ -78,8 +78,8 @@ private:
     // surface, albedo, environment, (free), layers 1-3 (a single layer's texel shadows on 4, its beam
     // start on 5), their albedos, shading channels, shadow map, (free: 11-14), the clearance map
     static constexpr int kUnits = 16;
-    // the pyramids of layers 0-3 (SurfaceTextures::bindPyramid)
-    static constexpr GLuint kImages = 4;
+    // the pyramids of layers 0-3 (SurfaceTextures::bindPyramid), layer 0's cells (CellsPass)
+    static constexpr GLuint kImages = 5;
     struct Image {
         GLint name, level, layered, layer, access, format;
     };

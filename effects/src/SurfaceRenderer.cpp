@@ -291,6 +291,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         }
         updateBlock(ringBlock_, 2, rings);
     }
+    if (info.needsPyramid) cells_.refresh(textures); // the patch solve's samples, binds image unit 4
     glBindTextureUnit(0, textures.surface());
     glBindTextureUnit(1, textures.albedo());
     glBindTextureUnit(10, textures.channels());

@@ -50,6 +50,7 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     const GLuint target = textures.texelShadowTarget(stride); // throws for a bad stride
     const int width = config.width / stride, height = config.height / stride;
     GlStateGuard guard;
+    cells_.refresh(textures); // the walk's patch samples, image unit 4 (uses its own program)
     attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),

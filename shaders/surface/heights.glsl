@@ -44,6 +44,8 @@ layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 
 // texelFetch with a level per lane is a call that spills the walk's vectors, and costs 1.6x an
 // imageLoad (docs/BENCHMARKS.md, seventeenth part). Layer i's pyramid at image unit i.
 layout(rg32f, binding = 0) readonly uniform image2D i_pyramid;
+// Layer 0's level-0 cells: per cell its four samples in textureGather's order (cells.comp).
+layout(rgba32f, binding = 4) readonly uniform image2D i_cells;
 #if HFX_CLEARANCE
 layout(binding = 15) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
 #endif
@@ -136,11 +138,6 @@ float hfx_layers_height(vec2 uv, float level) {
 
 // The hierarchical tracer's accessors read layer 0 alone: the renderer refuses it on layered
 // surfaces (a sum of bilinear patches on different grids has no closed-form cell solve).
-vec4 hfx_gather(vec2 uv) {
-    g_fetches += 1.0;
-    return textureGather(s_surface, uv, 3);
-}
-
 ivec2 hfx_size() { return textureSize(s_surface, 0); }
 
 int hfx_levels() { return u_pyramidLevels; }
@@ -172,6 +169,12 @@ vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
     if (layer == 3) return imageLoad(i_pyramid3, at).rg;
 #endif
     return imageLoad(i_pyramid, at).rg;
+}
+
+// A level-0 cell's four samples (surface/cells.comp builds them from the stored texels).
+vec4 hfx_cell_samples(ivec2 cell) {
+    g_fetches += 1.0;
+    return imageLoad(i_cells, hfx_pyramid_texel(cell, hfx_size() - 1));
 }
 
 vec2 hfx_bounds(ivec2 cell, int level) {

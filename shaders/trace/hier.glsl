@@ -7,7 +7,7 @@
 // relief at once costs three fetches. A cell whose
 // maximum the ray passes above is skipped whole, and where its exit is also its parent's edge
 // the walk climbs a level; a cell the ray dips into is opened a level down. A level-0 cell
-// the ray dips into is solved: the bilinear patch between four samples (hfx_gather) in closed
+// the ray dips into is solved: the bilinear patch between four samples (hfx_cell_samples) in closed
 // form (the height along the ray is quadratic in t); if the ray passes the patch the walk goes
 // on. Cell space: x = u * width - 0.5, so cell i spans the samples i and i + 1. Exact
 // self-shadows with a blocker-distance penumbra (hfx_shadow, below).
@@ -85,9 +85,8 @@ void hfx_step(vec2 p0, vec2 dir, bool dip, float tIn, vec2 bound, vec2 tCross, f
     level += dip ? -1 : (climb ? 1 : 0);
 }
 
-// The four samples of a level-0 cell, in one gather at the point all four texels share
-// (x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)).
-vec4 hfx_patch_samples(vec2 cell, ivec2 size) { return hfx_gather((cell + 1.0) / vec2(size)); }
+// The four samples of a level-0 cell (x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)).
+vec4 hfx_patch_samples(vec2 cell, ivec2 size) { return hfx_cell_samples(ivec2(cell)); }
 
 // The bilinear patch of those samples along the ray from p (in the cell): its height at
 // p + dir * s is A s^2 + B s + C, returned as (A, B, C).

@@ -102,6 +102,15 @@ public:
     static std::pair<int, int> pyramidAtlasOrigin(int width, int height, int level);
     /// The image's size for a width x height pyramid: every level inside, none overlapping.
     static std::pair<int, int> pyramidAtlasSize(int width, int height);
+    /// With the pyramid, the level-0 cells' corner samples (RGBA32F, width x height: per cell the
+    /// four heights a gather around its centre reads, in that order), which the exact tracer's
+    /// patch solve reads in one imageLoad. A cache of the texels, built on the GL side
+    /// (effects' CellsPass) after each uploadTexels; 0 without a pyramid.
+    GLuint cells() const { return cells_.id(); }
+    /// Whether the cells hold the current texels; cellsBuilt() records that they do (the builder
+    /// calls it: the cache's state, not the surface's, hence const).
+    bool cellsCurrent() const { return cellsVersion_ == texelsVersion_; }
+    void cellsBuilt() const { cellsVersion_ = texelsVersion_; }
     GLuint clearance() const { return clearance_.id(); } ///< 0 before the first uploadClearance
     /// The light of the current clearance map; empty when there is none to read.
     const std::optional<ClearanceLight>& clearanceLight() const { return clearanceLight_; }
@@ -120,6 +129,9 @@ private:
     int levels_ = 1;
     int pyramidLevels_ = 0;
     GlTexture surface_, albedo_, channels_, pyramid_, clearance_, texelShadows_;
+    GlTexture cells_;
+    unsigned long long texelsVersion_ = 1;
+    mutable unsigned long long cellsVersion_ = 0;
     int texelStride_ = 1;
     std::optional<ClearanceLight> clearanceLight_, texelShadowLight_;
 };

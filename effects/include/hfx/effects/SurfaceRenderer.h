@@ -13,6 +13,7 @@
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/CellsPass.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/Technique.h"
@@ -241,6 +242,7 @@ private:
     GlFramebuffer beamFramebuffer_;
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
     int beamWidth_ = 0, beamHeight_ = 0;
+    CellsPass cells_; ///< the exact tracer's level-0 cells
 };
 
 } // namespace hfx

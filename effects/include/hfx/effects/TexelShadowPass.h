@@ -13,6 +13,7 @@
 #include "hfx/core/GlObject.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/CellsPass.h"
 
 #include <optional>
 
@@ -53,6 +54,7 @@ private:
     /// [1]: the walks read the clearance map; each built by its first draw (a surface with texel
     /// shadows and no map never compiles the other).
     std::optional<ShaderProgram> programs_[2];
+    CellsPass cells_; ///< the walk's level-0 cells
     GlFramebuffer framebuffer_;
     GlVertexArray empty_;
     GlBuffer block_;

@@ -1,0 +1,24 @@
+#include "hfx/effects/CellsPass.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+namespace hfx {
+
+void CellsPass::refresh(const SurfaceTextures& textures) {
+    if (!textures.cells()) throw Error("CellsPass: these surface textures were made without a pyramid");
+    if (!textures.cellsCurrent()) {
+        if (!program_) program_ = ShaderProgram::compute({surfaceShader("surface/cells.comp")});
+        const SurfaceTexturesConfig& c = textures.config();
+        program_->use();
+        program_->set("u_wrap", glm::ivec2(wrapsU(c.edges) ? 1 : 0, wrapsV(c.edges) ? 1 : 0));
+        glBindTextureUnit(0, textures.surface());
+        HFX_GL_CHECK(glBindImageTexture(4, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
+        HFX_GL_CHECK(glDispatchCompute(GLuint((c.width + 7) / 8), GLuint((c.height + 7) / 8), 1));
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        textures.cellsBuilt();
+    }
+    HFX_GL_CHECK(glBindImageTexture(4, textures.cells(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F));
+}
+
+} // namespace hfx
