@@ -80,8 +80,6 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
         HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), 1, GL_RG32F, atlasWidth, atlasHeight));
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        cells_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(cells_.id(), 1, GL_RGBA32F, config.width, config.height));
         // Conservative until the first real upload: every cell spans the whole relief (max 1, min 0).
         std::vector<float> whole(static_cast<size_t>(config.width) * config.height * 4);
         for (size_t i = 0; i < whole.size(); i += 2) whole[i] = 1.0f;
@@ -101,6 +99,15 @@ std::pair<int, int> SurfaceTextures::pyramidAtlasSize(int width, int height) {
     const int levels = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(width, height))));
     const auto [x, y] = pyramidAtlasOrigin(width, height, levels - 1);
     return {width + std::max(width >> 1, 1), std::max(height, y + 1)};
+}
+
+GLuint SurfaceTextures::cells() const {
+    if (pyramid_.id() && !cells_.id()) { // allocated by the first reader: layers never traced by hier have none
+        cells_ = GlTexture::create();
+        HFX_GL_CHECK(glTextureStorage2D(cells_.id(), 1, GL_RGBA32F, config_.width, config_.height));
+        cellsVersion_ = 0;
+    }
+    return cells_.id();
 }
 
 void SurfaceTextures::bindPyramid(GLuint unit) const {

@@ -105,8 +105,9 @@ public:
     /// With the pyramid, the level-0 cells' corner samples (RGBA32F, width x height: per cell the
     /// four heights a gather around its centre reads, in that order), which the exact tracer's
     /// patch solve reads in one imageLoad. A cache of the texels, built on the GL side
-    /// (effects' CellsPass) after each uploadTexels; 0 without a pyramid.
-    GLuint cells() const { return cells_.id(); }
+    /// (effects' CellsPass) after each uploadTexels; 0 without a pyramid. Allocated on the first
+    /// call (16 bytes a texel), so surfaces never drawn with hier (the ocean's layers) hold none.
+    GLuint cells() const;
     /// Whether the cells hold the current texels; cellsBuilt() records that they do (the builder
     /// calls it: the cache's state, not the surface's, hence const).
     bool cellsCurrent() const { return cellsVersion_ == texelsVersion_; }
@@ -129,7 +130,7 @@ private:
     int levels_ = 1;
     int pyramidLevels_ = 0;
     GlTexture surface_, albedo_, channels_, pyramid_, clearance_, texelShadows_;
-    GlTexture cells_;
+    mutable GlTexture cells_;
     unsigned long long texelsVersion_ = 1;
     mutable unsigned long long cellsVersion_ = 0;
     int texelStride_ = 1;
