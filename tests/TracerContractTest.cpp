@@ -812,7 +812,7 @@ TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareA
     // the CPU pyramid's: fields wider than tall, taller than wide, square, and one row high.
     std::mt19937 random(17);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    for (const auto [W, H] : {std::pair{64, 16}, std::pair{16, 64}, std::pair{32, 32}, std::pair{128, 2}, std::pair{4, 256}}) {
+    for (const auto& [W, H] : {std::pair{64, 16}, std::pair{16, 64}, std::pair{32, 32}, std::pair{128, 2}, std::pair{4, 256}}) {
         const auto [atlasW, atlasH] = SurfaceTextures::pyramidAtlasSize(W, H);
         const int levels = int(std::bit_width(unsigned(std::max(W, H))));
         std::vector<glm::ivec4> rects; // x, y, width, height

@@ -86,7 +86,7 @@ void hfx_step(vec2 p0, vec2 dir, bool dip, float tIn, vec2 bound, vec2 tCross, f
 }
 
 // The four samples of a level-0 cell (x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)).
-vec4 hfx_patch_samples(vec2 cell, ivec2 size) { return hfx_cell_samples(ivec2(cell)); }
+vec4 hfx_patch_samples(vec2 cell) { return hfx_cell_samples(ivec2(cell)); }
 
 // The bilinear patch of those samples along the ray from p (in the cell): its height at
 // p + dir * s is A s^2 + B s + C, returned as (A, B, C).
@@ -147,7 +147,7 @@ float hfx_trace_depth(HfxRay ray) {
         vec2 cell, bound, tCross;
         float tExit;
         hfx_cell_at(p0, p, invDir, back, t, 0, cell, bound, tCross, tExit);
-        const vec4 samples = hfx_patch_samples(cell, size);
+        const vec4 samples = hfx_patch_samples(cell);
         const float tIn = max(t, 1.0 - max(max(samples.x, samples.y), max(samples.z, samples.w)));
         if (tIn > t) p = p0 + dir * tIn;
         t = tIn;
@@ -280,7 +280,7 @@ float hfx_shadow(HfxShadowRay ray) {
         float tExit;
         hfx_cell_at(p0, p, invDir, back, t, 0, cell, bound, tCross, tExit);
         // f(s) = patch - ray (h0 + climb t, rising) along the cell, s in [0, S]: A s^2 + B s + C.
-        const vec3 along = hfx_patch_along(hfx_patch_samples(cell, size), cell, p, dir);
+        const vec3 along = hfx_patch_along(hfx_patch_samples(cell), cell, p, dir);
         const float A = along.x, B = along.y - climb, C = along.z - (ray.h0 + climb * t);
         const float S = tExit - t;
         const float sv = A < 0.0 ? clamp(-0.5 * B / A, 0.0, S) : 0.0; // the maximum's place

@@ -16,6 +16,7 @@
 #include "hfx/core/Image.h"
 #include "hfx/core/SurfaceFormat.h"
 
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -131,8 +132,8 @@ private:
     int pyramidLevels_ = 0;
     GlTexture surface_, albedo_, channels_, pyramid_, clearance_, texelShadows_;
     mutable GlTexture cells_;
-    unsigned long long texelsVersion_ = 1;
-    mutable unsigned long long cellsVersion_ = 0;
+    std::uint64_t texelsVersion_ = 1; ///< counts uploadTexels
+    mutable std::uint64_t cellsVersion_ = 0; ///< the texels' version the cells were built from
     int texelStride_ = 1;
     std::optional<ClearanceLight> clearanceLight_, texelShadowLight_;
 };
