@@ -11,7 +11,7 @@ void CellsPass::refresh(const SurfaceTextures& textures) {
         if (!program_) program_ = ShaderProgram::compute({surfaceShader("surface/cells.comp")});
         const SurfaceTexturesConfig& c = textures.config();
         program_->use();
-        program_->set("u_wrap", glm::ivec2(wrapsU(c.edges) ? 1 : 0, wrapsV(c.edges) ? 1 : 0));
+        program_->set("u_wrap", wrapFlags(c.edges));
         glBindTextureUnit(0, textures.surface());
         HFX_GL_CHECK(glBindImageTexture(4, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
         HFX_GL_CHECK(glDispatchCompute(GLuint((c.width + 7) / 8), GLuint((c.height + 7) / 8), 1));

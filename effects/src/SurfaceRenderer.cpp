@@ -261,7 +261,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .clipToPatch = material.clipToPatch ? 1 : 0,
                       .pyramidLevels = textures.pyramidLevels(),
                       .varianceFloor = varianceFloor(textures.config().format),
-                      .wrap = {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0},
+                      .wrap = wrapFlags(edges),
                       .pixelBudget = material.pixelBudget};
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's

@@ -54,7 +54,7 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
-                      .wrap = {wrapsU(config.edges) ? 1 : 0, wrapsV(config.edges) ? 1 : 0},
+                      .wrap = wrapFlags(config.edges),
                       .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
     updateBlock(block_, 0, u);
     glDisable(GL_DEPTH_TEST);

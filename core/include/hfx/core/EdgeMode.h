@@ -7,6 +7,8 @@
 //
 // Thread: any (plain values).
 
+#include <glm/vec2.hpp>
+
 namespace hfx {
 
 /// Wrap tiles both ways; WrapU tiles u and clamps v (a longitude-latitude map, which wraps at the
@@ -17,6 +19,8 @@ inline constexpr EdgeMode kEdgeModes[] = {EdgeMode::Wrap, EdgeMode::Clamp, EdgeM
 
 constexpr bool wrapsU(EdgeMode edges) { return edges != EdgeMode::Clamp; }
 constexpr bool wrapsV(EdgeMode edges) { return edges == EdgeMode::Wrap; }
+/// Per axis 1 where the field wraps, 0 where it clamps: the shaders' u_wrap.
+constexpr glm::ivec2 wrapFlags(EdgeMode edges) { return {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0}; }
 /// "wrap", "clamp", "wrap-u".
 const char* edgeModeName(EdgeMode edges);
 
