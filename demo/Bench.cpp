@@ -9,6 +9,7 @@
 #include "Scene.h"
 
 #include "hfx/core/Gl.h"
+#include "Devices.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/tools/Timing.h"
@@ -106,13 +107,13 @@ std::pair<double, double> sequentialAndOverlapped(Scene& scene, RenderTarget& ta
 
 } // namespace
 
-int runBench(const SceneOptions& options, int width, int height, int frames, const std::vector<std::string>& only) {
+int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, int width, int height, int frames,
+             const std::vector<std::string>& only) {
     auto wanted = [&](const std::string& part) { return only.empty() || std::ranges::find(only, part) != only.end(); };
-    auto gl = createHeadlessContext({.width = width, .height = height});
-    ClContext cl;
-    std::printf("hfx-demo bench: %dx%d, %d frames per case (medians), %s\n", width, height, frames,
-                gl->description().c_str());
-    std::printf("OpenCL: %s\n\n", cl.description().c_str());
+    const Devices devices = openDevices(deviceOptions, {.width = width, .height = height}, false);
+    ClContext& cl = *devices.cl;
+    std::printf("hfx-demo bench: %dx%d, %d frames per case (medians)\n%s\n\n", width, height, frames,
+                devices.summary().c_str());
 
     std::printf("| scene | field | step | normals | pyramid/extra | upload | POM draw | POM no shadows | NM draw | "
                 "frame | fps | POM/NM | compute+upload share | overlapped frame | peak RSS MiB | own technique draw | "

@@ -4,6 +4,7 @@
 // scripts/plot_accuracy.py. Depth scale 0.1 texture widths, mip level 0, 8..32 samples.
 
 #include "hfx/core/Error.h"
+#include "Devices.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/tools/AccuracyMaps.h"
 #include "hfx/tools/AccuracyProbe.h"
@@ -18,9 +19,10 @@
 
 namespace hfx::demo {
 
-int runBenchAccuracy(const std::string& outDir, int field) {
-    auto gl = createHeadlessContext({.width = 64, .height = 64});
-    ClContext cl;
+int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outDir, int field) {
+    const Devices devices = openDevices(deviceOptions, {.width = 64, .height = 64}, false);
+    GlContext* gl = devices.gl.get();
+    ClContext& cl = *devices.cl;
     const std::vector<AccuracyMap> maps = accuracyMaps(cl, field);
     const double angles[] = {0, 45, 70, 80, 85};
     const glm::vec3 light = accuracyLight(); // 60 degrees off the normal
@@ -165,9 +167,10 @@ int runBenchAccuracy(const std::string& outDir, int field) {
 /// what building the map and drawing the texel shadows add to a frame; beside them each one's
 /// fetches per pixel in the same draw (AccuracyProbe::countFetches: the mean and in lockstep blocks).
 /// Prints a table and, with --out, writes tracers.csv. `only` restricts the maps by name.
-int runBenchTracers(const std::string& outDir, int field, const std::vector<std::string>& only, int rounds) {
-    auto gl = createHeadlessContext({.width = 64, .height = 64});
-    ClContext cl;
+int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDir, int field,
+                    const std::vector<std::string>& only, int rounds) {
+    const Devices devices = openDevices(deviceOptions, {.width = 64, .height = 64}, false);
+    ClContext& cl = *devices.cl;
     const glm::vec3 light = accuracyLight(); // 60 degrees off the normal
     // POM, the exact tracer (with the clearance map, without, and with a one-pixel error budget).
     struct Variant {
@@ -198,7 +201,7 @@ int runBenchTracers(const std::string& outDir, int field, const std::vector<std:
                 "texel shadows (the scenes' default where they pay) over pom.\n\n"
                 "| map | angle | pom ms | hier ms | hier / pom | no map / pom | hier 1px / pom | texels / pom | texels, no beam / pom | map ms "
                 "| texels ms | fetches pom, hier, no map, texels, no beam | texels: fetches | 8 lanes | 32 lanes | ms per 8-lane fetch |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", gl->description().c_str(), field, field, rounds);
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", devices.summary().c_str(), field, field, rounds);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
         AccuracyProbe probe(cl, map.heights, field, 0.1f);

@@ -10,6 +10,7 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "Devices.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Mesh.h"
@@ -70,9 +71,9 @@ double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
 } // namespace
 
-int runBenchMesh(int width, int height, int frames) {
-    auto gl = createHeadlessContext({.width = width, .height = height});
-    ClContext cl;
+int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int frames) {
+    const Devices devices = openDevices(deviceOptions, {.width = width, .height = height}, false);
+    ClContext& cl = *devices.cl;
     constexpr int N = 1024;
     constexpr float kSize = 8.0f;
     // One ocean per surface format, all from the same seed: the same heights, stored three ways.
@@ -199,7 +200,7 @@ int runBenchMesh(int width, int height, int frames) {
     };
     const double meshBytes = double(vertices.size()) * sizeof(MeshVertex) + double(indices.size()) * sizeof(uint32_t);
     const double mt = median(meshMs), mst = median(meshShadowedMs);
-    std::printf("hfx-demo bench-mesh: %dx%d, %d frames (medians), %s\n", width, height, frames, gl->description().c_str());
+    std::printf("hfx-demo bench-mesh: %dx%d, %d frames (medians)\n%s\n", width, height, frames, devices.summary().c_str());
     std::printf("| side | draw ms (soft shadows / none) | memory MiB | mesh / side: time (shadows / none) | mesh / side: "
                 "memory |\n|---|---|---|---|---|\n");
     for (size_t f = 0; f < oceans.size(); ++f) {

@@ -4,6 +4,7 @@
 //   hfx-demo planet --export-maps maps
 //   hfx-demo bench
 
+#include "Devices.h"
 #include "Frames.h"
 #include "Scene.h"
 #include "Window.h"
@@ -23,10 +24,12 @@
 #include <filesystem>
 
 namespace hfx::demo {
-int runBench(const SceneOptions& scene, int width, int height, int frames, const std::vector<std::string>& only);
-int runBenchAccuracy(const std::string& outDir, int field);
-int runBenchTracers(const std::string& outDir, int field, const std::vector<std::string>& only, int rounds);
-int runBenchMesh(int width, int height, int frames);
+int runBench(const DeviceOptions& devices, const SceneOptions& scene, int width, int height, int frames,
+             const std::vector<std::string>& only);
+int runBenchAccuracy(const DeviceOptions& devices, const std::string& outDir, int field);
+int runBenchTracers(const DeviceOptions& devices, const std::string& outDir, int field,
+                    const std::vector<std::string>& only, int rounds);
+int runBenchMesh(const DeviceOptions& devices, int width, int height, int frames);
 }
 
 namespace {
@@ -48,6 +51,8 @@ struct Options {
     bool noProgress = false;
     std::vector<std::string> benchOnly;
     SceneOptions sceneOptions;
+    std::string gl = "auto";
+    DeviceOptions devices;
 };
 
 /// Refuses what CLI::Range lets through: NaN compares false with both bounds.
@@ -65,7 +70,7 @@ glm::vec4 background(const std::string& scene) {
     return scene == "planet" ? glm::vec4(0.005f, 0.005f, 0.015f, 1.0f) : kBackground;
 }
 
-int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
+int runHeadless(const Options& o, Scene& scene) {
     RenderTarget target(o.width, o.height);
     const int frames = o.frames > 0 ? o.frames : 1;
     std::string outDir = o.out;
@@ -74,7 +79,6 @@ int runHeadless(const Options& o, GlContext& gl, Scene& scene) {
     std::unique_ptr<VideoWriter> video;
     if (!o.video.empty()) video = std::make_unique<VideoWriter>(o.video, o.width, o.height, 1.0 / o.dt);
     Progress progress(frames, !o.noProgress && frames > 1);
-    std::fprintf(stderr, "hfx-demo: headless, %s\n", gl.description().c_str());
     for (int frame = 0; frame < frames; ++frame) {
         // Headless runs advance by the fixed dt so two runs write identical frames. The next
         // field is computed while this one draws (begin after the draw, end before the next).
@@ -116,30 +120,32 @@ int run(const Options& o) {
         std::printf("%s", techniqueTableMarkdown().c_str());
         return 0;
     }
-    if (o.scene == "bench") return runBench(sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20, o.benchOnly);
-    if (o.scene == "bench-mesh") return runBenchMesh(o.width, o.height, o.frames > 0 ? o.frames : 10);
+    if (o.scene == "bench")
+        return runBench(o.devices, sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20, o.benchOnly);
+    if (o.scene == "bench-mesh") return runBenchMesh(o.devices, o.width, o.height, o.frames > 0 ? o.frames : 10);
     if (o.scene == "bench-accuracy") {
         const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
         if (field & (field - 1)) throw Error(str("bench-accuracy needs a power-of-two --field, got ", field));
-        return runBenchAccuracy(o.out.empty() ? "docs" : o.out, field);
+        return runBenchAccuracy(o.devices, o.out.empty() ? "docs" : o.out, field);
     }
     if (o.scene == "bench-tracers") {
         const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
         if (field & (field - 1)) throw Error(str("bench-tracers needs a power-of-two --field, got ", field));
-        return runBenchTracers(o.out, field, o.benchOnly, o.frames > 0 ? o.frames : 5);
+        return runBenchTracers(o.devices, o.out, field, o.benchOnly, o.frames > 0 ? o.frames : 5);
     }
     if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet" && o.scene != "noise")
         throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));
     if (!o.video.empty()) checkVideoEncoder();
 
-    auto gl = createContext({.width = o.width, .height = o.height, .title = "HFX " + o.scene}, !o.headless);
-    ClContext cl;
+    Devices devices = openDevices(o.devices, {.width = o.width, .height = o.height, .title = "HFX " + o.scene},
+                                  !o.headless);
+    GlContext* gl = devices.gl.get();
+    ClContext& cl = *devices.cl;
     auto scene = makeScene(o.scene, cl, sceneOptions);
     std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\nhfx: technique: %s%s\n", cl.programReport().c_str(),
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
                  o.technique == "auto" ? " (auto: the scene's default)" : "");
-    if (gl->headless()) return runHeadless(o, *gl, *scene);
-    std::fprintf(stderr, "hfx-demo: window, %s\n", gl->description().c_str());
+    if (gl->headless()) return runHeadless(o, *scene);
     WindowLoop loop({.width = o.width,
                      .height = o.height,
                      .frames = o.frames,
@@ -166,6 +172,16 @@ int main(int argc, char** argv) {
                    "quad against a tessellated mesh of the same 1024² heights)")
         ->capture_default_str();
     app.add_flag("--headless", o.headless, "render off screen even when a display exists");
+    app.add_option("--gl", o.gl,
+                   "where the GL context comes from: auto (HFX_GL when set, else a window where a display exists and "
+                   "--headless is absent, else EGL, else OSMesa), egl (a GPU's EGL device, else Mesa's surfaceless "
+                   "platform, else its software device), egl-device, egl-surfaceless, or osmesa (Mesa's llvmpipe in "
+                   "the process); anything but auto renders headless")
+        ->check(CLI::IsMember({"auto", "egl", "egl-device", "egl-surfaceless", "osmesa"}))
+        ->capture_default_str();
+    app.add_option("--cl-device", o.devices.clDevice,
+                   "the OpenCL device: a case-insensitive part of \"'NAME' (GPU|CPU) on 'PLATFORM'\" (nvidia, gpu, cpu, "
+                   "portable); default HFX_CL_DEVICE, else a GPU before a CPU, then one on the GL renderer's hardware");
     app.add_option("--frames", o.frames, "frames to render (headless default 1; window: until closed)")
         ->check(CLI::Range(0, 1000000));
     app.add_option("--out", o.out, "folder for PNG frames (headless default: frames)");
@@ -284,6 +300,7 @@ int main(int argc, char** argv) {
         ->delimiter(',');
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
+    o.devices.gl = parseGlBackend(o.gl);
     s.shadows = !noShadows;
     s.texelShadows = texelShadowsOn ? TexelShadowChoice::On : texelShadowsOff ? TexelShadowChoice::Off : TexelShadowChoice::Auto;
     s.beamStart = !noBeamStart;

@@ -396,7 +396,7 @@ TEST(Demo, OpensAWindowUnderXvfb) {
     const Result r = runDemo("water --frames 3 --width 320 --height 180 --field 64 --out " + out,
                              "xvfb-run -a -s '-screen 0 640x480x24'");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("hfx-demo: window"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("hfx: GL GLFW window: OpenGL 4.5"), std::string::npos) << r.output;
     EXPECT_GT(luminanceStdDev(readImage(out + "/water_0002.png")), 0.02);
     // The decal scene with its panel, closed by the frame count. The window's last frame holds
     // the rendered image scaled to the window plus the panel: its top-left corner (where the
@@ -427,6 +427,33 @@ TEST(Demo, NoOpenClPlatformSaysWhatToInstall) {
     EXPECT_NE(r.output.find("no OpenCL platform"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("apt-get install pocl-opencl-icd"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
+}
+
+TEST(Demo, TheGlContextAndTheClDeviceAreChosenByOptionAndNamed) {
+    // Both EGL and OSMesa give llvmpipe here: the same frame, and each run says which it got.
+    std::string osmesaLog, eglLog;
+    const Image osmesa = flatSceneFrame("decals", "gl_osmesa", " --gl osmesa", 128, &osmesaLog);
+    const Image egl = flatSceneFrame("decals", "gl_egl", " --gl egl", 128, &eglLog);
+    EXPECT_NE(osmesaLog.find("hfx: GL OSMesa: OpenGL 4.5"), std::string::npos) << osmesaLog;
+    EXPECT_NE(eglLog.find("hfx: GL EGL"), std::string::npos) << eglLog;
+    EXPECT_EQ(frameDifference(osmesa, egl).far, 0.0);
+    EXPECT_LT(frameDifference(osmesa, egl).mean, 0.5);
+    // The OpenCL device by a part of its label, named with the reason it was taken.
+    const Result cpu = runDemo("noise --headless --frames 1 --width 64 --height 64 --cl-device cpu --out " +
+                               outputPath("demo_cl_cpu"));
+    ASSERT_EQ(cpu.exitCode, 0) << cpu.output;
+    EXPECT_NE(cpu.output.find("hfx: OpenCL device"), std::string::npos) << cpu.output;
+    EXPECT_NE(cpu.output.find("filters: platform '', device 'cpu'"), std::string::npos) << cpu.output;
+    const Result none = runDemo("noise --headless --frames 1 --cl-device no-such-device-xyz");
+    EXPECT_NE(none.exitCode, 0);
+    EXPECT_NE(none.output.find("no-such-device-xyz"), std::string::npos) << none.output;
+    EXPECT_NE(none.output.find("devices present"), std::string::npos) << none.output;
+    const Result glide = runDemo("noise --headless --gl glide");
+    EXPECT_NE(glide.exitCode, 0);
+    EXPECT_NE(glide.output.find("glide"), std::string::npos) << glide.output;
+    const Result badEnv = runDemo("noise --headless --frames 1", "env -u DISPLAY -u WAYLAND_DISPLAY HFX_GL=glide");
+    EXPECT_NE(badEnv.exitCode, 0);
+    EXPECT_NE(badEnv.output.find("HFX_GL"), std::string::npos) << badEnv.output;
 }
 
 TEST(Demo, UnknownSceneIsAClearError) {
@@ -516,7 +543,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
                                "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format",
-                               "--clearance-map", "--texel-shadows", "--no-texel-shadows", "water", "decals", "planet",
+                               "--clearance-map", "--texel-shadows", "--no-texel-shadows", "--gl", "--cl-device", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }

@@ -1,5 +1,7 @@
 #include "hfx/compute/ClContext.h"
 
+#include <CL/cl_gl.h>
+
 #include "hfx/core/Error.h"
 #include "hfx/core/Source.h"
 
@@ -47,15 +49,6 @@ std::string clErrorName(cl_int code) {
 
 namespace {
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-    return s;
-}
-
-bool matches(const std::string& name, const std::string& filter) {
-    return filter.empty() || lower(name).find(lower(filter)) != std::string::npos;
-}
-
 std::string fromEnv(const std::string& value, const char* variable) {
     if (!value.empty()) return value;
     const char* env = std::getenv(variable);
@@ -95,50 +88,98 @@ std::string numbered(const std::string& source) {
 
 } // namespace
 
-ClContext::ClContext(const ClContextConfig& config) {
-    const std::string platformFilter = fromEnv(config.platform, "HFX_CL_PLATFORM");
-    const std::string deviceFilter = fromEnv(config.device, "HFX_CL_DEVICE");
+namespace {
+
+/// One device the process can see, with what the choice needs to know of it.
+struct Present {
+    cl::Platform platform;
+    cl::Device device;
+    ClDeviceInfo info;
+    std::vector<cl_context_properties> sharing; ///< the context properties that share GL, or none
+};
+
+/// The context properties that tie a context on `platform` to the caller's GL context.
+std::vector<cl_context_properties> sharingProperties(const cl::Platform& platform, const GlShareHandles& gl) {
+    const cl_context_properties displayKey = gl.api == GlShareHandles::Api::Glx ? CL_GLX_DISPLAY_KHR : CL_EGL_DISPLAY_KHR;
+    return {CL_GL_CONTEXT_KHR, reinterpret_cast<cl_context_properties>(gl.context), displayKey,
+            reinterpret_cast<cl_context_properties>(gl.display), CL_CONTEXT_PLATFORM,
+            reinterpret_cast<cl_context_properties>(platform()), 0};
+}
+
+/// The devices of `platform` that can share objects with the caller's GL context: what the
+/// platform's cl_khr_gl_sharing says for it (none without the extension or without a context).
+std::vector<cl_device_id> devicesSharingGl(const cl::Platform& platform, const GlShareHandles& gl) {
+    if (gl.api == GlShareHandles::Api::None || !gl.context) return {};
+    if (platform.getInfo<CL_PLATFORM_EXTENSIONS>().find("cl_khr_gl_sharing") == std::string::npos) return {};
+    using Query = cl_int (*)(const cl_context_properties*, cl_gl_context_info, size_t, void*, size_t*);
+    const auto query = reinterpret_cast<Query>(
+        clGetExtensionFunctionAddressForPlatform(platform(), "clGetGLContextInfoKHR"));
+    if (!query) return {};
+    const std::vector<cl_context_properties> properties = sharingProperties(platform, gl);
+    size_t bytes = 0;
+    if (query(properties.data(), CL_DEVICES_FOR_GL_CONTEXT_KHR, 0, nullptr, &bytes) != CL_SUCCESS || bytes == 0)
+        return {}; // NVIDIA refuses an EGL display (CL_INVALID_OPERATION): no sharing there
+    std::vector<cl_device_id> ids(bytes / sizeof(cl_device_id));
+    if (query(properties.data(), CL_DEVICES_FOR_GL_CONTEXT_KHR, bytes, ids.data(), nullptr) != CL_SUCCESS) return {};
+    return ids;
+}
+
+std::vector<Present> presentDevices(const GlShareHandles& gl) {
     std::vector<cl::Platform> platforms;
     try {
         cl::Platform::get(&platforms);
     } catch (const cl::Error&) {
         platforms.clear();
     }
-    if (platforms.empty())
-        throw Error("no OpenCL platform found: install an OpenCL driver (on Debian without GPU: "
-                    "apt-get install pocl-opencl-icd ocl-icd-libopencl1)");
-
-    // Candidates in order of preference: PoCL first unless a filter says otherwise.
-    std::stable_sort(platforms.begin(), platforms.end(), [](const cl::Platform& a, const cl::Platform& b) {
-        auto pocl = [](const cl::Platform& p) {
-            return lower(p.getInfo<CL_PLATFORM_NAME>()).find("portable") != std::string::npos;
-        };
-        return pocl(a) && !pocl(b);
-    });
-    std::string seen;
+    std::vector<Present> present;
     for (const cl::Platform& p : platforms) {
-        const std::string pname = p.getInfo<CL_PLATFORM_NAME>();
         std::vector<cl::Device> devices;
         try {
             p.getDevices(CL_DEVICE_TYPE_ALL, &devices);
         } catch (const cl::Error&) {
-            continue;
+            continue; // a platform with no device (CL_DEVICE_NOT_FOUND)
         }
+        const std::vector<cl_device_id> sharing = devicesSharingGl(p, gl);
         for (const cl::Device& d : devices) {
-            const std::string dname = d.getInfo<CL_DEVICE_NAME>();
-            seen += str("\n  '", dname, "' on '", pname, "'");
-            if (!device_() && matches(pname, platformFilter) && matches(dname, deviceFilter)) {
-                platform_ = p;
-                device_ = d;
-            }
+            const bool shares = std::find(sharing.begin(), sharing.end(), d()) != sharing.end();
+            present.push_back({p, d,
+                               {.platform = p.getInfo<CL_PLATFORM_NAME>(),
+                                .name = d.getInfo<CL_DEVICE_NAME>(),
+                                .vendor = d.getInfo<CL_DEVICE_VENDOR>(),
+                                .type = d.getInfo<CL_DEVICE_TYPE>(),
+                                .sharesGl = shares},
+                               shares ? sharingProperties(p, gl) : std::vector<cl_context_properties>{}});
         }
     }
-    if (!device_())
-        throw Error(str("no OpenCL device matches HFX_CL_PLATFORM='", platformFilter,
-                        "' HFX_CL_DEVICE='", deviceFilter, "'; devices present:",
-                        seen.empty() ? std::string("\n  (none)") : seen));
+    return present;
+}
+
+} // namespace
+
+ClContext::ClContext(const ClContextConfig& config) {
+    const std::string platformFilter = fromEnv(config.platform, "HFX_CL_PLATFORM");
+    const std::string deviceFilter = fromEnv(config.device, "HFX_CL_DEVICE");
+    const std::vector<Present> present = presentDevices(config.glShare);
+    if (present.empty())
+        throw Error("no OpenCL platform with a device found: install an OpenCL driver (on Debian without GPU: "
+                    "apt-get install pocl-opencl-icd ocl-icd-libopencl1)");
+    std::vector<ClDeviceInfo> infos;
+    for (const Present& p : present) infos.push_back(p.info);
+    const ClDeviceChoice choice = chooseClDevice(infos, platformFilter, deviceFilter, config.gl);
+    if (choice.index < 0) {
+        std::string seen;
+        for (const ClDeviceInfo& info : infos) seen += "\n  " + info.label();
+        throw Error(str("no OpenCL device matches HFX_CL_PLATFORM='", platformFilter, "' HFX_CL_DEVICE='",
+                        deviceFilter, "'; devices present:", seen));
+    }
+    const Present& chosen = present[size_t(choice.index)];
+    platform_ = chosen.platform;
+    device_ = chosen.device;
+    reason_ = choice.reason;
+    sharesGl_ = !chosen.sharing.empty();
+    if (sharesGl_) glShare_ = config.glShare;
     clGuard("creating the OpenCL context", [&] {
-        context_ = cl::Context(device_);
+        context_ = sharesGl_ ? cl::Context(device_, chosen.sharing.data()) : cl::Context(device_);
         queue_ = cl::CommandQueue(context_, device_);
     });
     cache_ = ProgramCache(config.kernelCache == "off" ? std::filesystem::path()
@@ -149,9 +190,14 @@ ClContext::ClContext(const ClContextConfig& config) {
                           platform_.getInfo<CL_PLATFORM_VERSION>(), "\ndevice ", device_.getInfo<CL_DEVICE_NAME>(),
                           " ", device_.getInfo<CL_DEVICE_VERSION>(), "\ndriver ",
                           device_.getInfo<CL_DRIVER_VERSION>(), "\n");
-    if (config.log)
-        std::fprintf(stderr, "hfx: OpenCL device %s, kernel cache %s\n", description().c_str(),
+    if (config.log) {
+        std::string others;
+        for (const ClDeviceInfo& info : infos)
+            if (&info != &infos[size_t(choice.index)]) others += (others.empty() ? "" : ", ") + info.label();
+        std::fprintf(stderr, "hfx: OpenCL device %s: %s%s; kernel cache %s\n", description().c_str(),
+                     reason_.c_str(), others.empty() ? "" : str("; also present: ", others).c_str(),
                      cache_.enabled() ? cache_.folder().c_str() : "off");
+    }
 }
 
 ClContext::~ClContext() {

@@ -4,6 +4,9 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#define GLFW_EXPOSE_NATIVE_X11
+#define GLFW_EXPOSE_NATIVE_GLX
+#include <GLFW/glfw3native.h>
 
 #include <mutex>
 
@@ -35,7 +38,7 @@ public:
         glfwMakeContextCurrent(window_);
         glfwSwapInterval(config.vsync ? 1 : 0);
         try {
-            loadGl(reinterpret_cast<GlProcLoader>(&glfwGetProcAddress));
+            makeCurrent();
         } catch (...) {
             glfwDestroyWindow(window_);
             glfwTerminate();
@@ -47,7 +50,12 @@ public:
         glfwTerminate();
     }
 
-    void makeCurrent() override { glfwMakeContextCurrent(window_); }
+    void makeCurrent() override {
+        const auto loader = reinterpret_cast<GlProcLoader>(&glfwGetProcAddress);
+        if (!detail::glEntryPointsFrom(loader)) glfwMakeContextCurrent(nullptr);
+        glfwMakeContextCurrent(window_);
+        detail::bindGlEntryPoints(loader);
+    }
     void swapBuffers() override { glfwSwapBuffers(window_); }
     bool pollEvents() override {
         glfwPollEvents();
@@ -59,6 +67,17 @@ public:
         return size;
     }
     bool headless() const override { return false; }
+    std::string backend() const override { return "GLFW window"; }
+    GlShareHandles shareHandles() const override {
+        // Only a GLX window (X11) has handles cl_khr_gl_sharing takes; elsewhere none.
+        GLXContext context = glfwGetGLXContext(window_);
+        Display* display = glfwGetX11Display();
+        if (!context || !display) {
+            glfwGetError(nullptr); // the query's "not an X11 window" is not an error of ours
+            return {};
+        }
+        return {.api = GlShareHandles::Api::Glx, .context = context, .display = display};
+    }
 
 private:
     GLFWwindow* window_ = nullptr;

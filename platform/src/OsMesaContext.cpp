@@ -34,8 +34,12 @@ public:
             throw Error("OSMesa could not create an OpenGL 4.5 core context (needs Mesa's "
                         "llvmpipe: apt-get install libosmesa6)");
         pixels_.resize(static_cast<size_t>(width_) * height_);
-        makeCurrent();
-        loadGl(&osmesaProc);
+        try {
+            makeCurrent();
+        } catch (...) {
+            OSMesaDestroyContext(context_);
+            throw;
+        }
     }
     ~OsMesaContext() override {
         // llvmpipe rasterises behind the caller: let it finish before the context goes (Mesa's
@@ -47,11 +51,13 @@ public:
     void makeCurrent() override {
         if (!OSMesaMakeCurrent(context_, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_))
             throw Error("OSMesaMakeCurrent failed");
+        detail::bindGlEntryPoints(&osmesaProc);
     }
     void swapBuffers() override {}
     bool pollEvents() override { return true; }
     glm::ivec2 framebufferSize() const override { return {width_, height_}; }
     bool headless() const override { return true; }
+    std::string backend() const override { return "OSMesa"; }
 
 private:
     int width_, height_;
@@ -61,7 +67,7 @@ private:
 
 } // namespace
 
-std::unique_ptr<GlContext> createHeadlessContext(const GlContextConfig& config) {
+std::unique_ptr<GlContext> detail::createOsMesaContext(const GlContextConfig& config) {
     return std::make_unique<OsMesaContext>(config);
 }
 

@@ -3,6 +3,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -35,6 +36,7 @@ GlContext* acquireGl() {
         glTried = true;
         try {
             sharedGl = createHeadlessContext({.width = 64, .height = 64}).release();
+            std::fprintf(stderr, "hfx tests: GL %s\n", sharedGl->description().c_str());
             // llvmpipe rasterises on its own threads behind the caller. Mesa's exit handler,
             // registered before this one and so run after it, stops them and joins them; with a
             // scene still in flight one thread can be left at the scene's barrier and the join

@@ -2,15 +2,18 @@
 // The OpenCL device, its context and in-order queue, and a cache of built programs: in memory
 // for the process, and on disk as program binaries (ProgramCache) for the next start.
 //
-// Device choice: HFX_CL_PLATFORM and HFX_CL_DEVICE, case-insensitive substrings of the platform
-// and device names ("portable", "cpu", "nvidia"); by default PoCL's CPU device when present,
-// else the first device of the first platform. The choice is logged once to stderr.
+// Device choice (ClDeviceChoice.h): among the devices that match HFX_CL_PLATFORM and HFX_CL_DEVICE
+// (case-insensitive substrings: "nvidia", "portable", "gpu", "cpu"), a GPU before a CPU, then one
+// that shares objects with the caller's GL context, then one on the GL renderer's hardware. The
+// choice and the reason are logged once to stderr.
 //
 // Thread: one ClContext per thread that enqueues; programs and kernels it hands out are not
 // shared across threads.
 
+#include "hfx/compute/ClDeviceChoice.h"
 #include "hfx/compute/OpenCl.h"
 #include "hfx/compute/ProgramCache.h"
+#include "hfx/core/GlRenderer.h"
 #include "hfx/core/EdgeMode.h"
 
 #include <cstdint>
@@ -24,8 +27,14 @@ namespace hfx {
 
 struct ClContextConfig {
     std::string platform; ///< substring of the platform name; empty: HFX_CL_PLATFORM
-    std::string device;   ///< substring of the device name; empty: HFX_CL_DEVICE
+    std::string device;   ///< substring of the device's label(); empty: HFX_CL_DEVICE
     bool log = true;      ///< print the chosen device to stderr
+    /// The GL renderer the kernels' results go to (currentGlRenderer()): the choice prefers a
+    /// device on its hardware. Empty: not considered.
+    GlRendererInfo gl;
+    /// The caller's GL context: a device that offers cl_khr_gl_sharing for it is preferred, and
+    /// its context is made sharing (sharesGl()). None: no sharing.
+    GlShareHandles glShare;
     /// Folder of program binaries; empty: ProgramCache::defaultFolder() (HFX_KERNEL_CACHE,
     /// else $XDG_CACHE_HOME/hfx/kernels); "off": build every program from source.
     std::string kernelCache;
@@ -53,6 +62,12 @@ public:
     const cl::Device& device() const { return device_; }
     cl::CommandQueue& queue() { return queue_; }
     std::string description() const; ///< "device name (platform name, OpenCL x.y)"
+    /// The context was made with the caller's GL context (glShare): GL textures and buffers can
+    /// be used by the kernels through cl_khr_gl_sharing.
+    bool sharesGl() const { return sharesGl_; }
+    const GlShareHandles& glShare() const { return glShare_; }
+    /// Why this device: "a GPU, on the GL renderer's hardware".
+    const std::string& choiceReason() const { return reason_; }
 
     /// Builds an embedded kernel file (kernels/*.cl, with its #include "X.h" of the shared
     /// headers resolved) once per set of options; later calls return the cached program.
@@ -83,6 +98,9 @@ private:
     cl::Device device_;
     cl::Context context_;
     cl::CommandQueue queue_;
+    bool sharesGl_ = false;
+    GlShareHandles glShare_;
+    std::string reason_;
     std::map<std::pair<std::string, std::string>, cl::Program> programs_;
     ProgramCache cache_;
     std::string cacheKeyPrefix_; ///< platform, device and driver identity
