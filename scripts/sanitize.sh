@@ -10,13 +10,12 @@ flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recove
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DHFX_GL_DEBUG=ON -Wno-dev > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }
 cmake --build build-asan -j"$(nproc)" >> build-asan.log 2>&1 || { tail -n 60 build-asan.log; exit 1; }
-# new_delete_type_mismatch=0: libclFFT 2.12 deletes its FFT actions through a base pointer with
-# a sized delete (a bug inside clFFT, not HFX). quarantine_size_mb=16: freed memory waits in
+# quarantine_size_mb=16: freed memory waits in
 # AddressSanitizer's quarantine (256 MB by default) before reuse, so blocks allocated and freed
 # every frame grow the resident set up to the quarantine's size, which the soak tests'
 # flat-memory check reads as a leak (seen once uploads went through a pixel buffer: 500 ocean
 # steps grew 159 MB with the default quarantine, 3.4 MB with 8 MB; LeakSanitizer found nothing).
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:detect_odr_violation=0:new_delete_type_mismatch=0:quarantine_size_mb=16"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:detect_odr_violation=0:quarantine_size_mb=16"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export HFX_SOAK_STEPS=500 # the soak tests, shortened: the sanitizers slow them tenfold

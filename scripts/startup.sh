@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Start-up time of each demo scene, cold and warm: `bash scripts/startup.sh [runs]` (default 3).
-# Cold: an empty XDG_CACHE_HOME, so HFX's program binaries, clFFT's binaries, PoCL's kernel
+# Cold: an empty XDG_CACHE_HOME, so HFX's program binaries, PoCL's kernel
 # cache and Mesa's shader cache all start empty. Warm: the same folder again. "HFX cache only":
 # warm, with PoCL's own kernel cache turned off (POCL_KERNEL_CACHE=0), as on a driver that keeps
 # none. Each run renders one 1280x720 frame headless and writes it. Prints a Markdown table of

@@ -1,16 +1,13 @@
 #include "hfx/compute/OceanField.h"
+#include "hfx/compute/InverseRealFft.h"
 #include "hfx/compute/shared/OceanMath.h"
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Random.h"
 
-#include <clFFT.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <mutex>
 #include <numbers>
 
 namespace hfx {
@@ -18,70 +15,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-void checkFft(clfftStatus status, const char* what) {
-    if (status != CLFFT_SUCCESS)
-        throw Error(str("clFFT: ", what, " failed with status ", int(status), " (", clErrorName(status), ")"));
-}
-
-// clfftSetup / clfftTeardown are process-wide: the first ocean sets up, the last tears down.
-std::mutex libraryMutex;
-int libraryUsers = 0;
-
-/// clFFT compiles its kernels at every start unless CLFFT_CACHE_PATH names a folder for their
-/// binaries; unless the user set it, it points into HFX's kernel cache. clFFT reads it in clfftSetup.
-void shareKernelCache(const ProgramCache& cache) {
-    if (!cache.enabled() || std::getenv("CLFFT_CACHE_PATH")) return;
-    const std::filesystem::path folder = cache.folder() / "clfft";
-    std::error_code ec;
-    std::filesystem::create_directories(folder, ec);
-    if (!ec) setenv("CLFFT_CACHE_PATH", folder.c_str(), 0);
-}
-
-void acquireLibrary(const ProgramCache& cache) {
-    std::lock_guard<std::mutex> lock(libraryMutex);
-    if (libraryUsers++ == 0) {
-        shareKernelCache(cache);
-        clfftSetupData setup;
-        checkFft(clfftInitSetupData(&setup), "clfftInitSetupData");
-        const clfftStatus status = clfftSetup(&setup);
-        if (status != CLFFT_SUCCESS) {
-            --libraryUsers;
-            checkFft(status, "clfftSetup");
-        }
-    }
-}
-
-/// clFFT generates its kernels with AMD's `max_constant_size` attribute, which clang (PoCL's
-/// compiler) warns about on every cold build ("2 warnings generated"), and offers no hook for
-/// build options. PoCL reads POCL_EXTRA_BUILD_FLAGS at each build, so "-w" is set for the bake
-/// alone, unless the user set the variable. HFX's own kernels are held to -Werror by
-/// ClContextTest.EveryKernelBuildsWithoutWarnings.
-template <typename F>
-void withoutClfftWarnings(F&& bake) {
-    const bool ours = std::getenv("POCL_EXTRA_BUILD_FLAGS") == nullptr;
-    if (ours) setenv("POCL_EXTRA_BUILD_FLAGS", "-w", 0);
-    try {
-        bake();
-    } catch (...) {
-        if (ours) unsetenv("POCL_EXTRA_BUILD_FLAGS");
-        throw;
-    }
-    if (ours) unsetenv("POCL_EXTRA_BUILD_FLAGS");
-}
-
-void releaseLibrary() {
-    std::lock_guard<std::mutex> lock(libraryMutex);
-    if (--libraryUsers == 0) clfftTeardown();
-}
-
 } // namespace
-
-struct OceanField::Plan {
-    clfftPlanHandle handle = 0;
-    ~Plan() {
-        if (handle) clfftDestroyPlan(&handle);
-    }
-};
 
 void FoamConfig::validate() const {
     if (!(threshold <= 2.0f)) throw Error(str("FoamConfig.threshold must be at most 2 (< 0: automatic), got ", threshold));
@@ -273,7 +207,7 @@ void OceanField::makeCascade(OceanCascade& c, float patchMeters, float kMin, flo
 }
 
 OceanField::OceanField(ClContext& cl, const OceanConfig& config)
-    : cl_(cl), config_((config.validate(), config)), plan_(std::make_unique<Plan>()) {
+    : cl_(cl), config_((config.validate(), config)) {
     const int N = config.size;
     const std::vector<float> lengths = config.cascadeLengths();
     config_.patchMeters = lengths.front();
@@ -292,39 +226,16 @@ OceanField::OceanField(ClContext& cl, const OceanConfig& config)
         lagrangianKernel_ = cl.kernel("ocean.cl", "ocean_lagrangian");
         eulerianKernel_ = cl.kernel("ocean.cl", "ocean_eulerian");
     });
-    acquireLibrary(cl.programCache());
-    try {
-        // Out-of-place 2D inverse transforms from the Hermitian half spectra (kx index 0..N/2,
-        // rows of N/2 + 1) to real fields, without the 1/N^2 scale (a field is the plain sum of
-        // its modes): h, Dx and Dy in one batch. Baked now, so no frame pays for compiling it.
-        const size_t lengths2[2] = {size_t(N), size_t(N)};
-        size_t inStrides[2] = {1, size_t(N / 2 + 1)}, outStrides[2] = {1, size_t(N)};
-        checkFft(clfftCreateDefaultPlan(&plan_->handle, cl.context()(), CLFFT_2D, lengths2), "creating the plan");
-        checkFft(clfftSetPlanPrecision(plan_->handle, CLFFT_SINGLE), "setting the precision");
-        checkFft(clfftSetLayout(plan_->handle, CLFFT_HERMITIAN_INTERLEAVED, CLFFT_REAL), "setting the layout");
-        checkFft(clfftSetResultLocation(plan_->handle, CLFFT_OUTOFPLACE), "setting out-of-place");
-        checkFft(clfftSetPlanInStride(plan_->handle, CLFFT_2D, inStrides), "setting the input strides");
-        checkFft(clfftSetPlanOutStride(plan_->handle, CLFFT_2D, outStrides), "setting the output strides");
-        checkFft(clfftSetPlanDistance(plan_->handle, size_t(N / 2 + 1) * N, size_t(N) * N), "setting the distances");
-        checkFft(clfftSetPlanBatchSize(plan_->handle, size_t(fields)), "setting the batch");
-        checkFft(clfftSetPlanScale(plan_->handle, CLFFT_BACKWARD, 1.0f), "setting the scale");
-        cl_command_queue queue = cl.queue()();
-        withoutClfftWarnings(
-            [&] { checkFft(clfftBakePlan(plan_->handle, 1, &queue, nullptr, nullptr), "baking the plan"); });
-        for (OceanCascade& c : cascades_) uploadAmplitudes(c);
-        compute(0.0);
-        calibrateFoam();
-    } catch (...) {
-        plan_.reset();
-        releaseLibrary();
-        throw;
-    }
+    // Out-of-place 2D inverse transforms from the Hermitian half spectra (kx index 0..N/2, rows
+    // of N/2 + 1) to real fields, without the 1/N^2 scale (a field is the plain sum of its
+    // modes): h, Dx and Dy in one batch. Planned now, so no frame pays for compiling it.
+    fft_ = std::make_unique<InverseRealFft>(cl, N, fields);
+    for (OceanCascade& c : cascades_) uploadAmplitudes(c);
+    compute(0.0);
+    calibrateFoam();
 }
 
-OceanField::~OceanField() {
-    plan_.reset();
-    releaseLibrary();
-}
+OceanField::~OceanField() = default;
 
 double OceanField::whitecapCoverage(double windSpeed) {
     return std::min(1.0, 3.84e-6 * std::pow(std::max(windSpeed, 0.0), 3.41));
@@ -422,7 +333,6 @@ void OceanField::compute(double dt) {
     // dt = 0 (set-up, a jump, a new spectrum) steps no foam: it stays in the buffer it is in.
     const int back = foamFront_, front = dt > 0.0 ? 1 - foamFront_ : foamFront_;
     clGuard("OceanField::step", [&] {
-        cl_command_queue queue = cl_.queue()();
         for (OceanCascade& c : cascades_) {
             const float texel = c.patchMeters / float(N);
             const float lambdaPerTexel = config_.choppiness / texel;
@@ -436,10 +346,7 @@ void OceanField::compute(double dt) {
             spectrumKernel_.setArg(7, float(2.0 * kPi / c.patchMeters));
             spectrumKernel_.setArg(8, displacement);
             cl_.enqueue(spectrumKernel_, cl::NDRange(N / 2 + 1, N));
-            cl_mem in = spectrum_(), out = c.lagrangian();
-            checkFft(clfftEnqueueTransform(plan_->handle, CLFFT_BACKWARD, 1, &queue, 0, nullptr, nullptr, &in, &out,
-                                           nullptr),
-                     "the inverse transform");
+            fft_->enqueue(spectrum_, c.lagrangian);
             if (!displacement) {
                 // No choppiness: D = 0, so the Lagrangian and Eulerian grids agree and J = 1.
                 cl_.queue().enqueueFillBuffer(c.lagrangian, 0.0f, size_t(N) * N * sizeof(float),

@@ -71,7 +71,7 @@ OceanQuery::OceanQuery(const OceanField& ocean) : grids_(std::make_unique<Grids>
     }
     {
         // Three 2D complex-to-real transforms of the (N/2 + 1)-wide halves, unnormalised (a
-        // field is the plain sum of its modes), as clFFT does on the device. The rows are y,
+        // field is the plain sum of its modes), as InverseRealFft does on the device. The rows are y,
         // the halved dimension x, the layout ocean_spectrum writes.
         const int dims[2] = {N, N};
         std::lock_guard<std::mutex> lock(plannerMutex);

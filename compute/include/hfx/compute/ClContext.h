@@ -79,7 +79,7 @@ public:
     cl::Kernel kernel(std::string_view file, const char* name, const std::string& options = {});
 
     /// Enqueues `kernel` over `global` work-items (and `local`, when given) on the queue, and
-    /// counts the launch: every HFX kernel goes through here (clFFT's own do not).
+    /// counts the launch: every HFX kernel goes through here (VkFFT's own do not).
     void enqueue(const cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local = cl::NullRange);
     /// Launches so far through enqueue(), all kernels or those of one function name ("sobel4").
     std::uint64_t launches() const { return launches_; }

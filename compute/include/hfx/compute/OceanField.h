@@ -1,6 +1,6 @@
 #pragma once
 // Tessendorf's statistical FFT ocean ("Simulating Ocean Water", 2001) in cascades, with choppy
-// waves and persistent foam, on the OpenCL device (clFFT).
+// waves and persistent foam, on the OpenCL device (the inverse FFTs through VkFFT: InverseRealFft).
 //
 // The sea state (OceanSpectrum.h: physical spectra, spreading, swell, depth) is sampled on 1 to 4
 // cascades: square periodic patches whose edges shrink by `cascadeRatio` (5.27 by default, so no
@@ -31,6 +31,7 @@
 // Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/ClContext.h"
+#include "hfx/compute/InverseRealFft.h"
 #include "hfx/compute/OceanSpectrum.h"
 
 #include <complex>
@@ -160,7 +161,6 @@ public:
     static constexpr int eulerianIterations = 4;
 
 private:
-    struct Plan;
     void makeCascade(OceanCascade& c, float patchMeters, float kMin, float kMax);
     void uploadAmplitudes(OceanCascade& c);
     void setBlendedSigma(OceanCascade& c, double blend);
@@ -172,7 +172,7 @@ private:
     std::vector<OceanCascade> cascades_;
     cl::Buffer spectrum_; ///< the half spectra of h, Dx, Dy, reused by every cascade
     cl::Kernel spectrumKernel_, lagrangianKernel_, eulerianKernel_;
-    std::unique_ptr<Plan> plan_;
+    std::unique_ptr<InverseRealFft> fft_;
     int foamFront_ = 0;
     double time_ = 0.0;
     WindBlend blend_;

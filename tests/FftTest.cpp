@@ -1,0 +1,138 @@
+// The ocean's inverse FFT on the device (InverseRealFft, VkFFT) against a plain C++ DFT of the
+// same Hermitian half spectra, against analytic single modes, and against Parseval's theorem.
+
+#include "support/Fixtures.h"
+
+#include "hfx/compute/InverseRealFft.h"
+#include "hfx/core/Error.h"
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <random>
+
+namespace hfx::test {
+namespace {
+
+using Complex = std::complex<double>;
+
+class InverseFft : public ClTest {
+protected:
+    /// The device's fields of `spectrum` (batch half spectra, rows of n/2 + 1).
+    std::vector<float> transform(int n, int batch, const std::vector<std::complex<float>>& spectrum) {
+        InverseRealFft fft(cl(), n, batch);
+        EXPECT_EQ(spectrum.size() * sizeof(std::complex<float>), fft.spectrumBytes());
+        cl::Buffer in(cl().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, fft.spectrumBytes(),
+                      const_cast<std::complex<float>*>(spectrum.data()));
+        cl::Buffer out(cl().context(), CL_MEM_READ_WRITE, fft.fieldBytes());
+        fft.enqueue(in, out);
+        return readFloats(cl(), out, fft.fieldBytes() / sizeof(float));
+    }
+};
+
+/// The full spectrum's value at (kx, ky) from the half one: S(-k) = conj(S(k)).
+Complex fullSpectrum(const std::vector<std::complex<float>>& half, int n, int b, int kx, int ky) {
+    const int w = n / 2 + 1;
+    const size_t base = size_t(b) * size_t(w) * size_t(n);
+    if (kx <= n / 2) return Complex(half[base + size_t(ky) * w + size_t(kx)]);
+    return std::conj(Complex(half[base + size_t((n - ky) % n) * w + size_t(n - kx)]));
+}
+
+/// The plain double-precision DFT: field(x, y) = sum_k S(k) e^{+2 pi i k.x / n}, real part (the
+/// transform of a Hermitian spectrum is real; a spectrum that is not, at kx = 0 or n/2, is read as
+/// C2R transforms read it: through its Hermitian part, which the real part is).
+std::vector<double> referenceFields(const std::vector<std::complex<float>>& half, int n, int batch) {
+    std::vector<double> out(size_t(batch) * size_t(n) * size_t(n));
+    const double step = 2.0 * std::numbers::pi / n;
+    for (int b = 0; b < batch; ++b)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                double sum = 0.0;
+                for (int ky = 0; ky < n; ++ky)
+                    for (int kx = 0; kx < n; ++kx)
+                        sum += (fullSpectrum(half, n, b, kx, ky) * std::polar(1.0, step * (kx * x + ky * y))).real();
+                out[(size_t(b) * n + size_t(y)) * n + size_t(x)] = sum;
+            }
+    return out;
+}
+
+/// A random half spectrum that is Hermitian where the half plane meets itself (kx = 0 and n/2),
+/// so that it is the half of a real field's spectrum.
+std::vector<std::complex<float>> randomHermitian(int n, int batch, unsigned seed) {
+    std::mt19937 random(seed);
+    std::normal_distribution<float> normal;
+    const int w = n / 2 + 1;
+    std::vector<std::complex<float>> s(size_t(batch) * size_t(w) * size_t(n));
+    for (auto& v : s) v = {normal(random), normal(random)};
+    for (int b = 0; b < batch; ++b)
+        for (int kx : {0, n / 2})
+            for (int ky = 0; ky < n; ++ky) {
+                auto& v = s[(size_t(b) * n + size_t(ky)) * w + size_t(kx)];
+                const auto& mirror = s[(size_t(b) * n + size_t((n - ky) % n)) * w + size_t(kx)];
+                if ((n - ky) % n == ky) v = {v.real(), 0.0f};
+                else if (ky > n / 2) v = std::conj(mirror);
+            }
+    return s;
+}
+
+TEST_F(InverseFft, MatchesAPlainDftOfTheSameSpectraAtEverySizeAndBatch) {
+    for (auto [n, batch] : {std::pair{16, 1}, std::pair{32, 3}, std::pair{64, 2}}) {
+        const auto spectrum = randomHermitian(n, batch, unsigned(n));
+        const std::vector<float> device = transform(n, batch, spectrum);
+        const std::vector<double> reference = referenceFields(spectrum, n, batch);
+        double worst = 0.0, scale = 0.0;
+        for (size_t i = 0; i < device.size(); ++i) {
+            worst = std::max(worst, std::abs(device[i] - reference[i]));
+            scale = std::max(scale, std::abs(reference[i]));
+        }
+        // float32 over log2(n^2) butterfly stages: a few ulps of the field's scale (about n).
+        EXPECT_LT(worst, 2e-5 * scale * std::log2(double(n) * n)) << n << "x" << n << " batch " << batch;
+        EXPECT_GT(scale, 1.0); // a field, not zeros
+    }
+}
+
+TEST_F(InverseFft, ASingleModeIsItsCosineWaveAndTheConstantItsLevel) {
+    constexpr int n = 256;
+    const int w = n / 2 + 1;
+    std::vector<std::complex<float>> spectrum(size_t(2) * w * n);
+    spectrum[size_t(5) * w + 3] = {1.0f, 0.5f}; // batch 0: the mode (kx, ky) = (3, 5)
+    spectrum[size_t(w) * n] = {2.0f, 0.0f};      // batch 1: the mean
+    const std::vector<float> fields = transform(n, 2, spectrum);
+    double worst = 0.0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            // S e^{i phi} + conj(S) e^{-i phi} = 2 Re(S e^{i phi}).
+            const double phi = 2.0 * std::numbers::pi * (3.0 * x + 5.0 * y) / n;
+            worst = std::max(worst, std::abs(fields[size_t(y) * n + x] - 2.0 * (std::cos(phi) - 0.5 * std::sin(phi))));
+            worst = std::max(worst, std::abs(fields[size_t(n) * n + size_t(y) * n + x] - 2.0));
+        }
+    EXPECT_LT(worst, 1e-5);
+}
+
+TEST_F(InverseFft, KeepsParsevalsEnergy) {
+    constexpr int n = 128, batch = 3;
+    const auto spectrum = randomHermitian(n, batch, 11);
+    const std::vector<float> fields = transform(n, batch, spectrum);
+    for (int b = 0; b < batch; ++b) {
+        double spatial = 0.0, spectral = 0.0;
+        for (size_t i = 0; i < size_t(n) * n; ++i) spatial += double(fields[size_t(b) * n * n + i]) * fields[size_t(b) * n * n + i];
+        for (int ky = 0; ky < n; ++ky)
+            for (int kx = 0; kx < n; ++kx) spectral += std::norm(fullSpectrum(spectrum, n, b, kx, ky));
+        // Unscaled inverse: sum |f|^2 = n^2 sum |S|^2.
+        EXPECT_NEAR(spatial / (double(n) * n * spectral), 1.0, 1e-5) << "batch " << b;
+    }
+}
+
+TEST_F(InverseFft, BadSizesAndBuffersAreRefusedByName) {
+    EXPECT_NE(messageOf([&] { InverseRealFft(cl(), 100, 3); }).find("100"), std::string::npos);
+    EXPECT_NE(messageOf([&] { InverseRealFft(cl(), 64, 0); }).find("batch"), std::string::npos);
+    InverseRealFft fft(cl(), 64, 3);
+    cl::Buffer small(cl().context(), CL_MEM_READ_WRITE, 1024);
+    cl::Buffer fields(cl().context(), CL_MEM_READ_WRITE, fft.fieldBytes());
+    const std::string m = messageOf([&] { fft.enqueue(small, fields); });
+    EXPECT_NE(m.find("64x64"), std::string::npos) << m;
+    EXPECT_NE(m.find(std::to_string(fft.spectrumBytes())), std::string::npos) << m;
+}
+
+} // namespace
+} // namespace hfx::test
