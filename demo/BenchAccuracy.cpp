@@ -7,6 +7,7 @@
 #include "Devices.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/tools/AccuracyMaps.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/tools/AccuracyProbe.h"
 
 #include <algorithm>

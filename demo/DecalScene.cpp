@@ -5,6 +5,8 @@
 
 #include "Scene.h"
 
+#include "hfx/tools/ImageFiles.h"
+
 #include "hfx/core/Error.h"
 #include "hfx/core/Random.h"
 #include "hfx/effects/DecalWallEffect.h"
@@ -112,9 +114,11 @@ public:
 private:
     static DecalWallConfig config(const SceneOptions& o) {
         DecalWallConfig c;
-        c.heightMap = o.heightMap;
-        c.colorMap = o.colorMap;
-        c.normalMap = o.normalMap;
+        if (!o.heightMap.empty())
+            c.maps = readSurfaceMaps(o.heightMap, o.normalMap, o.colorMap);
+        else if (!o.normalMap.empty() || !o.colorMap.empty())
+            throw Error(str("decals: a colour or normal map ('", o.colorMap.empty() ? o.normalMap : o.colorMap,
+                            "') needs a --height-map to go with it"));
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
         c.surface = o.surfaceOptions();

@@ -2,7 +2,7 @@
 // What the demo does with its frames: file names, a progress bar for headless runs, a video
 // through ffmpeg, and the field's maps exported for artists.
 
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/core/SurfaceTextures.h"
 
 #include <chrono>

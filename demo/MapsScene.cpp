@@ -2,6 +2,8 @@
 
 #include "Scene.h"
 
+#include "hfx/tools/ImageFiles.h"
+
 #include "hfx/core/Error.h"
 #include "hfx/effects/ImageSurface.h"
 
@@ -30,7 +32,7 @@ public:
 private:
     static ImageSurfaceConfig config(const SceneOptions& o) {
         if (o.heightMap.empty()) throw Error("the maps scene needs --height-map FILE");
-        ImageSurfaceConfig c{.heightMap = o.heightMap, .normalMap = o.normalMap, .colorMap = o.colorMap};
+        ImageSurfaceConfig c{.maps = readSurfaceMaps(o.heightMap, o.normalMap, o.colorMap)};
         if (o.depthScale > 0.0f) c.material.depthScale = o.depthScale;
         c.surface = o.surfaceOptions();
         return c;

@@ -2,7 +2,7 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/effects/TexelShadowPass.h"
 
 #include <algorithm>

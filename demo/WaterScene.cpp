@@ -5,7 +5,7 @@
 #include "Scene.h"
 
 #include "hfx/core/Error.h"
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
 

@@ -12,7 +12,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/platform/GlContext.h"
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/core/RenderTarget.h"
 
 #include <CLI/CLI.hpp>

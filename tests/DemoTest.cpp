@@ -2,7 +2,7 @@
 
 #include "support/Fixtures.h"
 
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/effects/Technique.h"
 
 #include <sys/wait.h>

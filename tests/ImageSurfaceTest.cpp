@@ -8,8 +8,6 @@
 #include "hfx/core/Error.h"
 #include "hfx/effects/ImageSurface.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <fstream>
 
 namespace hfx::test {
@@ -17,31 +15,28 @@ namespace {
 
 class ImageSurfaceTest : public DeviceTest {};
 
-/// Writes heights (row 0 = bottom) as a 16-bit grey PNG, top row first as files store them.
+/// Writes heights (row 0 = bottom) as a grey image (8-bit PNG or float EXR, by the name's
+/// extension), top row first as files store them.
 std::string writeHeightMap(const std::string& name, const std::vector<float>& heights, int size) {
     const std::string path = outputPath(name);
-    std::vector<float> rows(heights.size());
+    Image rows{size, size, 1, std::vector<float>(heights.size())};
     for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) rows[size_t(size - 1 - y) * size + x] = heights[size_t(y) * size + x];
-    auto out = OIIO::ImageOutput::create(path);
-    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(size, size, 1, OIIO::TypeDesc::UINT16)));
-    out->write_image(OIIO::TypeDesc::FLOAT, rows.data());
-    out->close();
+        for (int x = 0; x < size; ++x) rows.at(x, size - 1 - y, 0) = heights[size_t(y) * size + x];
+    writeImage(path, rows);
     return path;
 }
 
 TEST_F(ImageSurfaceTest, DerivedNormalsMatchTheCpuSobel) {
     constexpr int N = 64;
     const auto heights = sumOfSines(N, {{0.3, 1, 2, 0.5}, {0.1, 3, -1, 0.0}});
-    const std::string path = writeHeightMap("surface_height.png", heights, N);
+    const std::string path = writeHeightMap("surface_height.exr", heights, N);
     const float depthScale = 0.07f;
-    ImageSurface surface(cl(), {.heightMap = path, .material = {.depthScale = depthScale}, .surface = {.mipmaps = false}});
+    ImageSurface surface(cl(), {.maps = readSurfaceMaps(path, "", ""), .material = {.depthScale = depthScale},
+                                .surface = {.mipmaps = false}});
     std::vector<float> gpu(size_t(N) * N * 4);
     glGetTextureImage(surface.textures().surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(gpu.size() * 4), gpu.data());
-    // The file stores 16 bits: compare with the CPU Sobel of the quantised heights.
-    std::vector<float> quantised(heights.size());
-    for (size_t i = 0; i < heights.size(); ++i) quantised[i] = std::round(heights[i] * 65535.0f) / 65535.0f;
-    const auto cpu = sobelReference(quantised, N, depthScale);
+    // The file stores 32-bit floats: the CPU Sobel of the same heights.
+    const auto cpu = sobelReference(heights, N, depthScale);
     double maxDiff = 0;
     for (size_t i = 0; i < gpu.size(); ++i) maxDiff = std::max(maxDiff, double(std::abs(gpu[i] - cpu[i])));
     EXPECT_LT(maxDiff, 1e-5);
@@ -53,21 +48,25 @@ TEST_F(ImageSurfaceTest, BadFilesAreRefusedWithTheirNames) {
     std::ofstream(corrupt, std::ios::binary) << "not an image";
     const std::string otherSize = writeHeightMap("other_size.png", sumOfSines(8, {{0.2, 1, 1, 0}}), 8);
     struct Case {
-        ImageSurfaceConfig config;
-        std::string expected;
+        std::string height, normal, color, expected;
     };
-    for (const Case& c : {Case{{.heightMap = "/missing/h.png"}, "/missing/h.png"},
-                          Case{{.heightMap = corrupt}, corrupt},
-                          Case{{.heightMap = good, .colorMap = otherSize}, otherSize},
-                          Case{{.heightMap = good, .normalMap = otherSize}, otherSize},
-                          Case{{.heightMap = ""}, "heightMap"}}) {
-        try {
-            ImageSurface surface(cl(), c.config);
-            ADD_FAILURE() << "accepted " << c.expected;
-        } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find(c.expected), std::string::npos) << e.what();
-        }
+    // The files, by the tools' reader.
+    for (const Case& c : {Case{"/missing/h.png", "", "", "/missing/h.png"}, Case{corrupt, "", "", corrupt},
+                          Case{good, "", otherSize, otherSize}, Case{good, otherSize, "", otherSize}}) {
+        const std::string m = messageOf([&] { readSurfaceMaps(c.height, c.normal, c.color); });
+        EXPECT_NE(m.find(c.expected), std::string::npos) << m;
     }
+    // The maps themselves, by the effect: no heights, or parts that do not fit them.
+    SurfaceMaps maps = readSurfaceMaps(good, "", "");
+    EXPECT_NE(messageOf([&] { ImageSurface(cl(), {}); }).find("heights"), std::string::npos);
+    SurfaceMaps shortNormals = maps;
+    shortNormals.normals.assign(12, 0.0f);
+    EXPECT_NE(messageOf([&] { ImageSurface(cl(), {.maps = shortNormals}); }).find("normals"), std::string::npos);
+    SurfaceMaps high = maps;
+    high.heights[5] = 1.5f;
+    EXPECT_NE(messageOf([&] { ImageSurface(cl(), {.maps = high}); }).find("1.5"), std::string::npos);
+    ImageSurface fine(cl(), {.maps = maps}); // and the good one is taken
+    EXPECT_EQ(fine.textures().config().width, 16);
 }
 
 } // namespace

@@ -61,7 +61,7 @@ TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
     // The same shaders with the variance forced to zero, through the live-editing override.
     const std::filesystem::path dir = outputPath("ocean_shading_no_toksvig");
     std::filesystem::remove_all(dir);
-    std::filesystem::copy(HFX_SHADER_SOURCE_DIR, dir, std::filesystem::copy_options::recursive);
+    std::filesystem::copy(shaderSourceDir(), dir, std::filesystem::copy_options::recursive);
     std::stringstream frag;
     frag << std::ifstream(dir / "surface.frag").rdbuf();
     std::string text = frag.str();

@@ -65,7 +65,7 @@ TEST_F(Pipeline, EveryUserRunsItOnceWhenMadeAndOncePerUpdate) {
              Image flat{32, 32, 3, std::vector<float>(32 * 32 * 3, 0.5f)};
              for (int i = 0; i < 32 * 32; ++i) flat.pixels[i * 3 + 2] = 1.0f;
              writeImage(normals, flat);
-             return std::make_unique<DecalWallEffect>(cl(), DecalWallConfig{.heightMap = map, .normalMap = normals});
+             return std::make_unique<DecalWallEffect>(cl(), DecalWallConfig{.maps = readSurfaceMaps(map, normals, "")});
          },
          1},
         {"gas planet",
@@ -73,7 +73,7 @@ TEST_F(Pipeline, EveryUserRunsItOnceWhenMadeAndOncePerUpdate) {
              return std::make_unique<GasPlanetEffect>(cl(), GasPlanetConfig{.gas = {.width = 32, .height = 16, .initialBands = 2}});
          },
          1},
-        {"image surface", [&] { return std::make_unique<ImageSurface>(cl(), ImageSurfaceConfig{.heightMap = map}); }, 0},
+        {"image surface", [&] { return std::make_unique<ImageSurface>(cl(), ImageSurfaceConfig{.maps = readSurfaceMaps(map, "", "")}); }, 0},
     };
     for (const User& user : users) {
         std::unique_ptr<Effect> effect;
@@ -136,7 +136,7 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
     for (SurfaceFormat format : kSurfaceFormats)
         for (TransferPath path : {TransferPath::Map, TransferPath::PixelBuffer}) {
             const bool hasPyramid = format != SurfaceFormat::Unorm8;
-            ImageSurface surface(cl(), {.heightMap = map,
+            ImageSurface surface(cl(), {.maps = readSurfaceMaps(map, "", ""),
                                         .material = {.depthScale = 0.08f},
                                         .surface = {.mipmaps = false, .pyramid = hasPyramid, .format = format, .transfer = path}});
             EXPECT_EQ(surface.transferPath(), path);
@@ -183,7 +183,7 @@ TEST_F(Pipeline, ANormalMapOverUnchangingHeightsIsStoredExactly) {
     const std::string normalMap = outputPath("pipeline_nm.exr");
     writeImage(normalMap, normals);
     const std::vector<float> expected = packNormalMap(readImage(normalMap), normalMap, heights);
-    ImageSurface surface(cl(), {.heightMap = map, .normalMap = normalMap, .surface = {.mipmaps = false}});
+    ImageSurface surface(cl(), {.maps = readSurfaceMaps(map, normalMap, ""), .surface = {.mipmaps = false}});
     EXPECT_EQ(readSurface(surface.textures()), expected);
     // A static surface derives once: later updates change nothing and refuse a bad dt.
     surface.update(0.1);

@@ -8,7 +8,7 @@
 #include "hfx/compute/shared/ColorMath.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/BrickWall.h"
@@ -37,7 +37,7 @@ TEST_F(Users, PickingHitsTheDisplacedSurfaceAndTheStampLandsThere) {
     constexpr float level = 0.6f, depthScale = 0.06f;
     const std::string heightMap = outputPath("users_flat_wall.exr");
     writeImage(heightMap, Image{N, N, 1, std::vector<float>(N * N, level)});
-    DecalWallConfig config{.heightMap = heightMap};
+    DecalWallConfig config{.maps = readSurfaceMaps(heightMap, "", "")};
     config.material.depthScale = depthScale;
     DecalWallEffect wall(cl(), config);
 
@@ -100,7 +100,7 @@ TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
     glm::vec3 expected(2.0f * stored.at(0, 0, 0) - 1.0f, 2.0f * stored.at(0, 0, 1) - 1.0f, 2.0f * stored.at(0, 0, 2) - 1.0f);
     expected = glm::normalize(expected);
 
-    DecalWallEffect wall(cl(), {.heightMap = heightMap, .normalMap = normalMap});
+    DecalWallEffect wall(cl(), {.maps = readSurfaceMaps(heightMap, normalMap, "")});
     std::vector<float> texels = readSurface(wall.textures());
     for (int i = 0; i < N * N; ++i)
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(texels[i * 4 + c], expected[c], 1e-6f) << "texel " << i;
@@ -129,7 +129,7 @@ TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
     const std::string small = outputPath("users_nm_small.png");
     writeImage(small, Image{16, 16, 3, std::vector<float>(16 * 16 * 3, 0.5f)});
     try {
-        DecalWallEffect bad(cl(), {.heightMap = heightMap, .normalMap = small});
+        DecalWallEffect bad(cl(), {.maps = readSurfaceMaps(heightMap, small, "")});
         FAIL() << "a mismatched normal map was accepted";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find(small), std::string::npos) << e.what();
@@ -207,12 +207,17 @@ TEST_F(Users, PickingMissesOutsideThePatchAndLookingAway) {
 TEST_F(Users, DecalWallRefusesBadMapsAndKeepsNoHalfState) {
     const std::string bad = outputPath("users_missing_wall.png");
     try {
-        DecalWallEffect wall(cl(), {.heightMap = bad});
+        DecalWallEffect wall(cl(), {.maps = readSurfaceMaps(bad, "", "")});
         FAIL() << "a missing height map was accepted";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
     }
-    EXPECT_THROW(DecalWallEffect(cl(), {.colorMap = "colour-without-height.png"}), Error);
+    // Colours without heights, and heights that do not fit their size, are refused by name.
+    SurfaceMaps colourOnly;
+    colourOnly.color = Image{4, 4, 3, std::vector<float>(48, 0.5f)};
+    EXPECT_NE(messageOf([&] { DecalWallEffect(cl(), {.maps = colourOnly}); }).find("height"), std::string::npos);
+    SurfaceMaps short_{.width = 8, .height = 8, .heights = std::vector<float>(10, 0.5f)};
+    EXPECT_NE(messageOf([&] { DecalWallEffect(cl(), {.maps = short_}); }).find("8x8"), std::string::npos);
     EXPECT_THROW(DecalWallEffect(cl(), {.bricks = {.size = 100, .rows = 7}}), Error);
 }
 

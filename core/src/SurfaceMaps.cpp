@@ -2,6 +2,7 @@
 
 #include "hfx/core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hfx {
@@ -46,21 +47,36 @@ std::vector<float> packNormalMap(const Image& normalMap, const std::string& path
     return packed;
 }
 
-SurfaceMaps readSurfaceMaps(const std::string& heightMap, const std::string& normalMap, const std::string& colorMap,
-                            const ImageReadLimits& limits) {
+SurfaceMaps surfaceMapsFromImages(const Image& height, const std::string& heightName, const Image* normal,
+                                  const std::string& normalName, const Image* color, const std::string& colorName) {
     SurfaceMaps maps;
-    const Image height = readImage(heightMap, limits);
     maps.width = height.width;
     maps.height = height.height;
-    maps.heights = heightsFromImage(height, heightMap);
-    if (!normalMap.empty()) maps.normals = packNormalMap(readImage(normalMap, limits), normalMap, maps.heights);
-    if (!colorMap.empty()) {
-        maps.color = readImage(colorMap, limits);
-        if (maps.color.width != height.width || maps.color.height != height.height)
-            throw Error(str("colour map '", colorMap, "' is ", maps.color.width, "x", maps.color.height,
-                            " but the height map '", heightMap, "' is ", height.width, "x", height.height));
+    maps.heights = heightsFromImage(height, heightName);
+    if (normal) maps.normals = packNormalMap(*normal, normalName, maps.heights);
+    if (color) {
+        if (color->width != height.width || color->height != height.height)
+            throw Error(str("colour map '", colorName, "' is ", color->width, "x", color->height, " but the height map '",
+                            heightName, "' is ", height.width, "x", height.height));
+        maps.color = *color;
     }
     return maps;
+}
+
+void SurfaceMaps::validate() const {
+    const size_t texels = size_t(std::max(width, 0)) * size_t(std::max(height, 0));
+    if (width < 1 || height < 1 || heights.size() != texels)
+        throw Error(str("SurfaceMaps: ", heights.size(), " heights for a ", width, "x", height, " surface"));
+    for (size_t i = 0; i < heights.size(); ++i)
+        if (!(heights[i] >= 0.0f && heights[i] <= 1.0f))
+            throw Error(str("SurfaceMaps.heights[", i, "] is ", heights[i], "; heights must lie in [0,1]"));
+    if (!normals.empty() && normals.size() != 4 * texels)
+        throw Error(str("SurfaceMaps.normals holds ", normals.size(), " floats, a ", width, "x", height,
+                        " surface needs ", 4 * texels, " (float4s)"));
+    if (!color.empty() && (color.width != width || color.height != height ||
+                           color.pixels.size() != texels * size_t(std::max(color.channels, 0))))
+        throw Error(str("SurfaceMaps.color is ", color.width, "x", color.height, "x", color.channels, ", the surface ",
+                        width, "x", height));
 }
 
 } // namespace hfx

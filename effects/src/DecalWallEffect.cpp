@@ -9,15 +9,17 @@
 namespace hfx {
 
 void DecalWallConfig::validate() const {
-    if (heightMap.empty()) {
+    if (maps) {
+        if (maps->heights.empty())
+            throw Error("DecalWallConfig.maps has no heights: colour and normal maps need a height map to go with "
+                        "them (or no maps, for the procedural wall)");
+        maps->validate();
+    } else {
         bricks.validate();
-        if (!colorMap.empty() || !normalMap.empty())
-            throw Error(str("DecalWallConfig: a colour or normal map ('", colorMap.empty() ? normalMap : colorMap,
-                            "') needs a heightMap to go with it"));
     }
     damage.validate();
     if (!(grain >= 0.0f && grain <= 0.5f)) throw Error(str("DecalWallConfig.grain must be in [0, 0.5], got ", grain));
-    if (heightMap.empty() && grain > 0.0f) {
+    if (!maps && grain > 0.0f) {
         NoiseConfig noise = grainNoise;
         noise.width = noise.height = bricks.size;
         noise.edges = EdgeMode::Wrap;
@@ -60,8 +62,7 @@ std::vector<std::uint8_t> albedoBytes(const Image& image) {
 
 SurfaceMaps DecalWallEffect::load(const DecalWallConfig& config) {
     config.validate();
-    if (!config.heightMap.empty())
-        return readSurfaceMaps(config.heightMap, config.normalMap, config.colorMap, config.limits);
+    if (config.maps) return *config.maps;
     BrickWallMaps bricks = makeBrickWall(config.bricks);
     return {.width = config.bricks.size,
             .height = config.bricks.size,
@@ -70,7 +71,7 @@ SurfaceMaps DecalWallEffect::load(const DecalWallConfig& config) {
 }
 
 SurfaceMaps DecalWallEffect::withGrain(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps) {
-    if (!config.heightMap.empty() || config.grain == 0.0f) return maps;
+    if (config.maps || config.grain == 0.0f) return maps;
     NoiseConfig noise = config.grainNoise;
     noise.width = maps.width;
     noise.height = maps.height;
@@ -99,6 +100,7 @@ DecalWallEffect::DecalWallEffect(ClContext& cl, const DecalWallConfig& config, S
       surface_(cl, SurfacePipelineConfig::of(decals_, config.material.depthScale, config.surface)) {
     if (!maps.normals.empty())
         detail_ = std::make_unique<DetailNormals>(cl, surface_.config().sobel(), maps.heights, maps.normals);
+    config_.maps.reset(); // on the device now: no second copy of the maps for the effect's life
     refresh();
 }
 

@@ -6,23 +6,18 @@
 namespace hfx {
 
 void ImageSurfaceConfig::validate() const {
-    if (heightMap.empty()) throw Error("ImageSurfaceConfig.heightMap is empty: a height map is required");
+    if (maps.heights.empty()) throw Error("ImageSurfaceConfig.maps has no heights: a height map is required");
+    maps.validate();
     material.validate();
 }
 
-SurfaceMaps ImageSurface::load(const ImageSurfaceConfig& config) {
-    // Everything is read and checked before anything is made on a device, so a bad file
-    // leaves no half-made textures behind.
-    config.validate();
-    return readSurfaceMaps(config.heightMap, config.normalMap, config.colorMap, config.limits);
-}
-
 ImageSurface::ImageSurface(ClContext& cl, const ImageSurfaceConfig& config)
-    : ImageSurface(cl, config, load(config)) {}
-
-ImageSurface::ImageSurface(ClContext& cl, const ImageSurfaceConfig& config, SurfaceMaps maps)
-    : Effect(config.material), heights_(cl, maps.width, maps.height, config.edges, maps.heights),
+    // Everything is checked before anything is made on a device, so bad maps leave no
+    // half-made textures behind.
+    : Effect((config.validate(), config.material)),
+      heights_(cl, config.maps.width, config.maps.height, config.edges, config.maps.heights),
       surface_(cl, SurfacePipelineConfig::of(heights_, config.material.depthScale, config.surface)) {
+    const SurfaceMaps& maps = config.maps;
     if (!maps.color.empty()) surface_.setAlbedo(maps.color);
     if (!maps.normals.empty()) {
         detail_ = std::make_unique<DetailNormals>(cl, surface_.config().sobel(), maps.heights, maps.normals);

@@ -1,9 +1,9 @@
-// libFuzzer target: bytes as an image file (the first byte picks the extension OpenImageIO
+// libFuzzer target: bytes as an image file (the first byte picks the extension the codec
 // guesses from) through the height-map path: readImage with its limits, then heightsFromImage.
 // Any hfx::Error is a correct refusal; a crash, a sanitizer report or an escaped exception of
 // another type is a finding.
 #include "hfx/core/Error.h"
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/core/SurfaceMaps.h"
 
 #include <cstdint>

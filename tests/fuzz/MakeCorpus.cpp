@@ -2,7 +2,7 @@
 // (8/16-bit PNG and TIFF, float EXR and HDR, 1-4 channels), prefixed with the byte that picks
 // their extension in FuzzHeightMap, and a few shot lists.
 //   hfx-fuzz-corpus DIR   ->  DIR/heightmap/*, DIR/shots/*
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 
 #include <OpenImageIO/imageio.h>
 

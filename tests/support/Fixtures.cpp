@@ -91,8 +91,15 @@ void DeviceTest::SetUp() {
 }
 
 std::string outputPath(const std::string& fileName) {
-    std::filesystem::create_directories(HFX_TEST_OUTPUT_DIR);
-    return (std::filesystem::path(HFX_TEST_OUTPUT_DIR) / fileName).string();
+    const char* env = std::getenv("HFX_TEST_OUTPUT_DIR");
+    const std::filesystem::path dir = env && *env ? env : HFX_TEST_OUTPUT_DIR;
+    std::filesystem::create_directories(dir);
+    return (dir / fileName).string();
+}
+
+std::string shaderSourceDir() {
+    const char* env = std::getenv("HFX_SHADER_SOURCE_DIR");
+    return env && *env ? env : HFX_SHADER_SOURCE_DIR;
 }
 
 std::vector<float> readSurface(const SurfaceTextures& textures) {

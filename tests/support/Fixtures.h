@@ -5,7 +5,7 @@
 #include "hfx/compute/ClContext.h"
 #include "hfx/compute/HeightSource.h"
 #include "hfx/platform/GlContext.h"
-#include "hfx/core/Image.h"
+#include "hfx/tools/ImageFiles.h"
 #include "hfx/core/SurfaceTextures.h"
 
 #include <gtest/gtest.h>
@@ -49,7 +49,12 @@ std::vector<float> readHeights(ClContext& cl, const HeightSource& source);
 /// The message of the hfx::Error that `f` throws, or "(no error)".
 std::string messageOf(const std::function<void()>& f);
 
-/// Folder for images a failing test leaves behind (actual, expected, diff).
+/// Folder for images a failing test leaves behind (actual, expected, diff): HFX_TEST_OUTPUT_DIR
+/// when set (a bundle's tests run outside the tree), else build/tests/output.
 std::string outputPath(const std::string& fileName);
+
+/// The shader sources (shaders/): HFX_SHADER_SOURCE_DIR when set (a bundle carries its copy),
+/// else the tree the tests were built from.
+std::string shaderSourceDir();
 
 } // namespace hfx::test

@@ -1,7 +1,8 @@
 #pragma once
-// Turning image files into the surface layout: heights and tangent-space normals as the compute
-// kernels lay them out (row 0 at v = 0, the bottom of the image), refused with the file's name
-// when they do not fit.
+// Turning images into the surface layout: heights and tangent-space normals as the compute
+// kernels lay them out (row 0 at v = 0, the bottom of the image), refused with the image's name
+// (its file, where it came from one) when they do not fit. The module reads no file: the tools'
+// readSurfaceMaps (hfx/tools/ImageFiles.h) or an engine's own loaders make the Images.
 //
 // Returns owned vectors. Thread: any; no GL calls.
 
@@ -17,19 +18,21 @@ namespace hfx {
 /// already lie in [0,1] (values outside are refused, not clamped).
 std::vector<float> heightsFromImage(const Image& image, const std::string& path);
 
-/// The maps of one surface read from files and checked against each other.
+/// The maps of one surface, checked against each other.
 struct SurfaceMaps {
     int width = 0, height = 0;
-    std::vector<float> heights; ///< width*height, row 0 at v = 0 (heightsFromImage)
+    std::vector<float> heights; ///< width*height in [0,1], row 0 at v = 0 (heightsFromImage)
     std::vector<float> normals; ///< packNormalMap's float4s, or empty without a normal map
-    Image color;                ///< as read (top row first), or empty without a colour map
+    Image color;                ///< top row first, or empty without a colour map
+    /// Throws hfx::Error naming the field that does not fit the size (or a height outside [0,1]).
+    void validate() const;
 };
 
-/// Reads a height map and, when their paths are not empty, a normal and a colour map of the same
-/// size. Throws hfx::Error naming the file that is missing, corrupt, out of range or of another
-/// size; nothing is returned half-read.
-SurfaceMaps readSurfaceMaps(const std::string& heightMap, const std::string& normalMap, const std::string& colorMap,
-                            const ImageReadLimits& limits = {});
+/// The maps from a height image and, where given (not null), a normal and a colour image of the
+/// same size; each name (a file's path) is what errors call it.
+SurfaceMaps surfaceMapsFromImages(const Image& height, const std::string& heightName, const Image* normal = nullptr,
+                                  const std::string& normalName = {}, const Image* color = nullptr,
+                                  const std::string& colorName = {});
 
 /// Tangent-space normals from an OpenGL-convention normal map (+Y = up in the image = +v), RGB
 /// in [0,1] decoding to 2c - 1, renormalised; packed as float4 (normal.xyz, height) with the

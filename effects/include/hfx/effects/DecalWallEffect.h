@@ -1,6 +1,6 @@
 #pragma once
-// The decal-damage user: a wall (height and colour maps from files, or a procedural brick wall
-// when none are given) carrying damage a game can ship: a DamageLog of impacts (a fixed budget,
+// The decal-damage user: a wall (height and colour maps of the caller's, or a procedural brick
+// wall when none are given) carrying damage a game can ship: a DamageLog of impacts (a fixed budget,
 // oldest evicted first, close impacts merged, heal curves per channel, save and load), from
 // which the DecalMap rebuilds the heights, the scorched albedo and the shading channels
 // (roughness, ambient occlusion) every update. pick() turns a camera ray into the texcoord the
@@ -27,12 +27,11 @@
 namespace hfx {
 
 struct DecalWallConfig {
-    std::string heightMap;      ///< optional: a procedural brick wall when empty
-    std::string colorMap;       ///< optional: with a height map, light grey when empty
-    /// optional, with a height map: the artist's tangent-space normals (OpenGL convention). The
-    /// damage's relief is added to them in slope space each update, so undamaged texels show
-    /// the map exactly and craters bend it.
-    std::string normalMap;
+    /// The wall's maps (the tools' readSurfaceMaps reads them from files); none: a procedural
+    /// brick wall. Their colour is light grey when empty; their normals, when given, are the
+    /// artist's tangent-space normals (OpenGL convention): the damage's relief is added to them
+    /// in slope space each update, so undamaged texels show the map exactly and craters bend it.
+    std::optional<SurfaceMaps> maps;
     BrickWallConfig bricks;     ///< the procedural wall (its size sets the map's)
     /// The procedural wall's stone grain: a NoiseField (made once on the device; its size and
     /// tiling are the wall's) added to the bricks' heights, grain * (noise - 0.5). 0: none.
@@ -43,14 +42,13 @@ struct DecalWallConfig {
     DamageLogConfig damage;
     int maxStampsPerBatch = 65536; ///< stamps per rebuild: the budget's impacts with their debris
     SurfaceMaterial material{.depthScale = 0.06f, .maxSamples = 48, .shadowSharpness = 3.0f};
-    ImageReadLimits limits;
     SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 
 class DecalWallEffect final : public Effect {
 public:
-    /// Throws hfx::Error naming the file for a missing, corrupt or mismatched map.
+    /// Throws hfx::Error naming the field for mismatched or out-of-range maps.
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config = {});
 
     /// A bullet hole (the look's radius) at texcoords wrapped into [0,1), in the next update.
@@ -70,6 +68,7 @@ public:
     void saveDamage(const std::string& path) const { log_.save(path); }
     void loadDamage(const std::string& path);
     const DecalMap& decals() const { return decals_; }
+    /// The configuration it was made with, less its maps (they live on the device).
     const DecalWallConfig& config() const { return config_; }
 
     /// The texcoords a world ray meets on the displaced wall drawn on `frame`, using the heights
@@ -79,9 +78,9 @@ public:
     std::vector<float> readHeights();
 
 private:
-    /// The wall's maps (files, or the procedural bricks), made before anything on a device.
+    /// The wall's maps (the caller's, or the procedural bricks), made before anything on a device.
     static SurfaceMaps load(const DecalWallConfig& config);
-    /// The procedural wall's heights with the stone grain added (files are kept as they are).
+    /// The procedural wall's heights with the stone grain added (the caller's are kept as they are).
     static SurfaceMaps withGrain(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
     const SurfacePipeline& surface() const override { return surface_; }

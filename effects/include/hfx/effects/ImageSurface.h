@@ -1,6 +1,7 @@
 #pragma once
-// A surface from files: a height map (any format OpenImageIO reads, 8-bit or better), an
-// optional tangent-space normal map and an optional colour map. The heights go down the same
+// A surface from maps (SurfaceMaps: read from files by the tools' readSurfaceMaps, or an engine's
+// own loaders): a height map, an optional tangent-space normal map and an optional colour map.
+// The heights go down the same
 // SurfacePipeline as a generated field's (as a StaticField), so a map from files gets the Sobel
 // normals, the height pyramid, every surface format and both transfer paths; a normal map is
 // laid over them by the same pass the decal wall uses (DetailNormals), which with unchanged
@@ -19,25 +20,22 @@
 namespace hfx {
 
 struct ImageSurfaceConfig {
-    std::string heightMap;  ///< required
-    std::string normalMap;  ///< optional: derived from the heights when empty
-    std::string colorMap;   ///< optional: light grey when empty
+    /// Required: the heights; the normals (derived from the heights when empty) and the colour
+    /// (light grey when empty) optional.
+    SurfaceMaps maps;
     SurfaceMaterial material{.depthScale = 0.08f};
     EdgeMode edges = EdgeMode::Wrap; ///< tileable maps wrap; others clamp
     SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
-    ImageReadLimits limits;
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 
 class ImageSurface final : public Effect {
 public:
-    /// Throws hfx::Error naming the file for a missing, corrupt, mismatched or out-of-range map.
+    /// Throws hfx::Error naming the field for missing, mismatched or out-of-range maps, before
+    /// anything is made on a device.
     ImageSurface(ClContext& cl, const ImageSurfaceConfig& config);
 
 private:
-    /// Everything read from the files, before anything is made on a device.
-    static SurfaceMaps load(const ImageSurfaceConfig& config);
-    ImageSurface(ClContext& cl, const ImageSurfaceConfig& config, SurfaceMaps maps);
     const SurfacePipeline& surface() const override { return surface_; }
     void advance(double dt) override { heights_.step(dt); }
     /// The first time only: the heights never change.

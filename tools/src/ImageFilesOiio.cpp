@@ -1,4 +1,5 @@
-#include "hfx/core/Image.h"
+// The OpenImageIO codec (HFX_IMAGE_IO=OpenImageIO, the default).
+#include "hfx/tools/ImageFiles.h"
 
 #include "hfx/core/Error.h"
 
@@ -27,7 +28,11 @@ void limitReaders(const ImageReadLimits& limits) {
 std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const ImageReadLimits& limits) {
     if (!std::filesystem::exists(path)) throw Error(str("image '", path, "' does not exist"));
     limitReaders(limits);
-    auto in = OIIO::ImageInput::open(path);
+    // Channels as stored: OpenImageIO would multiply a PNG's colour by its alpha on reading
+    // (associated alpha), which the light codec and the files' authors do not.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
     if (!in) throw Error(str("cannot read image '", path, "': ", OIIO::geterror()));
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
@@ -39,14 +44,12 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const Image
     return in;
 }
 
-} // namespace
-
-ImageSize readImageSize(const std::string& path, const ImageReadLimits& limits) {
+ImageSize readSize(const std::string& path, const ImageReadLimits& limits) {
     const OIIO::ImageSpec& spec = openImage(path, limits)->spec();
     return {spec.width, spec.height, std::min(spec.nchannels, 4)};
 }
 
-Image readImage(const std::string& path, const ImageReadLimits& limits) {
+Image read(const std::string& path, const ImageReadLimits& limits) {
     const auto in = openImage(path, limits);
     const OIIO::ImageSpec& spec = in->spec();
     Image image;
@@ -62,7 +65,7 @@ Image readImage(const std::string& path, const ImageReadLimits& limits) {
     return image;
 }
 
-void writeImage(const std::string& path, const Image& image) {
+void write(const std::string& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
         image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels)
         throw Error(str("cannot write '", path, "': malformed image ", image.width, "x",
@@ -80,6 +83,14 @@ void writeImage(const std::string& path, const Image& image) {
         throw Error(str("cannot write '", path, "': ", out->geterror()));
     if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
         throw Error(str("writing '", path, "' failed: ", out->geterror()));
+}
+
+} // namespace
+
+const ImageCodec* openImageIoCodec() {
+    static const std::string name = str("OpenImageIO ", OIIO_VERSION_STRING);
+    static const ImageCodec codec{name.c_str(), &read, &readSize, &write};
+    return &codec;
 }
 
 } // namespace hfx
