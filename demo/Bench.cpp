@@ -32,36 +32,78 @@ long peakResidentMiB() {
     return -1;
 }
 
+/// One scene's frame, stage by stage, on both clocks (medians over the timed frames).
 struct Budget {
+    // The CPU wall clock, each stage waited for (glFinish, clFinish) on its own.
     double field, normals, extra, upload, pom, unshadowed, nm;
     double own; ///< the scene's own technique with shadows; 0 where that is POM
+    // Device time: the frame's kernels (CL event profiling, VkFFT's included) and each GL pass
+    // (timer queries): the uploads, the texel shadows, and each draw whole (its shadow map,
+    // cells and beam start included), with the own technique's beam start and cells apart.
+    double kernels, glUpload, texelShadows, gpuPom, gpuUnshadowed, gpuNm, gpuOwn, ownBeam, ownCells;
     double compute() const { return field + normals + extra; }
     double frame() const { return compute() + upload + pom; }
+    /// The transfer: its CPU wall clock (map or read, copies, GL's upload calls) or the GL
+    /// upload's device time, whichever is longer (on a CPU rasteriser they are the same clock).
+    double transfer() const { return std::max(upload, glUpload); }
+    /// A frame drawn with POM: kernels, transfer, texel shadows, the draw.
+    double gpuFrame() const { return kernels + transfer() + texelShadows + gpuPom; }
+    /// The compute and the transfer's share of it.
+    double computeShare() const { return (kernels + transfer()) / gpuFrame(); }
 };
 
-/// Medians over `frames` frames after two warm-up frames; the scene's own material and POM, and
-/// the scene's own technique.
-Budget measure(Scene& scene, RenderTarget& target, int frames) {
-    std::vector<double> field, normals, extra, upload, pom, unshadowed, nm, own;
+/// The median of a pass's GPU samples on `timer`, 0 where it never ran.
+double gpuMedian(const GpuTimer& timer, const char* pass) {
+    const auto it = timer.samples().find(pass);
+    return it == timer.samples().end() ? 0.0 : median(it->second);
+}
+
+/// `frames` frames after kWarmupFrames warm-up frames, each: an update (staged: every stage
+/// waited for and timed), then the scene drawn with POM, POM without shadows, normal mapping and
+/// its own technique, interleaved frame by frame so a noisy neighbour hits them alike.
+Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
+    std::vector<double> field, normals, extra, upload, pom, unshadowed, nm, own, kernels;
     const SurfaceMaterial material = scene.effect().material();
     const Technique ownTechnique = scene.technique;
-    for (int frame = -2; frame < frames; ++frame) {
-        const double u = timeMs([&] { scene.update(1.0 / 30.0); });
+    // One timer per kind of work, so that each one's passes ("draw", "beam", ...) stay its own.
+    GpuTimer updateTimer, pomTimer, unshadowedTimer, nmTimer, ownTimer;
+    for (int frame = -kWarmupFrames; frame < frames; ++frame) {
+        if (frame == 0)
+            for (GpuTimer* t : {&updateTimer, &pomTimer, &unshadowedTimer, &nmTimer, &ownTimer}) {
+                t->finish();
+                t->clearSamples();
+            }
+        double u = 0.0;
+        {
+            GpuTimer::Activation on(updateTimer);
+            updateTimer.beginFrame();
+            cl.recordKernelTimes(true);
+            u = timeMs([&] { scene.update(1.0 / 30.0); });
+            cl.recordKernelTimes(false);
+            updateTimer.endFrame();
+        }
+        double k = 0.0;
+        for (const auto& [name, ms] : cl.takeKernelTimes()) k += ms;
         const StageTimes s = scene.effect().lastTimes();
-        auto draw = [&](Technique t, bool shadows) {
+        auto draw = [&](GpuTimer& timer, Technique t, bool shadows) {
             scene.technique = t;
             SurfaceMaterial m = material;
             m.shadows = shadows;
             scene.effect().setMaterial(m);
-            return timeMs([&] {
+            GpuTimer::Activation on(timer);
+            timer.beginFrame();
+            const double ms = timeMs([&] {
+                const GpuScope whole("whole");
                 target.clear();
                 scene.draw();
             });
+            timer.endFrame();
+            return ms;
         };
-        const double p = draw(Technique::ParallaxOcclusion, true);
-        const double q = draw(Technique::ParallaxOcclusion, false);
-        const double n = draw(Technique::NormalMapping, true);
-        const double o = ownTechnique == Technique::ParallaxOcclusion ? 0.0 : draw(ownTechnique, true);
+        const double p = draw(pomTimer, Technique::ParallaxOcclusion, true);
+        const double q = draw(unshadowedTimer, Technique::ParallaxOcclusion, false);
+        const double n = draw(nmTimer, Technique::NormalMapping, true);
+        const double o = ownTechnique == Technique::ParallaxOcclusion ? 0.0 : draw(ownTimer, ownTechnique, true);
         scene.effect().setMaterial(material);
         scene.technique = ownTechnique;
         if (frame < 0) continue;
@@ -73,9 +115,26 @@ Budget measure(Scene& scene, RenderTarget& target, int frames) {
         unshadowed.push_back(q);
         nm.push_back(n);
         own.push_back(o);
+        kernels.push_back(k);
     }
-    return {median(field), median(normals),    median(extra), median(upload),
-            median(pom),   median(unshadowed), median(nm),    median(own)};
+    for (GpuTimer* t : {&updateTimer, &pomTimer, &unshadowedTimer, &nmTimer, &ownTimer}) t->finish();
+    return {.field = median(field),
+            .normals = median(normals),
+            .extra = median(extra),
+            .upload = median(upload),
+            .pom = median(pom),
+            .unshadowed = median(unshadowed),
+            .nm = median(nm),
+            .own = median(own),
+            .kernels = median(kernels),
+            .glUpload = gpuMedian(updateTimer, "upload"),
+            .texelShadows = gpuMedian(updateTimer, "texel shadows"),
+            .gpuPom = gpuMedian(pomTimer, "whole"),
+            .gpuUnshadowed = gpuMedian(unshadowedTimer, "whole"),
+            .gpuNm = gpuMedian(nmTimer, "whole"),
+            .gpuOwn = gpuMedian(ownTimer, "whole"),
+            .ownBeam = gpuMedian(ownTimer, "beam"),
+            .ownCells = gpuMedian(ownTimer, "cells")};
 }
 
 /// Wall time per frame of update + POM draw, run one after the other and overlapped (the next
@@ -83,7 +142,7 @@ Budget measure(Scene& scene, RenderTarget& target, int frames) {
 std::pair<double, double> sequentialAndOverlapped(Scene& scene, RenderTarget& target, int frames) {
     scene.technique = Technique::ParallaxOcclusion;
     std::vector<double> sequential, overlapped;
-    for (int frame = -1; frame < frames; ++frame) {
+    for (int frame = -kWarmupFrames; frame < frames; ++frame) {
         const double t = timeMs([&] {
             scene.update(1.0 / 30.0);
             target.clear();
@@ -92,7 +151,7 @@ std::pair<double, double> sequentialAndOverlapped(Scene& scene, RenderTarget& ta
         if (frame >= 0) sequential.push_back(t);
     }
     scene.beginUpdate(1.0 / 30.0);
-    for (int frame = -1; frame < frames; ++frame) {
+    for (int frame = -kWarmupFrames; frame < frames; ++frame) {
         const double t = timeMs([&] {
             scene.endUpdate();
             target.clear();
@@ -112,13 +171,18 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
     auto wanted = [&](const std::string& part) { return only.empty() || std::ranges::find(only, part) != only.end(); };
     const Devices devices = openDevices(deviceOptions, {.width = width, .height = height}, false);
     ClContext& cl = *devices.cl;
-    std::printf("hfx-demo bench: %dx%d, %d frames per case (medians)\n%s\n\n", width, height, frames,
-                devices.summary().c_str());
-
-    std::printf("| scene | field | step | normals | pyramid/extra | upload | POM draw | POM no shadows | NM draw | "
-                "frame | fps | POM/NM | compute+upload share | overlapped frame | peak RSS MiB | own technique draw | "
-                "texel shadows |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("hfx-demo bench: %dx%d, medians of %d frames per case after %d warm-up frames\n%s\n\n", width, height,
+                frames, kWarmupFrames, devices.summary().c_str());
+    std::printf("Device time, ms (CL kernels by event profiling, VkFFT's included; GL passes by timer queries). A draw\n"
+                "is the whole scene drawn with that technique (its shadow map, cells and beam start included); frame =\n"
+                "kernels + transfer + texel shadows + POM draw, the transfer counted as the longer of its CPU wall clock\n"
+                "(map or read, copies, GL's upload calls) and the GL upload's device time; the share is the compute and\n"
+                "the transfer's part of the frame. On a CPU rasteriser the GL passes are timed by the CPU clock around\n"
+                "glFinish (GpuTimer.h).\n\n"
+                "| scene | field | kernels | GL upload | transfer (wall) | texel shadows | POM draw | POM no shadows | "
+                "NM draw | own technique draw (beam, cells) | frame | POM/NM | compute+transfer share |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::string wallRows;
     RenderTarget target(width, height);
     target.bind();
     for (const char* name : {"water", "decals", "planet", "noise"})
@@ -133,7 +197,7 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
             o.width = width;
             o.height = height;
             auto scene = makeScene(name, cl, o);
-            const Budget b = measure(*scene, target, frames);
+            const Budget b = measure(*scene, target, cl, frames);
             // The texel shadows drawn or not in measure()'s frames (their pass is in the upload,
             // their reads in hier's draw; sequentialAndOverlapped draws POM) and the pixels per
             // texel that chose it: the surface's quad on this image over the field's texels.
@@ -143,21 +207,38 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                               scene->pixelsPerTexel());
             const auto [sequential, overlapped] = sequentialAndOverlapped(*scene, target, frames);
             const auto& config = scene->effect().textures().config();
-            char ownDraw[64] = "(POM)";
-            if (b.own > 0.0) std::snprintf(ownDraw, sizeof ownDraw, "%s %.2f", techniqueName(o.technique), b.own);
-            std::printf("| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2fx | %.1f%% | "
-                        "%.1f (%.1f sequential) | %ld | %s | %s |\n",
-                        name, config.width, config.height, b.field, b.normals, b.extra, b.upload, b.pom,
-                        b.unshadowed, b.nm, b.frame(), 1000.0 / b.frame(), b.pom / b.nm,
-                        100.0 * (b.compute() + b.upload) / b.frame(), overlapped, sequential, peakResidentMiB(),
-                        ownDraw, texels);
+            char ownDraw[96] = "(POM)", ownWall[64] = "(POM)";
+            if (b.own > 0.0) {
+                std::snprintf(ownDraw, sizeof ownDraw, "%s %.2f (%.2f, %.2f)", techniqueName(o.technique), b.gpuOwn,
+                              b.ownBeam, b.ownCells);
+                std::snprintf(ownWall, sizeof ownWall, "%s %.2f", techniqueName(o.technique), b.own);
+            }
+            std::printf("| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %.2f | %.2fx | %.1f%% |\n", name,
+                        config.width, config.height, b.kernels, b.glUpload, b.upload, b.texelShadows, b.gpuPom,
+                        b.gpuUnshadowed, b.gpuNm, ownDraw, b.gpuFrame(), b.gpuPom / b.gpuNm, 100.0 * b.computeShare());
             std::fflush(stdout);
+            char row[512];
+            std::snprintf(row, sizeof row,
+                          "| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2fx | %.1f%% | "
+                          "%.1f (%.1f sequential) | %ld | %s | %s |\n",
+                          name, config.width, config.height, b.field, b.normals, b.extra, b.upload, b.pom, b.unshadowed,
+                          b.nm, b.frame(), 1000.0 / b.frame(), b.pom / b.nm, 100.0 * (b.compute() + b.upload) / b.frame(),
+                          overlapped, sequential, peakResidentMiB(), ownWall, texels);
+            wallRows += row;
         }
+    if (!wallRows.empty())
+        std::printf("\nCPU wall clock, ms, each stage waited for (glFinish, clFinish) on its own, the same frames:\n\n"
+                    "| scene | field | step | normals | pyramid/extra | upload | POM draw | POM no shadows | NM draw | "
+                    "frame | fps | POM/NM | compute+upload share | overlapped frame | peak RSS MiB | own technique draw | "
+                    "texel shadows |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n%s",
+                    wallRows.c_str());
 
     if (wanted("transfer")) {
-        std::printf("\nTransfer of the water field by surface format and path (POM with shadows; extra = packing on "
-                    "the device):\n\n| field | format | path | bytes / frame | normals | extra | upload | compute+upload | "
-                    "POM draw | compute+upload share |\n|---|---|---|---|---|---|---|---|---|---|\n");
+        std::printf("\nTransfer of the water field by surface format and path (POM with shadows): the transfer's CPU wall\n"
+                    "clock (what the frame waits for: map or read, copy, GL upload calls) and its rate, the GL upload's GPU\n"
+                    "time, the kernels' device time (extra: packing included), the POM draw's GPU time:\n\n"
+                    "| field | format | path | bytes / frame | transfer (wall) | GB/s | GL upload | kernels | POM draw | "
+                    "compute+transfer share |\n|---|---|---|---|---|---|---|---|---|---|\n");
         for (int size : {512, 1024})
             for (SurfaceFormat format : kSurfaceFormats)
                 for (TransferPath path : {TransferPath::Map, TransferPath::PixelBuffer}) {
@@ -169,17 +250,21 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                     o.width = width;
                     o.height = height;
                     auto scene = makeScene("water", cl, o);
-                    const Budget b = measure(*scene, target, frames);
+                    const Budget b = measure(*scene, target, cl, frames);
+                    // The ocean's cascades: one surface each, all moved every frame.
+                    const double bytes = double(texelBytes(format)) * size * size *
+                                         double(scene->effect().layers().size());
                     std::printf("| %d² | %s | %s | %.1f MiB | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f%% |\n", size,
-                                surfaceFormatName(format), transferPathName(path),
-                                double(texelBytes(format)) * size * size / (1024.0 * 1024.0), b.normals, b.extra, b.upload,
-                                b.compute() + b.upload, b.pom, 100.0 * (b.compute() + b.upload) / b.frame());
+                                surfaceFormatName(format), transferPathName(path), bytes / (1024.0 * 1024.0), b.upload,
+                                bytes / (b.upload * 1e6), b.glUpload, b.kernels, b.gpuPom, 100.0 * b.computeShare());
                     std::fflush(stdout);
                 }
     }
 
     if (!wanted("scaling")) return 0;
-    std::printf("\nScaling of the water frame (POM with shadows):\n\n| field | output | compute | upload | POM draw | frame ms |\n|---|---|---|---|---|---|\n");
+    std::printf("\nScaling of the water frame (POM with shadows): device time of the kernels, the GL upload and the\n"
+                "draw, the transfer's wall clock:\n\n| field | output | kernels | transfer (wall) | GL upload | POM draw | "
+                "frame |\n|---|---|---|---|---|---|---|\n");
     auto scaling = [&](int size, int w, int h) {
         SceneOptions o = options;
         o.fieldSize = size;
@@ -188,8 +273,9 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
         RenderTarget t(w, h);
         t.bind();
         auto scene = makeScene("water", cl, o);
-        const Budget b = measure(*scene, t, std::max(5, frames / 2));
-        std::printf("| %d² | %dx%d | %.2f | %.2f | %.2f | %.1f |\n", size, w, h, b.compute(), b.upload, b.pom, b.frame());
+        const Budget b = measure(*scene, t, cl, frames);
+        std::printf("| %d² | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size, w, h, b.kernels, b.upload, b.glUpload,
+                    b.gpuPom, b.gpuFrame());
         std::fflush(stdout);
     };
     for (int size : {256, 512, 1024}) scaling(size, width, height); // the ocean's cascades are at most 1024²

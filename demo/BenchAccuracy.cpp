@@ -9,6 +9,7 @@
 #include "hfx/tools/AccuracyMaps.h"
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/tools/AccuracyProbe.h"
+#include "hfx/tools/Timing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +21,7 @@
 
 namespace hfx::demo {
 
-int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outDir, int field) {
+int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outDir, int field, int width, int height) {
     const Devices devices = openDevices(deviceOptions, {.width = 64, .height = 64}, false);
     GlContext* gl = devices.gl.get();
     ClContext& cl = *devices.cl;
@@ -39,11 +40,13 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
        << "projected: mean pixels of the 192x192 image, share more than one pixel off), mean height fetches per pixel counted in the shader (without shadows),\n"
        << "mean error of the depth fraction written to gl_FragDepth, agreement of the self-shadow with exact\n"
        << "shadow rays outside a 1.5-texel band around shadow edges and outside the penumbra band (the light ray clear, the ray lowered by 1/sharpness of its climb not; techniques without shadows: n/a),\n"
-       << "and the median draw time of a 1280x720 frame filled by the plane at that angle (with the\n"
-       << "technique's shadows: soft for pom and secant, hard for steep and relief, exact for hier).\n\n";
+       << "and the draw time of a " << width << "x" << height << " frame filled by the plane at that angle (with the\n"
+       << "technique's shadows: soft for pom and secant, hard for steep and relief, exact for hier): GPU time from\n"
+       << "timer queries, median of " << kTimedFrames << " draws after " << kWarmupFrames << ", with the CPU wall clock around glFinish\n"
+       << "in brackets.\n\n" << devices.summary() << "\n\n";
     std::ostringstream csv; // every row of the tables, for scripts/plot_accuracy.py
     csv << "map,angle,technique,mean_texels,p95_texels,over4_share,max_texels,fetches,depth_error,shadow_agreement,"
-           "ms_1280x720,mean_pixels,p95_pixels,over1px_share\n";
+           "ms_1280x720,mean_pixels,p95_pixels,over1px_share,wall_ms\n";
     constexpr int kCropW = 180, kCropH = 180;
     Image strip{kCropW * int(std::size(kTechniques)), kCropH, 3,
                 std::vector<float>(size_t(kCropW) * std::size(kTechniques) * kCropH * 3)};
@@ -52,7 +55,7 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
         md << "## " << map.name
            << "\n\n| angle | technique | mean | p95 | > 4 texels | mean px | > 1 px | fetches | depth error | shadow agreement | "
-              "ms 1280x720 |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+              "GPU ms (wall) |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
         for (double angle : angles) {
             for (size_t ti = 0; ti < std::size(kTechniques); ++ti) {
                 const Technique t = kTechniques[ti];
@@ -60,12 +63,15 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
                 const bool hasShadows = techniqueInfo(t).shadow != SelfShadow::None;
                 const AccuracyResult s =
                     hasShadows ? probe.measure(t, {.angleDegrees = angle, .shadows = true, .light = light}) : AccuracyResult{};
-                char shadow[32] = "n/a", ms[32] = "-";
+                char shadow[32] = "n/a", ms[48] = "-";
                 if (hasShadows) std::snprintf(shadow, sizeof shadow, "%.1f%%", 100.0 * s.shadowAgreement);
                 // Timed with shadows where the technique has them, as a renderer would draw it.
-                if (angle <= 80)
-                    std::snprintf(ms, sizeof ms, "%.1f",
-                                  probe.timeDraw(t, {.angleDegrees = angle, .shadows = hasShadows, .light = light}, 1280, 720, 3));
+                GlTime time;
+                if (angle <= 80) {
+                    time = probe.timeDraw(t, {.angleDegrees = angle, .shadows = hasShadows, .light = light}, width, height,
+                                          kTimedFrames, kWarmupFrames);
+                    std::snprintf(ms, sizeof ms, "%.2f (%.1f)", time.gpu, time.wall);
+                }
                 char line[400];
                 std::snprintf(line, sizeof line, "| %.0f | %s | %.3f | %.3f | %.2f%% | %.3f | %.2f%% | %.1f | %.4f | %s | %s |\n",
                               angle, techniqueName(t), r.mean, r.p95, 100.0 * r.over4, r.meanPixels, 100.0 * r.overPixel,
@@ -74,19 +80,22 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
                 csv << map.name << "," << angle << "," << techniqueName(t) << "," << r.mean << "," << r.p95 << ","
                     << r.over4 << "," << r.max << "," << r.fetches << "," << r.depthMean << ","
                     << (hasShadows ? std::to_string(s.shadowAgreement) : std::string()) << ","
-                    << (angle <= 80 ? std::string(ms) : std::string()) << "," << r.meanPixels << "," << r.p95Pixels << ","
-                    << r.overPixel << "\n";
+                    << (angle <= 80 ? std::to_string(time.gpu) : std::string()) << "," << r.meanPixels << ","
+                    << r.p95Pixels << "," << r.overPixel << "," << (angle <= 80 ? std::to_string(time.wall) : std::string())
+                    << "\n";
                 if (t == Technique::Hierarchical) {
                     hierMean[{map.name, angle}] = r.mean;
                     hierFetches[{map.name, angle}] = r.fetches;
                 }
                 if (angle == 80 && map.name == "bricks") {
-                    // The middle of the timed 1280x720 frame.
+                    // The middle of the timed frame.
                     const Image& image = probe.lastFrame();
                     for (int y = 0; y < kCropH; ++y)
                         for (int x = 0; x < kCropW; ++x)
                             for (int c = 0; c < 3; ++c)
-                                strip.at(int(ti) * kCropW + x, y, c) = image.at(640 - kCropW / 2 + x, 360 - kCropH / 2 + y, c);
+                                strip.at(int(ti) * kCropW + x, y, c) =
+                                    image.at(std::clamp(width / 2 - kCropW / 2 + x, 0, width - 1),
+                                             std::clamp(height / 2 - kCropH / 2 + y, 0, height - 1), c);
                 }
             }
         }
@@ -105,18 +114,20 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
         // A screen error budget: where hier may stop short and POM takes fewer steps, and what it saves.
         md << "\nWith a pixel budget (`SurfaceMaterial::pixelBudget`; 0 = full effort): hier stops short of the "
               "exact hit by at most the budget, POM takes no more steps than keep each within it. Error in pixels of "
-              "the 192x192 image, draw time of the 1280x720 frame with the technique's shadows:\n\n"
-           << "| angle | technique | budget px | mean px | p95 px | > 1 px | fetches | ms 1280x720 |\n"
+              "the 192x192 image, draw time (GPU, and wall in brackets) of the timed frame with the technique's shadows:\n\n"
+           << "| angle | technique | budget px | mean px | p95 px | > 1 px | fetches | GPU ms (wall) |\n"
               "|---|---|---|---|---|---|---|---|\n";
         for (double angle : {0.0, 45.0, 80.0})
             for (Technique t : {Technique::Hierarchical, Technique::ParallaxOcclusion})
                 for (float budget : {0.0f, 0.5f, 1.0f}) {
                     const AccuracyResult r = probe.measure(t, {.angleDegrees = angle, .pixelBudget = budget});
-                    const double ms =
-                        probe.timeDraw(t, {.angleDegrees = angle, .shadows = true, .light = light, .pixelBudget = budget}, 1280, 720, 3);
+                    const GlTime ms = probe.timeDraw(
+                        t, {.angleDegrees = angle, .shadows = true, .light = light, .pixelBudget = budget}, width, height,
+                        kTimedFrames, kWarmupFrames);
                     char line[200];
-                    std::snprintf(line, sizeof line, "| %.0f | %s | %.1f | %.3f | %.3f | %.2f%% | %.1f | %.1f |\n", angle,
-                                  techniqueName(t), budget, r.meanPixels, r.p95Pixels, 100.0 * r.overPixel, r.fetches, ms);
+                    std::snprintf(line, sizeof line, "| %.0f | %s | %.1f | %.3f | %.3f | %.2f%% | %.1f | %.2f (%.1f) |\n",
+                                  angle, techniqueName(t), budget, r.meanPixels, r.p95Pixels, 100.0 * r.overPixel, r.fetches,
+                                  ms.gpu, ms.wall);
                     md << line;
                 }
         md << "\n";
@@ -169,7 +180,8 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
 /// fetches per pixel in the same draw (AccuracyProbe::countFetches: the mean and in lockstep blocks).
 /// Prints a table and, with --out, writes tracers.csv. `only` restricts the maps by name.
 int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDir, int field,
-                    const std::vector<std::string>& only, int rounds) {
+                    const std::vector<std::string>& only, int rounds, int width, int height) {
+    rounds = std::max(rounds, kTimedFrames);
     const Devices devices = openDevices(deviceOptions, {.width = 64, .height = 64}, false);
     ClContext& cl = *devices.cl;
     const glm::vec3 light = accuracyLight(); // 60 degrees off the normal
@@ -190,58 +202,67 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                                 {Technique::Hierarchical, 0.0f, false, "hier, texel shadows, no beam start", true, false}};
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,clearance_map,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
-           "fetches_lanes32,map_build_ms,texel_shadows_ms,beam_start\n";
-    std::printf("%s, field %dx%d, 1280x720, median of %d interleaved draws.\n"
+           "fetches_lanes32,map_build_ms,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height\n";
+    std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
+                "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
+                "clock around glFinish of the same draws.\n"
                 "hier draws with the clearance map for the light; 'no map' without it; 'texels' with the texel shadows\n"
                 "of the light instead (no map), 'no beam' the same without the beam start (DrawOptions::beamStart).\n"
-                "map ms, texels ms: what building the map, drawing the texel shadows\n"
-                "add to a frame of the surface (compute, upload, GL; median of 9 frames with and without).\n"
-                "Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in the shader\n"
-                "of the timed draw itself (1280x720): the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
+                "map ms, texels ms: what building the map, drawing the texel shadows add to a frame of the surface\n"
+                "(the map's kernels by CL event profiling, GL's passes by timer queries; median of 30 frames with and\n"
+                "without). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in the\n"
+                "shader of the timed draw itself: the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
                 "blocks (a 32-lane GPU warp) each run as long as their longest pixel. The last four columns: hier with\n"
                 "texel shadows (the scenes' default where they pay) over pom.\n\n"
-                "| map | angle | pom ms | hier ms | hier / pom | no map / pom | hier 1px / pom | texels / pom | texels, no beam / pom | map ms "
-                "| texels ms | fetches pom, hier, no map, texels, no beam | texels: fetches | 8 lanes | 32 lanes | ms per 8-lane fetch |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", devices.summary().c_str(), field, field, rounds);
+                "| map | angle | pom ms | hier ms | hier / pom | wall: hier / pom | no map / pom | hier 1px / pom | texels / pom | "
+                "texels, no beam / pom | map ms | texels ms | fetches pom, hier, no map, texels, no beam | texels: fetches | "
+                "8 lanes | 32 lanes | ms per 8-lane fetch |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+                devices.summary().c_str(), field, field, width, height, rounds, kWarmupFrames);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
-        const double mapMs = probe.timeClearance(AccuracyConfig{.shadows = true, .light = light}, 9);
-        const double texelMs = probe.timeClearance(
-            AccuracyConfig{.shadows = true, .light = light, .clearance = false, .texelShadows = true}, 9);
+        const double mapMs = probe.timeClearance(AccuracyConfig{.shadows = true, .light = light}, kTimedFrames).gpu;
+        const double texelMs =
+            probe.timeClearance(AccuracyConfig{.shadows = true, .light = light, .clearance = false, .texelShadows = true},
+                                kTimedFrames)
+                .gpu;
         for (double angle : {0.0, 45.0, 70.0, 80.0}) {
             auto configOf = [&](const Variant& v) {
                 return AccuracyConfig{.angleDegrees = angle, .shadows = true, .light = light, .pixelBudget = v.pixelBudget,
                                       .clearance = v.clearance, .texelShadows = v.texels, .beamStart = v.beam};
             };
-            std::vector<std::vector<double>> times(std::size(variants));
-            for (const Variant& v : variants) probe.timeDraw(v.technique, configOf(v), 1280, 720, 1); // shaders built, caches warm
-            for (int r = 0; r < rounds; ++r)
-                for (size_t i = 0; i < std::size(variants); ++i)
-                    times[i].push_back(probe.timeDraw(variants[i].technique, configOf(variants[i]), 1280, 720, 1));
-            std::vector<double> median;
-            for (auto& v : times) {
-                std::sort(v.begin(), v.end());
-                median.push_back(v[v.size() / 2]);
+            std::vector<std::vector<GlTime>> times(std::size(variants));
+            for (int r = -kWarmupFrames; r < rounds; ++r) // interleaved: a noisy neighbour hits them alike
+                for (size_t i = 0; i < std::size(variants); ++i) {
+                    const GlTime t = probe.timeDraw(variants[i].technique, configOf(variants[i]), width, height, 1, 0);
+                    if (r >= 0) times[i].push_back(t);
+                }
+            std::vector<double> gpuMs, wall;
+            for (const auto& v : times) {
+                gpuMs.push_back(median(v).gpu);
+                wall.push_back(median(v).wall);
             }
             // Where the time goes: how many fetches each makes (the view and the light walk), how
             // many its lanes wait for in lockstep, and what one costs in its loop, against POM's.
             std::vector<FetchCounts> counts;
-            for (const Variant& v : variants) counts.push_back(probe.countFetches(v.technique, configOf(v), 1280, 720));
-            const double pom = median[0];
+            for (const Variant& v : variants) counts.push_back(probe.countFetches(v.technique, configOf(v), width, height));
+            const double pom = gpuMs[0];
             for (size_t i = 0; i < std::size(variants); ++i)
                 csv << map.name << "," << angle << "," << techniqueName(variants[i].technique) << "," << variants[i].pixelBudget
                     << "," << (variants[i].technique == Technique::Hierarchical && variants[i].clearance ? 1 : 0) << ","
-                    << (variants[i].texels ? 1 : 0) << ",soft," << median[i] << "," << median[i] / pom << ","
+                    << (variants[i].texels ? 1 : 0) << ",soft," << gpuMs[i] << "," << gpuMs[i] / pom << ","
                     << counts[i].mean << "," << counts[i].lanes8 << "," << counts[i].lanes32 << ","
-                    << mapMs << "," << texelMs << "," << (variants[i].beam ? 1 : 0) << "\n";
+                    << mapMs << "," << texelMs << "," << (variants[i].beam ? 1 : 0) << "," << wall[i] << ","
+                    << wall[i] / wall[0] << "," << width << "," << height << "\n";
             const FetchCounts &p = counts[0], &h = counts[1], &n = counts[2], &x = counts[4], &b = counts[5];
-            std::printf("| %s | %.0f | %.1f | %.1f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f | %.1f, %.1f, %.1f, %.1f, "
-                        "%.1f | %.2fx | %.2fx | %.2fx | %.2fx |\n",
-                        map.name.c_str(), angle, pom, median[1], median[1] / pom, median[2] / pom, median[3] / pom,
-                        median[4] / pom, median[5] / pom, mapMs, texelMs, p.mean, h.mean, n.mean, x.mean, b.mean,
+            std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f | %.1f, %.1f, "
+                        "%.1f, %.1f, %.1f | %.2fx | %.2fx | %.2fx | %.2fx |\n",
+                        map.name.c_str(), angle, pom, gpuMs[1], gpuMs[1] / pom, wall[1] / wall[0], gpuMs[2] / pom,
+                        gpuMs[3] / pom,
+                        gpuMs[4] / pom, gpuMs[5] / pom, mapMs, texelMs, p.mean, h.mean, n.mean, x.mean, b.mean,
                         x.mean / p.mean, x.lanes8 / p.lanes8, x.lanes32 / p.lanes32,
-                        (median[4] / x.lanes8) / (pom / p.lanes8));
+                        (gpuMs[4] / x.lanes8) / (pom / p.lanes8));
             std::fflush(stdout);
         }
     }

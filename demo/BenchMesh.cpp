@@ -139,8 +139,9 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
     target.bind();
     // Per format: POM with and without shadows; then the mesh. Interleaved frame by frame, so a
     // noisy neighbour hits every side alike.
-    std::vector<std::vector<double>> pomMs(oceans.size()), plainMs(oceans.size());
-    std::vector<double> meshMs, meshShadowedMs;
+    std::vector<std::vector<GlTime>> pomMs(oceans.size()), plainMs(oceans.size());
+    std::vector<GlTime> meshMs, meshShadowedMs;
+    GpuTimer timer;
     // The mesh's surface blocks, unshadowed and receiving the map, made once: the light and the
     // receiver's lookup as the renderer's own draws get them.
     GlBuffer meshBlocks[2] = {GlBuffer::create(), GlBuffer::create()};
@@ -170,13 +171,13 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
         glBindVertexArray(0);
         glBindTextureUnit(11, 0);
     };
-    for (int frame = -2; frame < frames; ++frame) {
+    for (int frame = -kWarmupFrames; frame < frames; ++frame) {
         for (size_t f = 0; f < oceans.size(); ++f) {
-            const double p = timeMs([&] {
+            const GlTime p = timeGl(timer, "pom", [&] {
                 target.clear();
                 renderer.draw(quad, glm::mat4(1.0f), oceans[f]->textures(), pom, camera, light);
             });
-            const double q = timeMs([&] {
+            const GlTime q = timeGl(timer, "pom", [&] {
                 target.clear();
                 renderer.draw(quad, glm::mat4(1.0f), oceans[f]->textures(), unshadowed, camera, light);
             });
@@ -185,8 +186,8 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
                 plainMs[f].push_back(q);
             }
         }
-        const double m = timeMs([&] { drawMesh(false); });
-        const double ms = timeMs([&] { drawMesh(true); });
+        const GlTime m = timeGl(timer, "mesh", [&] { drawMesh(false); });
+        const GlTime ms = timeGl(timer, "mesh", [&] { drawMesh(true); });
         if (frame >= 0) {
             meshMs.push_back(m);
             meshShadowedMs.push_back(ms);
@@ -199,18 +200,21 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
         return double(N) * N * double(texelBytes(f) + 4) * mipFactor + 4 * sizeof(Vertex) + 6 * sizeof(uint32_t);
     };
     const double meshBytes = double(vertices.size()) * sizeof(MeshVertex) + double(indices.size()) * sizeof(uint32_t);
-    const double mt = median(meshMs), mst = median(meshShadowedMs);
-    std::printf("hfx-demo bench-mesh: %dx%d, %d frames (medians)\n%s\n", width, height, frames, devices.summary().c_str());
-    std::printf("| side | draw ms (soft shadows / none) | memory MiB | mesh / side: time (shadows / none) | mesh / side: "
-                "memory |\n|---|---|---|---|---|\n");
+    const GlTime mt = median(meshMs), mst = median(meshShadowedMs);
+    std::printf("hfx-demo bench-mesh: %dx%d, medians of %d frames after %d warm-up frames, interleaved\n%s\n\n"
+                "GPU time (timer queries) of each draw, the CPU wall clock around glFinish in brackets:\n\n",
+                width, height, frames, kWarmupFrames, devices.summary().c_str());
+    std::printf("| side | GPU ms: soft shadows / none (wall) | memory MiB | mesh / side, GPU: shadows / none (wall) | "
+                "mesh / side: memory |\n|---|---|---|---|---|\n");
     for (size_t f = 0; f < oceans.size(); ++f) {
         const SurfaceFormat format = kSurfaceFormats[f];
-        const double pt = median(pomMs[f]), qt = median(plainMs[f]);
-        std::printf("| POM quad, %s surface | %.1f / %.1f | %.1f | %.2fx / %.2fx | %.2fx |\n", surfaceFormatName(format), pt,
-                    qt, mib(pomBytes(format)), mst / pt, mt / qt, meshBytes / pomBytes(format));
+        const GlTime pt = median(pomMs[f]), qt = median(plainMs[f]);
+        std::printf("| POM quad, %s surface | %.2f / %.2f (%.1f / %.1f) | %.1f | %.2fx / %.2fx (%.2fx / %.2fx) | %.2fx |\n",
+                    surfaceFormatName(format), pt.gpu, qt.gpu, pt.wall, qt.wall, mib(pomBytes(format)), mst.gpu / pt.gpu,
+                    mt.gpu / qt.gpu, mst.wall / pt.wall, mt.wall / qt.wall, meshBytes / pomBytes(format));
     }
-    std::printf("| mesh, %zu triangles (shadow map %d² + draw / draw alone) | %.1f / %.1f | %.1f | | |\n", indices.size() / 3,
-                map.size(), mst, mt, mib(meshBytes));
+    std::printf("| mesh, %zu triangles (shadow map %d² + draw / draw alone) | %.2f / %.2f (%.1f / %.1f) | %.1f | | |\n",
+                indices.size() / 3, map.size(), mst.gpu, mt.gpu, mst.wall, mt.wall, mib(meshBytes));
     return 0;
 }
 

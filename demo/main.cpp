@@ -14,6 +14,7 @@
 #include "hfx/platform/GlContext.h"
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/core/RenderTarget.h"
+#include "hfx/tools/Timing.h"
 
 #include <CLI/CLI.hpp>
 
@@ -26,9 +27,9 @@
 namespace hfx::demo {
 int runBench(const DeviceOptions& devices, const SceneOptions& scene, int width, int height, int frames,
              const std::vector<std::string>& only);
-int runBenchAccuracy(const DeviceOptions& devices, const std::string& outDir, int field);
+int runBenchAccuracy(const DeviceOptions& devices, const std::string& outDir, int field, int width, int height);
 int runBenchTracers(const DeviceOptions& devices, const std::string& outDir, int field,
-                    const std::vector<std::string>& only, int rounds);
+                    const std::vector<std::string>& only, int rounds, int width, int height);
 int runBenchMesh(const DeviceOptions& devices, int width, int height, int frames);
 }
 
@@ -121,17 +122,18 @@ int run(const Options& o) {
         return 0;
     }
     if (o.scene == "bench")
-        return runBench(o.devices, sceneOptions, o.width, o.height, o.frames > 0 ? o.frames : 20, o.benchOnly);
-    if (o.scene == "bench-mesh") return runBenchMesh(o.devices, o.width, o.height, o.frames > 0 ? o.frames : 10);
+        return runBench(o.devices, sceneOptions, o.width, o.height, std::max(o.frames, kTimedFrames), o.benchOnly);
+    if (o.scene == "bench-mesh") return runBenchMesh(o.devices, o.width, o.height, std::max(o.frames, kTimedFrames));
     if (o.scene == "bench-accuracy") {
         const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
         if (field & (field - 1)) throw Error(str("bench-accuracy needs a power-of-two --field, got ", field));
-        return runBenchAccuracy(o.devices, o.out.empty() ? "docs" : o.out, field);
+        return runBenchAccuracy(o.devices, o.out.empty() ? "docs" : o.out, field, o.width, o.height);
     }
     if (o.scene == "bench-tracers") {
         const int field = sceneOptions.fieldSize > 0 ? sceneOptions.fieldSize : 256;
         if (field & (field - 1)) throw Error(str("bench-tracers needs a power-of-two --field, got ", field));
-        return runBenchTracers(o.devices, o.out, field, o.benchOnly, o.frames > 0 ? o.frames : 5);
+        return runBenchTracers(o.devices, o.out, field, o.benchOnly, o.frames > 0 ? o.frames : kTimedFrames, o.width,
+                               o.height);
     }
     if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet" && o.scene != "noise")
         throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));

@@ -180,7 +180,7 @@ ClContext::ClContext(const ClContextConfig& config) {
     if (sharesGl_) glShare_ = config.glShare;
     clGuard("creating the OpenCL context", [&] {
         context_ = sharesGl_ ? cl::Context(device_, chosen.sharing.data()) : cl::Context(device_);
-        queue_ = cl::CommandQueue(context_, device_);
+        queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
     });
     cache_ = ProgramCache(config.kernelCache == "off" ? std::filesystem::path()
                           : config.kernelCache.empty() ? ProgramCache::defaultFolder()
@@ -299,11 +299,32 @@ cl::Kernel ClContext::kernel(std::string_view file, const char* name, const std:
 }
 
 void ClContext::enqueue(const cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local) {
-    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global, local);
+    cl::Event event;
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, recording_ ? &event : nullptr);
     ++launches_;
     Launches& entry = launchesByKernel_[kernel()];
     if (!entry.kernel()) entry.kernel = kernel;
     ++entry.count;
+    if (recording_) recorded_.push_back({entry.kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), {}, event});
+}
+
+void ClContext::recordSpan(const std::string& name, const cl::Event& before, const cl::Event& after) {
+    if (recording_) recorded_.push_back({name, before, after});
+}
+
+std::map<std::string, double> ClContext::takeKernelTimes() {
+    std::map<std::string, double> times;
+    clGuard("reading the kernels' device times", [&] {
+        for (const Recorded& r : recorded_) {
+            r.end.wait();
+            const cl_ulong end = r.end.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+            const cl_ulong start = r.begin() ? r.begin.getProfilingInfo<CL_PROFILING_COMMAND_END>()
+                                             : r.end.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+            times[r.name] += double(end > start ? end - start : 0) * 1e-6;
+        }
+    });
+    recorded_.clear();
+    return times;
 }
 
 std::uint64_t ClContext::launches(std::string_view kernelName) const {

@@ -126,10 +126,17 @@ void InverseRealFft::enqueue(const cl::Buffer& spectrum, const cl::Buffer& field
     launch.commandQueue = &p.queue;
     launch.buffer = &p.spectrum;
     launch.inputBuffer = &p.fields;
+    // Its kernels do not go through ClContext::enqueue: two markers time them when asked.
+    cl::Event before, after;
+    if (cl_.recordingKernelTimes()) cl_.queue().enqueueMarkerWithWaitList(nullptr, &before);
     const VkFFTResult result = VkFFTAppend(&p.app, 1, &launch);
     if (result != VKFFT_SUCCESS)
         throw Error(str("VkFFT: the ", n_, "x", n_, " inverse real FFT failed to enqueue on ", cl_.description(), ": ",
                         vkfftResultName(result)));
+    if (cl_.recordingKernelTimes()) {
+        cl_.queue().enqueueMarkerWithWaitList(nullptr, &after);
+        cl_.recordSpan("vkfft", before, after);
+    }
 }
 
 std::string InverseRealFft::libraryVersion() {

@@ -1,6 +1,7 @@
 #include "hfx/effects/CellsPass.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GpuTimer.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
 namespace hfx {
@@ -8,6 +9,7 @@ namespace hfx {
 void CellsPass::refresh(const SurfaceTextures& textures) {
     if (!textures.cells()) throw Error("CellsPass: these surface textures were made without a pyramid");
     if (!textures.cellsCurrent()) {
+        const GpuScope scope("cells");
         if (!program_) program_ = ShaderProgram::compute({surfaceShader("surface/cells.comp")});
         const SurfaceTexturesConfig& c = textures.config();
         program_->use();

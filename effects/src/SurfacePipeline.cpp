@@ -1,9 +1,11 @@
 #include "hfx/effects/SurfacePipeline.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GpuTimer.h"
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace hfx {
 
@@ -185,6 +187,7 @@ void SurfacePipeline::finish() {
     // The texels in the surface's own layout: packed, or for float32 the normals themselves.
     const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
     const size_t bytes = texelBytes(config_.options.format) * texels;
+    std::optional<GpuScope> upload(std::in_place, "upload");
     if (pixels_) {
         // Mapping a buffer over host memory waits for its writers and makes that memory current
         // (on a device sharing host memory it copies nothing); GL then reads it where it lies.
@@ -206,12 +209,14 @@ void SurfacePipeline::finish() {
     else
         back.dropClearance();
     // The texel shadows: a GL pass over the heights, pyramid and map just uploaded.
+    upload.reset();
     if (texelsFor_) {
         if (!texelPass_) texelPass_ = std::make_unique<TexelShadowPass>();
         texelPass_->draw(back, *texelsFor_, lightOptions_.texelStride);
     } else {
         back.dropTexelShadows();
     }
+    upload.emplace("upload");
     if (albedo_())
         mapAndUpload(cl_, albedo_, 4 * texels, "uploading the albedo",
                      [&](const void* mapped) { back.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });

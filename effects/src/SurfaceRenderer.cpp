@@ -1,5 +1,7 @@
 #include "hfx/effects/SurfaceRenderer.h"
 
+#include "hfx/core/GpuTimer.h"
+
 #include "hfx/core/Error.h"
 #include "hfx/effects/ShadowMap.h"
 
@@ -305,6 +307,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     if (layers.size() == 1) glBindTextureUnit(4, textures.texelShadows()); // layer 1's unit, unused here
     const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
     if (beam) { // the prepass reads the surface and the pyramid bound above, and the block's uniforms
+        const GpuScope scope("beam");
         drawBeamStart(mesh, model, u, viewProj);
         glBindTextureUnit(5, beamTarget_.id()); // layer 2's unit: a single layer leaves it free
     }
@@ -312,6 +315,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();
+    const GpuScope scope(caster ? "shadow map" : "draw");
     mesh.draw();
 }
 

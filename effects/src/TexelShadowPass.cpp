@@ -1,6 +1,7 @@
 #include "hfx/effects/TexelShadowPass.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GpuTimer.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
 
@@ -51,6 +52,7 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     const int width = config.width / stride, height = config.height / stride;
     GlStateGuard guard;
     cells_.refresh(textures); // the walk's patch samples, image unit 4 (uses its own program)
+    const GpuScope scope("texel shadows");
     attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),

@@ -103,7 +103,8 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
       surface_(cl, SurfacePipelineConfig::of(field_, normalDepth,
                                              // mip level 0 only: the figures speak of the search, not the filter
                                              {.mipmaps = false, .pyramid = format != SurfaceFormat::Unorm8, .format = format})),
-      plane_(makePlane({.size = kPlaneSize})), timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})) {
+      plane_(makePlane({.size = kPlaneSize})), timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})),
+      cl_(cl) {
     surface_.run(field_.buffer());
 }
 
@@ -123,22 +124,29 @@ void AccuracyProbe::useClearance(const AccuracyConfig& config) {
     lightOptions_ = options;
 }
 
-double AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
+GlTime AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
     useClearance(config);
-    if (!clearance_) return 0.0;
-    std::vector<double> with, without;
-    // A whole frame of the surface, GL's share included (the texel shadows are a draw).
+    if (!clearance_) return {};
+    std::vector<GlTime> with, without;
+    // A whole frame of the surface, GL's share included (the texel shadows are a draw): on the
+    // device, its kernels (event profiling) and its GL passes (timer queries); on the wall clock,
+    // all of it.
     auto frame = [&](const std::optional<ClearanceLight>& light) {
         surface_.setShadowLight(light, lightOptions_);
-        return timeMs([&] { surface_.run(field_.buffer()); });
+        cl_.recordKernelTimes(true);
+        GlTime t = timeGl(timer_, "frame", [&] { surface_.run(field_.buffer()); });
+        cl_.recordKernelTimes(false);
+        for (const auto& [kernel, ms] : cl_.takeKernelTimes()) t.gpu += ms;
+        return t;
     };
-    for (int i = -1; i < repeats; ++i) { // one warm-up each: the kernel's and the pass's builds
-        const double a = frame(clearance_), b = frame(std::nullopt);
+    for (int i = -kWarmupFrames; i < repeats; ++i) { // warm-ups: the kernel's and the pass's builds
+        const GlTime a = frame(clearance_), b = frame(std::nullopt);
         if (i >= 0) with.push_back(a), without.push_back(b);
     }
     surface_.setShadowLight(clearance_, lightOptions_);
     surface_.run(field_.buffer());
-    return median(with) - median(without);
+    const GlTime a = median(with), b = median(without);
+    return {a.gpu - b.gpu, a.wall - b.wall};
 }
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
@@ -283,23 +291,27 @@ FetchCounts AccuracyProbe::countFetches(Technique technique, const AccuracyConfi
             .lanes32 = lockstepFetches(trace, width, height, 8, 4)};
 }
 
-double AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats) {
-    RenderTarget target(width, height);
+GlTime AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats,
+                               int warmups) {
+    if (!timedTarget_ || timedTarget_->width() != width || timedTarget_->height() != height)
+        timedTarget_ = std::make_unique<RenderTarget>(width, height);
+    RenderTarget& target = *timedTarget_;
     const Camera camera = timedCamera(config, width, height);
     const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
     useClearance(config);
-    std::vector<double> times;
-    for (int i = -1; i < repeats; ++i) { // one warm-up draw builds the shader
+    std::vector<GlTime> times;
+    for (int i = -std::max(warmups, 1); i < repeats; ++i) { // the first draw builds the shader
         target.bind();
-        const double ms = timeMs([&] {
+        const GlTime t = timeGl(timer_, "draw total", [&] {
             target.clear();
             renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), material, camera, light,
                            {.technique = technique, .beamStart = config.beamStart});
         });
-        if (i >= 0) times.push_back(ms);
+        if (i >= 0) times.push_back(t);
     }
+    timer_.clearSamples();
     lastFrame_ = target.readColor();
     return median(times);
 }

@@ -81,6 +81,18 @@ public:
     /// Enqueues `kernel` over `global` work-items (and `local`, when given) on the queue, and
     /// counts the launch: every HFX kernel goes through here (VkFFT's own do not).
     void enqueue(const cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local = cl::NullRange);
+    /// Device time of the kernels launched while recording (CL event profiling; the queue is made
+    /// with CL_QUEUE_PROFILING_ENABLE): enqueue() keeps each launch's event, and work enqueued
+    /// otherwise (VkFFT's) can add its own span with recordSpan().
+    void recordKernelTimes(bool on) { recording_ = on; }
+    bool recordingKernelTimes() const { return recording_; }
+    /// Adds `name`'s device time as the span from the end of `before` to the end of `after`
+    /// (two markers around work of the caller's), when recording.
+    void recordSpan(const std::string& name, const cl::Event& before, const cl::Event& after);
+    /// Waits for the recorded launches and returns their device milliseconds summed per kernel
+    /// function name (and recorded span), forgetting them.
+    std::map<std::string, double> takeKernelTimes();
+
     /// Launches so far through enqueue(), all kernels or those of one function name ("sobel4").
     std::uint64_t launches() const { return launches_; }
     std::uint64_t launches(std::string_view kernelName) const;
@@ -106,6 +118,12 @@ private:
     std::string cacheKeyPrefix_; ///< platform, device and driver identity
     ClProgramStats stats_;
     std::uint64_t launches_ = 0;
+    bool recording_ = false;
+    struct Recorded {
+        std::string name;
+        cl::Event begin, end; ///< a launch: begin is empty and end its own event; a span: two markers
+    };
+    std::vector<Recorded> recorded_;
     /// Per kernel object (held, so its handle is never reused by another), named on demand.
     struct Launches {
         cl::Kernel kernel;

@@ -14,6 +14,7 @@
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/Timing.h"
 
 #include <memory>
 #include <vector>
@@ -98,15 +99,20 @@ public:
 
     AccuracyResult measure(Technique technique, const AccuracyConfig& config);
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
-    /// config's angle (the plane fills the view; clear and glFinish included).
-    double timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats);
+    /// config's angle (the plane fills the view), after `warmups` draws not counted: GPU time
+    /// (timer queries around the clear and the draw, its beam start and cells included) and the
+    /// wall clock around glFinish.
+    GlTime timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats,
+                    int warmups = 1);
     /// The height and bound fetches per pixel of that same draw (timeDraw's view and size),
     /// counted in the shader: what the timed pixels fetch, which measure()'s far view does not show.
     FetchCounts countFetches(Technique technique, const AccuracyConfig& config, int width, int height);
     /// Median milliseconds that building the clearance map and drawing the texel shadows for
-    /// config's light, where config asks for them, add to a whole frame of the surface (compute,
-    /// upload and GL's work; frames with and without, interleaved). 0 where it asks for neither.
-    double timeClearance(const AccuracyConfig& config, int repeats);
+    /// config's light, where config asks for them, add to a whole frame of the surface (frames
+    /// with and without, interleaved): GPU time of the map's kernels (CL event profiling) and of
+    /// the GL passes (timer queries), and the wall clock of the whole frame. 0 where it asks for
+    /// neither.
+    GlTime timeClearance(const AccuracyConfig& config, int repeats);
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
     const HeightFieldTracer& exact() const { return exact_; }
@@ -121,11 +127,14 @@ private:
     StaticField field_;
     SurfacePipeline surface_;
     SurfaceRenderer renderer_;
-    std::unique_ptr<RenderTarget> target_;
+    std::unique_ptr<RenderTarget> target_;      ///< measure()'s, with the trace output
+    std::unique_ptr<RenderTarget> timedTarget_; ///< timeDraw()'s
     Image lastFrame_;
     Mesh plane_, timedPlane_;
     std::optional<ClearanceLight> clearance_; ///< the light the surface's map or texel shadows are for
     ShadowLightOptions lightOptions_;         ///< ... and which of them it has
+    ClContext& cl_;
+    GpuTimer timer_;
 };
 
 } // namespace hfx
