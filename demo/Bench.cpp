@@ -241,7 +241,7 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                     "compute+transfer share |\n|---|---|---|---|---|---|---|---|---|---|\n");
         for (int size : {512, 1024})
             for (SurfaceFormat format : kSurfaceFormats)
-                for (TransferPath path : {TransferPath::Map, TransferPath::PixelBuffer}) {
+                for (TransferPath path : availableTransferPaths(cl)) {
                     SceneOptions o = options;
                     o.fieldSize = size;
                     o.technique = Technique::ParallaxOcclusion;

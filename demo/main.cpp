@@ -242,9 +242,12 @@ int main(int argc, char** argv) {
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
         ->check(CLI::IsMember({"float32", "float16", "unorm8"}))->capture_default_str();
     app.add_option("--transfer", o.transfer,
-                   "how the surface reaches GL: map (from the mapped device buffer), pixel-buffer (the device "
-                   "writes a GL pixel buffer) or auto (pixel-buffer where the device shares host memory)")
-        ->check(CLI::IsMember({"auto", "map", "pixel-buffer"}))->capture_default_str();
+                   "how the surface reaches GL: map (from the mapped device buffer), pixel-buffer (the device writes a "
+                   "GL pixel buffer), staged (a read into pinned memory, copied into a fenced pixel-buffer ring: for a "
+                   "discrete GPU), gl-sharing (cl_khr_gl_sharing: the device copies into shared GL buffers; a GLX window "
+                   "on NVIDIA) or auto (gl-sharing where the contexts share, pixel-buffer where the device shares host "
+                   "memory, else staged)")
+        ->check(CLI::IsMember({"auto", "map", "pixel-buffer", "staged", "gl-sharing"}))->capture_default_str();
     app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")
         ->check(CLI::IsMember({"fft", "sine"}))->capture_default_str();
     app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(kFinite)->check(CLI::Range(0.5, 100.0))->capture_default_str();

@@ -4,7 +4,9 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/PixelBuffer.h"
+#include "hfx/effects/DecalWallEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
+#include "hfx/effects/SurfaceRenderer.h"
 
 #include <cmath>
 #include <cstdint>
@@ -15,44 +17,119 @@ namespace {
 
 class Transfer : public DeviceTest {};
 
-TEST_F(Transfer, PixelBufferAndMapPathsGiveTheSameTexturesInEveryFormat) {
+/// Every texture a surface has, as GL holds it: the surface's level 0, and where they exist the
+/// pyramid, the clearance map, the albedo and the shading channels (bytes, as floats).
+std::vector<float> allTextures(const SurfaceTextures& t) {
+    std::vector<float> out = readSurface(t);
+    auto append = [&](GLuint texture, GLenum format, GLenum type, size_t values) {
+        if (!texture) return;
+        std::vector<float> v(values);
+        if (type == GL_FLOAT) {
+            glGetTextureImage(texture, 0, format, type, GLsizei(values * sizeof(float)), v.data());
+        } else {
+            std::vector<unsigned char> bytes(values);
+            glGetTextureImage(texture, 0, format, type, GLsizei(values), bytes.data());
+            for (size_t i = 0; i < values; ++i) v[i] = bytes[i];
+        }
+        out.insert(out.end(), v.begin(), v.end());
+    };
+    const size_t texels = size_t(t.config().width) * t.config().height;
+    if (t.pyramid()) {
+        GLint w = 0, h = 0;
+        glGetTextureLevelParameteriv(t.pyramid(), 0, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(t.pyramid(), 0, GL_TEXTURE_HEIGHT, &h);
+        append(t.pyramid(), GL_RG, GL_FLOAT, size_t(w) * size_t(h) * 2);
+    }
+    append(t.clearance(), GL_RED, GL_FLOAT, texels);
+    append(t.albedo(), GL_RGBA, GL_UNSIGNED_BYTE, texels * 4);
+    append(t.channels(), GL_RGBA, GL_UNSIGNED_BYTE, texels * 4);
+    return out;
+}
+
+// Every path this device can take (GlSharing only where the context shares GL) delivers the same
+// textures, bit for bit, in every format: the sine waves (texels alone) and the decal wall (texels,
+// pyramid, clearance map, albedo and shading channels, all five streams), frame after frame,
+// sequential and overlapped.
+TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
+    const std::vector<TransferPath> paths = availableTransferPaths(cl());
+    ASSERT_GE(paths.size(), 3u);
+    if (!cl().sharesGl()) std::printf("gl-sharing: not offered here (%s, no GL sharing)\n", cl().description().c_str());
     for (SurfaceFormat format : kSurfaceFormats) {
-        SineWavesEffect mapped(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::Map}});
-        SineWavesEffect pixels(cl(), {.waves = {.size = 64}, .surface = {.format = format, .transfer = TransferPath::PixelBuffer}});
-        EXPECT_EQ(mapped.transferPath(), TransferPath::Map);
-        EXPECT_EQ(pixels.transferPath(), TransferPath::PixelBuffer);
-        for (int frame = 0; frame < 3; ++frame) {
-            mapped.update(0.1);
-            pixels.update(0.1);
-            ASSERT_EQ(readSurface(pixels.textures()), readSurface(mapped.textures()))
-                << surfaceFormatName(format) << ", sequential frame " << frame;
+        std::vector<std::unique_ptr<Effect>> effects;
+        for (TransferPath path : paths)
+            effects.push_back(std::make_unique<SineWavesEffect>(
+                cl(), SineWavesConfig{.waves = {.size = 64}, .surface = {.format = format, .transfer = path}}));
+        for (TransferPath path : paths) {
+            const bool pyramid = format != SurfaceFormat::Unorm8;
+            auto wall = std::make_unique<DecalWallEffect>(
+                cl(), DecalWallConfig{.bricks = {.size = 64}, .surface = {.pyramid = pyramid, .format = format, .transfer = path}});
+            if (pyramid) {
+                DirectionalLight light;
+                light.direction = {0.6f, 0.55f, 0.3f};
+                // The clearance map is a stream of its own: every path moves it too.
+                wall->setShadowLight(flatSurfaceLight(SurfaceFrame::ofPlane({}), light, wall->material()),
+                                     {.clearanceMap = true});
+            }
+            wall->shoot(0.4, 0.6);
+            effects.push_back(std::move(wall));
         }
-        // Overlapped: the next field's kernels run while this one is read.
+        const size_t n = paths.size();
+        auto compare = [&](const char* how, int frame) {
+            for (size_t user = 0; user < 2; ++user) {
+                const std::vector<float> reference = allTextures(effects[user * n]->textures());
+                for (size_t p = 1; p < n; ++p) {
+                    EXPECT_EQ(effects[user * n + p]->transferPath(), paths[p]);
+                    ASSERT_EQ(allTextures(effects[user * n + p]->textures()), reference)
+                        << (user ? "decal wall, " : "sine waves, ") << surfaceFormatName(format) << ", "
+                        << transferPathName(paths[p]) << " against " << transferPathName(paths[0]) << ", " << how
+                        << " frame " << frame;
+                }
+            }
+        };
         for (int frame = 0; frame < 3; ++frame) {
-            mapped.beginUpdate(0.1);
-            pixels.beginUpdate(0.1);
-            mapped.endUpdate();
-            pixels.endUpdate();
-            ASSERT_EQ(readSurface(pixels.textures()), readSurface(mapped.textures()))
-                << surfaceFormatName(format) << ", overlapped frame " << frame;
+            for (auto& e : effects) e->update(0.1);
+            compare("sequential", frame);
         }
-        // And the frames move: a path that uploaded a stale buffer would still match above.
-        const std::vector<float> before = readSurface(pixels.textures());
-        pixels.update(0.1);
-        EXPECT_NE(readSurface(pixels.textures()), before) << surfaceFormatName(format);
+        // Overlapped: the next field's kernels (and the staged reads) run while this one is read.
+        for (int frame = 0; frame < 3; ++frame) {
+            for (auto& e : effects) e->beginUpdate(0.1);
+            for (auto& e : effects) e->endUpdate();
+            compare("overlapped", frame);
+        }
+        // And the frames move (the waves by themselves, the wall when shot): a path that uploaded
+        // a stale buffer would still match above.
+        static_cast<DecalWallEffect&>(*effects.back()).shoot(0.7, 0.2);
+        for (size_t i = 0; i < effects.size(); i += n) {
+            const std::vector<float> before = allTextures(effects[i + n - 1]->textures());
+            effects[i + n - 1]->update(0.1);
+            EXPECT_NE(allTextures(effects[i + n - 1]->textures()), before) << surfaceFormatName(format);
+        }
     }
 }
 
-TEST_F(Transfer, AutoPicksThePixelBufferWhereTheDeviceSharesHostMemory) {
+TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
     const bool unified = cl().device().getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
-    EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Auto), unified ? TransferPath::PixelBuffer : TransferPath::Map);
+    EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Auto),
+              cl().sharesGl() ? TransferPath::GlSharing : unified ? TransferPath::PixelBuffer : TransferPath::Staged);
     EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Map), TransferPath::Map);
+    EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Staged), TransferPath::Staged);
     SineWavesEffect water(cl(), {.waves = {.size = 64}});
     EXPECT_NE(water.transferPath(), TransferPath::Auto);
     EXPECT_NE(water.transferDescription().find(transferPathName(water.transferPath())), std::string::npos)
         << water.transferDescription();
     EXPECT_EQ(parseTransferPath("pixel-buffer"), TransferPath::PixelBuffer);
-    EXPECT_NE(messageOf([] { parseTransferPath("dma"); }).find("known: auto, map, pixel-buffer"), std::string::npos);
+    EXPECT_EQ(parseTransferPath("staged"), TransferPath::Staged);
+    EXPECT_NE(messageOf([] { parseTransferPath("dma"); }).find("known: auto, map, pixel-buffer, staged, gl-sharing"),
+              std::string::npos);
+    // Sharing asked for where the context shares no GL: refused, saying why.
+    if (!cl().sharesGl()) {
+        const std::string m = messageOf([&] { chooseTransferPath(cl(), TransferPath::GlSharing); });
+        EXPECT_NE(m.find("cl_khr_gl_sharing"), std::string::npos) << m;
+        EXPECT_NE(messageOf([&] {
+                      SineWavesEffect(cl(), {.waves = {.size = 64}, .surface = {.transfer = TransferPath::GlSharing}});
+                  }).find("gl-sharing"),
+                  std::string::npos);
+    }
 }
 
 TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {

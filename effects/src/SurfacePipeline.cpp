@@ -1,5 +1,7 @@
 #include "hfx/effects/SurfacePipeline.h"
 
+#include "StreamTransfer.h"
+
 #include "hfx/core/Error.h"
 #include "hfx/core/GpuTimer.h"
 
@@ -77,9 +79,13 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
     if (config.options.format != SurfaceFormat::Float32)
         packer_ = std::make_unique<SurfacePacker>(cl, config.width, config.height, config.options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);
+    if (transfer_ == TransferPath::Staged || transfer_ == TransferPath::GlSharing)
+        streams_ = std::make_unique<StreamTransfer>(cl, transfer_);
 }
 
 SurfacePipeline::~SurfacePipeline() {
+    // The streams' own destructor waits for their copies; a pixel buffer's memory is GL's, which
+    // the device's kernels may still be writing.
     if (!pixels_) return; // device buffers of their own outlive their kernels by reference counts
     try {
         cl_.queue().finish();
@@ -155,6 +161,17 @@ void SurfacePipeline::submit(const cl::Buffer* albedo, const cl::Buffer* channel
     if (packer_) packer_->run(sobel_.output());
     if (albedo) albedo_ = *albedo;
     if (channels) channels_ = *channels;
+    if (streams_) {
+        // The copies towards GL go behind the frame's kernels now, and run while the host draws.
+        const size_t texels = size_t(config_.width) * config_.height;
+        const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
+        streams_->enqueue(StreamTransfer::Texels, source, texelBytes(config_.options.format) * texels);
+        if (pyramid_)
+            streams_->enqueue(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float));
+        if (builtFor_) streams_->enqueue(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float));
+        if (albedo_()) streams_->enqueue(StreamTransfer::Albedo, albedo_, 4 * texels);
+        if (channels_()) streams_->enqueue(StreamTransfer::Channels, channels_, 4 * texels);
+    }
     clGuard("SurfacePipeline::submit", [&] {
         cl_.queue().enqueueMarkerWithWaitList(nullptr, &submitted_);
         cl_.queue().flush(); // start now, not at the wait
@@ -188,6 +205,17 @@ void SurfacePipeline::finish() {
     const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
     const size_t bytes = texelBytes(config_.options.format) * texels;
     std::optional<GpuScope> upload(std::in_place, "upload");
+    if (streams_) streams_->arrive();
+    // Each stream from where its path left it: the staged or shared pixel buffer, or a mapping.
+    auto uploadStream = [&](StreamTransfer::Stream stream, const cl::Buffer& buffer, size_t size, const char* what,
+                            auto&& glUpload) {
+        if (streams_) {
+            glUpload(streams_->source(stream));
+            streams_->unbind();
+        } else {
+            mapAndUpload(cl_, buffer, size, what, glUpload);
+        }
+    };
     if (pixels_) {
         // Mapping a buffer over host memory waits for its writers and makes that memory current
         // (on a device sharing host memory it copies nothing); GL then reads it where it lies.
@@ -197,15 +225,16 @@ void SurfacePipeline::finish() {
             pixels_->uploadTexels(back);
         });
     } else {
-        mapAndUpload(cl_, source, bytes, "uploading the surface",
-                     [&](const void* mapped) { back.uploadTexels(mapped); });
+        uploadStream(StreamTransfer::Texels, source, bytes, "uploading the surface",
+                     [&](const void* from) { back.uploadTexels(from); });
     }
     if (pyramid_)
-        mapAndUpload(cl_, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float), "uploading the pyramid",
-                     [&](const void* mapped) { back.uploadPyramid(static_cast<const float*>(mapped)); });
+        uploadStream(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float),
+                     "uploading the pyramid",
+                     [&](const void* levels) { back.uploadPyramid(static_cast<const float*>(levels)); });
     if (builtFor_)
-        mapAndUpload(cl_, clearance_->buffer(), texels * sizeof(float), "uploading the clearance map",
-                     [&](const void* mapped) { back.uploadClearance(static_cast<const float*>(mapped), *builtFor_); });
+        uploadStream(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float), "uploading the clearance map",
+                     [&](const void* map) { back.uploadClearance(static_cast<const float*>(map), *builtFor_); });
     else
         back.dropClearance();
     // The texel shadows: a GL pass over the heights, pyramid and map just uploaded.
@@ -218,11 +247,12 @@ void SurfacePipeline::finish() {
     }
     upload.emplace("upload");
     if (albedo_())
-        mapAndUpload(cl_, albedo_, 4 * texels, "uploading the albedo",
-                     [&](const void* mapped) { back.uploadAlbedo(static_cast<const unsigned char*>(mapped)); });
+        uploadStream(StreamTransfer::Albedo, albedo_, 4 * texels, "uploading the albedo",
+                     [&](const void* rgba) { back.uploadAlbedo(static_cast<const unsigned char*>(rgba)); });
     if (channels_())
-        mapAndUpload(cl_, channels_, 4 * texels, "uploading the shading channels",
-                     [&](const void* mapped) { back.uploadChannels(static_cast<const unsigned char*>(mapped)); });
+        uploadStream(StreamTransfer::Channels, channels_, 4 * texels, "uploading the shading channels",
+                     [&](const void* rgba) { back.uploadChannels(static_cast<const unsigned char*>(rgba)); });
+    if (streams_) streams_->uploaded();
     front_ = 1 - front_;
     times_.upload = nowMs() - computed;
 }

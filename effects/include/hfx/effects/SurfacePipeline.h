@@ -37,6 +37,8 @@
 
 namespace hfx {
 
+class StreamTransfer;
+
 /// How a surface is stored and moved; each effect's configuration holds one as `surface`.
 struct SurfaceOptions {
     bool mipmaps = true;
@@ -156,6 +158,7 @@ private:
     SurfacePipelineConfig config_;
     TransferPath transfer_;
     std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
+    std::unique_ptr<StreamTransfer> streams_; ///< the Staged and GlSharing paths' memory, else null
     SobelNormals sobel_;
     std::unique_ptr<BoundsPyramid> pyramid_;
     std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setShadowLight

@@ -1,33 +1,46 @@
 #pragma once
-// How a surface's texels travel from the compute device to GL (SurfacePipeline moves them):
-// - Map: maps the host-visible device buffer (no read into fresh memory) and uploads from the
-//   mapping;
+// How a surface's texels (and its pyramid, clearance map, albedo and shading channels) travel from
+// the compute device to GL (SurfacePipeline moves them):
+// - Map: maps the device buffer and uploads from the mapping (client memory): the plain path;
 // - PixelBuffer: the device's buffer lies over a persistently mapped GL pixel buffer's memory
 //   (CL_MEM_USE_HOST_PTR), so its kernels write the GL buffer itself and the upload reads it
-//   with no copy of HFX's; a fence keeps the next frame's kernels from writing it while GL reads.
-// (A third path, cl_khr_gl_sharing with no host copy at all, needs a device that offers it and a
-// GL context shared with it; the devices HFX is tested on have none.)
+//   with no copy of HFX's; a fence keeps the next frame's kernels from writing it while GL
+//   reads. For a device that shares host memory (a CPU device, an integrated GPU);
+// - Staged: a non-blocking read into pinned host memory (CL_MEM_ALLOC_HOST_PTR), copied into a
+//   persistently mapped, fenced two-slot GL pixel buffer, uploaded from there; the read overlaps
+//   the host's work until finish(). For a discrete GPU (a map of its memory moved 0.3 GB/s on an
+//   H200; pinned memory moves 10+);
+// - GlSharing: cl_khr_gl_sharing, the device copies into GL buffers it shares with the caller's
+//   context (ClContext::sharesGl(): NVIDIA offers it for GLX contexts, not EGL); no host copy.
+// (StreamTransfer.h in effects/src holds the last two.)
 //
 // Thread: any (chooseTransferPath asks the device).
 
 #include "hfx/compute/ClContext.h"
 
 #include <string_view>
+#include <vector>
 
 namespace hfx {
 
 enum class TransferPath {
-    Auto,        ///< PixelBuffer where the device shares host memory with the CPU, else Map
+    Auto,        ///< GlSharing where the context shares GL, PixelBuffer where the device shares host memory, else Staged
     Map,         ///< device buffer mapped, GL uploads from the mapping (client memory)
     PixelBuffer, ///< device writes a persistently mapped GL pixel buffer, GL uploads from it
+    Staged,      ///< non-blocking read into pinned memory, copied into a fenced GL pixel-buffer ring
+    GlSharing,   ///< the device copies into GL buffers shared through cl_khr_gl_sharing
 };
-/// "auto", "map", "pixel-buffer".
+/// "auto", "map", "pixel-buffer", "staged", "gl-sharing".
 const char* transferPathName(TransferPath path);
 /// The inverse of transferPathName; throws hfx::Error naming the known paths.
 TransferPath parseTransferPath(std::string_view name);
-/// The path `requested` resolves to on this device: Auto picks PixelBuffer when the device
-/// reports host-unified memory (CPU devices, integrated GPUs: the kernels' writes land in the GL
-/// buffer directly), else Map (a discrete GPU writing system memory over the bus would be slow).
+/// The path `requested` resolves to on this device: Auto picks GlSharing when the CL context
+/// shares the GL context (no host copy), else PixelBuffer when the device reports host-unified
+/// memory (CPU devices, integrated GPUs: the kernels' writes land in the GL buffer directly),
+/// else Staged (a discrete GPU: pinned memory at the bus's speed). Asking for GlSharing where the
+/// context shares none throws hfx::Error saying so.
 TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested);
+/// The paths this device can take (Auto left out): GlSharing only where the context shares GL.
+std::vector<TransferPath> availableTransferPaths(const ClContext& cl);
 
 } // namespace hfx

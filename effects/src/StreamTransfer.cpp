@@ -1,0 +1,155 @@
+#include "StreamTransfer.h"
+
+#include "hfx/core/Error.h"
+
+#include <cstring>
+
+namespace hfx {
+namespace {
+
+constexpr GLbitfield kMapping = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+constexpr size_t kAlignment = 256; // GL_PIXEL_UNPACK_BUFFER offsets, and the cache lines under them
+
+size_t aligned(size_t bytes) { return (bytes + kAlignment - 1) / kAlignment * kAlignment; }
+
+const char* streamName(int stream) {
+    static const char* const kNames[] = {"texels", "pyramid", "clearance map", "albedo", "shading channels"};
+    return kNames[stream];
+}
+
+} // namespace
+
+StreamTransfer::StreamTransfer(ClContext& cl, TransferPath path) : cl_(cl), path_(path) {
+    if (path != TransferPath::Staged && path != TransferPath::GlSharing)
+        throw Error(str("StreamTransfer: the ", transferPathName(path), " path is not one of its two"));
+    if (path == TransferPath::GlSharing && !cl.sharesGl())
+        throw Error(str("the gl-sharing transfer path needs an OpenCL context made with the GL context "
+                        "(cl_khr_gl_sharing for it: ClContextConfig::glShare); ",
+                        cl.description(), " does not share this one"));
+}
+
+StreamTransfer::~StreamTransfer() {
+    try {
+        cl_.queue().finish(); // reads into pinned memory, copies into shared buffers
+    } catch (...) {
+        // Destructors never throw; a failed finish leaves nothing running to wait for.
+    }
+    for (GLsync& f : fences_)
+        if (f) glDeleteSync(f);
+    for (StreamMemory& m : streams_) {
+        if (m.ringMemory && m.ring.id()) glUnmapNamedBuffer(m.ring.id());
+        if (m.pinnedMemory) {
+            try {
+                cl_.queue().enqueueUnmapMemObject(m.pinned, m.pinnedMemory);
+                cl_.queue().finish();
+            } catch (...) {
+            }
+        }
+    }
+}
+
+void StreamTransfer::allocate(StreamMemory& m, size_t bytes) {
+    m.bytes = bytes;
+    if (path_ == TransferPath::Staged) {
+        clGuard("allocating pinned host memory for the transfer", [&] {
+            m.pinned = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, bytes);
+            m.pinnedMemory =
+                cl_.queue().enqueueMapBuffer(m.pinned, CL_TRUE, CL_MAP_READ | CL_MAP_WRITE, 0, bytes);
+        });
+        std::memset(m.pinnedMemory, 0, bytes); // the pages touched once, now, not in a frame
+        m.slotStride = aligned(bytes);
+        m.ring = GlBuffer::create();
+        HFX_GL_CHECK(glNamedBufferStorage(m.ring.id(), GLsizeiptr(2 * m.slotStride), nullptr, kMapping));
+        m.ringMemory =
+            static_cast<unsigned char*>(glMapNamedBufferRange(m.ring.id(), 0, GLsizeiptr(2 * m.slotStride), kMapping));
+        if (!m.ringMemory)
+            throw Error(str("the staged transfer could not map a ", 2 * m.slotStride,
+                            "-byte pixel buffer persistently (GL error 0x", std::hex, glGetError(), ")"));
+        std::memset(m.ringMemory, 0, 2 * m.slotStride);
+    } else {
+        for (Slot& s : m.slots) {
+            s.gl = GlBuffer::create();
+            HFX_GL_CHECK(glNamedBufferStorage(s.gl.id(), GLsizeiptr(bytes), nullptr, 0));
+            glFinish(); // the buffer exists for GL before CL takes it
+            clGuard("sharing a GL buffer with OpenCL (clCreateFromGLBuffer)",
+                    [&] { s.shared = cl::BufferGL(cl_.context(), CL_MEM_WRITE_ONLY, s.gl.id()); });
+        }
+    }
+}
+
+void StreamTransfer::waitForGl(int slot) {
+    GLsync& fence = fences_[size_t(slot)];
+    if (!fence) return;
+    // Flush once, then wait in slices: a lost context returns GL_WAIT_FAILED rather than hanging.
+    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
+    for (;;) {
+        const GLenum r = glClientWaitSync(fence, flags, 100'000'000); // 100 ms
+        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) break;
+        if (r == GL_WAIT_FAILED) throw Error("the transfer's wait for GL to read its pixel buffer failed");
+        flags = 0;
+    }
+    glDeleteSync(fence);
+    fence = nullptr;
+}
+
+void StreamTransfer::enqueue(Stream stream, const cl::Buffer& source, size_t bytes) {
+    StreamMemory& m = streams_[stream];
+    if (m.bytes == 0) allocate(m, bytes);
+    if (bytes > m.bytes)
+        throw Error(str("StreamTransfer: the ", streamName(stream), " grew from ", m.bytes, " to ", bytes, " bytes"));
+    cl::CommandQueue& q = cl_.queue();
+    if (path_ == TransferPath::Staged) {
+        // The pinned memory is free: the last frame's arrive() copied it out before this submit.
+        clGuard("reading the surface into pinned memory",
+                [&] { q.enqueueReadBuffer(source, CL_FALSE, 0, bytes, m.pinnedMemory); });
+    } else {
+        // GL read this slot's buffers two frames ago: the extension wants that finished first.
+        if (acquired_.empty()) waitForGl(slot_);
+        const std::vector<cl::Memory> objects{m.slots[size_t(slot_)].shared};
+        clGuard("acquiring a shared GL buffer", [&] { q.enqueueAcquireGLObjects(&objects); });
+        acquired_.push_back(objects.front());
+        clGuard("copying the surface into the shared GL buffer",
+                [&] { q.enqueueCopyBuffer(source, m.slots[size_t(slot_)].shared, 0, 0, bytes); });
+    }
+    m.enqueued = true;
+}
+
+void StreamTransfer::arrive() {
+    if (path_ == TransferPath::GlSharing) {
+        if (!acquired_.empty()) {
+            cl::Event released;
+            clGuard("releasing the shared GL buffers", [&] {
+                cl_.queue().enqueueReleaseGLObjects(&acquired_, nullptr, &released);
+                released.wait(); // GL may read them only once the device is done with them
+            });
+            acquired_.clear();
+        }
+        return;
+    }
+    waitForGl(slot_); // GL's reads of this slot, two frames ago
+    for (StreamMemory& m : streams_)
+        if (m.enqueued) std::memcpy(m.ringMemory + size_t(slot_) * m.slotStride, m.pinnedMemory, m.bytes);
+}
+
+const void* StreamTransfer::source(Stream stream) {
+    StreamMemory& m = streams_[stream];
+    HFX_CHECK(m.enqueued);
+    if (path_ == TransferPath::Staged) {
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, m.ring.id());
+        // With an unpack buffer bound, GL reads the pointer as an offset into it.
+        return reinterpret_cast<const void*>(size_t(slot_) * m.slotStride);
+    }
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, m.slots[size_t(slot_)].gl.id());
+    return nullptr;
+}
+
+void StreamTransfer::unbind() { glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0); }
+
+void StreamTransfer::uploaded() {
+    if (fences_[size_t(slot_)]) glDeleteSync(fences_[size_t(slot_)]);
+    fences_[size_t(slot_)] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    for (StreamMemory& m : streams_) m.enqueued = false;
+    slot_ = 1 - slot_;
+}
+
+} // namespace hfx
