@@ -36,8 +36,9 @@ protected:
     }
     AccuracyResult run(AccuracyProbe& probe, Technique t, const AccuracyConfig& config, const char* map) {
         const AccuracyResult r = probe.measure(t, config);
-        std::printf("[%-12s %-8s %2.0f deg] %5zu px  mean %.4f  p95 %.4f  >4 texels %.3f%%  fetches %.1f", map,
-                    techniqueName(t), config.angleDegrees, r.pixels, r.mean, r.p95, 100.0 * r.over4, r.fetches);
+        std::printf("[%-12s %-8s %2.0f deg] %5zu px  mean %.4f  p95 %.4f  >4 texels %.3f%% (centre rays %.3f%%)  fetches %.1f",
+                    map, techniqueName(t), config.angleDegrees, r.pixels, r.mean, r.p95, 100.0 * r.over4,
+                    100.0 * r.over4CentreRay, r.fetches);
         if (config.shadows) std::printf("  shadow %.2f%% of %zu", 100.0 * r.shadowAgreement, r.shadowPixels);
         std::printf("\n");
         return r;
@@ -90,6 +91,42 @@ TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
             }
         }
     }
+}
+
+// Why NVIDIA's GL put 0.06-0.24% of the probe's pixels more than 4 texels off at 80-85 degrees
+// where llvmpipe put none, with the tracer exact on its own rays there: a rasteriser interpolates
+// a fragment's inputs (texcoords, position, tangents) on its fixed-point subpixel grid, so the
+// fragment traces the ray through a point up to kSubpixelTolerance (1/256 px) from its centre,
+// and at grazing views such a ray can pass a peak the centre's ray touches, or touch one it
+// passes. The same draw moved by a fraction of that grid here shows the same misses against the
+// centres' rays (0.03-0.30%), and none against the rays within the tolerance, the bound every
+// accuracy figure holds the tracers to (AccuracyProbe::measure); moved by a quarter pixel, far
+// beyond any rasteriser's rounding, the bound no longer holds.
+TEST_F(Techniques, TheExactTracerIsExactToTheRasterisersSubpixelPrecision) {
+    const glm::vec3 light = accuracyLight(60.0f);
+    double centreMisses = 0.0, beyondTolerance = 0.0;
+    for (const AccuracyMap& map : issueMapsAndBlocks()) {
+        const char* name = map.name.c_str();
+        AccuracyProbe probe(cl(), map.heights, kField, 0.1f);
+        for (double angle : {80.0, 85.0}) {
+            for (glm::dvec2 jitter : {glm::dvec2(0.5, 0.5), glm::dvec2(-0.5, 0.35), glm::dvec2(0.3, -0.9)}) {
+                jitter *= kSubpixelTolerance;
+                const AccuracyResult r = probe.measure(
+                    Technique::Hierarchical, {.angleDegrees = angle, .shadows = true, .light = light, .jitterPixels = jitter});
+                std::printf("[%-12s %2.0f deg, moved (%+.4f, %+.4f) px] > 4 texels: %.3f%% of the centres' rays, %.3f%% "
+                            "within the tolerance\n",
+                            name, angle, jitter.x, jitter.y, 100.0 * r.over4CentreRay, 100.0 * r.over4);
+                EXPECT_EQ(r.over4, 0.0) << name << " at " << angle;
+                EXPECT_LT(r.mean, 0.05) << name << " at " << angle;
+                EXPECT_GE(r.shadowAgreement, 0.995) << name << " at " << angle;
+                centreMisses += r.over4CentreRay;
+            }
+            const AccuracyResult far = probe.measure(Technique::Hierarchical, {.angleDegrees = angle, .jitterPixels = {0.25, 0.25}});
+            beyondTolerance += far.over4;
+        }
+    }
+    EXPECT_GT(centreMisses, 0.0) << "moved within the grid, no centre's ray missed: the mechanism is not shown";
+    EXPECT_GT(beyondTolerance, 0.0) << "moved a quarter pixel, every miss was still explained: the bound cannot fail";
 }
 
 TEST_F(Techniques, TheBeamStartChangesNoHitAndShortensTheViewWalkAtGrazingAngles) {

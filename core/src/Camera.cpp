@@ -11,7 +11,10 @@ namespace hfx {
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
 glm::mat4 Camera::projection() const {
-    return glm::perspective(fovY, aspect, nearPlane, farPlane);
+    const glm::mat4 p = glm::perspective(fovY, aspect, nearPlane, farPlane);
+    if (jitter == glm::vec2(0.0f)) return p;
+    // x' = x + jitter.x * w in clip space: the image moves by jitter in NDC.
+    return glm::translate(glm::mat4(1.0f), glm::vec3(jitter, 0.0f)) * p;
 }
 
 Ray Camera::rayThroughPixel(double x, double y, int width, int height) const {

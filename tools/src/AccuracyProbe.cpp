@@ -85,7 +85,12 @@ Camera accuracyCamera(double angleDegrees, float distance, float aspect) {
 
 bool planePixelRay(const Camera& camera, float planeSize, int x, int y, int width, int height, glm::dvec2& uv0,
                    glm::dvec3& toEye) {
-    const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, width, height);
+    return planePointRay(camera, planeSize, x + 0.5, y + 0.5, width, height, uv0, toEye);
+}
+
+bool planePointRay(const Camera& camera, float planeSize, double px, double py, int width, int height, glm::dvec2& uv0,
+                   glm::dvec3& toEye) {
+    const Ray ray = camera.rayThroughPixel(px, py, width, height);
     if (ray.direction.y >= 0) return false;
     const double t = -ray.origin.y / ray.direction.y;
     const glm::dvec3 p = ray.origin + t * ray.direction;
@@ -159,7 +164,9 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     useClearance(config);
     target_->bind();
     target_->clear();
-    renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, camera, light,
+    Camera drawn = camera;
+    drawn.jitter = glm::vec2(2.0 * config.jitterPixels / double(n));
+    renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, drawn, light,
                    {.technique = technique, .traceOutput = true, .beamStart = config.beamStart});
     const std::vector<glm::vec4> trace = target_->readTrace();
 
@@ -194,7 +201,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     AccuracyResult r;
     std::vector<double> errors, pixelErrors;
     double depthSum = 0.0, fetchSum = 0.0;
-    size_t agree = 0;
+    size_t agree = 0, over4CentreRay = 0;
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
             const glm::vec4 t = trace[size_t(y) * n + x];
@@ -206,41 +213,65 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
             if (!planePixelRay(camera, kPlaneSize, x, y, n, n, uv0, toEye)) continue;
             const auto hit = exact_.traceView(uv0, toEye, config.depthScale);
             if (!hit) continue;
-            const double error = glm::length(glm::dvec2(t.x, t.y) - hit->uv) * size_;
+            // The traced point against an exact hit: texels apart, and pixels apart on the screen
+            // (the texcoord error moved to the exact hit's height and projected, i.e. how many
+            // pixels the texture's content is displaced; the traced point itself lies on the
+            // pixel's ray, so projecting it would hide a tracer's error).
+            auto texelError = [&](const HeightFieldHit& h) { return glm::length(glm::dvec2(t.x, t.y) - h.uv) * size_; };
+            auto pixelError = [&](const HeightFieldHit& h) {
+                return glm::length(toPixel(glm::dvec3(t.x, t.y, h.height)) - toPixel(glm::dvec3(h.uv, h.height)));
+            };
+            HeightFieldHit best = *hit;
+            double error = texelError(best), screenError = pixelError(best);
+            over4CentreRay += error > 4.0;
+            if (error > 1.0 || screenError > 0.5) {
+                // A rasteriser interpolates the fragment's inputs on its subpixel grid: at grazing
+                // views a ray within it can pass a peak the centre's ray touches (kSubpixelTolerance).
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        glm::dvec2 uvN;
+                        glm::dvec3 toEyeN;
+                        if ((dx == 0 && dy == 0) ||
+                            !planePointRay(camera, kPlaneSize, x + 0.5 + dx * kSubpixelTolerance,
+                                           y + 0.5 + dy * kSubpixelTolerance, n, n, uvN, toEyeN))
+                            continue;
+                        const auto near = exact_.traceView(uvN, toEyeN, config.depthScale);
+                        if (near && texelError(*near) < error) {
+                            best = *near;
+                            error = texelError(best);
+                            screenError = pixelError(best);
+                        }
+                    }
+            }
             errors.push_back(error);
-            // The same error on the screen: the texcoord error moved to the exact hit's height and
-            // projected, i.e. how many pixels the texture's content is displaced. (The traced
-            // point itself lies on the pixel's ray, so projecting it would hide a tracer's error.)
-            const glm::dvec2 traced = toPixel(glm::dvec3(t.x, t.y, hit->height));
-            const glm::dvec2 truth = toPixel(glm::dvec3(hit->uv, hit->height));
-            pixelErrors.push_back(glm::length(traced - truth));
-            depthSum += std::abs(double(t.z) - hit->t);
+            pixelErrors.push_back(screenError);
+            depthSum += std::abs(double(t.z) - best.t);
             const double fetches = std::floor(double(t.w));
             fetchSum += fetches;
             if (config.shadows) {
                 // Compare where the exact state is stable around the point and the surface
                 // faces the light (elsewhere shading is dark whatever the shadow says).
-                const double h = hit->height, e = 1e-3;
+                const double h = best.height, e = 1e-3;
                 const glm::dvec3 normal = glm::normalize(glm::dvec3(
-                    -(exact_.heightAt(hit->uv + glm::dvec2(e, 0)) - exact_.heightAt(hit->uv - glm::dvec2(e, 0))) /
+                    -(exact_.heightAt(best.uv + glm::dvec2(e, 0)) - exact_.heightAt(best.uv - glm::dvec2(e, 0))) /
                         (2 * e) * config.depthScale,
-                    -(exact_.heightAt(hit->uv + glm::dvec2(0, e)) - exact_.heightAt(hit->uv - glm::dvec2(0, e))) /
+                    -(exact_.heightAt(best.uv + glm::dvec2(0, e)) - exact_.heightAt(best.uv - glm::dvec2(0, e))) /
                         (2 * e) * config.depthScale,
                     1.0));
                 const glm::dvec3 lightTS = glm::normalize(glm::dvec3(l.x, -l.z, l.y));
                 if (glm::dot(normal, lightTS) < 0.2) continue;
-                const bool state = shadowed(hit->uv, h);
+                const bool state = shadowed(best.uv, h);
                 const double band = config.penumbraTexels / size_;
                 bool stable = true;
                 for (const glm::dvec2 d : {glm::dvec2(band, 0), glm::dvec2(-band, 0), glm::dvec2(0, band), glm::dvec2(0, -band)}) {
-                    const glm::dvec2 q = hit->uv + d;
+                    const glm::dvec2 q = best.uv + d;
                     if (shadowed(q, exact_.heightAt(q)) != state) {
                         stable = false;
                         break;
                     }
                 }
                 if (!stable) continue;
-                if (!state && inPenumbra(hit->uv, h)) {
+                if (!state && inPenumbra(best.uv, h)) {
                     ++r.penumbraPixels;
                     continue;
                 }
@@ -259,6 +290,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
         r.meanPixels = pixels.mean;
         r.p95Pixels = pixels.p95;
         r.overPixel = pixels.over;
+        r.over4CentreRay = double(over4CentreRay) / double(errors.size());
         r.depthMean = depthSum / errors.size();
         r.fetches = fetchSum / errors.size();
     }

@@ -4,6 +4,7 @@
 // Owns nothing (a value type). Thread: any; no GL calls.
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <span>
@@ -23,6 +24,10 @@ struct Camera {
     float aspect = 16.0f / 9.0f;
     float nearPlane = 0.01f;
     float farPlane = 100.0f;
+    /// Shifts the image by this much in normalised device coordinates (2 / width per pixel): a
+    /// subpixel jitter, as temporal anti-aliasing uses; the accuracy tests move a render by a
+    /// fraction of the rasteriser's subpixel grid with it.
+    glm::vec2 jitter{0.0f};
 
     glm::mat4 view() const;
     glm::mat4 projection() const;

@@ -30,6 +30,17 @@ Camera accuracyCamera(double angleDegrees, float distance = 8.0f, float aspect =
 /// misses the plane.
 bool planePixelRay(const Camera& camera, float planeSize, int x, int y, int width, int height, glm::dvec2& uv0,
                    glm::dvec3& toEye);
+/// The same through the point (px, py) of the image, in pixels from its bottom-left corner (a
+/// pixel's centre is x + 0.5).
+bool planePointRay(const Camera& camera, float planeSize, double px, double py, int width, int height, glm::dvec2& uv0,
+                   glm::dvec3& toEye);
+
+/// A GPU rasteriser interpolates a fragment's inputs on a fixed-point grid of the pixel (GL asks
+/// for at least 4 subpixel bits; NVIDIA and llvmpipe use 8): the ray a fragment traces is the
+/// ray through a point within this many pixels of its centre, not the centre's own. At grazing
+/// views a neighbouring ray can pass a peak the centre's ray touches (a jump of the exact hit by
+/// many texels), so the tracers' exactness is stated against every ray within it.
+constexpr double kSubpixelTolerance = 1.0 / 256.0;
 
 struct AccuracyConfig {
     double angleDegrees = 45.0;  ///< view angle from the plane's normal
@@ -58,6 +69,10 @@ struct AccuracyConfig {
     /// penumbra band: the light ray is clear, but the cone edge (the ray lowered by
     /// 1 / shadowSharpness of its climb, from a texel away) is not.
     double penumbraTexels = 1.5;
+    /// measure() draws its image moved by this many pixels (Camera::jitter) and compares with the
+    /// rays through the unmoved pixels' centres: a rasteriser rounding the fragments' inputs
+    /// within its subpixel grid, made on purpose (tests of kSubpixelTolerance's bound).
+    glm::dvec2 jitterPixels{0.0, 0.0};
 };
 
 /// Height and bound fetches per drawn pixel, the view's and the light walk's together: the mean,
@@ -71,6 +86,9 @@ struct AccuracyResult {
     size_t pixels = 0;              ///< pixels on the plane compared
     double mean = 0, p95 = 0, max = 0; ///< texcoord error in texels
     double over4 = 0;               ///< fraction of pixels more than 4 texels off
+    /// The same against the ray through the pixel's centre alone (the other figures take the
+    /// nearest of the rays within kSubpixelTolerance of it: see measure()).
+    double over4CentreRay = 0;
     /// The same error on the screen: the traced and the exact point on the relief, both projected,
     /// in pixels of the measured image (mean, 95th percentile, fraction more than a pixel off).
     double meanPixels = 0, p95Pixels = 0, overPixel = 0;
@@ -97,6 +115,11 @@ public:
     AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float normalDepth,
                   SurfaceFormat format = SurfaceFormat::Float32);
 
+    /// Renders the technique and compares every pixel's hit with the exact one. A pixel's error is
+    /// against the exact hit of the ray through its centre or, where that one is more than a
+    /// texel or half a pixel off, through any of 8 points kSubpixelTolerance around it, whichever
+    /// is nearest: the fragment traced one of those rays, and which one is the rasteriser's
+    /// rounding, not the tracer's (over4CentreRay keeps the centre's alone).
     AccuracyResult measure(Technique technique, const AccuracyConfig& config);
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
     /// config's angle (the plane fills the view), after `warmups` draws not counted: GPU time
