@@ -12,6 +12,8 @@
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/tools/Timing.h"
 
+#include <memory>
+
 namespace hfx::test {
 namespace {
 
@@ -35,14 +37,27 @@ void main() {
     return ShaderProgram(vertex, fragment);
 }
 
-class GpuTiming : public GlTest {};
+class GpuTiming : public GlTest {
+protected:
+    /// The loop program bound with an empty vertex array, drawing into a size x size target
+    /// (made here: the fixture's constructor runs before SetUp makes the context current).
+    void bindLoop(int size) {
+        program_ = loopProgram();
+        empty_ = GlVertexArray::create();
+        target_ = std::make_unique<RenderTarget>(size, size);
+        target_->bind();
+        program_.use();
+        glBindVertexArray(empty_.id());
+    }
+    ShaderProgram program_;
+    GlVertexArray empty_;
+    std::unique_ptr<RenderTarget> target_;
+};
 
 TEST_F(GpuTiming, APassOfKnownCostIsReportedInProportion) {
     GpuTimer timer;
     if (!timer.available()) GTEST_SKIP() << "no GL_TIMESTAMP counter on this driver";
-    const ShaderProgram program = loopProgram();
-    RenderTarget target(256, 256);
-    GlVertexArray empty = GlVertexArray::create();
+    bindLoop(256);
     GpuTimer::Activation on(timer);
     const int costs[] = {100, 200, 400};
     // Interleaved, after warm-up frames: each frame draws every cost once, under its own name.
@@ -52,11 +67,8 @@ TEST_F(GpuTiming, APassOfKnownCostIsReportedInProportion) {
             timer.clearSamples();
         }
         timer.beginFrame();
-        target.bind();
-        program.use();
-        glBindVertexArray(empty.id());
         for (int cost : costs) {
-            program.set("u_iterations", cost);
+            program_.set("u_iterations", cost);
             const GpuScope scope(str("loop ", cost));
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
@@ -81,13 +93,8 @@ TEST_F(GpuTiming, APassOfKnownCostIsReportedInProportion) {
 TEST_F(GpuTiming, ScopesRecordOnlyOnTheActiveTimerAndNestedPassesAddUp) {
     GpuTimer timer;
     if (!timer.available()) GTEST_SKIP() << "no GL_TIMESTAMP counter on this driver";
-    const ShaderProgram program = loopProgram();
-    RenderTarget target(128, 128);
-    GlVertexArray empty = GlVertexArray::create();
-    target.bind();
-    program.use();
-    glBindVertexArray(empty.id());
-    program.set("u_iterations", 200);
+    bindLoop(128);
+    program_.set("u_iterations", 200);
     {
         const GpuScope ignored("nobody listens"); // no active timer: nothing recorded
         glDrawArrays(GL_TRIANGLES, 0, 3);

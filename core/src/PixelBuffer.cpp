@@ -1,6 +1,7 @@
 #include "hfx/core/PixelBuffer.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GlFence.h"
 #include "hfx/core/SurfaceTextures.h"
 
 namespace hfx {
@@ -23,19 +24,7 @@ PixelBuffer::~PixelBuffer() {
     if (memory_ && buffer_.id()) glUnmapNamedBuffer(buffer_.id());
 }
 
-void PixelBuffer::waitUntilRead() {
-    if (!fence_) return;
-    // Flush once, then wait in slices: a lost context returns GL_WAIT_FAILED rather than hanging.
-    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
-    for (;;) {
-        const GLenum r = glClientWaitSync(fence_, flags, 100'000'000); // 100 ms
-        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) break;
-        if (r == GL_WAIT_FAILED) throw Error("PixelBuffer: waiting for GL to read the pixel buffer failed");
-        flags = 0;
-    }
-    glDeleteSync(fence_);
-    fence_ = nullptr;
-}
+void PixelBuffer::waitUntilRead() { waitAndDelete(fence_, "the pixel buffer"); }
 
 void PixelBuffer::uploadTexels(SurfaceTextures& textures) {
     const auto& c = textures.config();

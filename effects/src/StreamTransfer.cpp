@@ -1,6 +1,7 @@
 #include "StreamTransfer.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GlFence.h"
 
 #include <cstring>
 
@@ -77,20 +78,7 @@ void StreamTransfer::allocate(StreamMemory& m, size_t bytes) {
     }
 }
 
-void StreamTransfer::waitForGl(int slot) {
-    GLsync& fence = fences_[size_t(slot)];
-    if (!fence) return;
-    // Flush once, then wait in slices: a lost context returns GL_WAIT_FAILED rather than hanging.
-    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
-    for (;;) {
-        const GLenum r = glClientWaitSync(fence, flags, 100'000'000); // 100 ms
-        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) break;
-        if (r == GL_WAIT_FAILED) throw Error("the transfer's wait for GL to read its pixel buffer failed");
-        flags = 0;
-    }
-    glDeleteSync(fence);
-    fence = nullptr;
-}
+void StreamTransfer::waitForGl(int slot) { waitAndDelete(fences_[size_t(slot)], "the transfer's pixel buffer"); }
 
 void StreamTransfer::enqueue(Stream stream, const cl::Buffer& source, size_t bytes) {
     StreamMemory& m = streams_[stream];

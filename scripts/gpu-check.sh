@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# The checks a GPU machine is lent for, as one script: run it there from the folder that holds a
+# bundle (scripts/bundle.sh), with a folder for what it writes:
+#
+#   bash scripts/bundle.sh .gpu-bundle                       # here
+#   bash scripts/gpu-check.sh .gpu-bundle "$OUT" [SECONDS]   # there (SECONDS: the budget, 540 by default)
+#
+# It prints the card and the driver, then runs, each step within its share of the budget and
+# its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
+# GL tests, bench-tracers at 1280x720 and 3840x2160, and the frame bench (water, decals, planet,
+# the transfer table) at both sizes. A step that runs out of time is cut and says so; the rest go
+# on. Nothing here installs anything: the bundle carries what the binaries need.
+set -uo pipefail
+bundle=$(cd "${1:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}" && pwd)
+out=$(realpath -m "${2:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}")
+budget=${3:-540}
+mkdir -p "$out"
+start=$(date +%s)
+run=(bash "$bundle/run.sh")
+
+# step NAME SHARE CMD...: runs CMD with at most SHARE percent of the budget (and never past it).
+step() {
+    local name=$1 share=$2
+    shift 2
+    local left=$((budget - ($(date +%s) - start)))
+    local limit=$((budget * share / 100))
+    [ "$limit" -gt "$left" ] && limit=$left
+    if [ "$limit" -lt 10 ]; then
+        echo "== $name: skipped, the budget is spent" | tee -a "$out/summary.txt"
+        return
+    fi
+    echo "== $name (at most ${limit}s)"
+    local t0=$(date +%s)
+    timeout -k 5 "$limit" "$@" > "$out/$name.txt" 2>&1
+    local rc=$?
+    local verdict="rc $rc"
+    [ $rc -eq 124 ] && verdict="cut at ${limit}s"
+    echo "== $name: $verdict in $(($(date +%s) - t0))s" | tee -a "$out/summary.txt"
+    tail -n 25 "$out/$name.txt"
+}
+
+{
+    echo "bundle of $(cat "$bundle/commit" 2>/dev/null || echo '?'), $(date -u +%Y-%m-%dT%H:%MZ)"
+    nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv 2>/dev/null || echo "no nvidia-smi"
+    nproc
+} | tee "$out/summary.txt"
+
+step cl-tests-gpu 12 env HFX_CL_PLATFORM=NVIDIA "${run[@]}" hfx-tests-cl --gtest_brief=1
+step cl-tests-pocl 8 env HFX_CL_PLATFORM=portable "${run[@]}" hfx-tests-cl --gtest_brief=1 --gtest_filter='-*Soak*'
+step gl-tests 20 "${run[@]}" hfx-tests-gl --gtest_brief=1
+step bench-tracers-720p 12 "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
+step bench-tracers-4k 12 "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2160 --out "$out/4k"
+step bench-720p 18 "${run[@]}" hfx-demo bench --bench-only water,decals,planet,transfer --width 1280 --height 720
+step bench-4k 14 "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160
+echo "== done in $(($(date +%s) - start))s of ${budget}s" | tee -a "$out/summary.txt"
