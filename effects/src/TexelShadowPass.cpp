@@ -55,9 +55,8 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     const GpuScope scope("texel shadows");
     attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
-    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
-                      .wrap = wrapFlags(config.edges),
-                      .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
+    SurfaceUniforms u{.wrap = wrapFlags(config.edges), .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
+    describePyramid(u, textures);
     updateBlock(block_, 0, u);
     glDisable(GL_DEPTH_TEST);
     program->use();

@@ -1,94 +1,123 @@
 // Hierarchical tracer: the exact first hit of the ray with the bilinear surface, walking the
 // height-bounds pyramid (hfx_bounds: max and min per cell). The walk starts at the level-0 cell
 // where the ray comes down to the field's maximum (the pyramid's top texel: above it the ray meets
-// nothing; skipping that stretch by climbing levels cost hier 0-9% of its draw at 45-80 degrees,
-// docs/BENCHMARKS.md), or later where the caller knows no hit comes sooner (HfxRay.start: the
-// beam prepass's depth for the pixel's block, hfx_beam_depth below), so a ray that meets the
-// relief at once costs three fetches. A cell whose
-// maximum the ray passes above is skipped whole, and where its exit is also its parent's edge
-// the walk climbs a level; a cell the ray dips into is opened a level down. A level-0 cell
-// the ray dips into is solved: the bilinear patch between four samples (hfx_cell_samples) in closed
-// form (the height along the ray is quadratic in t); if the ray passes the patch the walk goes
-// on. Cell space: x = u * width - 0.5, so cell i spans the samples i and i + 1. Exact
-// self-shadows with a blocker-distance penumbra (hfx_shadow, below).
+// nothing), or later where the caller knows no hit comes sooner (HfxRay.start: the beam
+// prepass's depth for the pixel's block, hfx_beam_depth below), so a ray that meets the relief at
+// once costs three fetches. A cell whose maximum the ray passes above is skipped whole, and where
+// its exit is also its parent's edge the walk climbs a level; a cell the ray dips into is opened
+// a level down. A level-0 cell the ray dips into is solved: the bilinear patch between four
+// samples (hfx_cell_samples) in closed form (the height along the ray is quadratic in t); if the
+// ray passes the patch the walk goes on. Cell space: x = u * width - 0.5, so cell i spans the
+// samples i and i + 1. Exact self-shadows with a blocker-distance penumbra (hfx_shadow, below).
 //
 // A cell of any level the ray dips into and leaves below the cell's minimum surely holds the hit,
 // between where the ray comes down to its maximum and where it passes its minimum. Where that
 // span is no longer than ray.tolerance (the pixel budget; 0 on flat tops, whose hit is then
 // exact) the walk returns its start: never below the surface, at most the tolerance above the
-// hit, and no descent to level 0.
+// hit, and no descent to level 0. A ray that enters on a patch's top within the float rounding of
+// its position (HFX_TOUCH_ULPS: a plateau at h = 1 touched at the entry) has hit it.
+//
+// The walk (HfxWalk, written once for the view ray, the light ray and the beam prepass) is one
+// loop with one bound fetch per step, shaped for a GPU, where a warp waits for its slowest lane
+// and a uniform branch runs one side: integer cells in a frame where the ray moves towards +x and
+// +y (a back axis is mirrored: frame cell c is field cell ~c), relative to a multiple of the
+// field's size (coordinates stay small however far the texcoords run); per axis the depth where
+// the ray leaves its cell, from the cell's integer corner in one multiply-add (no floor, no drift
+// from adding steps); descending picks the child by comparing the entry with the middle
+// boundary, climbing halves the cell. The patch solve is the rare branch inside the loop.
 //
 // Why it cannot step over a surface (tests/TracerContractTest.cpp, a million rays):
-// - a point on a cell boundary belongs to the cell ahead (floor going +, ceil - 1 going -), and
-//   an axis the ray has just crossed keeps the boundary's exact (integer) coordinate, so a skip
-//   always lands in the next cell, however far the coordinates run from the origin;
+// - the cells are integers and the ray's depth at each cell's far boundary grows with the cell:
+//   a skip moves into the next cell across every axis whose boundary the exit reaches, a point
+//   on a boundary belongs to the cell ahead, and no rounding of a position can land the walk in
+//   any cell but the next;
 // - the ray only descends, so a cell it has dipped into stays open: the walk never climbs back
 //   into a parent it has opened, and climbs no higher than the level whose cells are as wide as
 //   the ray's footprint;
 // - every step skips a cell (past at least one texel boundary), opens one (at most one per
 //   climb) or solves one, so the walk needs at most about three steps per texel boundary the
 //   ray crosses: the loop's bound is computed from the ray, not a fixed count that long grazing
-//   rays run out of (the old walk's 512 steps left 0.04% of the pixels of a 512x512 brick map at
-//   80 degrees up to 73 texels short).
-//
-// On a CPU rasteriser (llvmpipe) a divergent branch costs both sides, so the walk's steps fetch
-// one bound and nothing else, and the patch solve sits outside the walk's loop. There, too, every
-// variable a step writes lives in memory and is blended under the lanes' mask: a step's state is
-// p, t and the level (hfx_step; 2^level from the exponent bits), and what the solve needs is found
-// again after the loop (the level-0 cell, the patch's maximum from the gathered samples). Against
-// a loop that carried the cell sizes, the exit and the cell: 0-11% off hier's draw at 45-80
-// degrees with the same fetches, most at 70-80 (docs/BENCHMARKS.md, fifteenth part). The bound
-// is an imageLoad from one image holding every level (surface/heights.glsl): a texelFetch with
-// a level per lane is a call there, which spilled every vector live across it, and cost 10-30%
-// of the draw at 45-80 degrees (seventeenth part).
+//   rays run out of.
 
 const int HFX_MAX_TRACE_STEPS = 1 << 18; // only against a NaN ray; the real bound is per ray
 // The view walk climbs past a cell only where the ray leaves it at least this many cells' widths
 // (along the ray's major axis, at the ray's descent) above the cell's maximum: nearer, the
-// parent (no lower) is likely opened again at once, two fetches for nothing. Starting at the beam
-// prepass's depth the rays are near the relief: 1-9% fewer view fetches than climbing wherever
-// the boundary allows (1: 1-8%; 4 and 8: no better; never climbing: up to twice as many at 80
-// degrees; docs/BENCHMARKS.md, fifteenth part). The light walk, rising away from the relief,
-// climbs wherever it may (the same rule there changed its fetches by -1% to +4%).
+// parent (no lower) is likely opened again at once, two fetches for nothing. The light walk,
+// rising away from the relief, climbs wherever it may.
 const float HFX_CLIMB_CLEARANCE = 2.0;
+// A ray entering a patch at the polygon (t = 0) above it by no more than the patch rises over a
+// couple of roundings of the ray's position (HFX_TOUCH_ULPS of its largest cell-space coordinate, and
+// of 1) has touched it: the fragment stage's texcoords carry that rounding, and a ray entering on a
+// plateau's top (h = 1) at a sample where the surface falls away would otherwise walk on. Deeper
+// down a pass above a patch is a miss, however close (a thin wall's top).
+const float HFX_TOUCH_ULPS = 2.0;
 
-// 2^level and 2^-level, exact, from the float's exponent bits (level in [0, 126]).
-float hfx_cell_size(int level) { return intBitsToFloat((level + 127) << 23); }
-float hfx_inv_cell_size(int level) { return intBitsToFloat((127 - level) << 23); }
+// A walk of the ray p0 + dir t (cell space, t in [0, 1]) through the pyramid's cells.
+struct HfxWalk {
+    vec2 q0;     // the ray's start in the walk's frame: relative to base, each back axis mirrored
+    vec2 rate;   // 1 / the ray's move per unit t along each axis, in cells (1e30: it does not move)
+    ivec2 base;  // the frame's origin in the field: a multiple of its size, so every level's cells align
+    ivec2 flip;  // per axis: ~0 where the ray moves back (frame cell c is field cell ~c), else 0
+    ivec2 cell;  // the cell of `level` the ray is in, in the frame
+    int level;
+    vec2 tNext;  // the ray's depth where it leaves that cell across each axis
+    float t;     // the ray's depth: the walk has passed everything before it
+};
 
-// The cell of the level that the ray is in at p, going on along dir: its corner ahead (bound),
-// where the ray meets that corner's lines (tCross; an axis the ray does not move along: far
-// ahead) and leaves the cell (tExit, within [t, 1]). On a boundary: the cell ahead.
-void hfx_cell_at(vec2 p0, vec2 p, vec2 invDir, bvec2 back, float t, int level, out vec2 cell, out vec2 bound,
-                 out vec2 tCross, out float tExit) {
-    const vec2 q = p * hfx_inv_cell_size(level);
-    cell = mix(floor(q), ceil(q) - 1.0, back);
-    bound = (cell + vec2(not(back))) * hfx_cell_size(level);
-    tCross = (bound - p0) * invDir;
-    tExit = clamp(min(tCross.x, tCross.y), t, 1.0);
+// Where the ray crosses the frame's lines x = edge.x and y = edge.y (edges in level-0 cells).
+vec2 hfx_walk_cross(HfxWalk w, ivec2 edge) { return (vec2(edge) - w.q0) * w.rate; }
+
+HfxWalk hfx_walk_begin(vec2 p0, vec2 dir, float t, int level) {
+    HfxWalk w;
+    const ivec2 size = hfx_size();
+    w.base = ivec2(floor(p0 / vec2(size))) * size;
+    const bvec2 back = lessThan(dir, vec2(0.0));
+    w.flip = -ivec2(back);
+    const vec2 start = p0 - vec2(w.base), speed = abs(dir);
+    w.q0 = mix(start, -start, back);
+    w.rate = vec2(speed.x > 0.0 ? 1.0 / speed.x : 1e30, speed.y > 0.0 ? 1.0 / speed.y : 1e30);
+    w.level = level;
+    w.t = t;
+    w.cell = ivec2(floor(w.q0 + speed * t)) >> level;
+    w.tNext = hfx_walk_cross(w, (w.cell + 1) << level);
+    return w;
 }
 
-// One step of a walk from the cell hfx_cell_at found: where the ray dips into it, down to tIn
-// (p moves only if the ray does: a just-crossed axis keeps its boundary) and a level down;
-// otherwise past it, onto its exit with the crossed axes snapped to the boundary, and a level up
-// where the caller lets it (mayClimb) and that boundary is also the parent's: the ray only
-// descends, so a parent it has dipped into is never skipped later, and testing it again is
-// waste. Climbing is never needed for exactness, only for long skips.
-void hfx_step(vec2 p0, vec2 dir, bool dip, float tIn, vec2 bound, vec2 tCross, float tExit, int topLevel,
-              bool mayClimb, inout vec2 p, inout float t, inout int level) {
-    const bvec2 crossed = lessThanEqual(tCross, vec2(tExit));
-    const vec2 q = p0 + dir * (dip ? tIn : tExit);
-    const vec2 parentEdge = mix(vec2(1.0), fract(bound * (0.5 * hfx_inv_cell_size(level))), crossed);
-    const bool climb = mayClimb && min(parentEdge.x, parentEdge.y) == 0.0 && level < topLevel;
-    p = dip ? (tIn > t ? q : p) : mix(q, bound, crossed);
-    t = dip ? tIn : tExit;
-    level += dip ? -1 : (climb ? 1 : 0);
+// The walk's cell in the field (the accessors wrap or clamp it), and its point at depth t relative
+// to the frame's origin, unmirrored (the patch solve's coordinates: the cell spans [cell, cell + 1]).
+ivec2 hfx_walk_texel(HfxWalk w) { return (w.cell ^ w.flip) + (w.base >> w.level); }
+vec2 hfx_walk_point(HfxWalk w, vec2 p0, vec2 dir, float t) { return p0 - vec2(w.base) + dir * t; }
+
+// Where the walk leaves its cell (within [t, 1]).
+float hfx_walk_exit(HfxWalk w) { return clamp(min(w.tNext.x, w.tNext.y), w.t, 1.0); }
+
+// Into the child of the cell that the ray is in at tIn (at or after t, before the exit), a level
+// down; on the middle line, the child ahead.
+void hfx_walk_descend(inout HfxWalk w, float tIn) {
+    w.level -= 1;
+    const ivec2 first = w.cell << 1;
+    const vec2 tMiddle = hfx_walk_cross(w, (first + 1) << w.level);
+    const bvec2 ahead = greaterThanEqual(vec2(tIn), tMiddle);
+    w.cell = first + ivec2(ahead);
+    w.tNext = mix(tMiddle, w.tNext, ahead);
+    w.t = tIn;
 }
 
-// The four samples of a level-0 cell (x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)).
-vec4 hfx_patch_samples(vec2 cell) { return hfx_cell_samples(ivec2(cell)); }
+// Past the cell to its exit tExit: into the next cell across every axis the ray leaves it by
+// there, and a level up where mayClimb and a crossed line is also the parent's edge (the ray only
+// descends, so a parent it has dipped into is never entered again), no higher than topLevel.
+void hfx_walk_skip(inout HfxWalk w, float tExit, bool mayClimb, int topLevel) {
+    const ivec2 crossed = ivec2(lessThanEqual(w.tNext, vec2(tExit)));
+    w.cell += crossed;
+    const int up = int(mayClimb && w.level < topLevel && any(notEqual(crossed & ~w.cell, ivec2(0))));
+    w.cell >>= up;
+    w.level += up;
+    w.tNext = hfx_walk_cross(w, (w.cell + 1) << w.level);
+    w.t = tExit;
+}
 
-// The bilinear patch of those samples along the ray from p (in the cell): its height at
+// The bilinear patch of a level-0 cell's samples (x: (i, j+1), y: (i+1, j+1), z: (i+1, j),
+// w: (i, j)) along the ray from p (in the cell, whose corner (i, j) is `cell`): its height at
 // p + dir * s is A s^2 + B s + C, returned as (A, B, C).
 vec3 hfx_patch_along(vec4 s, vec2 cell, vec2 p, vec2 dir) {
     const float a = s.w, b = s.z - s.w, c = s.x - s.w, e = s.y - s.x - s.z + s.w;
@@ -107,70 +136,55 @@ int hfx_max_steps(vec2 dir, int topLevel) {
 }
 // The highest height anywhere on the field: the pyramid's top texel (one fetch).
 float hfx_field_max() { return hfx_bounds(ivec2(0), hfx_levels() - 1).x; }
-vec2 hfx_inverse(vec2 dir) { return vec2(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30); }
 
 float hfx_trace_depth(HfxRay ray) {
-    const vec2 uv0 = ray.uv, parallax = ray.parallax;
     const ivec2 size = hfx_size();
-    const vec2 p0 = uv0 * vec2(size) - 0.5;
-    const vec2 dir = -parallax * vec2(size);
-    const bvec2 back = lessThan(dir, vec2(0.0));
-    const vec2 invDir = hfx_inverse(dir);
+    const vec2 p0 = ray.uv * vec2(size) - 0.5;
+    const vec2 dir = -ray.parallax * vec2(size);
     const int topLevel = hfx_top_level(dir);
     const int maxSteps = hfx_max_steps(dir, topLevel);
     const float major = max(abs(dir.x), abs(dir.y)); // texels per unit of t on the ray's major axis
-    int level = 0;
-    float t = clamp(max(1.0 - hfx_field_max(), ray.start), 0.0, 1.0);
-    vec2 p = p0 + dir * t; // the ray's point at t; a just-crossed axis holds the boundary exactly
-    int steps = 0;
-    for (int candidate = 0; candidate < maxSteps; ++candidate) {
-        // The walk: one bound per step, until a level-0 cell the ray dips into (or the end).
-        bool found = false;
-        for (; steps < maxSteps && t < 1.0; ++steps) {
-            vec2 cell, bound, tCross;
-            float tExit;
-            hfx_cell_at(p0, p, invDir, back, t, level, cell, bound, tCross, tExit);
-            const vec2 bounds = hfx_bounds(ivec2(cell), level);
-            const float tDown = 1.0 - bounds.x; // where the ray comes down to the cell's maximum
-            const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
-            const bool dip = tDown < tExit;
-            const float tIn = max(t, tDown);
-            if (dip && tBelow < tExit && tBelow - tIn <= ray.tolerance) { t = tIn; break; }
-            if (dip && level == 0) { found = true; break; }
-            const bool mayClimb = (tDown - tExit) * major >= HFX_CLIMB_CLEARANCE * hfx_cell_size(level);
-            hfx_step(p0, dir, dip, tIn, bound, tCross, tExit, topLevel, mayClimb, p, t, level);
-        }
-        if (!found) return t;
-        // The level-0 cell again (the same p and t: the same cell), down to the patch's maximum
-        // (the largest of its four samples: the ray is above the patch before it), then the
-        // patch's height minus the ray's (1 - t, falling) along the cell: A s^2 + B s + C.
-        vec2 cell, bound, tCross;
-        float tExit;
-        hfx_cell_at(p0, p, invDir, back, t, 0, cell, bound, tCross, tExit);
-        const vec4 samples = hfx_patch_samples(cell);
-        const float tIn = max(t, 1.0 - max(max(samples.x, samples.y), max(samples.z, samples.w)));
-        if (tIn > t) p = p0 + dir * tIn;
-        t = tIn;
-        const vec3 along = hfx_patch_along(samples, cell, p, dir);
-        const float A = along.x, B = along.y + 1.0, C = along.z - (1.0 - t);
-        if (C >= 0.0) return t;
-        float root = 1e30;
-        if (abs(A) < 1e-9) {
-            if (B > 0.0) root = -C / B;
-        } else {
-            const float disc = B * B - 4.0 * A * C;
-            if (disc >= 0.0) {
-                const float qq = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
-                const float r1 = qq / A, r2 = qq != 0.0 ? C / qq : 1e30;
-                root = min(r1 >= 0.0 ? r1 : 1e30, r2 >= 0.0 ? r2 : 1e30);
+    const float touch = HFX_TOUCH_ULPS * exp2(-23.0) * (max(abs(p0.x), abs(p0.y)) + 1.0); // cells
+    HfxWalk w = hfx_walk_begin(p0, dir, clamp(max(1.0 - hfx_field_max(), ray.start), 0.0, 1.0), 0);
+    for (int steps = 0; steps < maxSteps && w.t < 1.0; ++steps) {
+        const float tExit = hfx_walk_exit(w);
+        const vec2 bounds = hfx_bounds(hfx_walk_texel(w), w.level);
+        const float tDown = 1.0 - bounds.x; // where the ray comes down to the cell's maximum
+        const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
+        const float tIn = max(w.t, tDown);
+        if (tDown < tExit) {
+            if (tBelow < tExit && tBelow - tIn <= ray.tolerance) return tIn;
+            if (w.level > 0) {
+                hfx_walk_descend(w, tIn);
+                continue;
             }
+            // A level-0 cell: from tIn (the ray is above the patch before it, which is no higher
+            // than its largest sample) the patch's height minus the ray's (1 - t, falling) along
+            // the cell, A s^2 + B s + C; its first root within the cell, if any.
+            const vec4 s = hfx_cell_samples(hfx_walk_texel(w));
+            const vec3 along = hfx_patch_along(s, vec2(w.cell ^ w.flip), hfx_walk_point(w, p0, dir, tIn), dir);
+            const float A = along.x, B = along.y + 1.0, C = along.z - (1.0 - tIn);
+            // The patch's rise over a move of `touch` on both axes: |b| + |e| and |c| + |e| at most.
+            const vec3 rise = abs(vec3(s.z - s.w, s.x - s.w, s.y - s.x - s.z + s.w));
+            if (C >= (tIn > 0.0 ? 0.0 : -touch * (rise.x + rise.y + 2.0 * rise.z))) return tIn;
+            float root = 1e30;
+            if (abs(A) < 1e-9) {
+                if (B > 0.0) root = -C / B;
+            } else {
+                const float disc = B * B - 4.0 * A * C;
+                if (disc >= 0.0) {
+                    const float qq = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+                    const float r1 = qq / A, r2 = qq != 0.0 ? C / qq : 1e30;
+                    root = min(r1 >= 0.0 ? r1 : 1e30, r2 >= 0.0 ? r2 : 1e30);
+                }
+            }
+            if (root <= tExit - tIn) return tIn + root;
+            // The ray passes over the patch: on past the cell.
         }
-        if (root <= tExit - t) return t + root;
-        // The ray passes over the patch: on past the cell, as a skip.
-        hfx_step(p0, dir, false, t, bound, tCross, tExit, topLevel, true, p, t, level);
-        ++steps;
+        const bool mayClimb = (tDown - tExit) * major >= ldexp(HFX_CLIMB_CLEARANCE, w.level);
+        hfx_walk_skip(w, tExit, mayClimb, topLevel);
     }
-    return t;
+    return w.t;
 }
 
 HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray)); }
@@ -182,35 +196,29 @@ HfxHit hfx_trace(HfxRay ray) { return hfx_hit_at(ray, hfx_trace_depth(ray)); }
 // cells around the ray's: a ray within reach is in one of them wherever this one is, at the same
 // height, so where this one passes above their maximum none of them can meet the surface. It
 // returns where it first comes down to such a maximum at level k (no solve); the walk per pixel
-// starts there (HfxRay.start). Nine bounds per step, once per 8x8-pixel block: 1.6-3.5 ms
-// at 1280x720 on llvmpipe, for 16-46% of the view walk's fetches at 45-80 degrees in bench-tracers'
-// view (docs/BENCHMARKS.md, fourteenth and fifteenth parts; 4x4 blocks cost more than they saved,
-// 16x16 saved less).
+// starts there (HfxRay.start). Nine bounds per step, once per 8x8-pixel block.
 float hfx_beam_depth(vec2 p0, vec2 dir, float reach) {
-    const bvec2 back = lessThan(dir, vec2(0.0));
-    const vec2 invDir = hfx_inverse(dir);
     const int levels = hfx_levels();
     const int k = clamp(int(ceil(log2(max(reach, 1.0 / 64.0)))), 0, levels - 1);
     const int topLevel = max(hfx_top_level(dir), k);
     const int maxSteps = hfx_max_steps(dir, topLevel);
-    int level = k;
-    float t = clamp(1.0 - hfx_field_max(), 0.0, 1.0);
-    vec2 p = p0 + dir * t;
-    for (int steps = 0; steps < maxSteps && t < 1.0; ++steps) {
-        vec2 cell, bound, tCross;
-        float tExit;
-        hfx_cell_at(p0, p, invDir, back, t, level, cell, bound, tCross, tExit);
-        const ivec2 c = ivec2(cell);
+    HfxWalk w = hfx_walk_begin(p0, dir, clamp(1.0 - hfx_field_max(), 0.0, 1.0), k);
+    for (int steps = 0; steps < maxSteps && w.t < 1.0; ++steps) {
+        const float tExit = hfx_walk_exit(w);
+        const ivec2 c = hfx_walk_texel(w);
         float highest = 0.0;
         for (int j = -1; j <= 1; ++j)
-            for (int i = -1; i <= 1; ++i) highest = max(highest, hfx_bounds(c + ivec2(i, j), level).x);
+            for (int i = -1; i <= 1; ++i) highest = max(highest, hfx_bounds(c + ivec2(i, j), w.level).x);
         const float tDown = 1.0 - highest;
-        const bool dip = tDown < tExit;
-        const float tIn = max(t, tDown);
-        if (dip && level == k) return tIn;
-        hfx_step(p0, dir, dip, tIn, bound, tCross, tExit, topLevel, true, p, t, level);
+        const float tIn = max(w.t, tDown);
+        if (tDown < tExit) {
+            if (w.level == k) return tIn;
+            hfx_walk_descend(w, tIn);
+        } else {
+            hfx_walk_skip(w, tExit, true, topLevel);
+        }
     }
-    return t >= 1.0 ? 1.0 : 0.0; // past the bottom, or out of steps (a NaN ray): no start
+    return w.t >= 1.0 ? 1.0 : 0.0; // past the bottom, or out of steps (a NaN ray): no start
 }
 
 // Exact self-shadow: the light ray from the shaded point walked through the same pyramid. The
@@ -241,17 +249,12 @@ float hfx_shadow(HfxShadowRay ray) {
     const ivec2 size = hfx_size();
     const vec2 p0 = ray.uv * vec2(size) - 0.5;
     const vec2 dir = ray.span * vec2(size);
-    const bvec2 back = lessThan(dir, vec2(0.0));
-    const vec2 invDir = hfx_inverse(dir);
     const int topLevel = hfx_top_level(dir);
     const int maxSteps = hfx_max_steps(dir, topLevel);
     const float penumbra = 1.0 / max(ray.sharpness, 1e-3); // r from which on the point is lit
     const float coneSlope = climb * (1.0 - penumbra);        // the cone edge's rise per unit t
     float known;
     if (hfx_texel_shadow(p0, ray.span / climb, penumbra, known)) return known;
-    int level = 0;
-    float t = 0.0;
-    vec2 p = p0;
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
     float nearest = 1e30; // the smallest clearance ratio met
     const float fieldMax = hfx_field_max();
@@ -259,42 +262,36 @@ float hfx_shadow(HfxShadowRay ray) {
     // darken the point: at 0, before it starts.
     const float tClear = hfx_clearance(ivec2(floor(p0)), ray.span / climb, penumbra) / climb;
     const float tEnd = min(coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0, tClear);
-    int steps = 0;
-    for (int candidate = 0; candidate < maxSteps; ++candidate) {
-        bool found = false;
-        for (; steps < maxSteps && t < tEnd; ++steps) {
-            vec2 cell, bound, tCross;
-            float tExit;
-            hfx_cell_at(p0, p, invDir, back, t, level, cell, bound, tCross, tExit);
-            // (A graze within HFX_SHADOW_EPSILON sets r < 0: the edge never rises above the ray.)
-            const float slope = climb * (1.0 - clamp(nearest, 0.0, penumbra));
-            const float coneLow = ray.h0 + min(slope * t, slope * tExit);
-            const vec2 bounds = hfx_bounds(ivec2(cell), level);
-            const bool dip = bounds.x >= coneLow;
-            if (dip && level == 0) { found = true; break; }
-            hfx_step(p0, dir, dip, t, bound, tCross, tExit, topLevel, true, p, t, level);
+    HfxWalk w = hfx_walk_begin(p0, dir, 0.0, 0);
+    for (int steps = 0; steps < maxSteps && w.t < tEnd; ++steps) {
+        const float tExit = hfx_walk_exit(w);
+        // (A graze within HFX_SHADOW_EPSILON sets r < 0: the edge never rises above the ray.)
+        const float slope = climb * (1.0 - clamp(nearest, 0.0, penumbra));
+        const float coneLow = ray.h0 + min(slope * w.t, slope * tExit);
+        const vec2 bounds = hfx_bounds(hfx_walk_texel(w), w.level);
+        if (bounds.x >= coneLow) {
+            if (w.level > 0) {
+                hfx_walk_descend(w, w.t);
+                continue;
+            }
+            // f(s) = patch - ray (h0 + climb t, rising) along the cell, s in [0, S]: A s^2 + B s + C.
+            const float t = w.t;
+            const vec3 along = hfx_patch_along(hfx_cell_samples(hfx_walk_texel(w)), vec2(w.cell ^ w.flip),
+                                               hfx_walk_point(w, p0, dir, t), dir);
+            const float A = along.x, B = along.y - climb, C = along.z - (ray.h0 + climb * t);
+            const float S = tExit - t;
+            const float sv = A < 0.0 ? clamp(-0.5 * B / A, 0.0, S) : 0.0; // the maximum's place
+            if (max(max(C, (A * S + B) * S + C), (A * sv + B) * sv + C) > HFX_SHADOW_EPSILON) return 1.0;
+            if (tExit > uNear) {
+                // In u = t + s: f = A u^2 + B' u + C', r(u) = -f / (climb u), over [max(t, uNear), tExit].
+                const float B1 = B - 2.0 * A * t, C1 = C - B * t + A * t * t, u0 = max(t, uNear);
+                const float uStar = A != 0.0 && C1 / A > 0.0 ? clamp(sqrt(C1 / A), u0, tExit) : u0;
+                const vec3 u = vec3(u0, tExit, uStar);
+                const vec3 r = -((A * u + B1) * u + C1) / (climb * u);
+                nearest = min(nearest, min(min(r.x, r.y), r.z));
+            }
         }
-        if (!found) break;
-        // The level-0 cell again (the same p and t: the same cell).
-        vec2 cell, bound, tCross;
-        float tExit;
-        hfx_cell_at(p0, p, invDir, back, t, 0, cell, bound, tCross, tExit);
-        // f(s) = patch - ray (h0 + climb t, rising) along the cell, s in [0, S]: A s^2 + B s + C.
-        const vec3 along = hfx_patch_along(hfx_patch_samples(cell), cell, p, dir);
-        const float A = along.x, B = along.y - climb, C = along.z - (ray.h0 + climb * t);
-        const float S = tExit - t;
-        const float sv = A < 0.0 ? clamp(-0.5 * B / A, 0.0, S) : 0.0; // the maximum's place
-        if (max(max(C, (A * S + B) * S + C), (A * sv + B) * sv + C) > HFX_SHADOW_EPSILON) return 1.0;
-        if (tExit > uNear) {
-            // In u = t + s: f = A u^2 + B' u + C', r(u) = -f / (climb u), over [max(t, uNear), tExit].
-            const float B1 = B - 2.0 * A * t, C1 = C - B * t + A * t * t, u0 = max(t, uNear);
-            const float uStar = A != 0.0 && C1 / A > 0.0 ? clamp(sqrt(C1 / A), u0, tExit) : u0;
-            const vec3 u = vec3(u0, tExit, uStar);
-            const vec3 r = -((A * u + B1) * u + C1) / (climb * u);
-            nearest = min(nearest, min(min(r.x, r.y), r.z));
-        }
-        hfx_step(p0, dir, false, t, bound, tCross, tExit, topLevel, true, p, t, level);
-        ++steps;
+        hfx_walk_skip(w, tExit, true, topLevel);
     }
     return clamp(1.0 - nearest * ray.sharpness, 0.0, HFX_PENUMBRA_MAX);
 }
