@@ -1,7 +1,9 @@
 #version 450 core
 // A solid colour with the polygon's own depth: stand-in geometry that intersects a surface.
 // Lit (u_flatLit = 1): Lambert under the surface block's light, receiving its shadow map.
-// Composed after surface/uniforms.glsl and surface/shadowmap.glsl.
+
+#include "surface/uniforms.glsl"
+#include "surface/shadowmap.glsl"
 
 in vec3 v_worldPos;
 in vec3 v_normal;

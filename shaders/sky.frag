@@ -1,6 +1,10 @@
 #version 450 core
 // The sky behind everything (SurfaceRenderer::drawSky): each pixel's view direction through
 // hfx_sky (shade/sky.glsl), the same sky the water reflects and fades into.
+
+#include "surface/uniforms.glsl"
+#include "shade/sky.glsl"
+
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
 uniform mat4 u_inverseViewProj;

@@ -1,14 +1,14 @@
 #version 450 core
-// Surface shading of a height field: the common part of every technique. The renderer composes
-// the fragment stage from, in order:
+// Surface shading of a height field: the common part of every technique. Its parts, included
+// below in this order (the renderer names the two slots):
 //   surface/uniforms.glsl   the per-draw uniform block (hfx::SurfaceUniforms)
 //   surface/heights.glsl    the height accessors over the surface texture and the pyramid
 //   surface/shadowmap.glsl  receiving a light's shadow map (hfx::ShadowMap)
 //   trace/common.glsl       ray, hit and shadow-ray types, the linear search, shadow occlusion
-//   trace/<technique>.glsl  hfx_trace and hfx_shadow: one file per technique (trace/README.md)
+//   <tracer>                hfx_trace and hfx_shadow: trace/<technique>.glsl (trace/README.md)
 //   shade/common.glsl       the shaded point
 //   shade/sky.glsl          the sky (reflections, haze), its look's uniform block
-//   shade/<model>.glsl      hfx_shade: one file per shading model (lit, water, planet)
+//   <shading>               hfx_shade: shade/<model>.glsl, one per shading model (lit, water, planet)
 //   surface.frag            this file: the texture-space frame, level of detail, depth output
 // Prepended #defines, from the C++ technique table (hfx::techniqueInfo) and the draw:
 //   HFX_TRACES        1 when the technique displaces the texcoords (all but normal mapping):
@@ -52,6 +52,15 @@
 #ifndef HFX_BEAM_START
 #define HFX_BEAM_START 0
 #endif
+
+#include "surface/uniforms.glsl"
+#include "surface/heights.glsl"
+#include "surface/shadowmap.glsl"
+#include "trace/common.glsl"
+#include <tracer>
+#include "shade/common.glsl"
+#include "shade/sky.glsl"
+#include <shading>
 
 in vec3 v_worldPos;
 in vec3 v_normal;
@@ -105,8 +114,8 @@ vec2 hfx_add_layer(sampler2D s, sampler2D a, vec2 uv, float level, float scale, 
 // The search and shadow fetches read one mip level, the nearest to the level that the
 // undisplaced texcoords' gradients select: computed once, so the level does not jump where the
 // traced texcoords jump (silhouettes of the relief), and one level means the ray meets one
-// bilinear surface, cheaper than a trilinear textureGrad fetch (docs/BENCHMARKS.md,
-// "textureGrad"). Shading fetches keep trilinear filtering.
+// bilinear surface, cheaper than a trilinear textureGrad fetch (about 1.5x the POM
+// draw on llvmpipe). Shading fetches keep trilinear filtering.
 
 // The pixel budget (u_pixelBudget > 0) picks the tracers' effort from the screen. A texcoord
 // offset v at the polygon covers |J^-1 v| pixels, J the pixel's texcoord derivatives (dx, dy per

@@ -1,7 +1,8 @@
 #version 450 core
 // Passes the world-space position and the unnormalised tangent frame (dP/du, dP/dv) so the
-// fragment stage can express the view and light rays in texture units, per pixel. Composed after
-// surface/uniforms.glsl (u_model, u_viewProj, u_normalMatrix).
+// fragment stage can express the view and light rays in texture units, per pixel.
+
+#include "surface/uniforms.glsl"
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

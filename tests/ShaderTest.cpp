@@ -3,6 +3,8 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/ShaderProgram.h"
 
+#include <map>
+
 namespace hfx::test {
 namespace {
 
@@ -41,6 +43,56 @@ TEST_F(Shader, ComposedStagesNameTheFileAndLineOfAnError) {
     EXPECT_EQ(messageOf([&] { ShaderProgram({vertex}, {decl, fixed, main}); }), "(no error)");
     const SourceFile second{"second.frag", "#version 450 core\n", "test"};
     EXPECT_NE(messageOf([&] { ShaderProgram({vertex}, {second, main}); }).find("second.frag"), std::string::npos);
+}
+
+/// A file table for the include tests: the loader throws for a name it lacks, as surfaceShader does.
+SourceLoader tableOf(std::map<std::string, std::string> files) {
+    return [files = std::move(files)](std::string_view name) {
+        const auto it = files.find(std::string(name));
+        if (it == files.end()) throw Error(str("no source named '", name, "'"));
+        return SourceFile{it->first, it->second, "test"};
+    };
+}
+
+TEST_F(Shader, IncludesComposeAStageAndAnErrorNamesTheIncludedFileAndLine) {
+    // main.frag includes a declaration, a slot (the caller's helper) and the declaration again
+    // (added once); the helper is broken on its line 3, main's own code after the includes.
+    const SourceLoader load = tableOf({{"decl.glsl", "// declarations\nfloat helperValue();\n"},
+                                       {"good.glsl", "float helperValue() { return 1.0; }\n"},
+                                       {"bad.glsl", "// a helper\nfloat helperValue() {\n    return missingName;\n}\n"},
+                                       {"main.frag", "#version 450 core\n#include \"decl.glsl\"\n#include <helper> // the caller's\n"
+                                                     "  #  include \"decl.glsl\"\nout vec4 o;\nvoid main() { o = vec4(helperValue()); }\n"}});
+    const std::vector<SourceFile> parts = expandIncludes(load("main.frag"), load, {{"helper", "good.glsl"}});
+    ASSERT_EQ(parts.size(), 4u); // main's line 1, decl, good, main from line 5
+    EXPECT_EQ(parts[1].name, "decl.glsl");
+    EXPECT_EQ(parts[2].name, "good.glsl");
+    EXPECT_EQ(parts[3].name, "main.frag");
+    EXPECT_EQ(parts[3].firstLine, 5);
+    EXPECT_EQ(messageOf([&] { ShaderProgram({vertex}, parts); }), "(no error)");
+    const std::string m = messageOf([&] { ShaderProgram({vertex}, expandIncludes(load("main.frag"), load, {{"helper", "bad.glsl"}})); });
+    EXPECT_NE(m.find("bad.glsl:3:"), std::string::npos) << m;
+    EXPECT_NE(m.find("missingName"), std::string::npos) << m;
+    // An error in the top file after its includes keeps the file's own line numbers.
+    const SourceLoader late = tableOf({{"decl.glsl", "float helperValue() { return 1.0; }\n"},
+                                       {"late.frag", "#version 450 core\n#include \"decl.glsl\"\nout vec4 o;\n"
+                                                     "void main() { o = vec4(unknownToo); }\n"}});
+    const std::string l = messageOf([&] { ShaderProgram({vertex}, expandIncludes(late("late.frag"), late)); });
+    EXPECT_NE(l.find("late.frag:4:"), std::string::npos) << l;
+}
+
+TEST_F(Shader, AnIncludeCycleAMissingSlotOrAMalformedLineIsRefusedByFileAndLine) {
+    const SourceLoader load = tableOf({{"a.glsl", "// a\n#include \"b.glsl\"\n"},
+                                       {"b.glsl", "#include \"a.glsl\"\n"},
+                                       {"slot.frag", "#version 450 core\n\n#include <tracer>\n"},
+                                       {"odd.frag", "#version 450 core\n#include tracer.glsl\n"},
+                                       {"gone.frag", "#version 450 core\n#include \"nowhere.glsl\"\n"}});
+    const std::string cycle = messageOf([&] { expandIncludes(load("a.glsl"), load); });
+    EXPECT_NE(cycle.find("b.glsl:1: #include cycle: a.glsl -> b.glsl -> a.glsl"), std::string::npos) << cycle;
+    const std::string slot = messageOf([&] { expandIncludes(load("slot.frag"), load, {{"shading", "x.glsl"}}); });
+    EXPECT_NE(slot.find("slot.frag:3: #include <tracer>"), std::string::npos) << slot;
+    const std::string odd = messageOf([&] { expandIncludes(load("odd.frag"), load); });
+    EXPECT_NE(odd.find("odd.frag:2: malformed #include 'tracer.glsl'"), std::string::npos) << odd;
+    EXPECT_NE(messageOf([&] { expandIncludes(load("gone.frag"), load); }).find("nowhere.glsl"), std::string::npos);
 }
 
 TEST_F(Shader, LinkErrorCarriesTheLog) {

@@ -79,7 +79,6 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_shadowOffset", offsetof(SurfaceUniforms, shadowOffset)},
         {"u_shadowTexel", offsetof(SurfaceUniforms, shadowTexel)},
         {"u_clearance", offsetof(SurfaceUniforms, clearance)},
-        {"u_pyramidLevel[0]", offsetof(SurfaceUniforms, pyramidLevel)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},
@@ -235,8 +234,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     parts.insert(parts.end(), {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
                                kHarnessBuffers, main});
     const ShaderProgram p = ShaderProgram::compute(parts);
-    SurfaceUniforms u{.wrap = wrap};
-    describePyramid(u, textures);
+    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(), .wrap = wrap};
     if (clearance) {
         const ClearanceLight& c = (texelShadows ? textures.texelShadowLight() : textures.clearanceLight()).value();
         u.clearance = {c.uvPerClimb, c.penumbra, c.slack};
@@ -987,12 +985,12 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         b.run(fieldB.buffer());
         const int layers = edges == EdgeMode::Wrap ? 2 : 1; // layers tile: only one clamps
         const float scaleB = 2.7f;
-        SurfaceUniforms u{.wrap = glm::ivec2(edges == EdgeMode::Wrap ? 1 : 0),
+        SurfaceUniforms u{.pyramidLevels = a.textures().pyramidLevels(),
+                          .wrap = glm::ivec2(edges == EdgeMode::Wrap ? 1 : 0),
                           .untracedHeight = 0.0f,
                           .layerScale = {1.0f, scaleB, 1.0f, 1.0f},
                           .layerWeight = layers == 2 ? glm::vec4(0.6f, 0.4f, 0.0f, 0.0f) : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
                           .layerLevel = {0.0f, std::log2(scaleB * float(N / 2) / float(N)), 0.0f, 0.0f}};
-        describePyramid(u, a.textures());
         GlBuffer block = GlBuffer::create();
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         // Segments of every length up to half the field, from anywhere (beyond [0, 1] too), at

@@ -13,8 +13,8 @@ namespace hfx {
 namespace {
 
 /// The stage's text: the #version line (from the one part that has it), the defines, then each
-/// part after "#line 1 k", k its index, with its own #version line blanked so lines keep their
-/// numbers.
+/// part after "#line n k", n its first line in its file and k its index, with its own #version
+/// line blanked so lines keep their numbers.
 std::string compose(const std::vector<SourceFile>& parts, const std::vector<ShaderDefine>& defines) {
     const SourceFile* versioned = nullptr;
     for (const SourceFile& part : parts) {
@@ -34,7 +34,7 @@ std::string compose(const std::vector<SourceFile>& parts, const std::vector<Shad
     for (size_t k = 0; k < parts.size(); ++k) {
         std::string text = parts[k].text;
         if (&parts[k] == versioned) text.replace(versionStart, versionEnd - versionStart, "");
-        out += str("#line 1 ", k, '\n', text);
+        out += str("#line ", parts[k].firstLine, ' ', k, '\n', text);
         if (!text.empty() && text.back() != '\n') out += '\n';
     }
     return out;

@@ -10,7 +10,7 @@ void CellsPass::refresh(const SurfaceTextures& textures) {
     if (!textures.cells()) throw Error("CellsPass: these surface textures were made without a pyramid");
     if (!textures.cellsCurrent()) {
         const GpuScope scope("cells");
-        if (!program_) program_ = ShaderProgram::compute({surfaceShader("surface/cells.comp")});
+        if (!program_) program_ = ShaderProgram::compute(surfaceStage("surface/cells.comp"));
         const SurfaceTexturesConfig& c = textures.config();
         program_->use();
         program_->set("u_wrap", wrapFlags(c.edges));

@@ -22,9 +22,11 @@ SourceFile surfaceShader(std::string_view name) {
     return loadSource(name, detail::embeddedShader(name), "HFX_SHADER_DIR");
 }
 
-namespace {
+std::vector<SourceFile> surfaceStage(std::string_view top, const std::map<std::string, std::string, std::less<>>& slots) {
+    return expandIncludes(surfaceShader(top), surfaceShader, slots);
+}
 
-SourceFile shader(std::string_view name) { return surfaceShader(name); }
+namespace {
 
 WaterUniforms waterUniforms(const WaterLook& w) {
     return {.deepColor = w.deepColor,
@@ -99,8 +101,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
-        // The fragment stage: the common declarations, the technique's tracer, the shading model,
-        // and the main (shaders/surface.frag explains the order); the table says the defines.
+        // surface.frag's parts with the technique's tracer and the shading model in their slots;
+        // the table says the defines.
         const TechniqueInfo& info = techniqueInfo(options.technique);
         const std::vector<ShaderDefine> defines = {{"HFX_TRACES", info.traces ? "1" : "0"},
                                                    {"HFX_SELF_SHADOW", info.shadow != SelfShadow::None && v.selfShadows ? "1" : "0"},
@@ -116,13 +118,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
                                                    {"HFX_BEAM_BLOCK", std::to_string(kBeamBlock)}};
-        ShaderProgram p({shader("surface/uniforms.glsl"), shader("surface.vert")},
-                        {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"), shader("surface/shadowmap.glsl"),
-                         shader("trace/common.glsl"),
-                         shader(info.shader), shader("shade/common.glsl"), shader("shade/sky.glsl"),
-                         shader(shadingShader(v.shading)),
-                         shader("surface.frag")},
-                        defines);
+        ShaderProgram p(surfaceStage("surface.vert"),
+                        surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
         it = programs_.emplace(key, std::move(p)).first;
     }
     return it->second;
@@ -261,10 +258,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .maxSamples = material.maxSamples,
                       .shadowSamples = material.shadowSamples,
                       .clipToPatch = material.clipToPatch ? 1 : 0,
+                      .pyramidLevels = textures.pyramidLevels(),
                       .varianceFloor = varianceFloor(textures.config().format),
                       .wrap = wrapFlags(edges),
                       .pixelBudget = material.pixelBudget};
-    describePyramid(u, textures);
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
     // texture read at the mesh's own texcoords (the level surface.frag computes).
@@ -339,9 +336,7 @@ void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Su
                          "SurfaceRenderer: the beam start");
     }
     if (!beam_.id())
-        beam_ = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")},
-                              {shader("surface/uniforms.glsl"), shader("surface/heights.glsl"),
-                               shader("trace/common.glsl"), shader("trace/hier.glsl"), shader("surface/beam.frag")},
+        beam_ = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("surface/beam.frag"),
                               {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", "0"}, {"HFX_TEXEL_SHADOWS", "0"}});
     // NDC x of the draw -> window x = vx + (x + 1) vw / 2 -> target x = window x / B.
     const glm::vec2 scale = glm::vec2(viewport[2], viewport[3]) / (float(kBeamBlock) * glm::vec2(width, height));
@@ -382,8 +377,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
         throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
     ShaderProgram& sky = sky_[look.environment != 0 ? 1 : 0];
     if (!sky.id()) {
-        sky = ShaderProgram({shader("sky.vert")}, {shader("surface/uniforms.glsl"), shader("shade/sky.glsl"), shader("sky.frag")},
-                            {{"HFX_ENVIRONMENT", look.environment != 0 ? "1" : "0"}});
+        sky = ShaderProgram(surfaceStage("sky.vert"), surfaceStage("sky.frag"), {{"HFX_ENVIRONMENT", look.environment != 0 ? "1" : "0"}});
     }
     if (!empty_) empty_ = GlVertexArray::create();
     GlStateGuard guard;
@@ -413,9 +407,7 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
     const bool receives = light && light->shadowMap;
     ShaderProgram& flat = flat_[receives ? 1 : 0];
     if (!flat.id())
-        flat = ShaderProgram({shader("surface/uniforms.glsl"), shader("surface.vert")},
-                             {shader("surface/uniforms.glsl"), shader("surface/shadowmap.glsl"), shader("flat.frag")},
-                             {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
+        flat = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("flat.frag"), {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
     GlStateGuard guard;
     SurfaceUniforms u{.cameraPos = eye};
     if (light) {

@@ -13,10 +13,7 @@ namespace hfx {
 
 namespace {
 ShaderProgram texelProgram(bool clearance) {
-    return ShaderProgram({surfaceShader("sky.vert")},
-                         {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"),
-                          surfaceShader("trace/common.glsl"), surfaceShader("trace/hier.glsl"),
-                          surfaceShader("surface/texelshadows.frag")},
+    return ShaderProgram(surfaceStage("sky.vert"), surfaceStage("surface/texelshadows.frag"),
                          {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", clearance ? "1" : "0"}, {"HFX_TEXEL_SHADOWS", "0"}});
 }
 } // namespace
@@ -55,8 +52,9 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     const GpuScope scope("texel shadows");
     attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
-    SurfaceUniforms u{.wrap = wrapFlags(config.edges), .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
-    describePyramid(u, textures);
+    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
+                      .wrap = wrapFlags(config.edges),
+                      .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
     updateBlock(block_, 0, u);
     glDisable(GL_DEPTH_TEST);
     program->use();

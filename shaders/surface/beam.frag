@@ -3,9 +3,7 @@
 // by a camera or, casting into a shadow map, by the light): one fragment per block of
 // HFX_BEAM_BLOCK x HFX_BEAM_BLOCK pixels of the draw, writing the depth
 // fraction from which on every view ray of the block may meet the relief (trace/hier.glsl,
-// hfx_beam_depth); the draw's rays start there (HfxRay.start). Composed after
-// surface/uniforms.glsl, surface/heights.glsl, trace/common.glsl and trace/hier.glsl; drawn with
-// surface.vert into a target one texel per block, u_viewProj mapping the draw's window onto it
+// hfx_beam_depth); the draw's rays start there (HfxRay.start). Drawn with surface.vert into a target one texel per block, u_viewProj mapping the draw's window onto it
 // (texel (i, j) covers the draw's pixels [B i, B i + B) x [B j, B j + B) of the window).
 //
 // The block's rays are found from the screen, not from the interpolated attributes: each of its
@@ -17,6 +15,11 @@
 // so no ray strays from the centre's further than a corner does, and a corner's offset from the
 // centre is linear in the depth: the larger of its offsets at the polygon and at the bottom
 // bounds it. That bound, plus a margin for the rounding of both passes, is the beam's reach.
+
+#include "surface/uniforms.glsl"
+#include "surface/heights.glsl"
+#include "trace/common.glsl"
+#include "trace/hier.glsl"
 
 uniform mat4 u_beamInverseViewProj; // inverse of u_viewProj (this pass's, onto the block target)
 uniform vec2 u_beamPixel;           // one texel of the block target in NDC: 2 / its size

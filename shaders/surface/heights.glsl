@@ -40,10 +40,11 @@ mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
 
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 // The height-bounds pyramid, RG32F: a level k texel's (max, min) over the bilinear cells it
-// covers, every level in one image (SurfaceTextures::pyramidAtlasOrigin; the walk finds a level
-// in u_pyramidLevel, the searches' bounds in hfx_atlas_origin). Read with imageLoad: on llvmpipe
-// a texelFetch with a level per lane is a call that spills the walk's vectors, and cost 1.6x an
-// imageLoad. Layer i's pyramid at image unit i.
+// covers, every level in one image (hfx_atlas_origin). Read with imageLoad: on llvmpipe a
+// texelFetch with a level per lane is a call that spills the walk's vectors, and cost 1.6x an
+// imageLoad. Layer i's pyramid at image unit i. A level's place is worked out per read: a
+// per-level table in the uniform block (one load indexed by the lane's level) made hier's draw
+// 10-20% slower on llvmpipe, and lanes at different levels would serialise a GPU's constant reads.
 layout(rg32f, binding = 0) readonly uniform image2D i_pyramid;
 // Layer 0's level-0 cells: per cell its four samples in textureGather's order (cells.comp).
 layout(rgba32f, binding = 4) readonly uniform image2D i_cells;
@@ -172,23 +173,16 @@ vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
     return imageLoad(i_pyramid, at).rg;
 }
 
-// Layer 0's pyramid texel of a level's cell, wrapped or clamped as the field's edges are, from its
-// row of u_pyramidLevel (last texel zw): a wrap is a bitwise and (power-of-two sizes, negative
-// cells included), which a clamping axis makes a no-op (all bits) before the clamp, which a
-// wrapped cell passes unchanged.
-ivec2 hfx_level_texel(ivec2 cell, ivec4 level) { return clamp(cell & (level.zw | (u_wrap - 1)), ivec2(0), level.zw); }
-
 // A level-0 cell's four samples (surface/cells.comp builds them from the stored texels).
 vec4 hfx_cell_samples(ivec2 cell) {
     g_fetches += 1.0;
-    return imageLoad(i_cells, hfx_level_texel(cell, u_pyramidLevel[0]));
+    return imageLoad(i_cells, hfx_pyramid_texel(cell, hfx_size() - 1));
 }
 
-// A cell's bounds: one load of its level's row, one of the image.
 vec2 hfx_bounds(ivec2 cell, int level) {
     g_fetches += 1.0;
-    const ivec4 row = u_pyramidLevel[level];
-    return imageLoad(i_pyramid, row.xy + hfx_level_texel(cell, row)).rg;
+    const ivec2 size = hfx_size();
+    return hfx_pyramid_load(0, size, hfx_pyramid_texel(cell, max(size >> level, ivec2(1)) - 1), level);
 }
 
 // A light ray moving perClimb texcoords per unit of height climbed goes the way of the surface's
@@ -203,7 +197,7 @@ float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
 #if HFX_CLEARANCE
     if (hfx_along_shadow_light(perClimb) && penumbra <= u_clearance.z * (1.0 + 1e-6)) {
         g_fetches += 1.0;
-        return texelFetch(s_clearance, hfx_level_texel(cell, u_pyramidLevel[0]), 0).r;
+        return texelFetch(s_clearance, hfx_pyramid_texel(cell, hfx_size() - 1), 0).r;
     }
 #endif
     return 1e30;

@@ -2,11 +2,15 @@
 // The texel shadows of a flat surface under one light (hfx::TexelShadowPass): one fragment per
 // sample of the field, the exact tracer's self-shadow (trace/hier.glsl's hfx_shadow, the walk
 // every pixel would make) of a light ray from the sample at its own height, towards the pass's
-// light (u_clearance: texcoords per unit climbed, penumbra). Composed after surface/uniforms.glsl,
-// surface/heights.glsl, trace/common.glsl and trace/hier.glsl, with HFX_TEXEL_SHADOWS 0 and
+// light (u_clearance: texcoords per unit climbed, penumbra). With HFX_TEXEL_SHADOWS 0, and
 // HFX_CLEARANCE 1 where the surface has a clearance map for the same light (the walks read it).
 // Sample (i, j) sits at texcoords ((i, j) + 0.5) / size; the target holds every u_texelStride-th
 // sample on each axis (its texel (a, b) is sample (a, b) * stride), the viewport is its size.
+
+#include "surface/uniforms.glsl"
+#include "surface/heights.glsl"
+#include "trace/common.glsl"
+#include "trace/hier.glsl"
 
 layout(location = 0) out vec4 o_shadow;
 uniform int u_texelStride;

@@ -41,9 +41,6 @@ layout(std140, binding = 0) uniform HfxSurface {
     // The clearance map's light (hfx::ClearanceLight; s_clearance on unit 15, read where
     // HFX_CLEARANCE is 1): texcoords per unit climbed, penumbra, slack
     vec4 u_clearance;
-    // Per level of layer 0's pyramid (hfx::describePyramid): its texel (0, 0)'s place in the
-    // pyramid's image (xy) and its last texel (zw); u_pyramidLevels of them are set.
-    ivec4 u_pyramidLevel[16];
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

@@ -108,6 +108,10 @@ struct SurfaceMaterial {
 /// copy, or the file in HFX_SHADER_DIR when that is set. For harnesses that run a tracer outside
 /// the renderer (shaders/trace/README.md). Throws hfx::Error for an unknown name.
 SourceFile surfaceShader(std::string_view name);
+/// A stage of the module's shaders composed from its top file ("surface.frag"), its #include
+/// lines expanded through surfaceShader (expandIncludes); `slots` names the files of its
+/// `#include <slot>` lines (surface.frag's <tracer> and <shading>).
+std::vector<SourceFile> surfaceStage(std::string_view top, const std::map<std::string, std::string, std::less<>>& slots = {});
 
 class ShadowMap;
 
@@ -150,7 +154,7 @@ struct DrawOptions {
     /// layer, no silhouette fade) a prepass walks one ray per block of kBeamBlock x kBeamBlock
     /// pixels against the pyramid's maxima widened to cover the block's rays, and the draw's rays
     /// start where it found the block's first possible hit: the same hits, fewer steps at
-    /// grazing angles (docs/BENCHMARKS.md, fourteenth part). false: every ray walks from the top.
+    /// grazing angles (16-46% of the view walk's fetches at 45-80 degrees on llvmpipe). false: every ray walks from the top.
     bool beamStart = true;
 };
 

@@ -16,11 +16,6 @@
 
 namespace hfx {
 
-class SurfaceTextures;
-
-/// Levels a pyramid may have: a 8192-texel edge has 14.
-inline constexpr int kMaxPyramidLevels = 16;
-
 struct SurfaceUniforms {
     glm::mat4 model{1.0f};
     glm::mat4 viewProj{1.0f};
@@ -60,10 +55,6 @@ struct SurfaceUniforms {
     /// The clearance map's light (ClearanceLight: uvPerClimb, penumbra, slack; sampler unit 15,
     /// read where HFX_CLEARANCE is 1).
     glm::vec4 clearance{0.0f};
-    /// Per level of layer 0's pyramid (describePyramid): where its texel (0, 0) lies in the
-    /// pyramid's image (xy) and its last texel (zw). The walk reads a bound with one load of
-    /// this and one of the image, instead of working the image's layout out at every step.
-    glm::ivec4 pyramidLevel[kMaxPyramidLevels]{};
 };
 
 struct WaterUniforms {
@@ -104,12 +95,7 @@ static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
 static_assert(offsetof(SurfaceUniforms, shadowBias) == 464);
 static_assert(offsetof(SurfaceUniforms, clearance) == 480);
-static_assert(offsetof(SurfaceUniforms, pyramidLevel) == 496);
-static_assert(sizeof(SurfaceUniforms) == 752);
-
-/// Sets the pyramid's part of `u` for layer 0's textures: its level count and every level's
-/// place in the image (SurfaceTextures::pyramidAtlasOrigin) and last texel; none without one.
-void describePyramid(SurfaceUniforms& u, const SurfaceTextures& textures);
+static_assert(sizeof(SurfaceUniforms) == 496);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);
