@@ -37,7 +37,7 @@ struct SceneOptions {
     /// What a flat surface drawn by hier derives for its light each frame (Effect::
     /// setShadowLight). The clearance map (shorter shadow walks, the same shadows) is off by
     /// default: on the decal wall, whose field changes every frame, its build (25 ms at 512², 140
-    /// at 1024²) costs more than the draw saves (docs/BENCHMARKS.md).
+    /// at 1024²) costs more than the draw saves (docs/history/tuning.md).
     bool clearanceMap = false;
     /// The texel shadows (pixels walk their light rays only where a hard shadow's edge passes
     /// between the samples around them): by default wherever they pay (texelShadowsPay, from

@@ -4,7 +4,7 @@
 # cache and Mesa's shader cache all start empty. Warm: the same folder again. "HFX cache only":
 # warm, with PoCL's own kernel cache turned off (POCL_KERNEL_CACHE=0), as on a driver that keeps
 # none. Each run renders one 1280x720 frame headless and writes it. Prints a Markdown table of
-# medians (docs/BENCHMARKS.md).
+# medians (docs/history/tuning.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs="${1:-3}"

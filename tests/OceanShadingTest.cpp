@@ -110,7 +110,7 @@ struct SmallSea {
 TEST_F(OceanShading, ImpactRingsShowWhileTheyLiveAndTheCalmSeaDrawsAsBefore) {
     // A ring switches the draw to the variant that adds the rings to every height fetch and to the
     // shading (their loop nearly doubled the water's search time when it ran without rings too:
-    // docs/BENCHMARKS.md); once it is gone nothing of it is left in the image. Which variant draws
+    // docs/history/tuning.md); once it is gone nothing of it is left in the image. Which variant draws
     // is not observable here; the bench measures what it costs.
     SmallSea sea(cl());
     SurfaceMaterial material = sea.ocean.material();

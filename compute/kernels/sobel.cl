@@ -24,7 +24,7 @@ __kernel void sobel(__global const float* height, __global float4* out, int widt
 
 /* The same filter, four texels along x per work-item (width a multiple of 4): each row's six
    values are loaded once (one vload4 and the two neighbours) for four outputs instead of nine
-   loads per output; the same results bit for bit (speed: BM_SobelKernel, docs/BENCHMARKS.md). */
+   loads per output; the same results bit for bit (speed: BM_SobelKernel, docs/history/tuning.md). */
 __kernel void sobel4(__global const float* height, __global float4* out, int width, int height_,
                      float scaleX, float scaleY) {
     int x0 = get_global_id(0) * 4, y = get_global_id(1);

@@ -54,7 +54,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         diffuse_ = cl::Kernel(program, "diffuse");
         divergence_ = cl::Kernel(program, "divergence");
         // Four cells per work-item where the rows allow it: faster, the same results
-        // (BM_GasPressureKernel, docs/BENCHMARKS.md).
+        // (BM_GasPressureKernel, docs/history/tuning.md).
         pressure_ = cl::Kernel(program, config.width % 4 == 0 ? "pressure4" : "pressure");
         project_ = cl::Kernel(program, "project");
         dyeHeight_ = cl::Kernel(program, "dye_height");

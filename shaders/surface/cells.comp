@@ -3,8 +3,7 @@
 // cell (i, j) the heights of its four corner samples, in textureGather's order (x: (i, j+1),
 // y: (i+1, j+1), z: (i+1, j), w: (i, j)); across an edge that wraps the first sample, across one
 // that clamps the last again, as the pyramid's level 0 bounds them. One imageLoad in the walk
-// instead of a gather: on llvmpipe a gather costs about 2.2x an RGBA32F imageLoad
-// (docs/BENCHMARKS.md, seventeenth part). Built from the stored texels whenever they change
+// instead of a gather: on llvmpipe a gather costs about 2.2x an RGBA32F imageLoad. Built from the stored texels whenever they change
 // (CellsPass), so the solve reads exactly what a gather would.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2D s_surface;

@@ -24,7 +24,7 @@ struct GasConfig {
     int viscosityIterations = 20;
     int pressureIterations = 40;
     float vorticity = 0.0f;       ///< confinement strength epsilon
-    bool maccormack = false;      ///< second-order MacCormack advection (costlier: docs/BENCHMARKS.md)
+    bool maccormack = false;      ///< second-order MacCormack advection (costlier: docs/history/tuning.md)
     bool conserveDye = true;      ///< rescale the dye after advection to keep its total
     float jetSpeed = 0.0f;        ///< zonal jets: u relaxes to jetSpeed sin(2 pi jetBands y / H)
     float jetBands = 3.0f;

@@ -20,7 +20,7 @@
 // kilometres away keep their precision.
 //
 // Cost: the grids at a new t take 3 transforms per cascade (about 5 ms for four 256^2 cascades
-// on one core; docs/BENCHMARKS.md); the query keeps them, so every batch at the same t costs only
+// on one core; docs/history/tuning.md); the query keeps them, so every batch at the same t costs only
 // the points (microseconds each). After OceanField::setWind or setAmplitudes, update() takes the
 // new spectra.
 //

@@ -24,7 +24,7 @@ namespace hfx {
 /// copy): the pass walks every sample once, and each pixel then walks only where a hard shadow's
 /// edge crosses its cell. On llvmpipe they broke even at about 1.6 pixels per texel (the decal
 /// wall at 512²), paid at 1.8 and more and lost at 0.4-0.45 (the demo's scenes at 256² to 1024²,
-/// docs/BENCHMARKS.md): true from 1.75 pixels per texel. `drawing` is the last frame's answer:
+/// docs/history/tuning.md): true from 1.75 pixels per texel. `drawing` is the last frame's answer:
 /// once on, they stay on down to 1.5, so a camera near the line does not switch them (and the
 /// frame's look, slightly) every frame.
 bool texelShadowsPay(double pixels, double texels, bool drawing);

@@ -9,7 +9,7 @@
 /* Forced inline, for math that a kernel calls several times per work-item: PoCL vectorises a
    kernel across its work-items only when no call is left (the gas's advection spent much of its
    time in an out-of-line hfx_gas_sample). Not the default: the noise kernels ran slower inlined.
-   The figures: BM_Gas and BM_Noise in docs/BENCHMARKS.md. */
+   The figures: BM_Gas and BM_Noise in docs/history/tuning.md. */
 #define HFX_FN_INLINE static inline __attribute__((always_inline))
 #define HFX_CONSTANT __constant
 #define HFX_GLOBAL __global

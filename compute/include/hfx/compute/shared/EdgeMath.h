@@ -10,6 +10,6 @@ HFX_FN int hfx_edge_index(int i, int n, int wrap) {
     return i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
 }
 /* The index after i in [0, n): one compare where hfx_edge_index needs two, for the pyramid's
-   cell corners (the difference shows in BM_Pyramid, docs/BENCHMARKS.md). */
+   cell corners (the difference shows in BM_Pyramid, docs/history/tuning.md). */
 HFX_FN int hfx_edge_next(int i, int n, int wrap) { return i + 1 < n ? i + 1 : (wrap ? 0 : n - 1); }
 #endif

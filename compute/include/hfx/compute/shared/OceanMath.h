@@ -91,7 +91,7 @@ HFX_FN_INLINE float hfx_ocean_jacobian(HFX_GLOBAL const float* dx, HFX_GLOBAL co
    displacement Dx, Dy (metres), its gradient lambda dDx/dx, dDy/dy, dDx/dy (hfx_ocean_gradient's),
    the height h (metres) and the foam. A bilinear sample of all of them reads two pairs of
    neighbouring texels, two or four cache lines, where separate planes took fourteen: the
-   resample's Newton steps were 18 of the 28 ms of a 512^2 cascade's step (docs/BENCHMARKS.md). */
+   resample's Newton steps were 18 of the 28 ms of a 512^2 cascade's step (docs/history/tuning.md). */
 #define HFX_OCEAN_PACKED 8
 #define HFX_OCEAN_DX 0
 #define HFX_OCEAN_DY 1
