@@ -27,6 +27,7 @@ StreamTransfer::StreamTransfer(ClContext& cl, TransferPath path) : cl_(cl), path
         throw Error(str("the gl-sharing transfer path needs an OpenCL context made with the GL context "
                         "(cl_khr_gl_sharing for it: ClContextConfig::glShare); ",
                         cl.description(), " does not share this one"));
+    acquired_.reserve(kStreams);
 }
 
 StreamTransfer::~StreamTransfer() {
@@ -74,6 +75,7 @@ void StreamTransfer::allocate(StreamMemory& m, size_t bytes) {
             glFinish(); // the buffer exists for GL before CL takes it
             clGuard("sharing a GL buffer with OpenCL (clCreateFromGLBuffer)",
                     [&] { s.shared = cl::BufferGL(cl_.context(), CL_MEM_WRITE_ONLY, s.gl.id()); });
+            s.objects = {s.shared};
         }
     }
 }
@@ -93,9 +95,9 @@ void StreamTransfer::enqueue(Stream stream, const cl::Buffer& source, size_t byt
     } else {
         // GL read this slot's buffers two frames ago: the extension wants that finished first.
         if (acquired_.empty()) waitForGl(slot_);
-        const std::vector<cl::Memory> objects{m.slots[size_t(slot_)].shared};
-        clGuard("acquiring a shared GL buffer", [&] { q.enqueueAcquireGLObjects(&objects); });
-        acquired_.push_back(objects.front());
+        const Slot& s = m.slots[size_t(slot_)];
+        clGuard("acquiring a shared GL buffer", [&] { q.enqueueAcquireGLObjects(&s.objects); });
+        acquired_.push_back(s.shared); // capacity for every stream, reserved at construction
         clGuard("copying the surface into the shared GL buffer",
                 [&] { q.enqueueCopyBuffer(source, m.slots[size_t(slot_)].shared, 0, 0, bytes); });
     }

@@ -60,6 +60,7 @@ private:
     struct Slot {
         GlBuffer gl;            ///< GlSharing: the shared buffer of this slot
         cl::BufferGL shared;    ///< GlSharing: its CL view
+        std::vector<cl::Memory> objects; ///< GlSharing: {shared}, as the acquire call takes it (made once)
     };
     struct StreamMemory {
         size_t bytes = 0;
