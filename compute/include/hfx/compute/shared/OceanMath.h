@@ -25,8 +25,15 @@ HFX_FN void hfx_ocean_mode(float h0re, float h0im, float h0mre, float h0mim, flo
    the energy |h|^2 = (1 - s)|a|^2 + s|b|^2 moves linearly, so the spectrum is the linear mix of
    the two and the sea keeps its height mid-change, and the phase is that of mix(a, b, s): a
    and b of one k share their random phase (OceanField draws it per k), so it stays where it is
-   and the waves fade in and out in place. Zero where the mix vanishes; b itself at s >= 1. */
+   and the waves fade in and out in place. Zero where the mix vanishes; a itself at s <= 0 and b
+   at s >= 1, exactly: a device's square root and division may be a few ulps off (OpenCL allows
+   3 and 2.5), which made the sea move by an ulp the moment a change began. */
 HFX_FN void hfx_ocean_blend(float are, float aim, float bre, float bim, float s, float* re, float* im) {
+    if (s <= 0.0f) { /* the change has not begun: the old sea itself */
+        *re = are;
+        *im = aim;
+        return;
+    }
     if (s >= 1.0f) { /* no change in progress: the new sea itself (and two square roots saved) */
         *re = bre;
         *im = bim;
