@@ -29,7 +29,8 @@
 //                     (surface/beam.frag) found for their block of HFX_BEAM_BLOCK pixels
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
-//                     light factor (0 = shadowed) as twice the fraction
+//                     light factor (0 = shadowed) as twice the fraction; and to output 2 the
+//                     texcoords the ray entered at, as the rasteriser interpolated them
 // Switches are defines (hfx::SurfaceVariant), not uniforms: llvmpipe runs both sides of a branch,
 // even one on a uniform, so a feature switched off by a uniform still costs its fetches.
 //
@@ -71,6 +72,7 @@ in vec2 v_texcoord;
 layout(location = 0) out vec4 o_color;
 #if HFX_TRACE_OUTPUT
 layout(location = 1) out vec4 o_trace;
+layout(location = 2) out vec2 o_entry;
 #endif
 
 layout(binding = 1) uniform sampler2D s_albedo;
@@ -332,5 +334,6 @@ void main() {
 #if HFX_TRACE_OUTPUT
     // w: the fetch count in its integer part, the light (0..1) in half of its fraction.
     o_trace = vec4(uv, depthFraction, g_fetches + 0.5 * clamp(lit, 0.0, 0.998));
+    o_entry = v_texcoord;
 #endif
 }

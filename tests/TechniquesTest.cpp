@@ -96,15 +96,18 @@ TEST_F(Techniques, HierarchicalTracerIsExactOnSmoothAndSharpMapsUpTo85Degrees) {
 // Why NVIDIA's GL put 0.06-0.24% of the probe's pixels more than 4 texels off at 80-85 degrees
 // where llvmpipe put none, with the tracer exact on its own rays there: a rasteriser interpolates
 // a fragment's inputs (texcoords, position, tangents) on its fixed-point subpixel grid, so the
-// fragment traces the ray through a point up to kSubpixelTolerance (1/256 px) from its centre,
-// and at grazing views such a ray can pass a peak the centre's ray touches, or touch one it
-// passes. The same draw moved by a fraction of that grid here shows the same misses against the
-// centres' rays (0.03-0.30%), and none against the rays within the tolerance, the bound every
-// accuracy figure holds the tracers to (AccuracyProbe::measure); moved by a quarter pixel, far
-// beyond any rasteriser's rounding, the bound no longer holds.
+// fragment traces the ray through a point near its centre, not the centre's, and at grazing views
+// such a ray can pass a peak the centre's ray touches, or touch one it passes. The same draw moved
+// by a fraction of that grid here shows the same misses against the centres' rays (0.03-0.30%),
+// and none against the rays the fragments traced (their entry texcoords, RenderTarget::
+// readEntry), the measure every accuracy figure uses (AccuracyProbe::measure). A jitter counted
+// twice (the probe's and NVIDIA's own rounding on top) left 1 pixel in 3,300 off against the 8
+// rays around the centre on the H100; the fragment's own ray explains any rounding. Moved a
+// quarter pixel, far beyond any rasteriser's rounding, the centres' rays miss more and the
+// fragments' own still none; POM on the same rays shows the measure fails an inexact tracer.
 TEST_F(Techniques, TheExactTracerIsExactToTheRasterisersSubpixelPrecision) {
     const glm::vec3 light = accuracyLight(60.0f);
-    double centreMisses = 0.0, beyondTolerance = 0.0;
+    double centreMisses = 0.0, farCentreMisses = 0.0, pomMisses = 0.0;
     for (const AccuracyMap& map : issueMapsAndBlocks()) {
         const char* name = map.name.c_str();
         AccuracyProbe probe(cl(), map.heights, kField, 0.1f);
@@ -114,7 +117,7 @@ TEST_F(Techniques, TheExactTracerIsExactToTheRasterisersSubpixelPrecision) {
                 const AccuracyResult r = probe.measure(
                     Technique::Hierarchical, {.angleDegrees = angle, .shadows = true, .light = light, .jitterPixels = jitter});
                 std::printf("[%-12s %2.0f deg, moved (%+.4f, %+.4f) px] > 4 texels: %.3f%% of the centres' rays, %.3f%% "
-                            "within the tolerance\n",
+                            "of the fragments' own\n",
                             name, angle, jitter.x, jitter.y, 100.0 * r.over4CentreRay, 100.0 * r.over4);
                 EXPECT_EQ(r.over4, 0.0) << name << " at " << angle;
                 EXPECT_LT(r.mean, 0.05) << name << " at " << angle;
@@ -122,11 +125,14 @@ TEST_F(Techniques, TheExactTracerIsExactToTheRasterisersSubpixelPrecision) {
                 centreMisses += r.over4CentreRay;
             }
             const AccuracyResult far = probe.measure(Technique::Hierarchical, {.angleDegrees = angle, .jitterPixels = {0.25, 0.25}});
-            beyondTolerance += far.over4;
+            EXPECT_EQ(far.over4, 0.0) << name << " at " << angle << ", moved a quarter pixel";
+            farCentreMisses += far.over4CentreRay;
+            pomMisses += probe.measure(Technique::ParallaxOcclusion, {.angleDegrees = angle, .jitterPixels = {0.25, 0.25}}).over4;
         }
     }
     EXPECT_GT(centreMisses, 0.0) << "moved within the grid, no centre's ray missed: the mechanism is not shown";
-    EXPECT_GT(beyondTolerance, 0.0) << "moved a quarter pixel, every miss was still explained: the bound cannot fail";
+    EXPECT_GT(farCentreMisses, centreMisses / 6.0) << "moved a quarter pixel, the centres' rays missed less";
+    EXPECT_GT(pomMisses, 0.0) << "POM at 80-85 degrees was exact against the fragments' rays: the measure cannot fail";
 }
 
 TEST_F(Techniques, TheBeamStartChangesNoHitAndShortensTheViewWalkAtGrazingAngles) {

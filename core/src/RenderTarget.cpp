@@ -21,9 +21,11 @@ RenderTarget::RenderTarget(int width, int height, bool withTrace)
     glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
     if (withTrace) {
         trace_ = texture(GL_RGBA32F);
+        entry_ = texture(GL_RG32F);
         glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, trace_.id(), 0);
-        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-        glNamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
+        glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT2, entry_.id(), 0);
+        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        glNamedFramebufferDrawBuffers(fbo_.id(), 3, buffers);
     }
     const GLenum status = glCheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
@@ -38,7 +40,11 @@ void RenderTarget::bind() const {
 
 void RenderTarget::clear(const glm::vec4& color, const glm::vec4& trace) const {
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, &color.x);
-    if (withTrace_) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, &trace.x);
+    if (withTrace_) {
+        glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, &trace.x);
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 2, zero);
+    }
     const float one = 1.0f;
     glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &one);
 }
@@ -62,6 +68,13 @@ std::vector<glm::vec4> RenderTarget::readTrace() const {
     std::vector<glm::vec4> out(static_cast<size_t>(width_) * height_);
     glGetTextureImage(trace_.id(), 0, GL_RGBA, GL_FLOAT,
                       static_cast<GLsizei>(out.size() * sizeof(glm::vec4)), out.data());
+    return out;
+}
+
+std::vector<glm::vec2> RenderTarget::readEntry() const {
+    if (!withTrace_) throw Error("render target was created without a trace attachment");
+    std::vector<glm::vec2> out(static_cast<size_t>(width_) * height_);
+    glGetTextureImage(entry_.id(), 0, GL_RG, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(glm::vec2)), out.data());
     return out;
 }
 

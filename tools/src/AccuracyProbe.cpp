@@ -169,6 +169,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, drawn, light,
                    {.technique = technique, .traceOutput = true, .beamStart = config.beamStart});
     const std::vector<glm::vec4> trace = target_->readTrace();
+    const std::vector<glm::vec2> entries = target_->readEntry();
 
     // The light in texture space, in (u, v, h) units: h spans depthScale texture units.
     const glm::dvec3 l = glm::normalize(glm::dvec3(config.light));
@@ -226,7 +227,19 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
             over4CentreRay += error > 4.0;
             if (error > 1.0 || screenError > 0.5) {
                 // A rasteriser interpolates the fragment's inputs on its subpixel grid: at grazing
-                // views a ray within it can pass a peak the centre's ray touches (kSubpixelTolerance).
+                // views a ray within it can pass a peak the centre's ray touches. The ray the
+                // fragment traced (from the texcoords it was given, towards the eye), and the rays
+                // kSubpixelTolerance around the centre's, are the candidates.
+                const glm::dvec2 entry(entries[size_t(y) * n + x]);
+                const glm::dvec3 onPlane((entry.x - 0.5) * kPlaneSize, 0.0, (0.5 - entry.y) * kPlaneSize);
+                const glm::dvec3 e = glm::normalize(glm::dvec3(camera.position) - onPlane);
+                if (const auto own = exact_.traceView(entry, glm::dvec3(e.x, -e.z, e.y) / double(kPlaneSize),
+                                                      config.depthScale);
+                    own && texelError(*own) < error) {
+                    best = *own;
+                    error = texelError(best);
+                    screenError = pixelError(best);
+                }
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         glm::dvec2 uvN;

@@ -1,13 +1,16 @@
 #pragma once
 // An off-screen framebuffer: RGBA8 colour (fragment output 0), a 32-bit float depth texture, and
 // optionally an RGBA32F "trace" attachment (output 1) where debug shader variants write values
-// such as the final texcoords of a ray, for tests and accuracy benchmarks.
+// such as the final texcoords of a ray, and an RG32F "entry" attachment (output 2) where they
+// write the texcoords the fragment's ray entered at (the rasteriser's interpolation, which is not
+// the pixel centre's), for tests and accuracy benchmarks.
 //
 // Owns its framebuffer and attachments. Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include <vector>
@@ -27,13 +30,14 @@ public:
 
     Image readColor() const;               ///< RGB, top row first, ready for writeImage
     std::vector<glm::vec4> readTrace() const; ///< bottom row first (GL order)
+    std::vector<glm::vec2> readEntry() const; ///< bottom row first (GL order)
     std::vector<float> readDepth() const;  ///< window-space depth, bottom row first
 
 private:
     int width_, height_;
     bool withTrace_;
     GlFramebuffer fbo_;
-    GlTexture color_, trace_, depth_;
+    GlTexture color_, trace_, entry_, depth_;
 };
 
 } // namespace hfx

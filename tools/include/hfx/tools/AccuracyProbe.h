@@ -37,9 +37,10 @@ bool planePointRay(const Camera& camera, float planeSize, double px, double py, 
 
 /// A GPU rasteriser interpolates a fragment's inputs on a fixed-point grid of the pixel (GL asks
 /// for at least 4 subpixel bits; NVIDIA and llvmpipe use 8): the ray a fragment traces is the
-/// ray through a point within this many pixels of its centre, not the centre's own. At grazing
-/// views a neighbouring ray can pass a peak the centre's ray touches (a jump of the exact hit by
-/// many texels), so the tracers' exactness is stated against every ray within it.
+/// ray through a point within about this many pixels of its centre, not the centre's own. At
+/// grazing views a neighbouring ray can pass a peak the centre's ray touches (a jump of the exact
+/// hit by many texels), so the tracers' exactness is stated against the ray the fragment traced
+/// (its entry texcoords, read back) and the rays this far around the centre's.
 constexpr double kSubpixelTolerance = 1.0 / 256.0;
 
 struct AccuracyConfig {
@@ -70,8 +71,8 @@ struct AccuracyConfig {
     /// 1 / shadowSharpness of its climb, from a texel away) is not.
     double penumbraTexels = 1.5;
     /// measure() draws its image moved by this many pixels (Camera::jitter) and compares with the
-    /// rays through the unmoved pixels' centres: a rasteriser rounding the fragments' inputs
-    /// within its subpixel grid, made on purpose (tests of kSubpixelTolerance's bound).
+    /// rays through the unmoved pixels' centres (over4CentreRay) and the fragments' own: a
+    /// rasteriser rounding the fragments' inputs, made on purpose (tests of the measure).
     glm::dvec2 jitterPixels{0.0, 0.0};
 };
 
@@ -87,7 +88,8 @@ struct AccuracyResult {
     double mean = 0, p95 = 0, max = 0; ///< texcoord error in texels
     double over4 = 0;               ///< fraction of pixels more than 4 texels off
     /// The same against the ray through the pixel's centre alone (the other figures take the
-    /// nearest of the rays within kSubpixelTolerance of it: see measure()).
+    /// nearest of that one, the fragment's own and those kSubpixelTolerance around the centre's:
+    /// see measure()).
     double over4CentreRay = 0;
     /// The same error on the screen: the traced and the exact point on the relief, both projected,
     /// in pixels of the measured image (mean, 95th percentile, fraction more than a pixel off).
@@ -117,9 +119,10 @@ public:
 
     /// Renders the technique and compares every pixel's hit with the exact one. A pixel's error is
     /// against the exact hit of the ray through its centre or, where that one is more than a
-    /// texel or half a pixel off, through any of 8 points kSubpixelTolerance around it, whichever
-    /// is nearest: the fragment traced one of those rays, and which one is the rasteriser's
-    /// rounding, not the tracer's (over4CentreRay keeps the centre's alone).
+    /// texel or half a pixel off, of the ray the fragment traced (from the entry texcoords the
+    /// rasteriser gave it, towards the eye) or through any of 8 points kSubpixelTolerance around
+    /// the centre, whichever is nearest: which ray a fragment traces is the rasteriser's rounding,
+    /// not the tracer's (over4CentreRay keeps the centre's alone).
     AccuracyResult measure(Technique technique, const AccuracyConfig& config);
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
     /// config's angle (the plane fills the view), after `warmups` draws not counted: GPU time
