@@ -3,7 +3,8 @@
 figure of what a step costs an instruction-issue-bound GPU.
 
 The renderer's own sources (surface/uniforms.glsl, surface/heights.glsl, trace/common.glsl,
-trace/hier.glsl) are composed into a compute shader that runs the view walk (hfx_trace), the light
+trace/hier.glsl; the pyramid as the mip chain a GPU reads, or with --defines HFX_PYRAMID_ATLAS=1
+llvmpipe's atlas) are composed into a compute shader that runs the view walk (hfx_trace), the light
 walk (hfx_shadow) and the beam walk (hfx_beam_depth), compiled to SPIR-V by glslangValidator
 (OpenGL rules) and optimised by spirv-opt -O (inlining, constant folding, dead code). Each loop of
 the result is a walk (or a loop inside one); a step is one trip around it: every path from the
@@ -38,9 +39,9 @@ void main() {
 }
 """
 
-# --accessors mip: the contract's accessors as a mip chain would give them (what issue 36 moves
-# the pyramid to): a bound is one texelFetch at the cell, wrapped by a mask, at the level; a cell's
-# samples one textureGather. The walk's own instructions, without the atlas image's addressing.
+# --accessors mip: the least a harness's accessors can be: a bound one texelFetch at the cell,
+# wrapped by a mask, at the level; a cell's samples one textureGather; no clamped edges, no
+# clearance map or texel shadows. The walk's own instructions, without the renderer's options.
 MIP_ACCESSORS = """
 layout(binding = 0) uniform sampler2D s_surface;
 layout(binding = 1) uniform sampler2D s_bounds;

@@ -152,15 +152,11 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
             EXPECT_LE(worst, bound) << surfaceFormatName(format) << ", " << transferPathName(path);
             ASSERT_EQ(surface.textures().pyramid() != 0, hasPyramid);
             if (!hasPyramid) continue;
-            // Every level where the image holds it (SurfaceTextures::pyramidAtlasOrigin).
+            // Every level where the device's layout holds it.
             const SurfaceTextures& t = surface.textures();
             size_t offset = 0;
             for (int level = 0; level < t.pyramidLevels(); ++level) {
-                const int w = std::max(N >> level, 1);
-                const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(N, N, level);
-                std::vector<float> stored(2 * size_t(w) * w); // (max, min) pairs
-                glGetTextureSubImage(t.pyramid(), 0, x, y, 0, w, w, 1, GL_RG, GL_FLOAT,
-                                     GLsizei(stored.size() * sizeof(float)), stored.data());
+                const std::vector<float> stored = readPyramidLevel(t, level); // (max, min) pairs
                 EXPECT_EQ(stored, std::vector<float>(pyramid.begin() + offset, pyramid.begin() + offset + stored.size()))
                     << surfaceFormatName(format) << ", level " << level;
                 offset += stored.size();

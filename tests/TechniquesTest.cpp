@@ -135,6 +135,31 @@ TEST_F(Techniques, TheExactTracerIsExactToTheRasterisersSubpixelPrecision) {
     EXPECT_GT(pomMisses, 0.0) << "POM at 80-85 degrees was exact against the fragments' rays: the measure cannot fail";
 }
 
+// The pyramid's two layouts (the mip chain a GPU reads with texelFetch and textureGather, the
+// atlas llvmpipe reads with imageLoad: GlWorkarounds::pyramidAtlas) hold the same bounds and the
+// same samples, so the exact tracer walks the same steps to the same hits in either: the same
+// errors, shadows and fetch counts, with and without texel shadows.
+TEST_F(Techniques, TheExactTracerWalksAlikeOnEitherPyramidLayout) {
+    const glm::vec3 light = accuracyLight(60.0f);
+    for (const AccuracyMap& map : issueMapsAndBlocks()) {
+        AccuracyProbe atlas(cl(), map.heights, kField, 0.1f, SurfaceFormat::Float32, PyramidLayout::Atlas);
+        AccuracyProbe mip(cl(), map.heights, kField, 0.1f, SurfaceFormat::Float32, PyramidLayout::MipChain);
+        for (double angle : {0.0, 70.0, 85.0})
+            for (bool texels : {false, true}) {
+                const AccuracyConfig config{.angleDegrees = angle, .shadows = true, .light = light, .texelShadows = texels};
+                const AccuracyResult a = atlas.measure(Technique::Hierarchical, config);
+                const AccuracyResult m = mip.measure(Technique::Hierarchical, config);
+                const std::string at = str(map.name, " at ", angle, texels ? " with texel shadows" : "");
+                ASSERT_GT(a.pixels, 500u) << at;
+                EXPECT_EQ(m.pixels, a.pixels) << at;
+                EXPECT_EQ(m.mean, a.mean) << at;
+                EXPECT_EQ(m.max, a.max) << at;
+                EXPECT_EQ(m.fetches, a.fetches) << at;
+                EXPECT_EQ(m.shadowAgreement, a.shadowAgreement) << at;
+            }
+    }
+}
+
 TEST_F(Techniques, TheBeamStartChangesNoHitAndShortensTheViewWalkAtGrazingAngles) {
     // The renderer's beam prepass (DrawOptions::beamStart, on by default for the probe's flat
     // plane) starts each ray where its block of 8x8 pixels may first meet the relief. Two views

@@ -113,7 +113,11 @@ layout(local_size_x = 64) in;
 /// ray per invocation from a buffer of rays into a buffer of hits.
 const SourceFile kHarness{"harness.comp", R"(
 layout(binding = 0) uniform sampler2D s_surface;
+#if HFX_PYRAMID_ATLAS
 layout(rg32f, binding = 0) readonly uniform image2D i_pyramid; // SurfaceTextures::bindPyramid
+#else
+layout(binding = 3) uniform sampler2D s_pyramid; // SurfaceTextures::pyramidUnit(0)
+#endif
 uniform int u_levels;
 uniform ivec2 u_wrap;
 float hfx_height(vec2 uv, float level) { return textureLod(s_surface, uv, level).w; }
@@ -123,10 +127,15 @@ vec4 hfx_cell_samples(ivec2 cell) { return textureGather(s_surface, (vec2(cell) 
 int hfx_levels() { return u_levels; }
 vec2 hfx_bounds(ivec2 cell, int level) {
     const ivec2 n = max(hfx_size() >> level, ivec2(1));
+    const ivec2 texel = mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap));
+#if HFX_PYRAMID_ATLAS
     // The image's layout (SurfaceTextures::pyramidAtlasOrigin), counted level by level.
     ivec2 origin = ivec2(level > 0 ? hfx_size().x : 0, 0);
     for (int k = 1; k < level; ++k) origin.y += max(hfx_size().y >> k, 1);
-    return imageLoad(i_pyramid, origin + mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap))).rg;
+    return imageLoad(i_pyramid, origin + texel).rg;
+#else
+    return texelFetch(s_pyramid, texel, level).rg;
+#endif
 }
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); } // searches span [0, 1]
 float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) { return 1e30; } // no clearance map
@@ -226,7 +235,10 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && clearance));
     HFX_CHECK(clearance || !texelShadows);
-    std::vector<SourceFile> parts{kComputeHeader};
+    std::vector<SourceFile> parts{kComputeHeader,
+                                  {"harness_layout.comp",
+                                   str("#define HFX_PYRAMID_ATLAS ", textures.pyramidLayout() == PyramidLayout::Atlas ? 1 : 0, "\n"),
+                                   "test"}};
     if (clearance) parts.push_back({"harness_defines.comp", "#define HFX_CLEARANCE 1\n", "test"});
     if (texelShadows) parts.push_back({"harness_texels.comp", "#define HFX_TEXEL_SHADOWS 1\n", "test"});
     if (own) parts.push_back(kHarness);
@@ -852,9 +864,10 @@ void main() {
                                   "test"};
 
 TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareAndOblongFields) {
-    // Every level lies inside the image and apart from the others (SurfaceTextures::
+    // Every level lies inside the atlas image and apart from the others (SurfaceTextures::
     // pyramidAtlasOrigin), and heights.glsl's read of a level's cell, wrapped from anywhere, is
-    // the CPU pyramid's: fields wider than tall, taller than wide, square, and one row high.
+    // the CPU pyramid's in either layout (the atlas, the mip chain): fields wider than tall,
+    // taller than wide, square, and one row high.
     std::mt19937 random(17);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (const auto& [W, H] : {std::pair{64, 16}, std::pair{16, 64}, std::pair{32, 32}, std::pair{128, 2}, std::pair{4, 256}}) {
@@ -874,7 +887,9 @@ TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareA
         std::vector<float> heights(size_t(W) * H);
         for (float& h : heights) h = unit(random);
         StaticField field(cl(), W, H, EdgeMode::Wrap, heights);
-        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false, .pyramid = true}));
+        for (const PyramidLayout layout : {PyramidLayout::Atlas, PyramidLayout::MipChain}) {
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f,
+                                                                {.mipmaps = false, .pyramid = true, .pyramidLayout = layout}));
         surface.run(field.buffer());
         const std::vector<float> reference = pyramidReference(heights, W, H);
         std::vector<glm::vec4> items;
@@ -895,15 +910,31 @@ TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareA
                                                            Accessors::Renderer);
         int wrong = 0;
         for (size_t i = 0; i < read.size(); ++i) wrong += glm::vec2(read[i]) != expected[i];
-        EXPECT_EQ(wrong, 0) << W << "x" << H << ": " << wrong << " of " << read.size() << " reads are not the pyramid's";
+        EXPECT_EQ(wrong, 0) << W << "x" << H << (layout == PyramidLayout::Atlas ? ", atlas: " : ", mip chain: ") << wrong
+                            << " of " << read.size() << " reads are not the pyramid's";
+        }
     }
 }
 
+/// The renderer's cell samples (surface/heights.glsl, hfx_cell_samples) in a compute harness: per
+/// item (a: cell) the four samples.
+const SourceFile kCellReadMain{"harness_cells.comp", R"(
+void main() {
+    uint i;
+    vec4 a, b;
+    if (!hfx_harness_ray(i, a, b)) return;
+    hits[i] = hfx_cell_samples(ivec2(a.xy));
+}
+)",
+                               "test"};
+
 TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
-    // The exact tracer's patch solve reads a cell's four samples from the cells image (CellsPass):
-    // they must be the stored texels a gather around the cell's centre reads (half floats as
-    // stored, the far corners across an edge wrapped or clamped), and an upload must make them
-    // stale until the next refresh rebuilds them.
+    // The exact tracer's patch solve reads a cell's four samples: in the atlas layout from the
+    // cells image (CellsPass), in the mip-chain layout by a gather of the texels. Either must be
+    // the stored texels around the cell's centre (half floats as stored, the far corners across
+    // an edge wrapped or clamped, cells beyond the field wrapped or clamped as the pyramid's
+    // level 0 is), and in the atlas an upload must make the cells stale until the next refresh
+    // rebuilds them.
     constexpr int W = 64, H = 16;
     std::mt19937 random(29);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -913,8 +944,26 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
             for (float& h : first) h = unit(random);
             for (float& h : second) h = unit(random);
             StaticField a(cl(), W, H, edges, first), b(cl(), W, H, edges, second);
-            SurfacePipeline surface(cl(), SurfacePipelineConfig::of(a, 0.05f, {.mipmaps = false, .pyramid = true, .format = format}));
+            SurfacePipeline surface(cl(), SurfacePipelineConfig::of(a, 0.05f,
+                                                                    {.mipmaps = false,
+                                                                     .pyramid = true,
+                                                                     .pyramidLayout = PyramidLayout::Atlas,
+                                                                     .format = format}));
+            SurfacePipeline gathered(cl(), SurfacePipelineConfig::of(a, 0.05f,
+                                                                     {.mipmaps = false,
+                                                                      .pyramid = true,
+                                                                      .pyramidLayout = PyramidLayout::MipChain,
+                                                                      .format = format}));
             CellsPass cells;
+            // Cells from beyond the field on every side: [-W, 2W) x [-H, 2H).
+            std::vector<glm::vec4> items;
+            std::vector<glm::ivec2> cellsAsked;
+            for (int k = 0; k < 4096; ++k) {
+                const glm::ivec2 c(int(unit(random) * 3 * W) - W, int(unit(random) * 3 * H) - H);
+                cellsAsked.push_back(c);
+                items.emplace_back(float(c.x), float(c.y), 0.0f, 0.0f);
+                items.emplace_back(0.0f);
+            }
             auto check = [&](const char* which) {
                 std::vector<glm::vec4> texels(size_t(W) * H), read(size_t(W) * H);
                 const SurfaceTextures& textures = surface.textures();
@@ -925,20 +974,38 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                     j = wrapsV(edges) ? j % H : std::min(j, H - 1);
                     return texels[size_t(j) * W + size_t(i)].w;
                 };
+                auto samples = [&](glm::ivec2 c) { // the cell wrapped or clamped first, as level 0 is
+                    const int i = wrapsU(edges) ? (c.x % W + W) % W : std::clamp(c.x, 0, W - 1);
+                    const int j = wrapsV(edges) ? (c.y % H + H) % H : std::clamp(c.y, 0, H - 1);
+                    return glm::vec4(h(i, j + 1), h(i + 1, j + 1), h(i + 1, j), h(i, j));
+                };
                 int wrong = 0;
                 for (int j = 0; j < H; ++j)
-                    for (int i = 0; i < W; ++i)
-                        wrong += read[size_t(j) * W + size_t(i)] != glm::vec4(h(i, j + 1), h(i + 1, j + 1), h(i + 1, j), h(i, j));
+                    for (int i = 0; i < W; ++i) wrong += read[size_t(j) * W + size_t(i)] != samples({i, j});
                 EXPECT_EQ(wrong, 0) << surfaceFormatName(format) << ", " << edgeModeName(edges) << ", " << which << ": "
                                     << wrong << " of " << W * H << " cells";
+                // heights.glsl's read in both layouts, from anywhere.
+                for (const SurfacePipeline* s : {&surface, &gathered}) {
+                    const std::vector<glm::vec4> got = traceInHarness(s->textures(), Technique::Hierarchical, items, kCellReadMain,
+                                                                      Accessors::Renderer, false, false,
+                                                                      glm::ivec2(wrapsU(edges), wrapsV(edges)));
+                    int off = 0;
+                    for (size_t k = 0; k < got.size(); ++k) off += got[k] != samples(cellsAsked[k]);
+                    EXPECT_EQ(off, 0) << surfaceFormatName(format) << ", " << edgeModeName(edges) << ", " << which
+                                      << (s == &surface ? ", atlas" : ", gathered") << ": " << off << " of " << got.size()
+                                      << " cells read otherwise";
+                }
             };
             surface.run(a.buffer());
+            gathered.run(a.buffer());
             EXPECT_FALSE(surface.textures().cellsCurrent());
             cells.refresh(surface.textures());
             EXPECT_TRUE(surface.textures().cellsCurrent());
             check("first heights");
             surface.run(b.buffer());
             surface.run(b.buffer()); // both of the pipeline's texture pairs
+            gathered.run(b.buffer());
+            gathered.run(b.buffer());
             EXPECT_FALSE(surface.textures().cellsCurrent()) << "an upload must leave the cells stale";
             cells.refresh(surface.textures());
             check("second heights");
@@ -976,8 +1043,9 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
     for (float& h : noise)
         if (const float r = unit(random); r < 0.01f) h = r < 0.005f ? 1.0f : 0.0f;
     const auto smooth = sumOfSines(N / 2, {{0.3, 1, 2, 0.8}, {0.12, 3, -2, 0.1}});
-    const SurfaceOptions options{.mipmaps = true, .pyramid = true};
+    for (const PyramidLayout layout : {PyramidLayout::Atlas, PyramidLayout::MipChain})
     for (const EdgeMode edges : {EdgeMode::Wrap, EdgeMode::Clamp}) {
+        const SurfaceOptions options{.mipmaps = true, .pyramid = true, .pyramidLayout = layout};
         StaticField fieldA(cl(), N, N, edges, noise), fieldB(cl(), N / 2, N / 2, EdgeMode::Wrap, smooth);
         SurfacePipeline a(cl(), SurfacePipelineConfig::of(fieldA, 0.05f, options));
         SurfacePipeline b(cl(), SurfacePipelineConfig::of(fieldB, 0.05f, options));
@@ -1006,7 +1074,9 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         const ShaderProgram p = ShaderProgram::compute(
             {kComputeHeader, surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kHarnessBuffers,
              kBoundsMain},
-            {{"HFX_LAYERS", std::to_string(layers)}, {"HFX_BOUNDED_SEARCH", "1"}});
+            {{"HFX_LAYERS", std::to_string(layers)},
+             {"HFX_BOUNDED_SEARCH", "1"},
+             {"HFX_PYRAMID_ATLAS", layout == PyramidLayout::Atlas ? "1" : "0"}});
         glBindTextureUnit(0, a.textures().surface());
         a.textures().bindPyramid(0);
         glBindTextureUnit(4, b.textures().surface());
@@ -1024,7 +1094,8 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         EXPECT_LE(worstBelow, 0.0f) << edgeModeName(edges) << ": a height below the bounds' minimum";
         // Bounds that hold by being the whole relief would say nothing: with the smooth layer,
         // narrower than the two layers' full range (the noise's own bounds cannot be).
-        std::printf("[bounds] %s: mean width %.3f\n", edgeModeName(edges), meanWidth);
+        std::printf("[bounds] %s, %s: mean width %.3f\n", edgeModeName(edges),
+                    layout == PyramidLayout::Atlas ? "atlas" : "mip chain", meanWidth);
         if (layers == 2) {
             EXPECT_LT(meanWidth, 0.95f);
         }

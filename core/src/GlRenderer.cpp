@@ -1,9 +1,12 @@
 #include "hfx/core/GlRenderer.h"
 
+#include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
+#include <sstream>
 
 namespace hfx {
 
@@ -21,6 +24,25 @@ GlRendererInfo currentGlRenderer() {
         return std::string(s ? s : "");
     };
     return {text(GL_VENDOR), text(GL_RENDERER)};
+}
+
+GlWorkarounds glWorkarounds(const GlRendererInfo& renderer) {
+    const bool software = renderer.software();
+    GlWorkarounds w{.cpuClockTimer = software, .pyramidAtlas = software};
+    const char* env = std::getenv("HFX_GL_WORKAROUNDS");
+    if (!env || !*env) return w;
+    std::stringstream list(env);
+    std::string entry;
+    while (std::getline(list, entry, ',')) {
+        const size_t eq = entry.find('=');
+        const std::string name = entry.substr(0, eq), value = eq == std::string::npos ? "" : entry.substr(eq + 1);
+        bool* flag = name == "cpu-clock-timer" ? &w.cpuClockTimer : name == "pyramid-atlas" ? &w.pyramidAtlas : nullptr;
+        if (!flag || (value != "0" && value != "1"))
+            throw Error(str("HFX_GL_WORKAROUNDS: '", entry, "' is not name=0 or name=1 with a name of "
+                            "cpu-clock-timer, pyramid-atlas (in '", env, "')"));
+        *flag = value == "1";
+    }
+    return w;
 }
 
 } // namespace hfx

@@ -12,7 +12,7 @@ namespace {
 thread_local GpuTimer* activeTimer = nullptr;
 } // namespace
 
-GpuTimer::GpuTimer() : softwareRasteriser_(currentGlRenderer().software()) {
+GpuTimer::GpuTimer() : softwareRasteriser_(glWorkarounds(currentGlRenderer()).cpuClockTimer) {
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits_);
 }
 

@@ -1,6 +1,7 @@
 #include "hfx/core/SurfaceTextures.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GlRenderer.h"
 
 #include <algorithm>
 #include <bit>
@@ -74,11 +75,22 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
         HFX_GL_CHECK(glClearTexImage(channels_.id(), level, GL_RGBA, GL_UNSIGNED_BYTE, open));
     uploadTexels(flatTexels(config.format, static_cast<size_t>(config.width) * config.height).data());
     if (config.pyramid) {
+        layout_ = config.pyramidLayout != PyramidLayout::Auto ? config.pyramidLayout
+                  : glWorkarounds(currentGlRenderer()).pyramidAtlas ? PyramidLayout::Atlas
+                                                                    : PyramidLayout::MipChain;
         pyramid_ = GlTexture::create();
         pyramidLevels_ = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(config.width, config.height))));
-        const auto [atlasWidth, atlasHeight] = pyramidAtlasSize(config.width, config.height);
-        HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), 1, GL_RG32F, atlasWidth, atlasHeight));
-        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        if (layout_ == PyramidLayout::Atlas) {
+            const auto [atlasWidth, atlasHeight] = pyramidAtlasSize(config.width, config.height);
+            HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), 1, GL_RG32F, atlasWidth, atlasHeight));
+        } else {
+            HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_RG32F, config.width, config.height));
+            glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAX_LEVEL, pyramidLevels_ - 1);
+        }
+        // A mipmapped filter for the mip chain: a texelFetch past the base level is defined only
+        // on a texture complete as a mip chain.
+        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER,
+                            layout_ == PyramidLayout::MipChain ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         // Conservative until the first real upload: every cell spans the whole relief (max 1, min 0).
         std::vector<float> whole(static_cast<size_t>(config.width) * config.height * 4);
@@ -102,7 +114,7 @@ std::pair<int, int> SurfaceTextures::pyramidAtlasSize(int width, int height) {
 }
 
 GLuint SurfaceTextures::cells() const {
-    if (pyramid_.id() && !cells_.id()) { // allocated by the first reader: layers never traced by hier have none
+    if (pyramid_.id() && layout_ == PyramidLayout::Atlas && !cells_.id()) { // allocated by the first reader: layers never traced by hier have none
         cells_ = GlTexture::create();
         HFX_GL_CHECK(glTextureStorage2D(cells_.id(), 1, GL_RGBA32F, config_.width, config_.height));
         cellsVersion_ = 0;
@@ -110,9 +122,19 @@ GLuint SurfaceTextures::cells() const {
     return cells_.id();
 }
 
-void SurfaceTextures::bindPyramid(GLuint unit) const {
+GLuint SurfaceTextures::pyramidUnit(int layer) {
+    // heights.glsl's s_pyramid, s_pyramid1..3: the units the surface program leaves free.
+    static constexpr GLuint kUnits[] = {3, 12, 13, 14};
+    if (layer < 0 || layer > 3) throw Error(str("pyramidUnit: layer must be 0 to 3, got ", layer));
+    return kUnits[layer];
+}
+
+void SurfaceTextures::bindPyramid(int layer) const {
     if (!pyramid_.id()) throw Error("bindPyramid: these surface textures were made without a pyramid");
-    HFX_GL_CHECK(glBindImageTexture(unit, pyramid_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
+    if (layout_ == PyramidLayout::MipChain)
+        glBindTextureUnit(pyramidUnit(layer), pyramid_.id());
+    else
+        HFX_GL_CHECK(glBindImageTexture(GLuint(layer), pyramid_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
 }
 
 void SurfaceTextures::uploadPyramid(const float* levels) {
@@ -121,8 +143,12 @@ void SurfaceTextures::uploadPyramid(const float* levels) {
     size_t offset = 0;
     for (int level = 0; level < pyramidLevels_; ++level) {
         const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
-        const auto [x, y] = pyramidAtlasOrigin(config_.width, config_.height, level);
-        HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), 0, x, y, w, h, GL_RG, GL_FLOAT, levels + offset));
+        if (layout_ == PyramidLayout::MipChain) {
+            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RG, GL_FLOAT, levels + offset));
+        } else {
+            const auto [x, y] = pyramidAtlasOrigin(config_.width, config_.height, level);
+            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), 0, x, y, w, h, GL_RG, GL_FLOAT, levels + offset));
+        }
         offset += 2 * static_cast<size_t>(w) * h;
     }
 }

@@ -7,7 +7,8 @@
 namespace hfx {
 
 void CellsPass::refresh(const SurfaceTextures& textures) {
-    if (!textures.cells()) throw Error("CellsPass: these surface textures were made without a pyramid");
+    if (!textures.pyramid()) throw Error("CellsPass: these surface textures were made without a pyramid");
+    if (textures.pyramidLayout() == PyramidLayout::MipChain) return; // the walk gathers the texels
     if (!textures.cellsCurrent()) {
         const GpuScope scope("cells");
         if (!program_) program_ = ShaderProgram::compute(surfaceStage("surface/cells.comp"));

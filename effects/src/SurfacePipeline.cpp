@@ -36,6 +36,7 @@ SurfaceTexturesConfig texturesConfig(const SurfacePipelineConfig& c) {
             .mipmaps = c.options.mipmaps,
             .edges = c.edges,
             .pyramid = c.options.pyramid,
+            .pyramidLayout = c.options.pyramidLayout,
             .format = c.options.format,
             .normalDepth = c.normalDepth};
 }

@@ -117,6 +117,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_CLEARANCE", v.clearance ? "1" : "0"},
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
+                                                   {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"},
                                                    {"HFX_BEAM_BLOCK", std::to_string(kBeamBlock)}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
@@ -162,6 +163,10 @@ void validateLayers(std::span<const SurfaceLayer> layers, const TechniqueInfo& t
             if (l.textures->config().edges != EdgeMode::Wrap)
                 throw Error(str("surface layer ", i, " does not tile (edges ", edgeModeName(l.textures->config().edges),
                                 "): the layers of a surface repeat at their own scales"));
+            if (l.textures->pyramid() && layers[0].textures->pyramid() &&
+                l.textures->pyramidLayout() != layers[0].textures->pyramidLayout())
+                throw Error(str("surface layer ", i, "'s pyramid is laid out otherwise than layer 0's ",
+                                "(PyramidLayout): a surface's layers share one layout"));
             if (l.textures->config().format != layers[0].textures->config().format)
                 throw Error(str("surface layer ", i, " is ", surfaceFormatName(l.textures->config().format),
                                 ", layer 0 ", surfaceFormatName(layers[0].textures->config().format),
@@ -226,6 +231,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
     const bool beam = options.beamStart && options.technique == Technique::Hierarchical && layers.size() == 1 &&
                       mesh.flatPatch() && material.silhouetteFade == 0.0f && material.depthScale > 0.0f;
+    // The layers' pyramids share one layout (validateLayers): the device's.
+    const auto withPyramid = std::ranges::find_if(layers, [](const SurfaceLayer& l) { return l.textures->pyramid() != 0; });
+    const bool atlas = withPyramid != layers.end() && withPyramid->textures->pyramidLayout() == PyramidLayout::Atlas;
     const ShaderProgram& p = program(options, {.shading = material.shading,
                                                .layers = int(layers.size()),
                                                .traced = traced,
@@ -237,7 +245,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                                .caster = caster != nullptr,
                                                .clearance = clearance,
                                                .texelShadows = textures.texelShadows() != 0,
-                                               .beamStart = beam});
+                                               .beamStart = beam,
+                                               .pyramidAtlas = atlas});
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -297,7 +306,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     for (size_t i = 1; i < layers.size(); ++i) {
         glBindTextureUnit(GLuint(3 + i), layers[i].textures->surface());
         glBindTextureUnit(GLuint(6 + i), layers[i].textures->albedo());
-        if (layers[i].textures->pyramid()) layers[i].textures->bindPyramid(GLuint(i));
+        if (layers[i].textures->pyramid()) layers[i].textures->bindPyramid(int(i));
     }
     if (textures.pyramid()) textures.bindPyramid(0);
     glBindTextureUnit(15, textures.clearance());
@@ -305,7 +314,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
     if (beam) { // the prepass reads the surface and the pyramid bound above, and the block's uniforms
         const GpuScope scope("beam");
-        drawBeamStart(mesh, model, u, viewProj);
+        drawBeamStart(mesh, model, u, viewProj, atlas);
         glBindTextureUnit(5, beamTarget_.id()); // layer 2's unit: a single layer leaves it free
     }
     bindUniforms(u, model, viewProj);
@@ -317,7 +326,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
 }
 
 void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u,
-                                    const glm::mat4& viewProj) {
+                                    const glm::mat4& viewProj, bool atlas) {
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
     // Texel (i, j) covers the window's pixels [B i, B i + B) x [B j, B j + B): the target spans
@@ -335,9 +344,11 @@ void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Su
         attachPassTarget(beamFramebuffer_, beamTarget_.id(), beamWidth_, beamHeight_, "R32F",
                          "SurfaceRenderer: the beam start");
     }
-    if (!beam_.id())
-        beam_ = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("surface/beam.frag"),
-                              {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", "0"}, {"HFX_TEXEL_SHADOWS", "0"}});
+    ShaderProgram& beam = beam_[atlas ? 1 : 0];
+    if (!beam.id())
+        beam = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("surface/beam.frag"),
+                             {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", "0"}, {"HFX_TEXEL_SHADOWS", "0"},
+                              {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
     // NDC x of the draw -> window x = vx + (x + 1) vw / 2 -> target x = window x / B.
     const glm::vec2 scale = glm::vec2(viewport[2], viewport[3]) / (float(kBeamBlock) * glm::vec2(width, height));
     const glm::vec2 offset = (2.0f * glm::vec2(viewport[0], viewport[1]) + glm::vec2(viewport[2], viewport[3])) /
@@ -354,9 +365,9 @@ void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Su
     glDisable(GL_DEPTH_TEST);
     const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}; // 0: no start, where no block ray was walked
     glClearNamedFramebufferfv(beamFramebuffer_.id(), GL_COLOR, 0, none);
-    beam_.use();
-    beam_.set("u_beamInverseViewProj", glm::inverse(beamViewProj));
-    beam_.set("u_beamPixel", 2.0f / glm::vec2(width, height));
+    beam.use();
+    beam.set("u_beamInverseViewProj", glm::inverse(beamViewProj));
+    beam.set("u_beamPixel", 2.0f / glm::vec2(width, height));
     mesh.draw();
 }
 

@@ -12,9 +12,10 @@
 namespace hfx {
 
 namespace {
-ShaderProgram texelProgram(bool clearance) {
+ShaderProgram texelProgram(bool clearance, bool atlas) {
     return ShaderProgram(surfaceStage("sky.vert"), surfaceStage("surface/texelshadows.frag"),
-                         {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", clearance ? "1" : "0"}, {"HFX_TEXEL_SHADOWS", "0"}});
+                         {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", clearance ? "1" : "0"}, {"HFX_TEXEL_SHADOWS", "0"},
+                          {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
 }
 } // namespace
 
@@ -42,13 +43,14 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
         throw Error("TexelShadowPass::draw: the surface needs its height pyramid (SurfaceOptions::pyramid)");
     light.validate();
     const bool clearance = textures.clearanceLight() == light;
-    std::optional<ShaderProgram>& program = programs_[clearance ? 1 : 0];
-    if (!program) program = texelProgram(clearance);
+    const bool atlas = textures.pyramidLayout() == PyramidLayout::Atlas;
+    std::optional<ShaderProgram>& program = programs_[clearance ? 1 : 0][atlas ? 1 : 0];
+    if (!program) program = texelProgram(clearance, atlas);
     const SurfaceTexturesConfig& config = textures.config();
     const GLuint target = textures.texelShadowTarget(stride); // throws for a bad stride
     const int width = config.width / stride, height = config.height / stride;
     GlStateGuard guard;
-    cells_.refresh(textures); // the walk's patch samples, image unit 4 (uses its own program)
+    cells_.refresh(textures); // the atlas layout's patch samples, image unit 4 (uses its own program)
     const GpuScope scope("texel shadows");
     attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left

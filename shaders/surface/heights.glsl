@@ -39,15 +39,23 @@ mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
 }
 
 layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
-// The height-bounds pyramid, RG32F: a level k texel's (max, min) over the bilinear cells it
-// covers, every level in one image (hfx_atlas_origin). Read with imageLoad: on llvmpipe a
-// texelFetch with a level per lane is a call that spills the walk's vectors, and cost 1.6x an
-// imageLoad. Layer i's pyramid at image unit i. A level's place is worked out per read: a
-// per-level table in the uniform block (one load indexed by the lane's level) made hier's draw
-// 10-20% slower on llvmpipe, and lanes at different levels would serialise a GPU's constant reads.
+// HFX_PYRAMID_ATLAS 1: the height-bounds pyramid in PyramidLayout::Atlas, llvmpipe's workaround
+// (GlWorkarounds::pyramidAtlas in core/GlRenderer.h says why): every level in one RG32F image
+// read with imageLoad (hfx_atlas_origin), and the level-0 cells' samples in an RGBA32F image
+// (cells.comp). 0: a mip chain, RG32F, a level k texel the (max, min) over the bilinear cells it
+// covers, read with texelFetch at the lane's level; the cells' samples gathered from s_surface.
+#ifndef HFX_PYRAMID_ATLAS
+#define HFX_PYRAMID_ATLAS 0
+#endif
+#if HFX_PYRAMID_ATLAS
+// Layer i's pyramid at image unit i.
 layout(rg32f, binding = 0) readonly uniform image2D i_pyramid;
 // Layer 0's level-0 cells: per cell its four samples in textureGather's order (cells.comp).
 layout(rgba32f, binding = 4) readonly uniform image2D i_cells;
+#else
+// Layer i's pyramid at SurfaceTextures::pyramidUnit(i).
+layout(binding = 3) uniform sampler2D s_pyramid;
+#endif
 #if HFX_CLEARANCE
 layout(binding = 15) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
 #endif
@@ -58,15 +66,27 @@ layout(binding = 4) uniform sampler2D s_texelShadows;
 #endif
 #if HFX_LAYERS > 1
 layout(binding = 4) uniform sampler2D s_surface1;
+#if HFX_PYRAMID_ATLAS
 layout(rg32f, binding = 1) readonly uniform image2D i_pyramid1; // the layers' own pyramids (bounded searches)
+#else
+layout(binding = 12) uniform sampler2D s_pyramid1;
+#endif
 #endif
 #if HFX_LAYERS > 2
 layout(binding = 5) uniform sampler2D s_surface2;
+#if HFX_PYRAMID_ATLAS
 layout(rg32f, binding = 2) readonly uniform image2D i_pyramid2;
+#else
+layout(binding = 13) uniform sampler2D s_pyramid2;
+#endif
 #endif
 #if HFX_LAYERS > 3
 layout(binding = 6) uniform sampler2D s_surface3;
+#if HFX_PYRAMID_ATLAS
 layout(rg32f, binding = 3) readonly uniform image2D i_pyramid3;
+#else
+layout(binding = 14) uniform sampler2D s_pyramid3;
+#endif
 #endif
 
 // A layered surface traces its first HFX_TRACED_LAYERS layers (all unless told): the others
@@ -150,16 +170,19 @@ int hfx_levels() { return u_pyramidLevels; }
 // CPU rasteriser, and the float wrap this replaced cost the walk 1.4%.
 ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) { return mix(clamp(cell, ivec2(0), last), cell & last, bvec2(u_wrap)); }
 
+#if HFX_PYRAMID_ATLAS
 // Where a level's texel (0, 0) lies in the pyramid's image (SurfaceTextures::pyramidAtlasOrigin):
 // level 0 at the origin, level 1 at (width, 0), each further level below the one before.
 ivec2 hfx_atlas_origin(ivec2 size, int level) {
     const int above = max(level - 1, 0);
     return level == 0 ? ivec2(0) : ivec2(size.x, size.y - max(size.y >> above, 1) + max(0, above - findLSB(size.y)));
 }
+#endif
 
 // Layer `layer`'s pyramid at a level's texel (wrapped or clamped already); a constant layer
 // folds the switch.
 vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
+#if HFX_PYRAMID_ATLAS
     const ivec2 at = hfx_atlas_origin(size, level) + texel;
 #if HFX_LAYERS > 1
     if (layer == 1) return imageLoad(i_pyramid1, at).rg;
@@ -171,12 +194,32 @@ vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
     if (layer == 3) return imageLoad(i_pyramid3, at).rg;
 #endif
     return imageLoad(i_pyramid, at).rg;
+#else
+#if HFX_LAYERS > 1
+    if (layer == 1) return texelFetch(s_pyramid1, texel, level).rg;
+#endif
+#if HFX_LAYERS > 2
+    if (layer == 2) return texelFetch(s_pyramid2, texel, level).rg;
+#endif
+#if HFX_LAYERS > 3
+    if (layer == 3) return texelFetch(s_pyramid3, texel, level).rg;
+#endif
+    return texelFetch(s_pyramid, texel, level).rg;
+#endif
 }
 
-// A level-0 cell's four samples (surface/cells.comp builds them from the stored texels).
+// A level-0 cell's four samples, in textureGather's order: the cell wrapped or clamped as the
+// pyramid's level 0 is, then a gather around its centre ((i + 1) / size lies exactly between
+// the four texel centres at power-of-two sizes; the sampler wraps or clamps the far samples as
+// the field's edges do); in the atlas layout the cells image's copy of the same.
 vec4 hfx_cell_samples(ivec2 cell) {
     g_fetches += 1.0;
-    return imageLoad(i_cells, hfx_pyramid_texel(cell, hfx_size() - 1));
+    const ivec2 texel = hfx_pyramid_texel(cell, hfx_size() - 1);
+#if HFX_PYRAMID_ATLAS
+    return imageLoad(i_cells, texel);
+#else
+    return textureGather(s_surface, (vec2(texel) + 1.0) / vec2(hfx_size()), 3);
+#endif
 }
 
 vec2 hfx_bounds(ivec2 cell, int level) {

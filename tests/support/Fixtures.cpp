@@ -75,8 +75,21 @@ void drain() {
 }
 } // namespace
 
+/// No test leaves a GL error behind: a call whose error nobody checked would otherwise be blamed
+/// on the next checked call, in whichever test makes it.
+void expectNoGlError() {
+    if (!sharedGl) return;
+    sharedGl->makeCurrent();
+    for (GLenum e = glGetError(), n = 0; e != GL_NO_ERROR && n < 8; e = glGetError(), ++n)
+        ADD_FAILURE() << "the test left GL error 0x" << std::hex << e << " unchecked";
+}
+
 void ClTest::TearDown() { drain(); }
-void DeviceTest::TearDown() { drain(); }
+void DeviceTest::TearDown() {
+    drain();
+    expectNoGlError();
+}
+void GlTest::TearDown() { expectNoGlError(); }
 ClContext& DeviceTest::cl() { return *acquireCl(); }
 
 void GlTest::SetUp() {
@@ -100,6 +113,20 @@ std::string outputPath(const std::string& fileName) {
 std::string shaderSourceDir() {
     const char* env = std::getenv("HFX_SHADER_SOURCE_DIR");
     return env && *env ? env : HFX_SHADER_SOURCE_DIR;
+}
+
+std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level) {
+    const SurfaceTexturesConfig& c = textures.config();
+    const int w = std::max(c.width >> level, 1), h = std::max(c.height >> level, 1);
+    std::vector<float> stored(2 * size_t(w) * size_t(h));
+    const GLsizei bytes = GLsizei(stored.size() * sizeof(float));
+    if (textures.pyramidLayout() == PyramidLayout::MipChain) {
+        glGetTextureImage(textures.pyramid(), level, GL_RG, GL_FLOAT, bytes, stored.data());
+    } else {
+        const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, level);
+        glGetTextureSubImage(textures.pyramid(), 0, x, y, 0, w, h, 1, GL_RG, GL_FLOAT, bytes, stored.data());
+    }
+    return stored;
 }
 
 std::vector<float> readSurface(const SurfaceTextures& textures) {

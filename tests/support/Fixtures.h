@@ -27,19 +27,22 @@ protected:
 class GlTest : public ::testing::Test {
 protected:
     void SetUp() override;
+    void TearDown() override; ///< fails the test where it left a GL error unchecked
 };
 
 /// GL and CL both (scenes); skips if either is missing.
 class DeviceTest : public ::testing::Test {
 protected:
     void SetUp() override;
-    void TearDown() override;
+    void TearDown() override; ///< drains the queue; fails the test where it left a GL error unchecked
     ClContext& cl();
 };
 
 /// Level 0 of a surface texture as GL holds it: width*height float4 (normal.xyz, height), row 0
 /// at v = 0. Needs the texture's context current.
 std::vector<float> readSurface(const SurfaceTextures& textures);
+/// The pyramid's level `level` as GL holds it, (max, min) pairs row by row, in either layout.
+std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level);
 
 /// The first `count` floats of a device buffer (waits for the queue).
 std::vector<float> readFloats(ClContext& cl, const cl::Buffer& buffer, size_t count);

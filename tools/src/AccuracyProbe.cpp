@@ -103,11 +103,15 @@ bool planePointRay(const Camera& camera, float planeSize, double px, double py, 
     return true;
 }
 
-AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float normalDepth, SurfaceFormat format)
+AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float normalDepth, SurfaceFormat format,
+                             PyramidLayout layout)
     : size_(size), exact_(heights, size, size, EdgeMode::Wrap), field_(cl, size, size, EdgeMode::Wrap, heights),
       surface_(cl, SurfacePipelineConfig::of(field_, normalDepth,
                                              // mip level 0 only: the figures speak of the search, not the filter
-                                             {.mipmaps = false, .pyramid = format != SurfaceFormat::Unorm8, .format = format})),
+                                             {.mipmaps = false,
+                                              .pyramid = format != SurfaceFormat::Unorm8,
+                                              .pyramidLayout = layout,
+                                              .format = format})),
       plane_(makePlane({.size = kPlaneSize})), timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})),
       cl_(cl) {
     surface_.run(field_.buffer());

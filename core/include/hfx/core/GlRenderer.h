@@ -21,6 +21,27 @@ struct GlRendererInfo {
 /// The renderer of the current context.
 GlRendererInfo currentGlRenderer();
 
+/// Where HFX does, on a CPU rasteriser, what a GPU would not want: each switch measured to pay
+/// there (docs/BENCHMARKS.md), and all of them here, detected from the renderer. Everywhere else
+/// the code is written for a GPU. HFX_GL_WORKAROUNDS overrides them, "name=0|1" separated by
+/// commas (cpu-clock-timer, pyramid-atlas), so either side runs on any device: tests hold the
+/// two sides to the same results, benches time one against the other.
+struct GlWorkarounds {
+    /// GpuTimer: the CPU clock between two glFinish times a pass. A CPU rasteriser has no device
+    /// clock: its timer queries stamp one tile of a pass, a fraction of the work.
+    bool cpuClockTimer = false;
+    /// SurfaceTextures: the bounds pyramid as one RG32F image read with imageLoad, and the level-0
+    /// cells' samples as an RGBA32F image (CellsPass), instead of a mip chain read with
+    /// texelFetch at the lane's level and a textureGather of the heights. On llvmpipe a texelFetch
+    /// with a level per lane is a call that spills the walk's vectors (1.6x an imageLoad) and a
+    /// gather costs 2.2x an RGBA32F imageLoad; on a GPU each is one texture instruction.
+    bool pyramidAtlas = false;
+};
+
+/// The workarounds for `renderer`, HFX_GL_WORKAROUNDS applied; throws hfx::Error naming a bad
+/// entry and the valid names.
+GlWorkarounds glWorkarounds(const GlRendererInfo& renderer);
+
 /// A GL context's native handles, as cl_khr_gl_sharing takes them (CL_GL_CONTEXT_KHR with
 /// CL_GLX_DISPLAY_KHR or CL_EGL_DISPLAY_KHR). None: the context cannot be shared (OSMesa).
 struct GlShareHandles {

@@ -12,8 +12,8 @@
 // as its rasteriser threads reach it, so a GL_TIME_ELAPSED query measures about the last tile
 // (a full-screen draw of 34 ms read 0.96 ms) and a GL_TIMESTAMP pair likewise. There, and only
 // there, a segment is timed by the CPU clock between two glFinish: the rasteriser's threads are
-// the device, and their work between the two is the pass's. That is this file's one workaround,
-// the `softwareRasteriser_` switch (GlRendererInfo::software()).
+// the device, and their work between the two is the pass's: the `softwareRasteriser_` switch,
+// GlWorkarounds::cpuClockTimer (GlRenderer.h, where every such switch lives).
 //
 // The module's passes open a GpuScope named after themselves ("upload", "cells", "texel
 // shadows", "beam", "draw", "shadow map"); a scope records on the timer active on this thread

@@ -23,14 +23,24 @@
 
 namespace hfx {
 
+/// How the height-bounds pyramid is held on the GL side (the exact tracer's, heights.glsl).
+enum class PyramidLayout {
+    Auto,     ///< the device's: Atlas where GlWorkarounds::pyramidAtlas says so, else MipChain
+    MipChain, ///< an RG32F texture with a mip level per pyramid level, read with texelFetch; the
+              ///< level-0 cells' samples gathered from the surface texture (textureGather)
+    Atlas,    ///< every level in one RG32F image read with imageLoad, and the level-0 cells'
+              ///< samples in an RGBA32F image (cells(), CellsPass): llvmpipe's workaround
+};
+
 struct SurfaceTexturesConfig {
     int width = 512;
     int height = 512;
     bool mipmaps = true; ///< POM's level-of-detail switch needs them; tests of the search don't
     EdgeMode edges = EdgeMode::Wrap; ///< the textures' wrap modes, and the pyramid walk's
     /// Also a height-bounds pyramid (RG32F: max, min per cell, every level) for the hierarchical
-    /// tracer, laid out as one image (pyramidAtlasOrigin); needs power-of-two sizes.
+    /// tracer; needs power-of-two sizes.
     bool pyramid = false;
+    PyramidLayout pyramidLayout = PyramidLayout::Auto; ///< tests and benches pick one side
     /// Storage of normal + height: Float16 halves the memory and the transfer, Unorm8 quarters
     /// them (docs/ACCURACY.md measures what each costs against the exact intersection).
     SurfaceFormat format = SurfaceFormat::Float32;
@@ -89,13 +99,17 @@ public:
     void uploadChannels(const unsigned char* rgba);
 
     GLuint surface() const { return surface_.id(); }
-    /// The pyramid's texture, 0 without one: a single-level RG32F image holding every level side
-    /// by side (pyramidAtlasOrigin), which the shaders read as an image (bindPyramid).
+    /// The pyramid's texture, 0 without one: an RG32F mip chain, or in the Atlas layout a
+    /// single-level RG32F image holding every level side by side (pyramidAtlasOrigin).
     GLuint pyramid() const { return pyramid_.id(); }
     int pyramidLevels() const { return pyramidLevels_; }
-    /// Binds the pyramid to image unit `unit`, read-only, as heights.glsl reads it (layer i of a
-    /// layered surface at unit i). Throws without a pyramid.
-    void bindPyramid(GLuint unit) const;
+    PyramidLayout pyramidLayout() const { return layout_; } ///< MipChain or Atlas, never Auto
+    /// Binds the pyramid where heights.glsl reads layer `layer`'s (0 to 3): the texture unit
+    /// pyramidUnit(layer), or in the Atlas layout image unit `layer`, read-only. Throws without
+    /// a pyramid.
+    void bindPyramid(int layer) const;
+    /// The texture unit of layer `layer`'s mip-chain pyramid (heights.glsl's s_pyramid*).
+    static GLuint pyramidUnit(int layer);
     /// Where a pyramid level's texel (0, 0) lies in the image: level 0 (width x height) at the
     /// origin, level 1 to its right at (width, 0), each further level below the one before
     /// (heights.glsl's hfx_atlas_origin computes the same). llvmpipe reads an image with
@@ -103,11 +117,12 @@ public:
     static std::pair<int, int> pyramidAtlasOrigin(int width, int height, int level);
     /// The image's size for a width x height pyramid: every level inside, none overlapping.
     static std::pair<int, int> pyramidAtlasSize(int width, int height);
-    /// With the pyramid, the level-0 cells' corner samples (RGBA32F, width x height: per cell the
-    /// four heights a gather around its centre reads, in that order), which the exact tracer's
-    /// patch solve reads in one imageLoad. A cache of the texels, built on the GL side
-    /// (effects' CellsPass) after each uploadTexels; 0 without a pyramid. Allocated on the first
-    /// call (16 bytes a texel), so surfaces never drawn with hier (the ocean's layers) hold none.
+    /// In the Atlas layout, the level-0 cells' corner samples (RGBA32F, width x height: per cell
+    /// the four heights a gather around its centre reads, in that order), which the exact
+    /// tracer's patch solve reads in one imageLoad. A cache of the texels, built on the GL side
+    /// (effects' CellsPass) after each uploadTexels; 0 without a pyramid or in the MipChain
+    /// layout (the walk gathers the texels themselves). Allocated on the first call (16 bytes a
+    /// texel), so surfaces never drawn with hier (the ocean's layers) hold none.
     GLuint cells() const;
     /// Whether the cells hold the current texels; cellsBuilt() records that they do (the builder
     /// calls it: the cache's state, not the surface's, hence const).
@@ -130,6 +145,7 @@ private:
     SurfaceTexturesConfig config_;
     int levels_ = 1;
     int pyramidLevels_ = 0;
+    PyramidLayout layout_ = PyramidLayout::MipChain;
     GlTexture surface_, albedo_, channels_, pyramid_, clearance_, texelShadows_;
     mutable GlTexture cells_;
     std::uint64_t texelsVersion_ = 1; ///< counts uploadTexels

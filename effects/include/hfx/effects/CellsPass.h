@@ -1,7 +1,8 @@
 #pragma once
-// Builds a surface's level-0 cells image (SurfaceTextures::cells, shaders/surface/cells.comp)
-// from its stored texels when they have changed since the last build, and binds it where the
-// exact tracer reads it. SurfaceRenderer and TexelShadowPass run it before every hier draw and
+// In the atlas layout (PyramidLayout::Atlas, llvmpipe's), builds a surface's level-0 cells image
+// (SurfaceTextures::cells, shaders/surface/cells.comp) from its stored texels when they have
+// changed since the last build, and binds it where the exact tracer reads it; in the mip-chain
+// layout the walk gathers the texels themselves, and it does nothing. SurfaceRenderer and TexelShadowPass run it before every hier draw and
 // pass; a program of your own over surface/heights.glsl (a compute harness, say) runs it too.
 //
 // Owns its compute program. Thread: the thread whose GL context is current.
@@ -15,9 +16,10 @@ namespace hfx {
 
 class CellsPass {
 public:
-    /// Rebuilds the cells of `textures` if their texels changed since (compiling the program on
-    /// first use), then binds them to image unit 4, read-only. Also changes texture unit 0 and
-    /// the current program. Throws for textures without a pyramid.
+    /// Atlas layout: rebuilds the cells of `textures` if their texels changed since (compiling
+    /// the program on first use), then binds them to image unit 4, read-only; also changes
+    /// texture unit 0 and the current program. Mip chain: nothing. Throws for textures without a
+    /// pyramid.
     void refresh(const SurfaceTextures& textures);
 
 private:

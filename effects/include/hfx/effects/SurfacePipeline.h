@@ -45,6 +45,7 @@ struct SurfaceOptions {
     /// Also build the height-bounds pyramid each frame (for Technique::Hierarchical; the
     /// field's sizes must be powers of two and the format a float one).
     bool pyramid = false;
+    PyramidLayout pyramidLayout = PyramidLayout::Auto; ///< the device's unless a test or bench picks
     /// The surface textures' storage; other than Float32, a SurfacePacker packs the texels on
     /// the device before the transfer.
     SurfaceFormat format = SurfaceFormat::Float32;

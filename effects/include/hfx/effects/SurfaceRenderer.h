@@ -185,6 +185,9 @@ struct SurfaceVariant {
     /// HFX_BEAM_START: hier's view rays start at the beam prepass's depth for their block
     /// (DrawOptions::beamStart on a flat patch)
     bool beamStart = false;
+    /// HFX_PYRAMID_ATLAS: the surfaces' pyramids are in PyramidLayout::Atlas (llvmpipe's
+    /// workaround, GlWorkarounds::pyramidAtlas), not mip chains
+    bool pyramidAtlas = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 
@@ -236,13 +239,14 @@ private:
                         const glm::vec4& color, const DirectionalLight* light);
     /// The beam prepass (shaders/surface/beam.frag) into beamTarget_, one texel per block of the
     /// bound framebuffer's viewport, with the draw's uniforms `u` (their transform replaced).
-    void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u, const glm::mat4& viewProj);
+    void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u, const glm::mat4& viewProj,
+                       bool atlas);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
     ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
-    ShaderProgram beam_;
+    ShaderProgram beam_[2]; ///< by the pyramid's layout: a mip chain, the atlas
     GlFramebuffer beamFramebuffer_;
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
     int beamWidth_ = 0, beamHeight_ = 0;

@@ -53,7 +53,7 @@ public:
 private:
     /// [1]: the walks read the clearance map; each built by its first draw (a surface with texel
     /// shadows and no map never compiles the other).
-    std::optional<ShaderProgram> programs_[2];
+    std::optional<ShaderProgram> programs_[2][2]; ///< by clearance map, by the atlas layout
     CellsPass cells_; ///< the walk's level-0 cells
     GlFramebuffer framebuffer_;
     GlVertexArray empty_;

@@ -115,7 +115,7 @@ public:
     /// measure what a smaller format costs); unorm8 takes no pyramid, so it cannot measure the
     /// hierarchical technique.
     AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float normalDepth,
-                  SurfaceFormat format = SurfaceFormat::Float32);
+                  SurfaceFormat format = SurfaceFormat::Float32, PyramidLayout layout = PyramidLayout::Auto);
 
     /// Renders the technique and compares every pixel's hit with the exact one. A pixel's error is
     /// against the exact hit of the ray through its centre or, where that one is more than a
