@@ -202,7 +202,8 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                                 {Technique::Hierarchical, 0.0f, false, "hier, texel shadows, no beam start", true, false}};
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,clearance_map,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
-           "fetches_lanes32,map_build_ms,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height\n";
+           "fetches_lanes32,map_build_ms,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
+           "compute_pom_ms,compute_hier_ms\n";
     std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
                 "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
                 "clock around glFinish of the same draws.\n"
@@ -212,12 +213,14 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "(the map's kernels by CL event profiling, GL's passes by timer queries; median of 30 frames with and\n"
                 "without). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in the\n"
                 "shader of the timed draw itself: the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
-                "blocks (a 32-lane GPU warp) each run as long as their longest pixel. The last four columns: hier with\n"
-                "texel shadows (the scenes' default where they pay) over pom.\n\n"
+                "blocks (a 32-lane GPU warp) each run as long as their longest pixel. Then four columns: hier with\n"
+                "texel shadows (the scenes' default where they pay) over pom. Compute: the same pixels' rays traced in a\n"
+                "compute shader (AccuracyProbe::timeCompute: the view ray and its soft shadow, no map, no beam start), by\n"
+                "pom and by hier, GPU time of one dispatch, median of the same rounds.\n\n"
                 "| map | angle | pom ms | hier ms | hier / pom | wall: hier / pom | no map / pom | hier 1px / pom | texels / pom | "
                 "texels, no beam / pom | map ms | texels ms | fetches pom, hier, no map, texels, no beam | texels: fetches | "
-                "8 lanes | 32 lanes | ms per 8-lane fetch |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+                "8 lanes | 32 lanes | ms per 8-lane fetch | compute: pom ms, hier ms | compute: hier / pom |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                 devices.summary().c_str(), field, field, width, height, rounds, kWarmupFrames);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
@@ -248,21 +251,32 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
             std::vector<FetchCounts> counts;
             for (const Variant& v : variants) counts.push_back(probe.countFetches(v.technique, configOf(v), width, height));
             const double pom = gpuMs[0];
+            // The same rays in a compute shader: pom against hier's walk, interleaved.
+            std::vector<double> computePom, computeHier;
+            for (int r = -kWarmupFrames; r < rounds; ++r) {
+                const double p = probe.timeCompute(Technique::ParallaxOcclusion, configOf(variants[0]), width, height).gpu;
+                const double h = probe.timeCompute(Technique::Hierarchical, configOf(variants[0]), width, height).gpu;
+                if (r >= 0) {
+                    computePom.push_back(p);
+                    computeHier.push_back(h);
+                }
+            }
+            const double cPom = median(computePom), cHier = median(computeHier);
             for (size_t i = 0; i < std::size(variants); ++i)
                 csv << map.name << "," << angle << "," << techniqueName(variants[i].technique) << "," << variants[i].pixelBudget
                     << "," << (variants[i].technique == Technique::Hierarchical && variants[i].clearance ? 1 : 0) << ","
                     << (variants[i].texels ? 1 : 0) << ",soft," << gpuMs[i] << "," << gpuMs[i] / pom << ","
                     << counts[i].mean << "," << counts[i].lanes8 << "," << counts[i].lanes32 << ","
                     << mapMs << "," << texelMs << "," << (variants[i].beam ? 1 : 0) << "," << wall[i] << ","
-                    << wall[i] / wall[0] << "," << width << "," << height << "\n";
+                    << wall[i] / wall[0] << "," << width << "," << height << "," << cPom << "," << cHier << "\n";
             const FetchCounts &p = counts[0], &h = counts[1], &n = counts[2], &x = counts[4], &b = counts[5];
             std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f | %.1f, %.1f, "
-                        "%.1f, %.1f, %.1f | %.2fx | %.2fx | %.2fx | %.2fx |\n",
+                        "%.1f, %.1f, %.1f | %.2fx | %.2fx | %.2fx | %.2fx | %.2f, %.2f | %.2fx |\n",
                         map.name.c_str(), angle, pom, gpuMs[1], gpuMs[1] / pom, wall[1] / wall[0], gpuMs[2] / pom,
                         gpuMs[3] / pom,
                         gpuMs[4] / pom, gpuMs[5] / pom, mapMs, texelMs, p.mean, h.mean, n.mean, x.mean, b.mean,
                         x.mean / p.mean, x.lanes8 / p.lanes8, x.lanes32 / p.lanes32,
-                        (gpuMs[4] / x.lanes8) / (pom / p.lanes8));
+                        (gpuMs[4] / x.lanes8) / (pom / p.lanes8), cPom, cHier, cHier / cPom);
             std::fflush(stdout);
         }
     }

@@ -3,6 +3,8 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
+#include "hfx/core/Source.h"
+#include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/tools/Timing.h"
 
 #include <glm/geometric.hpp>
@@ -338,6 +340,126 @@ FetchCounts AccuracyProbe::countFetches(Technique technique, const AccuracyConfi
     return {.mean = lockstepFetches(trace, width, height, 1, 1),
             .lanes8 = lockstepFetches(trace, width, height, 4, 2),
             .lanes32 = lockstepFetches(trace, width, height, 8, 4)};
+}
+
+namespace {
+/// timeCompute's harness: a ray per invocation from a buffer (a: uv, parallax; b.x: the cosine of
+/// the view), traced as surface.frag traces a pixel of a flat plane at mip level 0, then its soft
+/// shadow to u_lightDir (world; the plane's texture space is x, -z, y of it); out: the hit, the
+/// shadow and the fetches.
+const SourceFile kComputeMain{"trace_compute.comp", R"(
+layout(std430, binding = 0) readonly buffer HfxComputeRays { vec4 rays[]; };
+layout(std430, binding = 1) writeonly buffer HfxComputeHits { vec4 hits[]; };
+uniform int u_count;
+void main() {
+    const uint i = gl_GlobalInvocationID.x;
+    if (i >= uint(u_count)) return;
+    const vec4 a = rays[2 * i], b = rays[2 * i + 1];
+    HfxRay ray;
+    ray.uv = a.xy;
+    ray.parallax = a.zw;
+    ray.cosTheta = b.x;
+    ray.level = 0.0;
+    ray.samples = clamp(int(mix(float(u_maxSamples), float(u_minSamples), b.x)), 1, HFX_MAX_SAMPLES);
+    ray.tolerance = 0.0;
+    ray.start = 0.0;
+    const HfxHit hit = hfx_trace(ray);
+    const vec3 light = normalize(vec3(u_lightDir.x, -u_lightDir.z, u_lightDir.y));
+    const float h0 = 1.0 - hit.depth;
+    float shadow = 0.0;
+    if (light.z > 0.0 && h0 < 1.0) {
+        HfxShadowRay s;
+        s.uv = hit.uv;
+        s.h0 = h0;
+        s.span = light.xy / light.z * u_depthScale * (1.0 - h0);
+        s.level = 0.0;
+        s.samples = u_shadowSamples;
+        s.sharpness = u_shadowSharpness;
+        shadow = hfx_shadow(s);
+    }
+    hits[i] = vec4(hit.uv, shadow, g_fetches);
+}
+)",
+                                 "tools"};
+} // namespace
+
+GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& config, int width, int height,
+                                  double* fetches) {
+    const SurfaceMaterial material = materialOf(config);
+    const SurfaceTextures& t = textures();
+    const auto key = std::make_tuple(config.angleDegrees, width, height, config.depthScale, config.light.x + 3 * config.light.y + 9 * config.light.z);
+    if (key != computeKey_) {
+        // timeDraw's rays: its camera through every pixel centre, where they meet the plane
+        // (texcoords twice the plane's span, as timedPlane_ repeats the field twice).
+        const Camera camera = timedCamera(config, width, height);
+        std::vector<glm::vec4> rays;
+        rays.reserve(size_t(width) * height * 2);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const Ray r = camera.rayThroughPixel(x + 0.5, y + 0.5, width, height);
+                if (r.direction.y >= 0.0) continue;
+                const glm::dvec3 p = r.origin - r.origin.y / r.direction.y * r.direction;
+                if (std::abs(p.x) > kPlaneSize / 2.0 || std::abs(p.z) > kPlaneSize / 2.0) continue;
+                const glm::dvec3 e(-r.direction.x, r.direction.z, -r.direction.y); // to the eye, texture space
+                const glm::dvec2 uv = 2.0 * glm::dvec2(p.x / kPlaneSize + 0.5, 0.5 - p.z / kPlaneSize);
+                rays.emplace_back(glm::vec2(uv), glm::vec2(glm::dvec2(e) / e.z * double(config.depthScale)));
+                rays.emplace_back(float(e.z / glm::length(e)), 0.0f, 0.0f, 0.0f);
+            }
+        computeRays_ = int(rays.size() / 2);
+        if (computeRays_ == 0) throw Error("timeCompute: no pixel's ray meets the plane");
+        computeIn_ = GlBuffer::create();
+        computeOut_ = GlBuffer::create();
+        glNamedBufferStorage(computeIn_.id(), GLsizeiptr(rays.size() * sizeof(glm::vec4)), rays.data(), 0);
+        glNamedBufferStorage(computeOut_.id(), GLsizeiptr(size_t(computeRays_) * sizeof(glm::vec4)), nullptr, 0);
+        computeKey_ = key;
+    }
+    const bool atlas = t.pyramidLayout() == PyramidLayout::Atlas;
+    auto it = computePrograms_.find({technique, atlas});
+    if (it == computePrograms_.end()) {
+        const std::vector<SourceFile> parts = {
+            {"trace_compute_header.comp", "#version 450 core\nlayout(local_size_x = 64) in;\n", "tools"},
+            surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"),
+            surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kComputeMain};
+        it = computePrograms_
+                 .emplace(std::pair{technique, atlas},
+                          ShaderProgram::compute(parts, {{"HFX_BOUNDED_SEARCH", material.boundedSearch ? "1" : "0"},
+                                                         {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}}))
+                 .first;
+    }
+    const SurfaceUniforms u{.depthScale = config.depthScale,
+                            .lightDir = glm::normalize(config.light),
+                            .shadowSharpness = config.shadowSharpness,
+                            .minSamples = config.minSamples,
+                            .maxSamples = config.maxSamples,
+                            .shadowSamples = material.shadowSamples,
+                            .pyramidLevels = t.pyramidLevels(),
+                            .wrap = wrapFlags(t.config().edges)};
+    computeBlock_ = GlBuffer::create();
+    glNamedBufferStorage(computeBlock_.id(), sizeof u, &u, 0);
+    if (t.pyramid()) {
+        cells_.refresh(t); // the atlas layout's cells (image unit 4)
+        t.bindPyramid(0);
+    }
+    glBindTextureUnit(0, t.surface());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, computeBlock_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, computeIn_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, computeOut_.id());
+    const ShaderProgram& p = it->second;
+    p.use();
+    p.set("u_count", computeRays_);
+    const GlTime time = timeGl(timer_, "compute", [&] { glDispatchCompute(GLuint((computeRays_ + 63) / 64), 1, 1); });
+    timer_.clearSamples();
+    if (fetches) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::vector<glm::vec4> hits(static_cast<size_t>(computeRays_));
+        glGetNamedBufferSubData(computeOut_.id(), 0, GLsizeiptr(hits.size() * sizeof(glm::vec4)), hits.data());
+        double sum = 0.0;
+        for (const glm::vec4& h : hits) sum += h.w;
+        *fetches = sum / double(hits.size());
+    }
+    glUseProgram(0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+    return time;
 }
 
 GlTime AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats,

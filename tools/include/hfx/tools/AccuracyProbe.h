@@ -12,11 +12,14 @@
 #include "hfx/core/Image.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
+#include "hfx/effects/CellsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/tools/Timing.h"
 
+#include <map>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 namespace hfx {
@@ -128,6 +131,15 @@ public:
     /// config's angle (the plane fills the view), after `warmups` draws not counted: GPU time
     /// (timer queries around the clear and the draw, its beam start and cells included) and the
     /// wall clock around glFinish.
+    /// The rays of timeDraw's view (its camera through every pixel centre that meets the plane),
+    /// traced in a compute shader over these textures with the renderer's accessors
+    /// (surface/heights.glsl), each view ray then its soft shadow to config's light, one
+    /// invocation a ray: the tracer without the rasteriser, on every compute unit of the device
+    /// (a compute chip runs fragment shaders on a few). No clearance map, texel shadows or beam
+    /// start: the walk itself. One dispatch, both clocks. Also returns, with `fetches`, the
+    /// mean height and bound fetches a ray made.
+    GlTime timeCompute(Technique technique, const AccuracyConfig& config, int width, int height,
+                       double* fetches = nullptr);
     GlTime timeDraw(Technique technique, const AccuracyConfig& config, int width, int height, int repeats,
                     int warmups = 1);
     /// The height and bound fetches per pixel of that same draw (timeDraw's view and size),
@@ -161,6 +173,12 @@ private:
     ShadowLightOptions lightOptions_;         ///< ... and which of them it has
     ClContext& cl_;
     GpuTimer timer_;
+    // timeCompute's rays (for the view, size and light they were made for) and programs.
+    std::tuple<double, int, int, float, float> computeKey_{};
+    int computeRays_ = 0;
+    GlBuffer computeIn_, computeOut_, computeBlock_;
+    std::map<std::pair<Technique, bool>, ShaderProgram> computePrograms_; ///< by technique, atlas layout
+    CellsPass cells_;
 };
 
 } // namespace hfx
