@@ -69,6 +69,8 @@ trap 'rm -rf "$icd"' EXIT
 for f in /etc/OpenCL/vendors/*.icd; do [ -f "$f" ] && cp "$f" "$icd/"; done
 if ! grep -qs nvidia "$icd"/*.icd; then
     lib=$(ldconfig -p 2>/dev/null | grep -o '/[^ ]*libnvidia-opencl\.so\.1' | head -1 || true)
+    [ -n "$lib" ] || lib=$(ls /usr/local/nvidia/lib64/libnvidia-opencl.so.1 /usr/lib/x86_64-linux-gnu/libnvidia-opencl.so.1 \
+                              2>/dev/null | head -1 || true)
     [ -n "$lib" ] && echo "$lib" > "$icd/nvidia.icd"
 fi
 export OCL_ICD_VENDORS="$icd"

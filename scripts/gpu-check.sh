@@ -7,9 +7,10 @@
 #
 # It prints the card and the driver, then runs, each step within its share of the budget and
 # its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
-# GL tests, bench-tracers at 1280x720 and 3840x2160, and the frame bench (water, decals, planet,
-# the transfer table) at both sizes. A step that runs out of time is cut and says so; the rest go
-# on. Nothing here installs anything: the bundle carries what the binaries need.
+# GL tests (the tracer's first), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout)
+# and 3840x2160, and the frame bench (water, decals, planet, the transfer table) at both sizes. A step that runs out of time is cut and says so; the rest go
+# on. HFX_GPU_STEPS may name fewer steps (say "gl-tests bench-tracers-720p"): the budget is then
+# shared among those. Nothing here installs anything: the bundle carries what the binaries need.
 set -uo pipefail
 bundle=$(cd "${1:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}" && pwd)
 out=$(realpath -m "${2:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}")
@@ -18,12 +19,23 @@ mkdir -p "$out"
 start=$(date +%s)
 run=(bash "$bundle/run.sh")
 
-# step NAME SHARE CMD...: runs CMD with at most SHARE percent of the budget (and never past it).
+# Each step's share of the budget, in percent of all steps; HFX_GPU_STEPS selects.
+declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=10 [gl-tests-rest]=10 [bench-tracers-720p]=12
+                   [bench-tracers-720p-atlas]=12 [bench-tracers-4k]=12 [bench-720p]=18 [bench-4k]=14)
+selected=${HFX_GPU_STEPS:-${!shares[*]}}
+total=0
+for n in $selected; do
+    [ -n "${shares[$n]:-}" ] || { echo "gpu-check: no step '$n' (steps: ${!shares[*]})" >&2; exit 2; }
+    total=$((total + shares[$n]))
+done
+
+# step NAME CMD...: runs CMD, if selected, with at most its share of the budget (never past it).
 step() {
-    local name=$1 share=$2
-    shift 2
+    local name=$1
+    shift
+    [[ " $selected " == *" $name "* ]] || return 0
     local left=$((budget - ($(date +%s) - start)))
-    local limit=$((budget * share / 100))
+    local limit=$((budget * shares[$name] / total))
     [ "$limit" -gt "$left" ] && limit=$left
     if [ "$limit" -lt 10 ]; then
         echo "== $name: skipped, the budget is spent" | tee -a "$out/summary.txt"
@@ -45,11 +57,17 @@ step() {
     nproc
 } | tee "$out/summary.txt"
 
-step cl-tests-gpu 12 env HFX_CL_PLATFORM=NVIDIA "${run[@]}" hfx-tests-cl --gtest_brief=1
-step cl-tests-pocl 8 env HFX_CL_PLATFORM=portable "${run[@]}" hfx-tests-cl --gtest_brief=1 --gtest_filter='-*Soak*'
-step gl-tests 20 "${run[@]}" hfx-tests-gl --gtest_brief=1
-step bench-tracers-720p 12 "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
-step bench-tracers-4k 12 "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2160 --out "$out/4k"
-step bench-720p 18 "${run[@]}" hfx-demo bench --bench-only water,decals,planet,transfer --width 1280 --height 720
-step bench-4k 14 "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160
+step cl-tests-gpu env HFX_CL_PLATFORM=NVIDIA "${run[@]}" hfx-tests-cl --gtest_brief=1
+step cl-tests-pocl env HFX_CL_PLATFORM=portable "${run[@]}" hfx-tests-cl --gtest_brief=1 --gtest_filter='-*Soak*'
+tracer='TracerContract.*:Techniques.*:Transfer.*:Users.*'
+step gl-tests-tracer "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="$tracer"
+step gl-tests-rest "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="-$tracer"
+step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
+# The same draws with llvmpipe's pyramid layout (GlWorkarounds::pyramidAtlas) on this GPU: what
+# the mip chain and the gather are worth here.
+step bench-tracers-720p-atlas env HFX_GL_WORKAROUNDS=pyramid-atlas=1 "${run[@]}" hfx-demo bench-tracers --width 1280 \
+    --height 720 --out "$out/720p-atlas"
+step bench-tracers-4k "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2160 --out "$out/4k"
+step bench-720p "${run[@]}" hfx-demo bench --bench-only water,decals,planet,transfer --width 1280 --height 720
+step bench-4k "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160
 echo "== done in $(($(date +%s) - start))s of ${budget}s" | tee -a "$out/summary.txt"
