@@ -116,7 +116,12 @@ TEST_F(Platform, HfxGlChoosesTheBackendAndAnUnknownOneIsRefused) {
 TEST_F(Platform, TheSharedContextDrawsAgainAfterAnotherBackendsContext) {
     const GlRendererInfo before = currentGlRenderer();
     {
-        auto other = createHeadlessContext({.width = 16, .height = 16, .backend = GlBackend::OsMesa});
+        std::unique_ptr<GlContext> other;
+        try {
+            other = createHeadlessContext({.width = 16, .height = 16, .backend = GlBackend::OsMesa});
+        } catch (const Error& e) {
+            GTEST_SKIP() << "no OSMesa here: " << e.what(); // a GPU machine without Mesa
+        }
         GLuint texture = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &texture);
         EXPECT_NE(texture, 0u);

@@ -138,7 +138,9 @@ TEST_F(Techniques, TheExactTracerIsExactToTheRasterisersSubpixelPrecision) {
 // The pyramid's two layouts (the mip chain a GPU reads with texelFetch and textureGather, the
 // atlas llvmpipe reads with imageLoad: GlWorkarounds::pyramidAtlas) hold the same bounds and the
 // same samples, so the exact tracer walks the same steps to the same hits in either: the same
-// errors, shadows and fetch counts, with and without texel shadows.
+// fetch counts and shadows, and errors alike to the last few roundings (two programs: a GPU's
+// compiler may fuse the patch solve's multiply-adds otherwise in each; on the H200 the mean error
+// differed in its sixth digit, 0.000806645 against 0.000806642 texels).
 TEST_F(Techniques, TheExactTracerWalksAlikeOnEitherPyramidLayout) {
     const glm::vec3 light = accuracyLight(60.0f);
     for (const AccuracyMap& map : issueMapsAndBlocks()) {
@@ -152,8 +154,8 @@ TEST_F(Techniques, TheExactTracerWalksAlikeOnEitherPyramidLayout) {
                 const std::string at = str(map.name, " at ", angle, texels ? " with texel shadows" : "");
                 ASSERT_GT(a.pixels, 500u) << at;
                 EXPECT_EQ(m.pixels, a.pixels) << at;
-                EXPECT_EQ(m.mean, a.mean) << at;
-                EXPECT_EQ(m.max, a.max) << at;
+                EXPECT_NEAR(m.mean, a.mean, 1e-4 * a.mean + 1e-6) << at;
+                EXPECT_NEAR(m.max, a.max, 1e-3 * a.max + 1e-5) << at;
                 EXPECT_EQ(m.fetches, a.fetches) << at;
                 EXPECT_EQ(m.shadowAgreement, a.shadowAgreement) << at;
             }

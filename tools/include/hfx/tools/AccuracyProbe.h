@@ -91,8 +91,7 @@ struct AccuracyResult {
     double mean = 0, p95 = 0, max = 0; ///< texcoord error in texels
     double over4 = 0;               ///< fraction of pixels more than 4 texels off
     /// The same against the ray through the pixel's centre alone (the other figures take the
-    /// nearest of that one, the fragment's own and those kSubpixelTolerance around the centre's:
-    /// see measure()).
+    /// fragment's own ray: see measure()).
     double over4CentreRay = 0;
     /// The same error on the screen: the traced and the exact point on the relief, both projected,
     /// in pixels of the measured image (mean, 95th percentile, fraction more than a pixel off).
@@ -121,10 +120,10 @@ public:
                   SurfaceFormat format = SurfaceFormat::Float32, PyramidLayout layout = PyramidLayout::Auto);
 
     /// Renders the technique and compares every pixel's hit with the exact one. A pixel's error is
-    /// against the exact hit of the ray through its centre or, where that one is more than a
-    /// texel or half a pixel off, of the ray the fragment traced (from the entry texcoords the
-    /// rasteriser gave it, towards the eye) or through any of 8 points kSubpixelTolerance around
-    /// the centre, whichever is nearest: which ray a fragment traces is the rasteriser's rounding,
+    /// against the exact hit of the ray the fragment traced (from the entry texcoords the
+    /// rasteriser gave it, towards the eye) or, where that one is more than a texel or half a
+    /// pixel off, of the ray through its centre or through any of 8 points kSubpixelTolerance
+    /// around it, whichever is nearest: which ray a fragment traces is the rasteriser's rounding,
     /// not the tracer's (over4CentreRay keeps the centre's alone).
     AccuracyResult measure(Technique technique, const AccuracyConfig& config);
     /// Median milliseconds of `repeats` draws of the technique filling a width x height target at
