@@ -20,8 +20,8 @@ start=$(date +%s)
 run=(bash "$bundle/run.sh")
 
 # Each step's share of the budget, in percent of all steps; HFX_GPU_STEPS selects.
-declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=10 [gl-tests-rest]=10 [bench-tracers-720p]=12
-                   [bench-tracers-720p-atlas]=12 [bench-tracers-4k]=12 [bench-720p]=18 [bench-4k]=14)
+declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10 [bench-tracers-720p]=12
+                   [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18 [bench-4k]=14)
 selected=${HFX_GPU_STEPS:-${!shares[*]}}
 total=0
 for n in $selected; do
