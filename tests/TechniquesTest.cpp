@@ -137,10 +137,12 @@ TEST_F(Techniques, TheExactTracerIsExactToTheRasterisersSubpixelPrecision) {
 
 // The pyramid's two layouts (the mip chain a GPU reads with texelFetch and textureGather, the
 // atlas llvmpipe reads with imageLoad: GlWorkarounds::pyramidAtlas) hold the same bounds and the
-// same samples, so the exact tracer walks the same steps to the same hits in either: the same
-// fetch counts and shadows, and errors alike to the last few roundings (two programs: a GPU's
-// compiler may fuse the patch solve's multiply-adds otherwise in each; on the H200 the mean error
-// differed in its sixth digit, 0.000806645 against 0.000806642 texels).
+// same samples, so the exact tracer walks the same steps to the same hits in either (on llvmpipe
+// to the bit). Two programs are two compilations, though: a GPU's compiler may fuse the walk's
+// multiply-adds otherwise in each, and a ray that touches a plateau's top within that rounding
+// may walk a step more in one. On the H200 the mean error differed in its sixth digit
+// (0.000806645 against 0.000806642 texels) and the blocks' fetches in their fourth (9.36655
+// against 9.36362 a pixel at 70 degrees): alike within a part in a thousand.
 TEST_F(Techniques, TheExactTracerWalksAlikeOnEitherPyramidLayout) {
     const glm::vec3 light = accuracyLight(60.0f);
     for (const AccuracyMap& map : issueMapsAndBlocks()) {
@@ -156,8 +158,8 @@ TEST_F(Techniques, TheExactTracerWalksAlikeOnEitherPyramidLayout) {
                 EXPECT_EQ(m.pixels, a.pixels) << at;
                 EXPECT_NEAR(m.mean, a.mean, 1e-4 * a.mean + 1e-6) << at;
                 EXPECT_NEAR(m.max, a.max, 1e-3 * a.max + 1e-5) << at;
-                EXPECT_EQ(m.fetches, a.fetches) << at;
-                EXPECT_EQ(m.shadowAgreement, a.shadowAgreement) << at;
+                EXPECT_NEAR(m.fetches, a.fetches, 1e-3 * a.fetches) << at;
+                EXPECT_NEAR(m.shadowAgreement, a.shadowAgreement, 1e-3) << at;
             }
     }
 }
