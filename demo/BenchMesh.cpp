@@ -8,6 +8,7 @@
 // of 1.5 map texels).
 
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "Devices.h"
@@ -117,7 +118,7 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
     ShaderProgram meshPrograms[2];
     for (int shadowed = 0; shadowed < 2; ++shadowed)
         meshPrograms[shadowed] = ShaderProgram({{"bench-mesh.vert", kVertex, "embedded"}},
-                                               {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/shadowmap.glsl"),
+                                               {surfaceShader("bindings.glsl"), surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/shadowmap.glsl"),
                                                 {"bench-mesh.frag", kFragment, "embedded"}},
                                                {{"HFX_SHADOW_MAP", shadowed ? "1" : "0"}});
     ShaderProgram depthProgram({"bench-mesh.vert", kVertex, "embedded"}, {"bench-mesh-depth.frag", kDepthFragment, "embedded"});
@@ -159,17 +160,17 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
             depthProgram.use();
             glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
             map.end();
-            glBindTextureUnit(11, map.texture());
+            glBindTextureUnit(HFX_UNIT_SHADOW_MAP, map.texture());
         }
         target.clear();
-        glBindBufferBase(GL_UNIFORM_BUFFER, 0, meshBlocks[shadowed ? 1 : 0].id());
+        glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, meshBlocks[shadowed ? 1 : 0].id());
         const ShaderProgram& meshProgram = meshPrograms[shadowed ? 1 : 0];
         meshProgram.set("u_meshViewProj", camera.viewProjection());
         meshProgram.set("u_albedo", glm::vec3(0.05f, 0.22f, 0.30f));
         meshProgram.use();
         glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
         glBindVertexArray(0);
-        glBindTextureUnit(11, 0);
+        glBindTextureUnit(HFX_UNIT_SHADOW_MAP, 0);
     };
     for (int frame = -kWarmupFrames; frame < frames; ++frame) {
         for (size_t f = 0; f < oceans.size(); ++f) {

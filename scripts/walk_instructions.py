@@ -71,7 +71,7 @@ def compose(shaders, defines, accessors):
     parts += [f"#define {d.replace('=', ' ', 1)}" for d in defines]
     names = ["trace/common.glsl", "trace/hier.glsl"]
     if accessors == "renderer":
-        names = ["surface/uniforms.glsl", "surface/heights.glsl"] + names
+        names = ["bindings.glsl", "surface/uniforms.glsl", "surface/heights.glsl"] + names
     else:
         parts.append(MIP_ACCESSORS)
     for name in names:

@@ -2,6 +2,7 @@
 // A solid colour with the polygon's own depth: stand-in geometry that intersects a surface.
 // Lit (u_flatLit = 1): Lambert under the surface block's light, receiving its shadow map.
 
+#include "bindings.glsl"
 #include "surface/uniforms.glsl"
 #include "surface/shadowmap.glsl"
 

@@ -2,6 +2,7 @@
 // The sky behind everything (SurfaceRenderer::drawSky): each pixel's view direction through
 // hfx_sky (shade/sky.glsl), the same sky the water reflects and fades into.
 
+#include "bindings.glsl"
 #include "surface/uniforms.glsl"
 #include "shade/sky.glsl"
 

@@ -54,6 +54,7 @@
 #define HFX_BEAM_START 0
 #endif
 
+#include "bindings.glsl"
 #include "surface/uniforms.glsl"
 #include "surface/heights.glsl"
 #include "surface/shadowmap.glsl"
@@ -75,19 +76,19 @@ layout(location = 1) out vec4 o_trace;
 layout(location = 2) out vec2 o_entry;
 #endif
 
-layout(binding = 1) uniform sampler2D s_albedo;
-layout(binding = 10) uniform sampler2D s_channels; // roughness, ambient occlusion (layer 0's)
+layout(binding = HFX_UNIT_ALBEDO) uniform sampler2D s_albedo;
+layout(binding = HFX_UNIT_CHANNELS) uniform sampler2D s_channels; // roughness, ambient occlusion (layer 0's)
 #if HFX_BEAM_START
-layout(binding = 5) uniform sampler2D s_beamStart; // a single layer's; unit 5 is layer 2's surface
+layout(binding = HFX_UNIT_BEAM_START) uniform sampler2D s_beamStart;
 #endif
 #if HFX_LAYERS > 1
-layout(binding = 7) uniform sampler2D s_albedo1;
+layout(binding = HFX_UNIT_ALBEDO1) uniform sampler2D s_albedo1;
 #endif
 #if HFX_LAYERS > 2
-layout(binding = 8) uniform sampler2D s_albedo2;
+layout(binding = HFX_UNIT_ALBEDO2) uniform sampler2D s_albedo2;
 #endif
 #if HFX_LAYERS > 3
-layout(binding = 9) uniform sampler2D s_albedo3;
+layout(binding = HFX_UNIT_ALBEDO3) uniform sampler2D s_albedo3;
 #endif
 
 // Toksvig: the mip-averaged unit normals shorten where the slopes they average differ; the

@@ -2,6 +2,7 @@
 // Passes the world-space position and the unnormalised tangent frame (dP/du, dP/dv) so the
 // fragment stage can express the view and light rays in texture units, per pixel.
 
+#include "bindings.glsl"
 #include "surface/uniforms.glsl"
 
 layout(location = 0) in vec3 a_position;

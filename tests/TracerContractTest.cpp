@@ -7,6 +7,7 @@
 #include "support/Fixtures.h"
 #include "support/References.h"
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/compute/StaticField.h"
 #include "hfx/core/Gl.h"
@@ -112,11 +113,11 @@ layout(local_size_x = 64) in;
 /// renderer reads, then trace/common.glsl and a technique's file, then a main that traces one
 /// ray per invocation from a buffer of rays into a buffer of hits.
 const SourceFile kHarness{"harness.comp", R"(
-layout(binding = 0) uniform sampler2D s_surface;
+layout(binding = HFX_UNIT_SURFACE) uniform sampler2D s_surface;
 #if HFX_PYRAMID_ATLAS
-layout(rg32f, binding = 0) readonly uniform image2D i_pyramid; // SurfaceTextures::bindPyramid
+layout(rg32f, binding = HFX_IMAGE_PYRAMID) readonly uniform image2D i_pyramid; // SurfaceTextures::bindPyramid
 #else
-layout(binding = 3) uniform sampler2D s_pyramid; // SurfaceTextures::pyramidUnit(0)
+layout(binding = HFX_UNIT_PYRAMID) uniform sampler2D s_pyramid;
 #endif
 uniform int u_levels;
 uniform ivec2 u_wrap;
@@ -235,7 +236,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && clearance));
     HFX_CHECK(clearance || !texelShadows);
-    std::vector<SourceFile> parts{kComputeHeader,
+    std::vector<SourceFile> parts{kComputeHeader, surfaceShader("bindings.glsl"),
                                   {"harness_layout.comp",
                                    str("#define HFX_PYRAMID_ATLAS ", textures.pyramidLayout() == PyramidLayout::Atlas ? 1 : 0, "\n"),
                                    "test"}};
@@ -257,15 +258,15 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
         p.set("u_wrap", u.wrap);
     } else {
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
-        CellsPass().refresh(textures); // the level-0 cells heights.glsl reads (image unit 4)
+        glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, block.id());
+        CellsPass().refresh(textures); // the atlas layout's level-0 cells heights.glsl reads
     }
-    glBindTextureUnit(0, textures.surface());
+    glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     textures.bindPyramid(0);
-    glBindTextureUnit(15, textures.clearance());
-    glBindTextureUnit(4, texelShadows ? textures.texelShadows() : 0);
+    glBindTextureUnit(HFX_UNIT_CLEARANCE, textures.clearance());
+    glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, texelShadows ? textures.texelShadows() : 0);
     std::vector<glm::vec4> hits = runHarness(p, rays);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, 0);
     return hits;
 }
 
@@ -1072,18 +1073,19 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
             segments.emplace_back(float(i % 7) * 0.5f, 0.0f, 0.0f, 0.0f);
         }
         const ShaderProgram p = ShaderProgram::compute(
-            {kComputeHeader, surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"), kHarnessBuffers,
+            {kComputeHeader, surfaceShader("bindings.glsl"), surfaceShader("surface/uniforms.glsl"),
+             surfaceShader("surface/heights.glsl"), kHarnessBuffers,
              kBoundsMain},
             {{"HFX_LAYERS", std::to_string(layers)},
              {"HFX_BOUNDED_SEARCH", "1"},
              {"HFX_PYRAMID_ATLAS", layout == PyramidLayout::Atlas ? "1" : "0"}});
-        glBindTextureUnit(0, a.textures().surface());
+        glBindTextureUnit(HFX_UNIT_SURFACE, a.textures().surface());
         a.textures().bindPyramid(0);
-        glBindTextureUnit(4, b.textures().surface());
+        glBindTextureUnit(HFX_UNIT_SURFACE1, b.textures().surface());
         b.textures().bindPyramid(1);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 0, block.id());
+        glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, block.id());
         const std::vector<glm::vec4> result = runHarness(p, segments);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+        glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, 0);
         float worstAbove = -1.0f, worstBelow = -1.0f, meanWidth = 0.0f;
         for (const glm::vec4& r : result) {
             worstAbove = std::max(worstAbove, r.x);

@@ -1,5 +1,6 @@
 #include "hfx/core/SurfaceTextures.h"
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/GlRenderer.h"
 
@@ -123,8 +124,8 @@ GLuint SurfaceTextures::cells() const {
 }
 
 GLuint SurfaceTextures::pyramidUnit(int layer) {
-    // heights.glsl's s_pyramid, s_pyramid1..3: the units the surface program leaves free.
-    static constexpr GLuint kUnits[] = {3, 12, 13, 14};
+    // heights.glsl's s_pyramid, s_pyramid1..3.
+    static constexpr GLuint kUnits[] = {HFX_UNIT_PYRAMID, HFX_UNIT_PYRAMID1, HFX_UNIT_PYRAMID2, HFX_UNIT_PYRAMID3};
     if (layer < 0 || layer > 3) throw Error(str("pyramidUnit: layer must be 0 to 3, got ", layer));
     return kUnits[layer];
 }
@@ -134,7 +135,8 @@ void SurfaceTextures::bindPyramid(int layer) const {
     if (layout_ == PyramidLayout::MipChain)
         glBindTextureUnit(pyramidUnit(layer), pyramid_.id());
     else
-        HFX_GL_CHECK(glBindImageTexture(GLuint(layer), pyramid_.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
+        HFX_GL_CHECK(glBindImageTexture(GLuint(HFX_IMAGE_PYRAMID + layer), pyramid_.id(), 0, GL_FALSE, 0, GL_READ_ONLY,
+                                        GL_RG32F));
 }
 
 void SurfaceTextures::uploadPyramid(const float* levels) {

@@ -1,5 +1,6 @@
 #include "hfx/effects/CellsPass.h"
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/GpuTimer.h"
 #include "hfx/effects/SurfaceRenderer.h"
@@ -15,13 +16,13 @@ void CellsPass::refresh(const SurfaceTextures& textures) {
         const SurfaceTexturesConfig& c = textures.config();
         program_->use();
         program_->set("u_wrap", wrapFlags(c.edges));
-        glBindTextureUnit(0, textures.surface());
-        HFX_GL_CHECK(glBindImageTexture(4, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
+        glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
+        HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_CELLS, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
         HFX_GL_CHECK(glDispatchCompute(GLuint((c.width + 7) / 8), GLuint((c.height + 7) / 8), 1));
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         textures.cellsBuilt();
     }
-    HFX_GL_CHECK(glBindImageTexture(4, textures.cells(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F));
+    HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_CELLS, textures.cells(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F));
 }
 
 } // namespace hfx

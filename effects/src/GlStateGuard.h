@@ -4,6 +4,7 @@
 //
 // Thread: the thread whose GL context is current.
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlObject.h"
@@ -75,11 +76,10 @@ public:
 
 private:
     GLboolean depthTest_;
-    // surface, albedo, environment, (free), layers 1-3 (a single layer's texel shadows on 4, its beam
-    // start on 5), their albedos, shading channels, shadow map, (free: 11-14), the clearance map
-    static constexpr int kUnits = 16;
-    // the pyramids of layers 0-3 (SurfaceTextures::bindPyramid), layer 0's cells (CellsPass)
-    static constexpr GLuint kImages = 5;
+    // every unit of hfx/core/Bindings.h
+    static constexpr int kUnits = HFX_TEXTURE_UNITS;
+    // the atlas pyramids of layers 0-3 (SurfaceTextures::bindPyramid), layer 0's cells (CellsPass)
+    static constexpr GLuint kImages = HFX_IMAGE_CELLS + 1;
     struct Image {
         GLint name, level, layered, layer, access, format;
     };

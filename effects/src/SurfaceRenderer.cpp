@@ -2,6 +2,7 @@
 
 #include "hfx/core/GpuTimer.h"
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/effects/ShadowMap.h"
 
@@ -85,6 +86,35 @@ void SurfaceMaterial::validate() const {
     }
 }
 
+namespace {
+// Every texture unit of the table once, within its count: no unit serves two samplers.
+constexpr GLuint kTextureUnits[] = {HFX_UNIT_SURFACE,  HFX_UNIT_ALBEDO,      HFX_UNIT_ENVIRONMENT, HFX_UNIT_PYRAMID,
+                                    HFX_UNIT_SURFACE1, HFX_UNIT_SURFACE2,    HFX_UNIT_SURFACE3,    HFX_UNIT_ALBEDO1,
+                                    HFX_UNIT_ALBEDO2,  HFX_UNIT_ALBEDO3,     HFX_UNIT_CHANNELS,    HFX_UNIT_SHADOW_MAP,
+                                    HFX_UNIT_PYRAMID1, HFX_UNIT_PYRAMID2,    HFX_UNIT_PYRAMID3,    HFX_UNIT_CLEARANCE,
+                                    HFX_UNIT_TEXEL_SHADOWS, HFX_UNIT_BEAM_START};
+constexpr bool unitsDistinct() {
+    for (size_t i = 0; i < std::size(kTextureUnits); ++i) {
+        if (kTextureUnits[i] >= HFX_TEXTURE_UNITS) return false;
+        for (size_t j = 0; j < i; ++j)
+            if (kTextureUnits[i] == kTextureUnits[j]) return false;
+    }
+    return std::size(kTextureUnits) == HFX_TEXTURE_UNITS;
+}
+static_assert(unitsDistinct(), "hfx/core/Bindings.h: every texture unit once, below HFX_TEXTURE_UNITS");
+
+/// Throws where the context's fragment stage has fewer texture units than the surface program binds.
+void requireTextureUnits() {
+    GLint units = 0, combined = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
+    if (std::min(units, combined) < HFX_TEXTURE_UNITS)
+        throw Error(str("the surface program binds ", HFX_TEXTURE_UNITS, " texture units (hfx/core/Bindings.h); this GL "
+                        "context has ", units, " in a fragment stage (GL_MAX_TEXTURE_IMAGE_UNITS) and ", combined,
+                        " in all (GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)"));
+}
+} // namespace
+
 const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const SurfaceVariant& variant) {
     SurfaceVariant v = variant;
     if (v.layers < 1 || v.layers > kMaxSurfaceLayers)
@@ -101,6 +131,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
+        requireTextureUnits();
         // surface.frag's parts with the technique's tracer and the shading model in their slots;
         // the table says the defines.
         const TechniqueInfo& info = techniqueInfo(options.technique);
@@ -130,7 +161,7 @@ void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, c
     u.model = model;
     u.viewProj = viewProj;
     u.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))));
-    updateBlock(surfaceBlock_, 0, u);
+    updateBlock(surfaceBlock_, HFX_BLOCK_SURFACE, u);
 }
 
 void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
@@ -208,7 +239,7 @@ namespace {
 void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
     if (!light.shadowMap) return;
     light.shadowMap->fillReceiver(u);
-    glBindTextureUnit(11, light.shadowMap->texture());
+    glBindTextureUnit(HFX_UNIT_SHADOW_MAP, light.shadowMap->texture());
 }
 } // namespace
 
@@ -288,8 +319,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
-        updateBlock(waterBlock_, 1, waterUniforms(w));
-        glBindTextureUnit(2, w.environment);
+        updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(w));
+        glBindTextureUnit(HFX_UNIT_ENVIRONMENT, w.environment);
         RingUniforms rings;
         rings.count = w.ringCount;
         for (int i = 0; i < w.ringCount; ++i) {
@@ -297,25 +328,25 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
             rings.shape[i] = {r.centre, r.radius, r.width};
             rings.wave[i] = {r.wavenumber, r.amplitude, r.foam, 0.0f};
         }
-        updateBlock(ringBlock_, 2, rings);
+        updateBlock(ringBlock_, HFX_BLOCK_RINGS, rings);
     }
     if (info.needsPyramid) cells_.refresh(textures); // the patch solve's samples, binds image unit 4
-    glBindTextureUnit(0, textures.surface());
-    glBindTextureUnit(1, textures.albedo());
-    glBindTextureUnit(10, textures.channels());
+    glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
+    glBindTextureUnit(HFX_UNIT_ALBEDO, textures.albedo());
+    glBindTextureUnit(HFX_UNIT_CHANNELS, textures.channels());
     for (size_t i = 1; i < layers.size(); ++i) {
-        glBindTextureUnit(GLuint(3 + i), layers[i].textures->surface());
-        glBindTextureUnit(GLuint(6 + i), layers[i].textures->albedo());
+        glBindTextureUnit(GLuint(HFX_UNIT_SURFACE1 + i - 1), layers[i].textures->surface());
+        glBindTextureUnit(GLuint(HFX_UNIT_ALBEDO1 + i - 1), layers[i].textures->albedo());
         if (layers[i].textures->pyramid()) layers[i].textures->bindPyramid(int(i));
     }
     if (textures.pyramid()) textures.bindPyramid(0);
-    glBindTextureUnit(15, textures.clearance());
-    if (layers.size() == 1) glBindTextureUnit(4, textures.texelShadows()); // layer 1's unit, unused here
+    glBindTextureUnit(HFX_UNIT_CLEARANCE, textures.clearance());
+    glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, textures.texelShadows());
     const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
     if (beam) { // the prepass reads the surface and the pyramid bound above, and the block's uniforms
         const GpuScope scope("beam");
         drawBeamStart(mesh, model, u, viewProj, atlas);
-        glBindTextureUnit(5, beamTarget_.id()); // layer 2's unit: a single layer leaves it free
+        glBindTextureUnit(HFX_UNIT_BEAM_START, beamTarget_.id());
     }
     bindUniforms(u, model, viewProj);
     glEnable(GL_DEPTH_TEST);
@@ -394,8 +425,8 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     GlStateGuard guard;
     SurfaceUniforms u{.cameraPos = camera.position, .lightDir = glm::normalize(light.direction), .lightColor = light.color};
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
-    updateBlock(waterBlock_, 1, waterUniforms(look));
-    glBindTextureUnit(2, look.environment);
+    updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(look));
+    glBindTextureUnit(HFX_UNIT_ENVIRONMENT, look.environment);
     sky.set("u_inverseViewProj", glm::inverse(camera.viewProjection()));
     glDisable(GL_DEPTH_TEST);
     sky.use();

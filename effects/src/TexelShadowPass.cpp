@@ -1,5 +1,6 @@
 #include "hfx/effects/TexelShadowPass.h"
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/GpuTimer.h"
 #include "hfx/effects/SurfaceRenderer.h"
@@ -57,13 +58,13 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
                       .wrap = wrapFlags(config.edges),
                       .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
-    updateBlock(block_, 0, u);
+    updateBlock(block_, HFX_BLOCK_SURFACE, u);
     glDisable(GL_DEPTH_TEST);
     program->use();
     program->set("u_texelStride", stride);
-    glBindTextureUnit(0, textures.surface());
+    glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     textures.bindPyramid(0);
-    glBindTextureUnit(15, clearance ? textures.clearance() : 0);
+    glBindTextureUnit(HFX_UNIT_CLEARANCE, clearance ? textures.clearance() : 0);
     glBindVertexArray(empty_.id());
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
     textures.texelShadowsDrawn(light);

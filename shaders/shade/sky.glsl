@@ -6,7 +6,7 @@
 // Below the horizon the horizon's colour continues: what distant water fades into, so the sea
 // meets the sky without a seam.
 
-layout(std140, binding = 1) uniform HfxWater {
+layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     vec3 u_deepColor;     // troughs: light travels far in the water
     float u_fresnelF0;    // reflectance seen head-on
     vec3 u_shallowColor;  // crests: thin water scatters the sun
@@ -21,7 +21,7 @@ layout(std140, binding = 1) uniform HfxWater {
     vec3 u_foamColor;
     float u_foamRoughness; // how much foam widens and dims the sun's glint (0..1)
 };
-layout(binding = 2) uniform sampler2D s_environment;
+layout(binding = HFX_UNIT_ENVIRONMENT) uniform sampler2D s_environment;
 
 vec3 hfx_sky(vec3 dir) {
 #if HFX_ENVIRONMENT

@@ -16,6 +16,7 @@
 // centre is linear in the depth: the larger of its offsets at the polygon and at the bottom
 // bounds it. That bound, plus a margin for the rounding of both passes, is the beam's reach.
 
+#include "bindings.glsl"
 #include "surface/uniforms.glsl"
 #include "surface/heights.glsl"
 #include "trace/common.glsl"

@@ -6,8 +6,9 @@
 // instead of a gather: on llvmpipe a gather costs about 2.2x an RGBA32F imageLoad. Built from the stored texels whenever they change
 // (CellsPass), so the solve reads exactly what a gather would.
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D s_surface;
-layout(rgba32f, binding = 4) writeonly uniform image2D i_cells;
+#include "bindings.glsl"
+layout(binding = HFX_UNIT_SURFACE) uniform sampler2D s_surface;
+layout(rgba32f, binding = HFX_IMAGE_CELLS) writeonly uniform image2D i_cells;
 uniform ivec2 u_wrap;
 
 void main() {

@@ -38,7 +38,7 @@ mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
     return mat3(tangent, bitangent, unitNormal * sqrt(length(tangent) * length(bitangent)));
 }
 
-layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
+layout(binding = HFX_UNIT_SURFACE) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 // HFX_PYRAMID_ATLAS 1: the height-bounds pyramid in PyramidLayout::Atlas, llvmpipe's workaround
 // (GlWorkarounds::pyramidAtlas in core/GlRenderer.h says why): every level in one RG32F image
 // read with imageLoad (hfx_atlas_origin), and the level-0 cells' samples in an RGBA32F image
@@ -48,44 +48,40 @@ layout(binding = 0) uniform sampler2D s_surface; // normal.xyz, height w (layer 
 #define HFX_PYRAMID_ATLAS 0
 #endif
 #if HFX_PYRAMID_ATLAS
-// Layer i's pyramid at image unit i.
-layout(rg32f, binding = 0) readonly uniform image2D i_pyramid;
+layout(rg32f, binding = HFX_IMAGE_PYRAMID) readonly uniform image2D i_pyramid;
 // Layer 0's level-0 cells: per cell its four samples in textureGather's order (cells.comp).
-layout(rgba32f, binding = 4) readonly uniform image2D i_cells;
+layout(rgba32f, binding = HFX_IMAGE_CELLS) readonly uniform image2D i_cells;
 #else
-// Layer i's pyramid at SurfaceTextures::pyramidUnit(i).
-layout(binding = 3) uniform sampler2D s_pyramid;
+layout(binding = HFX_UNIT_PYRAMID) uniform sampler2D s_pyramid;
 #endif
 #if HFX_CLEARANCE
-layout(binding = 15) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
+layout(binding = HFX_UNIT_CLEARANCE) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
 #endif
 #if HFX_TEXEL_SHADOWS
-// R32F: the shadow at each sample. Unit 4 is layer 1's surface, which a surface with texel
-// shadows (one layer) never has: the units a GL 4.5 fragment stage surely has are 16.
-layout(binding = 4) uniform sampler2D s_texelShadows;
+layout(binding = HFX_UNIT_TEXEL_SHADOWS) uniform sampler2D s_texelShadows; // R32F: the shadow at each sample
 #endif
 #if HFX_LAYERS > 1
-layout(binding = 4) uniform sampler2D s_surface1;
+layout(binding = HFX_UNIT_SURFACE1) uniform sampler2D s_surface1;
 #if HFX_PYRAMID_ATLAS
-layout(rg32f, binding = 1) readonly uniform image2D i_pyramid1; // the layers' own pyramids (bounded searches)
+layout(rg32f, binding = HFX_IMAGE_PYRAMID + 1) readonly uniform image2D i_pyramid1; // the layers' own pyramids (bounded searches)
 #else
-layout(binding = 12) uniform sampler2D s_pyramid1;
+layout(binding = HFX_UNIT_PYRAMID1) uniform sampler2D s_pyramid1;
 #endif
 #endif
 #if HFX_LAYERS > 2
-layout(binding = 5) uniform sampler2D s_surface2;
+layout(binding = HFX_UNIT_SURFACE2) uniform sampler2D s_surface2;
 #if HFX_PYRAMID_ATLAS
-layout(rg32f, binding = 2) readonly uniform image2D i_pyramid2;
+layout(rg32f, binding = HFX_IMAGE_PYRAMID + 2) readonly uniform image2D i_pyramid2;
 #else
-layout(binding = 13) uniform sampler2D s_pyramid2;
+layout(binding = HFX_UNIT_PYRAMID2) uniform sampler2D s_pyramid2;
 #endif
 #endif
 #if HFX_LAYERS > 3
-layout(binding = 6) uniform sampler2D s_surface3;
+layout(binding = HFX_UNIT_SURFACE3) uniform sampler2D s_surface3;
 #if HFX_PYRAMID_ATLAS
-layout(rg32f, binding = 3) readonly uniform image2D i_pyramid3;
+layout(rg32f, binding = HFX_IMAGE_PYRAMID + 3) readonly uniform image2D i_pyramid3;
 #else
-layout(binding = 14) uniform sampler2D s_pyramid3;
+layout(binding = HFX_UNIT_PYRAMID3) uniform sampler2D s_pyramid3;
 #endif
 #endif
 

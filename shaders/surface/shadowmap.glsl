@@ -8,7 +8,7 @@
 #define HFX_SHADOW_MAP 0
 #endif
 
-layout(binding = 11) uniform sampler2DShadow s_shadowMap;
+layout(binding = HFX_UNIT_SHADOW_MAP) uniform sampler2DShadow s_shadowMap;
 
 float hfx_shadow_map(vec3 world, vec3 normal) {
 #if !HFX_SHADOW_MAP

@@ -7,6 +7,7 @@
 // Sample (i, j) sits at texcoords ((i, j) + 0.5) / size; the target holds every u_texelStride-th
 // sample on each axis (its texel (a, b) is sample (a, b) * stride), the viewport is its size.
 
+#include "bindings.glsl"
 #include "surface/uniforms.glsl"
 #include "surface/heights.glsl"
 #include "trace/common.glsl"

@@ -2,7 +2,7 @@
 // field by hfx::SurfaceUniforms (effects/src/SurfaceUniforms.h); a test compares the offsets the
 // driver reports with the C++ struct's. Included by both stages of the surface program.
 
-layout(std140, binding = 0) uniform HfxSurface {
+layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     mat4 u_model;
     mat4 u_viewProj;
     mat4 u_normalMatrix;      // inverse transpose of u_model's 3x3, in the upper left
@@ -46,7 +46,7 @@ layout(std140, binding = 0) uniform HfxSurface {
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's
 // texcoords; mirrored by hfx::RingUniforms. They are not tiled with the layers.
 #define HFX_MAX_RINGS 8
-layout(std140, binding = 2) uniform HfxRings {
+layout(std140, binding = HFX_BLOCK_RINGS) uniform HfxRings {
     vec4 u_ringShape[HFX_MAX_RINGS]; // centre u, v, radius, width
     vec4 u_ringWave[HFX_MAX_RINGS];  // wavenumber (radians per texcoord), amplitude (h units), foam, 0
     int u_ringCount;

@@ -1,5 +1,6 @@
 #include "hfx/tools/AccuracyProbe.h"
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
@@ -421,7 +422,7 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
     if (it == computePrograms_.end()) {
         const std::vector<SourceFile> parts = {
             {"trace_compute_header.comp", "#version 450 core\nlayout(local_size_x = 64) in;\n", "tools"},
-            surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"),
+            surfaceShader("bindings.glsl"), surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"),
             surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kComputeMain};
         it = computePrograms_
                  .emplace(std::pair{technique, atlas},
@@ -443,8 +444,8 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
         cells_.refresh(t); // the atlas layout's cells (image unit 4)
         t.bindPyramid(0);
     }
-    glBindTextureUnit(0, t.surface());
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, computeBlock_.id());
+    glBindTextureUnit(HFX_UNIT_SURFACE, t.surface());
+    glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, computeBlock_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, computeIn_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, computeOut_.id());
     const ShaderProgram& p = it->second;
@@ -461,7 +462,7 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
         *fetches = sum / double(hits.size());
     }
     glUseProgram(0);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, 0);
     return time;
 }
 

@@ -105,8 +105,8 @@ public:
     int pyramidLevels() const { return pyramidLevels_; }
     PyramidLayout pyramidLayout() const { return layout_; } ///< MipChain or Atlas, never Auto
     /// Binds the pyramid where heights.glsl reads layer `layer`'s (0 to 3): the texture unit
-    /// pyramidUnit(layer), or in the Atlas layout image unit `layer`, read-only. Throws without
-    /// a pyramid.
+    /// pyramidUnit(layer), or in the Atlas layout image unit HFX_IMAGE_PYRAMID + `layer`,
+    /// read-only (hfx/core/Bindings.h). Throws without a pyramid.
     void bindPyramid(int layer) const;
     /// The texture unit of layer `layer`'s mip-chain pyramid (heights.glsl's s_pyramid*).
     static GLuint pyramidUnit(int layer);

@@ -17,7 +17,7 @@ namespace hfx {
 class CellsPass {
 public:
     /// Atlas layout: rebuilds the cells of `textures` if their texels changed since (compiling
-    /// the program on first use), then binds them to image unit 4, read-only; also changes
+    /// the program on first use), then binds them to image unit HFX_IMAGE_CELLS, read-only; also changes
     /// texture unit 0 and the current program. Mip chain: nothing. Throws for textures without a
     /// pyramid.
     void refresh(const SurfaceTextures& textures);

@@ -1,0 +1,41 @@
+// The texture units, image units and uniform blocks that the shaders and their C++ side share,
+// named once. Only comments and #defines: the shaders #include this file, and C++ includes the
+// same text as hfx/core/Bindings.h (core/CMakeLists.txt copies it there at configure time).
+// No unit serves two samplers: the surface program needs HFX_TEXTURE_UNITS texture units in its
+// fragment stage (GL 4.5 promises 16; NVIDIA, AMD, Intel and llvmpipe have 32), and
+// SurfaceRenderer refuses a context with fewer, naming both numbers.
+
+#ifndef HFX_BINDINGS_GLSL
+#define HFX_BINDINGS_GLSL
+
+// Texture units.
+#define HFX_UNIT_SURFACE 0        // layer 0's normals and height (s_surface)
+#define HFX_UNIT_ALBEDO 1         // layer 0's albedo
+#define HFX_UNIT_ENVIRONMENT 2    // water: the sky image it reflects
+#define HFX_UNIT_PYRAMID 3        // layer 0's bounds pyramid, as a mip chain (PyramidLayout::MipChain)
+#define HFX_UNIT_SURFACE1 4       // layers 1-3's normals and heights (the ocean's cascades)
+#define HFX_UNIT_SURFACE2 5
+#define HFX_UNIT_SURFACE3 6
+#define HFX_UNIT_ALBEDO1 7        // layers 1-3's albedo
+#define HFX_UNIT_ALBEDO2 8
+#define HFX_UNIT_ALBEDO3 9
+#define HFX_UNIT_CHANNELS 10      // layer 0's shading channels (roughness, ambient occlusion)
+#define HFX_UNIT_SHADOW_MAP 11    // the light's shadow map (hfx::ShadowMap)
+#define HFX_UNIT_PYRAMID1 12      // layers 1-3's bounds pyramids, as mip chains (bounded searches)
+#define HFX_UNIT_PYRAMID2 13
+#define HFX_UNIT_PYRAMID3 14
+#define HFX_UNIT_CLEARANCE 15     // the clearance map for the light (hier's shadow walk)
+#define HFX_UNIT_TEXEL_SHADOWS 16 // the texel shadows of the light (TexelShadowPass)
+#define HFX_UNIT_BEAM_START 17    // the beam prepass's depth per block of pixels
+#define HFX_TEXTURE_UNITS 18      // how many the surface program's fragment stage needs
+
+// Image units (PyramidLayout::Atlas, llvmpipe's: GlWorkarounds::pyramidAtlas).
+#define HFX_IMAGE_PYRAMID 0       // layer i's atlas pyramid at HFX_IMAGE_PYRAMID + i
+#define HFX_IMAGE_CELLS 4         // layer 0's level-0 cells' samples (CellsPass)
+
+// Uniform blocks.
+#define HFX_BLOCK_SURFACE 0       // HfxSurface: hfx::SurfaceUniforms
+#define HFX_BLOCK_WATER 1         // HfxWater: the water's look
+#define HFX_BLOCK_RINGS 2         // HfxRings: hfx::RingUniforms
+
+#endif
