@@ -21,7 +21,7 @@
 #define HFX_UNIT_ALBEDO3 9
 #define HFX_UNIT_CHANNELS 10      // layer 0's shading channels (roughness, ambient occlusion)
 #define HFX_UNIT_SHADOW_MAP 11    // the light's shadow map (hfx::ShadowMap)
-#define HFX_UNIT_PYRAMID1 12      // layers 1-3's bounds pyramids, as mip chains (bounded searches)
+#define HFX_UNIT_PYRAMID1 12      // layers 1-3's bounds pyramids, as mip chains (bounded searches): an array
 #define HFX_UNIT_PYRAMID2 13
 #define HFX_UNIT_PYRAMID3 14
 #define HFX_UNIT_CLEARANCE 15     // the clearance map for the light (hier's shadow walk)

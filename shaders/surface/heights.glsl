@@ -62,27 +62,18 @@ layout(binding = HFX_UNIT_TEXEL_SHADOWS) uniform sampler2D s_texelShadows; // R3
 #endif
 #if HFX_LAYERS > 1
 layout(binding = HFX_UNIT_SURFACE1) uniform sampler2D s_surface1;
+// The layers' own pyramids (bounded searches), layer i at [i - 1]: consecutive units.
 #if HFX_PYRAMID_ATLAS
-layout(rg32f, binding = HFX_IMAGE_PYRAMID + 1) readonly uniform image2D i_pyramid1; // the layers' own pyramids (bounded searches)
+layout(rg32f, binding = HFX_IMAGE_PYRAMID + 1) readonly uniform image2D i_pyramids[HFX_LAYERS - 1];
 #else
-layout(binding = HFX_UNIT_PYRAMID1) uniform sampler2D s_pyramid1;
+layout(binding = HFX_UNIT_PYRAMID1) uniform sampler2D s_pyramids[HFX_LAYERS - 1];
 #endif
 #endif
 #if HFX_LAYERS > 2
 layout(binding = HFX_UNIT_SURFACE2) uniform sampler2D s_surface2;
-#if HFX_PYRAMID_ATLAS
-layout(rg32f, binding = HFX_IMAGE_PYRAMID + 2) readonly uniform image2D i_pyramid2;
-#else
-layout(binding = HFX_UNIT_PYRAMID2) uniform sampler2D s_pyramid2;
-#endif
 #endif
 #if HFX_LAYERS > 3
 layout(binding = HFX_UNIT_SURFACE3) uniform sampler2D s_surface3;
-#if HFX_PYRAMID_ATLAS
-layout(rg32f, binding = HFX_IMAGE_PYRAMID + 3) readonly uniform image2D i_pyramid3;
-#else
-layout(binding = HFX_UNIT_PYRAMID3) uniform sampler2D s_pyramid3;
-#endif
 #endif
 
 // A layered surface traces its first HFX_TRACED_LAYERS layers (all unless told): the others
@@ -181,24 +172,12 @@ vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
 #if HFX_PYRAMID_ATLAS
     const ivec2 at = hfx_atlas_origin(size, level) + texel;
 #if HFX_LAYERS > 1
-    if (layer == 1) return imageLoad(i_pyramid1, at).rg;
-#endif
-#if HFX_LAYERS > 2
-    if (layer == 2) return imageLoad(i_pyramid2, at).rg;
-#endif
-#if HFX_LAYERS > 3
-    if (layer == 3) return imageLoad(i_pyramid3, at).rg;
+    if (layer > 0) return imageLoad(i_pyramids[layer - 1], at).rg;
 #endif
     return imageLoad(i_pyramid, at).rg;
 #else
 #if HFX_LAYERS > 1
-    if (layer == 1) return texelFetch(s_pyramid1, texel, level).rg;
-#endif
-#if HFX_LAYERS > 2
-    if (layer == 2) return texelFetch(s_pyramid2, texel, level).rg;
-#endif
-#if HFX_LAYERS > 3
-    if (layer == 3) return texelFetch(s_pyramid3, texel, level).rg;
+    if (layer > 0) return texelFetch(s_pyramids[layer - 1], texel, level).rg;
 #endif
     return texelFetch(s_pyramid, texel, level).rg;
 #endif
