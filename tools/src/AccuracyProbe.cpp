@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 namespace hfx {
 namespace {
@@ -234,11 +235,15 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
             // fragment traces is not quite the centre's (NVIDIA's offsets alone put the mean
             // screen error at 0.0011 px on the blocks at 80 degrees): the reference is the ray
             // the fragment traced, from the texcoords it was given towards the eye.
+            // Where the fragment entered within 1e-4 texel of the centre's ray (a rasteriser
+            // sampling at the centre, llvmpipe's undisturbed draws), that ray stands for its own.
             const glm::dvec2 entry(entries[size_t(y) * n + x]);
-            const glm::dvec3 onPlane((entry.x - 0.5) * kPlaneSize, 0.0, (0.5 - entry.y) * kPlaneSize);
-            const glm::dvec3 eye = glm::normalize(glm::dvec3(camera.position) - onPlane);
-            const auto own =
-                exact_.traceView(entry, glm::dvec3(eye.x, -eye.z, eye.y) / double(kPlaneSize), config.depthScale);
+            std::optional<HeightFieldHit> own = hit;
+            if (glm::length(entry - uv0) * size_ > 1e-4) {
+                const glm::dvec3 onPlane((entry.x - 0.5) * kPlaneSize, 0.0, (0.5 - entry.y) * kPlaneSize);
+                const glm::dvec3 eye = glm::normalize(glm::dvec3(camera.position) - onPlane);
+                own = exact_.traceView(entry, glm::dvec3(eye.x, -eye.z, eye.y) / double(kPlaneSize), config.depthScale);
+            }
             HeightFieldHit best = own ? *own : *hit;
             double error = texelError(best), screenError = pixelError(best);
             if (error > 1.0 || screenError > 0.5) {
