@@ -396,7 +396,7 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
                                   double* fetches) {
     const SurfaceMaterial material = materialOf(config);
     const SurfaceTextures& t = textures();
-    const auto key = std::make_tuple(config.angleDegrees, width, height, config.depthScale, config.light.x + 3 * config.light.y + 9 * config.light.z);
+    const auto key = std::make_tuple(config.angleDegrees, width, height, config.depthScale); // the light is a uniform
     if (key != computeKey_) {
         // timeDraw's rays: its camera through every pixel centre, where they meet the plane
         // (texcoords twice the plane's span, as timedPlane_ repeats the field twice).

@@ -172,8 +172,8 @@ private:
     ShadowLightOptions lightOptions_;         ///< ... and which of them it has
     ClContext& cl_;
     GpuTimer timer_;
-    // timeCompute's rays (for the view, size and light they were made for) and programs.
-    std::tuple<double, int, int, float, float> computeKey_{};
+    // timeCompute's rays (for the view and size they were made for) and programs.
+    std::tuple<double, int, int, float> computeKey_{};
     int computeRays_ = 0;
     GlBuffer computeIn_, computeOut_, computeBlock_;
     std::map<std::pair<Technique, bool>, ShaderProgram> computePrograms_; ///< by technique, atlas layout
