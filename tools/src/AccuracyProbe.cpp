@@ -423,14 +423,15 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
         computeKey_ = key;
     }
     const bool atlas = t.pyramidLayout() == PyramidLayout::Atlas;
-    auto it = computePrograms_.find({technique, atlas});
+    const auto programKey = std::make_tuple(technique, atlas, material.boundedSearch);
+    auto it = computePrograms_.find(programKey);
     if (it == computePrograms_.end()) {
         const std::vector<SourceFile> parts = {
             {"trace_compute_header.comp", "#version 450 core\nlayout(local_size_x = 64) in;\n", "tools"},
             surfaceShader("bindings.glsl"), surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl"),
             surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader), kComputeMain};
         it = computePrograms_
-                 .emplace(std::pair{technique, atlas},
+                 .emplace(programKey,
                           ShaderProgram::compute(parts, {{"HFX_BOUNDED_SEARCH", material.boundedSearch ? "1" : "0"},
                                                          {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}}))
                  .first;
@@ -443,8 +444,11 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
                             .shadowSamples = material.shadowSamples,
                             .pyramidLevels = t.pyramidLevels(),
                             .wrap = wrapFlags(t.config().edges)};
-    computeBlock_ = GlBuffer::create();
-    glNamedBufferStorage(computeBlock_.id(), sizeof u, &u, 0);
+    if (!computeBlock_.id()) { // made once, refreshed every dispatch
+        computeBlock_ = GlBuffer::create();
+        glNamedBufferStorage(computeBlock_.id(), sizeof u, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    glNamedBufferSubData(computeBlock_.id(), 0, sizeof u, &u);
     if (t.pyramid()) {
         cells_.refresh(t); // the atlas layout's cells (image unit 4)
         t.bindPyramid(0);

@@ -176,7 +176,7 @@ private:
     std::tuple<double, int, int, float> computeKey_{};
     int computeRays_ = 0;
     GlBuffer computeIn_, computeOut_, computeBlock_;
-    std::map<std::pair<Technique, bool>, ShaderProgram> computePrograms_; ///< by technique, atlas layout
+    std::map<std::tuple<Technique, bool, bool>, ShaderProgram> computePrograms_; ///< by technique, atlas, bounded search
     CellsPass cells_;
 };
 
