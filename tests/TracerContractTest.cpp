@@ -11,7 +11,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/compute/StaticField.h"
 #include "hfx/core/Gl.h"
-#include "hfx/effects/CellsPass.h"
+#include "hfx/effects/BoundsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
@@ -259,8 +259,8 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     } else {
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, block.id());
-        CellsPass().refresh(textures); // the atlas layout's level-0 cells heights.glsl reads
     }
+    BoundsPass().refresh(textures); // the pyramid, and the atlas layout's level-0 cells heights.glsl reads
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     textures.bindPyramid(0);
     glBindTextureUnit(HFX_UNIT_CLEARANCE, textures.clearance());
@@ -931,7 +931,7 @@ void main() {
 
 TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
     // The exact tracer's patch solve reads a cell's four samples: in the atlas layout from the
-    // cells image (CellsPass), in the mip-chain layout by a gather of the texels. Either must be
+    // cells image (BoundsPass), in the mip-chain layout by a gather of the texels. Either must be
     // the stored texels around the cell's centre (half floats as stored, the far corners across
     // an edge wrapped or clamped, cells beyond the field wrapped or clamped as the pyramid's
     // level 0 is), and in the atlas an upload must make the cells stale until the next refresh
@@ -955,7 +955,7 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                                                                       .pyramid = true,
                                                                       .pyramidLayout = PyramidLayout::MipChain,
                                                                       .format = format}));
-            CellsPass cells;
+            BoundsPass cells;
             // Cells from beyond the field on every side: [-W, 2W) x [-H, 2H).
             std::vector<glm::vec4> items;
             std::vector<glm::ivec2> cellsAsked;
@@ -1079,6 +1079,9 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
             {{"HFX_LAYERS", std::to_string(layers)},
              {"HFX_BOUNDED_SEARCH", "1"},
              {"HFX_PYRAMID_ATLAS", layout == PyramidLayout::Atlas ? "1" : "0"}});
+        BoundsPass bounds; // binds the surface it builds from to unit HFX_UNIT_SURFACE: first
+        bounds.refresh(a.textures(), false);
+        bounds.refresh(b.textures(), false);
         glBindTextureUnit(HFX_UNIT_SURFACE, a.textures().surface());
         a.textures().bindPyramid(0);
         glBindTextureUnit(HFX_UNIT_SURFACE1, b.textures().surface());

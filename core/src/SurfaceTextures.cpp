@@ -93,10 +93,6 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER,
                             layout_ == PyramidLayout::MipChain ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
         glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        // Conservative until the first real upload: every cell spans the whole relief (max 1, min 0).
-        std::vector<float> whole(static_cast<size_t>(config.width) * config.height * 4);
-        for (size_t i = 0; i < whole.size(); i += 2) whole[i] = 1.0f;
-        uploadPyramid(whole.data());
     }
 }
 
@@ -132,27 +128,13 @@ GLuint SurfaceTextures::pyramidUnit(int layer) {
 
 void SurfaceTextures::bindPyramid(int layer) const {
     if (!pyramid_.id()) throw Error("bindPyramid: these surface textures were made without a pyramid");
+    if (!pyramidCurrent())
+        throw Error("bindPyramid: the pyramid is older than the texels (BoundsPass::refresh builds it from them)");
     if (layout_ == PyramidLayout::MipChain)
         glBindTextureUnit(pyramidUnit(layer), pyramid_.id());
     else
         HFX_GL_CHECK(glBindImageTexture(GLuint(HFX_IMAGE_PYRAMID + layer), pyramid_.id(), 0, GL_FALSE, 0, GL_READ_ONLY,
                                         GL_RG32F));
-}
-
-void SurfaceTextures::uploadPyramid(const float* levels) {
-    if (!pyramid_.id()) throw Error("uploadPyramid: these surface textures were made without a pyramid");
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    size_t offset = 0;
-    for (int level = 0; level < pyramidLevels_; ++level) {
-        const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
-        if (layout_ == PyramidLayout::MipChain) {
-            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RG, GL_FLOAT, levels + offset));
-        } else {
-            const auto [x, y] = pyramidAtlasOrigin(config_.width, config_.height, level);
-            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), 0, x, y, w, h, GL_RG, GL_FLOAT, levels + offset));
-        }
-        offset += 2 * static_cast<size_t>(w) * h;
-    }
 }
 
 void SurfaceTextures::uploadClearance(const float* map, const ClearanceLight& light) {

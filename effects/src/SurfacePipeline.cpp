@@ -75,8 +75,6 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
              pixels_ && config.options.format == SurfaceFormat::Float32 ? pixels_->memory() : nullptr),
       textures_{std::make_unique<SurfaceTextures>(texturesConfig(config)),
                 std::make_unique<SurfaceTextures>(texturesConfig(config))} {
-    if (config.options.pyramid)
-        pyramid_ = std::make_unique<BoundsPyramid>(cl, config.width, config.height, config.edges);
     if (config.options.format != SurfaceFormat::Float32)
         packer_ = std::make_unique<SurfacePacker>(cl, config.width, config.height, config.options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);
@@ -106,7 +104,7 @@ void SurfacePipeline::setAlbedo(const Image& albedo) {
 
 void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options) {
     if (light) {
-        if (!pyramid_)
+        if (!config_.options.pyramid)
             throw Error("SurfacePipeline::setShadowLight: the clearance map and the texel shadows need the height "
                         "pyramid (SurfaceOptions::pyramid)");
         light->validate();
@@ -114,8 +112,10 @@ void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light,
             throw Error(str("SurfacePipeline::setShadowLight: ShadowLightOptions::texelStride must be a power of two "
                             "that divides the field's ", config_.width, "x", config_.height, " samples, got ",
                             options.texelStride));
-        if (!clearance_ && options.clearanceMap)
+        if (!clearance_ && options.clearanceMap) { // the map's walk reads a pyramid of its own
+            pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
             clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
+        }
     }
     light_ = light;
     lightOptions_ = options;
@@ -145,10 +145,12 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     sobel_.run(heights);
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
-    if (pyramid_) pyramid_->build(heights);
     builtFor_ = lightOptions_.clearanceMap ? light_ : std::nullopt;
     texelsFor_ = lightOptions_.texelShadows ? light_ : std::nullopt;
-    if (builtFor_) clearance_->build(heights, *pyramid_, *builtFor_);
+    if (builtFor_) {
+        pyramid_->build(heights);
+        clearance_->build(heights, *pyramid_, *builtFor_);
+    }
     state_ = State::Derived;
 }
 
@@ -167,8 +169,6 @@ void SurfacePipeline::submit(const cl::Buffer* albedo, const cl::Buffer* channel
         const size_t texels = size_t(config_.width) * config_.height;
         const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
         streams_->enqueue(StreamTransfer::Texels, source, texelBytes(config_.options.format) * texels);
-        if (pyramid_)
-            streams_->enqueue(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float));
         if (builtFor_) streams_->enqueue(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float));
         if (albedo_()) streams_->enqueue(StreamTransfer::Albedo, albedo_, 4 * texels);
         if (channels_()) streams_->enqueue(StreamTransfer::Channels, channels_, 4 * texels);
@@ -229,16 +229,13 @@ void SurfacePipeline::finish() {
         uploadStream(StreamTransfer::Texels, source, bytes, "uploading the surface",
                      [&](const void* from) { back.uploadTexels(from); });
     }
-    if (pyramid_)
-        uploadStream(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float),
-                     "uploading the pyramid",
-                     [&](const void* levels) { back.uploadPyramid(static_cast<const float*>(levels)); });
     if (builtFor_)
         uploadStream(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float), "uploading the clearance map",
                      [&](const void* map) { back.uploadClearance(static_cast<const float*>(map), *builtFor_); });
     else
         back.dropClearance();
-    // The texel shadows: a GL pass over the heights, pyramid and map just uploaded.
+    // The texel shadows: a GL pass over the heights and map just uploaded (it builds the
+    // pyramid from the heights first).
     upload.reset();
     if (texelsFor_) {
         if (!texelPass_) texelPass_ = std::make_unique<TexelShadowPass>();

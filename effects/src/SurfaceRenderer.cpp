@@ -330,16 +330,19 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         }
         updateBlock(ringBlock_, HFX_BLOCK_RINGS, rings);
     }
-    if (info.needsPyramid) cells_.refresh(textures); // the patch solve's samples, binds image unit 4
+    // The pyramids the draw reads (hier's, a bounded search's traced layers'), built from the
+    // current texels where they are older; hier's patch solve also reads the atlas layout's cells.
+    if (info.needsPyramid || bounded) {
+        for (size_t i = traced; i-- > 0;) bounds_.refresh(*layers[i].textures, i == 0 && info.needsPyramid);
+        for (int i = 0; i < traced; ++i) layers[size_t(i)].textures->bindPyramid(i);
+    }
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     glBindTextureUnit(HFX_UNIT_ALBEDO, textures.albedo());
     glBindTextureUnit(HFX_UNIT_CHANNELS, textures.channels());
     for (size_t i = 1; i < layers.size(); ++i) {
         glBindTextureUnit(GLuint(HFX_UNIT_SURFACE1 + i - 1), layers[i].textures->surface());
         glBindTextureUnit(GLuint(HFX_UNIT_ALBEDO1 + i - 1), layers[i].textures->albedo());
-        if (layers[i].textures->pyramid()) layers[i].textures->bindPyramid(int(i));
     }
-    if (textures.pyramid()) textures.bindPyramid(0);
     glBindTextureUnit(HFX_UNIT_CLEARANCE, textures.clearance());
     glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, textures.texelShadows());
     const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();

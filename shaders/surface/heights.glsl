@@ -42,14 +42,14 @@ layout(binding = HFX_UNIT_SURFACE) uniform sampler2D s_surface; // normal.xyz, h
 // HFX_PYRAMID_ATLAS 1: the height-bounds pyramid in PyramidLayout::Atlas, llvmpipe's workaround
 // (GlWorkarounds::pyramidAtlas in core/GlRenderer.h says why): every level in one RG32F image
 // read with imageLoad (hfx_atlas_origin), and the level-0 cells' samples in an RGBA32F image
-// (cells.comp). 0: a mip chain, RG32F, a level k texel the (max, min) over the bilinear cells it
+// (bounds.comp). 0: a mip chain, RG32F, a level k texel the (max, min) over the bilinear cells it
 // covers, read with texelFetch at the lane's level; the cells' samples gathered from s_surface.
 #ifndef HFX_PYRAMID_ATLAS
 #define HFX_PYRAMID_ATLAS 0
 #endif
 #if HFX_PYRAMID_ATLAS
 layout(rg32f, binding = HFX_IMAGE_PYRAMID) readonly uniform image2D i_pyramid;
-// Layer 0's level-0 cells: per cell its four samples in textureGather's order (cells.comp).
+// Layer 0's level-0 cells: per cell its four samples in textureGather's order (bounds.comp).
 layout(rgba32f, binding = HFX_IMAGE_CELLS) readonly uniform image2D i_cells;
 #else
 layout(binding = HFX_UNIT_PYRAMID) uniform sampler2D s_pyramid;

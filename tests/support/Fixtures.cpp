@@ -2,6 +2,7 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "hfx/effects/BoundsPass.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -116,6 +117,7 @@ std::string shaderSourceDir() {
 }
 
 std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level) {
+    BoundsPass().refresh(textures, false); // what a draw would read: built from the current texels
     const SurfaceTexturesConfig& c = textures.config();
     const int w = std::max(c.width >> level, 1), h = std::max(c.height >> level, 1);
     std::vector<float> stored(2 * size_t(w) * size_t(h));

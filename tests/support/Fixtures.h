@@ -41,7 +41,8 @@ protected:
 /// Level 0 of a surface texture as GL holds it: width*height float4 (normal.xyz, height), row 0
 /// at v = 0. Needs the texture's context current.
 std::vector<float> readSurface(const SurfaceTextures& textures);
-/// The pyramid's level `level` as GL holds it, (max, min) pairs row by row, in either layout.
+/// The pyramid's level `level` as a draw reads it (BoundsPass builds it from the current texels
+/// first), (max, min) pairs row by row, in either layout.
 std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level);
 
 /// The first `count` floats of a device buffer (waits for the queue).

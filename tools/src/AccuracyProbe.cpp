@@ -450,7 +450,7 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
     }
     glNamedBufferSubData(computeBlock_.id(), 0, sizeof u, &u);
     if (t.pyramid()) {
-        cells_.refresh(t); // the atlas layout's cells (image unit 4)
+        bounds_.refresh(t); // the pyramid and the atlas layout's cells (image unit 4), from the texels
         t.bindPyramid(0);
     }
     glBindTextureUnit(HFX_UNIT_SURFACE, t.surface());

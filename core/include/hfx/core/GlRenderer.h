@@ -31,7 +31,7 @@ struct GlWorkarounds {
     /// clock: its timer queries stamp one tile of a pass, a fraction of the work.
     bool cpuClockTimer = false;
     /// SurfaceTextures: the bounds pyramid as one RG32F image read with imageLoad, and the level-0
-    /// cells' samples as an RGBA32F image (CellsPass), instead of a mip chain read with
+    /// cells' samples as an RGBA32F image (BoundsPass), instead of a mip chain read with
     /// texelFetch at the lane's level and a textureGather of the heights. On llvmpipe a texelFetch
     /// with a level per lane is a call that spills the walk's vectors (1.6x an imageLoad) and a
     /// gather costs 2.2x an RGBA32F imageLoad; on a GPU each is one texture instruction.

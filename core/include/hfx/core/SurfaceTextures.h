@@ -3,7 +3,8 @@
 // height in w (h in [0,1], 1 = the polygon surface), so a POM step costs one fetch — RGBA32F,
 // RGBA16F or RGBA8 (SurfaceFormat) — plus an RGBA8 albedo texture, an RGBA8 texture of shading
 // channels (roughness, ambient occlusion; a decal's fresh fracture and its crater's shadowed
-// bowl) and optionally the height pyramid. Storage is allocated once; the upload functions refresh it in place every frame. The
+// bowl) and optionally the storage of the height-bounds pyramid, which effects' BoundsPass builds
+// from the stored texels after each upload. Storage is allocated once; the upload functions refresh it in place every frame. The
 // normals are those of one relief depth, normalDepth, which the textures record: the renderer
 // rescales them to whatever depth it draws with (SurfaceMaterial::depthScale), so the material
 // alone owns the depth.
@@ -29,7 +30,7 @@ enum class PyramidLayout {
     MipChain, ///< an RG32F texture with a mip level per pyramid level, read with texelFetch; the
               ///< level-0 cells' samples gathered from the surface texture (textureGather)
     Atlas,    ///< every level in one RG32F image read with imageLoad, and the level-0 cells'
-              ///< samples in an RGBA32F image (cells(), CellsPass): llvmpipe's workaround
+              ///< samples in an RGBA32F image (cells(), BoundsPass): llvmpipe's workaround
 };
 
 struct SurfaceTexturesConfig {
@@ -38,7 +39,8 @@ struct SurfaceTexturesConfig {
     bool mipmaps = true; ///< POM's level-of-detail switch needs them; tests of the search don't
     EdgeMode edges = EdgeMode::Wrap; ///< the textures' wrap modes, and the pyramid walk's
     /// Also a height-bounds pyramid (RG32F: max, min per cell, every level) for the hierarchical
-    /// tracer; needs power-of-two sizes.
+    /// tracer and the bounded searches, built on the GL side from the texels (BoundsPass); needs
+    /// power-of-two sizes.
     bool pyramid = false;
     PyramidLayout pyramidLayout = PyramidLayout::Auto; ///< tests and benches pick one side
     /// Storage of normal + height: Float16 halves the memory and the transfer, Unorm8 quarters
@@ -60,9 +62,6 @@ public:
     /// them), row 0 at v = 0: a plain copy, no conversion. Regenerates the mip chain when there
     /// is one. With a buffer bound to GL_PIXEL_UNPACK_BUFFER, `texels` is the offset into it.
     void uploadTexels(const void* texels);
-    /// Replaces the pyramid: (max, min) float pairs, every level back to back, level 0
-    /// (width x height) first, each level half the one before, as BoundsPyramid lays them out.
-    void uploadPyramid(const float* levels);
     /// Replaces the clearance map (compute/ClearanceMap.h: width*height floats, row 0 at v = 0)
     /// and records the light it was built for; the exact tracer's shadow walk reads it where a
     /// ray's direction and penumbra match that light. Needs the pyramid (the map is its walk's).
@@ -100,13 +99,19 @@ public:
 
     GLuint surface() const { return surface_.id(); }
     /// The pyramid's texture, 0 without one: an RG32F mip chain, or in the Atlas layout a
-    /// single-level RG32F image holding every level side by side (pyramidAtlasOrigin).
+    /// single-level RG32F image holding every level side by side (pyramidAtlasOrigin). It holds
+    /// the current texels' bounds once pyramidCurrent() (BoundsPass::refresh builds them).
     GLuint pyramid() const { return pyramid_.id(); }
+    /// Whether the pyramid holds the current texels' bounds; pyramidBuilt() records that it does
+    /// (the builder calls it: the cache's state, not the surface's, hence const).
+    bool pyramidCurrent() const { return pyramidVersion_ == texelsVersion_; }
+    void pyramidBuilt() const { pyramidVersion_ = texelsVersion_; }
     int pyramidLevels() const { return pyramidLevels_; }
     PyramidLayout pyramidLayout() const { return layout_; } ///< MipChain or Atlas, never Auto
     /// Binds the pyramid where heights.glsl reads layer `layer`'s (0 to 3): the texture unit
     /// pyramidUnit(layer), or in the Atlas layout image unit HFX_IMAGE_PYRAMID + `layer`,
-    /// read-only (hfx/core/Bindings.h). Throws without a pyramid.
+    /// read-only (hfx/core/Bindings.h). Throws without a pyramid, or where it is older than the
+    /// texels (BoundsPass::refresh first).
     void bindPyramid(int layer) const;
     /// The texture unit of layer `layer`'s mip-chain pyramid (heights.glsl's s_pyramid*).
     static GLuint pyramidUnit(int layer);
@@ -120,7 +125,7 @@ public:
     /// In the Atlas layout, the level-0 cells' corner samples (RGBA32F, width x height: per cell
     /// the four heights a gather around its centre reads, in that order), which the exact
     /// tracer's patch solve reads in one imageLoad. A cache of the texels, built on the GL side
-    /// (effects' CellsPass) after each uploadTexels; 0 without a pyramid or in the MipChain
+    /// (effects' BoundsPass, with the pyramid) after each uploadTexels; 0 without a pyramid or in the MipChain
     /// layout (the walk gathers the texels themselves). Allocated on the first call (16 bytes a
     /// texel), so surfaces never drawn with hier (the ocean's layers) hold none.
     GLuint cells() const;
@@ -150,6 +155,7 @@ private:
     mutable GlTexture cells_;
     std::uint64_t texelsVersion_ = 1; ///< counts uploadTexels
     mutable std::uint64_t cellsVersion_ = 0; ///< the texels' version the cells were built from
+    mutable std::uint64_t pyramidVersion_ = 0; ///< ... and the pyramid
     int texelStride_ = 1;
     std::optional<ClearanceLight> clearanceLight_, texelShadowLight_;
 };

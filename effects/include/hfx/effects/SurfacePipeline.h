@@ -2,7 +2,8 @@
 // The one path from a height buffer on the compute device to the textures a renderer draws:
 //
 //   heights --Sobel--> normals (float4: normal.xyz, h) --[passes]--> pack --transfer--> textures
-//           \--------> height-bounds pyramid (optional) -----------------transfer-->/
+//   (the height-bounds pyramid, where asked for, is built on the GL side from the textures'
+//   heights when first read: BoundsPass)
 //
 // Every user goes down it: the generated fields (ocean, waves, gas, decals), a static map from
 // files (ImageSurface, via StaticField) and the accuracy probe. A frame is five calls, in order:
@@ -75,7 +76,7 @@ struct StageTimes {
     // The parts of compute, each waited for on its own (so they add up to compute):
     double field = 0.0;   ///< the source's step
     double normals = 0.0; ///< Sobel
-    double extra = 0.0;   ///< the height pyramid (and clearance map), the effect's passes, packing
+    double extra = 0.0;   ///< the clearance map (and its pyramid), the effect's passes, packing
     // With StageTiming::Overlapped the parts are not waited for one by one: compute is then the
     // time finish() still had to wait, the part the draw did not hide.
     bool staged = true; ///< the parts above were waited for one by one
@@ -161,7 +162,7 @@ private:
     std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
     std::unique_ptr<StreamTransfer> streams_; ///< the Staged and GlSharing paths' memory, else null
     SobelNormals sobel_;
-    std::unique_ptr<BoundsPyramid> pyramid_;
+    std::unique_ptr<BoundsPyramid> pyramid_; ///< the clearance map's (on the compute device), made with it
     std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setShadowLight
     std::optional<ClearanceLight> light_;      ///< the map's light from the next derive()
     std::optional<ClearanceLight> builtFor_;   ///< the light of this frame's map, if it has one

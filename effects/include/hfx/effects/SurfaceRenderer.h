@@ -13,7 +13,7 @@
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
-#include "hfx/effects/CellsPass.h"
+#include "hfx/effects/BoundsPass.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/Technique.h"
@@ -250,7 +250,7 @@ private:
     GlFramebuffer beamFramebuffer_;
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
     int beamWidth_ = 0, beamHeight_ = 0;
-    CellsPass cells_; ///< the exact tracer's level-0 cells
+    BoundsPass bounds_; ///< the pyramids' builds from the texels (and the exact tracer's level-0 cells)
 };
 
 } // namespace hfx

@@ -13,7 +13,7 @@
 #include "hfx/core/GlObject.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
-#include "hfx/effects/CellsPass.h"
+#include "hfx/effects/BoundsPass.h"
 
 #include <optional>
 
@@ -54,7 +54,7 @@ private:
     /// [1]: the walks read the clearance map; each built by its first draw (a surface with texel
     /// shadows and no map never compiles the other).
     std::optional<ShaderProgram> programs_[2][2]; ///< by clearance map, by the atlas layout
-    CellsPass cells_; ///< the walk's level-0 cells
+    BoundsPass bounds_; ///< the walk's pyramid and level-0 cells, built from the texels
     GlFramebuffer framebuffer_;
     GlVertexArray empty_;
     GlBuffer block_;

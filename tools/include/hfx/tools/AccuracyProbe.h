@@ -12,7 +12,7 @@
 #include "hfx/core/Image.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/effects/CellsPass.h"
+#include "hfx/effects/BoundsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/tools/Timing.h"
@@ -177,7 +177,7 @@ private:
     int computeRays_ = 0;
     GlBuffer computeIn_, computeOut_, computeBlock_;
     std::map<std::tuple<Technique, bool, bool>, ShaderProgram> computePrograms_; ///< by technique, atlas, bounded search
-    CellsPass cells_;
+    BoundsPass bounds_;
 };
 
 } // namespace hfx

@@ -1,0 +1,62 @@
+#include "hfx/effects/BoundsPass.h"
+
+#include "hfx/core/Bindings.h"
+#include "hfx/core/Error.h"
+#include "hfx/core/GpuTimer.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+#include <algorithm>
+
+namespace hfx {
+
+void BoundsPass::refresh(const SurfaceTextures& textures, bool cells) {
+    if (!textures.pyramid()) throw Error("BoundsPass: these surface textures were made without a pyramid");
+    const bool atlas = textures.pyramidLayout() == PyramidLayout::Atlas;
+    cells = cells && atlas; // a mip chain's walk gathers the texels themselves
+    if (!textures.pyramidCurrent() || (cells && !textures.cellsCurrent())) {
+        const GpuScope scope("bounds");
+        const int variant = !atlas ? 0 : cells ? 2 : 1;
+        std::optional<ShaderProgram>& program = programs_[variant];
+        if (!program)
+            program = ShaderProgram::compute(surfaceStage("surface/bounds.comp"),
+                                             {{"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}, {"HFX_BOUNDS_CELLS", cells ? "1" : "0"}});
+        const SurfaceTexturesConfig& c = textures.config();
+        const GLuint pyramid = textures.pyramid();
+        program->use();
+        program->set("u_wrap", wrapFlags(c.edges));
+        glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
+        if (cells)
+            HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_CELLS, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
+        for (int level = 0; level < textures.pyramidLevels(); ++level) {
+            const int w = std::max(c.width >> level, 1), h = std::max(c.height >> level, 1);
+            if (atlas) {
+                const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, level);
+                const auto [fx, fy] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, std::max(level - 1, 0));
+                program->set("u_origin", glm::ivec2(x, y));
+                program->set("u_finerOrigin", glm::ivec2(fx, fy));
+                HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS_FINER, pyramid, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
+                HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F));
+            } else {
+                program->set("u_origin", glm::ivec2(0));
+                program->set("u_finerOrigin", glm::ivec2(0));
+                HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS_FINER, pyramid, std::max(level - 1, 0), GL_FALSE, 0,
+                                                GL_READ_ONLY, GL_RG32F));
+                HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS, pyramid, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F));
+            }
+            program->set("u_level", level);
+            program->set("u_size", glm::ivec2(w, h));
+            program->set("u_finerSize", glm::ivec2(std::max(c.width >> std::max(level - 1, 0), 1),
+                                                   std::max(c.height >> std::max(level - 1, 0), 1)));
+            HFX_GL_CHECK(glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1));
+            // The next level reads this one; the walks read them all (as images or textures).
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        }
+        glUseProgram(0); // none left current: a pass that goes first would leave a deleted program in use
+        textures.pyramidBuilt();
+        if (cells) textures.cellsBuilt();
+    }
+    if (cells)
+        HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_CELLS, textures.cells(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F));
+}
+
+} // namespace hfx
