@@ -6,6 +6,7 @@
 #include "support/Fixtures.h"
 #include "support/References.h"
 
+#include "hfx/compute/StaticField.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/RenderTarget.h"
@@ -20,6 +21,10 @@
 #include <algorithm>
 #include <functional>
 #include <memory>
+#include <cstdlib>
+#include <string>
+#include <random>
+#include <optional>
 
 namespace hfx::test {
 namespace {
@@ -165,6 +170,60 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
                 offset += stored.size();
             }
             EXPECT_EQ(offset, pyramid.size());
+        }
+}
+
+/// Sets HFX_GL_WORKAROUNDS for its lifetime, and puts back what was there.
+class WorkaroundsSet {
+public:
+    explicit WorkaroundsSet(const char* value) {
+        if (const char* old = std::getenv("HFX_GL_WORKAROUNDS")) old_ = old;
+        setenv("HFX_GL_WORKAROUNDS", value, 1);
+    }
+    ~WorkaroundsSet() {
+        if (old_) setenv("HFX_GL_WORKAROUNDS", old_->c_str(), 1);
+        else unsetenv("HFX_GL_WORKAROUNDS");
+    }
+    WorkaroundsSet(const WorkaroundsSet&) = delete;
+    WorkaroundsSet& operator=(const WorkaroundsSet&) = delete;
+
+private:
+    std::optional<std::string> old_;
+};
+
+TEST_F(Pipeline, ThePyramidGlBuildsFromTheTexelsIsTheComputeDevicesToTheBit) {
+    // BoundsPass builds the pyramid from what GL holds; on a CPU rasteriser a float32 surface's
+    // comes from the compute device (GlWorkarounds::pyramidFromCompute). Both, on an oblong field
+    // with isolated spikes and pits (a wrong corner or a lost lone row shows), in either layout
+    // and edge mode, must hold the same bounds to the bit, and where the field wraps the plain
+    // reference's.
+    constexpr int W = 64, H = 16;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> heights(size_t(W) * H);
+    for (float& h : heights) {
+        const float r = unit(random);
+        h = r < 0.02f ? 0.9f : r < 0.04f ? 0.1f : 0.3f + 0.4f * unit(random); // no 0 or 1: an empty read shows
+    }
+    const auto reference = pyramidReference(heights, W, H);
+    for (const PyramidLayout layout : {PyramidLayout::Atlas, PyramidLayout::MipChain})
+        for (const EdgeMode edges : {EdgeMode::Wrap, EdgeMode::Clamp}) {
+            std::vector<float> built[2];
+            for (int fromCompute = 0; fromCompute < 2; ++fromCompute) {
+                const WorkaroundsSet set(fromCompute ? "pyramid-from-compute=1" : "pyramid-from-compute=0");
+                StaticField field(cl(), W, H, edges, heights);
+                SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f,
+                                                                         {.mipmaps = false, .pyramid = true, .pyramidLayout = layout}));
+                surface.run(field.buffer());
+                ASSERT_EQ(surface.textures().pyramidCurrent(), fromCompute == 1) << "the device's pyramid was not uploaded";
+                for (int level = 0; level < surface.textures().pyramidLevels(); ++level) {
+                    const std::vector<float> stored = readPyramidLevel(surface.textures(), level);
+                    built[fromCompute].insert(built[fromCompute].end(), stored.begin(), stored.end());
+                }
+            }
+            const char* where = layout == PyramidLayout::Atlas ? "atlas" : "mip chain";
+            EXPECT_EQ(built[0], built[1]) << where << ", " << edgeModeName(edges);
+            if (edges == EdgeMode::Wrap) EXPECT_EQ(built[0], reference) << where;
         }
 }
 

@@ -28,7 +28,7 @@ GlRendererInfo currentGlRenderer() {
 
 GlWorkarounds glWorkarounds(const GlRendererInfo& renderer) {
     const bool software = renderer.software();
-    GlWorkarounds w{.cpuClockTimer = software, .pyramidAtlas = software};
+    GlWorkarounds w{.cpuClockTimer = software, .pyramidAtlas = software, .pyramidFromCompute = software};
     const char* env = std::getenv("HFX_GL_WORKAROUNDS");
     if (!env || !*env) return w;
     std::stringstream list(env);
@@ -36,10 +36,13 @@ GlWorkarounds glWorkarounds(const GlRendererInfo& renderer) {
     while (std::getline(list, entry, ',')) {
         const size_t eq = entry.find('=');
         const std::string name = entry.substr(0, eq), value = eq == std::string::npos ? "" : entry.substr(eq + 1);
-        bool* flag = name == "cpu-clock-timer" ? &w.cpuClockTimer : name == "pyramid-atlas" ? &w.pyramidAtlas : nullptr;
+        bool* flag = name == "cpu-clock-timer"        ? &w.cpuClockTimer
+                     : name == "pyramid-atlas"        ? &w.pyramidAtlas
+                     : name == "pyramid-from-compute" ? &w.pyramidFromCompute
+                                                      : nullptr;
         if (!flag || (value != "0" && value != "1"))
             throw Error(str("HFX_GL_WORKAROUNDS: '", entry, "' is not name=0 or name=1 with a name of "
-                            "cpu-clock-timer, pyramid-atlas (in '", env, "')"));
+                            "cpu-clock-timer, pyramid-atlas, pyramid-from-compute (in '", env, "')"));
         *flag = value == "1";
     }
     return w;

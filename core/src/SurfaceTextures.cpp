@@ -137,6 +137,23 @@ void SurfaceTextures::bindPyramid(int layer) const {
                                         GL_RG32F));
 }
 
+void SurfaceTextures::uploadPyramid(const float* levels) {
+    if (!pyramid_.id()) throw Error("uploadPyramid: these surface textures were made without a pyramid");
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    size_t offset = 0;
+    for (int level = 0; level < pyramidLevels_; ++level) {
+        const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
+        if (layout_ == PyramidLayout::MipChain) {
+            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RG, GL_FLOAT, levels + offset));
+        } else {
+            const auto [x, y] = pyramidAtlasOrigin(config_.width, config_.height, level);
+            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), 0, x, y, w, h, GL_RG, GL_FLOAT, levels + offset));
+        }
+        offset += 2 * static_cast<size_t>(w) * h;
+    }
+    pyramidBuilt();
+}
+
 void SurfaceTextures::uploadClearance(const float* map, const ClearanceLight& light) {
     if (!pyramid_.id()) throw Error("uploadClearance: these surface textures were made without a pyramid");
     light.validate();

@@ -27,7 +27,10 @@ void BoundsPass::refresh(const SurfaceTextures& textures, bool cells) {
         glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
         if (cells)
             HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_CELLS, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
-        for (int level = 0; level < textures.pyramidLevels(); ++level) {
+        // Where the pyramid came from elsewhere (SurfaceTextures::uploadPyramid) and only the
+        // cells are stale, level 0's dispatch writes them (and level 0 again, alike).
+        const int levels = textures.pyramidCurrent() ? 1 : textures.pyramidLevels();
+        for (int level = 0; level < levels; ++level) {
             const int w = std::max(c.width >> level, 1), h = std::max(c.height >> level, 1);
             if (atlas) {
                 const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, level);

@@ -3,6 +3,7 @@
 #include "StreamTransfer.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GlRenderer.h"
 #include "hfx/core/GpuTimer.h"
 
 #include <chrono>
@@ -75,6 +76,11 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
              pixels_ && config.options.format == SurfaceFormat::Float32 ? pixels_->memory() : nullptr),
       textures_{std::make_unique<SurfaceTextures>(texturesConfig(config)),
                 std::make_unique<SurfaceTextures>(texturesConfig(config))} {
+    // A float32 surface's stored heights are the device's: where GL builds the bounds slower than
+    // the device and the copy (GlWorkarounds::pyramidFromCompute), they come from the device.
+    uploadsPyramid_ = config.options.pyramid && config.options.format == SurfaceFormat::Float32 &&
+                      glWorkarounds(currentGlRenderer()).pyramidFromCompute;
+    if (uploadsPyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl, config.width, config.height, config.edges);
     if (config.options.format != SurfaceFormat::Float32)
         packer_ = std::make_unique<SurfacePacker>(cl, config.width, config.height, config.options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);
@@ -112,8 +118,8 @@ void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light,
             throw Error(str("SurfacePipeline::setShadowLight: ShadowLightOptions::texelStride must be a power of two "
                             "that divides the field's ", config_.width, "x", config_.height, " samples, got ",
                             options.texelStride));
-        if (!clearance_ && options.clearanceMap) { // the map's walk reads a pyramid of its own
-            pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
+        if (!clearance_ && options.clearanceMap) { // the map's walk reads the pyramid on the device
+            if (!pyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
             clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
         }
     }
@@ -147,10 +153,8 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     normalsDone_ = nowMs();
     builtFor_ = lightOptions_.clearanceMap ? light_ : std::nullopt;
     texelsFor_ = lightOptions_.texelShadows ? light_ : std::nullopt;
-    if (builtFor_) {
-        pyramid_->build(heights);
-        clearance_->build(heights, *pyramid_, *builtFor_);
-    }
+    if (uploadsPyramid_ || builtFor_) pyramid_->build(heights);
+    if (builtFor_) clearance_->build(heights, *pyramid_, *builtFor_);
     state_ = State::Derived;
 }
 
@@ -169,6 +173,8 @@ void SurfacePipeline::submit(const cl::Buffer* albedo, const cl::Buffer* channel
         const size_t texels = size_t(config_.width) * config_.height;
         const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
         streams_->enqueue(StreamTransfer::Texels, source, texelBytes(config_.options.format) * texels);
+        if (uploadsPyramid_)
+            streams_->enqueue(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float));
         if (builtFor_) streams_->enqueue(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float));
         if (albedo_()) streams_->enqueue(StreamTransfer::Albedo, albedo_, 4 * texels);
         if (channels_()) streams_->enqueue(StreamTransfer::Channels, channels_, 4 * texels);
@@ -229,6 +235,10 @@ void SurfacePipeline::finish() {
         uploadStream(StreamTransfer::Texels, source, bytes, "uploading the surface",
                      [&](const void* from) { back.uploadTexels(from); });
     }
+    if (uploadsPyramid_)
+        uploadStream(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float),
+                     "uploading the pyramid",
+                     [&](const void* levels) { back.uploadPyramid(static_cast<const float*>(levels)); });
     if (builtFor_)
         uploadStream(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float), "uploading the clearance map",
                      [&](const void* map) { back.uploadClearance(static_cast<const float*>(map), *builtFor_); });

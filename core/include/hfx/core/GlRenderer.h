@@ -24,7 +24,7 @@ GlRendererInfo currentGlRenderer();
 /// Where HFX does, on a CPU rasteriser, what a GPU would not want: each switch measured to pay
 /// there (docs/BENCHMARKS.md), and all of them here, detected from the renderer. Everywhere else
 /// the code is written for a GPU. HFX_GL_WORKAROUNDS overrides them, "name=0|1" separated by
-/// commas (cpu-clock-timer, pyramid-atlas), so either side runs on any device: tests hold the
+/// commas (cpu-clock-timer, pyramid-atlas, pyramid-from-compute), so either side runs on any device: tests hold the
 /// two sides to the same results, benches time one against the other.
 struct GlWorkarounds {
     /// GpuTimer: the CPU clock between two glFinish times a pass. A CPU rasteriser has no device
@@ -36,6 +36,13 @@ struct GlWorkarounds {
     /// with a level per lane is a call that spills the walk's vectors (1.6x an imageLoad) and a
     /// gather costs 2.2x an RGBA32F imageLoad; on a GPU each is one texture instruction.
     bool pyramidAtlas = false;
+    /// SurfacePipeline: a float32 surface's bounds pyramid built on the compute device from the
+    /// heights and uploaded with the texels (as SurfaceTextures::uploadPyramid takes it), instead
+    /// of built by GL from the stored texels (BoundsPass). On llvmpipe beside PoCL, GL's build
+    /// (four texelFetch calls a cell) cost 10-11 ms more than PoCL's and the copy at 512² and
+    /// 54 ms at 1024² (the decal wall's hier draw), 34-106 ms a frame for the ocean's four
+    /// cascades; on a GPU the build is one small pass and saves moving 10.7 bytes a texel.
+    bool pyramidFromCompute = false;
 };
 
 /// The workarounds for `renderer`, HFX_GL_WORKAROUNDS applied; throws hfx::Error naming a bad

@@ -62,6 +62,13 @@ public:
     /// them), row 0 at v = 0: a plain copy, no conversion. Regenerates the mip chain when there
     /// is one. With a buffer bound to GL_PIXEL_UNPACK_BUFFER, `texels` is the offset into it.
     void uploadTexels(const void* texels);
+    /// Replaces the pyramid with one built elsewhere from the current texels' heights ((max, min)
+    /// float pairs, every level back to back, level 0 (width x height) first, each level half the
+    /// one before, as compute's BoundsPyramid lays them out) and marks it current
+    /// (GlWorkarounds::pyramidFromCompute: SurfacePipeline on a CPU rasteriser). The heights
+    /// must be the stored ones (a float32 surface's), or the bounds would not hold what the
+    /// tracers read.
+    void uploadPyramid(const float* levels);
     /// Replaces the clearance map (compute/ClearanceMap.h: width*height floats, row 0 at v = 0)
     /// and records the light it was built for; the exact tracer's shadow walk reads it where a
     /// ray's direction and penumbra match that light. Needs the pyramid (the map is its walk's).

@@ -4,7 +4,9 @@
 // in the atlas layout (PyramidLayout::Atlas, llvmpipe's) the level-0 cells' samples the walk
 // reads instead of a gather (SurfaceTextures::cells). Built from what the GL side holds, the
 // bounds hold exactly the heights the tracers read (a float16 surface's rounding included), and
-// nothing but the surface crosses from the compute device. SurfaceRenderer and TexelShadowPass
+// nothing but the surface crosses from the compute device (on a CPU rasteriser a float32
+// surface's pyramid comes from the device instead, GlWorkarounds::pyramidFromCompute, and the
+// pass builds only the cells). SurfaceRenderer and TexelShadowPass
 // run it before every draw and pass that reads a pyramid; a program of your own over
 // surface/heights.glsl (a compute harness, say) runs it too.
 //

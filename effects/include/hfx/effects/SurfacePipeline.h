@@ -3,7 +3,8 @@
 //
 //   heights --Sobel--> normals (float4: normal.xyz, h) --[passes]--> pack --transfer--> textures
 //   (the height-bounds pyramid, where asked for, is built on the GL side from the textures'
-//   heights when first read: BoundsPass)
+//   heights when first read, BoundsPass; on a CPU rasteriser it is built here and transferred,
+//   GlWorkarounds::pyramidFromCompute)
 //
 // Every user goes down it: the generated fields (ocean, waves, gas, decals), a static map from
 // files (ImageSurface, via StaticField) and the accuracy probe. A frame is five calls, in order:
@@ -162,7 +163,10 @@ private:
     std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
     std::unique_ptr<StreamTransfer> streams_; ///< the Staged and GlSharing paths' memory, else null
     SobelNormals sobel_;
-    std::unique_ptr<BoundsPyramid> pyramid_; ///< the clearance map's (on the compute device), made with it
+    /// The pyramid on the compute device: the clearance map's, and where uploadsPyramid_ the
+    /// textures' (GlWorkarounds::pyramidFromCompute)
+    std::unique_ptr<BoundsPyramid> pyramid_;
+    bool uploadsPyramid_ = false;
     std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setShadowLight
     std::optional<ClearanceLight> light_;      ///< the map's light from the next derive()
     std::optional<ClearanceLight> builtFor_;   ///< the light of this frame's map, if it has one
