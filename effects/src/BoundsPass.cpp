@@ -15,40 +15,47 @@ void BoundsPass::refresh(const SurfaceTextures& textures, bool cells) {
     cells = cells && atlas; // a mip chain's walk gathers the texels themselves
     if (!textures.pyramidCurrent() || (cells && !textures.cellsCurrent())) {
         const GpuScope scope("bounds");
-        const int variant = !atlas ? 0 : cells ? 2 : 1;
-        std::optional<ShaderProgram>& program = programs_[variant];
-        if (!program)
-            program = ShaderProgram::compute(surfaceStage("surface/bounds.comp"),
-                                             {{"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}, {"HFX_BOUNDS_CELLS", cells ? "1" : "0"}});
+        // Where the pyramid came from elsewhere (SurfaceTextures::uploadPyramid) and only the
+        // cells are stale, one level-0 dispatch writes them alone.
+        const bool cellsOnly = textures.pyramidCurrent();
+        const int variant = !atlas ? 0 : !cells ? 1 : cellsOnly ? 3 : 2;
+        auto program = [&](bool level0) -> const ShaderProgram& {
+            std::optional<ShaderProgram>& p = programs_[variant][level0 ? 1 : 0];
+            if (!p)
+                p = ShaderProgram::compute(surfaceStage("surface/bounds.comp"),
+                                           {{"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"},
+                                            {"HFX_BOUNDS_CELLS", cells && level0 ? "1" : "0"},
+                                            {"HFX_BOUNDS_LEVEL0", level0 ? "1" : "0"},
+                                            {"HFX_BOUNDS_PYRAMID", cellsOnly ? "0" : "1"}});
+            return *p;
+        };
         const SurfaceTexturesConfig& c = textures.config();
         const GLuint pyramid = textures.pyramid();
-        program->use();
-        program->set("u_wrap", wrapFlags(c.edges));
         glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
         if (cells)
             HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_CELLS, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
-        // Where the pyramid came from elsewhere (SurfaceTextures::uploadPyramid) and only the
-        // cells are stale, level 0's dispatch writes them (and level 0 again, alike).
-        const int levels = textures.pyramidCurrent() ? 1 : textures.pyramidLevels();
+        const int levels = cellsOnly ? 1 : textures.pyramidLevels();
         for (int level = 0; level < levels; ++level) {
+            const ShaderProgram& p = program(level == 0);
+            p.use();
+            p.set("u_wrap", wrapFlags(c.edges));
             const int w = std::max(c.width >> level, 1), h = std::max(c.height >> level, 1);
             if (atlas) {
                 const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, level);
                 const auto [fx, fy] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, std::max(level - 1, 0));
-                program->set("u_origin", glm::ivec2(x, y));
-                program->set("u_finerOrigin", glm::ivec2(fx, fy));
+                p.set("u_origin", glm::ivec2(x, y));
+                p.set("u_finerOrigin", glm::ivec2(fx, fy));
                 HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS_FINER, pyramid, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
                 HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F));
             } else {
-                program->set("u_origin", glm::ivec2(0));
-                program->set("u_finerOrigin", glm::ivec2(0));
+                p.set("u_origin", glm::ivec2(0));
+                p.set("u_finerOrigin", glm::ivec2(0));
                 HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS_FINER, pyramid, std::max(level - 1, 0), GL_FALSE, 0,
                                                 GL_READ_ONLY, GL_RG32F));
                 HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS, pyramid, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F));
             }
-            program->set("u_level", level);
-            program->set("u_size", glm::ivec2(w, h));
-            program->set("u_finerSize", glm::ivec2(std::max(c.width >> std::max(level - 1, 0), 1),
+            p.set("u_size", glm::ivec2(w, h));
+            p.set("u_finerSize", glm::ivec2(std::max(c.width >> std::max(level - 1, 0), 1),
                                                    std::max(c.height >> std::max(level - 1, 0), 1)));
             HFX_GL_CHECK(glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1));
             // The next level reads this one; the walks read them all (as images or textures).

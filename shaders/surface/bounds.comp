@@ -3,7 +3,8 @@
 // change (BoundsPass), so they bound exactly what the walk's patch solve reads (a float16 or
 // unorm8 surface's rounded heights included) and nothing crosses from the compute device:
 //
-// - level 0 (u_level 0): per level-0 cell (i, j), between the samples i..i+1 and j..j+1, the
+// - level 0 (HFX_BOUNDS_LEVEL0 1, a program of its own: llvmpipe runs both sides of a branch):
+//   per level-0 cell (i, j), between the samples i..i+1 and j..j+1, the
 //   (max, min) of its four corner samples, which bound every bilinearly interpolated height in
 //   it; across an edge that wraps the far corner is the first sample, across one that clamps the
 //   last again. In the atlas layout with HFX_BOUNDS_CELLS 1 it also writes the four samples,
@@ -23,13 +24,18 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #ifndef HFX_BOUNDS_CELLS
 #define HFX_BOUNDS_CELLS 0
 #endif
+#ifndef HFX_BOUNDS_LEVEL0
+#define HFX_BOUNDS_LEVEL0 0
+#endif
+#ifndef HFX_BOUNDS_PYRAMID
+#define HFX_BOUNDS_PYRAMID 1 // 0: the cells alone (the pyramid came from the compute device)
+#endif
 layout(binding = HFX_UNIT_SURFACE) uniform sampler2D s_surface;
 layout(rg32f, binding = HFX_IMAGE_BOUNDS_FINER) readonly uniform image2D i_finer;
 layout(rg32f, binding = HFX_IMAGE_BOUNDS) writeonly uniform image2D i_bounds;
 #if HFX_BOUNDS_CELLS
 layout(rgba32f, binding = HFX_IMAGE_CELLS) writeonly uniform image2D i_cells;
 #endif
-uniform int u_level;
 uniform ivec2 u_wrap;        // per axis: 1 where the field wraps, 0 where it clamps
 uniform ivec2 u_size;        // this level's texels
 uniform ivec2 u_finerSize;   // level - 1's texels (level > 0)
@@ -40,7 +46,8 @@ void main() {
     const ivec2 c = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(c, u_size))) return;
     vec2 bounds;
-    if (u_level == 0) {
+#if HFX_BOUNDS_LEVEL0
+    {
         const ivec2 last = u_size - 1, n = mix(min(c + 1, last), (c + 1) & last, bvec2(u_wrap)); // power-of-two sizes
         const vec4 s = vec4(texelFetch(s_surface, ivec2(c.x, n.y), 0).w, texelFetch(s_surface, n, 0).w,
                             texelFetch(s_surface, ivec2(n.x, c.y), 0).w, texelFetch(s_surface, c, 0).w);
@@ -48,11 +55,16 @@ void main() {
 #if HFX_BOUNDS_CELLS
         imageStore(i_cells, c, s);
 #endif
-    } else {
+    }
+#else
+    {
         const ivec2 f0 = 2 * c, f1 = min(f0 + 1, u_finerSize - 1);
         const vec2 a = imageLoad(i_finer, u_finerOrigin + f0).rg, b = imageLoad(i_finer, u_finerOrigin + ivec2(f1.x, f0.y)).rg;
         const vec2 d = imageLoad(i_finer, u_finerOrigin + ivec2(f0.x, f1.y)).rg, e = imageLoad(i_finer, u_finerOrigin + f1).rg;
         bounds = vec2(max(max(a.x, b.x), max(d.x, e.x)), min(min(a.y, b.y), min(d.y, e.y)));
     }
+#endif
+#if HFX_BOUNDS_PYRAMID
     imageStore(i_bounds, u_origin + c, vec4(bounds, 0.0, 0.0));
+#endif
 }

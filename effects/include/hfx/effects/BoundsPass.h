@@ -29,7 +29,9 @@ public:
     void refresh(const SurfaceTextures& textures, bool cells = true);
 
 private:
-    std::optional<ShaderProgram> programs_[3]; ///< mip chain; atlas; atlas with the cells
+    /// By what it writes (mip chain; atlas; atlas and cells; cells alone), then [1] for level 0
+    /// (from the texels)
+    std::optional<ShaderProgram> programs_[4][2];
 };
 
 } // namespace hfx
