@@ -35,6 +35,10 @@ void BoundsPass::refresh(const SurfaceTextures& textures, bool cells) {
         if (cells)
             HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_CELLS, textures.cells(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
         const int levels = cellsOnly ? 1 : textures.pyramidLevels();
+        if (atlas) { // every level in one image, read and written at the levels' origins
+            HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS_FINER, pyramid, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
+            HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F));
+        }
         for (int level = 0; level < levels; ++level) {
             const ShaderProgram& p = program(level == 0);
             p.use();
@@ -45,8 +49,6 @@ void BoundsPass::refresh(const SurfaceTextures& textures, bool cells) {
                 const auto [fx, fy] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, std::max(level - 1, 0));
                 p.set("u_origin", glm::ivec2(x, y));
                 p.set("u_finerOrigin", glm::ivec2(fx, fy));
-                HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS_FINER, pyramid, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F));
-                HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_BOUNDS, pyramid, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F));
             } else {
                 p.set("u_origin", glm::ivec2(0));
                 p.set("u_finerOrigin", glm::ivec2(0));
@@ -58,9 +60,9 @@ void BoundsPass::refresh(const SurfaceTextures& textures, bool cells) {
             p.set("u_finerSize", glm::ivec2(std::max(c.width >> std::max(level - 1, 0), 1),
                                                    std::max(c.height >> std::max(level - 1, 0), 1)));
             HFX_GL_CHECK(glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1));
-            // The next level reads this one; the walks read them all (as images or textures).
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the next level reads this one
         }
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // a mip chain's walk reads them as a texture
         glUseProgram(0); // none left current: a pass that goes first would leave a deleted program in use
         textures.pyramidBuilt();
         if (cells) textures.cellsBuilt();

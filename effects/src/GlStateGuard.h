@@ -80,7 +80,8 @@ private:
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
     // the atlas pyramids of layers 0-3 (SurfaceTextures::bindPyramid), layer 0's cells, BoundsPass's two
     static constexpr GLuint kImages = HFX_IMAGE_BOUNDS + 1;
-    static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages, "hfx/core/Bindings.h: the guard saves every image unit");
+    static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages,
+                  "hfx/core/Bindings.h: the guard saves every image unit");
     struct Image {
         GLint name, level, layered, layer, access, format;
     };

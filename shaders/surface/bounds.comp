@@ -3,7 +3,7 @@
 // change (BoundsPass), so they bound exactly what the walk's patch solve reads (a float16 or
 // unorm8 surface's rounded heights included) and nothing crosses from the compute device:
 //
-// - level 0 (HFX_BOUNDS_LEVEL0 1, a program of its own: llvmpipe runs both sides of a branch):
+// - level 0 (HFX_BOUNDS_LEVEL0 1: a program of its own, which reads the texels, not the images):
 //   per level-0 cell (i, j), between the samples i..i+1 and j..j+1, the
 //   (max, min) of its four corner samples, which bound every bilinearly interpolated height in
 //   it; across an edge that wraps the far corner is the first sample, across one that clamps the

@@ -4,8 +4,9 @@
 // RGBA16F or RGBA8 (SurfaceFormat) — plus an RGBA8 albedo texture, an RGBA8 texture of shading
 // channels (roughness, ambient occlusion; a decal's fresh fracture and its crater's shadowed
 // bowl) and optionally the storage of the height-bounds pyramid, which effects' BoundsPass builds
-// from the stored texels after each upload. Storage is allocated once; the upload functions refresh it in place every frame. The
-// normals are those of one relief depth, normalDepth, which the textures record: the renderer
+// from the stored texels after each upload. Storage is allocated once; the upload functions
+// refresh it in place every frame. The normals are those of one relief depth, normalDepth,
+// which the textures record: the renderer
 // rescales them to whatever depth it draws with (SurfaceMaterial::depthScale), so the material
 // alone owns the depth.
 //
@@ -132,8 +133,8 @@ public:
     /// In the Atlas layout, the level-0 cells' corner samples (RGBA32F, width x height: per cell
     /// the four heights a gather around its centre reads, in that order), which the exact
     /// tracer's patch solve reads in one imageLoad. A cache of the texels, built on the GL side
-    /// (effects' BoundsPass, with the pyramid) after each uploadTexels; 0 without a pyramid or in the MipChain
-    /// layout (the walk gathers the texels themselves). Allocated on the first call (16 bytes a
+    /// (effects' BoundsPass, with the pyramid) after each uploadTexels; 0 without a pyramid or in
+    /// the MipChain layout (the walk gathers the texels themselves). Allocated on the first call (16 bytes a
     /// texel), so surfaces never drawn with hier (the ocean's layers) hold none.
     GLuint cells() const;
     /// Whether the cells hold the current texels; cellsBuilt() records that they do (the builder

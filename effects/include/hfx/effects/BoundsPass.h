@@ -6,9 +6,9 @@
 // bounds hold exactly the heights the tracers read (a float16 surface's rounding included), and
 // nothing but the surface crosses from the compute device (on a CPU rasteriser a float32
 // surface's pyramid comes from the device instead, GlWorkarounds::pyramidFromCompute, and the
-// pass builds only the cells). SurfaceRenderer and TexelShadowPass
-// run it before every draw and pass that reads a pyramid; a program of your own over
-// surface/heights.glsl (a compute harness, say) runs it too.
+// pass builds only the cells). SurfaceRenderer and TexelShadowPass run it before every draw and
+// pass that reads a pyramid; a program of your own over surface/heights.glsl (a compute harness,
+// say) runs it too.
 //
 // Owns its compute programs. Thread: the thread whose GL context is current.
 
