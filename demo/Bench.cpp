@@ -38,16 +38,16 @@ struct Budget {
     double field, normals, extra, upload, pom, unshadowed, nm;
     double own; ///< the scene's own technique with shadows; 0 where that is POM
     // Device time: the frame's kernels (CL event profiling, VkFFT's included) and each GL pass
-    // (timer queries): the uploads, the texel shadows, and each draw whole (its shadow map,
-    // bounds and beam start included), with the own technique's beam start and bounds apart.
-    double kernels, glUpload, texelShadows, gpuPom, gpuUnshadowed, gpuNm, gpuOwn, ownBeam, ownBounds;
+    // (timer queries): the uploads and each draw whole (its shadow map, bounds, texel shadows
+    // and beam start included), with the own technique's beam start, bounds and texel shadows apart.
+    double kernels, glUpload, gpuPom, gpuUnshadowed, gpuNm, gpuOwn, ownBeam, ownBounds, ownTexels;
     double compute() const { return field + normals + extra; }
     double frame() const { return compute() + upload + pom; }
     /// The transfer: its CPU wall clock (map or read, copies, GL's upload calls) or the GL
     /// upload's device time, whichever is longer (on a CPU rasteriser they are the same clock).
     double transfer() const { return std::max(upload, glUpload); }
-    /// A frame drawn with POM: kernels, transfer, texel shadows, the draw.
-    double gpuFrame() const { return kernels + transfer() + texelShadows + gpuPom; }
+    /// A frame drawn with POM: kernels, transfer, the draw.
+    double gpuFrame() const { return kernels + transfer() + gpuPom; }
     /// The compute and the transfer's share of it.
     double computeShare() const { return (kernels + transfer()) / gpuFrame(); }
 };
@@ -128,14 +128,13 @@ Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
             .own = median(own),
             .kernels = median(kernels),
             .glUpload = gpuMedian(updateTimer, "upload"),
-            // The texel-shadow pass builds the pyramid it walks first, where the heights changed.
-            .texelShadows = gpuMedian(updateTimer, "texel shadows") + gpuMedian(updateTimer, "bounds"),
             .gpuPom = gpuMedian(pomTimer, "whole"),
             .gpuUnshadowed = gpuMedian(unshadowedTimer, "whole"),
             .gpuNm = gpuMedian(nmTimer, "whole"),
             .gpuOwn = gpuMedian(ownTimer, "whole"),
             .ownBeam = gpuMedian(ownTimer, "beam"),
-            .ownBounds = gpuMedian(ownTimer, "bounds")};
+            .ownBounds = gpuMedian(ownTimer, "bounds"),
+            .ownTexels = gpuMedian(ownTimer, "texel shadows")};
 }
 
 /// Wall time per frame of update + POM draw, run one after the other and overlapped (the next
@@ -176,14 +175,14 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                 frames, kWarmupFrames, devices.summary().c_str());
     std::printf("Device time, ms (CL kernels by event profiling, VkFFT's included; GL passes by timer queries). A draw\n"
                 "is the whole scene drawn with that technique (its shadow map, the pyramids' build from the new heights\n"
-                "(bounds: hier's, and the bounded searches' of the ocean's POM) and the beam start included); frame =\n"
-                "kernels + transfer + texel shadows + POM draw, the transfer counted as the longer of its CPU wall clock\n"
-                "(map or read, copies, GL's upload calls) and the GL upload's device time; the share is the compute and\n"
-                "the transfer's part of the frame. On a CPU rasteriser the GL passes are timed by the CPU clock around\n"
-                "glFinish (GpuTimer.h).\n\n"
-                "| scene | field | kernels | GL upload | transfer (wall) | texel shadows (+ bounds) | POM draw | POM no shadows | "
-                "NM draw | own technique draw (beam, bounds) | frame | POM/NM | compute+transfer share |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "(bounds: hier's, and the bounded searches' of the ocean's POM), hier's texel shadows where they pay and\n"
+                "its beam start included); frame = kernels + transfer + POM draw, the transfer counted as the longer of\n"
+                "its CPU wall clock (map or read, copies, GL's upload calls) and the GL upload's device time; the share\n"
+                "is the compute and the transfer's part of the frame. On a CPU rasteriser the GL passes are timed by the\n"
+                "CPU clock around glFinish (GpuTimer.h).\n\n"
+                "| scene | field | kernels | GL upload | transfer (wall) | POM draw | POM no shadows | "
+                "NM draw | own technique draw (beam, bounds, texel shadows) | frame | POM/NM | compute+transfer share |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::string wallRows;
     RenderTarget target(width, height);
     target.bind();
@@ -200,9 +199,9 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
             o.height = height;
             auto scene = makeScene(name, cl, o);
             const Budget b = measure(*scene, target, cl, frames);
-            // The texel shadows drawn or not in measure()'s frames (their pass is in the upload,
-            // their reads in hier's draw; sequentialAndOverlapped draws POM) and the pixels per
-            // texel that chose it: the surface's quad on this image over the field's texels.
+            // The texel shadows drawn or not in measure()'s hier draws (the exact tracer's choice;
+            // sequentialAndOverlapped draws POM) and the pixels per texel that chose it: the
+            // surface's quad on this image over the field's texels.
             char texels[64] = "-";
             if (scene->pixelsPerTexel() > 0.0)
                 std::snprintf(texels, sizeof texels, "%s (%.2f px/texel)", scene->texelShadowsLabel().c_str(),
@@ -211,12 +210,12 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
             const auto& config = scene->effect().textures().config();
             char ownDraw[96] = "(POM)", ownWall[64] = "(POM)";
             if (b.own > 0.0) {
-                std::snprintf(ownDraw, sizeof ownDraw, "%s %.2f (%.2f, %.2f)", techniqueName(o.technique), b.gpuOwn,
-                              b.ownBeam, b.ownBounds);
+                std::snprintf(ownDraw, sizeof ownDraw, "%s %.2f (%.2f, %.2f, %.2f)", techniqueName(o.technique),
+                              b.gpuOwn, b.ownBeam, b.ownBounds, b.ownTexels);
                 std::snprintf(ownWall, sizeof ownWall, "%s %.2f", techniqueName(o.technique), b.own);
             }
-            std::printf("| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %.2f | %.2fx | %.1f%% |\n", name,
-                        config.width, config.height, b.kernels, b.glUpload, b.upload, b.texelShadows, b.gpuPom,
+            std::printf("| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %.2f | %.2fx | %.1f%% |\n", name,
+                        config.width, config.height, b.kernels, b.glUpload, b.upload, b.gpuPom,
                         b.gpuUnshadowed, b.gpuNm, ownDraw, b.gpuFrame(), b.gpuPom / b.gpuNm, 100.0 * b.computeShare());
             std::fflush(stdout);
             char row[512];

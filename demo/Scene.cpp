@@ -3,7 +3,6 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/tools/ImageFiles.h"
-#include "hfx/effects/TexelShadowPass.h"
 
 #include <algorithm>
 #include <bit>
@@ -25,8 +24,6 @@ void Scene::applyOptions(const SceneOptions& o) {
     clearanceMap = o.clearanceMap;
     texelShadows = o.texelShadows;
     beamStart = o.beamStart;
-    imageWidth_ = o.width;
-    imageHeight_ = o.height;
 }
 
 Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const {
@@ -37,38 +34,22 @@ Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const Direction
 }
 
 void Scene::prepareShadowLight() {
-    ShadowLightOptions options{.clearanceMap = clearanceMap, .texelShadows = false};
     std::optional<ClearanceLight> light;
-    pixelsPerTexel_ = 0.0;
-    const std::optional<FlatSurface> flat = technique == Technique::Hierarchical ? flatSurface() : std::nullopt;
-    if (flat) {
-        const SurfaceTexturesConfig& field = effect().textures().config();
-        const double texels = double(field.width) * field.height;
-        const double pixels = screenArea(flat->corners, camera_.viewProjection(), imageWidth_, imageHeight_);
-        pixelsPerTexel_ = pixels / texels;
-        // Every sample where that pays; under a pixel budget, every few samples where their
-        // spacing on screen stays within it; forced on: every sample.
-        const int stride = texelShadows == TexelShadowChoice::Off
-                               ? 0
-                               : hfx::texelShadowStride(pixels, field.width, field.height, effect().material().pixelBudget,
-                                                        texelStride_);
-        options.texelShadows = texelShadows == TexelShadowChoice::On || stride > 0;
-        options.texelStride = std::max(stride, 1);
-        if (options.clearanceMap || options.texelShadows)
-            light = flatSurfaceLight(flat->frame, flat->light, effect().material());
-    }
-    texelStride_ = options.texelShadows ? options.texelStride : 0;
-    effect().setShadowLight(light, options);
+    if (clearanceMap && technique == Technique::Hierarchical)
+        if (const std::optional<FlatSurface> flat = flatSurface())
+            light = flatPatchLight(mesh(), model(), flat->light, effect().material());
+    effect().setClearanceLight(light);
 }
 
 std::string Scene::texelShadowsLabel() const {
-    if (texelStride_ == 0) return "off";
-    return texelStride_ > 1 ? str("on, stride ", texelStride_) : "on";
+    if (traced_.texelStride == 0) return "off";
+    return traced_.texelStride > 1 ? str("on, stride ", traced_.texelStride) : "on";
 }
 
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {
     const std::vector<SurfaceLayer> layers = effect().layers();
     renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, drawOptions());
+    traced_ = technique == Technique::Hierarchical ? renderer.tracer().last() : TracerFrame{};
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

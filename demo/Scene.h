@@ -20,12 +20,6 @@
 
 namespace hfx::demo {
 
-enum class TexelShadowChoice {
-    Auto, ///< where texelShadowsPay says they pay, frame by frame
-    On,
-    Off,
-};
-
 struct SceneOptions {
     int fieldSize = 0;                 ///< 0: the scene's default
     Technique technique = Technique::ParallaxOcclusion;
@@ -34,17 +28,14 @@ struct SceneOptions {
     bool shadows = true;
     float lodThreshold = 4.0f;
     float pixelBudget = -1.0f;         ///< SurfaceMaterial::pixelBudget (-1: the scene's default)
-    /// What a flat surface drawn by hier derives for its light each frame (Effect::
-    /// setShadowLight). The clearance map (shorter shadow walks, the same shadows) is off by
+    /// A flat surface drawn by hier has its light's clearance map built each frame (Effect::
+    /// setClearanceLight). The clearance map (shorter shadow walks, the same shadows) is off by
     /// default: on the decal wall, whose field changes every frame, its build (25 ms at 512², 140
     /// at 1024²) costs more than the draw saves (docs/history/tuning.md).
     bool clearanceMap = false;
-    /// The texel shadows (pixels walk their light rays only where a hard shadow's edge passes
-    /// between the samples around them): by default wherever they pay (texelShadowsPay, from
-    /// the surface's pixels on this frame's image and its field's texels), and under a pixel
-    /// budget at a stride whose samples stay within it on screen where that pays
-    /// (texelShadowStride); On draws them always (at that stride where the budget gives one,
-    /// else at every sample).
+    /// The texel shadows (DrawOptions::texelShadows: pixels walk their light rays only where a
+    /// hard shadow's edge passes between the samples around them): by default wherever the exact
+    /// tracer finds they pay on the view (ExactTracer); On draws them always, Off never.
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
     /// hier's beam start on flat surfaces (DrawOptions::beamStart): the same hits in shorter walks.
     bool beamStart = true;
@@ -134,23 +125,22 @@ public:
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto; ///< SceneOptions::texelShadows
     bool beamStart = true;                                    ///< SceneOptions::beamStart
     /// How this scene's surface is drawn, by the camera and into a shadow map alike.
-    DrawOptions drawOptions() const { return {.technique = technique, .beamStart = beamStart}; }
-    /// Whether this frame's field has texel shadows (the last prepareShadowLight's choice), and
-    /// the flat surface's pixels per field texel it was made from (0 where not flat or not hier).
-    bool texelShadowsDrawn() const { return texelStride_ > 0; }
-    /// Their stride (ShadowLightOptions::texelStride; 0 where none are drawn).
-    int texelShadowStride() const { return texelStride_; }
-    /// "off", "on" or "on, stride N", for the panel and the bench table.
+    DrawOptions drawOptions() const {
+        return {.technique = technique, .beamStart = beamStart, .texelShadows = texelShadows};
+    }
+    /// The last draw's texel shadows as the exact tracer chose them (ExactTracer::last): "off",
+    /// "on" or "on, stride N", for the panel and the bench table, and the flat surface's pixels
+    /// per field texel they were chosen from (0 where not flat or not hier).
     std::string texelShadowsLabel() const;
-    double pixelsPerTexel() const { return pixelsPerTexel_; }
+    double pixelsPerTexel() const { return traced_.pixelsPerTexel; }
 
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).
     void drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light);
-    /// Hands the effect the light its clearance map and texel shadows are derived for: a flat
-    /// surface's under hier (where either is asked for or, for the texel shadows, pays on this
-    /// image), else none. Every frame, before the update: the material, the light, the camera
-    /// or the technique may have changed, and an effect may have rebuilt its pipeline.
+    /// Hands the effect the light its clearance map is built for where one is asked for: a flat
+    /// surface's under hier (flatPatchLight, as the renderer derives it), else none. Every
+    /// frame, before the update: the material, the light or the technique may have changed, and
+    /// an effect may have rebuilt its pipeline.
     void prepareShadowLight();
     /// The command line's overrides of the effect's material (samples, depth, shadows, LOD) and
     /// its technique.
@@ -158,9 +148,7 @@ protected:
     Camera camera_;
 
 private:
-    int imageWidth_ = 1280, imageHeight_ = 720; ///< SceneOptions::width, height
-    int texelStride_ = 0; ///< the last prepareShadowLight's texel-shadow stride; 0: none drawn
-    double pixelsPerTexel_ = 0.0;
+    TracerFrame traced_; ///< the exact tracer's choice at the last drawSurface (none: not hier)
 };
 
 /// A scene whose surface takes impacts through routeImpact (water, planet): a click fires a

@@ -32,7 +32,7 @@
 // Image units (PyramidLayout::Atlas, llvmpipe's: GlWorkarounds::pyramidAtlas).
 #define HFX_IMAGE_PYRAMID 0       // layer i's atlas pyramid at HFX_IMAGE_PYRAMID + i
 #define HFX_IMAGE_CELLS 4         // layer 0's level-0 cells' samples (BoundsPass writes them)
-// The bounds pass's (surface/bounds.comp, BoundsPass): its own, so that building one layer's
+// The bounds pass's (trace/hier/bounds.comp, BoundsPass): its own, so that building one layer's
 // pyramid leaves every other binding as it was.
 #define HFX_IMAGE_BOUNDS_FINER 5  // the level it reduces (or the atlas)
 #define HFX_IMAGE_BOUNDS 6        // the level it writes (or the atlas)

@@ -26,7 +26,7 @@
 //                     (u_lightDir reversed), u_viewProj the light's; only the traced depth is
 //                     written, nothing is shaded
 //   HFX_BEAM_START    1 when the exact tracer's rays start where the renderer's beam prepass
-//                     (surface/beam.frag) found for their block of HFX_BEAM_BLOCK pixels
+//                     (trace/hier/beam.frag) found for their block of HFX_BEAM_BLOCK pixels
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction; and to output 2 the

@@ -83,3 +83,29 @@ TEST(FlatPatch, PlanesAreOneFlatPatchAndSpheresAndBentOrMislabelledPlanesAreNot)
 
 } // namespace
 } // namespace hfx
+
+namespace hfx {
+namespace {
+
+TEST(FlatPatch, APlaneKeepsItsTextureFrameAndCornersAndNothingElseHasOne) {
+    // makePlane: u along +X, v along -Z, texcoords 0..scale across a size-wide square. The patch
+    // must give its frame (the position at texcoords (0, 0), dP/du, dP/dv, +Y) and its corners;
+    // a sphere and a plane with one vertex lifted have none.
+    const PlaneConfig config{.size = 3.0f, .texcoordScale = 2.0f, .subdivisions = 3};
+    const std::optional<FlatPatch> patch = flatPatchOf(makePlane(config));
+    ASSERT_TRUE(patch);
+    const auto near = [](glm::vec3 a, glm::vec3 b) { return glm::length(a - b) < 1e-5f; };
+    EXPECT_TRUE(near(patch->origin, {-1.5f, 0.0f, 1.5f}));
+    EXPECT_TRUE(near(patch->tangent, {1.5f, 0.0f, 0.0f}));
+    EXPECT_TRUE(near(patch->bitangent, {0.0f, 0.0f, -1.5f}));
+    EXPECT_TRUE(near(patch->normal, {0.0f, 1.0f, 0.0f}));
+    const glm::vec3 corners[4] = {{-1.5f, 0.0f, 1.5f}, {1.5f, 0.0f, 1.5f}, {1.5f, 0.0f, -1.5f}, {-1.5f, 0.0f, -1.5f}};
+    for (int i = 0; i < 4; ++i) EXPECT_TRUE(near(patch->corners[size_t(i)], corners[i])) << "corner " << i;
+    EXPECT_FALSE(flatPatchOf(makeSphere()));
+    MeshData lifted = makePlane(config);
+    lifted.vertices[5].position.y += 0.01f;
+    EXPECT_FALSE(flatPatchOf(lifted));
+}
+
+} // namespace
+} // namespace hfx

@@ -15,7 +15,8 @@
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
 #include "hfx/effects/SurfacePipeline.h"
-#include "hfx/effects/TexelShadowPass.h"
+#include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/effects/tracer/TexelShadowPass.h"
 
 #if defined(HFX_WITH_OPENIMAGEIO)
 #include <OpenImageIO/imageio.h>
@@ -60,10 +61,11 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
     EXPECT_EQ(water.time(), 0.02);
 }
 
-TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsNeverOutliveTheirHeights) {
+TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsHoldOnlyTheirHeightsAndLight) {
     // The clearance map and the texel shadows are the pyramid's walk: a surface without one
-    // refuses them by name. A bad light is refused before anything is drawn, and a frame drawn
-    // without texel shadows drops the last ones (they belong to other heights).
+    // refuses them by name. A bad light is refused before anything is drawn and leaves the last
+    // texel shadows as they were; they hold only the texels and the light they were drawn from
+    // (the exact tracer redraws them when either changes).
     constexpr int N = 32;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}});
     const ClearanceLight light = ClearanceLight::of({0.05f, 0.02f}, 2.0f);
@@ -71,39 +73,38 @@ TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsNeverOutliveTheirHei
     bad.penumbra = 2.0f;
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
     SurfacePipeline flat(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = false}));
-    std::string m = messageOf([&] { flat.setShadowLight(light, {.clearanceMap = false, .texelShadows = true}); });
+    std::string m = messageOf([&] { flat.setClearanceLight(light); });
     EXPECT_NE(m.find("height pyramid"), std::string::npos) << m;
     TexelShadowPass pass;
-    // The test owns these pipelines: their textures are ours to hand to the pass.
-    SurfaceTextures& flatTextures = const_cast<SurfaceTextures&>(flat.textures());
-    m = messageOf([&] { pass.draw(flatTextures, light); });
+    TexelShadows shadows;
+    m = messageOf([&] { pass.draw(flat.textures(), light, 1, shadows); });
     EXPECT_NE(m.find("height pyramid"), std::string::npos) << m;
+    EXPECT_EQ(shadows.texture(), 0u);
 
     SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
-    SurfaceTextures& untouched = const_cast<SurfaceTextures&>(surface.textures());
-    m = messageOf([&] { untouched.texelShadowsDrawn(light); });
-    EXPECT_NE(m.find("no texel shadows were drawn"), std::string::npos) << m;
-    EXPECT_EQ(untouched.texelShadows(), 0u);
-    m = messageOf([&] { surface.setShadowLight(bad, {.clearanceMap = false, .texelShadows = true}); });
+    m = messageOf([&] { surface.setClearanceLight(bad); });
     EXPECT_NE(m.find("ClearanceLight.penumbra"), std::string::npos) << m;
-    surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = true});
     surface.run(field.buffer());
-    SurfaceTextures& drawn = const_cast<SurfaceTextures&>(surface.textures());
-    ASSERT_NE(drawn.texelShadows(), 0u);
-    EXPECT_EQ(drawn.texelShadowLight(), light);
+    const SurfaceTextures& drawn = surface.textures();
     EXPECT_FALSE(drawn.clearanceLight()) << "no clearance map was asked for";
-    m = messageOf([&] { pass.draw(drawn, bad); });
+    pass.draw(drawn, light, 1, shadows);
+    ASSERT_NE(shadows.texture(), 0u);
+    EXPECT_EQ(shadows.light(), light);
+    EXPECT_TRUE(shadows.holds(drawn, light, 1));
+    EXPECT_FALSE(shadows.holds(drawn, light, 2));
+    EXPECT_FALSE(shadows.holds(drawn, ClearanceLight::of({0.05f, 0.03f}, 2.0f), 1));
+    m = messageOf([&] { pass.draw(drawn, bad, 1, shadows); });
     EXPECT_NE(m.find("ClearanceLight.penumbra"), std::string::npos) << m;
-    EXPECT_EQ(drawn.texelShadowLight(), light);
-    surface.setShadowLight(std::nullopt);
+    EXPECT_EQ(shadows.light(), light);
+    EXPECT_TRUE(shadows.holds(drawn, light, 1));
     surface.run(field.buffer());
-    surface.run(field.buffer()); // both texture pairs have had a frame without
-    EXPECT_EQ(surface.textures().texelShadows(), 0u);
-    EXPECT_FALSE(surface.textures().texelShadowLight());
+    surface.run(field.buffer()); // the same pair again, with new texels
+    ASSERT_EQ(&surface.textures(), &drawn);
+    EXPECT_FALSE(shadows.holds(surface.textures(), light, 1)) << "texel shadows outlived their heights";
 }
 
 TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLeftAndPutsItBack) {
-    // The pass runs inside SurfacePipeline::run, wherever the caller is in its own drawing: a
+    // The pass runs before a hier draw, wherever the caller is in its own drawing: a
     // framebuffer bound with a small viewport, blending that zeroes what is drawn, a scissor
     // around one texel, buffer 0's red masked off and an image of the caller's on the unit the
     // pass reads the pyramid from must neither change a texel nor survive the pass's own state
@@ -112,17 +113,19 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.2, -1, 3, 0.4}});
     const ClearanceLight light = ClearanceLight::of({0.6f, 0.25f}, 2.0f); // low: long shadows
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
-    auto texels = [&](const SurfacePipeline& surface) {
+    auto texels = [&](const TexelShadows& shadows) {
         std::vector<float> t(size_t(N) * N, -1.0f);
-        HFX_GL_CHECK(glGetTextureImage(surface.textures().texelShadows(), 0, GL_RED, GL_FLOAT,
-                                       GLsizei(t.size() * sizeof(float)), t.data()));
+        HFX_GL_CHECK(glGetTextureImage(shadows.texture(), 0, GL_RED, GL_FLOAT, GLsizei(t.size() * sizeof(float)),
+                                       t.data()));
         return t;
     };
     const auto config = SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true});
     SurfacePipeline reference(cl(), config), surface(cl(), config);
-    for (SurfacePipeline* s : {&reference, &surface}) s->setShadowLight(light, {.clearanceMap = false, .texelShadows = true});
-    reference.run(field.buffer()); // from a clean state
-    const std::vector<float> clean = texels(reference);
+    for (SurfacePipeline* s : {&reference, &surface}) s->run(field.buffer());
+    TexelShadowPass pass;
+    TexelShadows referenceShadows, shadows;
+    pass.draw(reference.textures(), light, 1, referenceShadows); // from a clean state
+    const std::vector<float> clean = texels(referenceShadows);
     ASSERT_GT(*std::max_element(clean.begin(), clean.end()), 0.1f) << "the light must cast some shadow";
 
     RenderTarget caller(40, 24);
@@ -138,7 +141,8 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     glBindImageTexture(0, image.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     GLint boundBefore = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &boundBefore);
-    surface.run(field.buffer()); // the same heights, a fresh pipeline: nothing drawn before
+    TexelShadowPass fresh; // the same heights, a fresh pass: nothing built before
+    fresh.draw(surface.textures(), light, 1, shadows);
     GLint imageName = 0, imageAccess = 0, imageFormat = 0;
     glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &imageName);
     glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 0, &imageAccess);
@@ -156,7 +160,7 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    EXPECT_EQ(texels(surface), clean);
+    EXPECT_EQ(texels(shadows), clean);
     EXPECT_EQ(bound, boundBefore);
     EXPECT_EQ(viewport[0], 3);
     EXPECT_EQ(viewport[1], 2);
@@ -208,24 +212,36 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
     constexpr int N = 32;
     StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}}));
     SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
-    const ClearanceLight light = ClearanceLight::of({0.05f, 0.02f}, 2.0f);
-    for (const int stride : {0, 3, 64, -2}) {
-        const std::string m =
-            messageOf([&] { surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = true, .texelStride = stride}); });
-        EXPECT_NE(m.find("texelStride"), std::string::npos) << m;
-        EXPECT_NE(m.find("32x32"), std::string::npos) << m;
-        TexelShadowPass pass;
-        SurfaceTextures& textures = const_cast<SurfaceTextures&>(surface.textures()); // the test owns it
-        EXPECT_NE(messageOf([&] { pass.draw(textures, light, stride); }).find("stride"), std::string::npos);
-    }
-    // Without texel shadows the stride is not read; a good one draws a 16x16 target.
-    surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = false, .texelStride = 3});
-    surface.setShadowLight(light, {.clearanceMap = false, .texelShadows = true, .texelStride = 2});
     surface.run(field.buffer());
-    ASSERT_NE(surface.textures().texelShadows(), 0u);
-    EXPECT_EQ(surface.textures().texelShadowStride(), 2);
+    const ClearanceLight light = ClearanceLight::of({0.05f, 0.02f}, 2.0f);
+    TexelShadowPass pass;
+    TexelShadows shadows;
+    SurfaceRenderer renderer;
+    const Mesh plane(makePlane());
+    RenderTarget target(64, 64);
+    target.bind();
+    DirectionalLight sun;
+    sun.direction = {0.3f, 0.8f, 0.2f};
+    const SurfaceMaterial material{.depthScale = 0.1f};
+    for (const int stride : {3, 64, -2}) {
+        std::string m = messageOf([&] { pass.draw(surface.textures(), light, stride, shadows); });
+        EXPECT_NE(m.find("stride"), std::string::npos) << m;
+        EXPECT_NE(m.find("32x32"), std::string::npos) << m;
+        m = messageOf([&] {
+            renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, Camera{}, sun,
+                          {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On,
+                           .texelStride = stride});
+        });
+        EXPECT_NE(m.find("DrawOptions::texelStride"), std::string::npos) << m;
+        EXPECT_NE(m.find("32x32"), std::string::npos) << m;
+    }
+    EXPECT_EQ(shadows.texture(), 0u);
+    // A good one draws a 16x16 target.
+    pass.draw(surface.textures(), light, 2, shadows);
+    ASSERT_NE(shadows.texture(), 0u);
+    EXPECT_EQ(shadows.stride(), 2);
     GLint width = 0;
-    glGetTextureLevelParameteriv(surface.textures().texelShadows(), 0, GL_TEXTURE_WIDTH, &width);
+    glGetTextureLevelParameteriv(shadows.texture(), 0, GL_TEXTURE_WIDTH, &width);
     EXPECT_EQ(width, 16);
 }
 

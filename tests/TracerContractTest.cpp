@@ -11,10 +11,11 @@
 #include "hfx/core/Error.h"
 #include "hfx/compute/StaticField.h"
 #include "hfx/core/Gl.h"
-#include "hfx/effects/BoundsPass.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/effects/tracer/TexelShadowPass.h"
 #include "hfx/tools/AccuracyProbe.h"
 
 #include <bit>
@@ -228,11 +229,12 @@ enum class Accessors { Harness, Renderer };
 /// kShadowMain each shadow ray's hfx_shadow in x and, with the renderer's accessors, the reads
 /// it made in y. With the renderer's accessors and `clearance`,
 /// the textures' clearance map is read as a draw reads it (HFX_CLEARANCE, its light's uniforms),
-/// and with `texelShadows` their texel shadows too (HFX_TEXEL_SHADOWS). `wrap`: per axis, whether
+/// and with `texelShadows` those texel shadows too (HFX_TEXEL_SHADOWS). `wrap`: per axis, whether
 /// the textures' field wraps (the renderer's u_wrap).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
-                                      bool clearance = false, bool texelShadows = false, glm::ivec2 wrap = {1, 1}) {
+                                      bool clearance = false, const TexelShadows* texelShadows = nullptr,
+                                      glm::ivec2 wrap = {1, 1}) {
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && clearance));
     HFX_CHECK(clearance || !texelShadows);
@@ -249,7 +251,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     const ShaderProgram p = ShaderProgram::compute(parts);
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(), .wrap = wrap};
     if (clearance) {
-        const ClearanceLight& c = (texelShadows ? textures.texelShadowLight() : textures.clearanceLight()).value();
+        const ClearanceLight& c = (texelShadows ? texelShadows->light() : textures.clearanceLight()).value();
         u.clearance = {c.uvPerClimb, c.penumbra, c.slack};
     }
     const GlBuffer block = own ? GlBuffer() : GlBuffer::create();
@@ -264,7 +266,7 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     textures.bindPyramid(0);
     glBindTextureUnit(HFX_UNIT_CLEARANCE, textures.clearance());
-    glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, texelShadows ? textures.texelShadows() : 0);
+    glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, texelShadows ? texelShadows->texture() : 0);
     std::vector<glm::vec4> hits = runHarness(p, rays);
     glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, 0);
     return hits;
@@ -592,7 +594,7 @@ TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
             const std::optional<ClearanceLight> c = flatSurfaceLight(
                 SurfaceFrame::ofPlane({}), light, {.depthScale = depth, .shadowSharpness = sharpness});
             ASSERT_TRUE(c);
-            surface.setShadowLight(c);
+            surface.setClearanceLight(c);
             surface.run(source.buffer());
             ASSERT_EQ(surface.textures().clearanceLight(), c);
             std::mt19937 random(21 + unsigned(li));
@@ -708,6 +710,7 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
     const std::vector<ShadowField> fields = shadowFields(N);
     const glm::vec3 lights[] = {{0.6f, 0.55f, 0.3f}, {-0.2f, 0.3f, -0.9f}};
     constexpr int kRays = 1 << 18;
+    TexelShadowPass pass;
     for (const ShadowField& field : fields) {
         StaticField source(cl(), N, N, EdgeMode::Wrap, field.heights);
         SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .pyramid = true}));
@@ -720,17 +723,18 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                 const std::optional<ClearanceLight> c = flatSurfaceLight(
                     SurfaceFrame::ofPlane({}), light, {.depthScale = depth, .shadowSharpness = sharpness});
                 ASSERT_TRUE(c);
-                surface.setShadowLight(c, {.clearanceMap = true, .texelShadows = true, .texelStride = stride});
+                surface.setClearanceLight(c);
                 surface.run(source.buffer());
                 const SurfaceTextures& textures = surface.textures();
-                ASSERT_NE(textures.texelShadows(), 0u);
-                ASSERT_EQ(textures.texelShadowStride(), stride);
+                TexelShadows shadows;
+                pass.draw(textures, *c, stride, shadows);
+                ASSERT_NE(shadows.texture(), 0u);
                 std::vector<float> texels(size_t(M) * M);
-                glGetTextureImage(textures.texelShadows(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
+                glGetTextureImage(shadows.texture(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
                                   texels.data());
                 const auto walk = [&](const std::vector<glm::vec4>& r, bool read) {
                     return traceInHarness(textures, Technique::Hierarchical, r, kShadowMain, Accessors::Renderer, true,
-                                          read);
+                                          read ? &shadows : nullptr);
                 };
                 const auto rayFrom = [&](std::vector<glm::vec4>& r, glm::vec2 uv, float h0) {
                     const glm::vec2 span = c->uvPerClimb * (1.0f - h0);
@@ -786,8 +790,7 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                 for (int j = 0; j < M; ++j)
                     for (int i = 0; i < M; ++i)
                         shifted[size_t(j) * M + size_t(i)] = texels[size_t(j) * M + size_t((i + 1) % M)];
-                // The test owns the pipeline: its textures are ours to spoil (the next run() redraws them).
-                glTextureSubImage2D(textures.texelShadows(), 0, 0, 0, M, M, GL_RED, GL_FLOAT, shifted.data());
+                glTextureSubImage2D(shadows.texture(), 0, 0, 0, M, M, GL_RED, GL_FLOAT, shifted.data());
                 const ShadowTally off = compare(walk(rays, true));
                 std::printf("[texels] ... one sample off: %d differ in hard shadow, penumbra off by %.4f on average, "
                             "%.3f at most\n", off.hardDiffer, off.error, off.worst);
@@ -814,9 +817,12 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     const std::optional<ClearanceLight> c =
         flatSurfaceLight(SurfaceFrame::ofPlane({}), light, {.depthScale = 0.1f, .shadowSharpness = 2.0f});
     ASSERT_TRUE(c);
-    surface.setShadowLight(c, {.clearanceMap = true, .texelShadows = true, .texelStride = stride});
+    surface.setClearanceLight(c);
     surface.run(source.buffer());
-    ASSERT_EQ(surface.textures().texelShadowStride(), stride);
+    TexelShadowPass pass;
+    TexelShadows shadows;
+    pass.draw(surface.textures(), *c, stride, shadows);
+    ASSERT_EQ(shadows.stride(), stride);
     std::mt19937 random(3);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::vector<glm::vec4> rays;
@@ -835,7 +841,7 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     }
     const auto trace = [&](bool read) {
         return traceInHarness(surface.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer, true,
-                              read, {0, 0});
+                              read ? &shadows : nullptr, {0, 0});
     };
     const std::vector<glm::vec4> walked = trace(false), read = trace(true);
     int strip = 0, stripDiffer = 0;
@@ -988,7 +994,7 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                 // heights.glsl's read in both layouts, from anywhere.
                 for (const SurfacePipeline* s : {&surface, &gathered}) {
                     const std::vector<glm::vec4> got = traceInHarness(s->textures(), Technique::Hierarchical, items, kCellReadMain,
-                                                                      Accessors::Renderer, false, false,
+                                                                      Accessors::Renderer, false, nullptr,
                                                                       glm::ivec2(wrapsU(edges), wrapsV(edges)));
                     int off = 0;
                     for (size_t k = 0; k < got.size(); ++k) off += got[k] != samples(cellsAsked[k]);

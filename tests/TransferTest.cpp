@@ -85,8 +85,7 @@ TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
                 DirectionalLight light;
                 light.direction = {0.6f, 0.55f, 0.3f};
                 // The clearance map is a stream of its own: every path moves it too.
-                wall->setShadowLight(flatSurfaceLight(SurfaceFrame::ofPlane({}), light, wall->material()),
-                                     {.clearanceMap = true});
+                wall->setClearanceLight(flatSurfaceLight(SurfaceFrame::ofPlane({}), light, wall->material()));
             }
             wall->shoot(0.4, 0.6);
             effects.push_back(std::move(wall));

@@ -139,7 +139,7 @@ TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
 TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFetches) {
     // The decal scene's set-up: the wall standing in the XY plane, lit from the side, drawn by
     // hier with self-shadows, after a volley. Two walls take the same shots; one builds the
-    // clearance map for the light (Effect::setShadowLight, as the scene does). The map may only
+    // clearance map for the light (Effect::setClearanceLight, as the scene does). The map may only
     // shorten the shadow walks: the same image to the bit, fewer fetches.
     const DecalWallConfig config{.bricks = {.size = 128}, .surface = {.pyramid = true}};
     DecalWallEffect plain(cl(), config), mapped(cl(), config);
@@ -149,7 +149,7 @@ TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFet
     const std::optional<ClearanceLight> clearance =
         flatSurfaceLight(SurfaceFrame::ofPlane(kWall, kWallModel), light, mapped.material());
     ASSERT_TRUE(clearance);
-    mapped.setShadowLight(clearance);
+    mapped.setClearanceLight(clearance);
     for (DecalWallEffect* wall : {&plain, &mapped}) {
         for (int i = 0; i < 6; ++i) wall->shoot(0.2 + 0.27 * i, 0.3 + 0.23 * i);
         wall->explode(1.0, 1.0, 7);
@@ -166,7 +166,9 @@ TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFet
         target.bind();
         target.clear();
         renderer.draw(plane, kWallModel, wall.textures(), wall.material(), camera, light,
-                      {.technique = Technique::Hierarchical, .traceOutput = true});
+                      {.technique = Technique::Hierarchical,
+                       .traceOutput = true,
+                       .texelShadows = TexelShadowChoice::Off}); // every shadow ray walks
         return std::pair{target.readColor(), target.readTrace()};
     };
     const auto [plainImage, plainTrace] = draw(plain);

@@ -2,6 +2,7 @@
 
 #include "hfx/core/Error.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -99,10 +100,28 @@ bool isFlatPatch(const MeshData& data) {
     return true;
 }
 
+std::optional<FlatPatch> flatPatchOf(const MeshData& data) {
+    if (!isFlatPatch(data)) return std::nullopt;
+    const Vertex& first = data.vertices.front();
+    glm::vec2 lo = first.texcoord, hi = first.texcoord;
+    for (const Vertex& v : data.vertices) {
+        lo = glm::min(lo, v.texcoord);
+        hi = glm::max(hi, v.texcoord);
+    }
+    const glm::dvec3 t(first.tangent), b(first.bitangent);
+    const glm::dvec3 origin = glm::dvec3(first.position) - t * double(first.texcoord.x) - b * double(first.texcoord.y);
+    auto at = [&](double u, double v) { return glm::vec3(origin + t * u + b * v); };
+    return FlatPatch{.origin = glm::vec3(origin),
+                     .tangent = first.tangent,
+                     .bitangent = first.bitangent,
+                     .normal = glm::normalize(first.normal),
+                     .corners = {at(lo.x, lo.y), at(hi.x, lo.y), at(hi.x, hi.y), at(lo.x, hi.y)}};
+}
+
 Mesh::Mesh(const MeshData& data)
     : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
       vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())),
-      flatPatch_(isFlatPatch(data)) {
+      patch_(flatPatchOf(data)) {
     if (data.vertices.empty() || data.indices.empty() || data.indices.size() % 3 != 0)
         throw Error(str("mesh needs triangles, got ", data.vertices.size(), " vertices and ",
                         data.indices.size(), " indices"));

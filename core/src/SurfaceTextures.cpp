@@ -5,6 +5,7 @@
 #include "hfx/core/GlRenderer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -49,10 +50,14 @@ std::vector<unsigned char> flatTexels(SurfaceFormat format, size_t count) {
     for (size_t i = 0; i < texels.size(); ++i) texels[i] = one[i % one.size()];
     return texels;
 }
+std::uint64_t nextUid() {
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+}
 } // namespace
 
 SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
-    : config_(config), surface_(GlTexture::create()), albedo_(GlTexture::create()), channels_(GlTexture::create()) {
+    : config_(config), uid_(nextUid()), surface_(GlTexture::create()), albedo_(GlTexture::create()), channels_(GlTexture::create()) {
     config_.validate();
     levels_ = config.mipmaps
                   ? static_cast<int>(std::bit_width(static_cast<unsigned>(
@@ -166,32 +171,6 @@ void SurfaceTextures::uploadClearance(const float* map, const ClearanceLight& li
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     HFX_GL_CHECK(glTextureSubImage2D(clearance_.id(), 0, 0, 0, config_.width, config_.height, GL_RED, GL_FLOAT, map));
     clearanceLight_ = light;
-}
-
-GLuint SurfaceTextures::texelShadowTarget(int stride) {
-    if (!isTexelStride(stride, config_.width, config_.height))
-        throw Error(str("texelShadowTarget: the texel shadows' stride must be a power of two that divides the field's ",
-                        config_.width, "x", config_.height, " samples, got ", stride));
-    if (!texelShadows_.id() || stride != texelStride_) {
-        texelShadowLight_.reset();
-        texelShadows_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(texelShadows_.id(), 1, GL_R32F, config_.width / stride, config_.height / stride));
-        texelStride_ = stride;
-        // Read by textureGather around a point: the four samples of its cell, wrapped or clamped
-        // as the heights are.
-        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_WRAP_S, wrapsU(config_.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-        glTextureParameteri(texelShadows_.id(), GL_TEXTURE_WRAP_T, wrapsV(config_.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    }
-    return texelShadows_.id();
-}
-
-void SurfaceTextures::texelShadowsDrawn(const ClearanceLight& light) {
-    if (!pyramid_.id()) throw Error("texelShadowsDrawn: these surface textures were made without a pyramid");
-    if (!texelShadows_.id()) throw Error("texelShadowsDrawn: no texel shadows were drawn (texelShadowTarget)");
-    light.validate();
-    texelShadowLight_ = light;
 }
 
 void SurfaceTextures::uploadTexels(const void* texels) {

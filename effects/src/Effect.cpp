@@ -9,8 +9,8 @@ void Effect::setMaterial(const SurfaceMaterial& material) {
     material_ = material;
 }
 
-void Effect::setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options) {
-    const_cast<SurfacePipeline&>(surface()).setShadowLight(light, options);
+void Effect::setClearanceLight(const std::optional<ClearanceLight>& light) {
+    const_cast<SurfacePipeline&>(surface()).setClearanceLight(light);
 }
 
 // The pipelines are the derived class's members; the base only sequences them.

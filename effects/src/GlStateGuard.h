@@ -8,6 +8,10 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlObject.h"
+#include "hfx/effects/SurfaceUniforms.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include <ios>
 
@@ -22,6 +26,14 @@ void updateBlock(GlBuffer& buffer, GLuint binding, const Block& data) {
     }
     HFX_GL_CHECK(glNamedBufferSubData(buffer.id(), 0, sizeof(Block), &data));
     glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer.id());
+}
+
+/// Fills a surface block's transforms: the mesh's model matrix, the view-projection it is seen
+/// with, and the normals' matrix.
+inline void setTransform(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj) {
+    u.model = model;
+    u.viewProj = viewProj;
+    u.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))));
 }
 
 /// Saves what a surface draw or pass changes and puts it back, so the caller's state survives.

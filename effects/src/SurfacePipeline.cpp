@@ -108,23 +108,18 @@ void SurfacePipeline::setAlbedo(const Image& albedo) {
     for (auto& t : textures_) t->setAlbedo(albedo);
 }
 
-void SurfacePipeline::setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options) {
+void SurfacePipeline::setClearanceLight(const std::optional<ClearanceLight>& light) {
     if (light) {
         if (!config_.options.pyramid)
-            throw Error("SurfacePipeline::setShadowLight: the clearance map and the texel shadows need the height "
-                        "pyramid (SurfaceOptions::pyramid)");
+            throw Error("SurfacePipeline::setClearanceLight: the clearance map needs the height pyramid "
+                        "(SurfaceOptions::pyramid)");
         light->validate();
-        if (options.texelShadows && !SurfaceTextures::isTexelStride(options.texelStride, config_.width, config_.height))
-            throw Error(str("SurfacePipeline::setShadowLight: ShadowLightOptions::texelStride must be a power of two "
-                            "that divides the field's ", config_.width, "x", config_.height, " samples, got ",
-                            options.texelStride));
-        if (!clearance_ && options.clearanceMap) { // the map's walk reads the pyramid on the device
+        if (!clearance_) { // the map's walk reads the pyramid on the device
             if (!pyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
             clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
         }
     }
     light_ = light;
-    lightOptions_ = options;
 }
 
 void SurfacePipeline::wait() {
@@ -151,8 +146,7 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     sobel_.run(heights);
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
-    builtFor_ = lightOptions_.clearanceMap ? light_ : std::nullopt;
-    texelsFor_ = lightOptions_.texelShadows ? light_ : std::nullopt;
+    builtFor_ = light_;
     if (uploadsPyramid_ || builtFor_) pyramid_->build(heights);
     if (builtFor_) clearance_->build(heights, *pyramid_, *builtFor_);
     state_ = State::Derived;
@@ -211,7 +205,7 @@ void SurfacePipeline::finish() {
     // The texels in the surface's own layout: packed, or for float32 the normals themselves.
     const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
     const size_t bytes = texelBytes(config_.options.format) * texels;
-    std::optional<GpuScope> upload(std::in_place, "upload");
+    const GpuScope upload("upload");
     if (streams_) streams_->arrive();
     // Each stream from where its path left it: the staged or shared pixel buffer, or a mapping.
     auto uploadStream = [&](StreamTransfer::Stream stream, const cl::Buffer& buffer, size_t size, const char* what,
@@ -244,16 +238,6 @@ void SurfacePipeline::finish() {
                      [&](const void* map) { back.uploadClearance(static_cast<const float*>(map), *builtFor_); });
     else
         back.dropClearance();
-    // The texel shadows: a GL pass over the heights and map just uploaded (it builds the
-    // pyramid from the heights first).
-    upload.reset();
-    if (texelsFor_) {
-        if (!texelPass_) texelPass_ = std::make_unique<TexelShadowPass>();
-        texelPass_->draw(back, *texelsFor_, lightOptions_.texelStride);
-    } else {
-        back.dropTexelShadows();
-    }
-    upload.emplace("upload");
     if (albedo_())
         uploadStream(StreamTransfer::Albedo, albedo_, 4 * texels, "uploading the albedo",
                      [&](const void* rgba) { back.uploadAlbedo(static_cast<const unsigned char*>(rgba)); });

@@ -158,9 +158,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
 }
 
 void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj) {
-    u.model = model;
-    u.viewProj = viewProj;
-    u.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))));
+    setTransform(u, model, viewProj);
     updateBlock(surfaceBlock_, HFX_BLOCK_SURFACE, u);
 }
 
@@ -251,33 +249,6 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
     const int traced = int(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
-    // Bounded searches where asked and every traced layer has its pyramid.
-    const bool bounded = material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
-                             return !l.traced || l.textures->pyramid() != 0;
-                         });
-    // The clearance map and the texel shadows share their light's uniforms: both are read only
-    // where they were derived for the same light (SurfacePipeline derives them so).
-    const std::optional<ClearanceLight>& texelLight = textures.texelShadowLight();
-    const bool clearance = textures.clearanceLight() && (!texelLight || textures.clearanceLight() == texelLight);
-    // The beam start holds only where a block's rays meet one plane in one frame at one depth.
-    const bool beam = options.beamStart && options.technique == Technique::Hierarchical && layers.size() == 1 &&
-                      mesh.flatPatch() && material.silhouetteFade == 0.0f && material.depthScale > 0.0f;
-    // The layers' pyramids share one layout (validateLayers): the device's.
-    const auto withPyramid = std::ranges::find_if(layers, [](const SurfaceLayer& l) { return l.textures->pyramid() != 0; });
-    const bool atlas = withPyramid != layers.end() && withPyramid->textures->pyramidLayout() == PyramidLayout::Atlas;
-    const ShaderProgram& p = program(options, {.shading = material.shading,
-                                               .layers = int(layers.size()),
-                                               .traced = traced,
-                                               .selfShadows = material.shadows,
-                                               .boundedSearch = bounded,
-                                               .shadowMap = light.shadowMap != nullptr,
-                                               .rings = material.water.ringCount > 0,
-                                               .environment = material.water.environment != 0,
-                                               .caster = caster != nullptr,
-                                               .clearance = clearance,
-                                               .texelShadows = textures.texelShadows() != 0,
-                                               .beamStart = beam,
-                                               .pyramidAtlas = atlas});
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
@@ -314,8 +285,23 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         u.layerLevel[int(i)] = std::log2(l.texcoordScale * float(l.textures->config().width) / base);
         if (!l.traced) u.untracedHeight += l.weight * l.restHeight;
     }
-    if (const auto& c = texelLight ? texelLight : textures.clearanceLight())
-        u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
+    const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
+    // The exact tracer's data and passes, and the pyramids of a bounded search, as it decides.
+    const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, options,
+                                                caster != nullptr, u);
+    const ShaderProgram& p = program(options, {.shading = material.shading,
+                                               .layers = int(layers.size()),
+                                               .traced = traced,
+                                               .selfShadows = material.shadows,
+                                               .boundedSearch = frame.boundedSearch,
+                                               .shadowMap = light.shadowMap != nullptr,
+                                               .rings = material.water.ringCount > 0,
+                                               .environment = material.water.environment != 0,
+                                               .caster = caster != nullptr,
+                                               .clearance = frame.clearance,
+                                               .texelShadows = frame.texelShadows != nullptr,
+                                               .beamStart = frame.beamStart,
+                                               .pyramidAtlas = frame.atlas});
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
@@ -330,12 +316,6 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         }
         updateBlock(ringBlock_, HFX_BLOCK_RINGS, rings);
     }
-    // The pyramids the draw reads (hier's, a bounded search's traced layers'), built from the
-    // current texels where they are older; hier's patch solve also reads the atlas layout's cells.
-    if (info.needsPyramid || bounded) {
-        for (size_t i = traced; i-- > 0;) bounds_.refresh(*layers[i].textures, i == 0 && info.needsPyramid);
-        for (int i = 0; i < traced; ++i) layers[size_t(i)].textures->bindPyramid(i);
-    }
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     glBindTextureUnit(HFX_UNIT_ALBEDO, textures.albedo());
     glBindTextureUnit(HFX_UNIT_CHANNELS, textures.channels());
@@ -343,65 +323,11 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         glBindTextureUnit(GLuint(HFX_UNIT_SURFACE1 + i - 1), layers[i].textures->surface());
         glBindTextureUnit(GLuint(HFX_UNIT_ALBEDO1 + i - 1), layers[i].textures->albedo());
     }
-    glBindTextureUnit(HFX_UNIT_CLEARANCE, textures.clearance());
-    glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, textures.texelShadows());
-    const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
-    if (beam) { // the prepass reads the surface and the pyramid bound above, and the block's uniforms
-        const GpuScope scope("beam");
-        drawBeamStart(mesh, model, u, viewProj, atlas);
-        glBindTextureUnit(HFX_UNIT_BEAM_START, beamTarget_.id());
-    }
     bindUniforms(u, model, viewProj);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();
     const GpuScope scope(caster ? "shadow map" : "draw");
-    mesh.draw();
-}
-
-void SurfaceRenderer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u,
-                                    const glm::mat4& viewProj, bool atlas) {
-    GLint viewport[4];
-    glGetIntegerv(GL_VIEWPORT, viewport);
-    // Texel (i, j) covers the window's pixels [B i, B i + B) x [B j, B j + B): the target spans
-    // the viewport's far corner, and the transform maps the draw's NDC onto the target's.
-    const int width = std::max((viewport[0] + viewport[2] + kBeamBlock - 1) / kBeamBlock, 1);
-    const int height = std::max((viewport[1] + viewport[3] + kBeamBlock - 1) / kBeamBlock, 1);
-    if (width > beamWidth_ || height > beamHeight_ || !beamTarget_) {
-        beamWidth_ = std::max(width, beamWidth_);
-        beamHeight_ = std::max(height, beamHeight_);
-        beamTarget_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(beamTarget_.id(), 1, GL_R32F, beamWidth_, beamHeight_));
-        glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        if (!beamFramebuffer_) beamFramebuffer_ = GlFramebuffer::create();
-        attachPassTarget(beamFramebuffer_, beamTarget_.id(), beamWidth_, beamHeight_, "R32F",
-                         "SurfaceRenderer: the beam start");
-    }
-    ShaderProgram& beam = beam_[atlas ? 1 : 0];
-    if (!beam.id())
-        beam = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("surface/beam.frag"),
-                             {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", "0"}, {"HFX_TEXEL_SHADOWS", "0"},
-                              {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
-    // NDC x of the draw -> window x = vx + (x + 1) vw / 2 -> target x = window x / B.
-    const glm::vec2 scale = glm::vec2(viewport[2], viewport[3]) / (float(kBeamBlock) * glm::vec2(width, height));
-    const glm::vec2 offset = (2.0f * glm::vec2(viewport[0], viewport[1]) + glm::vec2(viewport[2], viewport[3])) /
-                                 (float(kBeamBlock) * glm::vec2(width, height)) -
-                             1.0f;
-    glm::mat4 toTarget(1.0f);
-    toTarget[0][0] = scale.x;
-    toTarget[1][1] = scale.y;
-    toTarget[3][0] = offset.x;
-    toTarget[3][1] = offset.y;
-    const glm::mat4 beamViewProj = toTarget * viewProj;
-    bindUniforms(u, model, beamViewProj);
-    const PassTarget pass(beamFramebuffer_, width, height);
-    glDisable(GL_DEPTH_TEST);
-    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}; // 0: no start, where no block ray was walked
-    glClearNamedFramebufferfv(beamFramebuffer_.id(), GL_COLOR, 0, none);
-    beam.use();
-    beam.set("u_beamInverseViewProj", glm::inverse(beamViewProj));
-    beam.set("u_beamPixel", 2.0f / glm::vec2(width, height));
     mesh.draw();
 }
 

@@ -20,9 +20,9 @@
 #define HFX_CLEARANCE 0
 #endif
 // HFX_TEXEL_SHADOWS 1: the surface has the exact self-shadow of its light at every sample
-// (SurfaceTextures::texelShadows, drawn by hfx::TexelShadowPass with the walk itself); hier's
-// shadow reads it inside cells whose four samples agree. Never in the pass itself. Its light and
-// the clearance map's, where both are read, are one (u_clearance).
+// (hfx::TexelShadows, which the exact tracer's unit has hfx::TexelShadowPass draw with the walk
+// itself); hier's shadow reads it inside cells whose four samples agree. Never in the pass itself.
+// Its light and the clearance map's, where both are read, are one (u_clearance).
 #ifndef HFX_TEXEL_SHADOWS
 #define HFX_TEXEL_SHADOWS 0
 #endif
@@ -33,7 +33,7 @@
 // World from texture space at a point of the mesh: columns dP/du, dP/dv and the unit normal scaled
 // to the same units (texture space's z is the depth, one unit = one texture repeat). The draw
 // (surface.frag) turns its pixel's view ray into texture space with it, and the beam prepass
-// (surface/beam.frag) its block's rays: they must agree, or a block's start could pass a hit.
+// (trace/hier/beam.frag) its block's rays: they must agree, or a block's start could pass a hit.
 mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
     return mat3(tangent, bitangent, unitNormal * sqrt(length(tangent) * length(bitangent)));
 }

@@ -2,7 +2,7 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
-#include "hfx/effects/BoundsPass.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -121,45 +121,58 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
     surface_.run(field_.buffer());
 }
 
+std::optional<ClearanceLight> AccuracyProbe::shadowLight(const AccuracyConfig& config) const {
+    if (!config.shadows || textures().pyramid() == 0) return std::nullopt;
+    DirectionalLight l;
+    l.direction = config.light;
+    return flatSurfaceLight(SurfaceFrame::ofPlane({.size = kPlaneSize}), l, materialOf(config));
+}
+
 void AccuracyProbe::useClearance(const AccuracyConfig& config) {
-    std::optional<ClearanceLight> light;
-    const ShadowLightOptions options{
-        .clearanceMap = config.clearance, .texelShadows = config.texelShadows, .texelStride = config.texelStride};
-    if (config.shadows && (options.clearanceMap || options.texelShadows) && textures().pyramid() != 0) {
-        DirectionalLight l;
-        l.direction = config.light;
-        light = flatSurfaceLight(SurfaceFrame::ofPlane({.size = kPlaneSize}), l, materialOf(config));
-    }
-    if (light == clearance_ && (!light || options == lightOptions_)) return;
-    surface_.setShadowLight(light, options);
+    const std::optional<ClearanceLight> light = config.clearance ? shadowLight(config) : std::nullopt;
+    if (light == clearance_) return;
+    surface_.setClearanceLight(light);
     surface_.run(field_.buffer());
     clearance_ = light;
-    lightOptions_ = options;
 }
 
 GlTime AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
     useClearance(config);
-    if (!clearance_) return {};
+    const std::optional<ClearanceLight> texelLight = config.texelShadows ? shadowLight(config) : std::nullopt;
+    if (!clearance_ && !texelLight) return {};
     std::vector<GlTime> with, without;
-    // A whole frame of the surface, GL's share included (the texel shadows are a draw): on the
-    // device, its kernels (event profiling) and its GL passes (timer queries); on the wall clock,
-    // all of it.
-    auto frame = [&](const std::optional<ClearanceLight>& light) {
-        surface_.setShadowLight(light, lightOptions_);
+    // A whole frame of the surface and, with texel shadows, their pass (the exact tracer draws
+    // it before a draw that reads them; it builds the pyramid it walks first): on the device,
+    // the kernels (event profiling) and the GL passes (timer queries); on the wall clock, all of it.
+    auto frame = [&](bool extras) {
+        surface_.setClearanceLight(extras ? clearance_ : std::nullopt);
         cl_.recordKernelTimes(true);
-        GlTime t = timeGl(timer_, "frame", [&] { surface_.run(field_.buffer()); });
+        GlTime t = timeGl(timer_, "frame", [&] {
+            surface_.run(field_.buffer());
+            if (extras && texelLight) texelPass_.draw(textures(), *texelLight, config.texelStride, texels_);
+        });
         cl_.recordKernelTimes(false);
         for (const auto& [kernel, ms] : cl_.takeKernelTimes()) t.gpu += ms;
         return t;
     };
     for (int i = -kWarmupFrames; i < repeats; ++i) { // warm-ups: the kernel's and the pass's builds
-        const GlTime a = frame(clearance_), b = frame(std::nullopt);
+        const GlTime a = frame(true), b = frame(false);
         if (i >= 0) with.push_back(a), without.push_back(b);
     }
-    surface_.setShadowLight(clearance_, lightOptions_);
+    surface_.setClearanceLight(clearance_);
     surface_.run(field_.buffer());
     const GlTime a = median(with), b = median(without);
     return {a.gpu - b.gpu, a.wall - b.wall};
+}
+
+/// The draw options of config: its beam start, its texel shadows (forced either way: the probe
+/// measures them where asked, not where they would pay).
+DrawOptions AccuracyProbe::drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput) {
+    return {.technique = technique,
+            .traceOutput = traceOutput,
+            .beamStart = config.beamStart,
+            .texelShadows = config.texelShadows ? TexelShadowChoice::On : TexelShadowChoice::Off,
+            .texelStride = config.texelStride};
 }
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
@@ -174,8 +187,7 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     target_->clear();
     Camera drawn = camera;
     drawn.jitter = glm::vec2(2.0 * config.jitterPixels / double(n));
-    renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, drawn, light,
-                   {.technique = technique, .traceOutput = true, .beamStart = config.beamStart});
+    renderer_.draw(plane_, glm::mat4(1.0f), textures(), material, drawn, light, drawOptions(technique, config, true));
     const std::vector<glm::vec4> trace = target_->readTrace();
     const std::vector<glm::vec2> entries = target_->readEntry();
 
@@ -343,7 +355,7 @@ FetchCounts AccuracyProbe::countFetches(Technique technique, const AccuracyConfi
     target.bind();
     target.clear();
     renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), materialOf(config), timedCamera(config, width, height),
-                   light, {.technique = technique, .traceOutput = true, .beamStart = config.beamStart});
+                   light, drawOptions(technique, config, true));
     const std::vector<glm::vec4> trace = target.readTrace();
     // One pixel per block: each lane on its own, the plain mean.
     return {.mean = lockstepFetches(trace, width, height, 1, 1),
@@ -491,7 +503,7 @@ GlTime AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
         const GlTime t = timeGl(timer_, "draw total", [&] {
             target.clear();
             renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), material, camera, light,
-                           {.technique = technique, .beamStart = config.beamStart});
+                           drawOptions(technique, config, false));
         });
         if (i >= 0) times.push_back(t);
     }

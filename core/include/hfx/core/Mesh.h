@@ -12,7 +12,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace hfx {
@@ -59,6 +61,21 @@ MeshData makeSphere(const SphereConfig& config = {});
 /// pixels then meet one plane in one frame.
 bool isFlatPatch(const MeshData& data);
 
+/// A flat patch's texture frame and outline in the mesh's own space: the position at texcoords
+/// (0, 0), dP/du, dP/dv and the unit normal, and the corners of its texcoords' bounding box in
+/// order (for makePlane, its four corners). What the exact tracer derives a flat surface's light
+/// and its area on the screen from (ExactTracer).
+struct FlatPatch {
+    glm::vec3 origin;
+    glm::vec3 tangent;
+    glm::vec3 bitangent;
+    glm::vec3 normal;
+    std::array<glm::vec3, 4> corners;
+};
+
+/// The patch of a mesh isFlatPatch accepts; empty for any other.
+std::optional<FlatPatch> flatPatchOf(const MeshData& data);
+
 /// Vertex and index buffers plus a vertex array, laid out as Vertex (locations 0..4).
 class Mesh {
 public:
@@ -66,13 +83,14 @@ public:
     explicit Mesh(const MeshData& data);
     void draw() const;
     GLsizei indexCount() const { return indexCount_; }
-    bool flatPatch() const { return flatPatch_; } ///< isFlatPatch of its data
+    bool flatPatch() const { return patch_.has_value(); } ///< isFlatPatch of its data
+    const std::optional<FlatPatch>& patch() const { return patch_; } ///< flatPatchOf its data
 
 private:
     GlBuffer vertices_, indices_;
     GlVertexArray vao_;
     GLsizei indexCount_ = 0;
-    bool flatPatch_ = false;
+    std::optional<FlatPatch> patch_;
 };
 
 } // namespace hfx

@@ -77,22 +77,6 @@ public:
     /// Forgets the clearance map: nothing reads it until the next upload (the heights changed
     /// and no map was built for them).
     void dropClearance() { clearanceLight_.reset(); }
-    /// The texel shadows' render target (R32F: the exact self-shadow for one light at every
-    /// stride-th sample on each axis, width / stride x height / stride texels), made on the first
-    /// call and remade when the stride changes; hfx::TexelShadowPass draws into it after the
-    /// heights' upload and then calls texelShadowsDrawn() with the light. Throws hfx::Error unless
-    /// the stride is a power of two that divides both the width and the height.
-    GLuint texelShadowTarget(int stride = 1);
-    /// Whether `stride` can space a width x height field's texel shadows: a power of two that
-    /// divides both sizes.
-    static bool isTexelStride(int stride, int width, int height) {
-        return stride >= 1 && (stride & (stride - 1)) == 0 && width % stride == 0 && height % stride == 0;
-    }
-    /// The texel shadows now hold `light`'s shadows of these heights: the renderer reads them
-    /// for rays of that light. Needs the pyramid (the walk's).
-    void texelShadowsDrawn(const ClearanceLight& light);
-    /// Forgets the texel shadows (the heights changed and none were drawn for them).
-    void dropTexelShadows() { texelShadowLight_.reset(); }
     /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
     /// field), and regenerates its mip chain.
     void uploadAlbedo(const unsigned char* rgba);
@@ -144,28 +128,28 @@ public:
     GLuint clearance() const { return clearance_.id(); } ///< 0 before the first uploadClearance
     /// The light of the current clearance map; empty when there is none to read.
     const std::optional<ClearanceLight>& clearanceLight() const { return clearanceLight_; }
-    /// The texel shadows, 0 when there are none to read, and their light.
-    GLuint texelShadows() const { return texelShadowLight_ ? texelShadows_.id() : 0; }
-    /// Samples per texel-shadow texel on each axis (1: every sample).
-    int texelShadowStride() const { return texelStride_; }
-    const std::optional<ClearanceLight>& texelShadowLight() const { return texelShadowLight_; }
     GLuint albedo() const { return albedo_.id(); }
     GLuint channels() const { return channels_.id(); }
     const SurfaceTexturesConfig& config() const { return config_; }
     int levels() const { return levels_; }
+    /// Unique to these textures in this process (never reused): with texelsVersion(), what a
+    /// cache of something derived from the texels keys on (ExactTracer's texel shadows).
+    std::uint64_t uid() const { return uid_; }
+    /// Counts uploadTexels: changes whenever the heights may have.
+    std::uint64_t texelsVersion() const { return texelsVersion_; }
 
 private:
     SurfaceTexturesConfig config_;
+    std::uint64_t uid_;
     int levels_ = 1;
     int pyramidLevels_ = 0;
     PyramidLayout layout_ = PyramidLayout::MipChain;
-    GlTexture surface_, albedo_, channels_, pyramid_, clearance_, texelShadows_;
+    GlTexture surface_, albedo_, channels_, pyramid_, clearance_;
     mutable GlTexture cells_;
     std::uint64_t texelsVersion_ = 1; ///< counts uploadTexels
     mutable std::uint64_t cellsVersion_ = 0; ///< the texels' version the cells were built from
     mutable std::uint64_t pyramidVersion_ = 0; ///< ... and the pyramid
-    int texelStride_ = 1;
-    std::optional<ClearanceLight> clearanceLight_, texelShadowLight_;
+    std::optional<ClearanceLight> clearanceLight_;
 };
 
 } // namespace hfx

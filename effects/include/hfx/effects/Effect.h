@@ -48,11 +48,10 @@ public:
     const SurfaceMaterial& material() const { return material_; }
     /// Replaces the material; throws hfx::Error naming the bad field and changes nothing.
     void setMaterial(const SurfaceMaterial& material);
-    /// The light the exact tracer's self-shadows come from, where the effect's surface is drawn
-    /// flat (flatSurfaceLight; SurfacePipeline::setShadowLight, which needs the pyramid): from
-    /// the next update on each frame also derives what `options` asks for it (the clearance map,
-    /// the texel shadows). Empty: none. The effect's first surface only (hier draws no layered surface).
-    void setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options = {});
+    /// The light whose clearance map each frame of the effect's first surface builds, where that
+    /// surface is drawn flat (flatPatchLight; SurfacePipeline::setClearanceLight, which needs the
+    /// pyramid). Empty: none. (hier draws no layered surface.)
+    void setClearanceLight(const std::optional<ClearanceLight>& light);
     /// The last frame's stage times, over all the effect's surfaces.
     StageTimes lastTimes() const;
     TransferPath transferPath() const { return surface().transferPath(); }

@@ -31,7 +31,6 @@
 #include "hfx/core/Image.h"
 #include "hfx/core/PixelBuffer.h"
 #include "hfx/core/SurfaceTextures.h"
-#include "hfx/effects/TexelShadowPass.h"
 #include "hfx/effects/TransferPath.h"
 
 #include <memory>
@@ -88,25 +87,6 @@ enum class StageTiming {
     Overlapped, ///< nothing waits before finish(): the compute runs beside whatever GL does
 };
 
-/// What a frame derives for the shadow light (SurfacePipeline::setShadowLight).
-struct ShadowLightOptions {
-    /// Build the clearance map on the device (ClearanceMap): hier's light walks end where it says
-    /// nothing further can darken the point; the same shadows, to the bit.
-    bool clearanceMap = true;
-    /// Draw the texel shadows in GL after the upload (TexelShadowPass): hier's shadow is read
-    /// from the four samples around the point wherever the hard shadow does not change between
-    /// them (within a cell, a hard shadow finer than the samples can be missed; the penumbra is
-    /// their bilinear blend), walked elsewhere. Pays where the texels are fewer than the pixels
-    /// that show them (texelShadowsPay).
-    bool texelShadows = false;
-    /// The texel shadows at every texelStride-th sample on each axis (a power of two that divides
-    /// the field's size): a pass stride^2 times shorter, and hard shadows finer than stride
-    /// samples may be missed between them. 1 (every sample) unless texels are so much smaller
-    /// than pixels that a pixel budget allows more (texelShadowStride).
-    int texelStride = 1;
-    bool operator==(const ShadowLightOptions&) const = default;
-};
-
 class SurfacePipeline {
 public:
     SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& config);
@@ -136,11 +116,12 @@ public:
     /// begin(Staged), derive, submit, finish: a whole frame of `heights` now.
     void run(const cl::Buffer& heights, const cl::Buffer* albedo = nullptr);
 
-    /// The light the exact tracer's shadows come from, for a surface drawn flat (one light
-    /// direction in its texture space; ClearanceLight says how to get it), and what each frame
-    /// derives for it from the next derive() on (both need the pyramid; see ShadowLightOptions).
-    /// Empty: nothing (the default).
-    void setShadowLight(const std::optional<ClearanceLight>& light, ShadowLightOptions options = {});
+    /// The light whose clearance map (ClearanceMap: hier's light walks end where it says nothing
+    /// further can darken the point; the same shadows, to the bit) each frame builds on the
+    /// device from the next derive() on, for a surface drawn flat (one light direction in its
+    /// texture space: flatPatchLight). Needs the pyramid. Empty: none (the default). The
+    /// renderer reads the map for rays of that light only.
+    void setClearanceLight(const std::optional<ClearanceLight>& light);
     /// The textures to draw now (they change at each finish(): ask every frame).
     const SurfaceTextures& textures() const { return *textures_[front_]; }
     /// A fixed albedo for both texture pairs (an image of the surface's size, or 1x1).
@@ -167,12 +148,9 @@ private:
     /// textures' (GlWorkarounds::pyramidFromCompute)
     std::unique_ptr<BoundsPyramid> pyramid_;
     bool uploadsPyramid_ = false;
-    std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setShadowLight
+    std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setClearanceLight
     std::optional<ClearanceLight> light_;      ///< the map's light from the next derive()
     std::optional<ClearanceLight> builtFor_;   ///< the light of this frame's map, if it has one
-    ShadowLightOptions lightOptions_;          ///< what setShadowLight asked for
-    std::optional<ClearanceLight> texelsFor_;  ///< the light of this frame's texel shadows, if any
-    std::unique_ptr<TexelShadowPass> texelPass_; ///< made by the first finish() that needs it
     std::unique_ptr<SurfacePacker> packer_; ///< null for Float32: the normals are the texels
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;

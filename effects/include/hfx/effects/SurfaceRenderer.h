@@ -5,7 +5,9 @@
 // one uniform buffer (SurfaceUniforms). It draws into whatever framebuffer and context the
 // caller has bound and restores the GL state it changes (program, vertex array, depth test,
 // texture units 0-15, uniform-buffer bindings 0-2; around the beam start's prepass, the draw
-// framebuffer, viewport, blending, scissor test and draw buffer 0's colour mask).
+// framebuffer, viewport, blending, scissor test and draw buffer 0's colour mask). What the exact
+// tracer reads besides the surface textures, and when it is made, is its ExactTracer's
+// (tracer/ExactTracer.h).
 //
 // Thread: the thread whose GL context is current.
 
@@ -13,7 +15,7 @@
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
-#include "hfx/effects/BoundsPass.h"
+#include "hfx/effects/tracer/ExactTracer.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/Technique.h"
@@ -126,9 +128,9 @@ struct DirectionalLight {
 
 /// The light as the exact tracer's shadow rays see it on a flat surface: its texture frame in
 /// world space (SurfaceFrame::ofPlane for a makePlane mesh and its model matrix), the light and
-/// the material, as shaders/surface.frag derives each ray. What SurfacePipeline::setShadowLight
-/// takes to derive the clearance map and the texel shadows. Empty where no shadow ray is traced (the light at or below
-/// the surface's plane, no self-shadows, no depth).
+/// the material, as shaders/surface.frag derives each ray (flatPatchLight: of a flat mesh). Empty
+/// where no shadow ray is traced (the light at or below the surface's plane, no self-shadows, no
+/// depth).
 std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
                                                const SurfaceMaterial& material);
 
@@ -150,12 +152,21 @@ inline constexpr int kMaxSurfaceLayers = 4;
 struct DrawOptions {
     Technique technique = Technique::ParallaxOcclusion;
     bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
-    /// The exact tracer's beam start: before a hier draw of a flat patch (a camera's or drawShadow's; Mesh::flatPatch, one
-    /// layer, no silhouette fade) a prepass walks one ray per block of kBeamBlock x kBeamBlock
-    /// pixels against the pyramid's maxima widened to cover the block's rays, and the draw's rays
-    /// start where it found the block's first possible hit: the same hits, fewer steps at
-    /// grazing angles (16-46% of the view walk's fetches at 45-80 degrees on llvmpipe). false: every ray walks from the top.
+    /// The exact tracer's beam start: before a hier draw of a flat patch (a camera's or
+    /// drawShadow's; Mesh::flatPatch, one layer, no silhouette fade) a prepass walks one ray per
+    /// block of kBeamBlock x kBeamBlock pixels against the pyramid's maxima widened to cover the
+    /// block's rays, and the draw's rays start where it found the block's first possible hit:
+    /// the same hits, fewer steps at grazing angles (16-46% of the view walk's fetches at 45-80
+    /// degrees on llvmpipe). false: every ray walks from the top.
     bool beamStart = true;
+    /// The exact tracer's texel shadows on a flat patch (ExactTracer, TexelShadowPass): hier's
+    /// self-shadow read from the four samples around the point wherever the hard shadow does not
+    /// change between them (the penumbra their bilinear blend; a hard shadow finer than the
+    /// samples can be missed), walked elsewhere. Auto: where they pay on this view.
+    TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
+    /// With texelShadows On: every texelStride-th sample on each axis (a power of two dividing
+    /// the field's size; 0: the policy's stride, or 1).
+    int texelStride = 0;
 };
 
 /// The side of the beam start's blocks, in pixels (DrawOptions::beamStart).
@@ -178,9 +189,9 @@ struct SurfaceVariant {
     /// HFX_CLEARANCE: hier's self-shadows with the surface's clearance map (SurfaceTextures::
     /// clearanceLight; rays of other lights walk without it)
     bool clearance = false;
-    /// HFX_TEXEL_SHADOWS: hier's self-shadows with the surface's texel shadows (SurfaceTextures::
-    /// texelShadowLight, TexelShadowPass): a ray of their light walks only where the hard shadow
-    /// changes between the four samples around its point
+    /// HFX_TEXEL_SHADOWS: hier's self-shadows with the texel shadows (ExactTracer,
+    /// DrawOptions::texelShadows): a ray of their light walks only where the hard shadow changes
+    /// between the four samples around its point
     bool texelShadows = false;
     /// HFX_BEAM_START: hier's view rays start at the beam prepass's depth for their block
     /// (DrawOptions::beamStart on a flat patch)
@@ -226,6 +237,9 @@ public:
 
     /// Builds a shader variant now (start-up) instead of on its first draw, and returns it.
     const ShaderProgram& program(const DrawOptions& options, const SurfaceVariant& variant = {});
+    /// The exact tracer's unit: its last decision (TracerFrame: the texel shadows' stride, the
+    /// pixels per texel it was made from) for reports.
+    const ExactTracer& tracer() const { return tracer_; }
 
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).
@@ -237,20 +251,12 @@ private:
                      const DrawOptions& options, const ShadowMap* caster);
     void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, glm::vec3 eye,
                         const glm::vec4& color, const DirectionalLight* light);
-    /// The beam prepass (shaders/surface/beam.frag) into beamTarget_, one texel per block of the
-    /// bound framebuffer's viewport, with the draw's uniforms `u` (their transform replaced).
-    void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms& u, const glm::mat4& viewProj,
-                       bool atlas);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
     ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
-    ShaderProgram beam_[2]; ///< by the pyramid's layout: a mip chain, the atlas
-    GlFramebuffer beamFramebuffer_;
-    GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
-    int beamWidth_ = 0, beamHeight_ = 0;
-    BoundsPass bounds_; ///< the pyramids' builds from the texels (and the exact tracer's level-0 cells)
+    ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' pyramids
 };
 
 } // namespace hfx

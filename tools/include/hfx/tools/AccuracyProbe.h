@@ -12,9 +12,10 @@
 #include "hfx/core/Image.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/effects/BoundsPass.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/effects/tracer/TexelShadowPass.h"
 #include "hfx/tools/Timing.h"
 
 #include <map>
@@ -56,12 +57,13 @@ struct AccuracyConfig {
     float shadowSharpness = 2.0f; ///< the material's: its penumbra is where the clearance ratio < 1 / this
     float pixelBudget = 0.0f;     ///< the material's: the tracers' screen budget, pixels (0: full effort)
     /// With shadows: the surface carries a clearance map for the light, as a scene's flat surface
-    /// does (SurfacePipeline::setShadowLight); the exact tracer's shadow walk stops where it says.
+    /// can (SurfacePipeline::setClearanceLight); the exact tracer's shadow walk stops where it says.
     bool clearance = true;
-    /// With shadows: the surface carries the texel shadows of the light (ShadowLightOptions::
-    /// texelShadows); hier walks only where the hard shadow changes between the samples.
+    /// With shadows: hier reads the texel shadows of the light (DrawOptions::texelShadows On;
+    /// otherwise Off, whether or not they would pay) and walks only where the hard shadow
+    /// changes between the samples.
     bool texelShadows = false;
-    /// Their stride (ShadowLightOptions::texelStride): every texelStride-th sample on each axis.
+    /// Their stride (DrawOptions::texelStride): every texelStride-th sample on each axis.
     int texelStride = 1;
     /// The exact tracer's beam start (DrawOptions::beamStart; the probe's planes are flat patches).
     bool beamStart = true;
@@ -158,6 +160,10 @@ public:
 private:
     /// Rebuilds the surface with the clearance map config asks for, where that changed.
     void useClearance(const AccuracyConfig& config);
+    /// config's light as the exact tracer's shadow rays see it on the probe's plane; empty
+    /// without shadows or a pyramid.
+    std::optional<ClearanceLight> shadowLight(const AccuracyConfig& config) const;
+    static DrawOptions drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput);
 
     int size_;
     HeightFieldTracer exact_;
@@ -168,8 +174,9 @@ private:
     std::unique_ptr<RenderTarget> timedTarget_; ///< timeDraw()'s
     Image lastFrame_;
     Mesh plane_, timedPlane_;
-    std::optional<ClearanceLight> clearance_; ///< the light the surface's map or texel shadows are for
-    ShadowLightOptions lightOptions_;         ///< ... and which of them it has
+    std::optional<ClearanceLight> clearance_; ///< the light the surface's clearance map is for
+    TexelShadowPass texelPass_;                ///< timeClearance's pass, and what it draws into
+    TexelShadows texels_;
     ClContext& cl_;
     GpuTimer timer_;
     // timeCompute's rays (for the view and size they were made for) and programs.

@@ -1,4 +1,4 @@
-#include "hfx/effects/BoundsPass.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 
 #include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
@@ -22,7 +22,7 @@ void BoundsPass::refresh(const SurfaceTextures& textures, bool cells) {
         auto program = [&](bool level0) -> const ShaderProgram& {
             std::optional<ShaderProgram>& p = programs_[variant][level0 ? 1 : 0];
             if (!p)
-                p = ShaderProgram::compute(surfaceStage("surface/bounds.comp"),
+                p = ShaderProgram::compute(surfaceStage("trace/hier/bounds.comp"),
                                            {{"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"},
                                             {"HFX_BOUNDS_CELLS", cells && level0 ? "1" : "0"},
                                             {"HFX_BOUNDS_LEVEL0", level0 ? "1" : "0"},

@@ -1,6 +1,6 @@
 #pragma once
 // Builds a surface's height-bounds pyramid (SurfaceTextures::pyramid) on the GL side from its
-// stored texels (shaders/surface/bounds.comp) when they have changed since the last build, and
+// stored texels (shaders/trace/hier/bounds.comp) when they have changed since the last build, and
 // in the atlas layout (PyramidLayout::Atlas, llvmpipe's) the level-0 cells' samples the walk
 // reads instead of a gather (SurfaceTextures::cells). Built from what the GL side holds, the
 // bounds hold exactly the heights the tracers read (a float16 surface's rounding included), and

@@ -1,4 +1,4 @@
-#include "hfx/effects/TexelShadowPass.h"
+#include "hfx/effects/tracer/TexelShadowPass.h"
 
 #include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
@@ -6,7 +6,7 @@
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
 
-#include "GlStateGuard.h"
+#include "../GlStateGuard.h"
 
 #include <cmath>
 
@@ -14,7 +14,7 @@ namespace hfx {
 
 namespace {
 ShaderProgram texelProgram(bool clearance, bool atlas) {
-    return ShaderProgram(surfaceStage("sky.vert"), surfaceStage("surface/texelshadows.frag"),
+    return ShaderProgram(surfaceStage("sky.vert"), surfaceStage("trace/hier/texelshadows.frag"),
                          {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", clearance ? "1" : "0"}, {"HFX_TEXEL_SHADOWS", "0"},
                           {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
 }
@@ -30,7 +30,7 @@ int texelShadowStride(double pixels, int width, int height, float pixelBudget, i
     const double texels = double(width) * height;
     if (texelShadowsPay(pixels, texels, drawing == 1)) return 1;
     const double pixelsPerSample = std::sqrt(pixels / texels); // on each axis, at stride 1
-    for (int stride = 2; SurfaceTextures::isTexelStride(stride, width, height); stride *= 2) {
+    for (int stride = 2; isTexelStride(stride, width, height); stride *= 2) {
         if (!(stride * pixelsPerSample <= pixelBudget)) return 0;
         if (texelShadowsPay(pixels, texels / (double(stride) * stride), drawing == stride)) return stride;
     }
@@ -39,21 +39,39 @@ int texelShadowStride(double pixels, int width, int height, float pixelBudget, i
 
 TexelShadowPass::TexelShadowPass() : framebuffer_(GlFramebuffer::create()), empty_(GlVertexArray::create()) {}
 
-void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& light, int stride) {
+void TexelShadowPass::draw(const SurfaceTextures& textures, const ClearanceLight& light, int stride, TexelShadows& into) {
     if (!textures.pyramid())
         throw Error("TexelShadowPass::draw: the surface needs its height pyramid (SurfaceOptions::pyramid)");
     light.validate();
+    const SurfaceTexturesConfig& config = textures.config();
+    if (!isTexelStride(stride, config.width, config.height))
+        throw Error(str("TexelShadowPass::draw: the texel shadows' stride must be a power of two that divides the "
+                        "field's ", config.width, "x", config.height, " samples, got ", stride));
     const bool clearance = textures.clearanceLight() == light;
     const bool atlas = textures.pyramidLayout() == PyramidLayout::Atlas;
     std::optional<ShaderProgram>& program = programs_[clearance ? 1 : 0][atlas ? 1 : 0];
     if (!program) program = texelProgram(clearance, atlas);
-    const SurfaceTexturesConfig& config = textures.config();
-    const GLuint target = textures.texelShadowTarget(stride); // throws for a bad stride
     const int width = config.width / stride, height = config.height / stride;
+    if (!into.texture_ || into.width_ != width || into.height_ != height || into.edges_ != config.edges) {
+        into = TexelShadows();
+        into.texture_ = GlTexture::create();
+        HFX_GL_CHECK(glTextureStorage2D(into.texture_.id(), 1, GL_R32F, width, height));
+        // Read by textureGather around a point: the four samples of its cell, wrapped or clamped
+        // as the heights are.
+        const GLuint t = into.texture_.id();
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_S, wrapsU(config.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_T, wrapsV(config.edges) ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+        into.width_ = width;
+        into.height_ = height;
+        into.edges_ = config.edges;
+    }
+    into.drawn_ = false; // until this draw has written them
     GlStateGuard guard;
     bounds_.refresh(textures); // the pyramid, and the atlas layout's patch samples (uses its own program)
     const GpuScope scope("texel shadows");
-    attachPassTarget(framebuffer_, target, width, height, "R32F", "TexelShadowPass");
+    attachPassTarget(framebuffer_, into.texture_.id(), width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
     SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
                       .wrap = wrapFlags(config.edges),
@@ -67,7 +85,11 @@ void TexelShadowPass::draw(SurfaceTextures& textures, const ClearanceLight& ligh
     glBindTextureUnit(HFX_UNIT_CLEARANCE, clearance ? textures.clearance() : 0);
     glBindVertexArray(empty_.id());
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
-    textures.texelShadowsDrawn(light);
+    into.stride_ = stride;
+    into.light_ = light;
+    into.uid_ = textures.uid();
+    into.version_ = textures.texelsVersion();
+    into.drawn_ = true;
 }
 
 } // namespace hfx

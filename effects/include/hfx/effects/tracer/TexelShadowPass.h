@@ -1,6 +1,6 @@
 #pragma once
 // The texel shadows of a flat surface under one light: the exact tracer's self-shadow (shaders/
-// trace/hier.glsl's walk, run by shaders/surface/texelshadows.frag) from every sample of the
+// trace/hier.glsl's walk, run by shaders/trace/hier/texelshadows.frag) from every sample of the
 // field at its own height, towards the light, into the surface's texel-shadow texture. A shadow
 // depends on the point, not on the pixel that sees it: where a texel covers many pixels, each
 // pixel's walk repeats its neighbours'. The renderer then walks only the light rays from cells
@@ -13,8 +13,9 @@
 #include "hfx/core/GlObject.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
-#include "hfx/effects/BoundsPass.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 
+#include <cstdint>
 #include <optional>
 
 namespace hfx {
@@ -39,16 +40,48 @@ bool texelShadowsPay(double pixels, double texels, bool drawing);
 /// With no budget (0) this is texelShadowsPay's choice of 1 or 0.
 int texelShadowStride(double pixels, int width, int height, float pixelBudget, int drawing);
 
+/// Whether `stride` can space a width x height field's texel shadows: a power of two that
+/// divides both sizes.
+inline bool isTexelStride(int stride, int width, int height) {
+    return stride >= 1 && (stride & (stride - 1)) == 0 && width % stride == 0 && height % stride == 0;
+}
+
+/// One surface's texel shadows (R32F: the exact self-shadow for one light at every stride-th
+/// sample on each axis, width / stride x height / stride texels, wrapped or clamped as the
+/// heights are) and what they were drawn from. TexelShadowPass draws them; the surface program
+/// reads them at HFX_UNIT_TEXEL_SHADOWS for rays of their light.
+class TexelShadows {
+public:
+    GLuint texture() const { return drawn_ ? texture_.id() : 0; } ///< 0 before the first draw
+    int stride() const { return stride_; }
+    /// The light they hold the shadows of; empty before the first draw.
+    const std::optional<ClearanceLight>& light() const { return light_; }
+    /// Whether they hold `light`'s shadows of `textures`' current texels at `stride`.
+    bool holds(const SurfaceTextures& textures, const ClearanceLight& light, int stride) const {
+        return drawn_ && uid_ == textures.uid() && version_ == textures.texelsVersion() && light_ == light &&
+               stride_ == stride;
+    }
+
+private:
+    friend class TexelShadowPass;
+    GlTexture texture_;
+    int stride_ = 0, width_ = 0, height_ = 0;
+    EdgeMode edges_ = EdgeMode::Wrap;
+    bool drawn_ = false;
+    std::optional<ClearanceLight> light_;
+    std::uint64_t uid_ = 0, version_ = 0; ///< the textures' and their texels' version drawn from
+};
+
 class TexelShadowPass {
 public:
     TexelShadowPass();
-    /// Draws `textures`' texel shadows for `light` at every stride-th sample on each axis (the
-    /// walks read the textures' clearance map where it is built for the same light) and marks
-    /// them drawn. Throws hfx::Error without a pyramid, for an invalid light or a stride that is
-    /// not a power of two dividing the field's size. The same texels whatever blending, scissor
-    /// test or colour mask the caller has set; it puts those back, and every other GL state it
-    /// changes.
-    void draw(SurfaceTextures& textures, const ClearanceLight& light, int stride = 1);
+    /// Draws `textures`' texel shadows for `light` at every stride-th sample on each axis into
+    /// `into` (allocated or remade where the size or stride changes; the walks read the textures'
+    /// clearance map where it is built for the same light). Throws hfx::Error without a pyramid,
+    /// for an invalid light or a stride that is not a power of two dividing the field's size,
+    /// leaving `into` as it was. The same texels whatever blending, scissor test or colour mask
+    /// the caller has set; it puts those back, and every other GL state it changes.
+    void draw(const SurfaceTextures& textures, const ClearanceLight& light, int stride, TexelShadows& into);
 
 private:
     /// [1]: the walks read the clearance map; each built by its first draw (a surface with texel

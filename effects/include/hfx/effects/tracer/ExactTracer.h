@@ -1,0 +1,119 @@
+#pragma once
+// The exact tracer's home (Technique::Hierarchical, shaders/trace/hier.glsl): what a hier draw
+// needs besides the surface textures, made each frame from what the draw is given, and the
+// policy that decides it. SurfaceRenderer owns one and calls prepare() before every hier draw and
+// every bounded search; nothing outside decides anything per frame for it.
+//
+//   bounds      the height-bounds pyramid of every traced layer, built from the stored texels
+//               where they changed (BoundsPass; hier's and the bounded searches')
+//   texel       the exact self-shadow at every stride-th sample of the field (TexelShadowPass),
+//   shadows     where they pay on this view: a flat patch showing more pixels than its samples
+//               (texelShadowStride, with SurfaceMaterial::pixelBudget); kept per surface while
+//               its texels and the light stay
+//   beam start  a prepass walking one ray per block of kBeamBlock² pixels, where the view rays
+//               start (DrawOptions::beamStart, a flat patch)
+//
+// The clearance map is the one part made elsewhere: on the compute device, from the heights,
+// where SurfacePipeline::setClearanceLight asks (opt-in); the draw reads it for rays of its light.
+//
+// Thread: the thread whose GL context is current.
+
+#include "hfx/core/ClearanceLight.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/ShaderProgram.h"
+#include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/tracer/BoundsPass.h"
+#include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/effects/tracer/TexelShadowPass.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace hfx {
+
+struct DirectionalLight;
+struct DrawOptions;
+struct SurfaceMaterial;
+struct SurfaceLayer;
+class ShadowMap;
+
+/// Whether a hier draw reads texel shadows (DrawOptions::texelShadows).
+enum class TexelShadowChoice {
+    Auto, ///< where they pay on the view, at the stride the policy picks (texelShadowStride)
+    On,   ///< always on a flat patch: at DrawOptions::texelStride, else the policy's, else 1
+    Off,  ///< never: every pixel walks its light ray
+};
+
+/// The light as the exact tracer's shadow rays see it on a flat mesh (Mesh::patch) drawn with
+/// `model`: flatSurfaceLight of its frame. Empty for a mesh that is no flat patch or where no
+/// shadow ray is traced. What the renderer's texel shadows are drawn for, and what a clearance
+/// map must be built for (SurfacePipeline::setClearanceLight) to be read.
+std::optional<ClearanceLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
+                                             const SurfaceMaterial& material);
+
+/// What ExactTracer::prepare decided for one draw: the surface program's variant follows it.
+struct TracerFrame {
+    bool boundedSearch = false; ///< a sampled search bounded by every traced layer's pyramid
+    bool atlas = false;         ///< the pyramids are in PyramidLayout::Atlas
+    bool clearance = false;     ///< hier's shadow walk reads the clearance map
+    const TexelShadows* texelShadows = nullptr; ///< hier's shadows read these where set
+    int texelStride = 0;                        ///< their stride; 0: none read
+    double pixelsPerTexel = 0.0;                ///< the flat patch's screen pixels per field texel (0: not flat)
+    bool beamStart = false;                     ///< the beam prepass ran; its target is bound
+};
+
+class ExactTracer {
+public:
+    /// Makes and binds what a draw of `layers` reads besides their textures, as the view, the
+    /// light and the material decide: the traced layers' pyramids for hier and a bounded search
+    /// (SurfaceMaterial::boundedSearch where every traced layer has one), and for hier the
+    /// clearance map where built for this light, the texel shadows (DrawOptions::texelShadows)
+    /// and the beam start (DrawOptions::beamStart). `viewProj` is the camera's or, for a caster,
+    /// the shadow map's (no texel shadows: a caster writes depth only). `u` is the draw's
+    /// uniform block, filled but for the transform: prepare sets its clearance light, and the
+    /// beam prepass draws with it. Changes texture and image units, the uniform-buffer binding
+    /// and the current program: call it inside the renderer's GlStateGuard.
+    TracerFrame prepare(std::span<const SurfaceLayer> layers, const Mesh& mesh, const glm::mat4& model,
+                        const glm::mat4& viewProj, const DirectionalLight& light, const SurfaceMaterial& material,
+                        const DrawOptions& options, bool caster, SurfaceUniforms& u);
+    /// The last camera (not caster) hier draw's decision, for reports.
+    const TracerFrame& last() const { return last_; }
+
+private:
+    /// The texel shadows the draw reads (nullptr: none): the policy's stride from the view, then
+    /// the cached ones where they still hold, else drawn.
+    const TexelShadows* texelShadowsFor(const SurfaceTextures& textures, const Mesh& mesh, const glm::mat4& model,
+                                        const glm::mat4& viewProj, const DirectionalLight& light,
+                                        const SurfaceMaterial& material, const DrawOptions& options, bool caster,
+                                        TracerFrame& frame);
+    void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
+                       bool atlas);
+
+    BoundsPass bounds_;
+    TexelShadowPass texelPass_;
+    /// The texel shadows of the surfaces drawn lately, by SurfaceTextures::uid (a pipeline's
+    /// two texture pairs each have theirs), the least recently used dropped past kCached.
+    struct Cached {
+        std::uint64_t uid = 0, used = 0;
+        TexelShadows shadows;
+    };
+    static constexpr size_t kCached = 4;
+    std::vector<Cached> cache_;
+    std::uint64_t clock_ = 0;
+    /// The last stride drawn per mesh (0: none), so the policy holds on near its threshold.
+    std::map<const Mesh*, int> strides_;
+    TracerFrame last_;
+    ShaderProgram beam_[2]; ///< by the pyramid's layout: a mip chain, the atlas
+    GlFramebuffer beamFramebuffer_;
+    GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
+    int beamWidth_ = 0, beamHeight_ = 0;
+    GlBuffer block_; ///< the prepass's uniform block
+};
+
+} // namespace hfx

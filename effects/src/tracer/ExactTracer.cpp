@@ -1,0 +1,174 @@
+#include "hfx/effects/tracer/ExactTracer.h"
+
+#include "hfx/core/Bindings.h"
+#include "hfx/core/Camera.h"
+#include "hfx/core/Error.h"
+#include "hfx/core/GpuTimer.h"
+#include "hfx/effects/Picking.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+#include "../GlStateGuard.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hfx {
+
+std::optional<ClearanceLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
+                                             const SurfaceMaterial& material) {
+    if (!mesh.patch()) return std::nullopt;
+    const FlatPatch& p = *mesh.patch();
+    const glm::dmat4 m(model);
+    const glm::dvec3 tangent(m * glm::dvec4(glm::dvec3(p.tangent), 0.0));
+    const glm::dvec3 bitangent(m * glm::dvec4(glm::dvec3(p.bitangent), 0.0));
+    const SurfaceFrame frame{.origin = glm::dvec3(m * glm::dvec4(glm::dvec3(p.origin), 1.0)),
+                             .tangent = tangent,
+                             .bitangent = bitangent,
+                             .normal = glm::normalize(glm::cross(tangent, bitangent))};
+    return flatSurfaceLight(frame, light, material);
+}
+
+TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mesh& mesh, const glm::mat4& model,
+                                 const glm::mat4& viewProj, const DirectionalLight& light,
+                                 const SurfaceMaterial& material, const DrawOptions& options, bool caster,
+                                 SurfaceUniforms& u) {
+    TracerFrame frame;
+    const bool hier = techniqueInfo(options.technique).needsPyramid;
+    const SurfaceTextures& textures = *layers[0].textures;
+    const size_t traced = size_t(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
+    // Bounded searches where asked and every traced layer has its pyramid.
+    frame.boundedSearch = !hier && material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
+                              return !l.traced || l.textures->pyramid() != 0;
+                          });
+    // The layers' pyramids share one layout (the renderer checks): the device's.
+    const auto withPyramid = std::ranges::find_if(layers, [](const SurfaceLayer& l) { return l.textures->pyramid() != 0; });
+    frame.atlas = withPyramid != layers.end() && withPyramid->textures->pyramidLayout() == PyramidLayout::Atlas;
+    // The pyramids the draw reads (hier's, a bounded search's traced layers'), built from the
+    // current texels where they are older; hier's patch solve also reads the atlas layout's cells.
+    if (hier || frame.boundedSearch) {
+        for (size_t i = traced; i-- > 0;) bounds_.refresh(*layers[i].textures, i == 0 && hier);
+        for (size_t i = 0; i < traced; ++i) layers[i].textures->bindPyramid(int(i));
+    }
+    glBindTextureUnit(HFX_UNIT_CLEARANCE, 0);
+    glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, 0);
+    if (!hier) return frame;
+
+    frame.texelShadows = texelShadowsFor(textures, mesh, model, viewProj, light, material, options, caster, frame);
+    // The clearance map and the texel shadows share their light's uniforms: the map is read only
+    // where it was built for the texel shadows' light (flatPatchLight both), and each ray of
+    // another light walks without either.
+    const std::optional<ClearanceLight> none;
+    const std::optional<ClearanceLight>& texelLight = frame.texelShadows ? frame.texelShadows->light() : none;
+    frame.clearance = textures.clearanceLight() && (!texelLight || textures.clearanceLight() == texelLight);
+    if (const auto& c = texelLight ? texelLight : textures.clearanceLight()) u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
+    glBindTextureUnit(HFX_UNIT_CLEARANCE, frame.clearance ? textures.clearance() : 0);
+    if (frame.texelShadows) glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, frame.texelShadows->texture());
+
+    // The beam start holds only where a block's rays meet one plane in one frame at one depth.
+    frame.beamStart = options.beamStart && layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
+                      material.depthScale > 0.0f;
+    if (frame.beamStart) { // the prepass reads the surface, the pyramid bound above and the block
+        glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
+        const GpuScope scope("beam");
+        drawBeamStart(mesh, model, u, viewProj, frame.atlas);
+        glBindTextureUnit(HFX_UNIT_BEAM_START, beamTarget_.id());
+    }
+    if (!caster) last_ = frame;
+    return frame;
+}
+
+const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures, const Mesh& mesh,
+                                                 const glm::mat4& model, const glm::mat4& viewProj,
+                                                 const DirectionalLight& light, const SurfaceMaterial& material,
+                                                 const DrawOptions& options, bool caster, TracerFrame& frame) {
+    if (caster || !mesh.patch()) return nullptr; // a caster writes depth only
+    const SurfaceTexturesConfig& field = textures.config();
+    GLint viewport[4];
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    std::array<glm::vec3, 4> corners;
+    for (size_t i = 0; i < corners.size(); ++i) corners[i] = glm::vec3(model * glm::vec4(mesh.patch()->corners[i], 1.0f));
+    const double pixels = screenArea(corners, viewProj, viewport[2], viewport[3]);
+    frame.pixelsPerTexel = pixels / (double(field.width) * field.height);
+    if (options.texelShadows == TexelShadowChoice::Off) return nullptr;
+    std::optional<ClearanceLight> shadowLight = flatPatchLight(mesh, model, light, material);
+    if (!shadowLight) return nullptr; // no shadow ray is traced
+    // A clearance map built for this light by a frame derived elsewhere (SurfaceFrame::ofPlane,
+    // rounding otherwise) serves its rays as the walk reads it: within its slack. Its light then
+    // stands in, so the texel shadows' walks and the draw's read the map alike.
+    if (const auto& c = textures.clearanceLight(); c && c->penumbra == shadowLight->penumbra &&
+                                                   std::abs(c->uvPerClimb.x - shadowLight->uvPerClimb.x) <= c->slack &&
+                                                   std::abs(c->uvPerClimb.y - shadowLight->uvPerClimb.y) <= c->slack)
+        shadowLight = c;
+    // Every sample where that pays; under a pixel budget, every few samples where their spacing
+    // on screen stays within it; forced on: the stride asked for, or the policy's, or every one.
+    if (strides_.size() > 64) strides_.clear(); // meshes come and go: a held choice is a hint
+    int& held = strides_[&mesh];
+    int stride = texelShadowStride(pixels, field.width, field.height, material.pixelBudget, held);
+    if (options.texelShadows == TexelShadowChoice::On) stride = options.texelStride != 0 ? options.texelStride : std::max(stride, 1);
+    held = stride;
+    if (stride == 0) return nullptr;
+    if (!isTexelStride(stride, field.width, field.height))
+        throw Error(str("DrawOptions::texelStride must be a power of two that divides the field's ", field.width, "x",
+                        field.height, " samples, got ", stride));
+    frame.texelStride = stride;
+    // This surface's, kept while its texels and the light stay; else the least recently used's.
+    auto it = std::ranges::find_if(cache_, [&](const Cached& c) { return c.uid == textures.uid(); });
+    if (it == cache_.end()) {
+        if (cache_.size() < kCached)
+            it = cache_.emplace(cache_.end());
+        else
+            it = std::ranges::min_element(cache_, {}, &Cached::used);
+        it->uid = textures.uid();
+    }
+    it->used = ++clock_;
+    if (!it->shadows.holds(textures, *shadowLight, stride)) texelPass_.draw(textures, *shadowLight, stride, it->shadows);
+    return &it->shadows;
+}
+
+void ExactTracer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
+                                bool atlas) {
+    GLint viewport[4];
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    // Texel (i, j) covers the window's pixels [B i, B i + B) x [B j, B j + B): the target spans
+    // the viewport's far corner, and the transform maps the draw's NDC onto the target's.
+    const int width = std::max((viewport[0] + viewport[2] + kBeamBlock - 1) / kBeamBlock, 1);
+    const int height = std::max((viewport[1] + viewport[3] + kBeamBlock - 1) / kBeamBlock, 1);
+    if (width > beamWidth_ || height > beamHeight_ || !beamTarget_) {
+        beamWidth_ = std::max(width, beamWidth_);
+        beamHeight_ = std::max(height, beamHeight_);
+        beamTarget_ = GlTexture::create();
+        HFX_GL_CHECK(glTextureStorage2D(beamTarget_.id(), 1, GL_R32F, beamWidth_, beamHeight_));
+        glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        if (!beamFramebuffer_) beamFramebuffer_ = GlFramebuffer::create();
+        attachPassTarget(beamFramebuffer_, beamTarget_.id(), beamWidth_, beamHeight_, "R32F", "ExactTracer: the beam start");
+    }
+    ShaderProgram& beam = beam_[atlas ? 1 : 0];
+    if (!beam.id())
+        beam = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("trace/hier/beam.frag"),
+                             {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", "0"}, {"HFX_TEXEL_SHADOWS", "0"},
+                              {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
+    // NDC x of the draw -> window x = vx + (x + 1) vw / 2 -> target x = window x / B.
+    const glm::vec2 scale = glm::vec2(viewport[2], viewport[3]) / (float(kBeamBlock) * glm::vec2(width, height));
+    const glm::vec2 offset = (2.0f * glm::vec2(viewport[0], viewport[1]) + glm::vec2(viewport[2], viewport[3])) /
+                                 (float(kBeamBlock) * glm::vec2(width, height)) -
+                             1.0f;
+    glm::mat4 toTarget(1.0f);
+    toTarget[0][0] = scale.x;
+    toTarget[1][1] = scale.y;
+    toTarget[3][0] = offset.x;
+    toTarget[3][1] = offset.y;
+    const glm::mat4 beamViewProj = toTarget * viewProj;
+    setTransform(u, model, beamViewProj);
+    updateBlock(block_, HFX_BLOCK_SURFACE, u);
+    const PassTarget pass(beamFramebuffer_, width, height);
+    glDisable(GL_DEPTH_TEST);
+    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}; // 0: no start, where no block ray was walked
+    glClearNamedFramebufferfv(beamFramebuffer_.id(), GL_COLOR, 0, none);
+    beam.use();
+    beam.set("u_beamInverseViewProj", glm::inverse(beamViewProj));
+    beam.set("u_beamPixel", 2.0f / glm::vec2(width, height));
+    mesh.draw();
+}
+
+} // namespace hfx
