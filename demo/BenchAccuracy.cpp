@@ -174,66 +174,61 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
 
 /// hfx-demo bench-tracers: the exact tracer's draw time against POM 8..32's, both with their soft
 /// self-shadows, at 1280x720 in one run: rounds of one draw each, interleaved, medians; the
-/// exact tracer with the surface's clearance map for the light, without it, with a one-pixel
-/// budget, and with the texel shadows of the light (no map), with and without the beam start;
-/// what building the map and drawing the texel shadows add to a frame; beside them each one's
-/// fetches per pixel in the same draw (AccuracyProbe::countFetches: the mean and in lockstep blocks).
-/// Prints a table and, with --out, writes tracers.csv. `only` restricts the maps by name.
+/// exact tracer walking every light ray, with a one-pixel budget, and with the texel shadows of
+/// the light, with and without the beam start; what drawing the texel shadows costs after new
+/// heights; beside them each one's fetches per pixel in the same draw (AccuracyProbe::
+/// countFetches: the mean and in lockstep blocks). Prints a table and, with --out, writes
+/// tracers.csv. `only` restricts the maps by name.
 int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDir, int field,
                     const std::vector<std::string>& only, int rounds, int width, int height) {
     rounds = std::max(rounds, kTimedFrames);
     const Devices devices = openDevices(deviceOptions, {.width = 64, .height = 64}, false);
     ClContext& cl = *devices.cl;
     const glm::vec3 light = accuracyLight(); // 60 degrees off the normal
-    // POM, the exact tracer (with the clearance map, without, and with a one-pixel error budget).
+    // POM, the exact tracer (walking every light ray, with a one-pixel error budget, reading the
+    // texel shadows with and without the beam start).
     struct Variant {
         Technique technique;
         float pixelBudget;
-        bool clearance;
         const char* name;
         bool texels = false;
         bool beam = true;
     };
-    const Variant variants[] = {{Technique::ParallaxOcclusion, 0.0f, true, "pom"},
-                                {Technique::Hierarchical, 0.0f, true, "hier"},
-                                {Technique::Hierarchical, 0.0f, false, "hier, no map"},
-                                {Technique::Hierarchical, 1.0f, true, "hier 1px"},
-                                {Technique::Hierarchical, 0.0f, false, "hier, texel shadows", true},
-                                {Technique::Hierarchical, 0.0f, false, "hier, texel shadows, no beam start", true, false}};
+    const Variant variants[] = {{Technique::ParallaxOcclusion, 0.0f, "pom"},
+                                {Technique::Hierarchical, 0.0f, "hier"},
+                                {Technique::Hierarchical, 1.0f, "hier 1px"},
+                                {Technique::Hierarchical, 0.0f, "hier, texel shadows", true},
+                                {Technique::Hierarchical, 0.0f, "hier, texel shadows, no beam start", true, false}};
     std::ostringstream csv;
-    csv << "map,angle,technique,pixel_budget,clearance_map,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
-           "fetches_lanes32,map_build_ms,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
+    csv << "map,angle,technique,pixel_budget,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
+           "fetches_lanes32,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
            "compute_pom_ms,compute_hier_ms\n";
     std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
                 "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
                 "clock around glFinish of the same draws.\n"
-                "hier draws with the clearance map for the light; 'no map' without it; 'texels' with the texel shadows\n"
-                "of the light instead (no map), 'no beam' the same without the beam start (DrawOptions::beamStart).\n"
-                "map ms, texels ms: what building the map, drawing the texel shadows add to a frame of the surface\n"
-                "(the map's kernels by CL event profiling, GL's passes by timer queries; median of 30 frames with and\n"
-                "without). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in the\n"
-                "shader of the timed draw itself: the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
+                "hier walks every pixel's light ray; 'texels' reads the texel shadows of the light instead where they\n"
+                "hold the ray's shadow, 'no beam' the same without the beam start (DrawOptions::beamStart).\n"
+                "texels ms: the texel shadows' pass after new heights, their pyramid's build included (GL timer queries,\n"
+                "median of 30). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in\n"
+                "the shader of the timed draw itself: the mean, and per pixel when 4x2 blocks (llvmpipe's 8 lanes) or 8x4\n"
                 "blocks (a 32-lane GPU warp) each run as long as their longest pixel. Then four columns: hier with\n"
                 "texel shadows (the scenes' default where they pay) over pom. Compute: the same pixels' rays traced in a\n"
-                "compute shader (AccuracyProbe::timeCompute: the view ray and its soft shadow, no map, no beam start), by\n"
-                "pom and by hier, GPU time of one dispatch, median of the same rounds.\n\n"
-                "| map | angle | pom ms | hier ms | hier / pom | wall: hier / pom | no map / pom | hier 1px / pom | texels / pom | "
-                "texels, no beam / pom | map ms | texels ms | fetches pom, hier, no map, texels, no beam | texels: fetches | "
+                "compute shader (AccuracyProbe::timeCompute: the view ray and its soft shadow, no beam start), by pom and\n"
+                "by hier, GPU time of one dispatch, median of the same rounds.\n\n"
+                "| map | angle | pom ms | hier ms | hier / pom | wall: hier / pom | hier 1px / pom | texels / pom | "
+                "texels, no beam / pom | texels ms | fetches pom, hier, texels, no beam | texels: fetches | "
                 "8 lanes | 32 lanes | ms per 8-lane fetch | compute: pom ms, hier ms | compute: hier / pom |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                 devices.summary().c_str(), field, field, width, height, rounds, kWarmupFrames);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
         AccuracyProbe probe(cl, map.heights, field, 0.1f);
-        const double mapMs = probe.timeClearance(AccuracyConfig{.shadows = true, .light = light}, kTimedFrames).gpu;
         const double texelMs =
-            probe.timeClearance(AccuracyConfig{.shadows = true, .light = light, .clearance = false, .texelShadows = true},
-                                kTimedFrames)
-                .gpu;
+            probe.timeTexelShadows(AccuracyConfig{.shadows = true, .light = light, .texelShadows = true}, kTimedFrames).gpu;
         for (double angle : {0.0, 45.0, 70.0, 80.0}) {
             auto configOf = [&](const Variant& v) {
                 return AccuracyConfig{.angleDegrees = angle, .shadows = true, .light = light, .pixelBudget = v.pixelBudget,
-                                      .clearance = v.clearance, .texelShadows = v.texels, .beamStart = v.beam};
+                                      .texelShadows = v.texels, .beamStart = v.beam};
             };
             std::vector<std::vector<GlTime>> times(std::size(variants));
             for (int r = -kWarmupFrames; r < rounds; ++r) // interleaved: a noisy neighbour hits them alike
@@ -264,19 +259,17 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
             const double cPom = median(computePom), cHier = median(computeHier);
             for (size_t i = 0; i < std::size(variants); ++i)
                 csv << map.name << "," << angle << "," << techniqueName(variants[i].technique) << "," << variants[i].pixelBudget
-                    << "," << (variants[i].technique == Technique::Hierarchical && variants[i].clearance ? 1 : 0) << ","
-                    << (variants[i].texels ? 1 : 0) << ",soft," << gpuMs[i] << "," << gpuMs[i] / pom << ","
+                    << "," << (variants[i].texels ? 1 : 0) << ",soft," << gpuMs[i] << "," << gpuMs[i] / pom << ","
                     << counts[i].mean << "," << counts[i].lanes8 << "," << counts[i].lanes32 << ","
-                    << mapMs << "," << texelMs << "," << (variants[i].beam ? 1 : 0) << "," << wall[i] << ","
+                    << texelMs << "," << (variants[i].beam ? 1 : 0) << "," << wall[i] << ","
                     << wall[i] / wall[0] << "," << width << "," << height << "," << cPom << "," << cHier << "\n";
-            const FetchCounts &p = counts[0], &h = counts[1], &n = counts[2], &x = counts[4], &b = counts[5];
-            std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f | %.1f, %.1f, "
-                        "%.1f, %.1f, %.1f | %.2fx | %.2fx | %.2fx | %.2fx | %.2f, %.2f | %.2fx |\n",
+            const FetchCounts &p = counts[0], &h = counts[1], &x = counts[3], &b = counts[4];
+            std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f, %.1f, %.1f, %.1f "
+                        "| %.2fx | %.2fx | %.2fx | %.2fx | %.2f, %.2f | %.2fx |\n",
                         map.name.c_str(), angle, pom, gpuMs[1], gpuMs[1] / pom, wall[1] / wall[0], gpuMs[2] / pom,
-                        gpuMs[3] / pom,
-                        gpuMs[4] / pom, gpuMs[5] / pom, mapMs, texelMs, p.mean, h.mean, n.mean, x.mean, b.mean,
-                        x.mean / p.mean, x.lanes8 / p.lanes8, x.lanes32 / p.lanes32,
-                        (gpuMs[4] / x.lanes8) / (pom / p.lanes8), cPom, cHier, cHier / cPom);
+                        gpuMs[3] / pom, gpuMs[4] / pom, texelMs, p.mean, h.mean, x.mean, b.mean, x.mean / p.mean,
+                        x.lanes8 / p.lanes8, x.lanes32 / p.lanes32, (gpuMs[3] / x.lanes8) / (pom / p.lanes8), cPom, cHier,
+                        cHier / cPom);
             std::fflush(stdout);
         }
     }

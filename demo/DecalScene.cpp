@@ -74,7 +74,6 @@ public:
         renderer_.drawFlat(post_, post, camera_, {0.75f, 0.72f, 0.2f, 1.0f}, &light);
     }
     Effect& effect() override { return wall_; }
-    std::optional<FlatSurface> flatSurface() const override { return planeSurface(kWall, light_); }
     const char* name() const override { return "decals"; }
     const Mesh& mesh() const override { return plane_; }
     glm::mat4 model() const override {

@@ -25,7 +25,6 @@ public:
 
     void draw() override { drawSurface(renderer_, light_); }
     Effect& effect() override { return surface_; }
-    std::optional<FlatSurface> flatSurface() const override { return planeSurface(kPlane, light_); }
     const char* name() const override { return "maps"; }
     const Mesh& mesh() const override { return plane_; }
 

@@ -21,24 +21,8 @@ void Scene::applyOptions(const SceneOptions& o) {
     if (o.pixelBudget >= 0.0f) m.pixelBudget = o.pixelBudget;
     effect().setMaterial(m);
     technique = o.technique;
-    clearanceMap = o.clearanceMap;
     texelShadows = o.texelShadows;
     beamStart = o.beamStart;
-}
-
-Scene::FlatSurface Scene::planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const {
-    const glm::mat4 m = model();
-    const float h = 0.5f * plane.size;
-    auto corner = [&](float x, float z) { return glm::vec3(m * glm::vec4(x, 0.0f, z, 1.0f)); };
-    return {SurfaceFrame::ofPlane(plane, m), light, {corner(-h, h), corner(h, h), corner(h, -h), corner(-h, -h)}};
-}
-
-void Scene::prepareShadowLight() {
-    std::optional<ClearanceLight> light;
-    if (clearanceMap && technique == Technique::Hierarchical)
-        if (const std::optional<FlatSurface> flat = flatSurface())
-            light = flatPatchLight(mesh(), model(), flat->light, effect().material());
-    effect().setClearanceLight(light);
 }
 
 std::string Scene::texelShadowsLabel() const {

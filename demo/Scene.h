@@ -28,11 +28,6 @@ struct SceneOptions {
     bool shadows = true;
     float lodThreshold = 4.0f;
     float pixelBudget = -1.0f;         ///< SurfaceMaterial::pixelBudget (-1: the scene's default)
-    /// A flat surface drawn by hier has its light's clearance map built each frame (Effect::
-    /// setClearanceLight). The clearance map (shorter shadow walks, the same shadows) is off by
-    /// default: on the decal wall, whose field changes every frame, its build (25 ms at 512², 140
-    /// at 1024²) costs more than the draw saves (docs/history/tuning.md).
-    bool clearanceMap = false;
     /// The texel shadows (DrawOptions::texelShadows: pixels walk their light rays only where a
     /// hard shadow's edge passes between the samples around them): by default wherever the exact
     /// tracer finds they pay on the view (ExactTracer); On draws them always, Off never.
@@ -77,14 +72,12 @@ public:
     /// uploaded before this returns.
     void update(double dt) {
         prepare(dt);
-        prepareShadowLight();
         effect().update(dt);
     }
     /// Overlapped: start the next field on the compute device (after the scene's own per-frame
     /// work, prepare()), draw the current one, then endUpdate() to take the new one to GL.
     void beginUpdate(double dt) {
         prepare(dt);
-        prepareShadowLight();
         effect().beginUpdate(dt);
     }
     void endUpdate() { effect().endUpdate(); }
@@ -111,17 +104,6 @@ public:
     /// The mesh and model matrix drawn (for the wireframe overlay and for picking).
     virtual const Mesh& mesh() const = 0;
     virtual glm::mat4 model() const { return glm::mat4(1.0f); }
-    /// A flat surface's texture frame in world space and its one light; empty where the surface
-    /// is curved or lit otherwise.
-    struct FlatSurface {
-        SurfaceFrame frame;
-        DirectionalLight light;
-        std::array<glm::vec3, 4> corners; ///< the quad drawn, world space, in order
-    };
-    virtual std::optional<FlatSurface> flatSurface() const { return std::nullopt; }
-    /// The frame of a makePlane(plane) drawn with model(), under `light`.
-    FlatSurface planeSurface(const PlaneConfig& plane, const DirectionalLight& light) const;
-    bool clearanceMap = false;                                ///< SceneOptions::clearanceMap
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto; ///< SceneOptions::texelShadows
     bool beamStart = true;                                    ///< SceneOptions::beamStart
     /// How this scene's surface is drawn, by the camera and into a shadow map alike.
@@ -137,11 +119,6 @@ public:
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).
     void drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light);
-    /// Hands the effect the light its clearance map is built for where one is asked for: a flat
-    /// surface's under hier (flatPatchLight, as the renderer derives it), else none. Every
-    /// frame, before the update: the material, the light or the technique may have changed, and
-    /// an effect may have rebuilt its pipeline.
-    void prepareShadowLight();
     /// The command line's overrides of the effect's material (samples, depth, shadows, LOD) and
     /// its technique.
     void applyOptions(const SceneOptions& options);

@@ -222,9 +222,6 @@ int main(int argc, char** argv) {
     app.add_option("--seed", s.seed, "random seed of the field")->capture_default_str();
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
-    app.add_flag("--clearance-map", s.clearanceMap,
-                 "flat surfaces drawn by hier (decals, noise, maps) build a clearance map for their light each frame: "
-                 "the same shadows in shorter walks (on PoCL the decal wall's build costs more than its draw saves)");
     bool texelShadowsOn = false, texelShadowsOff = false;
     app.add_flag("--texel-shadows", texelShadowsOn,
                  "flat surfaces drawn by hier (decals, noise, maps) draw their self-shadow at every texel each frame "

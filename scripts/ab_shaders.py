@@ -30,7 +30,7 @@ def run(demo, shaders, extra, out):
             if row["technique"] == "pom":
                 pom[key] = float(row["ms"])
             elif (row["technique"] == "hier" and float(row["pixel_budget"]) == 0.0
-                  and row.get("clearance_map", "1") == "1"):
+                  and row.get("texel_shadows", "0") == "0" and row.get("clearance_map", "0") == "0"):
                 hier[key] = float(row["ms"])
     return pom, hier
 

@@ -126,10 +126,10 @@ def time_vs_fetches(path, out):
         print(f"{path}: no fetch counts (written before bench-tracers counted them); time_vs_fetches.png not drawn")
         return False
     pom = {(r["map"], r["angle"]): r for r in rows if r["technique"] == "pom"}
-    # The default: full effort, with the clearance map (files written before it had no column).
+    # Full effort, every light ray walked (files written while the clearance map existed: without it).
     hier = [r for r in rows if r["technique"] == "hier" and float(r["pixel_budget"]) == 0.0
-            and r.get("clearance_map", "1") == "1" and r.get("texel_shadows", "0") == "0"]
-    # hier reading the texel shadows of the light (no clearance map), where the file has them, with
+            and r.get("clearance_map", "0") == "0" and r.get("texel_shadows", "0") == "0"]
+    # hier reading the texel shadows of the light, where the file has them, with
     # the beam start (files written before it had no column: theirs had none).
     texels = [r for r in rows if r["technique"] == "hier" and r.get("texel_shadows", "0") == "1"
               and r.get("beam_start", "1") == "1"]

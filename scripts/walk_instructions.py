@@ -40,21 +40,18 @@ void main() {
 """
 
 # --accessors mip: the least a harness's accessors can be: a bound one texelFetch at the cell,
-# wrapped by a mask, at the level; a cell's samples one textureGather; no clamped edges, no
-# clearance map or texel shadows. The walk's own instructions, without the renderer's options.
+# wrapped by a mask, at the level; a cell's samples one textureGather; no clamped edges. The
+# walk's own instructions, without the renderer's options.
 MIP_ACCESSORS = """
 layout(binding = 0) uniform sampler2D s_surface;
 layout(binding = 1) uniform sampler2D s_bounds;
-layout(std140, binding = 0) uniform HfxCountField { ivec2 u_size; int u_levels; };
+layout(std140, binding = 0) uniform HfxCountField { ivec2 u_size; };
 float g_fetches = 0.0;
 float hfx_height(vec2 uv, float level) { return textureLod(s_surface, uv, level).w; }
 ivec2 hfx_size() { return u_size; }
-int hfx_levels() { return u_levels; }
 vec4 hfx_cell_samples(ivec2 cell) { return textureGather(s_surface, (vec2(cell) + 1.0) / vec2(u_size), 3); }
 vec2 hfx_bounds(ivec2 cell, int level) { return texelFetch(s_bounds, cell & ((u_size >> level) - 1), level).rg; }
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); }
-float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) { return 1e30; }
-bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) { shadow = 0.0; return false; }
 """
 
 FETCH = re.compile(r"\bOp(ImageRead|ImageFetch|ImageGather|ImageSample\w*|ImageDrefGather)\b")

@@ -24,10 +24,9 @@
 #define HFX_UNIT_PYRAMID1 12      // layers 1-3's bounds pyramids, as mip chains (bounded searches): an array
 #define HFX_UNIT_PYRAMID2 13
 #define HFX_UNIT_PYRAMID3 14
-#define HFX_UNIT_CLEARANCE 15     // the clearance map for the light (hier's shadow walk)
-#define HFX_UNIT_TEXEL_SHADOWS 16 // the texel shadows of the light (TexelShadowPass)
-#define HFX_UNIT_BEAM_START 17    // the beam prepass's depth per block of pixels
-#define HFX_TEXTURE_UNITS 18      // how many the surface program's fragment stage needs
+#define HFX_UNIT_TEXEL_SHADOWS 15 // the texel shadows of the light (TexelShadowPass)
+#define HFX_UNIT_BEAM_START 16    // the beam prepass's depth per block of pixels
+#define HFX_TEXTURE_UNITS 17      // how many the surface program's fragment stage needs
 
 // Image units (PyramidLayout::Atlas, llvmpipe's: GlWorkarounds::pyramidAtlas).
 #define HFX_IMAGE_PYRAMID 0       // layer i's atlas pyramid at HFX_IMAGE_PYRAMID + i

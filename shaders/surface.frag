@@ -60,6 +60,7 @@
 #include "surface/shadowmap.glsl"
 #include "trace/common.glsl"
 #include <tracer>
+#include "surface/shadow.glsl"
 #include "shade/common.glsl"
 #include "shade/sky.glsl"
 #include <shading>
@@ -300,7 +301,7 @@ void main() {
         // view ray through x + parallax * (1 - h) does, so its extent is span - parallax * (1 - h0).
         shadowRay.samples = hfx_budget_samples(u_shadowSamples, hfx_screen_pixels(shadowRay.span - parallax * (1.0 - h0), dx, dy));
         shadowRay.sharpness = u_shadowSharpness;
-        lit = 1.0 - hfx_shadow(shadowRay) * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
+        lit = 1.0 - hfx_surface_shadow(shadowRay) * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
     }
 #endif
 

@@ -226,25 +226,6 @@ TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
 
 // Save and load: a run that loads the damage log another run saved draws, on its first frame,
 // exactly the last frame of the run that saved it (a late-joining client sees the same wall).
-TEST(Demo, TheClearanceMapLeavesTheFlatScenesFramesAsTheyWere) {
-    // --clearance-map only shortens hier's shadow walks: the decal wall's and the noise plane's
-    // frames (hier by default, shadows on) are the same bytes with it as without.
-    for (const std::string scene : {"decals", "noise"}) {
-        const std::string args = scene + " --headless --frames 2 --width 320 --height 180 --field 128 --out ";
-        const std::string a = outputPath("demo_clearance_" + scene + "_a"), b = outputPath("demo_clearance_" + scene + "_b");
-        for (const auto& dir : {a, b}) std::filesystem::remove_all(dir);
-        const Result plain = runDemo(args + a);
-        ASSERT_EQ(plain.exitCode, 0) << plain.output;
-        const Result mapped = runDemo(args + b + " --clearance-map");
-        ASSERT_EQ(mapped.exitCode, 0) << mapped.output;
-        for (int frame = 0; frame < 2; ++frame) {
-            const std::string name = scene + "_000" + std::to_string(frame) + ".png";
-            // A boolean: on failure the bytes of two PNGs would flood the log.
-            EXPECT_TRUE(readBytes(a + "/" + name) == readBytes(b + "/" + name)) << name << " differs with the clearance map";
-        }
-    }
-}
-
 TEST(Demo, TheTexelShadowsAreDrawnByDefaultWhereTheSurfaceHasFewerTexelsThanPixels) {
     // The noise plane covers most of a 320x180 image: a 64² field shows on about ten pixels per
     // texel (the texel shadows pay), a 256² one on well under one (they do not). The default
@@ -543,7 +524,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
                                "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format",
-                               "--clearance-map", "--texel-shadows", "--no-texel-shadows", "--gl", "--cl-device", "water", "decals", "planet",
+                               "--texel-shadows", "--no-texel-shadows", "--gl", "--cl-device", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }

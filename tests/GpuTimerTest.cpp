@@ -6,6 +6,7 @@
 
 #include "support/Fixtures.h"
 
+#include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/GpuTimer.h"
 #include "hfx/core/RenderTarget.h"

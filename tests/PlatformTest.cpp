@@ -28,7 +28,7 @@ Image frameFrom(ClContext& cl, GlBackend backend, std::string* label) {
     {
         AccuracyProbe probe(cl, smoothWaves(kField), kField, 0.1f);
         probe.timeDraw(Technique::Hierarchical,
-                       {.angleDegrees = 60.0, .shadows = true, .light = accuracyLight(), .clearance = false}, kImage,
+                       {.angleDegrees = 60.0, .shadows = true, .light = accuracyLight()}, kImage,
                        kImage, 1);
         frame = probe.lastFrame();
     } // the probe's GL objects go with its context, before it

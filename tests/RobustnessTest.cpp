@@ -61,40 +61,34 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
     EXPECT_EQ(water.time(), 0.02);
 }
 
-TEST_F(Robustness, ShadowLightsNeedThePyramidAndTexelShadowsHoldOnlyTheirHeightsAndLight) {
-    // The clearance map and the texel shadows are the pyramid's walk: a surface without one
-    // refuses them by name. A bad light is refused before anything is drawn and leaves the last
-    // texel shadows as they were; they hold only the texels and the light they were drawn from
+TEST_F(Robustness, TexelShadowsNeedThePyramidAndHoldOnlyTheirHeightsAndLight) {
+    // The texel shadows are the pyramid's walk: a surface without one refuses them by name. A bad
+    // light is refused before anything is drawn and leaves the last texel shadows as they were; they hold only the texels and the light they were drawn from
     // (the exact tracer redraws them when either changes).
     constexpr int N = 32;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}});
-    const ClearanceLight light = ClearanceLight::of({0.05f, 0.02f}, 2.0f);
-    ClearanceLight bad = light;
+    const ShadowLight light = ShadowLight::of({0.05f, 0.02f}, 2.0f);
+    ShadowLight bad = light;
     bad.penumbra = 2.0f;
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
     SurfacePipeline flat(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = false}));
-    std::string m = messageOf([&] { flat.setClearanceLight(light); });
-    EXPECT_NE(m.find("height pyramid"), std::string::npos) << m;
     TexelShadowPass pass;
     TexelShadows shadows;
-    m = messageOf([&] { pass.draw(flat.textures(), light, 1, shadows); });
+    std::string m = messageOf([&] { pass.draw(flat.textures(), light, 1, shadows); });
     EXPECT_NE(m.find("height pyramid"), std::string::npos) << m;
     EXPECT_EQ(shadows.texture(), 0u);
 
     SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
-    m = messageOf([&] { surface.setClearanceLight(bad); });
-    EXPECT_NE(m.find("ClearanceLight.penumbra"), std::string::npos) << m;
     surface.run(field.buffer());
     const SurfaceTextures& drawn = surface.textures();
-    EXPECT_FALSE(drawn.clearanceLight()) << "no clearance map was asked for";
     pass.draw(drawn, light, 1, shadows);
     ASSERT_NE(shadows.texture(), 0u);
     EXPECT_EQ(shadows.light(), light);
     EXPECT_TRUE(shadows.holds(drawn, light, 1));
     EXPECT_FALSE(shadows.holds(drawn, light, 2));
-    EXPECT_FALSE(shadows.holds(drawn, ClearanceLight::of({0.05f, 0.03f}, 2.0f), 1));
+    EXPECT_FALSE(shadows.holds(drawn, ShadowLight::of({0.05f, 0.03f}, 2.0f), 1));
     m = messageOf([&] { pass.draw(drawn, bad, 1, shadows); });
-    EXPECT_NE(m.find("ClearanceLight.penumbra"), std::string::npos) << m;
+    EXPECT_NE(m.find("ShadowLight.penumbra"), std::string::npos) << m;
     EXPECT_EQ(shadows.light(), light);
     EXPECT_TRUE(shadows.holds(drawn, light, 1));
     surface.run(field.buffer());
@@ -111,7 +105,7 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     // into the caller's.
     constexpr int N = 32;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.2, -1, 3, 0.4}});
-    const ClearanceLight light = ClearanceLight::of({0.6f, 0.25f}, 2.0f); // low: long shadows
+    const ShadowLight light = ShadowLight::of({0.6f, 0.25f}, 2.0f); // low: long shadows
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
     auto texels = [&](const TexelShadows& shadows) {
         std::vector<float> t(size_t(N) * N, -1.0f);
@@ -213,7 +207,7 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
     StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}}));
     SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
     surface.run(field.buffer());
-    const ClearanceLight light = ClearanceLight::of({0.05f, 0.02f}, 2.0f);
+    const ShadowLight light = ShadowLight::of({0.05f, 0.02f}, 2.0f);
     TexelShadowPass pass;
     TexelShadows shadows;
     SurfaceRenderer renderer;

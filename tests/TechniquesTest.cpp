@@ -205,11 +205,11 @@ TEST_F(Techniques, TheBeamStartChangesNoHitAndShortensTheViewWalkAtGrazingAngles
 }
 
 TEST_F(Techniques, TexelShadowsKeepTheExactTracersShadowBoundOnEveryMapInFewerFetches) {
-    // The same maps and light with the texel shadows of the light (ShadowLightOptions::
-    // texelShadows, no clearance map): the bound on exact shadows outside the penumbra
+    // The same maps and light with the texel shadows of the light (DrawOptions::texelShadows
+    // On): the bound on exact shadows outside the penumbra
     // band still holds, the hits are untouched, and the pixels fetch less than walking every
     // light ray (the blocks' walks end at once in hard shadow: no saving there). At every 2nd and
-    // every 4th sample (ShadowLightOptions::texelStride, what a pixel budget picks where texels
+    // every 4th sample (DrawOptions::texelStride, what a pixel budget picks where texels
     // are smaller than pixels) the hits are the same and the bound still holds (measured: 100.00%
     // at stride 2, 99.99-100.00% at 4); wider cells agree less often, so more pixels walk there.
     const glm::vec3 light = accuracyLight(60.0f);
@@ -217,7 +217,7 @@ TEST_F(Techniques, TexelShadowsKeepTheExactTracersShadowBoundOnEveryMapInFewerFe
         const char* name = map.name.c_str();
         AccuracyProbe probe(cl(), map.heights, kField, 0.1f);
         for (double angle : {0.0, 45.0, 80.0}) {
-            const AccuracyConfig walked{.angleDegrees = angle, .shadows = true, .light = light, .clearance = false};
+            const AccuracyConfig walked{.angleDegrees = angle, .shadows = true, .light = light};
             AccuracyConfig read = walked;
             read.texelShadows = true;
             const AccuracyResult w = run(probe, Technique::Hierarchical, walked, name);

@@ -68,7 +68,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_maxSamples", offsetof(SurfaceUniforms, maxSamples)},
         {"u_shadowSamples", offsetof(SurfaceUniforms, shadowSamples)},
         {"u_clipToPatch", offsetof(SurfaceUniforms, clipToPatch)},
-        {"u_pyramidLevels", offsetof(SurfaceUniforms, pyramidLevels)},
+        {"u_reserved", offsetof(SurfaceUniforms, reserved)},
         {"u_varianceFloor", offsetof(SurfaceUniforms, varianceFloor)},
         {"u_wrap", offsetof(SurfaceUniforms, wrap)},
         {"u_pixelBudget", offsetof(SurfaceUniforms, pixelBudget)},
@@ -80,7 +80,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_shadowBias", offsetof(SurfaceUniforms, shadowBias)},
         {"u_shadowOffset", offsetof(SurfaceUniforms, shadowOffset)},
         {"u_shadowTexel", offsetof(SurfaceUniforms, shadowTexel)},
-        {"u_clearance", offsetof(SurfaceUniforms, clearance)},
+        {"u_shadowLight", offsetof(SurfaceUniforms, shadowLight)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},
@@ -120,13 +120,11 @@ layout(rg32f, binding = HFX_IMAGE_PYRAMID) readonly uniform image2D i_pyramid; /
 #else
 layout(binding = HFX_UNIT_PYRAMID) uniform sampler2D s_pyramid;
 #endif
-uniform int u_levels;
 uniform ivec2 u_wrap;
 float hfx_height(vec2 uv, float level) { return textureLod(s_surface, uv, level).w; }
 ivec2 hfx_size() { return textureSize(s_surface, 0); }
 // A cell's samples by a gather of the texture itself (the renderer reads its cells image).
 vec4 hfx_cell_samples(ivec2 cell) { return textureGather(s_surface, (vec2(cell) + 1.0) / vec2(hfx_size()), 3); }
-int hfx_levels() { return u_levels; }
 vec2 hfx_bounds(ivec2 cell, int level) {
     const ivec2 n = max(hfx_size() >> level, ivec2(1));
     const ivec2 texel = mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap));
@@ -140,11 +138,6 @@ vec2 hfx_bounds(ivec2 cell, int level) {
 #endif
 }
 vec2 hfx_segment_bounds(vec2 a, vec2 b, float level) { return vec2(1.0, 0.0); } // searches span [0, 1]
-float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) { return 1e30; } // no clearance map
-bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) { // no texel shadows
-    shadow = 0.0;
-    return false;
-}
 float g_fetches = 0.0; // the renderer's accessors count their reads; these do not
 )",
                           "test"};
@@ -194,7 +187,9 @@ void main() { // a: uv, span; b: h0, level, samples, sharpness
     ray.level = b.y;
     ray.samples = int(b.z);
     ray.sharpness = b.w;
-    const float shadow = hfx_shadow(ray);
+    // The caller's shadow: with the renderer's accessors and its texel shadows, read from them
+    // where they hold it (surface/shadow.glsl); else the tracer's walk.
+    const float shadow = hfx_surface_shadow(ray);
     hits[i] = vec4(shadow, g_fetches, 0.0, 0.0);
 }
 )",
@@ -226,37 +221,32 @@ enum class Accessors { Harness, Renderer };
 
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
 /// harness over `textures` (wrapping); returns each hit as (u, v, depth fraction, 0), or with
-/// kShadowMain each shadow ray's hfx_shadow in x and, with the renderer's accessors, the reads
-/// it made in y. With the renderer's accessors and `clearance`,
-/// the textures' clearance map is read as a draw reads it (HFX_CLEARANCE, its light's uniforms),
-/// and with `texelShadows` those texel shadows too (HFX_TEXEL_SHADOWS). `wrap`: per axis, whether
-/// the textures' field wraps (the renderer's u_wrap).
+/// kShadowMain each shadow ray's shadow in x and, with the renderer's accessors, the reads it
+/// made in y. With the renderer's accessors and `texelShadows`, those texel shadows are read as a
+/// draw reads them (HFX_TEXEL_SHADOWS, their light's uniforms, surface/shadow.glsl). `wrap`: per
+/// axis, whether the textures' field wraps (the renderer's u_wrap).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
-                                      bool clearance = false, const TexelShadows* texelShadows = nullptr,
-                                      glm::ivec2 wrap = {1, 1}) {
+                                      const TexelShadows* texelShadows = nullptr, glm::ivec2 wrap = {1, 1}) {
     const bool own = accessors == Accessors::Harness;
-    HFX_CHECK(!(own && clearance));
-    HFX_CHECK(clearance || !texelShadows);
+    HFX_CHECK(!(own && texelShadows));
     std::vector<SourceFile> parts{kComputeHeader, surfaceShader("bindings.glsl"),
                                   {"harness_layout.comp",
                                    str("#define HFX_PYRAMID_ATLAS ", textures.pyramidLayout() == PyramidLayout::Atlas ? 1 : 0, "\n"),
                                    "test"}};
-    if (clearance) parts.push_back({"harness_defines.comp", "#define HFX_CLEARANCE 1\n", "test"});
     if (texelShadows) parts.push_back({"harness_texels.comp", "#define HFX_TEXEL_SHADOWS 1\n", "test"});
     if (own) parts.push_back(kHarness);
     else parts.insert(parts.end(), {surfaceShader("surface/uniforms.glsl"), surfaceShader("surface/heights.glsl")});
     parts.insert(parts.end(), {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
-                               kHarnessBuffers, main});
+                               surfaceShader("surface/shadow.glsl"), kHarnessBuffers, main});
     const ShaderProgram p = ShaderProgram::compute(parts);
-    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(), .wrap = wrap};
-    if (clearance) {
-        const ClearanceLight& c = (texelShadows ? texelShadows->light() : textures.clearanceLight()).value();
-        u.clearance = {c.uvPerClimb, c.penumbra, c.slack};
+    SurfaceUniforms u{.wrap = wrap};
+    if (texelShadows) {
+        const ShadowLight& c = texelShadows->light().value();
+        u.shadowLight = {c.uvPerClimb, c.penumbra, c.slack};
     }
     const GlBuffer block = own ? GlBuffer() : GlBuffer::create();
     if (own) {
-        p.set("u_levels", u.pyramidLevels);
         p.set("u_wrap", u.wrap);
     } else {
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
@@ -265,7 +255,6 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     BoundsPass().refresh(textures); // the pyramid, and the atlas layout's level-0 cells heights.glsl reads
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     textures.bindPyramid(0);
-    glBindTextureUnit(HFX_UNIT_CLEARANCE, textures.clearance());
     glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, texelShadows ? texelShadows->texture() : 0);
     std::vector<glm::vec4> hits = runHarness(p, rays);
     glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, 0);
@@ -570,103 +559,6 @@ std::vector<ShadowField> shadowFields(int n) {
             {"sines", sumOfSines(n, {{0.3, 3, 1, 0.0}, {0.12, -4, 7, 0.7}, {0.05, 11, -9, 0.3}})}};
 }
 
-TEST_F(TracerContract, TheClearanceMapShortensTheShadowWalkAndChangesNoShadow) {
-    // The exact shadow walk with a clearance map (compute/ClearanceMap.h) built by the frame's
-    // own path must return what it returns without, to the bit, for the map's light: on the
-    // field of thin walls and plateaus and on a smooth one, lights of several directions and
-    // penumbrae, 2^18 points each. It must also save fetches (else it is dead weight), and a map
-    // cut to half its climbs must change shadows (else this comparison could not fail), but
-    // only for rays of its own light: a ray of another light walks without it.
-    constexpr int N = 256;
-    constexpr float depth = 0.1f;
-    const std::vector<ShadowField> fields = shadowFields(N);
-    const glm::vec3 lights[] = {{0.6f, 0.55f, 0.3f}, {-0.2f, 0.3f, -0.9f}, {0.0f, 0.8f, 0.6f}, {1.0f, 0.12f, 0.0f}};
-    constexpr int kRays = 1 << 18;
-    double sinesMapped = 0, sinesPlain = 0, wallsMapped = 0, wallsPlain = 0;
-    for (const ShadowField& field : fields) {
-        StaticField source(cl(), N, N, EdgeMode::Wrap, field.heights);
-        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .pyramid = true}));
-        const HeightFieldTracer exact(field.heights, N, N, EdgeMode::Wrap);
-        for (size_t li = 0; li < std::size(lights); ++li) {
-            const float sharpness = li % 2 ? 8.0f : 2.0f;
-            DirectionalLight light;
-            light.direction = lights[li];
-            const std::optional<ClearanceLight> c = flatSurfaceLight(
-                SurfaceFrame::ofPlane({}), light, {.depthScale = depth, .shadowSharpness = sharpness});
-            ASSERT_TRUE(c);
-            surface.setClearanceLight(c);
-            surface.run(source.buffer());
-            ASSERT_EQ(surface.textures().clearanceLight(), c);
-            std::mt19937 random(21 + unsigned(li));
-            std::uniform_real_distribution<double> unit(0.0, 1.0);
-            std::vector<glm::vec4> rays, otherRays;
-            while (rays.size() < 2 * size_t(kRays)) {
-                const glm::dvec2 uv(unit(random), unit(random));
-                const double h0 = exact.heightAt(uv);
-                if (h0 > 0.999) continue;
-                const glm::vec2 span = c->uvPerClimb * float(1.0 - h0);
-                rays.emplace_back(float(uv.x), float(uv.y), span.x, span.y);
-                rays.emplace_back(float(h0), 0.0f, 8.0f, sharpness);
-                // Another light: turned by 0.1 radian.
-                const glm::vec2 turned(span.x * std::cos(0.1f) - span.y * std::sin(0.1f),
-                                       span.x * std::sin(0.1f) + span.y * std::cos(0.1f));
-                otherRays.emplace_back(float(uv.x), float(uv.y), turned.x, turned.y);
-                otherRays.emplace_back(float(h0), 0.0f, 8.0f, sharpness);
-            }
-            const SurfaceTextures& textures = surface.textures();
-            const auto walk = [&](const std::vector<glm::vec4>& r, bool map) {
-                return traceInHarness(textures, Technique::Hierarchical, r, kShadowMain, Accessors::Renderer, map);
-            };
-            const std::vector<glm::vec4> plain = walk(rays, false), mapped = walk(rays, true);
-            int differ = 0, shadowed = 0, skipped = 0;
-            double fetchesPlain = 0, fetchesMapped = 0;
-            for (int i = 0; i < kRays; ++i) {
-                if (plain[size_t(i)].x != mapped[size_t(i)].x) {
-                    if (differ < 5)
-                        std::printf("[differs] ray %d: %.9g without the map, %.9g with\n", i, plain[size_t(i)].x,
-                                    mapped[size_t(i)].x);
-                    ++differ;
-                }
-                shadowed += plain[size_t(i)].x > 0.0f;
-                fetchesPlain += plain[size_t(i)].y;
-                fetchesMapped += mapped[size_t(i)].y;
-                skipped += mapped[size_t(i)].y <= 2.0f; // the map's fetch and the field's maximum: no walk
-            }
-            std::printf("[clearance] %s light %zu sharpness %.0f: %d of %d rays shadowed, %d walks skipped, fetches "
-                        "%.2f -> %.2f per ray\n",
-                        field.name, li, sharpness, shadowed, kRays, skipped, fetchesPlain / kRays, fetchesMapped / kRays);
-            EXPECT_EQ(differ, 0) << field.name << " light " << li;
-            EXPECT_GT(shadowed, kRays / 50) << field.name << " light " << li;
-            // At most the map's own fetch more per ray, where it saves nothing.
-            EXPECT_LE(fetchesMapped, fetchesPlain + kRays) << field.name << " light " << li;
-            (field.name == std::string("sines") ? sinesMapped : wallsMapped) += fetchesMapped;
-            (field.name == std::string("sines") ? sinesPlain : wallsPlain) += fetchesPlain;
-
-            // The comparison can fail: a map cut to half its climbs ends walks too soon.
-            std::vector<float> map(size_t(N) * N);
-            glGetTextureImage(textures.clearance(), 0, GL_RED, GL_FLOAT, GLsizei(map.size() * sizeof(float)), map.data());
-            for (float& v : map) v *= 0.5f;
-            // The test owns the pipeline: its textures are ours to spoil (the next run() replaces them).
-            SurfaceTextures& writable = const_cast<SurfaceTextures&>(textures);
-            writable.uploadClearance(map.data(), *c);
-            const std::vector<glm::vec4> cut = walk(rays, true);
-            int changed = 0;
-            for (int i = 0; i < kRays; ++i) changed += cut[size_t(i)].x != plain[size_t(i)].x;
-            EXPECT_GT(changed, kRays / 1000) << field.name << " light " << li;
-            // ... and only for rays of its own light.
-            const std::vector<glm::vec4> otherPlain = walk(otherRays, false), otherCut = walk(otherRays, true);
-            int otherChanged = 0;
-            for (int i = 0; i < kRays; ++i) otherChanged += otherCut[size_t(i)].x != otherPlain[size_t(i)].x;
-            EXPECT_EQ(otherChanged, 0) << field.name << " light " << li;
-        }
-    }
-    // On the smooth field the map saves the walk a tenth of its fetches over these lights (the
-    // walls end most walks at once in hard shadow; there it only costs its own fetch).
-    std::printf("[clearance] fetches with the map over without: sines %.3f, walls %.3f\n", sinesMapped / sinesPlain,
-                wallsMapped / wallsPlain);
-    EXPECT_LT(sinesMapped, 0.95 * sinesPlain);
-}
-
 /// A shadow read from the texel shadows against the walk's, ray by ray (x of each harness
 /// result, fetches in y), over the rays `skip` does not mark: the rays the walk puts in hard
 /// shadow, those whose hard shadow differs, and over the rest that both leave out of it the
@@ -720,10 +612,9 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                 const int M = N / stride; // texel-shadow samples per edge
                 DirectionalLight light;
                 light.direction = lights[li];
-                const std::optional<ClearanceLight> c = flatSurfaceLight(
+                const std::optional<ShadowLight> c = flatSurfaceLight(
                     SurfaceFrame::ofPlane({}), light, {.depthScale = depth, .shadowSharpness = sharpness});
                 ASSERT_TRUE(c);
-                surface.setClearanceLight(c);
                 surface.run(source.buffer());
                 const SurfaceTextures& textures = surface.textures();
                 TexelShadows shadows;
@@ -733,7 +624,7 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                 glGetTextureImage(shadows.texture(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
                                   texels.data());
                 const auto walk = [&](const std::vector<glm::vec4>& r, bool read) {
-                    return traceInHarness(textures, Technique::Hierarchical, r, kShadowMain, Accessors::Renderer, true,
+                    return traceInHarness(textures, Technique::Hierarchical, r, kShadowMain, Accessors::Renderer,
                                           read ? &shadows : nullptr);
                 };
                 const auto rayFrom = [&](std::vector<glm::vec4>& r, glm::vec2 uv, float h0) {
@@ -814,10 +705,9 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     const HeightFieldTracer exact(heights, N, N, EdgeMode::Clamp);
     DirectionalLight light;
     light.direction = {0.6f, 0.35f, 0.3f}; // towards +u, +v: the rays from the far strips cross the field
-    const std::optional<ClearanceLight> c =
+    const std::optional<ShadowLight> c =
         flatSurfaceLight(SurfaceFrame::ofPlane({}), light, {.depthScale = 0.1f, .shadowSharpness = 2.0f});
     ASSERT_TRUE(c);
-    surface.setClearanceLight(c);
     surface.run(source.buffer());
     TexelShadowPass pass;
     TexelShadows shadows;
@@ -840,7 +730,7 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
         inStrip.push_back(cell.x >= N - stride || cell.y >= N - stride);
     }
     const auto trace = [&](bool read) {
-        return traceInHarness(surface.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer, true,
+        return traceInHarness(surface.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer,
                               read ? &shadows : nullptr, {0, 0});
     };
     const std::vector<glm::vec4> walked = trace(false), read = trace(true);
@@ -994,7 +884,7 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                 // heights.glsl's read in both layouts, from anywhere.
                 for (const SurfacePipeline* s : {&surface, &gathered}) {
                     const std::vector<glm::vec4> got = traceInHarness(s->textures(), Technique::Hierarchical, items, kCellReadMain,
-                                                                      Accessors::Renderer, false, nullptr,
+                                                                      Accessors::Renderer, nullptr,
                                                                       glm::ivec2(wrapsU(edges), wrapsV(edges)));
                     int off = 0;
                     for (size_t k = 0; k < got.size(); ++k) off += got[k] != samples(cellsAsked[k]);
@@ -1060,8 +950,7 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         b.run(fieldB.buffer());
         const int layers = edges == EdgeMode::Wrap ? 2 : 1; // layers tile: only one clamps
         const float scaleB = 2.7f;
-        SurfaceUniforms u{.pyramidLevels = a.textures().pyramidLevels(),
-                          .wrap = glm::ivec2(edges == EdgeMode::Wrap ? 1 : 0),
+        SurfaceUniforms u{.wrap = glm::ivec2(edges == EdgeMode::Wrap ? 1 : 0),
                           .untracedHeight = 0.0f,
                           .layerScale = {1.0f, scaleB, 1.0f, 1.0f},
                           .layerWeight = layers == 2 ? glm::vec4(0.6f, 0.4f, 0.0f, 0.0f) : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),

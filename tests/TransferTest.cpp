@@ -18,7 +18,7 @@ namespace {
 class Transfer : public DeviceTest {};
 
 /// Every texture a surface has, as GL holds it, by name: the surface's level 0, and where they
-/// exist the pyramid, the clearance map, the albedo and the shading channels (bytes, as floats).
+/// exist the pyramid, the albedo and the shading channels (bytes, as floats).
 using Streams = std::vector<std::pair<std::string, std::vector<float>>>;
 
 Streams allTextures(const SurfaceTextures& t) {
@@ -37,7 +37,6 @@ Streams allTextures(const SurfaceTextures& t) {
     };
     const size_t texels = size_t(t.config().width) * t.config().height;
     for (int level = 0; level < t.pyramidLevels(); ++level) out.emplace_back(str("pyramid level ", level), readPyramidLevel(t, level));
-    append("clearance map", t.clearance(), GL_RED, GL_FLOAT, texels);
     append("albedo", t.albedo(), GL_RGBA, GL_UNSIGNED_BYTE, texels * 4);
     append("shading channels", t.channels(), GL_RGBA, GL_UNSIGNED_BYTE, texels * 4);
     return out;
@@ -64,7 +63,7 @@ std::string difference(const Streams& a, const Streams& b) {
 
 // Every path this device can take (GlSharing only where the context shares GL) delivers the same
 // textures, bit for bit, in every format: the sine waves (texels alone) and the decal wall (texels,
-// pyramid, clearance map, albedo and shading channels, all five streams), frame after frame,
+// pyramid, albedo and shading channels), frame after frame,
 // sequential and overlapped. The first path runs twice: where its two runs differ, the device's
 // kernels are not deterministic, and no path is to blame.
 TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
@@ -81,12 +80,6 @@ TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
             const bool pyramid = format != SurfaceFormat::Unorm8;
             auto wall = std::make_unique<DecalWallEffect>(
                 cl(), DecalWallConfig{.bricks = {.size = 64}, .surface = {.pyramid = pyramid, .format = format, .transfer = path}});
-            if (pyramid) {
-                DirectionalLight light;
-                light.direction = {0.6f, 0.55f, 0.3f};
-                // The clearance map is a stream of its own: every path moves it too.
-                wall->setClearanceLight(flatSurfaceLight(SurfaceFrame::ofPlane({}), light, wall->material()));
-            }
             wall->shoot(0.4, 0.6);
             effects.push_back(std::move(wall));
         }

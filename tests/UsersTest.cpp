@@ -136,63 +136,6 @@ TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
     }
 }
 
-TEST_F(Users, TheDecalWallUnderItsLightDrawsTheSameWithItsClearanceMapInFewerFetches) {
-    // The decal scene's set-up: the wall standing in the XY plane, lit from the side, drawn by
-    // hier with self-shadows, after a volley. Two walls take the same shots; one builds the
-    // clearance map for the light (Effect::setClearanceLight, as the scene does). The map may only
-    // shorten the shadow walks: the same image to the bit, fewer fetches.
-    const DecalWallConfig config{.bricks = {.size = 128}, .surface = {.pyramid = true}};
-    DecalWallEffect plain(cl(), config), mapped(cl(), config);
-    const Mesh plane(makePlane(kWall));
-    DirectionalLight light;
-    light.direction = {-0.8f, 0.55f, 0.45f};
-    const std::optional<ClearanceLight> clearance =
-        flatSurfaceLight(SurfaceFrame::ofPlane(kWall, kWallModel), light, mapped.material());
-    ASSERT_TRUE(clearance);
-    mapped.setClearanceLight(clearance);
-    for (DecalWallEffect* wall : {&plain, &mapped}) {
-        for (int i = 0; i < 6; ++i) wall->shoot(0.2 + 0.27 * i, 0.3 + 0.23 * i);
-        wall->explode(1.0, 1.0, 7);
-        wall->update(1.0 / 30.0);
-    }
-    ASSERT_FALSE(plain.textures().clearanceLight());
-    ASSERT_EQ(mapped.textures().clearanceLight(), clearance);
-
-    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.4f, 1.15f, 0.15f);
-    camera.aspect = 1.0f;
-    SurfaceRenderer renderer;
-    RenderTarget target(256, 256, true);
-    auto draw = [&](const DecalWallEffect& wall) {
-        target.bind();
-        target.clear();
-        renderer.draw(plane, kWallModel, wall.textures(), wall.material(), camera, light,
-                      {.technique = Technique::Hierarchical,
-                       .traceOutput = true,
-                       .texelShadows = TexelShadowChoice::Off}); // every shadow ray walks
-        return std::pair{target.readColor(), target.readTrace()};
-    };
-    const auto [plainImage, plainTrace] = draw(plain);
-    const auto [mappedImage, mappedTrace] = draw(mapped);
-    ASSERT_EQ(plainImage.pixels.size(), mappedImage.pixels.size());
-    int differ = 0, drawn = 0;
-    for (size_t i = 0; i < plainImage.pixels.size(); ++i) differ += plainImage.pixels[i] != mappedImage.pixels[i];
-    double fetchesPlain = 0, fetchesMapped = 0;
-    for (size_t i = 0; i < plainTrace.size(); ++i) {
-        fetchesPlain += plainTrace[i].w;
-        fetchesMapped += mappedTrace[i].w;
-        drawn += plainTrace[i].w > 0.0f;
-    }
-    std::printf("[clearance] decal wall: %d of %d pixels drawn; fetches per pixel %.2f without the map, %.2f with\n",
-                drawn, int(plainTrace.size()), fetchesPlain / std::max(drawn, 1), fetchesMapped / std::max(drawn, 1));
-    if (differ) {
-        writeImage(outputPath("users_clearance_plain.png"), plainImage);
-        writeImage(outputPath("users_clearance_mapped.png"), mappedImage);
-    }
-    EXPECT_EQ(differ, 0) << "colour channels differ (images in the test output folder)";
-    EXPECT_GT(drawn, 256 * 256 / 2); // the wall fills most of the frame
-    EXPECT_LT(fetchesMapped, 0.95 * fetchesPlain);
-}
-
 TEST_F(Users, PickingMissesOutsideThePatchAndLookingAway) {
     DecalWallEffect wall(cl(), {.bricks = {.size = 128}});
     const SurfaceFrame frame = SurfaceFrame::ofPlane(kWall, kWallModel);

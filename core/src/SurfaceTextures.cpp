@@ -159,20 +159,6 @@ void SurfaceTextures::uploadPyramid(const float* levels) {
     pyramidBuilt();
 }
 
-void SurfaceTextures::uploadClearance(const float* map, const ClearanceLight& light) {
-    if (!pyramid_.id()) throw Error("uploadClearance: these surface textures were made without a pyramid");
-    light.validate();
-    if (!clearance_.id()) { // allocated on first use: only surfaces shadowed by a fixed light have one
-        clearance_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(clearance_.id(), 1, GL_R32F, config_.width, config_.height));
-        glTextureParameteri(clearance_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(clearance_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    HFX_GL_CHECK(glTextureSubImage2D(clearance_.id(), 0, 0, 0, config_.width, config_.height, GL_RED, GL_FLOAT, map));
-    clearanceLight_ = light;
-}
-
 void SurfaceTextures::uploadTexels(const void* texels) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     HFX_GL_CHECK(glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,

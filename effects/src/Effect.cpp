@@ -9,10 +9,6 @@ void Effect::setMaterial(const SurfaceMaterial& material) {
     material_ = material;
 }
 
-void Effect::setClearanceLight(const std::optional<ClearanceLight>& light) {
-    const_cast<SurfacePipeline&>(surface()).setClearanceLight(light);
-}
-
 // The pipelines are the derived class's members; the base only sequences them.
 void Effect::begin(StageTiming timing) {
     for (const SurfacePipeline* s : surfaces()) const_cast<SurfacePipeline*>(s)->begin(timing);

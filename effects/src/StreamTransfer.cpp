@@ -14,7 +14,7 @@ constexpr size_t kAlignment = 256; // GL_PIXEL_UNPACK_BUFFER offsets, and the ca
 size_t aligned(size_t bytes) { return (bytes + kAlignment - 1) / kAlignment * kAlignment; }
 
 const char* streamName(int stream) {
-    static const char* const kNames[] = {"texels", "pyramid", "clearance map", "albedo", "shading channels"};
+    static const char* const kNames[] = {"texels", "pyramid", "albedo", "shading channels"};
     return kNames[stream];
 }
 

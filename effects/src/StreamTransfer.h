@@ -35,7 +35,7 @@ namespace hfx {
 
 class StreamTransfer {
 public:
-    enum Stream { Texels, Pyramid, Clearance, Albedo, Channels, kStreams };
+    enum Stream { Texels, Pyramid, Albedo, Channels, kStreams };
 
     /// path: TransferPath::Staged or TransferPath::GlSharing (the latter needs cl.sharesGl()).
     StreamTransfer(ClContext& cl, TransferPath path);

@@ -108,20 +108,6 @@ void SurfacePipeline::setAlbedo(const Image& albedo) {
     for (auto& t : textures_) t->setAlbedo(albedo);
 }
 
-void SurfacePipeline::setClearanceLight(const std::optional<ClearanceLight>& light) {
-    if (light) {
-        if (!config_.options.pyramid)
-            throw Error("SurfacePipeline::setClearanceLight: the clearance map needs the height pyramid "
-                        "(SurfaceOptions::pyramid)");
-        light->validate();
-        if (!clearance_) { // the map's walk reads the pyramid on the device
-            if (!pyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
-            clearance_ = std::make_unique<ClearanceMap>(cl_, config_.width, config_.height, config_.edges);
-        }
-    }
-    light_ = light;
-}
-
 void SurfacePipeline::wait() {
     clGuard("SurfacePipeline: waiting for the device", [&] { cl_.queue().finish(); });
 }
@@ -146,9 +132,7 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     sobel_.run(heights);
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
-    builtFor_ = light_;
-    if (uploadsPyramid_ || builtFor_) pyramid_->build(heights);
-    if (builtFor_) clearance_->build(heights, *pyramid_, *builtFor_);
+    if (uploadsPyramid_) pyramid_->build(heights);
     state_ = State::Derived;
 }
 
@@ -169,7 +153,6 @@ void SurfacePipeline::submit(const cl::Buffer* albedo, const cl::Buffer* channel
         streams_->enqueue(StreamTransfer::Texels, source, texelBytes(config_.options.format) * texels);
         if (uploadsPyramid_)
             streams_->enqueue(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float));
-        if (builtFor_) streams_->enqueue(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float));
         if (albedo_()) streams_->enqueue(StreamTransfer::Albedo, albedo_, 4 * texels);
         if (channels_()) streams_->enqueue(StreamTransfer::Channels, channels_, 4 * texels);
     }
@@ -233,11 +216,6 @@ void SurfacePipeline::finish() {
         uploadStream(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float),
                      "uploading the pyramid",
                      [&](const void* levels) { back.uploadPyramid(static_cast<const float*>(levels)); });
-    if (builtFor_)
-        uploadStream(StreamTransfer::Clearance, clearance_->buffer(), texels * sizeof(float), "uploading the clearance map",
-                     [&](const void* map) { back.uploadClearance(static_cast<const float*>(map), *builtFor_); });
-    else
-        back.dropClearance();
     if (albedo_())
         uploadStream(StreamTransfer::Albedo, albedo_, 4 * texels, "uploading the albedo",
                      [&](const void* rgba) { back.uploadAlbedo(static_cast<const unsigned char*>(rgba)); });

@@ -91,8 +91,8 @@ namespace {
 constexpr GLuint kTextureUnits[] = {HFX_UNIT_SURFACE,  HFX_UNIT_ALBEDO,      HFX_UNIT_ENVIRONMENT, HFX_UNIT_PYRAMID,
                                     HFX_UNIT_SURFACE1, HFX_UNIT_SURFACE2,    HFX_UNIT_SURFACE3,    HFX_UNIT_ALBEDO1,
                                     HFX_UNIT_ALBEDO2,  HFX_UNIT_ALBEDO3,     HFX_UNIT_CHANNELS,    HFX_UNIT_SHADOW_MAP,
-                                    HFX_UNIT_PYRAMID1, HFX_UNIT_PYRAMID2,    HFX_UNIT_PYRAMID3,    HFX_UNIT_CLEARANCE,
-                                    HFX_UNIT_TEXEL_SHADOWS, HFX_UNIT_BEAM_START};
+                                    HFX_UNIT_PYRAMID1, HFX_UNIT_PYRAMID2,    HFX_UNIT_PYRAMID3,    HFX_UNIT_TEXEL_SHADOWS,
+                                    HFX_UNIT_BEAM_START};
 constexpr bool unitsDistinct() {
     for (size_t i = 0; i < std::size(kTextureUnits); ++i) {
         if (kTextureUnits[i] >= HFX_TEXTURE_UNITS) return false;
@@ -123,8 +123,6 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.rings = v.rings && v.shading == Shading::Water;
     v.environment = v.environment && v.shading == Shading::Water;
     v.shadowMap = v.shadowMap && !v.caster; // a caster writes depth only
-    // Only the exact tracer's shadow walk reads the clearance map.
-    v.clearance = v.clearance && !v.caster && v.selfShadows && v.layers == 1 && options.technique == Technique::Hierarchical;
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
@@ -145,7 +143,6 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_ENVIRONMENT", v.environment ? "1" : "0"},
                                                    {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
                                                    {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"},
-                                                   {"HFX_CLEARANCE", v.clearance ? "1" : "0"},
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
                                                    {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"},
@@ -269,7 +266,6 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .maxSamples = material.maxSamples,
                       .shadowSamples = material.shadowSamples,
                       .clipToPatch = material.clipToPatch ? 1 : 0,
-                      .pyramidLevels = textures.pyramidLevels(),
                       .varianceFloor = varianceFloor(textures.config().format),
                       .wrap = wrapFlags(edges),
                       .pixelBudget = material.pixelBudget};
@@ -298,7 +294,6 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                                .rings = material.water.ringCount > 0,
                                                .environment = material.water.environment != 0,
                                                .caster = caster != nullptr,
-                                               .clearance = frame.clearance,
                                                .texelShadows = frame.texelShadows != nullptr,
                                                .beamStart = frame.beamStart,
                                                .pyramidAtlas = frame.atlas});
@@ -331,7 +326,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     mesh.draw();
 }
 
-std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
+std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
                                                const SurfaceMaterial& material) {
     if (!material.shadows || !(material.depthScale > 0.0f) || !(material.shadowSharpness > 1.0f)) return std::nullopt;
     const double t = glm::length(frame.tangent), b = glm::length(frame.bitangent);
@@ -340,7 +335,7 @@ std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const 
     const glm::dmat3 worldFromTexture(frame.tangent, frame.bitangent, frame.normal * std::sqrt(t * b));
     const glm::dvec3 l = glm::inverse(worldFromTexture) * glm::normalize(glm::dvec3(light.direction));
     if (!(l.z > 0.0)) return std::nullopt;
-    return ClearanceLight::of(glm::vec2(glm::dvec2(l) / l.z * double(material.depthScale)), material.shadowSharpness);
+    return ShadowLight::of(glm::vec2(glm::dvec2(l) / l.z * double(material.depthScale)), material.shadowSharpness);
 }
 
 void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look) {

@@ -14,15 +14,10 @@
 #ifndef HFX_BOUNDED_SEARCH
 #define HFX_BOUNDED_SEARCH 0
 #endif
-// HFX_CLEARANCE 1: the surface has a clearance map for the light (SurfaceTextures::
-// clearanceLight; the hierarchical tracer's shadow walk stops where it says).
-#ifndef HFX_CLEARANCE
-#define HFX_CLEARANCE 0
-#endif
-// HFX_TEXEL_SHADOWS 1: the surface has the exact self-shadow of its light at every sample
-// (hfx::TexelShadows, which the exact tracer's unit has hfx::TexelShadowPass draw with the walk
-// itself); hier's shadow reads it inside cells whose four samples agree. Never in the pass itself.
-// Its light and the clearance map's, where both are read, are one (u_clearance).
+// HFX_TEXEL_SHADOWS 1: the draw has the exact self-shadow of its light at the field's samples
+// (hfx::TexelShadows, which the exact tracer's unit has hfx::TexelShadowPass draw with hier's
+// walk), read by hfx_texel_shadow where the four samples around a point agree
+// (surface/shadow.glsl). Their light is u_shadowLight.
 #ifndef HFX_TEXEL_SHADOWS
 #define HFX_TEXEL_SHADOWS 0
 #endif
@@ -53,9 +48,6 @@ layout(rg32f, binding = HFX_IMAGE_PYRAMID) readonly uniform image2D i_pyramid;
 layout(rgba32f, binding = HFX_IMAGE_CELLS) readonly uniform image2D i_cells;
 #else
 layout(binding = HFX_UNIT_PYRAMID) uniform sampler2D s_pyramid;
-#endif
-#if HFX_CLEARANCE
-layout(binding = HFX_UNIT_CLEARANCE) uniform sampler2D s_clearance; // R32F: per level-0 cell, the climb past which its light rays are clear
 #endif
 #if HFX_TEXEL_SHADOWS
 layout(binding = HFX_UNIT_TEXEL_SHADOWS) uniform sampler2D s_texelShadows; // R32F: the shadow at each sample
@@ -149,8 +141,6 @@ float hfx_layers_height(vec2 uv, float level) {
 // surfaces (a sum of bilinear patches on different grids has no closed-form cell solve).
 ivec2 hfx_size() { return textureSize(s_surface, 0); }
 
-int hfx_levels() { return u_pyramidLevels; }
-
 // A pyramid cell's texel at a level whose last texel is `last`: wrapped or clamped as the field's
 // edges are. The pyramid's sizes are powers of two (SurfaceTexturesConfig::pyramid), so a wrap is
 // a bitwise and, negative cells included (two's complement); integer % has no vector form on a
@@ -204,21 +194,9 @@ vec2 hfx_bounds(ivec2 cell, int level) {
 }
 
 // A light ray moving perClimb texcoords per unit of height climbed goes the way of the surface's
-// shadow light (u_clearance: its move per climb, penumbra, slack), within its slack.
+// shadow light (u_shadowLight: its move per climb, penumbra, slack), within its slack.
 bool hfx_along_shadow_light(vec2 perClimb) {
-    return all(lessThanEqual(abs(perClimb - u_clearance.xy), vec2(u_clearance.w)));
-}
-
-// The clearance map's climb for a light ray from `cell` (trace/README.md): read only for rays of
-// the map's light (their move per climb within its slack, a penumbra no wider), else no limit.
-float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
-#if HFX_CLEARANCE
-    if (hfx_along_shadow_light(perClimb) && penumbra <= u_clearance.z * (1.0 + 1e-6)) {
-        g_fetches += 1.0;
-        return texelFetch(s_clearance, hfx_pyramid_texel(cell, hfx_size() - 1), 0).r;
-    }
-#endif
-    return 1e30;
+    return all(lessThanEqual(abs(perClimb - u_shadowLight.xy), vec2(u_shadowLight.w)));
 }
 
 // The texel shadows (HFX_TEXEL_SHADOWS) for a light ray from p (cell space) of their light (its
@@ -232,7 +210,7 @@ float hfx_clearance(ivec2 cell, vec2 perClimb, float penumbra) {
 bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) {
     shadow = 0.0;
 #if HFX_TEXEL_SHADOWS
-    if (hfx_along_shadow_light(perClimb) && abs(penumbra - u_clearance.z) <= 1e-6 * u_clearance.z) {
+    if (hfx_along_shadow_light(perClimb) && abs(penumbra - u_shadowLight.z) <= 1e-6 * u_shadowLight.z) {
         // Every stride-th sample (TexelShadowPass's stride: a power of two, so q is exact).
         const ivec2 grid = textureSize(s_texelShadows, 0);
         const vec2 q = p * (vec2(grid) / vec2(hfx_size())), cell = floor(q), f = q - cell;

@@ -23,7 +23,7 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     int u_maxSamples;         // ... and at grazing angles
     int u_shadowSamples;
     int u_clipToPatch;        // 1: discard rays that leave u_patchBounds (finite patches)
-    int u_pyramidLevels;      // levels of s_pyramid, 0 without one
+    int u_reserved;           // keeps the layout
     float u_varianceFloor;    // slope variance the storage format's rounding alone shows (not roughness)
     ivec2 u_wrap;             // per axis: 1 where the field's edges wrap, 0 where they clamp
     float u_untracedHeight;   // the untraced layers' share of the height: sum weight * rest height
@@ -38,9 +38,9 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     float u_shadowBias;       // depth bias, in the map's window depth
     float u_shadowOffset;     // normal offset of the lookup, world units
     float u_shadowTexel;      // 1 / the map's size
-    // The clearance map's light (hfx::ClearanceLight; s_clearance on unit 15, read where
-    // HFX_CLEARANCE is 1): texcoords per unit climbed, penumbra, slack
-    vec4 u_clearance;
+    // The texel shadows' light (hfx::ShadowLight; read where HFX_TEXEL_SHADOWS is 1): texcoords
+    // per unit climbed, penumbra, slack
+    vec4 u_shadowLight;
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

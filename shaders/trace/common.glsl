@@ -32,6 +32,13 @@ struct HfxShadowRay {
 const int HFX_MAX_SAMPLES = 256;       // hard bound of every search loop; rays ask for fewer
 const int HFX_MAX_SHADOW_SAMPLES = 32;
 
+// The height-bounds pyramid's level count (hfx_bounds' levels 0 .. hfx_levels() - 1): the last
+// level is one texel over the whole power-of-two field.
+int hfx_levels() {
+    const ivec2 size = hfx_size();
+    return findMSB(max(size.x, size.y)) + 1;
+}
+
 HfxHit hfx_hit_at(HfxRay ray, float t) { return HfxHit(ray.uv - ray.parallax * t, t); }
 
 // Linear search in depth fraction t (ray height 1 - t): the first of its equal steps whose sample

@@ -236,10 +236,8 @@ float hfx_beam_depth(vec2 p0, vec2 dir, float reach) {
 // just short of it. Two cuts that keep all this exact: once a blocker has set r below
 // 1 / sharpness, only cells that could set it lower are opened (the cone edge rises to the ray
 // lowered by r of its climb), and the walk ends where the cone edge passes the field's maximum
-// (the pyramid's top texel), or sooner where a clearance map says nothing further can darken it.
-// Where the caller has this walk's shadow at the field's samples for the ray's light (texel
-// shadows, hfx_texel_shadow) and the four around the point agree on the hard shadow, their blend
-// is returned without a walk.
+// (the pyramid's top texel). (The renderer reads this walk's shadow from the texel shadows
+// instead where they hold it: surface/shadow.glsl.)
 const float HFX_SHADOW_EPSILON = 1e-4; // relief depths: above the rounding of h0 and of the patch
 const float HFX_PENUMBRA_MAX = 0.999;   // 1 means a blocker above the ray, nothing less
 
@@ -253,15 +251,10 @@ float hfx_shadow(HfxShadowRay ray) {
     const int maxSteps = hfx_max_steps(dir, topLevel);
     const float penumbra = 1.0 / max(ray.sharpness, 1e-3); // r from which on the point is lit
     const float coneSlope = climb * (1.0 - penumbra);        // the cone edge's rise per unit t
-    float known;
-    if (hfx_texel_shadow(p0, ray.span / climb, penumbra, known)) return known;
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
     float nearest = 1e30; // the smallest clearance ratio met
     const float fieldMax = hfx_field_max();
-    // A clearance map (trace/README.md) ends the walk sooner where it knows nothing further can
-    // darken the point: at 0, before it starts.
-    const float tClear = hfx_clearance(ivec2(floor(p0)), ray.span / climb, penumbra) / climb;
-    const float tEnd = min(coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0, tClear);
+    const float tEnd = coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0;
     HfxWalk w = hfx_walk_begin(p0, dir, 0.0, 0);
     for (int steps = 0; steps < maxSteps && w.t < tEnd; ++steps) {
         const float tExit = hfx_walk_exit(w);

@@ -12,7 +12,6 @@
 #include "hfx/compute/GasField.h"
 #include "hfx/compute/InverseRealFft.h"
 #include "hfx/compute/BoundsPyramid.h"
-#include "hfx/compute/ClearanceMap.h"
 #include "hfx/compute/NoiseField.h"
 #include "hfx/compute/OceanField.h"
 #include "hfx/compute/OceanQuery.h"
@@ -249,26 +248,6 @@ void BM_Pyramid(benchmark::State& state) {
             [&] { benchmark::DoNotOptimize(pyramidReference(heights, n, n)); });
 }
 
-/// The clearance map for the accuracy benches' light (60 degrees off the normal, depth 0.1 of the
-/// field's width: tan 60 * 0.1 * n texels per unit climbed) from a built pyramid, on random
-/// heights (second argument 0: walks find a blocker at once) or smooth waves (1: three sines,
-/// wavelengths of a quarter to a tenth of the field; cells stay clear for long stretches).
-void BM_ClearanceMap(benchmark::State& state) {
-    const int n = int(state.range(0));
-    const std::vector<float> heights =
-        state.range(1) == 1 ? sumOfSines(n, {{0.25, 4, 1, 0.0}, {0.12, -3, 7, 0.0}, {0.05, 10, 3, 0.0}}) : randomHeights(n);
-    cl::Buffer input(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, heights.size() * 4,
-                     const_cast<float*>(heights.data()));
-    BoundsPyramid pyramid(cl(), n, n, EdgeMode::Wrap);
-    pyramid.build(input);
-    ClearanceMap map(cl(), n, n, EdgeMode::Wrap);
-    const float perClimb = float(std::tan(std::numbers::pi / 3) * 0.1);
-    const ClearanceLight light = ClearanceLight::of({perClimb * 0.8f, perClimb * 0.6f}, 2.0f);
-    measure(state, [&] { map.build(input, pyramid, light); }, 4.0 * n * n * 2.0, // heights and map (the boxes hit the cache)
-            n <= 256 ? std::function<void()>([&] { benchmark::DoNotOptimize(clearanceReference(heights, n, EdgeMode::Wrap, light)); })
-                     : std::function<void()>());
-}
-
 void BM_Gas(benchmark::State& state) {
     // A full step: jets, confinement, advection of u, v and dye (semi-Lagrangian, or MacCormack
     // when the second argument is 1), 40 pressure sweeps.
@@ -363,7 +342,6 @@ BENCHMARK(BM_DecalRebuild)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pyramid)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ClearanceMap)->Args({256, 0})->Args({256, 1})->Args({512, 0})->Args({512, 1})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Waves)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Noise)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Ocean)

@@ -5,7 +5,6 @@
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/GasField.h"
 #include "hfx/compute/WaveField.h"
-#include "hfx/core/ClearanceLight.h"
 #include "hfx/core/EdgeMode.h"
 #include "hfx/compute/shared/GasMath.h"
 
@@ -27,11 +26,6 @@ void decalsReference(const DecalConfig& config, const std::vector<float>& base, 
 /// Level 0 and the reductions of the height-bounds pyramid as (max, min) pairs, concatenated like
 /// BoundsPyramid's buffer.
 std::vector<float> pyramidReference(const std::vector<float>& heights, int width, int height);
-
-/// The clearance map (compute/kernels/clearance.cl) of a power-of-two n x n field in double,
-/// stepping forward: per cell, the first step's slope test and the later steps' boxes of cell
-/// maxima, with the kernel's margins.
-std::vector<double> clearanceReference(const std::vector<float>& h, int n, EdgeMode edges, const ClearanceLight& light);
 
 // One step of GasField, written out on the host with the same per-cell functions (without the
 // dye-mass correction, a global rescale that DyeMassIsConserved checks).

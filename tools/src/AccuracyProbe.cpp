@@ -121,48 +121,25 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
     surface_.run(field_.buffer());
 }
 
-std::optional<ClearanceLight> AccuracyProbe::shadowLight(const AccuracyConfig& config) const {
+std::optional<ShadowLight> AccuracyProbe::shadowLight(const AccuracyConfig& config) const {
     if (!config.shadows || textures().pyramid() == 0) return std::nullopt;
     DirectionalLight l;
     l.direction = config.light;
     return flatSurfaceLight(SurfaceFrame::ofPlane({.size = kPlaneSize}), l, materialOf(config));
 }
 
-void AccuracyProbe::useClearance(const AccuracyConfig& config) {
-    const std::optional<ClearanceLight> light = config.clearance ? shadowLight(config) : std::nullopt;
-    if (light == clearance_) return;
-    surface_.setClearanceLight(light);
-    surface_.run(field_.buffer());
-    clearance_ = light;
-}
-
-GlTime AccuracyProbe::timeClearance(const AccuracyConfig& config, int repeats) {
-    useClearance(config);
-    const std::optional<ClearanceLight> texelLight = config.texelShadows ? shadowLight(config) : std::nullopt;
-    if (!clearance_ && !texelLight) return {};
-    std::vector<GlTime> with, without;
-    // A whole frame of the surface and, with texel shadows, their pass (the exact tracer draws
-    // it before a draw that reads them; it builds the pyramid it walks first): on the device,
-    // the kernels (event profiling) and the GL passes (timer queries); on the wall clock, all of it.
-    auto frame = [&](bool extras) {
-        surface_.setClearanceLight(extras ? clearance_ : std::nullopt);
-        cl_.recordKernelTimes(true);
-        GlTime t = timeGl(timer_, "frame", [&] {
-            surface_.run(field_.buffer());
-            if (extras && texelLight) texelPass_.draw(textures(), *texelLight, config.texelStride, texels_);
-        });
-        cl_.recordKernelTimes(false);
-        for (const auto& [kernel, ms] : cl_.takeKernelTimes()) t.gpu += ms;
-        return t;
-    };
-    for (int i = -kWarmupFrames; i < repeats; ++i) { // warm-ups: the kernel's and the pass's builds
-        const GlTime a = frame(true), b = frame(false);
-        if (i >= 0) with.push_back(a), without.push_back(b);
+GlTime AccuracyProbe::timeTexelShadows(const AccuracyConfig& config, int repeats) {
+    const std::optional<ShadowLight> light = shadowLight(config);
+    if (!light) return {};
+    std::vector<GlTime> times;
+    // The pass as the exact tracer runs it before a draw that reads them, for heights just
+    // uploaded: the pyramid's build from them first, then the walks (GPU time by timer queries).
+    for (int i = -kWarmupFrames; i < repeats; ++i) { // warm-ups: the programs' builds
+        surface_.run(field_.buffer());
+        const GlTime t = timeGl(timer_, "texel shadows", [&] { texelPass_.draw(textures(), *light, config.texelStride, texels_); });
+        if (i >= 0) times.push_back(t);
     }
-    surface_.setClearanceLight(clearance_);
-    surface_.run(field_.buffer());
-    const GlTime a = median(with), b = median(without);
-    return {a.gpu - b.gpu, a.wall - b.wall};
+    return median(times);
 }
 
 /// The draw options of config: its beam start, its texel shadows (forced either way: the probe
@@ -182,7 +159,6 @@ AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig&
     const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
-    useClearance(config);
     target_->bind();
     target_->clear();
     Camera drawn = camera;
@@ -351,7 +327,6 @@ FetchCounts AccuracyProbe::countFetches(Technique technique, const AccuracyConfi
     RenderTarget target(width, height, true);
     DirectionalLight light;
     light.direction = config.light;
-    useClearance(config);
     target.bind();
     target.clear();
     renderer_.draw(timedPlane_, glm::mat4(1.0f), textures(), materialOf(config), timedCamera(config, width, height),
@@ -454,7 +429,6 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
                             .minSamples = config.minSamples,
                             .maxSamples = config.maxSamples,
                             .shadowSamples = material.shadowSamples,
-                            .pyramidLevels = t.pyramidLevels(),
                             .wrap = wrapFlags(t.config().edges)};
     if (!computeBlock_.id()) { // made once, refreshed every dispatch
         computeBlock_ = GlBuffer::create();
@@ -496,7 +470,6 @@ GlTime AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
     const SurfaceMaterial material = materialOf(config);
     DirectionalLight light;
     light.direction = config.light;
-    useClearance(config);
     std::vector<GlTime> times;
     for (int i = -std::max(warmups, 1); i < repeats; ++i) { // the first draw builds the shader
         target.bind();

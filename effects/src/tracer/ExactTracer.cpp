@@ -10,11 +10,10 @@
 #include "../GlStateGuard.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace hfx {
 
-std::optional<ClearanceLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
+std::optional<ShadowLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
                                              const SurfaceMaterial& material) {
     if (!mesh.patch()) return std::nullopt;
     const FlatPatch& p = *mesh.patch();
@@ -49,19 +48,14 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         for (size_t i = traced; i-- > 0;) bounds_.refresh(*layers[i].textures, i == 0 && hier);
         for (size_t i = 0; i < traced; ++i) layers[i].textures->bindPyramid(int(i));
     }
-    glBindTextureUnit(HFX_UNIT_CLEARANCE, 0);
     glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, 0);
     if (!hier) return frame;
 
     frame.texelShadows = texelShadowsFor(textures, mesh, model, viewProj, light, material, options, caster, frame);
-    // The clearance map and the texel shadows share their light's uniforms: the map is read only
-    // where it was built for the texel shadows' light (flatPatchLight both), and each ray of
-    // another light walks without either.
-    const std::optional<ClearanceLight> none;
-    const std::optional<ClearanceLight>& texelLight = frame.texelShadows ? frame.texelShadows->light() : none;
-    frame.clearance = textures.clearanceLight() && (!texelLight || textures.clearanceLight() == texelLight);
-    if (const auto& c = texelLight ? texelLight : textures.clearanceLight()) u.clearance = {c->uvPerClimb, c->penumbra, c->slack};
-    glBindTextureUnit(HFX_UNIT_CLEARANCE, frame.clearance ? textures.clearance() : 0);
+    if (frame.texelShadows) {
+        const ShadowLight& l = *frame.texelShadows->light();
+        u.shadowLight = {l.uvPerClimb, l.penumbra, l.slack};
+    }
     if (frame.texelShadows) glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, frame.texelShadows->texture());
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
@@ -90,15 +84,8 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     const double pixels = screenArea(corners, viewProj, viewport[2], viewport[3]);
     frame.pixelsPerTexel = pixels / (double(field.width) * field.height);
     if (options.texelShadows == TexelShadowChoice::Off) return nullptr;
-    std::optional<ClearanceLight> shadowLight = flatPatchLight(mesh, model, light, material);
+    const std::optional<ShadowLight> shadowLight = flatPatchLight(mesh, model, light, material);
     if (!shadowLight) return nullptr; // no shadow ray is traced
-    // A clearance map built for this light by a frame derived elsewhere (SurfaceFrame::ofPlane,
-    // rounding otherwise) serves its rays as the walk reads it: within its slack. Its light then
-    // stands in, so the texel shadows' walks and the draw's read the map alike.
-    if (const auto& c = textures.clearanceLight(); c && c->penumbra == shadowLight->penumbra &&
-                                                   std::abs(c->uvPerClimb.x - shadowLight->uvPerClimb.x) <= c->slack &&
-                                                   std::abs(c->uvPerClimb.y - shadowLight->uvPerClimb.y) <= c->slack)
-        shadowLight = c;
     // Every sample where that pays; under a pixel budget, every few samples where their spacing
     // on screen stays within it; forced on: the stride asked for, or the policy's, or every one.
     if (strides_.size() > 64) strides_.clear(); // meshes come and go: a held choice is a hint
@@ -146,8 +133,7 @@ void ExactTracer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Surfac
     ShaderProgram& beam = beam_[atlas ? 1 : 0];
     if (!beam.id())
         beam = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("trace/hier/beam.frag"),
-                             {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", "0"}, {"HFX_TEXEL_SHADOWS", "0"},
-                              {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
+                             {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
     // NDC x of the draw -> window x = vx + (x + 1) vw / 2 -> target x = window x / B.
     const glm::vec2 scale = glm::vec2(viewport[2], viewport[3]) / (float(kBeamBlock) * glm::vec2(width, height));
     const glm::vec2 offset = (2.0f * glm::vec2(viewport[0], viewport[1]) + glm::vec2(viewport[2], viewport[3])) /

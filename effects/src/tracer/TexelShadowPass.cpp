@@ -13,10 +13,9 @@
 namespace hfx {
 
 namespace {
-ShaderProgram texelProgram(bool clearance, bool atlas) {
+ShaderProgram texelProgram(bool atlas) {
     return ShaderProgram(surfaceStage("sky.vert"), surfaceStage("trace/hier/texelshadows.frag"),
-                         {{"HFX_LAYERS", "1"}, {"HFX_CLEARANCE", clearance ? "1" : "0"}, {"HFX_TEXEL_SHADOWS", "0"},
-                          {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
+                         {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
 }
 } // namespace
 
@@ -39,7 +38,7 @@ int texelShadowStride(double pixels, int width, int height, float pixelBudget, i
 
 TexelShadowPass::TexelShadowPass() : framebuffer_(GlFramebuffer::create()), empty_(GlVertexArray::create()) {}
 
-void TexelShadowPass::draw(const SurfaceTextures& textures, const ClearanceLight& light, int stride, TexelShadows& into) {
+void TexelShadowPass::draw(const SurfaceTextures& textures, const ShadowLight& light, int stride, TexelShadows& into) {
     if (!textures.pyramid())
         throw Error("TexelShadowPass::draw: the surface needs its height pyramid (SurfaceOptions::pyramid)");
     light.validate();
@@ -47,10 +46,9 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, const ClearanceLight
     if (!isTexelStride(stride, config.width, config.height))
         throw Error(str("TexelShadowPass::draw: the texel shadows' stride must be a power of two that divides the "
                         "field's ", config.width, "x", config.height, " samples, got ", stride));
-    const bool clearance = textures.clearanceLight() == light;
     const bool atlas = textures.pyramidLayout() == PyramidLayout::Atlas;
-    std::optional<ShaderProgram>& program = programs_[clearance ? 1 : 0][atlas ? 1 : 0];
-    if (!program) program = texelProgram(clearance, atlas);
+    std::optional<ShaderProgram>& program = programs_[atlas ? 1 : 0];
+    if (!program) program = texelProgram(atlas);
     const int width = config.width / stride, height = config.height / stride;
     if (!into.texture_ || into.width_ != width || into.height_ != height || into.edges_ != config.edges) {
         into = TexelShadows();
@@ -73,16 +71,14 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, const ClearanceLight
     const GpuScope scope("texel shadows");
     attachPassTarget(framebuffer_, into.texture_.id(), width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
-    SurfaceUniforms u{.pyramidLevels = textures.pyramidLevels(),
-                      .wrap = wrapFlags(config.edges),
-                      .clearance = {light.uvPerClimb, light.penumbra, light.slack}};
+    SurfaceUniforms u{.wrap = wrapFlags(config.edges),
+                      .shadowLight = {light.uvPerClimb, light.penumbra, light.slack}};
     updateBlock(block_, HFX_BLOCK_SURFACE, u);
     glDisable(GL_DEPTH_TEST);
     program->use();
     program->set("u_texelStride", stride);
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     textures.bindPyramid(0);
-    glBindTextureUnit(HFX_UNIT_CLEARANCE, clearance ? textures.clearance() : 0);
     glBindVertexArray(empty_.id());
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
     into.stride_ = stride;

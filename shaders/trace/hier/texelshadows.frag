@@ -2,8 +2,7 @@
 // The texel shadows of a flat surface under one light (hfx::TexelShadowPass): one fragment per
 // sample of the field, the exact tracer's self-shadow (trace/hier.glsl's hfx_shadow, the walk
 // every pixel would make) of a light ray from the sample at its own height, towards the pass's
-// light (u_clearance: texcoords per unit climbed, penumbra). With HFX_TEXEL_SHADOWS 0, and
-// HFX_CLEARANCE 1 where the surface has a clearance map for the same light (the walks read it).
+// light (u_shadowLight: texcoords per unit climbed, penumbra).
 // Sample (i, j) sits at texcoords ((i, j) + 0.5) / size; the target holds every u_texelStride-th
 // sample on each axis (its texel (a, b) is sample (a, b) * stride), the viewport is its size.
 
@@ -22,9 +21,9 @@ void main() {
     HfxShadowRay ray;
     ray.h0 = texelFetch(s_surface, texel, 0).w;
     ray.uv = (vec2(texel) + 0.5) / vec2(size);
-    ray.span = u_clearance.xy * (1.0 - ray.h0);
+    ray.span = u_shadowLight.xy * (1.0 - ray.h0);
     ray.level = 0.0;
     ray.samples = 0;
-    ray.sharpness = 1.0 / u_clearance.z;
+    ray.sharpness = 1.0 / u_shadowLight.z;
     o_shadow = vec4(ray.h0 < 1.0 ? hfx_shadow(ray) : 0.0, 0.0, 0.0, 1.0);
 }

@@ -12,7 +12,6 @@
 //
 // Owns its textures. Thread: the thread whose GL context is current.
 
-#include "hfx/core/ClearanceLight.h"
 #include "hfx/core/EdgeMode.h"
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"
@@ -70,13 +69,6 @@ public:
     /// must be the stored ones (a float32 surface's), or the bounds would not hold what the
     /// tracers read.
     void uploadPyramid(const float* levels);
-    /// Replaces the clearance map (compute/ClearanceMap.h: width*height floats, row 0 at v = 0)
-    /// and records the light it was built for; the exact tracer's shadow walk reads it where a
-    /// ray's direction and penumbra match that light. Needs the pyramid (the map is its walk's).
-    void uploadClearance(const float* map, const ClearanceLight& light);
-    /// Forgets the clearance map: nothing reads it until the next upload (the heights changed
-    /// and no map was built for them).
-    void dropClearance() { clearanceLight_.reset(); }
     /// Replaces the albedo with width*height RGBA8 texels, row 0 at v = 0 (a device-coloured
     /// field), and regenerates its mip chain.
     void uploadAlbedo(const unsigned char* rgba);
@@ -125,9 +117,6 @@ public:
     /// calls it: the cache's state, not the surface's, hence const).
     bool cellsCurrent() const { return cellsVersion_ == texelsVersion_; }
     void cellsBuilt() const { cellsVersion_ = texelsVersion_; }
-    GLuint clearance() const { return clearance_.id(); } ///< 0 before the first uploadClearance
-    /// The light of the current clearance map; empty when there is none to read.
-    const std::optional<ClearanceLight>& clearanceLight() const { return clearanceLight_; }
     GLuint albedo() const { return albedo_.id(); }
     GLuint channels() const { return channels_.id(); }
     const SurfaceTexturesConfig& config() const { return config_; }
@@ -144,12 +133,11 @@ private:
     int levels_ = 1;
     int pyramidLevels_ = 0;
     PyramidLayout layout_ = PyramidLayout::MipChain;
-    GlTexture surface_, albedo_, channels_, pyramid_, clearance_;
+    GlTexture surface_, albedo_, channels_, pyramid_;
     mutable GlTexture cells_;
     std::uint64_t texelsVersion_ = 1; ///< counts uploadTexels
     mutable std::uint64_t cellsVersion_ = 0; ///< the texels' version the cells were built from
     mutable std::uint64_t pyramidVersion_ = 0; ///< ... and the pyramid
-    std::optional<ClearanceLight> clearanceLight_;
 };
 
 } // namespace hfx

@@ -48,10 +48,6 @@ public:
     const SurfaceMaterial& material() const { return material_; }
     /// Replaces the material; throws hfx::Error naming the bad field and changes nothing.
     void setMaterial(const SurfaceMaterial& material);
-    /// The light whose clearance map each frame of the effect's first surface builds, where that
-    /// surface is drawn flat (flatPatchLight; SurfacePipeline::setClearanceLight, which needs the
-    /// pyramid). Empty: none. (hier draws no layered surface.)
-    void setClearanceLight(const std::optional<ClearanceLight>& light);
     /// The last frame's stage times, over all the effect's surfaces.
     StageTimes lastTimes() const;
     TransferPath transferPath() const { return surface().transferPath(); }

@@ -25,7 +25,6 @@
 
 #include "hfx/compute/HeightSource.h"
 #include "hfx/compute/BoundsPyramid.h"
-#include "hfx/compute/ClearanceMap.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/SurfacePacker.h"
 #include "hfx/core/Image.h"
@@ -76,7 +75,7 @@ struct StageTimes {
     // The parts of compute, each waited for on its own (so they add up to compute):
     double field = 0.0;   ///< the source's step
     double normals = 0.0; ///< Sobel
-    double extra = 0.0;   ///< the clearance map (and its pyramid), the effect's passes, packing
+    double extra = 0.0;   ///< the effect's passes, packing (and llvmpipe's pyramid)
     // With StageTiming::Overlapped the parts are not waited for one by one: compute is then the
     // time finish() still had to wait, the part the draw did not hide.
     bool staged = true; ///< the parts above were waited for one by one
@@ -116,12 +115,6 @@ public:
     /// begin(Staged), derive, submit, finish: a whole frame of `heights` now.
     void run(const cl::Buffer& heights, const cl::Buffer* albedo = nullptr);
 
-    /// The light whose clearance map (ClearanceMap: hier's light walks end where it says nothing
-    /// further can darken the point; the same shadows, to the bit) each frame builds on the
-    /// device from the next derive() on, for a surface drawn flat (one light direction in its
-    /// texture space: flatPatchLight). Needs the pyramid. Empty: none (the default). The
-    /// renderer reads the map for rays of that light only.
-    void setClearanceLight(const std::optional<ClearanceLight>& light);
     /// The textures to draw now (they change at each finish(): ask every frame).
     const SurfaceTextures& textures() const { return *textures_[front_]; }
     /// A fixed albedo for both texture pairs (an image of the surface's size, or 1x1).
@@ -144,13 +137,10 @@ private:
     std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
     std::unique_ptr<StreamTransfer> streams_; ///< the Staged and GlSharing paths' memory, else null
     SobelNormals sobel_;
-    /// The pyramid on the compute device: the clearance map's, and where uploadsPyramid_ the
+    /// The pyramid on the compute device, where uploadsPyramid_: the textures'
     /// textures' (GlWorkarounds::pyramidFromCompute)
     std::unique_ptr<BoundsPyramid> pyramid_;
     bool uploadsPyramid_ = false;
-    std::unique_ptr<ClearanceMap> clearance_; ///< made by the first setClearanceLight
-    std::optional<ClearanceLight> light_;      ///< the map's light from the next derive()
-    std::optional<ClearanceLight> builtFor_;   ///< the light of this frame's map, if it has one
     std::unique_ptr<SurfacePacker> packer_; ///< null for Float32: the normals are the texels
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;

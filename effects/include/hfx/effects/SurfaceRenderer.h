@@ -131,7 +131,7 @@ struct DirectionalLight {
 /// the material, as shaders/surface.frag derives each ray (flatPatchLight: of a flat mesh). Empty
 /// where no shadow ray is traced (the light at or below the surface's plane, no self-shadows, no
 /// depth).
-std::optional<ClearanceLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
+std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
                                                const SurfaceMaterial& material);
 
 /// One layer of a layered surface (the ocean's cascades): its textures, read at the mesh's
@@ -186,9 +186,6 @@ struct SurfaceVariant {
     bool rings = false;         ///< HFX_RINGS: water with impact rings (WaterLook::ringCount > 0)
     bool environment = false;   ///< HFX_ENVIRONMENT: water reflecting an image (WaterLook::environment)
     bool caster = false;        ///< HFX_SHADOW_CASTER: drawing into a shadow map
-    /// HFX_CLEARANCE: hier's self-shadows with the surface's clearance map (SurfaceTextures::
-    /// clearanceLight; rays of other lights walk without it)
-    bool clearance = false;
     /// HFX_TEXEL_SHADOWS: hier's self-shadows with the texel shadows (ExactTracer,
     /// DrawOptions::texelShadows): a ray of their light walks only where the hard shadow changes
     /// between the four samples around its point

@@ -37,7 +37,7 @@ struct SurfaceUniforms {
     int maxSamples = 1;
     int shadowSamples = 1;
     int clipToPatch = 0;
-    int pyramidLevels = 0;
+    int reserved = 0; ///< keeps the std140 layout
     float varianceFloor = 0.0f;
     alignas(8) glm::ivec2 wrap{1, 1}; ///< std140 aligns an ivec2 to 8 bytes
     float untracedHeight = 0.0f;
@@ -52,9 +52,9 @@ struct SurfaceUniforms {
     float shadowOffset = 0.0f;      ///< normal offset of the lookup, world units (about 1.5 map texels)
     float shadowTexel = 0.0f;       ///< 1 / the map's size (the filter's tap spacing)
     int padding = 0;                ///< std140 aligns the vec4 below to 16 bytes
-    /// The clearance map's light (ClearanceLight: uvPerClimb, penumbra, slack; sampler unit 15,
-    /// read where HFX_CLEARANCE is 1).
-    glm::vec4 clearance{0.0f};
+    /// The texel shadows' light (ShadowLight: uvPerClimb, penumbra, slack; read where
+    /// HFX_TEXEL_SHADOWS is 1).
+    glm::vec4 shadowLight{0.0f};
 };
 
 struct WaterUniforms {
@@ -94,7 +94,7 @@ static_assert(offsetof(SurfaceUniforms, pixelBudget) == 332);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
 static_assert(offsetof(SurfaceUniforms, shadowBias) == 464);
-static_assert(offsetof(SurfaceUniforms, clearance) == 480);
+static_assert(offsetof(SurfaceUniforms, shadowLight) == 480);
 static_assert(sizeof(SurfaceUniforms) == 496);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);

@@ -1,5 +1,5 @@
 #pragma once
-// How a surface's texels (and its pyramid, clearance map, albedo and shading channels) travel from
+// How a surface's texels (and on llvmpipe its pyramid, its albedo and shading channels) travel from
 // the compute device to GL (SurfacePipeline moves them):
 // - Map: maps the device buffer and uploads from the mapping (client memory): the plain path;
 // - PixelBuffer: the device's buffer lies over a persistently mapped GL pixel buffer's memory

@@ -56,9 +56,6 @@ struct AccuracyConfig {
     glm::vec3 light{0.6f, 0.55f, 0.3f}; ///< world direction towards the light (plane normal +Y)
     float shadowSharpness = 2.0f; ///< the material's: its penumbra is where the clearance ratio < 1 / this
     float pixelBudget = 0.0f;     ///< the material's: the tracers' screen budget, pixels (0: full effort)
-    /// With shadows: the surface carries a clearance map for the light, as a scene's flat surface
-    /// can (SurfacePipeline::setClearanceLight); the exact tracer's shadow walk stops where it says.
-    bool clearance = true;
     /// With shadows: hier reads the texel shadows of the light (DrawOptions::texelShadows On;
     /// otherwise Off, whether or not they would pay) and walks only where the hard shadow
     /// changes between the samples.
@@ -136,8 +133,8 @@ public:
     /// traced in a compute shader over these textures with the renderer's accessors
     /// (surface/heights.glsl), each view ray then its soft shadow to config's light, one
     /// invocation a ray: the tracer without the rasteriser, on every compute unit of the device
-    /// (a compute chip runs fragment shaders on a few). No clearance map, texel shadows or beam
-    /// start: the walk itself. One dispatch, both clocks. Also returns, with `fetches`, the
+    /// (a compute chip runs fragment shaders on a few). No texel shadows or beam start: the walk
+    /// itself. One dispatch, both clocks. Also returns, with `fetches`, the
     /// mean height and bound fetches a ray made.
     GlTime timeCompute(Technique technique, const AccuracyConfig& config, int width, int height,
                        double* fetches = nullptr);
@@ -146,23 +143,19 @@ public:
     /// The height and bound fetches per pixel of that same draw (timeDraw's view and size),
     /// counted in the shader: what the timed pixels fetch, which measure()'s far view does not show.
     FetchCounts countFetches(Technique technique, const AccuracyConfig& config, int width, int height);
-    /// Median milliseconds that building the clearance map and drawing the texel shadows for
-    /// config's light, where config asks for them, add to a whole frame of the surface (frames
-    /// with and without, interleaved): GPU time of the map's kernels (CL event profiling) and of
-    /// the GL passes (timer queries), and the wall clock of the whole frame. 0 where it asks for
-    /// neither.
-    GlTime timeClearance(const AccuracyConfig& config, int repeats);
+    /// Median milliseconds of the texel shadows' pass for config's light at config's stride, as
+    /// the exact tracer runs it after new heights (their pyramid's build included), on both
+    /// clocks; 0 without shadows.
+    GlTime timeTexelShadows(const AccuracyConfig& config, int repeats);
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
     const HeightFieldTracer& exact() const { return exact_; }
     const SurfaceTextures& textures() const { return surface_.textures(); }
 
 private:
-    /// Rebuilds the surface with the clearance map config asks for, where that changed.
-    void useClearance(const AccuracyConfig& config);
     /// config's light as the exact tracer's shadow rays see it on the probe's plane; empty
     /// without shadows or a pyramid.
-    std::optional<ClearanceLight> shadowLight(const AccuracyConfig& config) const;
+    std::optional<ShadowLight> shadowLight(const AccuracyConfig& config) const;
     static DrawOptions drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput);
 
     int size_;
@@ -174,8 +167,7 @@ private:
     std::unique_ptr<RenderTarget> timedTarget_; ///< timeDraw()'s
     Image lastFrame_;
     Mesh plane_, timedPlane_;
-    std::optional<ClearanceLight> clearance_; ///< the light the surface's clearance map is for
-    TexelShadowPass texelPass_;                ///< timeClearance's pass, and what it draws into
+    TexelShadowPass texelPass_; ///< timeTexelShadows' pass, and what it draws into
     TexelShadows texels_;
     ClContext& cl_;
     GpuTimer timer_;

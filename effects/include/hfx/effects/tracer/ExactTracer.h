@@ -13,14 +13,11 @@
 //   beam start  a prepass walking one ray per block of kBeamBlock² pixels, where the view rays
 //               start (DrawOptions::beamStart, a flat patch)
 //
-// The clearance map is the one part made elsewhere: on the compute device, from the heights,
-// where SurfacePipeline::setClearanceLight asks (opt-in); the draw reads it for rays of its light.
-//
 // Thread: the thread whose GL context is current.
 
-#include "hfx/core/ClearanceLight.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
+#include "hfx/core/ShadowLight.h"
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/SurfaceUniforms.h"
@@ -52,16 +49,14 @@ enum class TexelShadowChoice {
 
 /// The light as the exact tracer's shadow rays see it on a flat mesh (Mesh::patch) drawn with
 /// `model`: flatSurfaceLight of its frame. Empty for a mesh that is no flat patch or where no
-/// shadow ray is traced. What the renderer's texel shadows are drawn for, and what a clearance
-/// map must be built for (SurfacePipeline::setClearanceLight) to be read.
-std::optional<ClearanceLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
-                                             const SurfaceMaterial& material);
+/// shadow ray is traced. What the renderer's texel shadows are drawn for.
+std::optional<ShadowLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
+                                          const SurfaceMaterial& material);
 
 /// What ExactTracer::prepare decided for one draw: the surface program's variant follows it.
 struct TracerFrame {
     bool boundedSearch = false; ///< a sampled search bounded by every traced layer's pyramid
     bool atlas = false;         ///< the pyramids are in PyramidLayout::Atlas
-    bool clearance = false;     ///< hier's shadow walk reads the clearance map
     const TexelShadows* texelShadows = nullptr; ///< hier's shadows read these where set
     int texelStride = 0;                        ///< their stride; 0: none read
     double pixelsPerTexel = 0.0;                ///< the flat patch's screen pixels per field texel (0: not flat)
@@ -73,11 +68,10 @@ public:
     /// Makes and binds what a draw of `layers` reads besides their textures, as the view, the
     /// light and the material decide: the traced layers' pyramids for hier and a bounded search
     /// (SurfaceMaterial::boundedSearch where every traced layer has one), and for hier the
-    /// clearance map where built for this light, the texel shadows (DrawOptions::texelShadows)
-    /// and the beam start (DrawOptions::beamStart). `viewProj` is the camera's or, for a caster,
-    /// the shadow map's (no texel shadows: a caster writes depth only). `u` is the draw's
-    /// uniform block, filled but for the transform: prepare sets its clearance light, and the
-    /// beam prepass draws with it. Changes texture and image units, the uniform-buffer binding
+    /// texel shadows (DrawOptions::texelShadows) and the beam start (DrawOptions::beamStart).
+    /// `viewProj` is the camera's or, for a caster, the shadow map's (no texel shadows: a caster
+    /// writes depth only). `u` is the draw's uniform block, filled but for the transform:
+    /// prepare sets the texel shadows' light, and the beam prepass draws with it. Changes texture and image units, the uniform-buffer binding
     /// and the current program: call it inside the renderer's GlStateGuard.
     TracerFrame prepare(std::span<const SurfaceLayer> layers, const Mesh& mesh, const glm::mat4& model,
                         const glm::mat4& viewProj, const DirectionalLight& light, const SurfaceMaterial& material,

@@ -1,15 +1,16 @@
 #pragma once
 // The texel shadows of a flat surface under one light: the exact tracer's self-shadow (shaders/
 // trace/hier.glsl's walk, run by shaders/trace/hier/texelshadows.frag) from every sample of the
-// field at its own height, towards the light, into the surface's texel-shadow texture. A shadow
-// depends on the point, not on the pixel that sees it: where a texel covers many pixels, each
-// pixel's walk repeats its neighbours'. The renderer then walks only the light rays from cells
-// where the hard shadow's edge passes between the four samples, and blends the samples
-// elsewhere. SurfacePipeline runs it each frame where setShadowLight asks for texel shadows.
+// field at its own height, towards the light, into a texture of texel shadows. A shadow depends
+// on the point, not on the pixel that sees it: where a texel covers many pixels, each pixel's
+// walk repeats its neighbours'. The renderer then walks only the light rays from cells where the
+// hard shadow's edge passes between the four samples, and blends the samples elsewhere
+// (shaders/surface/shadow.glsl). ExactTracer runs it before a hier draw where its policy says
+// the texel shadows pay, and keeps them while the heights and the light stay.
 //
 // Thread: the thread whose GL context is current.
 
-#include "hfx/core/ClearanceLight.h"
+#include "hfx/core/ShadowLight.h"
 #include "hfx/core/GlObject.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
@@ -55,9 +56,9 @@ public:
     GLuint texture() const { return drawn_ ? texture_.id() : 0; } ///< 0 before the first draw
     int stride() const { return stride_; }
     /// The light they hold the shadows of; empty before the first draw.
-    const std::optional<ClearanceLight>& light() const { return light_; }
+    const std::optional<ShadowLight>& light() const { return light_; }
     /// Whether they hold `light`'s shadows of `textures`' current texels at `stride`.
-    bool holds(const SurfaceTextures& textures, const ClearanceLight& light, int stride) const {
+    bool holds(const SurfaceTextures& textures, const ShadowLight& light, int stride) const {
         return drawn_ && uid_ == textures.uid() && version_ == textures.texelsVersion() && light_ == light &&
                stride_ == stride;
     }
@@ -68,7 +69,7 @@ private:
     int stride_ = 0, width_ = 0, height_ = 0;
     EdgeMode edges_ = EdgeMode::Wrap;
     bool drawn_ = false;
-    std::optional<ClearanceLight> light_;
+    std::optional<ShadowLight> light_;
     std::uint64_t uid_ = 0, version_ = 0; ///< the textures' and their texels' version drawn from
 };
 
@@ -76,17 +77,14 @@ class TexelShadowPass {
 public:
     TexelShadowPass();
     /// Draws `textures`' texel shadows for `light` at every stride-th sample on each axis into
-    /// `into` (allocated or remade where the size or stride changes; the walks read the textures'
-    /// clearance map where it is built for the same light). Throws hfx::Error without a pyramid,
+    /// `into` (allocated or remade where the size or stride changes). Throws hfx::Error without a pyramid,
     /// for an invalid light or a stride that is not a power of two dividing the field's size,
     /// leaving `into` as it was. The same texels whatever blending, scissor test or colour mask
     /// the caller has set; it puts those back, and every other GL state it changes.
-    void draw(const SurfaceTextures& textures, const ClearanceLight& light, int stride, TexelShadows& into);
+    void draw(const SurfaceTextures& textures, const ShadowLight& light, int stride, TexelShadows& into);
 
 private:
-    /// [1]: the walks read the clearance map; each built by its first draw (a surface with texel
-    /// shadows and no map never compiles the other).
-    std::optional<ShaderProgram> programs_[2][2]; ///< by clearance map, by the atlas layout
+    std::optional<ShaderProgram> programs_[2]; ///< by the pyramid's layout, each built by its first draw
     BoundsPass bounds_; ///< the walk's pyramid and level-0 cells, built from the texels
     GlFramebuffer framebuffer_;
     GlVertexArray empty_;
