@@ -1,5 +1,5 @@
-// The texture units, image units and uniform blocks that the shaders and their C++ side share,
-// named once. Only comments and #defines: the shaders #include this file, and C++ includes the
+// The texture units, image units, uniform blocks and constants that the shaders and their C++
+// side share, named once. Only comments and #defines: the shaders #include this file, and C++ includes the
 // same text as hfx/core/Bindings.h (core/CMakeLists.txt copies it there at configure time).
 // No unit serves two samplers: the surface program needs HFX_TEXTURE_UNITS texture units in its
 // fragment stage (GL 4.5 promises 16; NVIDIA, AMD, Intel and llvmpipe have 32), and
@@ -40,5 +40,9 @@
 #define HFX_BLOCK_SURFACE 0       // HfxSurface: hfx::SurfaceUniforms
 #define HFX_BLOCK_WATER 1         // HfxWater: the water's look
 #define HFX_BLOCK_RINGS 2         // HfxRings: hfx::RingUniforms
+
+// The exact tracer's beam start: its prepass walks one ray per block of this many pixels on
+// each axis (ExactTracer, trace/hier/beam.frag) and the draw reads the block's depth.
+#define HFX_BEAM_BLOCK 8
 
 #endif

@@ -25,8 +25,14 @@
 //   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap): the view ray is the light's
 //                     (u_lightDir reversed), u_viewProj the light's; only the traced depth is
 //                     written, nothing is shaded
-//   HFX_BEAM_START    1 when the exact tracer's rays start where the renderer's beam prepass
+//   HFX_BEAM_START    1 when the exact tracer's rays start where its beam prepass
 //                     (trace/hier/beam.frag) found for their block of HFX_BEAM_BLOCK pixels
+//                     (bindings.glsl)
+//   HFX_TEXEL_SHADOWS 1 when the exact tracer's shadow is read from its texel shadows where they
+//                     hold it (surface/shadow.glsl)
+//   HFX_ENVIRONMENT   1 for water reflecting an equirectangular image (WaterLook::environment)
+//   HFX_PYRAMID_ATLAS 1 on llvmpipe: the pyramids in one image each (surface/heights.glsl,
+//                     GlWorkarounds::pyramidAtlas); the only define a device picks
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction; and to output 2 the

@@ -4,11 +4,11 @@
 #include "support/Fields.h"
 #include "support/Fixtures.h"
 
+#include "hfx/compute/StaticField.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/compute/StaticField.h"
 #include "hfx/effects/DecalWallEffect.h"
 #include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/ImageSurface.h"
@@ -63,8 +63,9 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
 
 TEST_F(Robustness, TexelShadowsNeedThePyramidAndHoldOnlyTheirHeightsAndLight) {
     // The texel shadows are the pyramid's walk: a surface without one refuses them by name. A bad
-    // light is refused before anything is drawn and leaves the last texel shadows as they were; they hold only the texels and the light they were drawn from
-    // (the exact tracer redraws them when either changes).
+    // light is refused before anything is drawn and leaves the last texel shadows as they were;
+    // they hold only the texels and the light they were drawn from (the exact tracer redraws them
+    // when either changes).
     constexpr int N = 32;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}});
     const ShadowLight light = ShadowLight::of({0.05f, 0.02f}, 2.0f);

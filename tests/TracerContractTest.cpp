@@ -7,14 +7,14 @@
 #include "support/Fixtures.h"
 #include "support/References.h"
 
+#include "hfx/compute/StaticField.h"
 #include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
-#include "hfx/compute/StaticField.h"
 #include "hfx/core/Gl.h"
-#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/tracer/TexelShadowPass.h"
 #include "hfx/tools/AccuracyProbe.h"
 

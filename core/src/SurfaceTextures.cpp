@@ -57,7 +57,8 @@ std::uint64_t nextUid() {
 } // namespace
 
 SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
-    : config_(config), uid_(nextUid()), surface_(GlTexture::create()), albedo_(GlTexture::create()), channels_(GlTexture::create()) {
+    : config_(config), uid_(nextUid()), surface_(GlTexture::create()), albedo_(GlTexture::create()),
+      channels_(GlTexture::create()) {
     config_.validate();
     levels_ = config.mipmaps
                   ? static_cast<int>(std::bit_width(static_cast<unsigned>(

@@ -145,8 +145,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"},
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
-                                                   {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"},
-                                                   {"HFX_BEAM_BLOCK", std::to_string(kBeamBlock)}};
+                                                   {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
         it = programs_.emplace(key, std::move(p)).first;
@@ -327,7 +326,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
 }
 
 std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
-                                               const SurfaceMaterial& material) {
+                                            const SurfaceMaterial& material) {
     if (!material.shadows || !(material.depthScale > 0.0f) || !(material.shadowSharpness > 1.0f)) return std::nullopt;
     const double t = glm::length(frame.tangent), b = glm::length(frame.bitangent);
     if (!(t > 0.0) || !(b > 0.0)) return std::nullopt;

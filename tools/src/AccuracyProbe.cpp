@@ -136,7 +136,8 @@ GlTime AccuracyProbe::timeTexelShadows(const AccuracyConfig& config, int repeats
     // uploaded: the pyramid's build from them first, then the walks (GPU time by timer queries).
     for (int i = -kWarmupFrames; i < repeats; ++i) { // warm-ups: the programs' builds
         surface_.run(field_.buffer());
-        const GlTime t = timeGl(timer_, "texel shadows", [&] { texelPass_.draw(textures(), *light, config.texelStride, texels_); });
+        const GlTime t = timeGl(timer_, "texel shadows",
+                                [&] { texelPass_.draw(textures(), *light, config.texelStride, texels_); });
         if (i >= 0) times.push_back(t);
     }
     return median(times);

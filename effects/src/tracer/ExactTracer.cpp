@@ -14,7 +14,7 @@
 namespace hfx {
 
 std::optional<ShadowLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
-                                             const SurfaceMaterial& material) {
+                                          const SurfaceMaterial& material) {
     if (!mesh.patch()) return std::nullopt;
     const FlatPatch& p = *mesh.patch();
     const glm::dmat4 m(model);
@@ -34,7 +34,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     TracerFrame frame;
     const bool hier = techniqueInfo(options.technique).needsPyramid;
     const SurfaceTextures& textures = *layers[0].textures;
-    const size_t traced = size_t(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
+    const size_t traced = size_t(std::ranges::count_if(layers, [](const SurfaceLayer& l) { return l.traced; }));
     // Bounded searches where asked and every traced layer has its pyramid.
     frame.boundedSearch = !hier && material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
                               return !l.traced || l.textures->pyramid() != 0;
@@ -55,8 +55,8 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     if (frame.texelShadows) {
         const ShadowLight& l = *frame.texelShadows->light();
         u.shadowLight = {l.uvPerClimb, l.penumbra, l.slack};
+        glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, frame.texelShadows->texture());
     }
-    if (frame.texelShadows) glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, frame.texelShadows->texture());
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
     frame.beamStart = options.beamStart && layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
@@ -80,7 +80,8 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
     std::array<glm::vec3, 4> corners;
-    for (size_t i = 0; i < corners.size(); ++i) corners[i] = glm::vec3(model * glm::vec4(mesh.patch()->corners[i], 1.0f));
+    for (size_t i = 0; i < corners.size(); ++i)
+        corners[i] = glm::vec3(model * glm::vec4(mesh.patch()->corners[i], 1.0f));
     const double pixels = screenArea(corners, viewProj, viewport[2], viewport[3]);
     frame.pixelsPerTexel = pixels / (double(field.width) * field.height);
     if (options.texelShadows == TexelShadowChoice::Off) return nullptr;
@@ -91,7 +92,8 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     if (strides_.size() > 64) strides_.clear(); // meshes come and go: a held choice is a hint
     int& held = strides_[&mesh];
     int stride = texelShadowStride(pixels, field.width, field.height, material.pixelBudget, held);
-    if (options.texelShadows == TexelShadowChoice::On) stride = options.texelStride != 0 ? options.texelStride : std::max(stride, 1);
+    if (options.texelShadows == TexelShadowChoice::On)
+        stride = options.texelStride != 0 ? options.texelStride : std::max(stride, 1);
     held = stride;
     if (stride == 0) return nullptr;
     if (!isTexelStride(stride, field.width, field.height))
@@ -108,7 +110,8 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
         it->uid = textures.uid();
     }
     it->used = ++clock_;
-    if (!it->shadows.holds(textures, *shadowLight, stride)) texelPass_.draw(textures, *shadowLight, stride, it->shadows);
+    if (!it->shadows.holds(textures, *shadowLight, stride))
+        texelPass_.draw(textures, *shadowLight, stride, it->shadows);
     return &it->shadows;
 }
 
@@ -128,7 +131,8 @@ void ExactTracer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Surfac
         glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         if (!beamFramebuffer_) beamFramebuffer_ = GlFramebuffer::create();
-        attachPassTarget(beamFramebuffer_, beamTarget_.id(), beamWidth_, beamHeight_, "R32F", "ExactTracer: the beam start");
+        attachPassTarget(beamFramebuffer_, beamTarget_.id(), beamWidth_, beamHeight_, "R32F",
+                         "ExactTracer: the beam start");
     }
     ShaderProgram& beam = beam_[atlas ? 1 : 0];
     if (!beam.id())

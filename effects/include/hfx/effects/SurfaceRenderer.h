@@ -11,14 +11,15 @@
 //
 // Thread: the thread whose GL context is current.
 
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
-#include "hfx/effects/tracer/ExactTracer.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/Technique.h"
+#include "hfx/effects/tracer/ExactTracer.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -132,7 +133,7 @@ struct DirectionalLight {
 /// where no shadow ray is traced (the light at or below the surface's plane, no self-shadows, no
 /// depth).
 std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,
-                                               const SurfaceMaterial& material);
+                                            const SurfaceMaterial& material);
 
 /// One layer of a layered surface (the ocean's cascades): its textures, read at the mesh's
 /// texcoords times `texcoordScale`, contributing `weight` of the height (h = sum weight_i h_i,
@@ -170,7 +171,7 @@ struct DrawOptions {
 };
 
 /// The side of the beam start's blocks, in pixels (DrawOptions::beamStart).
-inline constexpr int kBeamBlock = 8;
+inline constexpr int kBeamBlock = HFX_BEAM_BLOCK;
 
 /// What picks a surface program besides DrawOptions: each field is a define of its own, so a
 /// switched-off feature costs nothing (on a CPU rasteriser a branch on a uniform still runs its

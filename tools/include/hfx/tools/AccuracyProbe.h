@@ -12,9 +12,9 @@
 #include "hfx/core/Image.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
-#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/tracer/TexelShadowPass.h"
 #include "hfx/tools/Timing.h"
 

@@ -19,8 +19,8 @@
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/ShadowLight.h"
 #include "hfx/core/SurfaceTextures.h"
-#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/tracer/TexelShadowPass.h"
 
 #include <glm/mat4x4.hpp>
@@ -71,8 +71,9 @@ public:
     /// texel shadows (DrawOptions::texelShadows) and the beam start (DrawOptions::beamStart).
     /// `viewProj` is the camera's or, for a caster, the shadow map's (no texel shadows: a caster
     /// writes depth only). `u` is the draw's uniform block, filled but for the transform:
-    /// prepare sets the texel shadows' light, and the beam prepass draws with it. Changes texture and image units, the uniform-buffer binding
-    /// and the current program: call it inside the renderer's GlStateGuard.
+    /// prepare sets the texel shadows' light, and the beam prepass draws with it. Changes texture
+    /// and image units, the uniform-buffer binding and the current program: call it inside the
+    /// renderer's GlStateGuard.
     TracerFrame prepare(std::span<const SurfaceLayer> layers, const Mesh& mesh, const glm::mat4& model,
                         const glm::mat4& viewProj, const DirectionalLight& light, const SurfaceMaterial& material,
                         const DrawOptions& options, bool caster, SurfaceUniforms& u);

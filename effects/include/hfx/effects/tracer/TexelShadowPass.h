@@ -10,9 +10,9 @@
 //
 // Thread: the thread whose GL context is current.
 
-#include "hfx/core/ShadowLight.h"
 #include "hfx/core/GlObject.h"
 #include "hfx/core/ShaderProgram.h"
+#include "hfx/core/ShadowLight.h"
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/tracer/BoundsPass.h"
 
