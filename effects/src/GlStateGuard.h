@@ -67,7 +67,9 @@ public:
     ~GlStateGuard() {
         (depthTest_ ? glEnable : glDisable)(GL_DEPTH_TEST);
         glDepthFunc(static_cast<GLenum>(depthFunc_));
-        glUseProgram(static_cast<GLuint>(program_));
+        // A program the caller deleted while it was current lives only while it stays current:
+        // once the guarded pass has used another, its name is gone, and the caller has none.
+        glUseProgram(program_ != 0 && glIsProgram(GLuint(program_)) ? GLuint(program_) : 0);
         glBindVertexArray(static_cast<GLuint>(vao_));
         for (int unit = 0; unit < kUnits; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
