@@ -1,15 +1,30 @@
-// A planet: the sphere's own normal sets day and night (a soft terminator), the relief's normal
-// the detail. The cloud deck darkens towards the limb by Minnaert's law, I = (N.L)^k (N.V)^(k-1)
-// with k = 0.85 (gas giants' discs in visible light lie near 0.8 to 1; k = 1 is Lambert), and a
-// haze scatters blue light along the lit limb.
+// A planet: the sphere's own normal sets day and night, the relief's normal the detail. The
+// cloud deck darkens towards the limb by Minnaert's law, I = mu0^k mu^(k-1) with k = 0.85 (gas
+// giants' discs in visible light lie near 0.8 to 1; k = 1 is Lambert), and a haze scatters blue
+// light along the lit limb. The upper haze also carries sunlight a little past the terminator:
+// the sun's cosine mu0 is replaced by a twilight that joins it at mu0 = w with the same value and
+// slope and fades past it exponentially (w e^((mu0 - w) / w)), so the light leaves the disc
+// without a kink. The night side gets only a faint skylight: the ambient light fades to
+// HFX_NIGHT_SKY of itself across the terminator.
+const float HFX_TWILIGHT = 0.1;   // w: about 6 degrees of the sun's elevation
+const float HFX_NIGHT_SKY = 0.05; // the night side's share of the ambient light
+
+float hfx_twilight(float mu) {
+    return mu >= HFX_TWILIGHT ? mu : HFX_TWILIGHT * exp((mu - HFX_TWILIGHT) / HFX_TWILIGHT);
+}
+
 vec3 hfx_shade(HfxSurfacePoint p) {
-    const float day = smoothstep(-0.05, 0.3, dot(p.geometricNormal, p.lightDir));
+    const float muSphere = dot(p.geometricNormal, p.lightDir);
     const float k = 0.85;
+    // Minnaert with the relief's mu0 for the detail: mu0 * (mu0 mu)^(k-1), the sphere's mu0 in
+    // the second factor (which is bounded: a twilight is never 0).
     const float limb = pow(max(dot(p.geometricNormal, p.viewDir), 0.05), k - 1.0) *
-                       pow(max(dot(p.geometricNormal, p.lightDir), 0.0) + 1e-4, k - 1.0);
-    const float diffuse = p.diffuse * min(limb, 4.0);
+                       pow(hfx_twilight(muSphere), k - 1.0);
+    const float diffuse = hfx_twilight(dot(p.normal, p.lightDir)) * min(limb, 4.0);
+    const float day = 1.0 / (1.0 + exp(-2.0 * muSphere / HFX_TWILIGHT)); // 0.5 at the terminator
+    const float sky = mix(HFX_NIGHT_SKY, 1.0, day);
     const float haze = 0.5 * pow(1.0 - p.cosView, 3.0) * day;
-    return p.albedo * u_ambient * p.occlusion +
-           day * p.lit * u_lightColor * (p.albedo * diffuse + u_specularStrength * p.specular) +
+    return p.albedo * u_ambient * p.occlusion * sky +
+           p.lit * u_lightColor * (p.albedo * diffuse + day * u_specularStrength * p.specular) +
            haze * vec3(0.35, 0.55, 1.0) * u_lightColor;
 }

@@ -1,0 +1,143 @@
+// The gas planet's terminator, seen as the issue saw it: the disc's luminance averaged over rows,
+// column by column, must rise from the night side into the day without a step that stands out from
+// the rest of the disc (a seam), at three rotations and two light angles.
+
+#include "support/Fixtures.h"
+
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/GasPlanetEffect.h"
+#include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/ImageFiles.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace hfx::test {
+namespace {
+
+class PlanetShading : public DeviceTest {};
+
+constexpr int kImage = 360;
+
+/// The planet (a unit sphere turned by `rotation` about +Y) seen head-on from 3 units, lit from
+/// `lightDegrees` off the view towards +x.
+struct PlanetView {
+    Image image;                ///< the frame, top row first
+    std::vector<float> cosine;  ///< per pixel, N.L of the sphere where the pixel's ray meets it (-2: none)
+};
+
+PlanetView viewPlanet(SurfaceRenderer& renderer, GasPlanetEffect& planet, float rotation, float lightDegrees) {
+    RenderTarget target(kImage, kImage);
+    const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
+    Camera camera;
+    camera.position = {0.0f, 0.0f, 3.0f};
+    camera.target = {0.0f, 0.0f, 0.0f};
+    camera.aspect = 1.0f;
+    DirectionalLight light;
+    const float a = glm::radians(lightDegrees);
+    light.direction = {std::sin(a), 0.1f, std::cos(a)};
+    light.color = {1.0f, 0.97f, 0.92f};
+    light.ambient = {0.03f, 0.03f, 0.04f}; // the demo's
+    target.bind();
+    target.clear();
+    renderer.draw(sphere, glm::rotate(glm::mat4(1.0f), rotation, glm::vec3(0.0f, 1.0f, 0.0f)), planet.textures(),
+                  planet.material(), camera, light);
+    PlanetView v{target.readColor(), std::vector<float>(size_t(kImage) * kImage, -2.0f)};
+    // Each pixel centre's ray against the unit sphere (image rows top first).
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
+    const glm::dvec3 l = glm::normalize(glm::dvec3(light.direction)), eye(camera.position);
+    for (int y = 0; y < kImage; ++y)
+        for (int x = 0; x < kImage; ++x) {
+            const glm::dvec2 ndc((x + 0.5) / kImage * 2.0 - 1.0, 1.0 - (y + 0.5) / kImage * 2.0);
+            const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
+            const glm::dvec3 d = glm::normalize(glm::dvec3(far) / far.w - eye);
+            const double b = glm::dot(eye, d), c = glm::dot(eye, eye) - 1.0, disc = b * b - c;
+            if (disc < 0.0) continue;
+            const glm::dvec3 n = eye + d * (-b - std::sqrt(disc));
+            v.cosine[size_t(y) * kImage + x] = float(glm::dot(n, l));
+        }
+    return v;
+}
+
+double luminance(const Image& image, int x, int y) {
+    return 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
+}
+
+TEST_F(PlanetShading, TheTerminatorHasNoSeamAndTheNightSideIsDark) {
+    // On the displayed (gamma-encoded) frame, as the issue measured it: the disc's luminance
+    // averaged over its rows within 0.6 radii of the centre, column by column across its middle
+    // 0.7 (the lit limb's haze rises steeply beyond), averaged again over eight turns of the
+    // planet so the bands' and storms' detail averages out and the light's shape stays. A seam
+    // is a kink: the profile's slope over the next 6 columns against the last 6, which must stay
+    // below the median slope. And the night side (20 degrees and more past the terminator) must
+    // be dark. Before (a flat ambient night side meeting a day term that rose over N.L in
+    // [-0.05, 0.3]): the night side 0.154-0.156, and at 60 degrees a kink 1.30x the median slope
+    // where the day began. The terminator crosses the window at both light angles.
+    GasPlanetEffect planet(cl(), {.gas = {.width = 256, .height = 128, .initialBands = 9.0f}});
+    for (int i = 0; i < 3; ++i) planet.update(1.0 / 30.0);
+    SurfaceRenderer renderer;
+    const double radius = std::tan(std::asin(1.0 / 3.0)) / std::tan(0.4) * 0.5 * kImage; // Camera's fovY 0.8
+    const double centre = 0.5 * kImage;
+    const int x0 = int(centre - 0.7 * radius), x1 = int(centre + 0.7 * radius);
+    for (const float lightDegrees : {83.0f, 60.0f}) {
+        std::vector<double> mean(size_t(x1 - x0 + 1), 0.0);
+        double night = 0.0;
+        int nightPixels = 0;
+        Image first; // the first turn's frame, left in the test output folder on a failure
+        constexpr int kTurns = 8;
+        for (int turn = 0; turn < kTurns; ++turn) {
+            const float rotation = float(turn) * 6.2831853f / kTurns;
+            const PlanetView v = viewPlanet(renderer, planet, rotation, lightDegrees);
+            for (int x = x0; x <= x1; ++x) {
+                double sum = 0;
+                int n = 0;
+                for (int y = 0; y < kImage; ++y) {
+                    const double dx = x + 0.5 - centre, dy = y + 0.5 - centre;
+                    if (std::abs(dy) > 0.6 * radius || dx * dx + dy * dy > radius * radius) continue;
+                    sum += luminance(v.image, x, y);
+                    ++n;
+                }
+                mean[size_t(x - x0)] += sum / std::max(n, 1) / kTurns;
+            }
+            // The night side: 20 degrees and more past the terminator.
+            for (int y = 0; y < kImage; ++y)
+                for (int x = 0; x < kImage; ++x) {
+                    const float c = v.cosine[size_t(y) * kImage + x];
+                    if (c < -2.0f + 1e-3f || c > -0.34f) continue;
+                    night += luminance(v.image, x, y);
+                    ++nightPixels;
+                }
+            if (turn == 0) first = v.image;
+        }
+        night /= std::max(nightPixels, 1);
+        // A kink: the profile's slope over the next kSpan columns against its slope over the last
+        // kSpan, as a share of the median slope (a smooth profile changes its slope slowly).
+        constexpr int kSpan = 6;
+        std::vector<double> slopes, kinks;
+        for (size_t i = kSpan; i + kSpan < mean.size(); ++i) {
+            const double before = (mean[i] - mean[i - kSpan]) / kSpan, after = (mean[i + kSpan] - mean[i]) / kSpan;
+            slopes.push_back(std::abs(after));
+            kinks.push_back(std::abs(after - before));
+        }
+        const size_t worstAt = size_t(std::max_element(kinks.begin(), kinks.end()) - kinks.begin());
+        const double worst = kinks[worstAt];
+        std::nth_element(slopes.begin(), slopes.begin() + slopes.size() / 2, slopes.end());
+        const double median = slopes[slopes.size() / 2];
+        std::printf("[terminator] light %.0f deg: largest change of slope %.5f (column %zu of %zu), median slope %.5f: "
+                    "%.2fx; night side %.3f over %d pixels\n",
+                    lightDegrees, worst, worstAt + kSpan, mean.size(), median, worst / median, night, nightPixels);
+        const std::string name = str("planet_terminator_", int(lightDegrees), ".png");
+        if (!(worst < median) || !(night < 0.07)) writeImage(outputPath(name), first);
+        EXPECT_LT(worst, median) << "light " << lightDegrees << ": a kink at column " << worstAt + kSpan << " (" << name << ")";
+        EXPECT_GT(nightPixels, 1000) << "light " << lightDegrees;
+        EXPECT_LT(night, 0.07) << "light " << lightDegrees;
+    }
+}
+
+} // namespace
+} // namespace hfx::test
