@@ -94,19 +94,16 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     int stride = texelShadowStride(pixels, field.width, field.height, material.pixelBudget, held);
     if (options.texelShadows == TexelShadowChoice::On)
         stride = options.texelStride != 0 ? options.texelStride : std::max(stride, 1);
-    held = stride;
-    if (stride == 0) return nullptr;
-    if (!isTexelStride(stride, field.width, field.height))
+    if (stride != 0 && !isTexelStride(stride, field.width, field.height))
         throw Error(str("DrawOptions::texelStride must be a power of two that divides the field's ", field.width, "x",
                         field.height, " samples, got ", stride));
+    held = stride;
+    if (stride == 0) return nullptr;
     frame.texelStride = stride;
     // This surface's, kept while its texels and the light stay; else the least recently used's.
     auto it = std::ranges::find_if(cache_, [&](const Cached& c) { return c.uid == textures.uid(); });
     if (it == cache_.end()) {
-        if (cache_.size() < kCached)
-            it = cache_.emplace(cache_.end());
-        else
-            it = std::ranges::min_element(cache_, {}, &Cached::used);
+        it = std::ranges::min_element(cache_, {}, &Cached::used); // a free slot's is 0
         it->uid = textures.uid();
     }
     it->used = ++clock_;

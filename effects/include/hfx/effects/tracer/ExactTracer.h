@@ -30,7 +30,6 @@
 #include <map>
 #include <optional>
 #include <span>
-#include <vector>
 
 namespace hfx {
 
@@ -38,7 +37,6 @@ struct DirectionalLight;
 struct DrawOptions;
 struct SurfaceMaterial;
 struct SurfaceLayer;
-class ShadowMap;
 
 /// Whether a hier draw reads texel shadows (DrawOptions::texelShadows).
 enum class TexelShadowChoice {
@@ -93,13 +91,14 @@ private:
     BoundsPass bounds_;
     TexelShadowPass texelPass_;
     /// The texel shadows of the surfaces drawn lately, by SurfaceTextures::uid (a pipeline's
-    /// two texture pairs each have theirs), the least recently used dropped past kCached.
+    /// two texture pairs each have theirs; 0: a free slot), the least recently used given to a
+    /// new surface. A fixed array: what prepare() hands out stays where it is.
     struct Cached {
         std::uint64_t uid = 0, used = 0;
         TexelShadows shadows;
     };
     static constexpr size_t kCached = 4;
-    std::vector<Cached> cache_;
+    std::array<Cached, kCached> cache_{};
     std::uint64_t clock_ = 0;
     /// The last stride drawn per mesh (0: none), so the policy holds on near its threshold.
     std::map<const Mesh*, int> strides_;
