@@ -39,10 +39,9 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
     light.direction = {0.7f, 0.45f, 0.3f}; // low: long shadows
     SurfaceRenderer renderer;
     RenderTarget target(320, 180);
-    Camera nearCamera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f), farCamera = nearCamera;
+    Camera nearCamera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f);
+    Camera farCamera = Camera::orbit({0.0f, 0.0f, 0.0f}, 40.0f, 0.3f, 1.2f);
     nearCamera.aspect = farCamera.aspect = 320.0f / 180.0f;
-    farCamera = Camera::orbit({0.0f, 0.0f, 0.0f}, 40.0f, 0.3f, 1.2f);
-    farCamera.aspect = nearCamera.aspect;
     auto draw = [&](const Camera& camera, TexelShadowChoice choice, const DirectionalLight& l) {
         target.bind();
         target.clear();

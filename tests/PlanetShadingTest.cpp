@@ -31,13 +31,19 @@ struct PlanetView {
     std::vector<float> cosine;  ///< per pixel, N.L of the sphere where the pixel's ray meets it (-2: none)
 };
 
-PlanetView viewPlanet(SurfaceRenderer& renderer, GasPlanetEffect& planet, float rotation, float lightDegrees) {
-    RenderTarget target(kImage, kImage);
-    const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
+/// Looking at the planet's centre from 3 units down +Z.
+Camera planetCamera() {
     Camera camera;
     camera.position = {0.0f, 0.0f, 3.0f};
     camera.target = {0.0f, 0.0f, 0.0f};
     camera.aspect = 1.0f;
+    return camera;
+}
+
+PlanetView viewPlanet(SurfaceRenderer& renderer, GasPlanetEffect& planet, const Mesh& sphere, float rotation,
+                      float lightDegrees) {
+    RenderTarget target(kImage, kImage);
+    const Camera camera = planetCamera();
     DirectionalLight light;
     const float a = glm::radians(lightDegrees);
     light.direction = {std::sin(a), 0.1f, std::cos(a)};
@@ -48,17 +54,16 @@ PlanetView viewPlanet(SurfaceRenderer& renderer, GasPlanetEffect& planet, float 
     renderer.draw(sphere, glm::rotate(glm::mat4(1.0f), rotation, glm::vec3(0.0f, 1.0f, 0.0f)), planet.textures(),
                   planet.material(), camera, light);
     PlanetView v{target.readColor(), std::vector<float>(size_t(kImage) * kImage, -2.0f)};
-    // Each pixel centre's ray against the unit sphere (image rows top first).
-    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
-    const glm::dvec3 l = glm::normalize(glm::dvec3(light.direction)), eye(camera.position);
+    // Each pixel centre's ray against the unit sphere (image rows top first; the camera's rays
+    // count rows from the bottom).
+    const glm::dvec3 l = glm::normalize(glm::dvec3(light.direction));
     for (int y = 0; y < kImage; ++y)
         for (int x = 0; x < kImage; ++x) {
-            const glm::dvec2 ndc((x + 0.5) / kImage * 2.0 - 1.0, 1.0 - (y + 0.5) / kImage * 2.0);
-            const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
-            const glm::dvec3 d = glm::normalize(glm::dvec3(far) / far.w - eye);
-            const double b = glm::dot(eye, d), c = glm::dot(eye, eye) - 1.0, disc = b * b - c;
+            const Ray ray = camera.rayThroughPixel(x + 0.5, kImage - y - 0.5, kImage, kImage);
+            const double b = glm::dot(ray.origin, ray.direction), c = glm::dot(ray.origin, ray.origin) - 1.0;
+            const double disc = b * b - c;
             if (disc < 0.0) continue;
-            const glm::dvec3 n = eye + d * (-b - std::sqrt(disc));
+            const glm::dvec3 n = ray.origin + ray.direction * (-b - std::sqrt(disc));
             v.cosine[size_t(y) * kImage + x] = float(glm::dot(n, l));
         }
     return v;
@@ -81,7 +86,9 @@ TEST_F(PlanetShading, TheTerminatorHasNoSeamAndTheNightSideIsDark) {
     GasPlanetEffect planet(cl(), {.gas = {.width = 256, .height = 128, .initialBands = 9.0f}});
     for (int i = 0; i < 3; ++i) planet.update(1.0 / 30.0);
     SurfaceRenderer renderer;
-    const double radius = std::tan(std::asin(1.0 / 3.0)) / std::tan(0.4) * 0.5 * kImage; // Camera's fovY 0.8
+    const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
+    // The disc: the sphere's angular radius asin(1/3) against the half field of view.
+    const double radius = std::tan(std::asin(1.0 / 3.0)) / std::tan(0.5 * double(planetCamera().fovY)) * 0.5 * kImage;
     const double centre = 0.5 * kImage;
     const int x0 = int(centre - 0.7 * radius), x1 = int(centre + 0.7 * radius);
     for (const float lightDegrees : {83.0f, 60.0f}) {
@@ -92,7 +99,7 @@ TEST_F(PlanetShading, TheTerminatorHasNoSeamAndTheNightSideIsDark) {
         constexpr int kTurns = 8;
         for (int turn = 0; turn < kTurns; ++turn) {
             const float rotation = float(turn) * 6.2831853f / kTurns;
-            const PlanetView v = viewPlanet(renderer, planet, rotation, lightDegrees);
+            const PlanetView v = viewPlanet(renderer, planet, sphere, rotation, lightDegrees);
             for (int x = x0; x <= x1; ++x) {
                 double sum = 0;
                 int n = 0;
