@@ -5,9 +5,15 @@
 // the sun's cosine mu0 is replaced by a twilight that joins it at mu0 = w with the same value and
 // slope and fades past it exponentially (w e^((mu0 - w) / w)), so the light leaves the disc
 // without a kink. The night side gets only a faint skylight: the ambient light fades to
-// HFX_NIGHT_SKY of itself across the terminator.
+// HFX_NIGHT_SKY of itself across the terminator. The same haze scatters the sunlight that crosses
+// it: of the light reaching the cloud tops the share e^(-tau / mu0) comes straight from the sun
+// (tau the haze's optical depth, mu0 the sun's elevation over the sphere) and casts the relief's
+// shadows; the rest arrives diffuse and fills them. So low suns, whose straight light crosses
+// the most haze, cast the palest shadows, where bare relief at grazing light would speckle the
+// terminator's side with black.
 const float HFX_TWILIGHT = 0.1;   // w: about 6 degrees of the sun's elevation
 const float HFX_NIGHT_SKY = 0.05; // the night side's share of the ambient light
+const float HFX_HAZE_DEPTH = 0.1; // tau: 37% of the light straight at 6 degrees, 90% overhead
 
 float hfx_twilight(float mu) {
     return mu >= HFX_TWILIGHT ? mu : HFX_TWILIGHT * exp((mu - HFX_TWILIGHT) / HFX_TWILIGHT);
@@ -24,7 +30,9 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float day = 1.0 / (1.0 + exp(-2.0 * muSphere / HFX_TWILIGHT)); // 0.5 at the terminator
     const float sky = mix(HFX_NIGHT_SKY, 1.0, day);
     const float haze = 0.5 * pow(1.0 - p.cosView, 3.0) * day;
+    const float straight = exp(-HFX_HAZE_DEPTH / max(muSphere, 1e-3));
+    const float lit = 1.0 - straight * (1.0 - p.lit);
     return p.albedo * u_ambient * p.occlusion * sky +
-           p.lit * u_lightColor * (p.albedo * diffuse + day * u_specularStrength * p.specular) +
+           lit * u_lightColor * (p.albedo * diffuse + day * u_specularStrength * p.specular) +
            haze * vec3(0.35, 0.55, 1.0) * u_lightColor;
 }
