@@ -17,7 +17,7 @@ public:
         : ImpactScene(o), planet_(cl, config(o)), sphere_(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64})),
           impacts_(planet_) {
         applyOptions(o);
-        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.3f, 0.25f);
+        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, o.cameraDistance, 0.3f, 0.25f);
         camera_.aspect = o.aspect();
         light_.direction = {0.95f, 0.15f, -0.2f}; // 83 degrees from the view: the terminator crosses the disc
         light_.color = {1.0f, 0.97f, 0.92f};
@@ -46,6 +46,7 @@ private:
             c.gas.initialBands = std::min(c.gas.initialBands, float(c.gas.height) / 4.0f);
         }
         c.gas.seed = o.seed;
+        c.detail.scale = o.detailScale;
         c.timeScale = o.timeScale;
         c.seed = o.seed;
         c.surface = o.surfaceOptions();

@@ -269,6 +269,11 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(1.0, 10000.0))->capture_default_str();
     app.add_option("--camera-pitch", s.cameraPitch, "water: degrees the camera looks below the horizon (small: the far field)")
         ->check(kFinite)->check(CLI::Range(0.0, 89.0))->capture_default_str();
+    app.add_option("--camera-distance", s.cameraDistance, "planet: the camera's distance from the centre in radii (close-up: 1.3)")
+        ->check(kFinite)->check(CLI::Range(1.05, 100.0))->capture_default_str();
+    app.add_option("--detail-scale", s.detailScale,
+                   "planet: cloud-top detail texels per gas cell, 1, 2, 4 or 8 (0: 4 on a GPU, 2 on a CPU device, at most 2048 or 1024 wide)")
+        ->check(CLI::IsMember({0, 1, 2, 4, 8}))->capture_default_str();
     app.add_option("--noise-kind", s.noiseKind, "noise: perlin, simplex or psrd")
         ->check(CLI::IsMember({"perlin", "simplex", "psrd"}))->capture_default_str();
     app.add_option("--fractal", s.fractal, "noise: fbm, ridged or turbulence")

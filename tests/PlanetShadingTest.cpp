@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <vector>
 
@@ -82,8 +83,10 @@ TEST_F(PlanetShading, TheTerminatorHasNoSeamAndTheNightSideIsDark) {
     // below the median slope. And the night side (20 degrees and more past the terminator) must
     // be dark. Before (a flat ambient night side meeting a day term that rose over N.L in
     // [-0.05, 0.3]): the night side 0.154-0.156, and at 60 degrees a kink 1.30x the median slope
-    // where the day began. The terminator crosses the window at both light angles.
-    GasPlanetEffect planet(cl(), {.gas = {.width = 256, .height = 128, .initialBands = 9.0f}});
+    // where the day began. The terminator crosses the window at both light angles. The bands
+    // alone, without the cloud tops' advected detail (FlowDetailTest): its noise, finer than
+    // the gas and unaveraged by eight turns, is the clouds, not the light's shape.
+    GasPlanetEffect planet(cl(), {.gas = {.width = 256, .height = 128, .initialBands = 9.0f}, .detail = {.amount = 0.0f}});
     for (int i = 0; i < 3; ++i) planet.update(1.0 / 30.0);
     SurfaceRenderer renderer;
     const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
@@ -144,6 +147,74 @@ TEST_F(PlanetShading, TheTerminatorHasNoSeamAndTheNightSideIsDark) {
         EXPECT_GT(nightPixels, 1000) << "light " << lightDegrees;
         EXPECT_LT(night, 0.07) << "light " << lightDegrees;
     }
+}
+
+// The share of a square window's luminance variance (mean removed, Hann-windowed) at
+// wavelengths shorter than `cellPixels`: its 2D power spectrum beyond the cell's frequency.
+double fineShare(const Image& image, int x0, int y0, int n, double cellPixels) {
+    std::vector<std::complex<double>> f(size_t(n) * n);
+    double mean = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) mean += luminance(image, x0 + x, y0 + y) / (double(n) * n);
+    const double pi = 3.14159265358979;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            f[size_t(y) * n + x] = (luminance(image, x0 + x, y0 + y) - mean) * (0.5 - 0.5 * std::cos(2 * pi * (x + 0.5) / n)) *
+                                   (0.5 - 0.5 * std::cos(2 * pi * (y + 0.5) / n));
+    // The DFT along rows, then along columns.
+    std::vector<std::complex<double>> line(n), twiddle(n);
+    for (int k = 0; k < n; ++k) twiddle[k] = std::polar(1.0, -2 * pi * k / n);
+    for (int pass = 0; pass < 2; ++pass)
+        for (int a = 0; a < n; ++a) {
+            auto at = [&](int b) -> std::complex<double>& { return pass == 0 ? f[size_t(a) * n + b] : f[size_t(b) * n + a]; };
+            for (int k = 0; k < n; ++k) {
+                std::complex<double> sum = 0;
+                for (int b = 0; b < n; ++b) sum += at(b) * twiddle[(size_t(k) * b) % n];
+                line[k] = sum;
+            }
+            for (int k = 0; k < n; ++k) at(k) = line[k];
+        }
+    double fine = 0, total = 0;
+    for (int ky = 0; ky < n; ++ky)
+        for (int kx = 0; kx < n; ++kx) {
+            if (kx == 0 && ky == 0) continue;
+            const double fx = double(std::min(kx, n - kx)) / n, fy = double(std::min(ky, n - ky)) / n;
+            const double power = std::norm(f[size_t(ky) * n + kx]);
+            total += power;
+            if (std::hypot(fx, fy) > 1.0 / cellPixels) fine += power;
+        }
+    return fine / total;
+}
+
+TEST_F(PlanetShading, TheCloudTopsCarryDetailFinerThanTheGas) {
+    // The measure of detail beyond the grid: the spectrum of the shaded disc, lit from
+    // 30 degrees off the camera, in a 128-pixel window at its centre, where a gas cell spans cellPixels (one
+    // cell of longitude, 2 pi / 128 radians of the unit sphere, seen from 2 units). The share of
+    // the luminance's variance at wavelengths shorter than a cell: with the detail at the gas's
+    // own resolution (scale 1, what the planet had before its detail was advected) against 4
+    // texels per cell, after ten simulated seconds of the same gas (both frames are written).
+    const int W = 128;
+    const double cellPixels = (2.0 * 3.14159265358979 / W / 2.0) / std::tan(0.4) * (kImage / 2.0);
+    double share[2];
+    const int scales[2] = {1, 4};
+    for (int s = 0; s < 2; ++s) {
+        GasPlanetConfig config; // the planet's jets and storms, on a smaller grid
+        config.gas.width = W;
+        config.gas.height = W / 2;
+        config.gas.initialBands = 9.0f;
+        config.timeScale = 10.0f;
+        config.detail.scale = scales[s];
+        GasPlanetEffect planet(cl(), config);
+        for (int i = 0; i < 30; ++i) planet.update(1.0 / 30.0);
+        SurfaceRenderer renderer;
+        const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
+        const PlanetView view = viewPlanet(renderer, planet, sphere, 0.3f, 30.0f);
+        share[s] = fineShare(view.image, kImage / 2 - 64, kImage / 2 - 64, 128, cellPixels);
+        writeImage(outputPath(str("planet_detail_scale", scales[s], ".png")), view.image);
+    }
+    std::printf("[detail] a gas cell spans %.1f px; variance below it: %.4f at scale 1, %.4f at scale 4 (%.1fx)\n",
+                cellPixels, share[0], share[1], share[1] / share[0]);
+    EXPECT_GT(share[1], 2.0 * share[0]);
 }
 
 } // namespace

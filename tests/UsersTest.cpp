@@ -210,11 +210,12 @@ TEST_F(Users, PlanetColoursComeFromTheGasThroughTheRamp) {
     GasPlanetEffect planet(cl(), config);
     for (int i = 0; i < 3; ++i) planet.update(1.0 / 30.0);
     const std::vector<float> surface = readSurface(planet.textures());
-    std::vector<unsigned char> albedo(64 * 32 * 4);
+    const int texels = planet.surfaceWidth() * planet.surfaceHeight();
+    std::vector<unsigned char> albedo(size_t(texels) * 4);
     glGetTextureImage(planet.textures().albedo(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(albedo.size()), albedo.data());
     const std::vector<float> stops = ColorRamp::pack(config.palette);
     int distinct = 0;
-    for (int i = 0; i < 64 * 32; ++i) {
+    for (int i = 0; i < texels; ++i) {
         ASSERT_TRUE(std::isfinite(surface[i * 4 + 3]));
         unsigned char expected[4];
         hfx_ramp_rgba8(surface[i * 4 + 3], stops.data(), int(config.palette.size()), expected);

@@ -18,20 +18,3 @@ __kernel void add_detail(__global float4* current, __global const float4* base,
     float inv = rsqrt(sx * sx + sy * sy + 1.0f);
     current[k] = (float4)(sx * inv, sy * inv, inv, c.w);
 }
-
-/* Fine detail on a field's heights: out = clamp(base + amount (detail - 0.5), 0, 1), detail a
-   noise in [0, 1] of the same size (HeightDetail: the planet's cloud tops). Within capRows of the
-   first and last rows (a longitude-latitude map's poles) the result fades to 0.5 along a
-   smoothstep, reached on those rows, where all columns meet in one point. */
-__kernel void add_height_detail(__global const float* base, __global const float* detail, __global float* out,
-                                float amount, int width, int rows, float capRows) {
-    int k = get_global_id(0);
-    if (k >= width * rows) return;
-    float h = clamp(base[k] + amount * (detail[k] - 0.5f), 0.0f, 1.0f);
-    if (capRows > 0.0f) {
-        int j = k / width;
-        float t = fmin((float)j, (float)(rows - 1 - j)) / capRows;
-        if (t < 1.0f) h = 0.5f + (h - 0.5f) * t * t * (3.0f - 2.0f * t);
-    }
-    out[k] = h;
-}

@@ -26,7 +26,6 @@ void GasPlanetConfig::validate() const {
         throw Error(str("GasPlanetConfig.stormRadius must be in (0, 0.25], got ", stormRadius));
     if (!std::isfinite(stormForce) || !std::isfinite(rotationSpeed))
         throw Error("GasPlanetConfig.stormForce and rotationSpeed must be finite");
-    if (!(detail >= 0.0f && detail <= 1.0f)) throw Error(str("GasPlanetConfig.detail must be in [0, 1], got ", detail));
     if (!(stormShear > 0.0f && stormShear <= 1.0f))
         throw Error(str("GasPlanetConfig.stormShear must be in (0, 1], got ", stormShear));
     if (!(timeScale >= 1.0f && timeScale <= 1e4f))
@@ -43,29 +42,48 @@ void GasPlanetConfig::validate() const {
         throw Error(str("GasPlanetConfig.maxStorms must be in [1, 1024], got ", maxStorms));
     if (!(poleCap >= 0.0f && poleCap <= 0.25f))
         throw Error(str("GasPlanetConfig.poleCap must be in [0, 0.25], got ", poleCap));
-    if (detail > 0.0f || poleCap > 0.0f) {
-        NoiseConfig noise = detailNoise;
-        noise.width = gas.width;
-        noise.height = gas.height;
-        noise.validate();
-    }
+    if (detail.scale != 0) detail.validate(gas); // scale 0 is validated once the device picks one
     material.validate();
 }
 
+int autoDetailScale(const ClContext& cl, int gasWidth) {
+    const bool gpu = (cl.device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0;
+    const int widest = gpu ? 2048 : 1024;
+    for (int scale : {4, 2})
+        if (gasWidth * scale <= widest) return scale;
+    return 1;
+}
+
 namespace {
-std::unique_ptr<HeightDetail> makeDetail(ClContext& cl, const GasPlanetConfig& config) {
-    if (config.detail <= 0.0f && config.poleCap <= 0.0f) return nullptr;
-    NoiseConfig noise = config.detailNoise;
-    noise.width = config.gas.width;
-    noise.height = config.gas.height;
-    return std::make_unique<HeightDetail>(cl, noise, config.detail, config.poleCap * float(config.gas.height));
+// The configuration with the detail's scale and pole cap settled for this device.
+GasPlanetConfig settled(const ClContext& cl, GasPlanetConfig config) {
+    if (config.detail.scale == 0) config.detail.scale = autoDetailScale(cl, config.gas.width);
+    if (config.detail.amount <= 0.0f && config.poleCap <= 0.0f) config.detail.scale = 1;
+    config.detail.capRows = config.poleCap * float(config.gas.height);
+    config.detail.seed = config.seed;
+    config.detail.validate(config.gas);
+    return config;
+}
+
+std::unique_ptr<FlowDetail> makeDetail(ClContext& cl, const GasField& gas, const GasPlanetConfig& config) {
+    if (config.detail.amount <= 0.0f && config.poleCap <= 0.0f) return nullptr;
+    return std::make_unique<FlowDetail>(cl, gas, config.detail);
+}
+
+SurfacePipelineConfig surfaceOf(const GasPlanetConfig& c) {
+    return {.width = c.gas.width * c.detail.scale,
+            .height = c.gas.height * c.detail.scale,
+            .edges = c.gas.edges,
+            .normalDepth = c.material.depthScale > 0.0f ? c.material.depthScale : 0.05f,
+            .options = c.surface};
 }
 } // namespace
 
 GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
-    : Effect(validated(config).material), cl_(cl), config_(config), gas_(cl, config.gas), detail_(makeDetail(cl, config)),
-      colors_(cl, config.gas.width, config.gas.height, config.palette), random_(config.seed),
-      surface_(cl, SurfacePipelineConfig::of(gas_, config.material.depthScale, config.surface)) {
+    : Effect(validated(config).material), cl_(cl), config_(settled(cl, config)), gas_(cl, config_.gas),
+      detail_(makeDetail(cl, gas_, config_)),
+      colors_(cl, config_.gas.width * config_.detail.scale, config_.gas.height * config_.detail.scale, config_.palette),
+      random_(config.seed), surface_(cl, surfaceOf(config_)) {
     float largest = 0.0f;
     for (int i = 1; i < 4096; ++i) {
         const double v = i / 4096.0, h = 1e-4;
@@ -155,8 +173,8 @@ void GasPlanetEffect::advance(double dt) {
 }
 
 void GasPlanetEffect::enqueueSurface() {
-    // The colour follows the gas; the relief carries the cloud tops' detail too.
-    if (detail_) detail_->run(gas_.buffer());
+    // The colour follows the heights: the gas's, with the cloud tops' detail.
+    if (detail_) detail_->run();
     surface_.derive(detail_ ? detail_->output() : gas_.buffer());
     colors_.run(detail_ ? detail_->output() : gas_.buffer());
     surface_.submit(&colors_.output());
@@ -164,11 +182,7 @@ void GasPlanetEffect::enqueueSurface() {
 
 std::vector<float> GasPlanetEffect::readHeights() {
     if (!detail_) return gas_.readHeights();
-    std::vector<float> heights(size_t(config_.gas.width) * config_.gas.height);
-    clGuard("reading the planet's heights", [&] {
-        cl_.queue().enqueueReadBuffer(detail_->output(), CL_TRUE, 0, heights.size() * sizeof(float), heights.data());
-    });
-    return heights;
+    return detail_->readHeights();
 }
 
 glm::mat4 GasPlanetEffect::modelMatrix() const {

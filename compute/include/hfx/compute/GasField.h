@@ -67,6 +67,10 @@ public:
     std::vector<float> readDivergence();
 
     const cl::Buffer& buffer() const override { return height_; }
+    /// The velocity's faces on the device (cells per second; GasMath.h says where each lives),
+    /// for passes that move with the gas (FlowDetail).
+    const cl::Buffer& velocityX() const { return u_; }
+    const cl::Buffer& velocityY() const { return v_; }
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }
     EdgeMode edges() const override { return config_.edges; }

@@ -2,14 +2,15 @@
 // The gaseous-planet user: the Navier-Stokes gas on a longitude-latitude grid (periodic in u,
 // walls at the poles) drives a sphere's relief (the dye) and its colour (the dye through a
 // ColorRamp, on the device). Zonal jets make the bands; storms, seeded, spin up vortices that
-// the jets shear and vorticity confinement keeps alive. Draw it on makeSphere() with
+// the jets shear and vorticity confinement keeps alive. Detail finer than the gas's grid rides on
+// its flow (FlowDetail): the surface is `detail.scale` texels per gas cell. Draw it on makeSphere() with
 // modelMatrix(), which turns the planet slowly about +Y.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
 #include "hfx/compute/ColorRamp.h"
 #include "hfx/compute/GasField.h"
-#include "hfx/compute/HeightDetail.h"
+#include "hfx/compute/FlowDetail.h"
 #include "hfx/core/Random.h"
 #include "hfx/effects/Effect.h"
 
@@ -51,11 +52,11 @@ struct GasPlanetConfig {
     /// columns meet in one point, show no pinched seam. 0: none.
     float poleCap = 0.04f;
     float rotationSpeed = 0.08f;   ///< radians per second about +Y
-    /// Fine relief of the cloud tops: a slowly drifting noise (HeightDetail) added to the dye's
-    /// heights, detail * (noise - 0.5); 0 draws the gas alone. Its size and edges are the gas's.
-    float detail = 0.25f;
-    NoiseConfig detailNoise{.kind = NoiseKind::Perlin, .fractal = Fractal::Fbm, .frequency = 32.0f, .octaves = 4,
-                            .speed = 0.05f, .edges = EdgeMode::WrapU};
+    /// The cloud tops' detail finer than the gas's grid, advected by its flow (FlowDetail; its
+    /// capRows come from poleCap). scale 0 picks one for the compute device: the largest of 4, 2
+    /// and 1 that keeps the surface at most 2048 texels wide on a GPU, 1024 on a CPU device
+    /// (autoDetailScale). amount 0 draws the gas's own heights alone.
+    FlowDetailConfig detail{.scale = 0, .amount = 0.25f, .frequency = 0.5f, .octaves = 4, .period = 4.0f};
     std::uint64_t seed = 1;
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
@@ -63,6 +64,9 @@ struct GasPlanetConfig {
     SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
+
+/// The detail scale `scale` 0 stands for on `cl`'s device for a gas `gasWidth` cells wide.
+int autoDetailScale(const ClContext& cl, int gasWidth);
 
 class GasPlanetEffect final : public Effect {
 public:
@@ -72,9 +76,13 @@ public:
     /// at texcoords (u in [0,1), v in [0,1)).
     void addStorm(float u, float v, bool clockwise, float strength = 1.0f);
     GasField& gas() { return gas_; }
-    /// The heights drawn (the gas's, with the cloud tops' detail), row 0 at v = 0; waits.
+    /// The heights drawn (the gas's, with the cloud tops' detail, surfaceWidth() x
+    /// surfaceHeight()), row 0 at v = 0; waits.
     std::vector<float> readHeights();
-    const HeightDetail* detail() const { return detail_.get(); }
+    /// The cloud tops' detail: none when its amount and poleCap are 0 (the surface is the gas's).
+    const FlowDetail* detail() const { return detail_.get(); }
+    int surfaceWidth() const { return surface_.config().width; }
+    int surfaceHeight() const { return surface_.config().height; }
     const ColorRamp& colors() const { return colors_; }
     double time() const { return time_; }
     /// Live time scale (validated as the config's); throws and keeps the old one on a bad value.
@@ -107,7 +115,7 @@ private:
     ClContext& cl_;
     GasPlanetConfig config_;
     GasField gas_;
-    std::unique_ptr<HeightDetail> detail_; ///< none when config.detail and poleCap are 0
+    std::unique_ptr<FlowDetail> detail_; ///< none when config.detail.amount and poleCap are 0
     ColorRamp colors_;
     SplitMix64 random_;
     double time_ = 0.0, stormClock_ = 0.0;

@@ -1,0 +1,120 @@
+#ifndef HFX_FLOW_MATH_H
+#define HFX_FLOW_MATH_H
+#include "GasMath.h"
+#include "NoiseMath.h"
+
+/* Detail finer than the gas's grid that moves with its flow: texture advection (Max & Becker 1995)
+   with two regenerated layers (Neyret 2003, "Advected textures"). Each layer is a field of noise
+   coordinates riding on the velocity, stored per cell centre as a displacement d (cells): the
+   material now at x sat at x + d in the noise's domain when the layer was last regenerated. A
+   semi-Lagrangian step keeps that true: c(x) = x + d(x) and c_new(x) = c_old(p), p the point the
+   flow carries to x in dt, so d_new(x) = d_old(p) + (p - x). A shear stretches the noise into
+   filaments along it, a vortex winds it into spiral arms; before the stretch grows too long the
+   layer starts again from d = 0 with a fresh noise (its generation z), at the moment its weight is
+   zero. Layer k's phase is a_k = frac(time / period + k / 2), its weight sin(pi a_k): the two
+   weights' squares sum to 1, so the blend of two zero-mean noises keeps its contrast.
+
+   The detail is strongest where the flow strains (band edges, where the jets shear, and the rims
+   of storms) and fades to a `calm` share of it where the flow only translates or turns as a
+   whole (the middle of a band, a storm's eye): its amplitude follows the strain rate s (per
+   second) as calm + (1 - calm) s / (s + strainScale), s kept per cell in a fifth plane.
+
+   Lengths in gas cells; x wraps over W (longitude), y is walled (the gas's poles). */
+
+/* The flow's strain rate at the centre of cell (i, j): sqrt((du/dx - dv/dy)^2 + (du/dy + dv/dx)^2),
+   per second, from central differences of the velocity one cell apart. */
+HFX_FN_INLINE float hfx_flow_strain(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H,
+                                    int i, int j) {
+    float x = (float)i + 0.5f, y = (float)j + 0.5f;
+    float ux = hfx_gas_sample(u, W, H, x + 0.5f, y, 0.0f, 0.5f, 1) - hfx_gas_sample(u, W, H, x - 0.5f, y, 0.0f, 0.5f, 1);
+    float vy = hfx_gas_sample(v, W, H, x, y + 0.5f, 0.5f, 0.0f, 1) - hfx_gas_sample(v, W, H, x, y - 0.5f, 0.5f, 0.0f, 1);
+    float uy = 0.5f * (hfx_gas_sample(u, W, H, x, y + 1.0f, 0.0f, 0.5f, 1) -
+                       hfx_gas_sample(u, W, H, x, y - 1.0f, 0.0f, 0.5f, 1));
+    float vx = 0.5f * (hfx_gas_sample(v, W, H, x + 1.0f, y, 0.5f, 0.0f, 1) -
+                       hfx_gas_sample(v, W, H, x - 1.0f, y, 0.5f, 0.0f, 1));
+    float a = ux - vy, b = uy + vx;
+    return HFX_SQRT(a * a + b * b);
+}
+
+/* One displacement plane (W x H, at the cell centres) advected dt: its new value at cell (i, j). */
+HFX_FN_INLINE float hfx_flow_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
+                                    HFX_GLOBAL const float* d, int W, int H, int i, int j, float dt,
+                                    int axis) {
+    float px, py;
+    hfx_gas_departure(u, v, W, H, i, j, 0.5f, 0.5f, dt, 1, &px, &py);
+    float moved = axis == 0 ? px - ((float)i + 0.5f) : py - ((float)j + 0.5f);
+    return hfx_gas_sample(d, W, H, px, py, 0.5f, 0.5f, 1) + moved;
+}
+
+/* The detail noise at the noise-domain point (x, y) (cells) of generation z: Perlin fBm of
+   `octaves` octaves from `frequency` lattice cells per gas cell along x and `aspect` times that
+   along y (features that long along the bands), periodic over the W cells of a longitude
+   (W * frequency whole), about zero-mean in [-0.5, 0.5]. */
+HFX_FN float hfx_flow_noise(float x, float y, float z, int W, float frequency, float aspect, int octaves) {
+    return hfx_fractal(HFX_NOISE_PERLIN, HFX_FRACTAL_FBM, x * frequency, y * frequency * aspect, z, octaves,
+                       2.0f, 0.5f, (float)W * frequency, 256.0f) -
+           0.5f;
+}
+
+/* Uniform cubic B-spline weights of the four samples around a point t in [0, 1) past the second. */
+HFX_FN void hfx_bspline(float t, float* w) {
+    float s = 1.0f - t, t2 = t * t;
+    w[0] = s * s * s / 6.0f;
+    w[1] = (4.0f - 6.0f * t2 + 3.0f * t2 * t) / 6.0f;
+    w[2] = (1.0f + 3.0f * t + 3.0f * t2 - 3.0f * t2 * t) / 6.0f;
+    w[3] = t2 * t / 6.0f;
+}
+
+/* The gas's heights (at the cell centres) at the point (x, y) by a cubic B-spline along each
+   axis: smooth in value, slope and curvature, so the fine grid's normals show no creases along
+   the cells' edges (a bilinear fill facets them, and an interpolating cubic turns the gas's
+   cell-sized noise into blocks); at a centre it is (f[i-1] + 4 f[i] + f[i+1]) / 6 along each
+   axis: the grid's own scale, where the simulation is least exact, softened, and what is finer
+   left to the advected detail. x wraps, y is clamped to the rows (walls). */
+HFX_FN float hfx_flow_base(HFX_GLOBAL const float* f, int W, int H, float x, float y) {
+    float fx = x - 0.5f, fy = y - 0.5f;
+    float x0 = HFX_FLOOR(fx), y0 = HFX_FLOOR(fy);
+    float wx[4], wy[4];
+    hfx_bspline(fx - x0, wx);
+    hfx_bspline(fy - y0, wy);
+    float sum = 0.0f;
+    for (int b = 0; b < 4; ++b) {
+        int j = (int)y0 - 1 + b;
+        j = j < 0 ? 0 : (j > H - 1 ? H - 1 : j);
+        float row = 0.0f;
+        for (int a = 0; a < 4; ++a) row += wx[a] * f[j * W + hfx_gas_wrap((int)x0 - 1 + a, W)];
+        sum += wy[b] * row;
+    }
+    return sum;
+}
+
+/* What the flow detail's kernels share besides the fields: the detail's shape and this
+   frame's layer weights and generations. */
+typedef struct HfxFlowParams {
+    float amount, frequency, aspect, calm, strainScale;
+    int octaves;
+    float w0, w1, z0, z1;
+} HfxFlowParams;
+
+/* A detailed height at the point (x, y) (cells) of the fine grid: the gas's heights there
+   (hfx_flow_base) plus amount times the two layers' noises, each read at the
+   point's displaced coordinates and weighted, times the strain's share; clamped to [0, 1].
+   planes: the five planes (layer 0's x and y displacement, layer 1's, the strain), each W x H. */
+HFX_FN float hfx_flow_height(HFX_GLOBAL const float* heights, HFX_GLOBAL const float* planes, int W,
+                             int H, float x, float y, HfxFlowParams p) {
+    const int n = W * H;
+    float h = hfx_flow_base(heights, W, H, x, y);
+    float detail = 0.0f;
+    if (p.w0 > 0.0f)
+        detail += p.w0 * hfx_flow_noise(x + hfx_gas_sample(planes, W, H, x, y, 0.5f, 0.5f, 1),
+                                        y + hfx_gas_sample(planes + n, W, H, x, y, 0.5f, 0.5f, 1), p.z0, W,
+                                        p.frequency, p.aspect, p.octaves);
+    if (p.w1 > 0.0f)
+        detail += p.w1 * hfx_flow_noise(x + hfx_gas_sample(planes + 2 * n, W, H, x, y, 0.5f, 0.5f, 1),
+                                        y + hfx_gas_sample(planes + 3 * n, W, H, x, y, 0.5f, 0.5f, 1), p.z1, W,
+                                        p.frequency, p.aspect, p.octaves);
+    float s = hfx_gas_sample(planes + 4 * n, W, H, x, y, 0.5f, 0.5f, 1);
+    h += p.amount * (p.calm + (1.0f - p.calm) * s / (s + p.strainScale)) * detail;
+    return h < 0.0f ? 0.0f : (h > 1.0f ? 1.0f : h);
+}
+#endif

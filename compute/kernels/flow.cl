@@ -1,0 +1,37 @@
+#include "FlowMath.h"
+
+/* The gas planet's advected detail (FlowMath.h, hfx::FlowDetail). */
+
+/* Both layers' displacement planes (the first 4 of 5 x W x H) advected dt into dst, a layer whose
+   `reset` is set starting again from zero; the fifth plane gets the flow's strain rate now. */
+__kernel void flow_advect(__global const float* restrict u, __global const float* restrict v,
+                          __global const float* restrict src, __global float* restrict dst, int W, int H,
+                          float dt, int reset0, int reset1) {
+    int i = get_global_id(0), j = get_global_id(1);
+    if (i >= W || j >= H) return;
+    int k = j * W + i, n = W * H;
+    for (int plane = 0; plane < 4; ++plane) {
+        int reset = plane < 2 ? reset0 : reset1;
+        dst[plane * n + k] = reset ? 0.0f : hfx_flow_advect(u, v, src + plane * n, W, H, i, j, dt, plane & 1);
+    }
+    dst[4 * n + k] = hfx_flow_strain(u, v, W, H, i, j);
+}
+
+/* The detailed heights, `scale` texels per gas cell along each axis (fine texel (x, y) has its
+   centre at ((x + 0.5) / scale, (y + 0.5) / scale) cells), faded to 0.5 along a smoothstep within
+   capRows gas rows of the poles and reaching it on the first and last rows, where every column
+   meets in one point. */
+__kernel void flow_detail(__global const float* restrict heights, __global const float* restrict planes,
+                          __global float* restrict out, int W, int H, int scale, HfxFlowParams params,
+                          float capRows) {
+    int fx = get_global_id(0), fy = get_global_id(1);
+    int columns = W * scale, rows = H * scale;
+    if (fx >= columns || fy >= rows) return;
+    float x = ((float)fx + 0.5f) / (float)scale, y = ((float)fy + 0.5f) / (float)scale;
+    float h = hfx_flow_height(heights, planes, W, H, x, y, params);
+    if (capRows > 0.0f) {
+        float t = fmin((float)fy, (float)(rows - 1 - fy)) / (capRows * (float)scale);
+        if (t < 1.0f) h = 0.5f + (h - 0.5f) * t * t * (3.0f - 2.0f * t);
+    }
+    out[fy * columns + fx] = h;
+}

@@ -1,0 +1,233 @@
+// The gas's advected detail (FlowDetail, FlowMath.h): a uniform wind carries the noise's
+// coordinates exactly, the kernels match the shared math run on the host, a shear stretches the
+// noise into filaments along it, the layers regenerate at their period, and the detail stays
+// periodic in u and finite at 10^4 times the time scale.
+
+#include "support/Fixtures.h"
+
+#include "hfx/compute/FlowDetail.h"
+#include "hfx/compute/GasField.h"
+#include "hfx/compute/shared/FlowMath.h"
+#include "hfx/core/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hfx::test {
+namespace {
+
+class Flow : public ClTest {};
+
+constexpr int W = 64, H = 32;
+
+GasConfig gasConfig() { return {.width = W, .height = H, .edges = EdgeMode::WrapU, .initialBands = 4.0f}; }
+
+// A gas whose velocity is u(y) along x (at the x-faces, rows' centres y = j + 0.5) and 0 along y.
+void setZonalWind(GasField& gas, float (*u)(float y)) {
+    std::vector<float> vx(W * H), vy(W * H, 0.0f), dye(W * H);
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            vx[j * W + i] = u(float(j) + 0.5f);
+            dye[j * W + i] = 0.5f + 0.3f * std::sin(0.4f * float(j)) * std::cos(6.283185f * float(i) / W);
+        }
+    gas.setState(vx, vy, dye);
+}
+
+// Mean |dh/dx| and |dh/dy| over the inner rows of a fine field (width x height).
+std::pair<double, double> meanSlopes(const std::vector<float>& h, int width, int height) {
+    double dx = 0, dy = 0;
+    int n = 0;
+    for (int y = height / 8; y < height - height / 8; ++y)
+        for (int x = 0; x < width; ++x, ++n) {
+            dx += std::abs(h[size_t(y) * width + (x + 1) % width] - h[size_t(y) * width + x]);
+            dy += std::abs(h[size_t(y + 1) * width + x] - h[size_t(y) * width + x]);
+        }
+    return {dx / n, dy / n};
+}
+
+TEST_F(Flow, AUniformWindCarriesTheNoisesCoordinatesExactly) {
+    GasField gas(cl(), gasConfig());
+    setZonalWind(gas, [](float) { return 3.0f; });
+    const float period = 10.0f, dt = 0.25f;
+    FlowDetail detail(cl(), gas, {.scale = 2, .amount = 0.3f, .period = period});
+    // Layer 1 is born at t = 5 (its phase 0.5 + t / 10 turns over), layer 0 lives from t = 0.
+    for (int s = 0; s < 28; ++s) detail.step(dt); // t = 7
+    const std::vector<float> d = detail.readPlanes();
+    const size_t n = size_t(W) * H;
+    double worst = 0;
+    for (size_t k = 0; k < n; ++k) {
+        worst = std::max(worst, std::abs(d[k] - (-3.0 * 7.0)));       // layer 0: x moved back by U t
+        worst = std::max(worst, double(std::abs(d[n + k])));           // no move in y
+        worst = std::max(worst, std::abs(d[2 * n + k] - (-3.0 * 2.0))); // layer 1: since t = 5
+        worst = std::max(worst, double(std::abs(d[3 * n + k])));
+    }
+    EXPECT_LT(worst, 1e-3);
+    EXPECT_NEAR(detail.weight(0), std::sin(3.14159265 * 0.7), 1e-6);
+    EXPECT_NEAR(detail.weight(1), std::sin(3.14159265 * 0.2), 1e-6);
+    // So the detail at x is the fresh noise at x - U t: the pattern moves with the wind.
+}
+
+TEST_F(Flow, KernelsMatchTheSharedMathOnTheHostAndThePolesAreOneValue) {
+    GasField gas(cl(), gasConfig());
+    gas.step(0.1);
+    const FlowDetailConfig config{.scale = 4, .amount = 0.3f, .period = 3.0f, .capRows = 2.0f};
+    FlowDetail detail(cl(), gas, config);
+    for (int s = 0; s < 7; ++s) {
+        gas.step(0.2);
+        detail.step(0.2);
+    }
+    detail.run();
+    const std::vector<float> drawn = detail.readHeights(), planes = detail.readPlanes(), heights = gas.readHeights();
+    const int columns = W * 4, rows = H * 4;
+    ASSERT_EQ(drawn.size(), size_t(columns) * rows);
+    double worst = 0, shown = 0;
+    for (int fy = 0; fy < rows; ++fy)
+        for (int fx = 0; fx < columns; ++fx) {
+            const float x = (float(fx) + 0.5f) / 4.0f, y = (float(fy) + 0.5f) / 4.0f;
+            float h = hfx_flow_height(heights.data(), planes.data(), W, H, x, y, detail.params());
+            const float t = float(std::min(fy, rows - 1 - fy)) / (config.capRows * 4.0f);
+            if (t < 1.0f) h = 0.5f + (h - 0.5f) * t * t * (3.0f - 2.0f * t);
+            worst = std::max(worst, double(std::abs(drawn[size_t(fy) * columns + fx] - h)));
+            if (t >= 1.0f)
+                shown = std::max(shown, double(std::abs(drawn[size_t(fy) * columns + fx] -
+                                                        hfx_flow_base(heights.data(), W, H, x, y))));
+        }
+    EXPECT_LT(worst, 1e-5);
+    // The gas's heights come through as a cubic B-spline: (1, 4, 1) / 6 along each axis at its
+    // cell centres, and between them without a crease: the slope is one from either side of a
+    // cell's edge.
+    double crease = 0, slope = 0;
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            const float x = float(i) + 0.5f, y = float(j) + 0.5f, e = 1.0f / 64.0f;
+            auto at3 = [&](int di, int dj) {
+                const int jj = std::clamp(j + dj, 0, H - 1), ii = (i + di + W) % W;
+                return double(heights[size_t(jj) * W + ii]);
+            };
+            double centre = 0;
+            for (int dj = -1; dj <= 1; ++dj)
+                for (int di = -1; di <= 1; ++di) centre += (di ? 1.0 : 4.0) * (dj ? 1.0 : 4.0) / 36.0 * at3(di, dj);
+            ASSERT_NEAR(hfx_flow_base(heights.data(), W, H, x, y), centre, 1e-6);
+            const float at = hfx_flow_base(heights.data(), W, H, x + 0.5f, y);
+            const double left = at - hfx_flow_base(heights.data(), W, H, x + 0.5f - e, y);
+            const double right = hfx_flow_base(heights.data(), W, H, x + 0.5f + e, y) - at;
+            crease = std::max(crease, std::abs(right - left) / e);
+            slope = std::max(slope, std::abs(left) / e);
+        }
+    EXPECT_LT(crease, 0.05 * slope) << "the slope steps at a cell's edge";
+    // The octaves the scale shows: lattice cells along y up to scale / 2 per gas cell.
+    EXPECT_EQ(detail.octaves(), 3); // 0.5, 1 and 2 per cell along y
+    EXPECT_GT(shown, 0.015) << "the detail shows"; // a still gas: the calm share of it
+    for (int fx = 0; fx < columns; ++fx) {
+        EXPECT_EQ(drawn[size_t(fx)], 0.5f);
+        EXPECT_EQ(drawn[size_t(rows - 1) * columns + fx], 0.5f);
+    }
+}
+
+TEST_F(Flow, AShearStretchesTheNoiseIntoFilamentsAlongIt) {
+    // u = S (y - H / 2): after an age a, a feature is sheared by S a cells per cell of height.
+    // At t = period / 2 layer 0 has weight 1 and layer 1 none: the detail is layer 0 alone, of
+    // age period / 2. Fresh (a still wind), the noise is about as steep along x as along y;
+    // sheared, its slopes across the flow are over twice those along it.
+    GasField still(cl(), gasConfig()), sheared(cl(), gasConfig());
+    setZonalWind(still, [](float) { return 0.0f; });
+    setZonalWind(sheared, [](float y) { return 1.5f * (y - 0.5f * H); });
+    double ratio[2];
+    GasField* gases[2] = {&still, &sheared};
+    for (int g = 0; g < 2; ++g) {
+        FlowDetail detail(cl(), *gases[g], {.scale = 4, .amount = 1.0f, .frequency = 0.5f, .aspect = 1.0f, .octaves = 3,
+                                            .calm = 1.0f, .period = 4.0f});
+        for (int s = 0; s < 20; ++s) detail.step(0.1);
+        ASSERT_NEAR(detail.weight(0), 1.0f, 1e-6);
+        // The strain rate of u = S (y - H / 2) is |S| (du/dy), of a still gas 0, away from the walls.
+        const std::vector<float> planes = detail.readPlanes();
+        for (int j = 2; j < H - 2; ++j)
+            for (int i = 0; i < W; ++i) ASSERT_NEAR(planes[4 * W * H + j * W + i], g == 0 ? 0.0f : 1.5f, 1e-4) << i << "," << j;
+        detail.run();
+        // The detail alone: the gas's own heights subtracted (as the kernel adds them).
+        std::vector<float> h = detail.readHeights();
+        const std::vector<float> base = gases[g]->readHeights();
+        for (int fy = 0; fy < H * 4; ++fy)
+            for (int fx = 0; fx < W * 4; ++fx)
+                h[size_t(fy) * W * 4 + fx] -= hfx_flow_base(base.data(), W, H, (fx + 0.5f) / 4.0f, (fy + 0.5f) / 4.0f);
+        const auto [dx, dy] = meanSlopes(h, W * 4, H * 4);
+        ratio[g] = dy / dx;
+    }
+    EXPECT_GT(ratio[0], 0.6);
+    EXPECT_LT(ratio[0], 1.6);
+    EXPECT_GT(ratio[1], 2.0) << "still " << ratio[0]; // 2.34 on PoCL (a shear of 3 cells per cell: sqrt(10) for an ideal slope)
+}
+
+TEST_F(Flow, LayersRegenerateAtTheirPeriodAndStayPeriodicInUAndFiniteAtLongSteps) {
+    GasField gas(cl(), {.width = W, .height = H, .edges = EdgeMode::WrapU, .vorticity = 0.35f, .jetSpeed = 14.0f,
+                        .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f, .initialBands = 4.0f});
+    FlowDetail detail(cl(), gas, {.scale = 4, .amount = 0.25f, .period = 4.0f, .capRows = 1.0f});
+    // A regenerated layer starts from no displacement: layer 0 turns over at t = 4.
+    for (int s = 0; s < 39; ++s) {
+        gas.step(0.1);
+        detail.step(0.1);
+    }
+    const size_t n = size_t(W) * H;
+    std::vector<float> d = detail.readPlanes();
+    const float moved = *std::max_element(d.begin(), d.begin() + n, [](float a, float b) { return std::abs(a) < std::abs(b); });
+    EXPECT_GT(std::abs(moved), 5.0f) << "the jets moved layer 0";
+    const float generation = detail.generation(0);
+    gas.step(0.2);
+    detail.step(0.2);
+    d = detail.readPlanes();
+    EXPECT_TRUE(std::all_of(d.begin(), d.begin() + 2 * n, [](float x) { return x == 0.0f; })) << "layer 0 reborn";
+    EXPECT_NE(detail.generation(0), generation) << "with a fresh noise";
+    // The planet's 10^4 time scale: steps of minutes of gas time, many lives each.
+    for (int s = 0; s < 200; ++s) {
+        gas.step(166.7);
+        detail.step(166.7);
+    }
+    detail.run();
+    const std::vector<float> h = detail.readHeights();
+    d = detail.readPlanes();
+    for (float x : d) ASSERT_TRUE(std::isfinite(x));
+    const int columns = W * 4, rows = H * 4;
+    double interior = 0, seam = 0;
+    for (int y = 0; y < rows; ++y) {
+        for (int x = 0; x < columns; ++x) ASSERT_TRUE(h[size_t(y) * columns + x] >= 0.0f && h[size_t(y) * columns + x] <= 1.0f);
+        for (int x = 0; x + 1 < columns; ++x)
+            interior = std::max(interior, double(std::abs(h[size_t(y) * columns + x + 1] - h[size_t(y) * columns + x])));
+        seam = std::max(seam, double(std::abs(h[size_t(y) * columns] - h[size_t(y) * columns + columns - 1])));
+    }
+    EXPECT_GT(interior, 0.0);
+    EXPECT_LE(seam, interior) << "a seam at u = 0";
+    // The noise itself wraps around the longitude at every octave.
+    for (float y : {3.3f, 17.9f})
+        for (float x : {0.1f, 31.7f})
+            EXPECT_NEAR(hfx_flow_noise(x, y, 5.5f, W, 0.25f, 2.0f, 4), hfx_flow_noise(x + W, y, 5.5f, W, 0.25f, 2.0f, 4), 1e-5);
+}
+
+TEST_F(Flow, BadConfigurationsAreRefusedByName) {
+    GasField gas(cl(), gasConfig());
+    auto refuses = [&](FlowDetailConfig c, const char* field) {
+        try {
+            FlowDetail detail(cl(), gas, c);
+            ADD_FAILURE() << field << " accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+        }
+    };
+    refuses({.scale = 3}, "scale");
+    refuses({.amount = -0.1f}, "amount");
+    refuses({.frequency = 0.3f}, "frequency"); // 64 * 0.3 is not whole: the noise would not wrap
+    refuses({.octaves = 0}, "octaves");
+    refuses({.aspect = 0.5f}, "aspect");
+    refuses({.calm = 1.5f}, "calm");
+    refuses({.strainScale = 0.0f}, "strainScale");
+    refuses({.period = 0.0f}, "period");
+    refuses({.capRows = 17.0f}, "capRows");
+    GasField torus(cl(), {.width = W, .height = H, .edges = EdgeMode::Wrap});
+    EXPECT_THROW(FlowDetail(cl(), torus, {}), Error);
+    FlowDetail detail(cl(), gas, {});
+    EXPECT_THROW(detail.step(std::nan("")), Error);
+    EXPECT_THROW(detail.setPlanes(std::vector<float>(5 * W * H, std::nanf(""))), Error);
+    EXPECT_THROW(detail.setPlanes(std::vector<float>(4 * W * H, 0.0f)), Error);
+}
+
+} // namespace
+} // namespace hfx::test
