@@ -4,6 +4,7 @@
 
 #include "support/Fixtures.h"
 
+#include "hfx/compute/OceanSpectrum.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/OceanEffect.h"
 
@@ -161,6 +162,62 @@ TEST_F(OceanShading, AnEnvironmentImageIsTheSkyTheWaterReflectsAndTheSkyPassDraw
     const double reflecting = meanRedOverBlue(sea.draw(withEnvironment(redSky.id()), light));
     std::printf("[environment] water red/blue: %.3f under the procedural sky, %.3f under a red image\n", plain, reflecting);
     EXPECT_GT(reflecting, 1.5 * plain) << "the water does not reflect the environment image";
+}
+
+/// The share of the sea's pixels that whitecaps cover in a frame looking straight down from
+/// 40 m: a pixel is foam where drawing the foam brightens it by more than half of what the
+/// whitest foam in the frame does (the photographs' threshold, half way from the water to foam).
+double frameWhitecaps(OceanEffect& ocean) {
+    constexpr int kSize = 256;
+    const Mesh sea(makePlane({.size = 2000.0f, .texcoordScale = 2000.0f / ocean.ocean().config().patchMeters}));
+    RenderTarget target(kSize, kSize);
+    SurfaceRenderer renderer;
+    DirectionalLight light{.direction = {-0.3f, 1.0f, -0.4f}, .color = {1.0f, 0.95f, 0.9f}, .ambient = {0.35f, 0.42f, 0.5f}};
+    Camera camera;
+    camera.position = {0.0f, 40.0f, 0.0f};
+    camera.target = {0.0f, 0.0f, -0.001f};
+    camera.aspect = 1.0f;
+    camera.nearPlane = 0.2f;
+    camera.farPlane = 500.0f;
+    auto view = [&](bool foam) {
+        SurfaceMaterial material = ocean.material();
+        material.water.foam = foam;
+        target.bind();
+        target.clear();
+        renderer.draw(sea, glm::mat4(1.0f), ocean.layers(), material, camera, light);
+        return target.readColor();
+    };
+    const Image with = view(true), without = view(false);
+    std::vector<double> brighter(size_t(kSize) * kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            auto luma = [&](const Image& im) { return 0.2126 * im.at(x, y, 0) + 0.7152 * im.at(x, y, 1) + 0.0722 * im.at(x, y, 2); };
+            brighter[size_t(y) * kSize + x] = luma(with) - luma(without);
+        }
+    const double full = *std::max_element(brighter.begin(), brighter.end());
+    const size_t covered = size_t(std::count_if(brighter.begin(), brighter.end(), [&](double b) { return b > 0.5 * full; }));
+    return double(covered) / (double(kSize) * kSize);
+}
+
+TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
+    // Monahan & O'Muircheartaigh (1980): W = 3.84e-6 U10^3.41 of the sea's surface is white, at
+    // Beaufort 4, 6 and 8 (the middle of each force's wind). After the foam has come to its
+    // steady state (five half-lives of foam), the share of a frame looking straight down that
+    // the foam whitens must be W within a factor of 2.5: the scatter of the photographs about
+    // Monahan's fit is a factor of 2 to 3. The field injects foam on W of its area at each
+    // instant (OceanTest); what a frame shows is that foam as it lasts, drifts and frays. Before
+    // foam showed opaque where it shows (it was dimmed by its coverage): 0.08x, 0.88x, 1.33x W,
+    // so a Beaufort 4 sea had no whitecaps to see.
+    for (int force : {4, 6, 8}) {
+        const float u10 = beaufortWindSpeed(force);
+        OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = u10}}}});
+        for (int i = 0; i < 100; ++i) ocean.update(0.2);
+        const double frame = frameWhitecaps(ocean), w = OceanField::whitecapCoverage(u10);
+        std::printf("[whitecaps] Beaufort %d (%.1f m/s): %.4f of the frame, Monahan %.4f (%.2fx)\n", force, u10, frame, w,
+                    frame / w);
+        EXPECT_GT(frame, w / 2.5) << "Beaufort " << force;
+        EXPECT_LT(frame, 2.5 * w) << "Beaufort " << force;
+    }
 }
 
 } // namespace

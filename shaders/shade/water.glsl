@@ -15,10 +15,12 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float fresnel = u_fresnelF0 + (max(1.0 - roughness, u_fresnelF0) - u_fresnelF0) * pow(1.0 - cosView, 5.0);
     // Foam breaks up where it thins: a layer's coverage f shows where the next finer waves stand
     // highest, a fraction f of them, so young foam is solid and old foam frays into patches; the
-    // layers' foams combine as independent coverages.
+    // layers' foams combine as independent coverages. Where it shows it is white: foam dimmed by
+    // its coverage read as a grey veil, and a calm sea's thin whitecaps did not show at all
+    // (OceanShading.WhitecapsCoverTheFrameAsMonahansLawSays).
     const vec4 ripple = clamp(0.5 + 3.0 * (p.foamDetail - 0.5), 0.0, 1.0);
     const vec4 coverage = clamp(p.foam, 0.0, 1.0);
-    const vec4 shown = coverage * smoothstep(1.0 - coverage, 1.4 - coverage, ripple);
+    const vec4 shown = smoothstep(1.0 - coverage, 1.4 - coverage, ripple);
     const vec4 clear = 1.0 - shown;
     const float foam = u_foam != 0 ? 1.0 - clear.x * clear.y * clear.z * clear.w : 0.0;
     const float variance = p.slopeVariance + foam * u_foamRoughness;
