@@ -2,9 +2,10 @@
 # Renders the README's gallery: one 1280x720 picture of each scene, headless, at the scenes'
 # default grazing cameras, after enough frames for the field to develop (the decal volley: 196
 # bullets and 5 explosions with their scorch; the planet's storms). Writes
-# docs/gallery/{water,decals,planet,noise}.jpg, the sea calm (Beaufort 3) and rough (Beaufort 7),
-# the far field seen 5 degrees down (water-horizon.jpg), the sea after an explosion
-# (water-explosion.jpg), and a 4-second 640x360 video of the rough sea (water.mp4, needs ffmpeg).
+# docs/gallery/{water,decals,planet,noise}.jpg, the planet close up (planet-closeup.jpg), the sea
+# calm (Beaufort 3) and rough (Beaufort 7), the far field seen 5 degrees down (water-horizon.jpg),
+# the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
+# (water.mp4, needs ffmpeg).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -35,5 +36,8 @@ printf 'explosion 1 760 560 3\nclick 1 420 600\nclick 1 440 610\n' > "$work/wate
 render water 31 --shots "$work/water-shots.txt" && mv docs/gallery/water.jpg docs/gallery/water-explosion.jpg
 render water 30
 render noise 2 --noise-kind psrd --fractal ridged --warp 0.6
-render planet 120
+# The planet as a GPU draws it (4 detail texels per gas cell), and a close-up after 12 s of its
+# gas (the festoons and filaments of its advected detail).
+render planet 150 --detail-scale 4 --camera-distance 1.8 --time-scale 3 && mv docs/gallery/planet.jpg docs/gallery/planet-closeup.jpg
+render planet 120 --detail-scale 4
 ls -l docs/gallery
