@@ -5,8 +5,11 @@
 #include "support/Fixtures.h"
 
 #include "hfx/compute/OceanSpectrum.h"
+#include "hfx/core/Error.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/OceanEffect.h"
+
+#include <glm/trigonometric.hpp>
 
 #include <array>
 #include <cstdlib>
@@ -218,6 +221,57 @@ TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
         EXPECT_GT(frame, w / 2.5) << "Beaufort " << force;
         EXPECT_LT(frame, 2.5 * w) << "Beaufort " << force;
     }
+}
+
+TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {
+    // A Beaufort 6 sea from 7 m, 10 degrees down, the sun 9 degrees up: ahead of the camera
+    // (the light crosses the crests towards the eye) and behind it. What the translucency adds
+    // (the frame with it less the frame without) is light in the shallow colour, green over red,
+    // never a darkening, and it is there looking towards the sun and not away from it.
+    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = beaufortWindSpeed(6)}}}});
+    ocean.update(0.1);
+    constexpr int W = 320, H = 180;
+    const Mesh sea(makePlane({.size = 4000.0f, .texcoordScale = 4000.0f / ocean.ocean().config().patchMeters}));
+    RenderTarget target(W, H);
+    SurfaceRenderer renderer;
+    Camera camera;
+    camera.position = {0.0f, 7.0f, 0.0f};
+    camera.target = {0.0f, 7.0f - 100.0f * std::tan(glm::radians(10.0f)), -100.0f};
+    camera.aspect = float(W) / H;
+    camera.nearPlane = 0.2f;
+    camera.farPlane = 8000.0f;
+    auto added = [&](float sunZ) {
+        DirectionalLight light{.direction = {0.0f, 0.16f, sunZ}, .color = {1.0f, 0.9f, 0.75f}, .ambient = {0.35f, 0.42f, 0.5f}};
+        auto view = [&](float translucency) {
+            SurfaceMaterial material = ocean.material();
+            material.water.translucency = translucency;
+            target.bind();
+            target.clear();
+            renderer.draw(sea, glm::mat4(1.0f), ocean.layers(), material, camera, light);
+            return target.readColor();
+        };
+        const Image with = view(1.0f), without = view(0.0f);
+        glm::dvec3 sum{0.0};
+        float darkest = 0.0f;
+        for (int y = H / 2 + 10; y < H; ++y) // the sea below the horizon's haze
+            for (int x = 0; x < W; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const float d = with.at(x, y, c) - without.at(x, y, c);
+                    sum[c] += d;
+                    darkest = std::min(darkest, d);
+                }
+        EXPECT_GE(darkest, -1.0f / 255.0f) << "the glow darkened a pixel";
+        return sum / double(W * (H - H / 2 - 10));
+    };
+    const glm::dvec3 towards = added(-1.0f), away = added(1.0f);
+    std::printf("[translucency] mean added light towards the sun (%.4f, %.4f, %.4f), away (%.4f, %.4f, %.4f)\n", towards.r,
+                towards.g, towards.b, away.r, away.g, away.b);
+    EXPECT_GT(towards.g, 0.001) << "the crests glow"; // 0.0028 on llvmpipe: a glow under the sky's reflection
+    EXPECT_GT(towards.g, 3.0 * towards.r) << "in the shallow colour";
+    EXPECT_LT(away.g, 0.1 * towards.g) << "with the sun behind the camera nothing crosses the crests towards it";
+    SurfaceMaterial bad = ocean.material();
+    bad.water.translucency = -1.0f;
+    EXPECT_THROW(bad.validate(), Error);
 }
 
 } // namespace

@@ -40,6 +40,7 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .hazeDistance = w.hazeDistance,
             .foam = w.foam ? 1 : 0,
             .sunGlow = w.sunGlow,
+            .translucency = w.translucency,
             .foamColor = w.foamColor,
             .foamRoughness = w.foamRoughness};
 }
@@ -79,6 +80,8 @@ void SurfaceMaterial::validate() const {
             throw Error(str("WaterLook.glintPower must be >= 1, got ", water.glintPower));
         if (!(water.glintStrength >= 0.0f) || !std::isfinite(water.glintStrength))
             throw Error(str("WaterLook.glintStrength must be >= 0, got ", water.glintStrength));
+        if (!(water.translucency >= 0.0f && water.translucency <= 10.0f))
+            throw Error(str("WaterLook.translucency must be in [0, 10], got ", water.translucency));
         if (!(water.hazeDistance > 0.0f))
             throw Error(str("WaterLook.hazeDistance must be positive, got ", water.hazeDistance));
         if (water.environment != 0 && !glIsTexture(water.environment))

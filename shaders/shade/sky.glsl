@@ -17,7 +17,8 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     float u_hazeDistance; // world units where half the colour is haze
     int u_foam;           // 1: the albedo's alpha is foam coverage (the ocean writes it)
     float u_sunGlow;      // strength of the glow around the sun in the sky
-    vec2 u_waterReserved;
+    float u_translucency; // how brightly a crest lit from behind glows (0: not at all)
+    float u_waterReserved;
     vec3 u_foamColor;
     float u_foamRoughness; // how much foam widens and dims the sun's glint (0..1)
 };

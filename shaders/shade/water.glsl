@@ -1,11 +1,23 @@
-// Water: the body colour deepens in the troughs, the sky (shade/sky.glsl) is reflected by
+// Water: the body colour deepens in the troughs, backlit crests glow, the sky (shade/sky.glsl) is reflected by
 // Schlick's Fresnel weight, the sun leaves a sharp glint, foam (the ocean's, in the albedo's
 // alpha) covers both, and distance fades everything into the horizon's haze. The normals'
 // variance at the pixel's mip level (Toksvig) widens the glint and roughens the Fresnel term, so
 // the far sea does not shimmer.
 
+// Crest translucency: sunlight that enters a wave's far side and crosses its thin top towards the
+// eye (the green glow of backlit crests). It grows with the crest's height above the mean sea
+// (the thinner the water between the sun and the eye: h = 0.5 is the mean, 0.75 two sigma of
+// the sea above it) and as the eye looks towards the sun through the wave: against the light's
+// direction bent by the surface's normal, as light is where it leaves the water.
+float hfx_crest_glow(HfxSurfacePoint p) {
+    const float crest = smoothstep(0.5, 0.75, p.height);
+    const float through = pow(clamp(dot(p.viewDir, -normalize(p.lightDir + 0.4 * p.normal)), 0.0, 1.0), 4.0);
+    return 6.0 * u_translucency * crest * through;
+}
+
 vec3 hfx_shade(HfxSurfacePoint p) {
-    const vec3 body = mix(u_deepColor, u_shallowColor, p.height * p.height) * (u_ambient + p.lit * p.diffuse * u_lightColor);
+    const vec3 body = mix(u_deepColor, u_shallowColor, p.height * p.height) * (u_ambient + p.lit * p.diffuse * u_lightColor) +
+                      hfx_crest_glow(p) * u_shallowColor * u_lightColor;
     vec3 reflected = reflect(-p.viewDir, p.normal);
     reflected.y = abs(reflected.y); // a ray reflected downwards sees the next wave's sky
     // Roughness from the slope variance: Schlick's Fresnel with roughness (Lagarde) and a glint

@@ -57,6 +57,10 @@ struct WaterLook {
     float glintStrength = 40.0f;
     float hazeDistance = 90.0f;                    ///< world units where half the colour is haze
     float sunGlow = 0.6f;                          ///< the glow around the sun in the procedural sky
+    /// Crests lit from behind glow in shallowColor: sunlight crossing a wave's thin top towards
+    /// the eye. 0: none; 1 lights a crest two sigma of the sea high, seen against the sun, with
+    /// six times the shallow colour.
+    float translucency = 1.0f;
     /// The albedo's alpha is foam coverage (OceanEffect writes it per cascade): foam is drawn in
     /// foamColor, lit like snow, and widens the glint by foamRoughness.
     bool foam = false;

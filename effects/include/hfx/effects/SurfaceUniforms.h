@@ -68,7 +68,8 @@ struct WaterUniforms {
     float hazeDistance = 1.0f;
     int foam = 0;
     float sunGlow = 0.0f;
-    float reserved[2] = {0.0f, 0.0f};
+    float translucency = 0.0f;
+    float reserved = 0.0f;
     glm::vec3 foamColor{1.0f};
     float foamRoughness = 0.0f;
 };
@@ -98,6 +99,7 @@ static_assert(offsetof(SurfaceUniforms, shadowLight) == 480);
 static_assert(sizeof(SurfaceUniforms) == 496);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
+static_assert(offsetof(WaterUniforms, translucency) == 72);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);
 static_assert(sizeof(WaterUniforms) == 96);
 static_assert(offsetof(RingUniforms, wave) == 16 * kMaxWaterRings);
