@@ -167,6 +167,15 @@ TEST_F(OceanShading, AnEnvironmentImageIsTheSkyTheWaterReflectsAndTheSkyPassDraw
     EXPECT_GT(reflecting, 1.5 * plain) << "the water does not reflect the environment image";
 }
 
+/// One frame of the sea drawn with `material` (the ocean's, as the caller changed it).
+Image drawSea(const OceanEffect& ocean, const SurfaceMaterial& material, const Mesh& sea, const Camera& camera,
+              const DirectionalLight& light, RenderTarget& target, SurfaceRenderer& renderer) {
+    target.bind();
+    target.clear();
+    renderer.draw(sea, glm::mat4(1.0f), ocean.layers(), material, camera, light);
+    return target.readColor();
+}
+
 /// The share of the sea's pixels that whitecaps cover in a frame looking straight down from
 /// 40 m: a pixel is foam where drawing the foam brightens it by more than half of what the
 /// whitest foam in the frame does (the photographs' threshold, half way from the water to foam).
@@ -185,10 +194,7 @@ double frameWhitecaps(OceanEffect& ocean) {
     auto view = [&](bool foam) {
         SurfaceMaterial material = ocean.material();
         material.water.foam = foam;
-        target.bind();
-        target.clear();
-        renderer.draw(sea, glm::mat4(1.0f), ocean.layers(), material, camera, light);
-        return target.readColor();
+        return drawSea(ocean, material, sea, camera, light, target, renderer);
     };
     const Image with = view(true), without = view(false);
     std::vector<double> brighter(size_t(kSize) * kSize);
@@ -245,10 +251,7 @@ TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {
         auto view = [&](float translucency) {
             SurfaceMaterial material = ocean.material();
             material.water.translucency = translucency;
-            target.bind();
-            target.clear();
-            renderer.draw(sea, glm::mat4(1.0f), ocean.layers(), material, camera, light);
-            return target.readColor();
+            return drawSea(ocean, material, sea, camera, light, target, renderer);
         };
         const Image with = view(1.0f), without = view(0.0f);
         glm::dvec3 sum{0.0};
