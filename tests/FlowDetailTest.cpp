@@ -116,7 +116,7 @@ TEST_F(Flow, KernelsMatchTheSharedMathOnTheHostAndThePolesAreOneValue) {
         }
     EXPECT_LT(crease, 0.05 * slope) << "the slope steps at a cell's edge";
     // The octaves the scale shows: lattice cells along y up to scale / 2 per gas cell.
-    EXPECT_EQ(detail.octaves(), 3); // 0.5, 1 and 2 per cell along y
+    EXPECT_EQ(detail.octaves(), 2); // 1 and 2 per cell along y (the base 0.5 along x, twice that along y)
     EXPECT_GT(shown, 0.015) << "the detail shows"; // a still gas: the calm share of it
     for (int fx = 0; fx < columns; ++fx) {
         EXPECT_EQ(drawn[size_t(fx)], 0.5f);

@@ -26,7 +26,7 @@ struct FlowDetailConfig {
     float amount = 0.25f;
     /// The coarsest octave's lattice cells per gas cell along x; width * frequency must be whole
     /// (the noise wraps around the longitude). Each further octave doubles it.
-    float frequency = 0.25f;
+    float frequency = 0.5f;
     /// The lattice's frequency along y over x's, [1, 8]: features that much longer along the
     /// bands than across them.
     float aspect = 2.0f;

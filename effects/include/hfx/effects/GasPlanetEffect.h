@@ -56,7 +56,7 @@ struct GasPlanetConfig {
     /// capRows come from poleCap). scale 0 picks one for the compute device: the largest of 4, 2
     /// and 1 that keeps the surface at most 2048 texels wide on a GPU, 1024 on a CPU device
     /// (autoDetailScale). amount 0 draws the gas's own heights alone.
-    FlowDetailConfig detail{.scale = 0, .amount = 0.25f, .frequency = 0.5f, .octaves = 4, .period = 4.0f};
+    FlowDetailConfig detail{.scale = 0};
     std::uint64_t seed = 1;
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
