@@ -230,11 +230,11 @@ TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
 }
 
 TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {
-    // A Beaufort 6 sea from 7 m, 10 degrees down, the sun 9 degrees up: ahead of the camera
-    // (the light crosses the crests towards the eye) and behind it. What the translucency adds
+    // The demo's sea: Beaufort 4 from 7 m, 8 degrees down, the sun 12 degrees up and 19 to the
+    // left: ahead of the camera (the light crosses the crests towards the eye) and behind it. What the translucency adds
     // (the frame with it less the frame without) is light in the shallow colour, green over red,
     // never a darkening, and it is there looking towards the sun and not away from it.
-    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = beaufortWindSpeed(6)}}}});
+    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = beaufortWindSpeed(4)}}}});
     ocean.update(0.1);
     constexpr int W = 320, H = 180;
     const Mesh sea(makePlane({.size = 4000.0f, .texcoordScale = 4000.0f / ocean.ocean().config().patchMeters}));
@@ -242,36 +242,45 @@ TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {
     SurfaceRenderer renderer;
     Camera camera;
     camera.position = {0.0f, 7.0f, 0.0f};
-    camera.target = {0.0f, 7.0f - 100.0f * std::tan(glm::radians(10.0f)), -100.0f};
+    camera.target = {0.0f, 7.0f - 100.0f * std::tan(glm::radians(8.0f)), -100.0f};
     camera.aspect = float(W) / H;
     camera.nearPlane = 0.2f;
     camera.farPlane = 8000.0f;
+    struct Glow {
+        glm::dvec3 mean{0.0};     // added light, the sea's mean
+        glm::vec3 brightest{0.0f}; // at the pixel where the most green is added
+    };
     auto added = [&](float sunZ) {
-        DirectionalLight light{.direction = {0.0f, 0.16f, sunZ}, .color = {1.0f, 0.9f, 0.75f}, .ambient = {0.35f, 0.42f, 0.5f}};
+        DirectionalLight light{.direction = {-0.35f, 0.22f, sunZ}, .color = {1.0f, 0.9f, 0.75f}, .ambient = {0.35f, 0.42f, 0.5f}};
         auto view = [&](float translucency) {
             SurfaceMaterial material = ocean.material();
             material.water.translucency = translucency;
+            material.water.hazeDistance = 2500.0f; // the demo's
             return drawSea(ocean, material, sea, camera, light, target, renderer);
         };
         const Image with = view(1.0f), without = view(0.0f);
-        glm::dvec3 sum{0.0};
+        Glow glow;
         float darkest = 0.0f;
         for (int y = H / 2 + 10; y < H; ++y) // the sea below the horizon's haze
-            for (int x = 0; x < W; ++x)
+            for (int x = 0; x < W; ++x) {
+                glm::vec3 d;
                 for (int c = 0; c < 3; ++c) {
-                    const float d = with.at(x, y, c) - without.at(x, y, c);
-                    sum[c] += d;
-                    darkest = std::min(darkest, d);
+                    d[c] = with.at(x, y, c) - without.at(x, y, c);
+                    darkest = std::min(darkest, d[c]);
                 }
+                glow.mean += glm::dvec3(d) / double(W * (H - H / 2 - 10));
+                if (d.g > glow.brightest.g) glow.brightest = d;
+            }
         EXPECT_GE(darkest, -1.0f / 255.0f) << "the glow darkened a pixel";
-        return sum / double(W * (H - H / 2 - 10));
+        return glow;
     };
-    const glm::dvec3 towards = added(-1.0f), away = added(1.0f);
-    std::printf("[translucency] mean added light towards the sun (%.4f, %.4f, %.4f), away (%.4f, %.4f, %.4f)\n", towards.r,
-                towards.g, towards.b, away.r, away.g, away.b);
-    EXPECT_GT(towards.g, 0.001) << "the crests glow"; // 0.0028 on llvmpipe: a glow under the sky's reflection
-    EXPECT_GT(towards.g, 3.0 * towards.r) << "in the shallow colour";
-    EXPECT_LT(away.g, 0.1 * towards.g) << "with the sun behind the camera nothing crosses the crests towards it";
+    const Glow towards = added(-1.0f), away = added(1.0f);
+    std::printf("[translucency] towards the sun: mean green added %.5f, the brightest (%.3f, %.3f, %.3f); away: mean %.5f, "
+                "brightest green %.3f\n",
+                towards.mean.g, towards.brightest.r, towards.brightest.g, towards.brightest.b, away.mean.g, away.brightest.g);
+    EXPECT_GT(towards.brightest.g, 0.02f) << "the crests glow"; // 0.035 on llvmpipe
+    EXPECT_GT(towards.brightest.g, 2.0f * towards.brightest.r) << "in the shallow colour";
+    EXPECT_LT(away.mean.g, 0.1 * towards.mean.g) << "with the sun behind the camera nothing crosses the crests towards it";
     SurfaceMaterial bad = ocean.material();
     bad.water.translucency = -1.0f;
     EXPECT_THROW(bad.validate(), Error);

@@ -10,9 +10,9 @@
 // the sea above it) and as the eye looks towards the sun through the wave: against the light's
 // direction bent by the surface's normal, as light is where it leaves the water.
 float hfx_crest_glow(HfxSurfacePoint p) {
-    const float crest = smoothstep(0.5, 0.75, p.height);
+    const float crest = smoothstep(0.55, 0.8, p.height);
     const float through = pow(clamp(dot(p.viewDir, -normalize(p.lightDir + 0.4 * p.normal)), 0.0, 1.0), 4.0);
-    return 6.0 * u_translucency * crest * through;
+    return 4.0 * u_translucency * crest * through;
 }
 
 vec3 hfx_shade(HfxSurfacePoint p) {
