@@ -3,7 +3,7 @@
 # default grazing cameras, after enough frames for the field to develop (the decal volley: 196
 # bullets and 5 explosions with their scorch; the planet's storms). Writes
 # docs/gallery/{water,decals,planet,noise}.jpg, the planet close up (planet-closeup.jpg), the sea
-# calm (Beaufort 3) and rough (Beaufort 7), the far field seen 5 degrees down (water-horizon.jpg),
+# calm (Beaufort 3) and rough (Beaufort 7), a Beaufort 4 / 7 / 10 strip, the far field seen 5 degrees down (water-horizon.jpg),
 # the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
 # (water.mp4, needs ffmpeg).
 set -euo pipefail
@@ -22,6 +22,8 @@ render() { # scene frames [options...]
 }
 render water 30 --beaufort 3 && mv docs/gallery/water.jpg docs/gallery/water-calm.jpg
 render water 30 --beaufort 7 && mv docs/gallery/water.jpg docs/gallery/water-rough.jpg
+render water 30 --beaufort 4 && mv docs/gallery/water.jpg docs/gallery/water-beaufort4.jpg
+render water 30 --beaufort 10 && mv docs/gallery/water.jpg docs/gallery/water-beaufort10.jpg
 render water 30 --camera-pitch 5 && mv docs/gallery/water.jpg docs/gallery/water-horizon.jpg
 if command -v ffmpeg >/dev/null; then
     # Encoded here rather than by --video: a higher CRF keeps the committed file small.
