@@ -53,9 +53,9 @@ struct GasPlanetConfig {
     float poleCap = 0.04f;
     float rotationSpeed = 0.08f;   ///< radians per second about +Y
     /// The cloud tops' detail finer than the gas's grid, advected by its flow (FlowDetail; its
-    /// capRows come from poleCap). scale 0 picks one for the compute device: the largest of 4, 2
-    /// and 1 that keeps the surface at most 2048 texels wide on a GPU, 1024 on a CPU device
-    /// (autoDetailScale). amount 0 draws the gas's own heights alone.
+    /// capRows come from poleCap, its seed from seed). scale 0 picks one for the compute
+    /// device: the largest of 4, 2 and 1 that keeps the surface at most 2048 texels wide on a
+    /// GPU, 1024 on a CPU device (autoDetailScale). amount 0 draws the gas's own heights alone.
     FlowDetailConfig detail{.scale = 0};
     std::uint64_t seed = 1;
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
