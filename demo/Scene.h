@@ -54,6 +54,7 @@ struct SceneOptions {
     float choppiness = 1.0f;           ///< water: horizontal displacement lambda
     int cascades = 0;                  ///< water: 0: the ocean's default (4)
     float cameraPitch = 8.0f;          ///< water: degrees the camera looks below the horizon
+    float foamHistory = 0.0f;          ///< water: seconds of wind the first frame's foam has seen
     float cameraDistance = 2.6f;       ///< planet: the camera's distance from the centre, in radii
     int detailScale = 0;               ///< planet: detail texels per gas cell (0: the device's)
     float timeScale = 1.0f;            ///< planet: simulated seconds per second, 1 to 10^4

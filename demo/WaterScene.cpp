@@ -59,6 +59,7 @@ public:
         float patch = 0.0f; // metres per texcoord unit
         if (o.waves == "fft") {
             ocean_ = std::make_unique<OceanEffect>(cl, oceanConfig(o));
+            if (o.foamHistory > 0.0f) ocean_->settleFoam(o.foamHistory);
             patch = ocean_->ocean().config().patchMeters;
             wind_ = ocean_->ocean().config().sea.wind.windSpeed;
         } else {

@@ -269,6 +269,9 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(1.0, 10000.0))->capture_default_str();
     app.add_option("--camera-pitch", s.cameraPitch, "water: degrees the camera looks below the horizon (small: the far field)")
         ->check(kFinite)->check(CLI::Range(0.0, 89.0))->capture_default_str();
+    app.add_option("--foam-history", s.foamHistory,
+                   "water: seconds of this wind the first frame's foam has seen (0: a clear start; whitecaps build over their 4 s half-life)")
+        ->check(kFinite)->check(CLI::Range(0.0, 600.0))->capture_default_str();
     app.add_option("--camera-distance", s.cameraDistance, "planet: the camera's distance from the centre in radii (close-up: 1.3)")
         ->check(kFinite)->check(CLI::Range(1.05, 100.0))->capture_default_str();
     app.add_option("--detail-scale", s.detailScale,

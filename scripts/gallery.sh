@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Renders the README's gallery: one 1280x720 picture of each scene, headless, at the scenes'
-# default grazing cameras, after enough frames for the field to develop (the decal volley: 196
-# bullets and 5 explosions with their scorch; the planet's storms). Writes
+# default grazing cameras, after enough frames for the field to develop (the seas' foam with 20 s
+# of wind behind it, --foam-history; the decal volley: 196 bullets and 5 explosions with their
+# scorch; the planet's storms). Writes
 # docs/gallery/{water,decals,planet,noise}.jpg, the planet close up (planet-closeup.jpg), the sea
 # calm (Beaufort 3) and rough (Beaufort 7), a Beaufort 4 / 7 / 10 strip, the far field seen 5 degrees down (water-horizon.jpg),
 # the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
@@ -20,14 +21,14 @@ render() { # scene frames [options...]
     ./build/demo/hfx-demo "$scene" --headless --frames "$frames" --format jpg --out "$work/$scene" "$@"
     cp "$(ls "$work/$scene"/*.jpg | tail -n 1)" "docs/gallery/$scene.jpg"
 }
-render water 30 --beaufort 3 && mv docs/gallery/water.jpg docs/gallery/water-calm.jpg
-render water 30 --beaufort 7 && mv docs/gallery/water.jpg docs/gallery/water-rough.jpg
-render water 30 --beaufort 4 && mv docs/gallery/water.jpg docs/gallery/water-beaufort4.jpg
-render water 30 --beaufort 10 && mv docs/gallery/water.jpg docs/gallery/water-beaufort10.jpg
-render water 30 --camera-pitch 5 && mv docs/gallery/water.jpg docs/gallery/water-horizon.jpg
+render water 30 --foam-history 20 --beaufort 3 && mv docs/gallery/water.jpg docs/gallery/water-calm.jpg
+render water 30 --foam-history 20 --beaufort 7 && mv docs/gallery/water.jpg docs/gallery/water-rough.jpg
+render water 30 --foam-history 20 --beaufort 4 && mv docs/gallery/water.jpg docs/gallery/water-beaufort4.jpg
+render water 30 --foam-history 20 --beaufort 10 && mv docs/gallery/water.jpg docs/gallery/water-beaufort10.jpg
+render water 30 --foam-history 20 --camera-pitch 5 && mv docs/gallery/water.jpg docs/gallery/water-horizon.jpg
 if command -v ffmpeg >/dev/null; then
     # Encoded here rather than by --video: a higher CRF keeps the committed file small.
-    ./build/demo/hfx-demo water --headless --frames 120 --width 640 --height 360 --beaufort 7 --format jpg \
+    ./build/demo/hfx-demo water --headless --frames 120 --width 640 --height 360 --beaufort 7 --foam-history 20 --format jpg \
         --out "$work/video" --no-progress >/dev/null
     ffmpeg -loglevel error -y -framerate 30 -i "$work/video/water_%04d.jpg" -c:v libx264 -crf 30 -preset slow \
         -pix_fmt yuv420p -movflags +faststart docs/gallery/water.mp4
@@ -35,8 +36,8 @@ fi
 render decals 50
 # The ocean one second after an explosion (and two bullets) fired from the camera.
 printf 'explosion 1 760 560 3\nclick 1 420 600\nclick 1 440 610\n' > "$work/water-shots.txt"
-render water 31 --shots "$work/water-shots.txt" && mv docs/gallery/water.jpg docs/gallery/water-explosion.jpg
-render water 30
+render water 31 --foam-history 20 --shots "$work/water-shots.txt" && mv docs/gallery/water.jpg docs/gallery/water-explosion.jpg
+render water 30 --foam-history 20
 render noise 2 --noise-kind psrd --fractal ridged --warp 0.6
 # The planet as a GPU draws it (4 detail texels per gas cell), and a close-up after 12 s of its
 # gas (the festoons and filaments of its advected detail).

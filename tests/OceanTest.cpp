@@ -246,6 +246,27 @@ TEST_F(Ocean, FoamAppearsWhereJFallsBelowTheThresholdAndHalvesInItsHalfLife) {
     EXPECT_NEAR(total() / start, 0.5, 0.02 * 0.5) << "after one half-life";
 }
 
+TEST_F(Ocean, SettledFoamIsTheHistoryTheSeaWouldHaveAndTheFieldsStayAsTheyWere) {
+    // settleFoam(5) at t = 10 is the same foam, bit for bit, as a sea set to t = 5 and stepped
+    // there in quarter seconds; its fields are those of t = 10 itself (a function of t alone).
+    const OceanConfig config{.size = 256, .cascades = 2, .sea = {.wind = {.windSpeed = 18.0f}}};
+    OceanField settled(cl(), config), stepped(cl(), config), plain(cl(), config);
+    settled.setTime(10.0);
+    settled.settleFoam(5.0);
+    stepped.setTime(5.0);
+    for (int i = 0; i < 20; ++i) stepped.step(0.25);
+    plain.setTime(10.0);
+    EXPECT_EQ(settled.time(), 10.0);
+    for (int c = 0; c < 2; ++c) {
+        const auto foam = plane(settled.foam(c), settled);
+        EXPECT_EQ(foam, plane(stepped.foam(c), stepped)) << "cascade " << c;
+        EXPECT_GT(*std::max_element(foam.begin(), foam.end()), 0.5f) << "a storm's foam, cascade " << c;
+        EXPECT_EQ(plane(settled.cascade(c).height, settled), plane(plain.cascade(c).height, plain)) << "cascade " << c;
+    }
+    EXPECT_THROW(settled.settleFoam(-1.0), Error);
+    EXPECT_THROW(settled.settleFoam(5.0, 0.0), Error);
+}
+
 TEST_F(Ocean, AutomaticFoamCoversWhatMonahansLawGives) {
     // J - 1 is nearly Gaussian on a sea of many modes, so thresholds set from its spectral
     // variance leave Monahan's whitecap fraction W(U10) below them: measured over the cascades,

@@ -321,6 +321,23 @@ void OceanField::setTime(double seconds) {
     compute(0.0);
 }
 
+void OceanField::settleFoam(double seconds, double dt) {
+    if (!(seconds >= 0.0 && seconds <= 600.0))
+        throw Error(str("OceanField::settleFoam: seconds must be in [0, 600], got ", seconds));
+    if (!(dt > 0.0 && dt <= 1.0)) throw Error(str("OceanField::settleFoam: dt must be in (0, 1], got ", dt));
+    const double end = time_;
+    const int steps = int(std::ceil(seconds / dt));
+    setTime(end - seconds);
+    for (int i = 1; i <= steps; ++i) {
+        const double next = end - seconds + seconds * i / steps; // ends on `end` itself
+        const double step = next - time_;
+        time_ = next;
+        compute(step);
+    }
+    time_ = end;
+    compute(0.0); // the fields at exactly `end` (the foam stays)
+}
+
 void OceanField::compute(double dt) {
     const int N = config_.size;
     const float t = periodicTime(time_, config_.repeatSeconds);

@@ -163,6 +163,11 @@ void OceanEffect::setWind(float speed, float direction, double blendSeconds) {
     refresh();
 }
 
+void OceanEffect::settleFoam(double seconds) {
+    ocean_.settleFoam(seconds);
+    refresh();
+}
+
 void OceanEffect::setTime(double seconds) {
     ocean_.setTime(seconds);
     rings_.clear();

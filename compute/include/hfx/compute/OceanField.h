@@ -123,6 +123,12 @@ public:
     void step(double dt);
     /// The fields at `seconds` (finite), without stepping; the foam restarts clear.
     void setTime(double seconds);
+    /// The foam as `seconds` (0 to 600) of the present wind would have left it: the field runs from
+    /// time() - seconds to time() in steps of at most `dt` (0.25 s), foam and all, and ends with
+    /// the fields at time() exactly as before. A sea that has blown a while, for a first frame
+    /// (a clear start shows a storm's whitecaps only after their half-lives). Before any wind
+    /// change: a blend in progress would be run again.
+    void settleFoam(double seconds, double dt = 0.25);
     double time() const { return time_; }
 
     /// Changes the wind sea (m/s, radians from +u): the spectrum of that wind, from the same

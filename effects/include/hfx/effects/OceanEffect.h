@@ -54,6 +54,9 @@ public:
     void setWind(float speed, float direction);
     /// The same over `blendSeconds` (0: at once).
     void setWind(float speed, float direction, double blendSeconds);
+    /// The foam as `seconds` of this wind would have left it (OceanField::settleFoam), and the
+    /// textures refreshed: a first frame of a sea that has blown a while.
+    void settleFoam(double seconds);
     /// Jumps to an absolute time (seconds) and refreshes the textures; rings are dropped.
     void setTime(double seconds);
     /// An impact on the water at `uv` (the mesh's texcoords, in patches: metres over the
