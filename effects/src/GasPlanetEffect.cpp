@@ -55,10 +55,13 @@ int autoDetailScale(const ClContext& cl, int gasWidth) {
 }
 
 namespace {
+// Detail or a pole cap to put on the gas's heights: else the surface is the gas's own.
+bool hasDetail(const GasPlanetConfig& c) { return c.detail.amount > 0.0f || c.poleCap > 0.0f; }
+
 // The configuration with the detail's scale and pole cap settled for this device.
 GasPlanetConfig settled(const ClContext& cl, GasPlanetConfig config) {
     if (config.detail.scale == 0) config.detail.scale = autoDetailScale(cl, config.gas.width);
-    if (config.detail.amount <= 0.0f && config.poleCap <= 0.0f) config.detail.scale = 1;
+    if (!hasDetail(config)) config.detail.scale = 1;
     config.detail.capRows = config.poleCap * float(config.gas.height);
     config.detail.seed = config.seed;
     config.detail.validate(config.gas);
@@ -66,16 +69,16 @@ GasPlanetConfig settled(const ClContext& cl, GasPlanetConfig config) {
 }
 
 std::unique_ptr<FlowDetail> makeDetail(ClContext& cl, const GasField& gas, const GasPlanetConfig& config) {
-    if (config.detail.amount <= 0.0f && config.poleCap <= 0.0f) return nullptr;
+    if (!hasDetail(config)) return nullptr;
     return std::make_unique<FlowDetail>(cl, gas, config.detail);
 }
 
-SurfacePipelineConfig surfaceOf(const GasPlanetConfig& c) {
-    return {.width = c.gas.width * c.detail.scale,
-            .height = c.gas.height * c.detail.scale,
-            .edges = c.gas.edges,
-            .normalDepth = c.material.depthScale > 0.0f ? c.material.depthScale : 0.05f,
-            .options = c.surface};
+// The gas's surface, `detail.scale` texels per cell.
+SurfacePipelineConfig surfaceOf(const GasField& gas, const GasPlanetConfig& c) {
+    SurfacePipelineConfig s = SurfacePipelineConfig::of(gas, c.material.depthScale, c.surface);
+    s.width *= c.detail.scale;
+    s.height *= c.detail.scale;
+    return s;
 }
 } // namespace
 
@@ -83,7 +86,7 @@ GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
     : Effect(validated(config).material), cl_(cl), config_(settled(cl, config)), gas_(cl, config_.gas),
       detail_(makeDetail(cl, gas_, config_)),
       colors_(cl, config_.gas.width * config_.detail.scale, config_.gas.height * config_.detail.scale, config_.palette),
-      random_(config.seed), surface_(cl, surfaceOf(config_)) {
+      random_(config.seed), surface_(cl, surfaceOf(gas_, config_)) {
     float largest = 0.0f;
     for (int i = 1; i < 4096; ++i) {
         const double v = i / 4096.0, h = 1e-4;

@@ -96,25 +96,30 @@ typedef struct HfxFlowParams {
     float w0, w1, z0, z1;
 } HfxFlowParams;
 
+/* Layer k's noise at the point (x, y) (cells): read at the point's carried coordinates. */
+HFX_FN float hfx_flow_layer(HFX_GLOBAL const float* planes, int W, int H, float x, float y, int k, float z,
+                            HfxFlowParams p) {
+    const int n = W * H;
+    return hfx_flow_noise(x + hfx_gas_sample(planes + 2 * k * n, W, H, x, y, 0.5f, 0.5f, 1),
+                          y + hfx_gas_sample(planes + (2 * k + 1) * n, W, H, x, y, 0.5f, 0.5f, 1), z, W, p.frequency,
+                          p.aspect, p.octaves);
+}
+
 /* A detailed height at the point (x, y) (cells) of the fine grid: the gas's heights there
-   (hfx_flow_base) plus amount times the two layers' noises, each read at the
-   point's displaced coordinates and weighted, times the strain's share; clamped to [0, 1].
-   planes: the five planes (layer 0's x and y displacement, layer 1's, the strain), each W x H. */
+   (hfx_flow_base) plus amount times the two layers' noises, each weighted, times the strain's
+   share; clamped to [0, 1]. planes: the five planes (layer 0's x and y displacement, layer 1's,
+   the strain), each W x H. The branches are uniform: a layer at weight 0, or no amount (a pole
+   cap alone), reads no noise. */
 HFX_FN float hfx_flow_height(HFX_GLOBAL const float* heights, HFX_GLOBAL const float* planes, int W,
                              int H, float x, float y, HfxFlowParams p) {
-    const int n = W * H;
     float h = hfx_flow_base(heights, W, H, x, y);
-    float detail = 0.0f;
-    if (p.w0 > 0.0f)
-        detail += p.w0 * hfx_flow_noise(x + hfx_gas_sample(planes, W, H, x, y, 0.5f, 0.5f, 1),
-                                        y + hfx_gas_sample(planes + n, W, H, x, y, 0.5f, 0.5f, 1), p.z0, W,
-                                        p.frequency, p.aspect, p.octaves);
-    if (p.w1 > 0.0f)
-        detail += p.w1 * hfx_flow_noise(x + hfx_gas_sample(planes + 2 * n, W, H, x, y, 0.5f, 0.5f, 1),
-                                        y + hfx_gas_sample(planes + 3 * n, W, H, x, y, 0.5f, 0.5f, 1), p.z1, W,
-                                        p.frequency, p.aspect, p.octaves);
-    float s = hfx_gas_sample(planes + 4 * n, W, H, x, y, 0.5f, 0.5f, 1);
-    h += p.amount * (p.calm + (1.0f - p.calm) * s / (s + p.strainScale)) * detail;
+    if (p.amount > 0.0f) {
+        float detail = 0.0f;
+        if (p.w0 > 0.0f) detail += p.w0 * hfx_flow_layer(planes, W, H, x, y, 0, p.z0, p);
+        if (p.w1 > 0.0f) detail += p.w1 * hfx_flow_layer(planes, W, H, x, y, 1, p.z1, p);
+        float s = hfx_gas_sample(planes + 4 * W * H, W, H, x, y, 0.5f, 0.5f, 1);
+        h += p.amount * (p.calm + (1.0f - p.calm) * s / (s + p.strainScale)) * detail;
+    }
     return h < 0.0f ? 0.0f : (h > 1.0f ? 1.0f : h);
 }
 #endif
