@@ -25,6 +25,9 @@ import subprocess
 import sys
 import tempfile
 
+# The renderer's accessors count their reads (g_fetches) for the trace output alone (HFX_TRACE_OUTPUT,
+# the accuracy probe's draws); a frame's draw never reads the count, so its compiler drops the
+# counting, and so does this harness's by not writing it.
 HARNESS_MAIN = """
 layout(std430, binding = 1) readonly buffer HfxCountRays { vec4 rays[]; };
 layout(std430, binding = 2) writeonly buffer HfxCountHits { vec4 hits[]; };
@@ -35,7 +38,7 @@ void main() {
     const HfxHit hit = hfx_trace(ray);
     const float shadow = hfx_shadow(HfxShadowRay(hit.uv, 1.0 - hit.depth, c.yz, 0.0, 8, b.x));
     const float start = hfx_beam_depth(a.xy, a.zw, c.w);
-    hits[i] = vec4(hit.uv, shadow + start, g_fetches);
+    hits[i] = vec4(hit.uv, shadow + start, 0.0);
 }
 """
 
@@ -181,6 +184,7 @@ def main():
                     help="the renderer's accessors (surface/heights.glsl), or a mip chain's (texelFetch, gather)")
     ap.add_argument("--keep", help="write the composed shader and its SPIR-V here")
     ap.add_argument("--show", type=int, help="print the instructions of this loop's fewest step")
+    ap.add_argument("--show-most", type=int, help="print the instructions of this loop's longest one-fetch step")
     ap.add_argument("--limit", type=int, help="fail (exit 1) where a one-fetch step of a walk takes more instructions")
     args = ap.parse_args()
     work_dir = args.keep or tempfile.mkdtemp(prefix="hfx-walk-")
@@ -200,8 +204,11 @@ def main():
         if not paths:
             print(f"| {n} | {','.join(outer) or '-'} | {len(bodies[h])} | 0 | (no step reads) |")
             continue
-        if args.show == n:
-            for b in min(paths)[2]:
+        shown = {args.show: min(paths)}
+        if args.show_most is not None:
+            shown[args.show_most] = max(p for p in paths if p[1] == 1)
+        if n in shown:
+            for b in shown[n][2]:
                 print("\n".join(f"    {line}" for op, line in blocks[b]["ops"] if op not in NOT_WORK))
         # Steps by their fetches: a walk step reads one bound; the rare one that also solves a
         # patch reads its samples too.

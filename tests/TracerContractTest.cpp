@@ -68,9 +68,9 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_maxSamples", offsetof(SurfaceUniforms, maxSamples)},
         {"u_shadowSamples", offsetof(SurfaceUniforms, shadowSamples)},
         {"u_clipToPatch", offsetof(SurfaceUniforms, clipToPatch)},
-        {"u_reserved", offsetof(SurfaceUniforms, reserved)},
         {"u_varianceFloor", offsetof(SurfaceUniforms, varianceFloor)},
-        {"u_wrap", offsetof(SurfaceUniforms, wrap)},
+        {"u_fieldLast", offsetof(SurfaceUniforms, fieldLast)},
+        {"u_wrapMask", offsetof(SurfaceUniforms, wrapMask)},
         {"u_pixelBudget", offsetof(SurfaceUniforms, pixelBudget)},
         {"u_layerScale", offsetof(SurfaceUniforms, layerScale)},
         {"u_layerWeight", offsetof(SurfaceUniforms, layerWeight)},
@@ -220,14 +220,13 @@ std::vector<glm::vec4> runHarness(const ShaderProgram& p, const std::vector<glm:
 enum class Accessors { Harness, Renderer };
 
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
-/// harness over `textures` (wrapping); returns each hit as (u, v, depth fraction, 0), or with
+/// harness over `textures` (wrapped or clamped as their field's edges say); returns each hit as (u, v, depth fraction, 0), or with
 /// kShadowMain each shadow ray's shadow in x and, with the renderer's accessors, the reads it
 /// made in y. With the renderer's accessors and `texelShadows`, those texel shadows are read as a
-/// draw reads them (HFX_TEXEL_SHADOWS, their light's uniforms, surface/shadow.glsl). `wrap`: per
-/// axis, whether the textures' field wraps (the renderer's u_wrap).
+/// draw reads them (HFX_TEXEL_SHADOWS, their light's uniforms, surface/shadow.glsl).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
-                                      const TexelShadows* texelShadows = nullptr, glm::ivec2 wrap = {1, 1}) {
+                                      const TexelShadows* texelShadows = nullptr) {
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && texelShadows));
     std::vector<SourceFile> parts{kComputeHeader, surfaceShader("bindings.glsl"),
@@ -240,14 +239,16 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
     parts.insert(parts.end(), {surfaceShader("trace/common.glsl"), surfaceShader(techniqueInfo(technique).shader),
                                surfaceShader("surface/shadow.glsl"), kHarnessBuffers, main});
     const ShaderProgram p = ShaderProgram::compute(parts);
-    SurfaceUniforms u{.wrap = wrap};
+    const SurfaceTexturesConfig& config = textures.config();
+    SurfaceUniforms u;
+    u.setField({config.width, config.height}, config.edges);
     if (texelShadows) {
         const ShadowLight& c = texelShadows->light().value();
         u.shadowLight = {c.uvPerClimb, c.penumbra, c.slack};
     }
     const GlBuffer block = own ? GlBuffer() : GlBuffer::create();
     if (own) {
-        p.set("u_wrap", u.wrap);
+        p.set("u_wrap", wrapFlags(config.edges));
     } else {
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, block.id());
@@ -731,7 +732,7 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     }
     const auto trace = [&](bool read) {
         return traceInHarness(surface.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer,
-                              read ? &shadows : nullptr, {0, 0});
+                              read ? &shadows : nullptr);
     };
     const std::vector<glm::vec4> walked = trace(false), read = trace(true);
     int strip = 0, stripDiffer = 0;
@@ -884,8 +885,7 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                 // heights.glsl's read in both layouts, from anywhere.
                 for (const SurfacePipeline* s : {&surface, &gathered}) {
                     const std::vector<glm::vec4> got = traceInHarness(s->textures(), Technique::Hierarchical, items, kCellReadMain,
-                                                                      Accessors::Renderer, nullptr,
-                                                                      glm::ivec2(wrapsU(edges), wrapsV(edges)));
+                                                                      Accessors::Renderer);
                     int off = 0;
                     for (size_t k = 0; k < got.size(); ++k) off += got[k] != samples(cellsAsked[k]);
                     EXPECT_EQ(off, 0) << surfaceFormatName(format) << ", " << edgeModeName(edges) << ", " << which
@@ -950,11 +950,11 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         b.run(fieldB.buffer());
         const int layers = edges == EdgeMode::Wrap ? 2 : 1; // layers tile: only one clamps
         const float scaleB = 2.7f;
-        SurfaceUniforms u{.wrap = glm::ivec2(edges == EdgeMode::Wrap ? 1 : 0),
-                          .untracedHeight = 0.0f,
+        SurfaceUniforms u{.untracedHeight = 0.0f,
                           .layerScale = {1.0f, scaleB, 1.0f, 1.0f},
                           .layerWeight = layers == 2 ? glm::vec4(0.6f, 0.4f, 0.0f, 0.0f) : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
                           .layerLevel = {0.0f, std::log2(scaleB * float(N / 2) / float(N)), 0.0f, 0.0f}};
+        u.setField({N, N}, edges);
         GlBuffer block = GlBuffer::create();
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         // Segments of every length up to half the field, from anywhere (beyond [0, 1] too), at

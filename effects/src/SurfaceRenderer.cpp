@@ -269,8 +269,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .shadowSamples = material.shadowSamples,
                       .clipToPatch = material.clipToPatch ? 1 : 0,
                       .varianceFloor = varianceFloor(textures.config().format),
-                      .wrap = wrapFlags(edges),
                       .pixelBudget = material.pixelBudget};
+    u.setField({textures.config().width, textures.config().height}, edges);
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
     // texture read at the mesh's own texcoords (the level surface.frag computes).

@@ -143,9 +143,17 @@ ivec2 hfx_size() { return textureSize(s_surface, 0); }
 
 // A pyramid cell's texel at a level whose last texel is `last`: wrapped or clamped as the field's
 // edges are. The pyramid's sizes are powers of two (SurfaceTexturesConfig::pyramid), so a wrap is
-// a bitwise and, negative cells included (two's complement); integer % has no vector form on a
-// CPU rasteriser, and the float wrap this replaced cost the walk 1.4%.
-ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) { return mix(clamp(cell, ivec2(0), last), cell & last, bvec2(u_wrap)); }
+// a bitwise and, negative cells included (two's complement), and a clamp after it changes nothing;
+// a clamping axis ands with -1 (all bits). integer % has no vector form on a CPU rasteriser.
+ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) {
+    return clamp(cell & mix(ivec2(-1), last, greaterThanEqual(u_wrapMask, ivec2(0))), ivec2(0), last);
+}
+// The same for layer 0's field at a level, from the uniforms alone (u_fieldLast, u_wrapMask: a
+// power of two's last index shifted right is the level's, and -1 stays -1): the walk's per-step
+// read, four instructions.
+ivec2 hfx_field_texel(ivec2 cell, int level) {
+    return clamp(cell & (u_wrapMask >> level), ivec2(0), u_fieldLast >> level);
+}
 
 #if HFX_PYRAMID_ATLAS
 // Where a level's texel (0, 0) lies in the pyramid's image (SurfaceTextures::pyramidAtlasOrigin):
@@ -179,7 +187,7 @@ vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
 // the field's edges do); in the atlas layout the cells image's copy of the same.
 vec4 hfx_cell_samples(ivec2 cell) {
     g_fetches += 1.0;
-    const ivec2 texel = hfx_pyramid_texel(cell, hfx_size() - 1);
+    const ivec2 texel = hfx_field_texel(cell, 0);
 #if HFX_PYRAMID_ATLAS
     return imageLoad(i_cells, texel);
 #else
@@ -189,8 +197,7 @@ vec4 hfx_cell_samples(ivec2 cell) {
 
 vec2 hfx_bounds(ivec2 cell, int level) {
     g_fetches += 1.0;
-    const ivec2 size = hfx_size();
-    return hfx_pyramid_load(0, size, hfx_pyramid_texel(cell, max(size >> level, ivec2(1)) - 1), level);
+    return hfx_pyramid_load(0, u_fieldLast + 1, hfx_field_texel(cell, level), level);
 }
 
 // A light ray moving perClimb texcoords per unit of height climbed goes the way of the surface's
@@ -217,7 +224,7 @@ bool hfx_texel_shadow(vec2 p, vec2 perClimb, float penumbra, out float shadow) {
         // Past the last sample on an edge that clamps, nothing brackets the point (at a stride
         // above 1 the relief goes on there): walk.
         const bvec2 past = greaterThanEqual(cell, vec2(grid - 1));
-        if ((past.x && u_wrap.x == 0) || (past.y && u_wrap.y == 0)) return false;
+        if ((past.x && u_wrapMask.x < 0) || (past.y && u_wrapMask.y < 0)) return false;
         g_fetches += 1.0;
         // x: (i, j+1), y: (i+1, j+1), z: (i+1, j), w: (i, j)
         const vec4 s = textureGather(s_texelShadows, (cell + 1.0) / vec2(grid), 0);

@@ -10,7 +10,7 @@
 // ray passes the patch the walk goes on. Cell space: x = u * width - 0.5, so cell i spans the
 // samples i and i + 1. Exact self-shadows with a blocker-distance penumbra (hfx_shadow, below).
 //
-// A cell of any level the ray dips into and leaves below the cell's minimum surely holds the hit,
+// A cell of any level the ray dips into and leaves at or below the cell's minimum surely holds the hit,
 // between where the ray comes down to its maximum and where it passes its minimum. Where that
 // span is no longer than ray.tolerance (the pixel budget; 0 on flat tops, whose hit is then
 // exact) the walk returns its start: never below the surface, at most the tolerance above the
@@ -20,8 +20,10 @@
 // The walk (HfxWalk, written once for the view ray, the light ray and the beam prepass) is one
 // loop with one bound fetch per step, shaped for a GPU, where a warp waits for its slowest lane
 // and a uniform branch runs one side: integer cells in a frame where the ray moves towards +x and
-// +y (a back axis is mirrored: frame cell c is field cell ~c), relative to a multiple of the
-// field's size (coordinates stay small however far the texcoords run); per axis the depth where
+// +y (a back axis is mirrored: frame cell c is field cell ~c), relative to an even multiple of the
+// field's size, zero where the entry's texcoords lie in [0, 2) (coordinates stay small however far
+// the texcoords run, and the cells the accessors get need no offset: a wrapping field's are the
+// same cells after the wrap, a clamped field's, entered within [0, 1], its own); per axis the depth where
 // the ray leaves its cell, from the cell's integer corner in one multiply-add (no floor, no drift
 // from adding steps); descending picks the child by comparing the entry with the middle
 // boundary, climbing halves the cell. The patch solve is the rare branch inside the loop.
@@ -38,12 +40,17 @@
 //   climb) or solves one, so the walk needs at most about three steps per texel boundary the
 //   ray crosses: the loop's bound is computed from the ray, not a fixed count that long grazing
 //   rays run out of.
+//
+// What a step costs: `python3 scripts/walk_instructions.py` counts it in the compiled shader. The
+// bound's texel is the frame cell's bits flipped (the accessors wrap or clamp it); the view
+// walk's climb needs no level cap of its own (its clearance test fails at the top level); the
+// depths that only a dipped-into cell needs are worked out inside that branch.
 
 const int HFX_MAX_TRACE_STEPS = 1 << 18; // only against a NaN ray; the real bound is per ray
 // The view walk climbs past a cell only where the ray leaves it at least this many cells' widths
 // (along the ray's major axis, at the ray's descent) above the cell's maximum: nearer, the
 // parent (no lower) is likely opened again at once, two fetches for nothing. The light walk,
-// rising away from the relief, climbs wherever it may.
+// rising away from the relief, climbs wherever it may, up to its top level.
 const float HFX_CLIMB_CLEARANCE = 2.0;
 // A ray entering a patch at the polygon (t = 0) above it by no more than the patch rises over a
 // couple of roundings of the ray's position (HFX_TOUCH_ULPS of its largest cell-space coordinate, and
@@ -56,7 +63,7 @@ const float HFX_TOUCH_ULPS = 2.0;
 struct HfxWalk {
     vec2 q0;     // the ray's start in the walk's frame: relative to base, each back axis mirrored
     vec2 rate;   // 1 / the ray's move per unit t along each axis, in cells (1e30: it does not move)
-    ivec2 base;  // the frame's origin in the field: a multiple of its size, so every level's cells align
+    ivec2 base;  // the frame's origin in the field: an even multiple of its size (every level's cells align)
     ivec2 flip;  // per axis: ~0 where the ray moves back (frame cell c is field cell ~c), else 0
     ivec2 cell;  // the cell of `level` the ray is in, in the frame
     int level;
@@ -70,7 +77,7 @@ vec2 hfx_walk_cross(HfxWalk w, ivec2 edge) { return (vec2(edge) - w.q0) * w.rate
 HfxWalk hfx_walk_begin(vec2 p0, vec2 dir, float t, int level) {
     HfxWalk w;
     const ivec2 size = hfx_size();
-    w.base = ivec2(floor(p0 / vec2(size))) * size;
+    w.base = ivec2(floor((p0 + 0.5) / vec2(2 * size))) * (2 * size); // 0 for texcoords in [0, 2)
     const bvec2 back = lessThan(dir, vec2(0.0));
     w.flip = -ivec2(back);
     const vec2 start = p0 - vec2(w.base), speed = abs(dir);
@@ -83,9 +90,11 @@ HfxWalk hfx_walk_begin(vec2 p0, vec2 dir, float t, int level) {
     return w;
 }
 
-// The walk's cell in the field (the accessors wrap or clamp it), and its point at depth t relative
-// to the frame's origin, unmirrored (the patch solve's coordinates: the cell spans [cell, cell + 1]).
-ivec2 hfx_walk_texel(HfxWalk w) { return (w.cell ^ w.flip) + (w.base >> w.level); }
+// The walk's cell in the field relative to the frame's origin (the accessors wrap or clamp it; the
+// origin is a multiple of every level's size, and 0 where a clamped field is entered), and its
+// point at depth t relative to that origin, unmirrored (the patch solve's coordinates: the cell
+// spans [cell, cell + 1]).
+ivec2 hfx_walk_texel(HfxWalk w) { return w.cell ^ w.flip; }
 vec2 hfx_walk_point(HfxWalk w, vec2 p0, vec2 dir, float t) { return p0 - vec2(w.base) + dir * t; }
 
 // Where the walk leaves its cell (within [t, 1]).
@@ -105,11 +114,14 @@ void hfx_walk_descend(inout HfxWalk w, float tIn) {
 
 // Past the cell to its exit tExit: into the next cell across every axis the ray leaves it by
 // there, and a level up where mayClimb and a crossed line is also the parent's edge (the ray only
-// descends, so a parent it has dipped into is never entered again), no higher than topLevel.
-void hfx_walk_skip(inout HfxWalk w, float tExit, bool mayClimb, int topLevel) {
+// descends, so a parent it has dipped into is never entered again), no higher than topLevel
+// where `capped` (a constant: a walk whose mayClimb already fails at its top passes false).
+void hfx_walk_skip(inout HfxWalk w, float tExit, bool mayClimb, const bool capped, int topLevel) {
     const ivec2 crossed = ivec2(lessThanEqual(w.tNext, vec2(tExit)));
     w.cell += crossed;
-    const int up = int(mayClimb && w.level < topLevel && any(notEqual(crossed & ~w.cell, ivec2(0))));
+    bool climbs = mayClimb && any(notEqual(crossed & ~w.cell, ivec2(0)));
+    if (capped) climbs = climbs && w.level < topLevel;
+    const int up = int(climbs);
     w.cell >>= up;
     w.level += up;
     w.tNext = hfx_walk_cross(w, (w.cell + 1) << w.level);
@@ -143,17 +155,22 @@ float hfx_trace_depth(HfxRay ray) {
     const vec2 dir = -ray.parallax * vec2(size);
     const int topLevel = hfx_top_level(dir);
     const int maxSteps = hfx_max_steps(dir, topLevel);
-    const float major = max(abs(dir.x), abs(dir.y)); // texels per unit of t on the ray's major axis
+    // The climb's clearance at level 0 in depth: HFX_CLIMB_CLEARANCE cells along the ray's major
+    // axis (texels per unit of t), doubling a level up. Raised where the ray is longer than the
+    // field, so that at the top level it is over 1, more than any depth: the walk climbs no higher.
+    const float major = max(abs(dir.x), abs(dir.y));
+    const float climbGap = max(HFX_CLIMB_CLEARANCE / major, exp2(1.0 - float(topLevel)));
     const float touch = HFX_TOUCH_ULPS * exp2(-23.0) * (max(abs(p0.x), abs(p0.y)) + 1.0); // cells
     HfxWalk w = hfx_walk_begin(p0, dir, clamp(max(1.0 - hfx_field_max(), ray.start), 0.0, 1.0), 0);
     for (int steps = 0; steps < maxSteps && w.t < 1.0; ++steps) {
         const float tExit = hfx_walk_exit(w);
         const vec2 bounds = hfx_bounds(hfx_walk_texel(w), w.level);
         const float tDown = 1.0 - bounds.x; // where the ray comes down to the cell's maximum
-        const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
-        const float tIn = max(w.t, tDown);
         if (tDown < tExit) {
-            if (tBelow < tExit && tBelow - tIn <= ray.tolerance) return tIn;
+            const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
+            const float tIn = max(w.t, tDown);
+            // (At tExit itself the ray is still over the cell's closed patch: the bounds hold there.)
+            if (tBelow <= min(tExit, tIn + ray.tolerance)) return tIn;
             if (w.level > 0) {
                 hfx_walk_descend(w, tIn);
                 continue;
@@ -181,8 +198,7 @@ float hfx_trace_depth(HfxRay ray) {
             if (root <= tExit - tIn) return tIn + root;
             // The ray passes over the patch: on past the cell.
         }
-        const bool mayClimb = (tDown - tExit) * major >= ldexp(HFX_CLIMB_CLEARANCE, w.level);
-        hfx_walk_skip(w, tExit, mayClimb, topLevel);
+        hfx_walk_skip(w, tExit, tDown - tExit >= ldexp(climbGap, w.level), false, topLevel);
     }
     return w.t;
 }
@@ -215,7 +231,7 @@ float hfx_beam_depth(vec2 p0, vec2 dir, float reach) {
             if (w.level == k) return tIn;
             hfx_walk_descend(w, tIn);
         } else {
-            hfx_walk_skip(w, tExit, true, topLevel);
+            hfx_walk_skip(w, tExit, true, true, topLevel);
         }
     }
     return w.t >= 1.0 ? 1.0 : 0.0; // past the bottom, or out of steps (a NaN ray): no start
@@ -253,14 +269,18 @@ float hfx_shadow(HfxShadowRay ray) {
     const float coneSlope = climb * (1.0 - penumbra);        // the cone edge's rise per unit t
     const float uNear = 1.0 / max(max(abs(dir.x), abs(dir.y)), 1.0);
     float nearest = 1e30; // the smallest clearance ratio met
+    // The cone edge's rise per unit t, climb (1 - the clearance ratio it stands for: the smallest
+    // met, at most the penumbra's), and whether it rises (its lowest point over a cell is then
+    // where the ray enters it, else where it leaves): both change only where nearest does.
+    float slope = coneSlope;
+    bool rising = slope >= 0.0;
     const float fieldMax = hfx_field_max();
     const float tEnd = coneSlope > 0.0 ? min(1.0, (fieldMax - ray.h0) / coneSlope) : 1.0;
     HfxWalk w = hfx_walk_begin(p0, dir, 0.0, 0);
     for (int steps = 0; steps < maxSteps && w.t < tEnd; ++steps) {
         const float tExit = hfx_walk_exit(w);
         // (A graze within HFX_SHADOW_EPSILON sets r < 0: the edge never rises above the ray.)
-        const float slope = climb * (1.0 - clamp(nearest, 0.0, penumbra));
-        const float coneLow = ray.h0 + min(slope * w.t, slope * tExit);
+        const float coneLow = fma(slope, rising ? w.t : tExit, ray.h0);
         const vec2 bounds = hfx_bounds(hfx_walk_texel(w), w.level);
         if (bounds.x >= coneLow) {
             if (w.level > 0) {
@@ -282,9 +302,11 @@ float hfx_shadow(HfxShadowRay ray) {
                 const vec3 u = vec3(u0, tExit, uStar);
                 const vec3 r = -((A * u + B1) * u + C1) / (climb * u);
                 nearest = min(nearest, min(min(r.x, r.y), r.z));
+                slope = climb * (1.0 - clamp(nearest, 0.0, penumbra));
+                rising = slope >= 0.0;
             }
         }
-        hfx_walk_skip(w, tExit, true, topLevel);
+        hfx_walk_skip(w, tExit, true, true, topLevel);
     }
     return clamp(1.0 - nearest * ray.sharpness, 0.0, HFX_PENUMBRA_MAX);
 }

@@ -424,13 +424,13 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
                                                          {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}}))
                  .first;
     }
-    const SurfaceUniforms u{.depthScale = config.depthScale,
+    SurfaceUniforms u{.depthScale = config.depthScale,
                             .lightDir = glm::normalize(config.light),
                             .shadowSharpness = config.shadowSharpness,
                             .minSamples = config.minSamples,
                             .maxSamples = config.maxSamples,
-                            .shadowSamples = material.shadowSamples,
-                            .wrap = wrapFlags(t.config().edges)};
+                            .shadowSamples = material.shadowSamples};
+    u.setField({t.config().width, t.config().height}, t.config().edges);
     if (!computeBlock_.id()) { // made once, refreshed every dispatch
         computeBlock_ = GlBuffer::create();
         glNamedBufferStorage(computeBlock_.id(), sizeof u, nullptr, GL_DYNAMIC_STORAGE_BIT);

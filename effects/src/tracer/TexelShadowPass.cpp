@@ -71,8 +71,8 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, const ShadowLight& l
     const GpuScope scope("texel shadows");
     attachPassTarget(framebuffer_, into.texture_.id(), width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
-    SurfaceUniforms u{.wrap = wrapFlags(config.edges),
-                      .shadowLight = {light.uvPerClimb, light.penumbra, light.slack}};
+    SurfaceUniforms u{.shadowLight = {light.uvPerClimb, light.penumbra, light.slack}};
+    u.setField({config.width, config.height}, config.edges);
     updateBlock(block_, HFX_BLOCK_SURFACE, u);
     glDisable(GL_DEPTH_TEST);
     program->use();

@@ -19,7 +19,7 @@ inline constexpr EdgeMode kEdgeModes[] = {EdgeMode::Wrap, EdgeMode::Clamp, EdgeM
 
 constexpr bool wrapsU(EdgeMode edges) { return edges != EdgeMode::Clamp; }
 constexpr bool wrapsV(EdgeMode edges) { return edges == EdgeMode::Wrap; }
-/// Per axis 1 where the field wraps, 0 where it clamps: the shaders' u_wrap.
+/// Per axis 1 where the field wraps, 0 where it clamps: the pyramid build's u_wrap (bounds.comp).
 constexpr glm::ivec2 wrapFlags(EdgeMode edges) { return {wrapsU(edges) ? 1 : 0, wrapsV(edges) ? 1 : 0}; }
 /// "wrap", "clamp", "wrap-u".
 const char* edgeModeName(EdgeMode edges);

@@ -7,6 +7,8 @@
 //
 // Thread: any (plain values).
 
+#include "hfx/core/EdgeMode.h"
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -37,9 +39,12 @@ struct SurfaceUniforms {
     int maxSamples = 1;
     int shadowSamples = 1;
     int clipToPatch = 0;
-    int reserved = 0; ///< keeps the std140 layout
     float varianceFloor = 0.0f;
-    alignas(8) glm::ivec2 wrap{1, 1}; ///< std140 aligns an ivec2 to 8 bytes
+    /// The field's texel indexing (setField): its last texel, and per axis the mask a cell index is
+    /// anded with before it is clamped to the last texel, fieldLast where the edges wrap and -1
+    /// where they clamp. Unset, every cell reads texel 0. std140 aligns an ivec2 to 8 bytes.
+    alignas(8) glm::ivec2 fieldLast{0, 0};
+    glm::ivec2 wrapMask{-1, -1};
     float untracedHeight = 0.0f;
     float pixelBudget = 0.0f; ///< SurfaceMaterial::pixelBudget
     glm::vec4 layerScale{1.0f};
@@ -55,6 +60,13 @@ struct SurfaceUniforms {
     /// The texel shadows' light (ShadowLight: uvPerClimb, penumbra, slack; read where
     /// HFX_TEXEL_SHADOWS is 1).
     glm::vec4 shadowLight{0.0f};
+
+    /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
+    /// two where the pyramid is read), its edges wrapped or clamped.
+    constexpr void setField(glm::ivec2 size, EdgeMode edges) {
+        fieldLast = size - 1;
+        wrapMask = {wrapsU(edges) ? fieldLast.x : -1, wrapsV(edges) ? fieldLast.y : -1};
+    }
 };
 
 struct WaterUniforms {
@@ -89,8 +101,9 @@ static_assert(offsetof(SurfaceUniforms, depthScale) == 220);
 static_assert(offsetof(SurfaceUniforms, shadowSharpness) == 268);
 static_assert(offsetof(SurfaceUniforms, normalDecode) == 272);
 static_assert(offsetof(SurfaceUniforms, silhouetteFade) == 288);
-static_assert(offsetof(SurfaceUniforms, varianceFloor) == 312);
-static_assert(offsetof(SurfaceUniforms, wrap) == 320);
+static_assert(offsetof(SurfaceUniforms, varianceFloor) == 308);
+static_assert(offsetof(SurfaceUniforms, fieldLast) == 312);
+static_assert(offsetof(SurfaceUniforms, wrapMask) == 320);
 static_assert(offsetof(SurfaceUniforms, pixelBudget) == 332);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
