@@ -149,6 +149,20 @@ int hfx_budget_samples(int samples, float pixels) {
     return pixels > 0.0 ? clamp(int(ceil(pixels / u_pixelBudget)), 1, samples) : samples;
 }
 
+// The mip level that covers what the pixel shows of the surface: its entry's (`entryLevel`, from the
+// polygon's texcoords), or where the traced hits of neighbouring pixels lie further apart (a
+// crest's or a wall's silhouette, a slope seen edge on) the hits' spread, up to
+// HFX_FOOTPRINT_LEVELS above. Read there, the normals' variance (Toksvig) spreads a glint over
+// the pixel's share of the surface, where a texel's glint, or its reflection of the horizon, lit
+// or missed the pixel by chance and flickered as the view moved (a rough sea's crests at middle
+// distance: OceanShading's footprint test). Its derivatives need uniform control flow.
+const float HFX_FOOTPRINT_LEVELS = 3.0;
+float hfx_shade_level(float entryLevel, vec2 uv, vec2 texels) {
+    const vec2 dx = dFdx(uv) * texels, dy = dFdy(uv) * texels;
+    const float hitLevel = 0.5 * log2(max(max(dot(dx, dx), dot(dy, dy)), 1e-12));
+    return clamp(hitLevel, entryLevel, entryLevel + HFX_FOOTPRINT_LEVELS);
+}
+
 void main() {
     const vec3 geometricNormal = normalize(v_normal);
     const mat3 worldFromTexture = hfx_world_from_texture(geometricNormal, v_tangent, v_bitangent);
@@ -211,6 +225,8 @@ void main() {
     }
 #endif
 
+    const float shadeLevel = hfx_shade_level(mipLevel, uv, texels);
+
     // Silhouettes of finite patches: a ray that left the patch hit nothing of it.
     if (u_clipToPatch != 0 && (any(lessThan(uv, u_patchBounds.xy)) || any(greaterThan(uv, u_patchBounds.zw))))
         discard;
@@ -229,8 +245,8 @@ void main() {
 #endif
 
 #if HFX_LAYERS == 1
-    const vec4 surfaceSample = textureLod(s_surface, uv, mipLevel);
-    const vec4 albedoSample = textureLod(s_albedo, uv, mipLevel);
+    const vec4 surfaceSample = textureLod(s_surface, uv, shadeLevel);
+    const vec4 albedoSample = textureLod(s_albedo, uv, shadeLevel);
     const vec3 albedo = albedoSample.rgb;
     const float alpha = albedoSample.a;
     // The stored normal is that of z = normalDepth * h; the one of z = depthScale * h has its
@@ -245,17 +261,17 @@ void main() {
     // so do their variances (independent layers).
     vec2 slope = vec2(0.0);
     float slopeVariance = 0.0, height = 0.0;
-    vec2 l0 = hfx_add_layer(s_surface, s_albedo, uv, mipLevel + u_layerLevel.x, u_layerScale.x, u_layerWeight.x,
+    vec2 l0 = hfx_add_layer(s_surface, s_albedo, uv, shadeLevel + u_layerLevel.x, u_layerScale.x, u_layerWeight.x,
                             u_layerSlope.x, slope, slopeVariance, height);
-    vec2 l1 = hfx_add_layer(s_surface1, s_albedo1, uv, mipLevel + u_layerLevel.y, u_layerScale.y, u_layerWeight.y,
+    vec2 l1 = hfx_add_layer(s_surface1, s_albedo1, uv, shadeLevel + u_layerLevel.y, u_layerScale.y, u_layerWeight.y,
                             u_layerSlope.y, slope, slopeVariance, height);
     vec2 l2 = vec2(0.5, 0.0), l3 = vec2(0.5, 0.0);
 #if HFX_LAYERS > 2
-    l2 = hfx_add_layer(s_surface2, s_albedo2, uv, mipLevel + u_layerLevel.z, u_layerScale.z, u_layerWeight.z,
+    l2 = hfx_add_layer(s_surface2, s_albedo2, uv, shadeLevel + u_layerLevel.z, u_layerScale.z, u_layerWeight.z,
                        u_layerSlope.z, slope, slopeVariance, height);
 #endif
 #if HFX_LAYERS > 3
-    l3 = hfx_add_layer(s_surface3, s_albedo3, uv, mipLevel + u_layerLevel.w, u_layerScale.w, u_layerWeight.w,
+    l3 = hfx_add_layer(s_surface3, s_albedo3, uv, shadeLevel + u_layerLevel.w, u_layerScale.w, u_layerWeight.w,
                        u_layerSlope.w, slope, slopeVariance, height);
 #endif
     // Each layer's foam is broken up by the relief of the next two finer layers (the finest by
@@ -264,7 +280,7 @@ void main() {
     const float d2 = HFX_LAYERS > 2 ? l2.x : l1.x, d3 = HFX_LAYERS > 3 ? l3.x : d2;
     const vec4 layerDetail = vec4(l1.x + 0.7 * (d2 - 0.5), d2 + 0.7 * (d3 - 0.5), d3, d3);
     const vec3 storedNormal = vec3(slope, 1.0);
-    const vec3 albedo = textureLod(s_albedo, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rgb;
+    const vec3 albedo = textureLod(s_albedo, uv * u_layerScale.x, shadeLevel + u_layerLevel.x).rgb;
 #endif
 #if HFX_RINGS
     // The impact rings: their slope (slope form: x/z, y/z of the normal) and foam on top.
@@ -329,7 +345,7 @@ void main() {
     point.slopeVariance = slopeVariance;
     point.foam = HFX_SHADED_FOAM;
     point.foamDetail = layerDetail;
-    const vec2 channels = textureLod(s_channels, uv * u_layerScale.x, mipLevel + u_layerLevel.x).rg;
+    const vec2 channels = textureLod(s_channels, uv * u_layerScale.x, shadeLevel + u_layerLevel.x).rg;
     point.roughness = channels.r;
     point.occlusion = channels.g;
     // Roughness as a slope deviation of its own: it widens the lobe like the variance does.

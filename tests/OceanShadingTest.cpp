@@ -22,18 +22,32 @@ namespace {
 
 class OceanShading : public DeviceTest {};
 
-/// Sparkle: the share of the far field's pixels (the rows just below the horizon) whose colour
-/// changes by more than 8/255 between two views a quarter pixel apart.
-double shimmer(OceanEffect& ocean) {
-    constexpr int W = 480, H = 270;
+/// Where shimmer is measured: a camera `eyeHeight` metres above the sea pitched `pitch` radians
+/// down (0.8 rad of view vertically, width x height), the rows from `first` to `last` under the
+/// horizon, and a quarter pixel at `distance` metres, how far the second view moves sideways (or,
+/// `upwards`, up: what moves horizontal features, a crest's line, across rows).
+struct ShimmerView {
+    int width = 480, height = 270;
+    float eyeHeight = 7.0f;
+    float pitch = 0.05f;
+    int first = 3, last = 40;
+    float distance = 300.0f;
+    bool upwards = false;
+};
+
+/// Sparkle: the share of the band's pixels whose colour changes by more than 8/255 between two
+/// views a quarter pixel apart.
+double shimmer(OceanEffect& ocean, const ShimmerView& v = {}) {
+    const int W = v.width, H = v.height;
     const Mesh sea(makePlane({.size = 8000.0f, .texcoordScale = 8000.0f / ocean.ocean().config().patchMeters}));
     RenderTarget target(W, H);
     SurfaceRenderer renderer;
     DirectionalLight light{.direction = {-0.35f, 0.22f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}, .ambient = {0.35f, 0.42f, 0.5f}};
     auto view = [&](float shift) {
+        const glm::vec3 move = v.upwards ? glm::vec3(0.0f, shift, 0.0f) : glm::vec3(shift, 0.0f, 0.0f);
         Camera camera;
-        camera.position = {shift, 7.0f, 0.0f};
-        camera.target = {shift, 7.0f - 100.0f * std::tan(0.05f), -100.0f};
+        camera.position = glm::vec3(0.0f, v.eyeHeight, 0.0f) + move;
+        camera.target = glm::vec3(0.0f, v.eyeHeight - 100.0f * std::tan(v.pitch), -100.0f) + move;
         camera.aspect = float(W) / H;
         camera.nearPlane = 0.2f;
         camera.farPlane = 12000.0f;
@@ -43,13 +57,12 @@ double shimmer(OceanEffect& ocean) {
         renderer.draw(sea, glm::mat4(1.0f), layers, ocean.material(), camera, light);
         return target.readColor();
     };
-    // A quarter pixel at the far field's distance (about 300 m, 480 pixels over 0.8 radians).
-    const Image a = view(0.0f), b = view(0.25f * 300.0f * 0.8f / W);
-    // The horizon lies 0.05 rad above the centre; the band 3 to 40 rows under it is the sea from
-    // about 150 m out to the horizon's haze (images are stored top row first).
-    const int horizon = H / 2 - int(0.05f / 0.8f * H + 0.5f);
+    // A quarter pixel at the band's distance (480 pixels over 0.8 radians).
+    const Image a = view(0.0f), b = view(0.25f * v.distance * 0.8f / W);
+    // The horizon lies `pitch` above the centre (images are stored top row first).
+    const int horizon = H / 2 - int(v.pitch / 0.8f * H + 0.5f);
     size_t sparkles = 0, n = 0;
-    for (int y = horizon + 3; y < horizon + 40; ++y)
+    for (int y = horizon + v.first; y < horizon + v.last; ++y)
         for (int x = 0; x < W; ++x, ++n) {
             float change = 0.0f;
             for (int c = 0; c < 3; ++c) change = std::max(change, std::abs(a.at(x, y, c) - b.at(x, y, c)));
@@ -58,33 +71,71 @@ double shimmer(OceanEffect& ocean) {
     return double(sparkles) / double(n);
 }
 
-TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
-    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3}});
-    const double filtered = shimmer(ocean);
-
-    // The same shaders with the variance forced to zero, through the live-editing override.
-    const std::filesystem::path dir = outputPath("ocean_shading_no_toksvig");
+/// What `measure` gives with surface.frag's line `from` made `to` (through the live-editing
+/// override, in a copy of the shaders named `name`).
+template <class Measure>
+double withPatchedSurfaceShader(const std::string& name, const std::string& from, const std::string& to, Measure measure) {
+    const std::filesystem::path dir = outputPath(name);
     std::filesystem::remove_all(dir);
     std::filesystem::copy(shaderSourceDir(), dir, std::filesystem::copy_options::recursive);
     std::stringstream frag;
     frag << std::ifstream(dir / "surface.frag").rdbuf();
     std::string text = frag.str();
-    const std::string from = "point.slopeVariance = slopeVariance;";
-    ASSERT_NE(text.find(from), std::string::npos);
-    text.replace(text.find(from), from.size(), "point.slopeVariance = 0.0;");
+    if (text.find(from) == std::string::npos) throw Error(str("surface.frag has no '", from, "' to patch"));
+    text.replace(text.find(from), from.size(), to);
     std::ofstream(dir / "surface.frag") << text;
     // The caller's own override (a mutation check of the other tests) comes back afterwards.
     const char* callers = std::getenv("HFX_SHADER_DIR");
     const std::string saved = callers ? callers : "";
     setenv("HFX_SHADER_DIR", dir.c_str(), 1);
-    const double plain = shimmer(ocean);
+    const double measured = measure();
     if (callers) setenv("HFX_SHADER_DIR", saved.c_str(), 1);
     else unsetenv("HFX_SHADER_DIR");
+    return measured;
+}
+
+TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
+    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3}});
+    const double filtered = shimmer(ocean);
+    // The same shaders with the variance forced to zero.
+    const double plain = withPatchedSurfaceShader("ocean_shading_no_toksvig", "point.slopeVariance = slopeVariance;",
+                                                  "point.slopeVariance = 0.0;", [&] { return shimmer(ocean); });
 
     std::printf("[shimmer] far field, quarter-pixel move: %.2f%% of pixels sparkle with Toksvig, %.2f%% without\n",
                 100.0 * filtered, 100.0 * plain);
     EXPECT_GT(plain, 0.001) << "no shimmer to damp: the band is not the sea";
     EXPECT_LT(filtered, 0.8 * plain) << "the variance did not calm the far field";
+}
+
+TEST_F(OceanShading, TheRoughSeasCrestsShadedOverTheirHitsFootprintDoNotShimmer) {
+    // Issue 37: at middle distance a rough sea drew thin bright lines along its crests that
+    // flickered as the view moved: a crest's silhouette is under a pixel wide, and where the
+    // traced hits of neighbouring pixels jump from a crest to the trough behind it, each pixel
+    // read its normal at the level of its entry texcoords' footprint (a few texels), so a texel's
+    // glint or horizon reflection lit or missed a pixel by chance. The shading reads the normals
+    // at the level of the hits' own footprint instead (surface.frag: shadeLevel), whose variance
+    // (Toksvig) spreads the glint over what the pixel covers. Beaufort 7 seen from 7 m at 3 to
+    // 8 degrees below the horizon (50 to 130 m out): the share of pixels that change by more
+    // than 8/255 when the eye rises by a quarter pixel (the crests' lines run across the view:
+    // a sideways move hardly changes them) must be under 2.5%. On llvmpipe the entry's level
+    // gives 3.3% and the footprint 1.8% (at most 3 levels above the entry's: 2 or 5 give the same).
+    // The demo's sea (hfx-demo water --beaufort 7) and view, 1280x720: pitched 8 degrees down,
+    // so 3 degrees under the horizon is 47 rows below it and 8 degrees 126.
+    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 4,
+                                       .sea = {.wind = {.windSpeed = beaufortWindSpeed(7), .direction = 0.6f}}}});
+    for (int i = 0; i < 25; ++i) ocean.update(0.2);
+    SurfaceMaterial material = ocean.material();
+    material.water.hazeDistance = 2500.0f; // metres, as the demo's
+    ocean.setMaterial(material);
+    const ShimmerView band{.width = 1280, .height = 720, .eyeHeight = 7.0f, .pitch = glm::radians(8.0f), .first = 47, .last = 126, .distance = 80.0f, .upwards = true};
+    const double footprint = shimmer(ocean, band);
+    const double entry = withPatchedSurfaceShader("ocean_shading_entry_level", "hfx_shade_level(mipLevel, uv, texels)",
+                                                  "(mipLevel)", [&] { return shimmer(ocean, band); });
+    std::printf("[shimmer] Beaufort 7 at 3-8 degrees, quarter-pixel move: %.2f%% of pixels sparkle shaded over the "
+                "hits' footprint, %.2f%% over the entry's\n",
+                100.0 * footprint, 100.0 * entry);
+    EXPECT_GT(entry, 0.025) << "the entry's level no longer shimmers: the band does not show the crests";
+    EXPECT_LT(footprint, 0.025) << "the crests still shimmer";
 }
 
 /// A small sea for looks: one 64² cascade on a 10 m plane seen from above at an angle, 160x120.
