@@ -226,6 +226,7 @@ void main() {
 #endif
 
     const float shadeLevel = hfx_shade_level(mipLevel, uv, texels);
+    const float footprint = max(length(dFdx(uv)), length(dFdy(uv)));
 
     // Silhouettes of finite patches: a ray that left the patch hit nothing of it.
     if (u_clipToPatch != 0 && (any(lessThan(uv, u_patchBounds.xy)) || any(greaterThan(uv, u_patchBounds.zw))))
@@ -335,6 +336,8 @@ void main() {
     point.normal = normal;
     point.geometricNormal = geometricNormal;
     point.position = displacedWorld;
+    point.texcoord = uv;
+    point.footprint = footprint;
     point.viewDir = normalize(u_cameraPos - displacedWorld);
     point.lightDir = lightDir;
     point.height = height;

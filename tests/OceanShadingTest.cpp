@@ -227,36 +227,55 @@ Image drawSea(const OceanEffect& ocean, const SurfaceMaterial& material, const M
     return target.readColor();
 }
 
-/// The share of the sea's pixels that whitecaps cover in a frame looking straight down from
-/// 40 m: a pixel is foam where drawing the foam brightens it by more than half of what the
-/// whitest foam in the frame does (the photographs' threshold, half way from the water to foam).
-double frameWhitecaps(OceanEffect& ocean) {
-    constexpr int kSize = 256;
-    const Mesh sea(makePlane({.size = 2000.0f, .texcoordScale = 2000.0f / ocean.ocean().config().patchMeters}));
-    RenderTarget target(kSize, kSize);
+/// The sea seen straight down from 40 m, 256x256 (about 13 cm a pixel), the sun high.
+struct TopDown {
+    static constexpr int kSize = 256;
+    explicit TopDown(const OceanEffect& ocean)
+        : sea(makePlane({.size = 2000.0f, .texcoordScale = 2000.0f / ocean.ocean().config().patchMeters})) {
+        camera.position = {0.0f, 40.0f, 0.0f};
+        camera.target = {0.0f, 0.0f, -0.001f};
+        camera.aspect = 1.0f;
+        camera.nearPlane = 0.2f;
+        camera.farPlane = 500.0f;
+    }
+    Image draw(const OceanEffect& ocean, const SurfaceMaterial& material) {
+        return drawSea(ocean, material, sea, camera, light, target, renderer);
+    }
+    /// How much the foam brightens each pixel: the frame with it less the frame without.
+    std::vector<double> foamBrightening(const OceanEffect& ocean, SurfaceMaterial material) {
+        const Image with = draw(ocean, material);
+        material.water.foam = false;
+        const Image without = draw(ocean, material);
+        std::vector<double> brighter(size_t(kSize) * kSize);
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) brighter[size_t(y) * kSize + x] = luma(with, x, y) - luma(without, x, y);
+        return brighter;
+    }
+    static double luma(const Image& im, int x, int y) {
+        return 0.2126 * im.at(x, y, 0) + 0.7152 * im.at(x, y, 1) + 0.0722 * im.at(x, y, 2);
+    }
+    Mesh sea;
+    RenderTarget target{kSize, kSize};
     SurfaceRenderer renderer;
     DirectionalLight light{.direction = {-0.3f, 1.0f, -0.4f}, .color = {1.0f, 0.95f, 0.9f}, .ambient = {0.35f, 0.42f, 0.5f}};
     Camera camera;
-    camera.position = {0.0f, 40.0f, 0.0f};
-    camera.target = {0.0f, 0.0f, -0.001f};
-    camera.aspect = 1.0f;
-    camera.nearPlane = 0.2f;
-    camera.farPlane = 500.0f;
-    auto view = [&](bool foam) {
-        SurfaceMaterial material = ocean.material();
-        material.water.foam = foam;
-        return drawSea(ocean, material, sea, camera, light, target, renderer);
-    };
-    const Image with = view(true), without = view(false);
-    std::vector<double> brighter(size_t(kSize) * kSize);
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
-            auto luma = [&](const Image& im) { return 0.2126 * im.at(x, y, 0) + 0.7152 * im.at(x, y, 1) + 0.0722 * im.at(x, y, 2); };
-            brighter[size_t(y) * kSize + x] = luma(with) - luma(without);
-        }
+};
+
+/// Where the foam shows in the top-down frame: a pixel is foam where drawing the foam brightens it
+/// by more than half of what the whitest foam in the frame does (the photographs' threshold, half
+/// way from the water to foam).
+std::vector<bool> foamMask(const std::vector<double>& brighter) {
     const double full = *std::max_element(brighter.begin(), brighter.end());
-    const size_t covered = size_t(std::count_if(brighter.begin(), brighter.end(), [&](double b) { return b > 0.5 * full; }));
-    return double(covered) / (double(kSize) * kSize);
+    std::vector<bool> mask(brighter.size());
+    for (size_t i = 0; i < brighter.size(); ++i) mask[i] = brighter[i] > 0.5 * full;
+    return mask;
+}
+
+/// The share of the sea's pixels that whitecaps cover in a frame looking straight down.
+double frameWhitecaps(OceanEffect& ocean) {
+    TopDown view(ocean);
+    const std::vector<bool> mask = foamMask(view.foamBrightening(ocean, ocean.material()));
+    return double(std::count(mask.begin(), mask.end(), true)) / double(mask.size());
 }
 
 TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
@@ -278,6 +297,63 @@ TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
         EXPECT_GT(frame, w / 2.5) << "Beaufort " << force;
         EXPECT_LT(frame, 2.5 * w) << "Beaufort " << force;
     }
+}
+
+TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
+    // Above Beaufort 7 the wind draws foam out into streaks (WaterLook::spindrift, from OceanEffect:
+    // 0 up to the middle of force 7). Beaufort 9 from above: what the streaks add to the frame
+    // changes least along one direction, and that is the wind's (0.6 rad from +u; the frame shows
+    // u along x and v along y or its mirror), within 15 degrees; across it changes at least twice
+    // as much (2.6x on llvmpipe). At Beaufort 6 there are none: the frame is the same with the
+    // streaks switched off.
+    constexpr float kWind = 0.6f;
+    OceanEffect gale(cl(), {.ocean = {.size = 256, .cascades = 3,
+                                      .sea = {.wind = {.windSpeed = beaufortWindSpeed(9), .direction = kWind}}}});
+    for (int i = 0; i < 25; ++i) gale.update(0.2);
+    ASSERT_GT(gale.material().water.spindrift, 0.5f);
+    TopDown view(gale);
+    SurfaceMaterial calm = gale.material();
+    calm.water.spindrift = 0.0f;
+    const Image with = view.draw(gale, gale.material()), without = view.draw(gale, calm);
+    const int n = TopDown::kSize;
+    std::vector<double> added(size_t(n) * n);
+    double total = 0.0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) total += added[size_t(y) * n + x] = TopDown::luma(with, x, y) - TopDown::luma(without, x, y);
+    EXPECT_GT(total / double(n * n), 0.003) << "the streaks add nothing";
+    // The mean squared change of the added light over 4 pixels in direction theta.
+    auto change = [&](double theta) {
+        const double cx = std::cos(theta), cy = std::sin(theta);
+        double sum = 0.0;
+        size_t count = 0;
+        for (int y = 8; y < n - 8; ++y)
+            for (int x = 8; x < n - 8; ++x) {
+                const int x2 = x + int(std::lround(4.0 * cx)), y2 = y + int(std::lround(4.0 * cy));
+                const double d = added[size_t(y2) * n + x2] - added[size_t(y) * n + x];
+                sum += d * d;
+                ++count;
+            }
+        return sum / double(count);
+    };
+    double best = 0.0, least = 1e30;
+    for (int degrees = 0; degrees < 180; degrees += 5)
+        if (const double c = change(glm::radians(double(degrees))); c < least) least = c, best = degrees;
+    const double wind = glm::degrees(double(kWind));
+    const double off = std::min(std::abs(best - wind), std::abs(best - (180.0 - wind)));
+    const double across = std::max(change(glm::radians(best + 90.0)), 1e-30);
+    std::printf("[spindrift] Beaufort 9: streaks add %.4f of luminance; they change least at %.0f degrees (the wind: %.0f "
+                "or its mirror %.0f), %.1fx less than across\n",
+                total / double(n * n), best, wind, 180.0 - wind, across / least);
+    EXPECT_LT(off, 15.0) << "the streaks do not run downwind";
+    EXPECT_GT(across / least, 2.0) << "the streaks are not drawn out";
+
+    OceanEffect fresh(cl(), {.ocean = {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = beaufortWindSpeed(6)}}}});
+    fresh.update(0.2);
+    EXPECT_EQ(fresh.material().water.spindrift, 0.0f);
+    TopDown calmView(fresh);
+    SurfaceMaterial forced = fresh.material();
+    forced.water.spindrift = 0.0f;
+    EXPECT_EQ(calmView.draw(fresh, fresh.material()).pixels, calmView.draw(fresh, forced).pixels);
 }
 
 TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {

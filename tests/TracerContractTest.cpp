@@ -93,6 +93,10 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_sunGlow", offsetof(WaterUniforms, sunGlow)},
         {"u_foamColor", offsetof(WaterUniforms, foamColor)},
         {"u_foamRoughness", offsetof(WaterUniforms, foamRoughness)},
+        {"u_foamDrift", offsetof(WaterUniforms, foamDrift)},
+        {"u_windDirection", offsetof(WaterUniforms, windDirection)},
+        {"u_spindrift", offsetof(WaterUniforms, spindrift)},
+        {"u_streakCells", offsetof(WaterUniforms, streakCells)},
     };
     for (const auto& [name, offset] : surface) EXPECT_EQ(offsetOf(p, name), GLint(offset)) << name;
     for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)}}) {

@@ -1,5 +1,6 @@
 #include "hfx/effects/OceanEffect.h"
 
+#include "hfx/compute/OceanSpectrum.h"
 #include "hfx/core/Error.h"
 
 #include <algorithm>
@@ -45,6 +46,7 @@ OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
                                       .options = options}));
     }
     material_.depthScale = physicalDepthScale();
+    updateFoamLook(0.0);
     refresh();
 }
 
@@ -109,6 +111,29 @@ void OceanEffect::advance(double dt) {
     ocean_.step(dt);
     material_.depthScale = physicalDepthScale(); // moves while a wind change blends in
     updateRings();
+    updateFoamLook(dt);
+}
+
+namespace {
+// The wind streaks' lattice across the wind, metres: about a line of foam every 2 m.
+constexpr double kStreakMeters = 1.0;
+} // namespace
+
+void OceanEffect::updateFoamLook(double dt) {
+    const OceanConfig& c = ocean_.config();
+    const WaveSpectrum& wind = c.sea.wind;
+    const glm::dvec2 downwind(std::cos(double(wind.direction)), std::sin(double(wind.direction)));
+    // The foam drifts at its share of the wind (FoamConfig::drift), as the field's foam does.
+    foamDrift_ += downwind * (double(c.foam.drift) * double(wind.windSpeed) * dt / double(c.patchMeters));
+    WaterLook& w = material_.water;
+    w.foamDrift = glm::vec2(foamDrift_);
+    w.windDirection = glm::vec2(downwind);
+    w.streakCells = float(double(c.patchMeters) / kStreakMeters);
+    // Streaks from the middle of Beaufort 7 (a near gale, where spray starts to blow off the
+    // crests) to full at that of 10.
+    const float from = beaufortWindSpeed(7), to = beaufortWindSpeed(10);
+    const float x = std::clamp((wind.windSpeed - from) / (to - from), 0.0f, 1.0f);
+    w.spindrift = x * x * (3.0f - 2.0f * x);
 }
 
 namespace {
@@ -160,6 +185,7 @@ void OceanEffect::setWind(float speed, float direction) { setWind(speed, directi
 void OceanEffect::setWind(float speed, float direction, double blendSeconds) {
     ocean_.setWind(speed, direction, blendSeconds);
     material_.depthScale = physicalDepthScale();
+    updateFoamLook(0.0);
     refresh();
 }
 

@@ -42,7 +42,11 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .sunGlow = w.sunGlow,
             .translucency = w.translucency,
             .foamColor = w.foamColor,
-            .foamRoughness = w.foamRoughness};
+            .foamRoughness = w.foamRoughness,
+            .foamDrift = w.foamDrift,
+            .windDirection = w.windDirection,
+            .spindrift = w.spindrift,
+            .streakCells = w.streakCells};
 }
 
 /// The slope variance a format's rounding alone shows in its mip-0 normals (Toksvig must not

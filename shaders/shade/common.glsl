@@ -7,6 +7,8 @@ struct HfxSurfacePoint {
     vec3 normal;          // world space, unit: the relief's normal at the hit
     vec3 geometricNormal; // world space, unit: the mesh's own
     vec3 position;        // world space: the displaced point
+    vec2 texcoord;        // the hit's texcoords (the mesh's: layer 0's texture space)
+    float footprint;      // the texcoords a pixel spans there (the hits' spread to the next pixel)
     vec3 viewDir;         // world space, unit, towards the eye
     vec3 lightDir;        // world space, unit, towards the light
     float height;         // h at the hit (1 = the polygon)

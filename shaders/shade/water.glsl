@@ -15,6 +15,35 @@ float hfx_crest_glow(HfxSurfacePoint p) {
     return 4.0 * u_translucency * crest * through;
 }
 
+// Two values in [0, 1) for an integer cell (a sine-free hash: the same on every device).
+vec2 hfx_hash2(vec2 cell) {
+    vec3 q = fract(vec3(cell.xyx) * vec3(0.1031, 0.1030, 0.0973));
+    q += dot(q, q.yzx + 33.33);
+    return fract((q.xx + q.yz) * q.zy);
+}
+
+// Wind streaks (spindrift, u_spindrift above Beaufort 7): foam drawn out downwind into thin lines,
+// u_streakCells lattice cells per texcoord across the wind and 12 times longer along it, riding
+// with the foam's drift. A line runs where a value noise over that lattice crosses its middle,
+// wavering as the noise does, broken into lengths by the noise's second value; it is 0.12 of a
+// cell wide (12 cm at OceanEffect's 1 m), measured across the wind from the noise's slope, and
+// what of it a pixel `footprint` texcoords wide covers is its share of the pixel (a box filter:
+// far off a faint line, not an aliased one). Returns the streaks' cover, 0..0.8.
+float hfx_spindrift(vec2 uv, float footprint) {
+    if (!(u_spindrift > 0.0)) return 0.0;
+    const vec2 w = u_windDirection, d = uv - u_foamDrift;
+    const float along = dot(d, w) * u_streakCells, across = dot(d, vec2(-w.y, w.x)) * u_streakCells;
+    const vec2 q = vec2(across, along / 12.0), cell = floor(q), f = q - cell, s = f * f * (3.0 - 2.0 * f);
+    const vec2 a = hfx_hash2(cell), b = hfx_hash2(cell + vec2(1, 0));
+    const vec2 c = hfx_hash2(cell + vec2(0, 1)), e = hfx_hash2(cell + vec2(1, 1));
+    const vec2 n = mix(mix(a, b, s.x), mix(c, e, s.x), s.y);
+    const float slope = abs(mix(b.x - a.x, e.x - c.x, s.y)) * 6.0 * f.x * (1.0 - f.x); // per cell across
+    const float dist = abs(n.x - 0.5) / max(slope, 0.05);                            // cells to the line
+    const float halfWidth = 0.06, pixel = max(u_streakCells * footprint, 1e-4);
+    const float covered = max(min(dist + 0.5 * pixel, halfWidth) - max(dist - 0.5 * pixel, -halfWidth), 0.0) / pixel;
+    return 0.8 * u_spindrift * smoothstep(0.35, 0.65, n.y) * covered;
+}
+
 vec3 hfx_shade(HfxSurfacePoint p) {
     const vec3 body = mix(u_deepColor, u_shallowColor, p.height * p.height) * (u_ambient + p.lit * p.diffuse * u_lightColor) +
                       hfx_crest_glow(p) * u_shallowColor * u_lightColor;
@@ -34,7 +63,8 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const vec4 coverage = clamp(p.foam, 0.0, 1.0);
     const vec4 shown = smoothstep(1.0 - coverage, 1.4 - coverage, ripple);
     const vec4 clear = 1.0 - shown;
-    const float foam = u_foam != 0 ? 1.0 - clear.x * clear.y * clear.z * clear.w : 0.0;
+    // The wind's streaks over it, in a gale.
+    const float foam = u_foam != 0 ? max(1.0 - clear.x * clear.y * clear.z * clear.w, hfx_spindrift(p.texcoord, p.footprint)) : 0.0;
     const float variance = p.slopeVariance + foam * u_foamRoughness;
     const float power = u_glintPower / (1.0 + 4.0 * u_glintPower * variance);
     const float glint = u_glintStrength * (power + 2.0) / (u_glintPower + 2.0) * pow(max(dot(reflected, p.lightDir), 0.0), power);

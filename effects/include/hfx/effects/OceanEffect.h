@@ -87,6 +87,9 @@ private:
     std::vector<bool> tracedCascades(const std::vector<float>& weights) const;
     /// Writes the live rings into material_.water for the sea's time now.
     void updateRings();
+    /// Writes the wind streaks into material_.water for the present wind, drifted by dt seconds
+    /// of the foam's drift.
+    void updateFoamLook(double dt);
 
     struct Ring {
         glm::dvec2 uv;
@@ -94,6 +97,7 @@ private:
         float wavelength, amplitude, foam; ///< metres, metres, coverage
     };
     std::vector<Ring> rings_;
+    glm::dvec2 foamDrift_{0.0}; ///< texcoords the foam has drifted downwind
     OceanField ocean_;
     float exaggeration_;
     double windBlendSeconds_;

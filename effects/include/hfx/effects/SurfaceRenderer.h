@@ -66,6 +66,16 @@ struct WaterLook {
     bool foam = false;
     glm::vec3 foamColor{0.9f, 0.93f, 0.95f};
     float foamRoughness = 0.6f;
+    /// Wind streaks (spindrift, shade/water.glsl): foam drawn out downwind into long thin lines,
+    /// `spindrift` their strength (0: none; OceanEffect sets it from the wind: 0 up to the middle
+    /// of Beaufort 7, 1 from that of 10), windDirection where the wind blows in texcoords (unit),
+    /// streakCells the streaks' lattice cells per texcoord across the wind (OceanEffect: one per
+    /// metre). They ride with the foam: foamDrift (texcoords) is how far it has drifted downwind
+    /// (OceanEffect moves it every step).
+    glm::vec2 foamDrift{0.0f};
+    float spindrift = 0.0f;
+    glm::vec2 windDirection{1.0f, 0.0f};
+    float streakCells = 0.0f;
     /// Optional equirectangular sky (a GL texture the caller owns; 0 = procedural sky).
     unsigned environment = 0;
     /// Rings of waves spreading from impacts (OceanEffect::disturb fills them each frame), added

@@ -84,6 +84,11 @@ struct WaterUniforms {
     float reserved = 0.0f;
     glm::vec3 foamColor{1.0f};
     float foamRoughness = 0.0f;
+    glm::vec2 foamDrift{0.0f};
+    glm::vec2 windDirection{1.0f, 0.0f};
+    float spindrift = 0.0f;
+    float streakCells = 0.0f;
+    glm::vec2 padding{0.0f}; ///< the block's size, a multiple of 16 bytes
 };
 
 /// HfxRings (shaders/surface/uniforms.glsl, binding 2): the water's impact rings.
@@ -114,7 +119,9 @@ static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, translucency) == 72);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);
-static_assert(sizeof(WaterUniforms) == 96);
+static_assert(offsetof(WaterUniforms, foamDrift) == 96);
+static_assert(offsetof(WaterUniforms, spindrift) == 112);
+static_assert(sizeof(WaterUniforms) == 128);
 static_assert(offsetof(RingUniforms, wave) == 16 * kMaxWaterRings);
 static_assert(offsetof(RingUniforms, count) == 32 * kMaxWaterRings);
 
