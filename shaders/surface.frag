@@ -149,8 +149,8 @@ int hfx_budget_samples(int samples, float pixels) {
     return pixels > 0.0 ? clamp(int(ceil(pixels / u_pixelBudget)), 1, samples) : samples;
 }
 
-// The mip level that covers what the pixel shows of the surface: its entry's (`entryLevel`, from the
-// polygon's texcoords), or where the traced hits of neighbouring pixels lie further apart (a
+// The mip level that covers what the pixel shows of the surface: its entry's (`entryLevel`, from
+// the polygon's texcoords), or where the traced hits of neighbouring pixels lie further apart (a
 // crest's or a wall's silhouette, a slope seen edge on) the hits' spread, up to
 // HFX_FOOTPRINT_LEVELS above. Read there, the normals' variance (Toksvig) spreads a glint over
 // the pixel's share of the surface, where a texel's glint, or its reflection of the horizon, lit

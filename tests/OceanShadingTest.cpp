@@ -44,7 +44,8 @@ double shimmer(OceanEffect& ocean, const ShimmerView& v = {}) {
     SurfaceRenderer renderer;
     DirectionalLight light{.direction = {-0.35f, 0.22f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}, .ambient = {0.35f, 0.42f, 0.5f}};
     auto view = [&](float shift) {
-        const glm::vec3 move = v.upwards ? glm::vec3(0.0f, shift, 0.0f) : glm::vec3(shift, 0.0f, 0.0f);
+        const glm::vec3 move =
+            v.upwards ? glm::vec3(0.0f, shift, 0.0f) : glm::vec3(shift, 0.0f, 0.0f);
         Camera camera;
         camera.position = glm::vec3(0.0f, v.eyeHeight, 0.0f) + move;
         camera.target = glm::vec3(0.0f, v.eyeHeight - 100.0f * std::tan(v.pitch), -100.0f) + move;
@@ -74,14 +75,16 @@ double shimmer(OceanEffect& ocean, const ShimmerView& v = {}) {
 /// What `measure` gives with surface.frag's line `from` made `to` (through the live-editing
 /// override, in a copy of the shaders named `name`).
 template <class Measure>
-double withPatchedSurfaceShader(const std::string& name, const std::string& from, const std::string& to, Measure measure) {
+double withPatchedSurfaceShader(const std::string& name, const std::string& from,
+                                const std::string& to, Measure measure) {
     const std::filesystem::path dir = outputPath(name);
     std::filesystem::remove_all(dir);
     std::filesystem::copy(shaderSourceDir(), dir, std::filesystem::copy_options::recursive);
     std::stringstream frag;
     frag << std::ifstream(dir / "surface.frag").rdbuf();
     std::string text = frag.str();
-    if (text.find(from) == std::string::npos) throw Error(str("surface.frag has no '", from, "' to patch"));
+    if (text.find(from) == std::string::npos)
+        throw Error(str("surface.frag has no '", from, "' to patch"));
     text.replace(text.find(from), from.size(), to);
     std::ofstream(dir / "surface.frag") << text;
     // The caller's own override (a mutation check of the other tests) comes back afterwards.
@@ -98,8 +101,9 @@ TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
     OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3}});
     const double filtered = shimmer(ocean);
     // The same shaders with the variance forced to zero.
-    const double plain = withPatchedSurfaceShader("ocean_shading_no_toksvig", "point.slopeVariance = slopeVariance;",
-                                                  "point.slopeVariance = 0.0;", [&] { return shimmer(ocean); });
+    const double plain =
+        withPatchedSurfaceShader("ocean_shading_no_toksvig", "point.slopeVariance = slopeVariance;",
+                                 "point.slopeVariance = 0.0;", [&] { return shimmer(ocean); });
 
     std::printf("[shimmer] far field, quarter-pixel move: %.2f%% of pixels sparkle with Toksvig, %.2f%% without\n",
                 100.0 * filtered, 100.0 * plain);
@@ -121,20 +125,33 @@ TEST_F(OceanShading, TheRoughSeasCrestsShadedOverTheirHitsFootprintDoNotShimmer)
     // gives 3.3% and the footprint 1.8% (at most 3 levels above the entry's: 2 or 5 give the same).
     // The demo's sea (hfx-demo water --beaufort 7) and view, 1280x720: pitched 8 degrees down,
     // so 3 degrees under the horizon is 47 rows below it and 8 degrees 126.
-    OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 4,
-                                       .sea = {.wind = {.windSpeed = beaufortWindSpeed(7), .direction = 0.6f}}}});
-    for (int i = 0; i < 25; ++i) ocean.update(0.2);
+    OceanEffect ocean(
+        cl(), {.ocean = {.size = 256,
+                         .cascades = 4,
+                         .sea = {.wind = {.windSpeed = beaufortWindSpeed(7), .direction = 0.6f}}}});
+    for (int i = 0; i < 25; ++i)
+        ocean.update(0.2);
     SurfaceMaterial material = ocean.material();
     material.water.hazeDistance = 2500.0f; // metres, as the demo's
     ocean.setMaterial(material);
-    const ShimmerView band{.width = 1280, .height = 720, .eyeHeight = 7.0f, .pitch = glm::radians(8.0f), .first = 47, .last = 126, .distance = 80.0f, .upwards = true};
+    const ShimmerView band{.width = 1280,
+                           .height = 720,
+                           .eyeHeight = 7.0f,
+                           .pitch = glm::radians(8.0f),
+                           .first = 47,
+                           .last = 126,
+                           .distance = 80.0f,
+                           .upwards = true};
     const double footprint = shimmer(ocean, band);
-    const double entry = withPatchedSurfaceShader("ocean_shading_entry_level", "hfx_shade_level(mipLevel, uv, texels)",
-                                                  "(mipLevel)", [&] { return shimmer(ocean, band); });
-    std::printf("[shimmer] Beaufort 7 at 3-8 degrees, quarter-pixel move: %.2f%% of pixels sparkle shaded over the "
+    const double entry = withPatchedSurfaceShader(
+        "ocean_shading_entry_level", "hfx_shade_level(mipLevel, uv, texels)", "(mipLevel)",
+        [&] { return shimmer(ocean, band); });
+    std::printf("[shimmer] Beaufort 7 at 3-8 degrees, quarter-pixel move: %.2f%% of pixels sparkle "
+                "shaded over the "
                 "hits' footprint, %.2f%% over the entry's\n",
                 100.0 * footprint, 100.0 * entry);
-    EXPECT_GT(entry, 0.025) << "the entry's level no longer shimmers: the band does not show the crests";
+    EXPECT_GT(entry, 0.025)
+        << "the entry's level no longer shimmers: the band does not show the crests";
     EXPECT_LT(footprint, 0.025) << "the crests still shimmer";
 }
 
@@ -231,7 +248,8 @@ Image drawSea(const OceanEffect& ocean, const SurfaceMaterial& material, const M
 struct TopDown {
     static constexpr int kSize = 256;
     explicit TopDown(const OceanEffect& ocean)
-        : sea(makePlane({.size = 2000.0f, .texcoordScale = 2000.0f / ocean.ocean().config().patchMeters})) {
+        : sea(makePlane(
+              {.size = 2000.0f, .texcoordScale = 2000.0f / ocean.ocean().config().patchMeters})) {
         camera.position = {0.0f, 40.0f, 0.0f};
         camera.target = {0.0f, 0.0f, -0.001f};
         camera.aspect = 1.0f;
@@ -248,7 +266,8 @@ struct TopDown {
         const Image without = draw(ocean, material);
         std::vector<double> brighter(size_t(kSize) * kSize);
         for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x) brighter[size_t(y) * kSize + x] = luma(with, x, y) - luma(without, x, y);
+            for (int x = 0; x < kSize; ++x)
+                brighter[size_t(y) * kSize + x] = luma(with, x, y) - luma(without, x, y);
         return brighter;
     }
     static double luma(const Image& im, int x, int y) {
@@ -267,7 +286,8 @@ struct TopDown {
 std::vector<bool> foamMask(const std::vector<double>& brighter) {
     const double full = *std::max_element(brighter.begin(), brighter.end());
     std::vector<bool> mask(brighter.size());
-    for (size_t i = 0; i < brighter.size(); ++i) mask[i] = brighter[i] > 0.5 * full;
+    for (size_t i = 0; i < brighter.size(); ++i)
+        mask[i] = brighter[i] > 0.5 * full;
     return mask;
 }
 
@@ -300,16 +320,20 @@ TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
 }
 
 TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
-    // Above Beaufort 7 the wind draws foam out into streaks (WaterLook::spindrift, from OceanEffect:
-    // 0 up to the middle of force 7). Beaufort 9 from above: what the streaks add to the frame
-    // changes least along one direction, and that is the wind's (0.6 rad from +u; the frame shows
-    // u along x and v along y or its mirror), within 15 degrees; across it changes at least twice
-    // as much (2.6x on llvmpipe). At Beaufort 6 there are none: the frame is the same with the
-    // streaks switched off.
+    // Above Beaufort 7 the wind draws foam out into streaks (WaterLook::spindrift, from
+    // OceanEffect: 0 up to the middle of force 7). Beaufort 9 from above: what the streaks add to
+    // the frame changes least along one direction, and that is the wind's (0.6 rad from +u; the
+    // frame shows u along x and v along y or its mirror), within 15 degrees; across it changes at
+    // least twice as much (2.6x on llvmpipe). At Beaufort 6 there are none: the frame is the same
+    // with the streaks switched off.
     constexpr float kWind = 0.6f;
-    OceanEffect gale(cl(), {.ocean = {.size = 256, .cascades = 3,
-                                      .sea = {.wind = {.windSpeed = beaufortWindSpeed(9), .direction = kWind}}}});
-    for (int i = 0; i < 25; ++i) gale.update(0.2);
+    OceanEffect gale(
+        cl(),
+        {.ocean = {.size = 256,
+                   .cascades = 3,
+                   .sea = {.wind = {.windSpeed = beaufortWindSpeed(9), .direction = kWind}}}});
+    for (int i = 0; i < 25; ++i)
+        gale.update(0.2);
     ASSERT_GT(gale.material().water.spindrift, 0.5f);
     TopDown view(gale);
     SurfaceMaterial calm = gale.material();
@@ -319,7 +343,9 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
     std::vector<double> added(size_t(n) * n);
     double total = 0.0;
     for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) total += added[size_t(y) * n + x] = TopDown::luma(with, x, y) - TopDown::luma(without, x, y);
+        for (int x = 0; x < n; ++x)
+            total += added[size_t(y) * n + x] =
+                TopDown::luma(with, x, y) - TopDown::luma(without, x, y);
     EXPECT_GT(total / double(n * n), 0.003) << "the streaks add nothing";
     // The mean squared change of the added light over 4 pixels in direction theta.
     auto change = [&](double theta) {
@@ -337,17 +363,21 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
     };
     double best = 0.0, least = 1e30;
     for (int degrees = 0; degrees < 180; degrees += 5)
-        if (const double c = change(glm::radians(double(degrees))); c < least) least = c, best = degrees;
+        if (const double c = change(glm::radians(double(degrees))); c < least)
+            least = c, best = degrees;
     const double wind = glm::degrees(double(kWind));
     const double off = std::min(std::abs(best - wind), std::abs(best - (180.0 - wind)));
     const double across = std::max(change(glm::radians(best + 90.0)), 1e-30);
-    std::printf("[spindrift] Beaufort 9: streaks add %.4f of luminance; they change least at %.0f degrees (the wind: %.0f "
+    std::printf("[spindrift] Beaufort 9: streaks add %.4f of luminance; they change least at %.0f "
+                "degrees (the wind: %.0f "
                 "or its mirror %.0f), %.1fx less than across\n",
                 total / double(n * n), best, wind, 180.0 - wind, across / least);
     EXPECT_LT(off, 15.0) << "the streaks do not run downwind";
     EXPECT_GT(across / least, 2.0) << "the streaks are not drawn out";
 
-    OceanEffect fresh(cl(), {.ocean = {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = beaufortWindSpeed(6)}}}});
+    OceanEffect fresh(cl(), {.ocean = {.size = 256,
+                                       .cascades = 3,
+                                       .sea = {.wind = {.windSpeed = beaufortWindSpeed(6)}}}});
     fresh.update(0.2);
     EXPECT_EQ(fresh.material().water.spindrift, 0.0f);
     TopDown calmView(fresh);

@@ -224,12 +224,15 @@ std::vector<glm::vec4> runHarness(const ShaderProgram& p, const std::vector<glm:
 enum class Accessors { Harness, Renderer };
 
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
-/// harness over `textures` (wrapped or clamped as their field's edges say); returns each hit as (u, v, depth fraction, 0), or with
-/// kShadowMain each shadow ray's shadow in x and, with the renderer's accessors, the reads it
-/// made in y. With the renderer's accessors and `texelShadows`, those texel shadows are read as a
-/// draw reads them (HFX_TEXEL_SHADOWS, their light's uniforms, surface/shadow.glsl).
-std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique, const std::vector<glm::vec4>& rays,
-                                      const SourceFile& main = kHarnessMain, Accessors accessors = Accessors::Harness,
+/// harness over `textures` (wrapped or clamped as their field's edges say); returns each hit as
+/// (u, v, depth fraction, 0), or with kShadowMain each shadow ray's shadow in x and, with the
+/// renderer's accessors, the reads it made in y. With the renderer's accessors and `texelShadows`,
+/// those texel shadows are read as a draw reads them (HFX_TEXEL_SHADOWS, their light's uniforms,
+/// surface/shadow.glsl).
+std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique,
+                                      const std::vector<glm::vec4>& rays,
+                                      const SourceFile& main = kHarnessMain,
+                                      Accessors accessors = Accessors::Harness,
                                       const TexelShadows* texelShadows = nullptr) {
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && texelShadows));
@@ -735,8 +738,8 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
         inStrip.push_back(cell.x >= N - stride || cell.y >= N - stride);
     }
     const auto trace = [&](bool read) {
-        return traceInHarness(surface.textures(), Technique::Hierarchical, rays, kShadowMain, Accessors::Renderer,
-                              read ? &shadows : nullptr);
+        return traceInHarness(surface.textures(), Technique::Hierarchical, rays, kShadowMain,
+                              Accessors::Renderer, read ? &shadows : nullptr);
     };
     const std::vector<glm::vec4> walked = trace(false), read = trace(true);
     int strip = 0, stripDiffer = 0;
@@ -888,8 +891,9 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                                     << wrong << " of " << W * H << " cells";
                 // heights.glsl's read in both layouts, from anywhere.
                 for (const SurfacePipeline* s : {&surface, &gathered}) {
-                    const std::vector<glm::vec4> got = traceInHarness(s->textures(), Technique::Hierarchical, items, kCellReadMain,
-                                                                      Accessors::Renderer);
+                    const std::vector<glm::vec4> got =
+                        traceInHarness(s->textures(), Technique::Hierarchical, items, kCellReadMain,
+                                       Accessors::Renderer);
                     int off = 0;
                     for (size_t k = 0; k < got.size(); ++k) off += got[k] != samples(cellsAsked[k]);
                     EXPECT_EQ(off, 0) << surfaceFormatName(format) << ", " << edgeModeName(edges) << ", " << which
@@ -954,10 +958,12 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
         b.run(fieldB.buffer());
         const int layers = edges == EdgeMode::Wrap ? 2 : 1; // layers tile: only one clamps
         const float scaleB = 2.7f;
-        SurfaceUniforms u{.untracedHeight = 0.0f,
-                          .layerScale = {1.0f, scaleB, 1.0f, 1.0f},
-                          .layerWeight = layers == 2 ? glm::vec4(0.6f, 0.4f, 0.0f, 0.0f) : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
-                          .layerLevel = {0.0f, std::log2(scaleB * float(N / 2) / float(N)), 0.0f, 0.0f}};
+        SurfaceUniforms u{
+            .untracedHeight = 0.0f,
+            .layerScale = {1.0f, scaleB, 1.0f, 1.0f},
+            .layerWeight =
+                layers == 2 ? glm::vec4(0.6f, 0.4f, 0.0f, 0.0f) : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
+            .layerLevel = {0.0f, std::log2(scaleB * float(N / 2) / float(N)), 0.0f, 0.0f}};
         u.setField({N, N}, edges);
         GlBuffer block = GlBuffer::create();
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);

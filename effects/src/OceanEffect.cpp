@@ -124,7 +124,8 @@ void OceanEffect::updateFoamLook(double dt) {
     const WaveSpectrum& wind = c.sea.wind;
     const glm::dvec2 downwind(std::cos(double(wind.direction)), std::sin(double(wind.direction)));
     // The foam drifts at its share of the wind (FoamConfig::drift), as the field's foam does.
-    foamDrift_ += downwind * (double(c.foam.drift) * double(wind.windSpeed) * dt / double(c.patchMeters));
+    foamDrift_ +=
+        downwind * (double(c.foam.drift) * double(wind.windSpeed) * dt / double(c.patchMeters));
     WaterLook& w = material_.water;
     w.foamDrift = glm::vec2(foamDrift_);
     w.windDirection = glm::vec2(downwind);

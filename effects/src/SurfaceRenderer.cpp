@@ -263,8 +263,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .lodThreshold = material.lodThreshold,
                       .ambient = light.ambient,
                       .shadowSharpness = material.shadowSharpness,
-                      .normalDecode = textures.config().format == SurfaceFormat::Unorm8 ? glm::vec2(2.0f, -1.0f)
-                                                                                        : glm::vec2(1.0f, 0.0f),
+                      .normalDecode = textures.config().format == SurfaceFormat::Unorm8
+                                          ? glm::vec2(2.0f, -1.0f)
+                                          : glm::vec2(1.0f, 0.0f),
                       .specularStrength = material.specularStrength,
                       .specularPower = material.specularPower,
                       .silhouetteFade = material.silhouetteFade,

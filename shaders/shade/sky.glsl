@@ -21,7 +21,7 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     float u_waterReserved;
     vec3 u_foamColor;
     float u_foamRoughness; // how much foam widens and dims the sun's glint (0..1)
-    vec2 u_foamDrift;      // how far the foam has drifted downwind, texcoords: the streaks ride with it
+    vec2 u_foamDrift;      // texcoords the foam has drifted downwind: the streaks ride with it
     vec2 u_windDirection;  // where the wind blows, texcoords, unit
     float u_spindrift;     // wind streaks' strength (0: none)
     float u_streakCells;   // wind streaks' lattice cells per texcoord across the wind

@@ -1,8 +1,9 @@
-// Water: the body colour deepens in the troughs, backlit crests glow, the sky (shade/sky.glsl) is reflected by
-// Schlick's Fresnel weight, the sun leaves a sharp glint, foam (the ocean's, in the albedo's
-// alpha) covers both, and distance fades everything into the horizon's haze. The normals'
-// variance at the pixel's mip level (Toksvig) widens the glint and roughens the Fresnel term, so
-// the far sea does not shimmer.
+// Water: the body colour deepens in the troughs, backlit crests glow, the sky (shade/sky.glsl) is
+// reflected by Schlick's Fresnel weight, the sun leaves a sharp glint, foam (the ocean's, in the
+// albedo's alpha, with wind streaks in a gale) covers both, and distance fades everything into
+// the horizon's haze. The normals' variance at the level of the pixel's footprint on the surface
+// (Toksvig; surface.frag's hfx_shade_level) widens the glint and roughens the Fresnel term, so the
+// far sea does not shimmer.
 
 // Crest translucency: sunlight that enters a wave's far side and crosses its thin top towards the
 // eye (the green glow of backlit crests). It grows with the crest's height above the mean sea
@@ -33,14 +34,17 @@ float hfx_spindrift(vec2 uv, float footprint) {
     if (!(u_spindrift > 0.0)) return 0.0;
     const vec2 w = u_windDirection, d = uv - u_foamDrift;
     const float along = dot(d, w) * u_streakCells, across = dot(d, vec2(-w.y, w.x)) * u_streakCells;
-    const vec2 q = vec2(across, along / 12.0), cell = floor(q), f = q - cell, s = f * f * (3.0 - 2.0 * f);
+    const vec2 q = vec2(across, along / 12.0), cell = floor(q), f = q - cell;
+    const vec2 s = f * f * (3.0 - 2.0 * f);
     const vec2 a = hfx_hash2(cell), b = hfx_hash2(cell + vec2(1, 0));
     const vec2 c = hfx_hash2(cell + vec2(0, 1)), e = hfx_hash2(cell + vec2(1, 1));
     const vec2 n = mix(mix(a, b, s.x), mix(c, e, s.x), s.y);
-    const float slope = abs(mix(b.x - a.x, e.x - c.x, s.y)) * 6.0 * f.x * (1.0 - f.x); // per cell across
-    const float dist = abs(n.x - 0.5) / max(slope, 0.05);                            // cells to the line
+    // The noise's change per cell across the wind, and how many cells away its middle is.
+    const float slope = abs(mix(b.x - a.x, e.x - c.x, s.y)) * 6.0 * f.x * (1.0 - f.x);
+    const float dist = abs(n.x - 0.5) / max(slope, 0.05);
     const float halfWidth = 0.06, pixel = max(u_streakCells * footprint, 1e-4);
-    const float covered = max(min(dist + 0.5 * pixel, halfWidth) - max(dist - 0.5 * pixel, -halfWidth), 0.0) / pixel;
+    const float covered =
+        max(min(dist + 0.5 * pixel, halfWidth) - max(dist - 0.5 * pixel, -halfWidth), 0.0) / pixel;
     return 0.8 * u_spindrift * smoothstep(0.35, 0.65, n.y) * covered;
 }
 
@@ -64,7 +68,9 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const vec4 shown = smoothstep(1.0 - coverage, 1.4 - coverage, ripple);
     const vec4 clear = 1.0 - shown;
     // The wind's streaks over it, in a gale.
-    const float foam = u_foam != 0 ? max(1.0 - clear.x * clear.y * clear.z * clear.w, hfx_spindrift(p.texcoord, p.footprint)) : 0.0;
+    const float foam = u_foam != 0 ? max(1.0 - clear.x * clear.y * clear.z * clear.w,
+                                         hfx_spindrift(p.texcoord, p.footprint))
+                                   : 0.0;
     const float variance = p.slopeVariance + foam * u_foamRoughness;
     const float power = u_glintPower / (1.0 + 4.0 * u_glintPower * variance);
     const float glint = u_glintStrength * (power + 2.0) / (u_glintPower + 2.0) * pow(max(dot(reflected, p.lightDir), 0.0), power);

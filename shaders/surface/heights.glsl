@@ -146,7 +146,8 @@ ivec2 hfx_size() { return textureSize(s_surface, 0); }
 // a bitwise and, negative cells included (two's complement), and a clamp after it changes nothing;
 // a clamping axis ands with -1 (all bits). integer % has no vector form on a CPU rasteriser.
 ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) {
-    return clamp(cell & mix(ivec2(-1), last, greaterThanEqual(u_wrapMask, ivec2(0))), ivec2(0), last);
+    const ivec2 mask = mix(ivec2(-1), last, greaterThanEqual(u_wrapMask, ivec2(0)));
+    return clamp(cell & mask, ivec2(0), last);
 }
 // The same for layer 0's field at a level, from the uniforms alone (u_fieldLast, u_wrapMask: a
 // power of two's last index shifted right is the level's, and -1 stays -1): the walk's per-step

@@ -25,7 +25,7 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     int u_clipToPatch;        // 1: discard rays that leave u_patchBounds (finite patches)
     float u_varianceFloor;    // slope variance the storage format's rounding alone shows (not roughness)
     ivec2 u_fieldLast;        // the field's last texel: its size - 1
-    ivec2 u_wrapMask;         // per axis: u_fieldLast where the field's edges wrap, -1 where they clamp
+    ivec2 u_wrapMask;         // per axis: u_fieldLast where the edges wrap, -1 where they clamp
     float u_untracedHeight;   // the untraced layers' share of the height: sum weight * rest height
     float u_pixelBudget;      // the screen error the exact tracer may leave, pixels (0: exact)
     // Layered surfaces (HFX_LAYERS > 1, the ocean's cascades), one component per layer:

@@ -425,11 +425,11 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
                  .first;
     }
     SurfaceUniforms u{.depthScale = config.depthScale,
-                            .lightDir = glm::normalize(config.light),
-                            .shadowSharpness = config.shadowSharpness,
-                            .minSamples = config.minSamples,
-                            .maxSamples = config.maxSamples,
-                            .shadowSamples = material.shadowSamples};
+                      .lightDir = glm::normalize(config.light),
+                      .shadowSharpness = config.shadowSharpness,
+                      .minSamples = config.minSamples,
+                      .maxSamples = config.maxSamples,
+                      .shadowSamples = material.shadowSamples};
     u.setField({t.config().width, t.config().height}, t.config().edges);
     if (!computeBlock_.id()) { // made once, refreshed every dispatch
         computeBlock_ = GlBuffer::create();
