@@ -112,7 +112,7 @@ def crops(rows, strip_path, out):
         ax.set_title(caption, fontsize=9)
         ax.set_xticks([])
         ax.set_yticks([])
-    fig.suptitle("Bricks at 80 degrees: mean error and 1280x720 draw time")
+    fig.suptitle("Bricks at 80 degrees: mean error and 1280x720 draw time (llvmpipe)")
     fig.tight_layout()
     fig.savefig(out, dpi=90)
     plt.close(fig)

@@ -155,10 +155,9 @@ int hfx_budget_samples(int samples, float pixels) {
 // HFX_FOOTPRINT_LEVELS above. Read there, the normals' variance (Toksvig) spreads a glint over
 // the pixel's share of the surface, where a texel's glint, or its reflection of the horizon, lit
 // or missed the pixel by chance and flickered as the view moved (a rough sea's crests at middle
-// distance: OceanShading's footprint test). Its derivatives need uniform control flow.
+// distance: OceanShading's footprint test). dx, dy: the hits' texcoords' derivatives, in texels.
 const float HFX_FOOTPRINT_LEVELS = 3.0;
-float hfx_shade_level(float entryLevel, vec2 uv, vec2 texels) {
-    const vec2 dx = dFdx(uv) * texels, dy = dFdy(uv) * texels;
+float hfx_shade_level(float entryLevel, vec2 dx, vec2 dy) {
     const float hitLevel = 0.5 * log2(max(max(dot(dx, dx), dot(dy, dy)), 1e-12));
     return clamp(hitLevel, entryLevel, entryLevel + HFX_FOOTPRINT_LEVELS);
 }
@@ -225,8 +224,10 @@ void main() {
     }
 #endif
 
-    const float shadeLevel = hfx_shade_level(mipLevel, uv, texels);
-    const float footprint = max(length(dFdx(uv)), length(dFdy(uv)));
+    // The traced hits' spread to the next pixel (derivatives: here, in uniform control flow).
+    const vec2 hitDx = dFdx(uv), hitDy = dFdy(uv);
+    const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels);
+    const float footprint = max(length(hitDx), length(hitDy));
 
     // Silhouettes of finite patches: a ray that left the patch hit nothing of it.
     if (u_clipToPatch != 0 && (any(lessThan(uv, u_patchBounds.xy)) || any(greaterThan(uv, u_patchBounds.zw))))

@@ -129,8 +129,7 @@ TEST_F(OceanShading, TheRoughSeasCrestsShadedOverTheirHitsFootprintDoNotShimmer)
         cl(), {.ocean = {.size = 256,
                          .cascades = 4,
                          .sea = {.wind = {.windSpeed = beaufortWindSpeed(7), .direction = 0.6f}}}});
-    for (int i = 0; i < 25; ++i)
-        ocean.update(0.2);
+    for (int i = 0; i < 25; ++i) ocean.update(0.2);
     SurfaceMaterial material = ocean.material();
     material.water.hazeDistance = 2500.0f; // metres, as the demo's
     ocean.setMaterial(material);
@@ -144,11 +143,10 @@ TEST_F(OceanShading, TheRoughSeasCrestsShadedOverTheirHitsFootprintDoNotShimmer)
                            .upwards = true};
     const double footprint = shimmer(ocean, band);
     const double entry = withPatchedSurfaceShader(
-        "ocean_shading_entry_level", "hfx_shade_level(mipLevel, uv, texels)", "(mipLevel)",
-        [&] { return shimmer(ocean, band); });
+        "ocean_shading_entry_level", "hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels)",
+        "(mipLevel)", [&] { return shimmer(ocean, band); });
     std::printf("[shimmer] Beaufort 7 at 3-8 degrees, quarter-pixel move: %.2f%% of pixels sparkle "
-                "shaded over the "
-                "hits' footprint, %.2f%% over the entry's\n",
+                "shaded over the hits' footprint, %.2f%% over the entry's\n",
                 100.0 * footprint, 100.0 * entry);
     EXPECT_GT(entry, 0.025)
         << "the entry's level no longer shimmers: the band does not show the crests";
@@ -384,6 +382,27 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
     SurfaceMaterial forced = fresh.material();
     forced.water.spindrift = 0.0f;
     EXPECT_EQ(calmView.draw(fresh, fresh.material()).pixels, calmView.draw(fresh, forced).pixels);
+}
+
+TEST_F(OceanShading, WindStreaksFadeAsAWindChangeBlendsIn) {
+    // The streaks' strength follows a wind change as the waves do (OceanEffect::setWind's blend):
+    // from a gale to a moderate breeze over 4 s it starts at the gale's, halves by the middle,
+    // and is gone at the end; at once (0 s) it is gone at once.
+    OceanEffect ocean(cl(), {.ocean = {.size = 64,
+                                       .cascades = 1,
+                                       .sea = {.wind = {.windSpeed = beaufortWindSpeed(10)}}}});
+    const float gale = ocean.material().water.spindrift;
+    ASSERT_GT(gale, 0.99f);
+    ocean.setWind(beaufortWindSpeed(4), 0.0f, 4.0);
+    EXPECT_FLOAT_EQ(ocean.material().water.spindrift, gale);
+    for (int i = 0; i < 10; ++i) ocean.update(0.2);
+    EXPECT_NEAR(ocean.material().water.spindrift, 0.5f * gale, 0.02f);
+    for (int i = 0; i < 11; ++i) ocean.update(0.2);
+    EXPECT_EQ(ocean.material().water.spindrift, 0.0f);
+    ocean.setWind(beaufortWindSpeed(10), 0.0f, 0.0);
+    EXPECT_NEAR(ocean.material().water.spindrift, gale, 1e-6f);
+    ocean.setWind(beaufortWindSpeed(4), 0.0f, 0.0);
+    EXPECT_EQ(ocean.material().water.spindrift, 0.0f);
 }
 
 TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {

@@ -1,6 +1,7 @@
 #include "hfx/effects/OceanEffect.h"
 
 #include "hfx/compute/OceanSpectrum.h"
+#include "hfx/compute/shared/DecalMath.h"
 #include "hfx/core/Error.h"
 
 #include <algorithm>
@@ -115,7 +116,8 @@ void OceanEffect::advance(double dt) {
 }
 
 namespace {
-// The wind streaks' lattice across the wind, metres: about a line of foam every 2 m.
+// The wind streaks' lattice across the wind, metres (the noise crosses its middle in about half
+// its cells: a line of foam every 2 m or so).
 constexpr double kStreakMeters = 1.0;
 } // namespace
 
@@ -132,9 +134,10 @@ void OceanEffect::updateFoamLook(double dt) {
     w.streakCells = float(double(c.patchMeters) / kStreakMeters);
     // Streaks from the middle of Beaufort 7 (a near gale, where spray starts to blow off the
     // crests) to full at that of 10.
-    const float from = beaufortWindSpeed(7), to = beaufortWindSpeed(10);
-    const float x = std::clamp((wind.windSpeed - from) / (to - from), 0.0f, 1.0f);
-    w.spindrift = x * x * (3.0f - 2.0f * x);
+    const float strength =
+        hfx_decal_smoothstep(beaufortWindSpeed(7), beaufortWindSpeed(10), wind.windSpeed);
+    const double blend = ocean_.windBlend().at(ocean_.time());
+    w.spindrift = float(spindriftFrom_ + (strength - spindriftFrom_) * blend);
 }
 
 namespace {
@@ -184,6 +187,7 @@ void OceanEffect::updateRings() {
 void OceanEffect::setWind(float speed, float direction) { setWind(speed, direction, windBlendSeconds_); }
 
 void OceanEffect::setWind(float speed, float direction, double blendSeconds) {
+    spindriftFrom_ = material_.water.spindrift; // the streaks as they are, blended from
     ocean_.setWind(speed, direction, blendSeconds);
     material_.depthScale = physicalDepthScale();
     updateFoamLook(0.0);

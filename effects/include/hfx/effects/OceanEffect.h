@@ -87,8 +87,8 @@ private:
     std::vector<bool> tracedCascades(const std::vector<float>& weights) const;
     /// Writes the live rings into material_.water for the sea's time now.
     void updateRings();
-    /// Writes the wind streaks into material_.water for the present wind, drifted by dt seconds
-    /// of the foam's drift.
+    /// Writes the wind streaks into material_.water for the present wind (their strength blended
+    /// from the last wind's as the waves are), drifted by dt seconds of the foam's drift.
     void updateFoamLook(double dt);
 
     struct Ring {
@@ -98,6 +98,7 @@ private:
     };
     std::vector<Ring> rings_;
     glm::dvec2 foamDrift_{0.0}; ///< texcoords the foam has drifted downwind
+    float spindriftFrom_ = 0.0f; ///< the streaks' strength a wind change blends from
     OceanField ocean_;
     float exaggeration_;
     double windBlendSeconds_;
