@@ -215,11 +215,13 @@ TEST_F(Ocean, TimeIsAPureInputTheFieldIsBitForBitTheSame) {
 TEST_F(Ocean, FoamAppearsWhereJFallsBelowTheThresholdAndHalvesInItsHalfLife) {
     // One mode at lambda k A = 0.8 with threshold 0.5: J < 0.5 where cos(theta) > 0.625, a
     // fraction acos(0.625) / pi of the phase. The mode runs 3 cycles along x and 2 along y, so
-    // the Lagrangian grid samples the phase evenly.
+    // the Lagrangian grid samples the phase evenly. What is injected is young; the young part
+    // halves in its own half-life (a third of the foam's here) and never exceeds the foam.
     constexpr int N = 256;
     constexpr float L = 256.0f, lambda = 1.0f;
     OceanConfig config = oneCascade(N, L, lambda);
-    config.foam = {.threshold = 0.5f, .injection = 1.0f, .halfLife = 1.5f, .drift = 0.0f};
+    config.foam = {
+        .threshold = 0.5f, .injection = 1.0f, .halfLife = 1.5f, .youngHalfLife = 0.5f, .drift = 0.0f};
     OceanField ocean(cl(), config);
     const double k = kTwoPi * std::hypot(3.0, 2.0) / L, A = 0.8 / (lambda * k);
     ocean.setAmplitudes(0, singleMode(N, 3, 2, float(A)));
@@ -230,20 +232,27 @@ TEST_F(Ocean, FoamAppearsWhereJFallsBelowTheThresholdAndHalvesInItsHalfLife) {
     const double covered = double(std::count_if(injected.begin(), injected.end(), [](float f) { return f > 0.0f; })) / (N * N);
     const double analytic = std::acos(0.625) / std::numbers::pi;
     EXPECT_NEAR(covered, analytic, 0.01 * analytic);
+    auto young = [&] { return plane(ocean.youngFoam(0), ocean); };
+    EXPECT_EQ(young(), injected) << "all of a first step's foam is young";
 
     // Foam everywhere the crest passed, then no more waves: nothing is injected, the foam only
     // decays (no drift here). One half-life in 30 steps.
     for (int i = 0; i < 40; ++i) ocean.step(0.05);
     ocean.setAmplitudes(0, std::vector<std::complex<float>>(size_t(N) * N, 0.0f));
-    auto total = [&] {
+    auto total = [&](const std::vector<float>& field) {
         double s = 0;
-        for (float f : foam()) s += f;
+        for (float f : field) s += f;
         return s;
     };
-    const double start = total();
+    const double start = total(foam()), youngStart = total(young());
     ASSERT_GT(start, 100.0);
+    ASSERT_GT(youngStart, 10.0);
     for (int i = 0; i < 30; ++i) ocean.step(1.5 / 30.0);
-    EXPECT_NEAR(total() / start, 0.5, 0.02 * 0.5) << "after one half-life";
+    const auto aged = foam(), agedYoung = young();
+    EXPECT_NEAR(total(aged) / start, 0.5, 0.02 * 0.5) << "after one half-life";
+    EXPECT_NEAR(total(agedYoung) / youngStart, 0.125, 0.02 * 0.125)
+        << "after three of the young foam's";
+    for (size_t i = 0; i < aged.size(); ++i) ASSERT_LE(agedYoung[i], aged[i]) << "texel " << i;
 }
 
 TEST_F(Ocean, SettledFoamIsTheHistoryTheSeaWouldHaveAndTheFieldsStayAsTheyWere) {
@@ -437,6 +446,9 @@ TEST_F(Ocean, BadConfigurationIsRefusedByName) {
     EXPECT_NE(messageOf([&] { OceanField(cl(), {.sea = {.wind = {.windSpeed = 0.0f}}}); }).find("windSpeed"), std::string::npos);
     EXPECT_NE(messageOf([&] { OceanField(cl(), {.choppiness = -1.0f}); }).find("choppiness"), std::string::npos);
     EXPECT_NE(messageOf([&] { OceanField(cl(), {.foam = {.halfLife = 0.0f}}); }).find("halfLife"), std::string::npos);
+    const std::string young =
+        messageOf([&] { OceanField(cl(), {.foam = {.youngHalfLife = -1.0f}}); });
+    EXPECT_NE(young.find("youngHalfLife"), std::string::npos);
     OceanField ocean(cl(), {.size = 16, .cascades = 1});
     EXPECT_THROW(ocean.setAmplitudes(0, std::vector<std::complex<float>>(5)), Error);
     EXPECT_THROW(ocean.setAmplitudes(1, std::vector<std::complex<float>>(256)), Error);

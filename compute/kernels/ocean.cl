@@ -32,24 +32,33 @@ __kernel void ocean_spectrum(__global const float2* h0From, __global const float
 /* On the Lagrangian grid (the undisplaced points): the Jacobian of the displacement, and the
    foam, which is attached to the water (it rides the orbital motion with its point) and drifts
    downwind: last step's foam, `drift` texels upwind, decayed, plus what this step's J < threshold
-   injects, capped at 1. fields: h, Dx, Dy (N x N each, metres). Also the packed grid
-   (hfx_ocean_pack: displacement, its gradient, height, foam) for the Eulerian resample. */
-__kernel void ocean_lagrangian(__global const float* fields, __global const float* foamIn, __global float* foamOut,
-                               __global float* jacobian, __global float* packed, int N, float lambdaPerTexel,
-                               float decay, float injection, float threshold, float driftX, float driftY) {
+   injects, capped at 1. Its young part is carried alike and decays faster (youngDecay): what is
+   injected is young, and young foam is at most the foam. fields: h, Dx, Dy (N x N each, metres).
+   Also the packed grid (hfx_ocean_pack: displacement, its gradient, height, foam, young foam)
+   for the Eulerian resample. */
+__kernel void ocean_lagrangian(__global const float* fields, __global const float* foamIn,
+                               __global float* foamOut, __global const float* youngIn,
+                               __global float* youngOut, __global float* jacobian,
+                               __global float* packed, int N, float lambdaPerTexel, float decay,
+                               float youngDecay, float injection, float threshold, float driftX,
+                               float driftY) {
     int i = get_global_id(0), j = get_global_id(1);
     if (i >= N || j >= N) return;
     int n = N * N, k = j * N + i;
     float J = hfx_ocean_jacobian(fields + n, fields + 2 * n, N, lambdaPerTexel, i, j);
     jacobian[k] = J;
-    float carried = hfx_ocean_sample(foamIn, N, (float)i - driftX, (float)j - driftY);
-    float foam = clamp(carried * decay + injection * fmax(threshold - J, 0.0f), 0.0f, 1.0f);
+    float x = (float)i - driftX, y = (float)j - driftY;
+    float injected = injection * fmax(threshold - J, 0.0f);
+    float foam = clamp(hfx_ocean_sample(foamIn, N, x, y) * decay + injected, 0.0f, 1.0f);
+    float young = clamp(hfx_ocean_sample(youngIn, N, x, y) * youngDecay + injected, 0.0f, foam);
     foamOut[k] = foam;
-    hfx_ocean_pack(fields, N, lambdaPerTexel, i, j, foam, packed);
+    youngOut[k] = young;
+    hfx_ocean_pack(fields, N, lambdaPerTexel, i, j, foam, young, packed);
 }
 
 /* The Eulerian field the renderer traces: for texel (i, j), the Lagrangian point displaced onto
-   it, and the height and foam there. height = 0.5 + metres * scale, clamped to [0,1]. */
+   it, and the height and foam there. height = 0.5 + metres * scale, clamped to [0,1]. The foam's
+   texel is its coverage in alpha and its young part in red (OceanCascade::foamColor). */
 __kernel void ocean_eulerian(__global const float* packed, __global float* height, __global float* meters,
                              __global uchar4* foamColor, int N, float lambdaPerTexel, float scale, int iterations) {
     int i = get_global_id(0), j = get_global_id(1);
@@ -60,5 +69,7 @@ __kernel void ocean_eulerian(__global const float* packed, __global float* heigh
     meters[k] = H;
     height[k] = clamp(0.5f + H * scale, 0.0f, 1.0f);
     float f = hfx_ocean_lerp(packed, c, HFX_OCEAN_FOAM);
-    foamColor[k] = (uchar4)(255, 255, 255, convert_uchar_sat(f * 255.0f + 0.5f));
+    float y = hfx_ocean_lerp(packed, c, HFX_OCEAN_YOUNG);
+    foamColor[k] = (uchar4)(convert_uchar_sat(y * 255.0f + 0.5f), 255, 255,
+                            convert_uchar_sat(f * 255.0f + 0.5f));
 }

@@ -24,6 +24,8 @@ void FoamConfig::validate() const {
         throw Error(str("FoamConfig.injection must be >= 0, got ", injection));
     if (!(halfLife > 0.0f) || !std::isfinite(halfLife))
         throw Error(str("FoamConfig.halfLife must be positive seconds, got ", halfLife));
+    if (!(youngHalfLife > 0.0f && std::isfinite(youngHalfLife)))
+        throw Error(str("FoamConfig.youngHalfLife must be positive seconds, got ", youngHalfLife));
     if (!(drift >= 0.0f && drift <= 1.0f)) throw Error(str("FoamConfig.drift must be in [0, 1], got ", drift));
 }
 
@@ -196,10 +198,11 @@ void OceanField::makeCascade(OceanCascade& c, float patchMeters, float kMin, flo
         c.lagrangian = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * n * sizeof(float));
         c.jacobian = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
         c.packed = cl::Buffer(ctx, CL_MEM_READ_WRITE, HFX_OCEAN_PACKED * n * sizeof(float));
-        for (cl::Buffer& f : c.foam) {
-            f = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
-            cl_.queue().enqueueFillBuffer(f, 0.0f, 0, n * sizeof(float));
-        }
+        for (cl::Buffer* pair : {c.foam, c.young})
+            for (int i = 0; i < 2; ++i) {
+                pair[i] = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
+                cl_.queue().enqueueFillBuffer(pair[i], 0.0f, 0, n * sizeof(float));
+            }
         c.height = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
         c.meters = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
         c.foamColor = cl::Buffer(ctx, CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, n * sizeof(cl_uchar4));
@@ -316,7 +319,9 @@ void OceanField::setTime(double seconds) {
     time_ = seconds;
     clGuard("clearing the foam", [&] {
         for (OceanCascade& c : cascades_)
-            for (cl::Buffer& f : c.foam) cl_.queue().enqueueFillBuffer(f, 0.0f, 0, f.getInfo<CL_MEM_SIZE>());
+            for (cl::Buffer* pair : {c.foam, c.young})
+                for (int i = 0; i < 2; ++i)
+                    cl_.queue().enqueueFillBuffer(pair[i], 0.0f, 0, pair[i].getInfo<CL_MEM_SIZE>());
     });
     compute(0.0);
 }
@@ -346,6 +351,7 @@ void OceanField::compute(double dt) {
     for (OceanCascade& c : cascades_) setBlendedSigma(c, blend);
     const FoamConfig& foam = config_.foam;
     const float decay = float(std::exp2(-dt / foam.halfLife));
+    const float youngDecay = float(std::exp2(-dt / std::min(foam.youngHalfLife, foam.halfLife)));
 
     // dt = 0 (set-up, a jump, a new spectrum) steps no foam: it stays in the buffer it is in.
     const int back = foamFront_, front = dt > 0.0 ? 1 - foamFront_ : foamFront_;
@@ -375,11 +381,14 @@ void OceanField::compute(double dt) {
             lagrangianKernel_.setArg(a++, c.lagrangian);
             lagrangianKernel_.setArg(a++, c.foam[back]);
             lagrangianKernel_.setArg(a++, c.foam[front]);
+            lagrangianKernel_.setArg(a++, c.young[back]);
+            lagrangianKernel_.setArg(a++, c.young[front]);
             lagrangianKernel_.setArg(a++, c.jacobian);
             lagrangianKernel_.setArg(a++, c.packed);
             lagrangianKernel_.setArg(a++, N);
             lagrangianKernel_.setArg(a++, lambdaPerTexel);
             lagrangianKernel_.setArg(a++, decay);
+            lagrangianKernel_.setArg(a++, youngDecay);
             lagrangianKernel_.setArg(a++, float(c.foamGain * dt));
             lagrangianKernel_.setArg(a++, c.foamThreshold);
             lagrangianKernel_.setArg(a++, drift * std::cos(config_.sea.wind.direction));

@@ -153,7 +153,7 @@ void OceanQuery::prepare(double t) {
             std::fill(f + n, f + 3 * n, 0.0f);
         for (int j = 0; j < N; ++j)
             for (int i = 0; i < N; ++i)
-                hfx_ocean_pack(f, N, c.lambdaPerTexel, i, j, 0.0f, c.packed.data());
+                hfx_ocean_pack(f, N, c.lambdaPerTexel, i, j, 0.0f, 0.0f, c.packed.data());
     }
     g.valid = true;
     g.time = t;

@@ -55,6 +55,11 @@ struct FoamConfig {
     /// (threshold - J) / sigma_J, so a cascade's foam builds alike whatever its steepness.
     float injection = 4.0f;
     float halfLife = 4.0f;   ///< seconds for foam to halve
+    /// Seconds for the young share of the foam to halve: what a breaking crest injects is young
+    /// (a whitecap's dense white, Monahan's stage A) and ages into residual foam (stage B), which
+    /// the water shading draws as a lace that opens as it thins. The foam's halfLife where that
+    /// is shorter.
+    float youngHalfLife = 1.0f;
     float drift = 0.03f;     ///< downwind drift, as a fraction of the wind speed
     void validate() const;   ///< throws hfx::Error naming the bad field and its value
 };
@@ -93,11 +98,14 @@ struct OceanCascade {
     std::vector<float> omega;         ///< w(k), quantised to multiples of 2 pi / repeatSeconds
     cl::Buffer height;                ///< Eulerian h in [0,1] (size^2 floats): what Sobel and the GL surface take
     cl::Buffer meters;                ///< the same heights in metres, unclamped
-    cl::Buffer foamColor;             ///< Eulerian foam as RGBA8: white, coverage in alpha
+    /// Eulerian foam as RGBA8: coverage in alpha, its young share (OceanField::youngFoam) in red,
+    /// green and blue 255; read young / coverage for the foam's freshness after any filtering.
+    cl::Buffer foamColor;
     cl::Buffer lagrangian;            ///< h, Dx, Dy on the Lagrangian grid (metres), 3 size^2 blocks
     cl::Buffer jacobian;              ///< J on the Lagrangian grid
     cl::Buffer packed;                ///< the Lagrangian grid packed for the resample (OceanMath.h, hfx_ocean_pack)
     cl::Buffer foam[2];               ///< foam coverage on the Lagrangian grid, this step's and the last
+    cl::Buffer young[2];              ///< its young part (FoamConfig::youngHalfLife), likewise
     cl::Buffer h0Device, h0FromDevice, omegaDevice; ///< h0, h0From and omega on the device
     /// sum 2 |h0From|^2 and sum 2 |h0|^2: sigma^2 at blend s is their mix.
     double varianceFrom = 0.0, varianceTo = 0.0;
@@ -145,6 +153,11 @@ public:
     const OceanCascade& cascade(int i) const { return cascades_.at(size_t(i)); }
     /// A cascade's foam coverage on the Lagrangian grid after the last step (size^2 floats).
     const cl::Buffer& foam(int cascade) const { return cascades_.at(size_t(cascade)).foam[foamFront_]; }
+    /// Its young part (size^2 floats, at most the foam): injected with it, halving every
+    /// FoamConfig::youngHalfLife seconds, carried and drifting as the foam is.
+    const cl::Buffer& youngFoam(int cascade) const {
+        return cascades_.at(size_t(cascade)).young[foamFront_];
+    }
     const OceanConfig& config() const { return config_; }
     /// The RMS height of the whole sea (m): the cascades' sigmas in quadrature.
     float sigmaMeters() const;

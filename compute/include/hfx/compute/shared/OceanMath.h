@@ -96,9 +96,10 @@ HFX_FN_INLINE float hfx_ocean_jacobian(HFX_GLOBAL const float* dx, HFX_GLOBAL co
 
 /* The Lagrangian grid packed for the Eulerian resample: HFX_OCEAN_PACKED floats per texel, the
    displacement Dx, Dy (metres), its gradient lambda dDx/dx, dDy/dy, dDx/dy (hfx_ocean_gradient's),
-   the height h (metres) and the foam. A bilinear sample of all of them reads two pairs of
-   neighbouring texels, two or four cache lines, where separate planes took fourteen: the
-   resample's Newton steps were 18 of the 28 ms of a 512^2 cascade's step (docs/history/tuning.md). */
+   the height h (metres), the foam and its young part. A bilinear sample of all of them reads two
+   pairs of neighbouring texels, two or four cache lines, where separate planes took fourteen: the
+   resample's Newton steps were 18 of the 28 ms of a 512^2 cascade's step
+   (docs/history/tuning.md). */
 #define HFX_OCEAN_PACKED 8
 #define HFX_OCEAN_DX 0
 #define HFX_OCEAN_DY 1
@@ -107,6 +108,7 @@ HFX_FN_INLINE float hfx_ocean_jacobian(HFX_GLOBAL const float* dx, HFX_GLOBAL co
 #define HFX_OCEAN_GXY 4
 #define HFX_OCEAN_H 5
 #define HFX_OCEAN_FOAM 6
+#define HFX_OCEAN_YOUNG 7
 #define HFX_OCEAN_NEWTON_TOLERANCE 1e-3f
 
 /* The bilinear cell of (x, y) (texel units) in a periodic N x N packed grid: the offsets of its
@@ -138,8 +140,8 @@ HFX_FN_INLINE float hfx_ocean_lerp(HFX_GLOBAL const float* p, HfxOceanCell c, in
 }
 
 /* Packs texel (i, j) of the Lagrangian grid: fields = h, Dx, Dy (N x N planes, metres). */
-HFX_FN_INLINE void hfx_ocean_pack(HFX_GLOBAL const float* fields, int N, float lambdaPerTexel, int i, int j,
-                                  float foam, HFX_GLOBAL float* packed) {
+HFX_FN_INLINE void hfx_ocean_pack(HFX_GLOBAL const float* fields, int N, float lambdaPerTexel,
+                                  int i, int j, float foam, float young, HFX_GLOBAL float* packed) {
     int n = N * N, k = j * N + i;
     HFX_GLOBAL float* p = packed + k * HFX_OCEAN_PACKED;
     float xx, yy, xy;
@@ -151,7 +153,7 @@ HFX_FN_INLINE void hfx_ocean_pack(HFX_GLOBAL const float* fields, int N, float l
     p[HFX_OCEAN_GXY] = xy;
     p[HFX_OCEAN_H] = fields[k];
     p[HFX_OCEAN_FOAM] = foam;
-    p[7] = 0.0f;
+    p[HFX_OCEAN_YOUNG] = young;
 }
 
 /* The Newton step of hfx_ocean_lagrangian_texel at x0 = (px, py), given lambda D and its
