@@ -109,15 +109,17 @@ float hfx_slope_variance(vec3 averaged) {
 #if HFX_LAYERS > 1
 // One layer's share of the shaded point: its slopes (the normal's x/z, y/z, in its own
 // texcoords and depth, turned into the surface's by slopeShare) and their variance, its height;
-// and, returned, its own height and its albedo's alpha (the ocean's foam of that layer).
-vec2 hfx_add_layer(sampler2D s, sampler2D a, vec2 uv, float level, float scale, float weight, float slopeShare,
-                   inout vec2 slope, inout float variance, inout float height) {
+// and, returned, its own height and its albedo's alpha and red (the ocean's foam of that layer
+// and the foam's young part).
+vec3 hfx_add_layer(sampler2D s, sampler2D a, vec2 uv, float level, float scale, float weight,
+                   float slopeShare, inout vec2 slope, inout float variance, inout float height) {
     const vec4 t = textureLod(s, uv * scale, level);
     const vec3 n = t.xyz * u_normalDecode.x + u_normalDecode.y;
     slope += slopeShare * n.xy / max(n.z, 1e-3);
     variance += slopeShare * slopeShare * hfx_slope_variance(n);
     height += weight * t.w;
-    return vec2(t.w, textureLod(a, uv * scale, level).a);
+    const vec4 albedo = textureLod(a, uv * scale, level);
+    return vec3(t.w, albedo.a, albedo.r);
 }
 #endif
 
@@ -258,16 +260,17 @@ void main() {
     const float slopeVariance = u_normalScale * u_normalScale * hfx_slope_variance(decoded);
     const float height = surfaceSample.w;
     const vec4 layerFoam = vec4(alpha, 0.0, 0.0, 0.0), layerDetail = vec4(height, 0.5, 0.5, 0.5);
+    const vec4 layerYoung = vec4(min(albedo.r, alpha), 0.0, 0.0, 0.0);
 #else
     // Slopes add: each layer's, scaled to the surface's texcoords and depth (u_layerSlope), and
     // so do their variances (independent layers).
     vec2 slope = vec2(0.0);
     float slopeVariance = 0.0, height = 0.0;
-    vec2 l0 = hfx_add_layer(s_surface, s_albedo, uv, shadeLevel + u_layerLevel.x, u_layerScale.x, u_layerWeight.x,
+    vec3 l0 = hfx_add_layer(s_surface, s_albedo, uv, shadeLevel + u_layerLevel.x, u_layerScale.x, u_layerWeight.x,
                             u_layerSlope.x, slope, slopeVariance, height);
-    vec2 l1 = hfx_add_layer(s_surface1, s_albedo1, uv, shadeLevel + u_layerLevel.y, u_layerScale.y, u_layerWeight.y,
+    vec3 l1 = hfx_add_layer(s_surface1, s_albedo1, uv, shadeLevel + u_layerLevel.y, u_layerScale.y, u_layerWeight.y,
                             u_layerSlope.y, slope, slopeVariance, height);
-    vec2 l2 = vec2(0.5, 0.0), l3 = vec2(0.5, 0.0);
+    vec3 l2 = vec3(0.5, 0.0, 0.0), l3 = vec3(0.5, 0.0, 0.0);
 #if HFX_LAYERS > 2
     l2 = hfx_add_layer(s_surface2, s_albedo2, uv, shadeLevel + u_layerLevel.z, u_layerScale.z, u_layerWeight.z,
                        u_layerSlope.z, slope, slopeVariance, height);
@@ -279,6 +282,7 @@ void main() {
     // Each layer's foam is broken up by the relief of the next two finer layers (the finest by
     // its own): a lace of two scales rather than the blobs of one.
     const vec4 layerFoam = vec4(l0.y, l1.y, l2.y, l3.y);
+    const vec4 layerYoung = min(vec4(l0.z, l1.z, l2.z, l3.z), layerFoam);
     const float d2 = HFX_LAYERS > 2 ? l2.x : l1.x, d3 = HFX_LAYERS > 3 ? l3.x : d2;
     const vec4 layerDetail = vec4(l1.x + 0.7 * (d2 - 0.5), d2 + 0.7 * (d3 - 0.5), d3, d3);
     const vec3 storedNormal = vec3(slope, 1.0);
@@ -290,13 +294,17 @@ void main() {
     const vec4 rings = hfx_rings(uv);
     vec3 ringNormal = storedNormal;
     ringNormal.xy -= depthScale * rings.yz * storedNormal.z;
-    vec4 ringFoam = layerFoam;
+    // Their foam is young: a splash's.
+    vec4 ringFoam = layerFoam, ringYoung = layerYoung;
     ringFoam.x = max(ringFoam.x, rings.w);
+    ringYoung.x = max(ringYoung.x, rings.w);
 #define HFX_SHADED_NORMAL ringNormal
 #define HFX_SHADED_FOAM ringFoam
+#define HFX_SHADED_YOUNG ringYoung
 #else
 #define HFX_SHADED_NORMAL storedNormal
 #define HFX_SHADED_FOAM layerFoam
+#define HFX_SHADED_YOUNG layerYoung
 #endif
     const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
     const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
@@ -348,6 +356,7 @@ void main() {
     // Toksvig: the lobe widens with the slopes' variance and keeps its energy.
     point.slopeVariance = slopeVariance;
     point.foam = HFX_SHADED_FOAM;
+    point.foamYoung = HFX_SHADED_YOUNG;
     point.foamDetail = layerDetail;
     const vec2 channels = textureLod(s_channels, uv * u_layerScale.x, shadeLevel + u_layerLevel.x).rg;
     point.roughness = channels.r;

@@ -242,13 +242,13 @@ Image drawSea(const OceanEffect& ocean, const SurfaceMaterial& material, const M
     return target.readColor();
 }
 
-/// The sea seen straight down from 40 m, 256x256 (about 13 cm a pixel), the sun high.
+/// The sea seen straight down from `eye` metres (40: about 13 cm a pixel), 256x256, the sun high.
 struct TopDown {
     static constexpr int kSize = 256;
-    explicit TopDown(const OceanEffect& ocean)
+    explicit TopDown(const OceanEffect& ocean, float eye = 40.0f)
         : sea(makePlane(
               {.size = 2000.0f, .texcoordScale = 2000.0f / ocean.ocean().config().patchMeters})) {
-        camera.position = {0.0f, 40.0f, 0.0f};
+        camera.position = {0.0f, eye, 0.0f};
         camera.target = {0.0f, 0.0f, -0.001f};
         camera.aspect = 1.0f;
         camera.nearPlane = 0.2f;
@@ -315,6 +315,64 @@ TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
         EXPECT_GT(frame, w / 2.5) << "Beaufort " << force;
         EXPECT_LT(frame, 2.5 * w) << "Beaufort " << force;
     }
+}
+
+/// Of a foam mask's pixels (TopDown::kSize square): the share whose 5x5 neighbourhood is all foam
+/// (inside a solid blob), and the share with a 4-neighbour that is not (on an edge).
+std::pair<double, double> solidAndEdgeShares(const std::vector<bool>& mask) {
+    const int n = TopDown::kSize;
+    auto at = [&](int x, int y) { return bool(mask[size_t(y) * n + x]); };
+    size_t foam = 0, solid = 0, edge = 0;
+    for (int y = 2; y < n - 2; ++y)
+        for (int x = 2; x < n - 2; ++x) {
+            if (!at(x, y)) continue;
+            ++foam;
+            bool all = true;
+            for (int j = -2; j <= 2; ++j)
+                for (int i = -2; i <= 2; ++i) all = all && at(x + i, y + j);
+            solid += all;
+            edge += !(at(x - 1, y) && at(x + 1, y) && at(x, y - 1) && at(x, y + 1));
+        }
+    return {double(solid) / double(std::max<size_t>(foam, 1)),
+            double(edge) / double(std::max<size_t>(foam, 1))};
+}
+
+TEST_F(OceanShading, AgedFoamOpensIntoALaceAndYoungFoamFraysAtItsEdges) {
+    // Issue 37: foam drew as solid white blobs with smooth hard edges. What a crest injects is
+    // young (OceanField::youngFoam) and ages; the shading draws aged foam as a lace of bubbles
+    // and frays every foam's edge through them (WaterLook::foamCells). Beaufort 8 seen from 16 m
+    // (5 cm a pixel: the bubbles' cells 9 pixels), the same foam all young (the young part lasts
+    // as long as the foam) or all but this step's aged: aged foam has under half the share of
+    // pixels inside a solid blob that the drawing without the lace gives (foamCells 0, as
+    // before: 0.16 against 0.49 on llvmpipe), young foam stays denser than aged (0.41), and its
+    // edges are more ragged than without the lace (0.27 of its pixels against 0.22).
+    auto sea = [&](float youngHalfLife) {
+        auto ocean = std::make_unique<OceanEffect>(
+            cl(), OceanEffectConfig{.ocean = {.size = 256,
+                                              .cascades = 3,
+                                              .sea = {.wind = {.windSpeed = beaufortWindSpeed(8)}},
+                                              .foam = {.youngHalfLife = youngHalfLife}}});
+        for (int i = 0; i < 50; ++i) ocean->update(0.2);
+        return ocean;
+    };
+    const auto young = sea(4.0f), aged = sea(0.02f);
+    auto shares = [&](const OceanEffect& ocean, bool lace) {
+        TopDown view(ocean, 16.0f);
+        SurfaceMaterial material = ocean.material();
+        EXPECT_GT(material.water.foamCells, 0.0f);
+        if (!lace) material.water.foamCells = 0.0f;
+        return solidAndEdgeShares(foamMask(view.foamBrightening(ocean, material)));
+    };
+    const auto [agedSolid, agedEdge] = shares(*aged, true);
+    const auto [youngSolid, youngEdge] = shares(*young, true);
+    const auto [plainSolid, plainEdge] = shares(*young, false);
+    std::printf("[foam] Beaufort 8 from 16 m, foam pixels in solid blobs / on edges: aged %.3f / "
+                "%.3f, young %.3f / %.3f, without the lace %.3f / %.3f\n",
+                agedSolid, agedEdge, youngSolid, youngEdge, plainSolid, plainEdge);
+    EXPECT_GT(plainSolid, 0.3) << "no foam to draw";
+    EXPECT_LT(agedSolid, 0.5 * plainSolid) << "aged foam is still solid blobs";
+    EXPECT_GT(youngSolid, 1.5 * agedSolid) << "young foam is no denser than aged";
+    EXPECT_GT(youngEdge, 1.15 * plainEdge) << "young foam's edges do not fray";
 }
 
 TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
@@ -386,23 +444,59 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
 
 TEST_F(OceanShading, WindStreaksFadeAsAWindChangeBlendsIn) {
     // The streaks' strength follows a wind change as the waves do (OceanEffect::setWind's blend):
-    // from a gale to a moderate breeze over 4 s it starts at the gale's, halves by the middle,
-    // and is gone at the end; at once (0 s) it is gone at once.
+    // from a gale to a moderate breeze over 4 s the gale's streaks start whole, are half gone by
+    // the middle, and are gone at the end, the breeze's none throughout; at once (0 s) they are
+    // gone at once.
     OceanEffect ocean(cl(), {.ocean = {.size = 64,
                                        .cascades = 1,
                                        .sea = {.wind = {.windSpeed = beaufortWindSpeed(10)}}}});
     const float gale = ocean.material().water.spindrift;
     ASSERT_GT(gale, 0.99f);
+    EXPECT_EQ(ocean.material().water.spindriftFrom, 0.0f);
     ocean.setWind(beaufortWindSpeed(4), 0.0f, 4.0);
-    EXPECT_FLOAT_EQ(ocean.material().water.spindrift, gale);
+    EXPECT_FLOAT_EQ(ocean.material().water.spindriftFrom, gale);
+    EXPECT_EQ(ocean.material().water.spindrift, 0.0f);
     for (int i = 0; i < 10; ++i) ocean.update(0.2);
-    EXPECT_NEAR(ocean.material().water.spindrift, 0.5f * gale, 0.02f);
+    EXPECT_NEAR(ocean.material().water.spindriftFrom, 0.5f * gale, 0.02f);
     for (int i = 0; i < 11; ++i) ocean.update(0.2);
+    EXPECT_EQ(ocean.material().water.spindriftFrom, 0.0f);
     EXPECT_EQ(ocean.material().water.spindrift, 0.0f);
     ocean.setWind(beaufortWindSpeed(10), 0.0f, 0.0);
     EXPECT_NEAR(ocean.material().water.spindrift, gale, 1e-6f);
     ocean.setWind(beaufortWindSpeed(4), 0.0f, 0.0);
     EXPECT_EQ(ocean.material().water.spindrift, 0.0f);
+}
+
+TEST_F(OceanShading, AGaleThatTurnsCrossFadesItsStreaksWithoutAJump) {
+    // A gale turning by 70 degrees over 4 s: its streaks turned at once, swinging every line about
+    // the texcoords' origin in one frame. Now the frame right after the change is the frame
+    // before it (the new wind's streaks start at 0, the waves blend alike); half way both sets
+    // show at about half strength; at the end only the new wind's, along it.
+    constexpr float kFrom = 0.6f, kTo = kFrom + 1.22f;
+    OceanEffect gale(
+        cl(), {.ocean = {.size = 256,
+                         .cascades = 3,
+                         .sea = {.wind = {.windSpeed = beaufortWindSpeed(10), .direction = kFrom}}}});
+    for (int i = 0; i < 10; ++i) gale.update(0.2);
+    TopDown view(gale);
+    const Image before = view.draw(gale, gale.material());
+    gale.setWind(beaufortWindSpeed(10), kTo, 4.0);
+    const Image after = view.draw(gale, gale.material());
+    size_t changed = 0;
+    for (int y = 0; y < TopDown::kSize; ++y)
+        for (int x = 0; x < TopDown::kSize; ++x)
+            changed += std::abs(TopDown::luma(after, x, y) - TopDown::luma(before, x, y)) > 2.0 / 255.0;
+    EXPECT_LT(double(changed) / double(TopDown::kSize * TopDown::kSize), 0.001)
+        << "the streaks jumped when the wind turned";
+    for (int i = 0; i < 10; ++i) gale.update(0.2);
+    const WaterLook& half = gale.material().water;
+    EXPECT_NEAR(half.spindrift, 0.5f, 0.05f);
+    EXPECT_NEAR(half.spindriftFrom, 0.5f, 0.05f);
+    EXPECT_NEAR(half.windDirectionFrom.x, std::cos(kFrom), 1e-5f);
+    EXPECT_NEAR(half.windDirection.x, std::cos(kTo), 1e-5f);
+    for (int i = 0; i < 11; ++i) gale.update(0.2);
+    EXPECT_EQ(gale.material().water.spindriftFrom, 0.0f);
+    EXPECT_GT(gale.material().water.spindrift, 0.99f);
 }
 
 TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {

@@ -91,12 +91,16 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_hazeDistance", offsetof(WaterUniforms, hazeDistance)},
         {"u_foam", offsetof(WaterUniforms, foam)},
         {"u_sunGlow", offsetof(WaterUniforms, sunGlow)},
+        {"u_translucency", offsetof(WaterUniforms, translucency)},
+        {"u_foamCells", offsetof(WaterUniforms, foamCells)},
         {"u_foamColor", offsetof(WaterUniforms, foamColor)},
         {"u_foamRoughness", offsetof(WaterUniforms, foamRoughness)},
         {"u_foamDrift", offsetof(WaterUniforms, foamDrift)},
         {"u_windDirection", offsetof(WaterUniforms, windDirection)},
         {"u_spindrift", offsetof(WaterUniforms, spindrift)},
         {"u_streakCells", offsetof(WaterUniforms, streakCells)},
+        {"u_windDirectionFrom", offsetof(WaterUniforms, windDirectionFrom)},
+        {"u_spindriftFrom", offsetof(WaterUniforms, spindriftFrom)},
     };
     for (const auto& [name, offset] : surface) EXPECT_EQ(offsetOf(p, name), GLint(offset)) << name;
     for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)}}) {

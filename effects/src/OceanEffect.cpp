@@ -119,6 +119,9 @@ namespace {
 // The wind streaks' lattice across the wind, metres (the noise crosses its middle in about half
 // its cells: a line of foam every 2 m or so).
 constexpr double kStreakMeters = 1.0;
+// The foam's bubble lattice, metres (its walls' lace, shade/water.glsl; a second size 2.7 times
+// finer).
+constexpr double kFoamCellMeters = 0.5;
 } // namespace
 
 void OceanEffect::updateFoamLook(double dt) {
@@ -132,12 +135,16 @@ void OceanEffect::updateFoamLook(double dt) {
     w.foamDrift = glm::vec2(foamDrift_);
     w.windDirection = glm::vec2(downwind);
     w.streakCells = float(double(c.patchMeters) / kStreakMeters);
+    w.foamCells = float(double(c.patchMeters) / kFoamCellMeters);
     // Streaks from the middle of Beaufort 7 (a near gale, where spray starts to blow off the
     // crests) to full at that of 10.
     const float strength =
         hfx_decal_smoothstep(beaufortWindSpeed(7), beaufortWindSpeed(10), wind.windSpeed);
+    // The new wind's streaks fade in as the last wind's fade out where they lie.
     const double blend = ocean_.windBlend().at(ocean_.time());
-    w.spindrift = float(spindriftFrom_ + (strength - spindriftFrom_) * blend);
+    w.spindrift = float(strength * blend);
+    w.spindriftFrom = float(spindriftFrom_ * (1.0 - blend));
+    w.windDirectionFrom = streaksFrom_;
 }
 
 namespace {
@@ -187,8 +194,15 @@ void OceanEffect::updateRings() {
 void OceanEffect::setWind(float speed, float direction) { setWind(speed, direction, windBlendSeconds_); }
 
 void OceanEffect::setWind(float speed, float direction, double blendSeconds) {
-    spindriftFrom_ = material_.water.spindrift; // the streaks as they are, blended from
+    // The streaks as they are fade out: of a change still blending in, the stronger of its two
+    // (the weaker goes at once).
+    const WaterLook& w = material_.water;
+    const bool newer = w.spindrift >= w.spindriftFrom;
+    const float from = newer ? w.spindrift : w.spindriftFrom;
+    const glm::vec2 fromDirection = newer ? w.windDirection : w.windDirectionFrom;
     ocean_.setWind(speed, direction, blendSeconds);
+    spindriftFrom_ = from;
+    streaksFrom_ = fromDirection;
     material_.depthScale = physicalDepthScale();
     updateFoamLook(0.0);
     refresh();

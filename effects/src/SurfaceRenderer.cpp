@@ -41,12 +41,15 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .foam = w.foam ? 1 : 0,
             .sunGlow = w.sunGlow,
             .translucency = w.translucency,
+            .foamCells = w.foamCells,
             .foamColor = w.foamColor,
             .foamRoughness = w.foamRoughness,
             .foamDrift = w.foamDrift,
             .windDirection = w.windDirection,
             .spindrift = w.spindrift,
-            .streakCells = w.streakCells};
+            .streakCells = w.streakCells,
+            .windDirectionFrom = w.windDirectionFrom,
+            .spindriftFrom = w.spindriftFrom};
 }
 
 /// The slope variance a format's rounding alone shows in its mip-0 normals (Toksvig must not

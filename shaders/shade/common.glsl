@@ -20,5 +20,6 @@ struct HfxSurfacePoint {
     float occlusion;      // ambient occlusion, 1 open: the shading channels' G
     float slopeVariance;  // variance of the slopes the pixel covers, from the mip-averaged normals (Toksvig)
     vec4 foam;            // each layer's albedo alpha: foam coverage, where the effect writes it (layers 0-3)
+    vec4 foamYoung;       // each layer's albedo red: the young part of that foam (the ocean's)
     vec4 foamDetail;      // for each layer, the next finer layer's height in [0,1]: thin foam survives on its crests
 };

@@ -18,14 +18,17 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     int u_foam;           // 1: the albedo's alpha is foam coverage (the ocean writes it)
     float u_sunGlow;      // strength of the glow around the sun in the sky
     float u_translucency; // how brightly a crest lit from behind glows (0: not at all)
-    float u_waterReserved;
+    float u_foamCells;    // the foam's bubble lattice cells per texcoord (0: no lace)
     vec3 u_foamColor;
     float u_foamRoughness; // how much foam widens and dims the sun's glint (0..1)
     vec2 u_foamDrift;      // texcoords the foam has drifted downwind: the streaks ride with it
     vec2 u_windDirection;  // where the wind blows, texcoords, unit
     float u_spindrift;     // wind streaks' strength (0: none)
     float u_streakCells;   // wind streaks' lattice cells per texcoord across the wind
-    vec2 u_waterPadding;
+    vec2 u_windDirectionFrom; // a wind change: the last wind's streaks fading out, their direction
+    float u_spindriftFrom;    // ... and their strength now (0: none)
+    float u_waterPadding0;
+    vec2 u_waterPadding1;
 };
 layout(binding = HFX_UNIT_ENVIRONMENT) uniform sampler2D s_environment;
 

@@ -1,6 +1,7 @@
 // Water: the body colour deepens in the troughs, backlit crests glow, the sky (shade/sky.glsl) is
 // reflected by Schlick's Fresnel weight, the sun leaves a sharp glint, foam (the ocean's, in the
-// albedo's alpha, with wind streaks in a gale) covers both, and distance fades everything into
+// albedo's alpha, its young part in the red; dense while young, a lace of bubbles as it ages;
+// with wind streaks in a gale) covers both, and distance fades everything into
 // the horizon's haze. The normals' variance at the level of the pixel's footprint on the surface
 // (Toksvig; surface.frag's hfx_shade_level) widens the glint and roughens the Fresnel term, so the
 // far sea does not shimmer.
@@ -23,16 +24,54 @@ vec2 hfx_hash2(vec2 cell) {
     return fract((q.xx + q.yz) * q.zy);
 }
 
-// Wind streaks (spindrift, u_spindrift above Beaufort 7): foam drawn out downwind into thin lines,
-// u_streakCells lattice cells per texcoord across the wind and 12 times longer along it, riding
-// with the foam's drift. A line runs where a value noise over that lattice crosses its middle,
-// wavering as the noise does, broken into lengths by the noise's second value; it is 0.12 of a
-// cell wide (12 cm at OceanEffect's 1 m), measured across the wind from the noise's slope, and
-// what of it a pixel `footprint` texcoords wide covers is its share of the pixel (a box filter:
-// far off a faint line, not an aliased one). Returns the streaks' cover, 0..0.8.
-float hfx_spindrift(vec2 uv, float footprint) {
-    if (!(u_spindrift > 0.0)) return 0.0;
-    const vec2 w = u_windDirection, d = uv - u_foamDrift;
+// Bubbles: for q, the distance to the nearest of the lattice's points (one per cell, jittered
+// within its middle 80%; Worley 1996) over that point's own radius, 0.3 to 0.8 of a cell. 0 in a
+// bubble's middle, 1 from its rim on.
+float hfx_bubbles(vec2 q) {
+    const vec2 cell = floor(q), f = q - cell;
+    float nearest = 8.0;
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+            const vec2 o = vec2(i, j), h = hfx_hash2(cell + o), r = o + 0.1 + 0.8 * h - f;
+            nearest = min(nearest, length(r) / (0.3 + 0.5 * fract(h.x * 7.31 + h.y)));
+        }
+    return smoothstep(0.2, 1.0, nearest);
+}
+
+// The foam's lace: 1 between its bubbles, 0 in their middles, bubbles of two sizes (u_foamCells to
+// the texcoord and 2.7 times as many) in a lattice bent by a value noise so that they do not
+// line up, riding with the foam's drift. A size whose cells span less than 2.5 pixels
+// (`footprint` texcoords a pixel) fades to its mean, 0.6, and what it no longer shows goes into
+// y, the half-width of the values the pixel covers: a threshold on the lace (hfx_shade's foam)
+// is then a ramp that wide, the share of the pixel above it, rather than aliased, and far off
+// thin foam still shows where the lace's peaks would have shown it.
+vec2 hfx_foam_lace(vec2 uv, float footprint) {
+    vec2 q = (uv - u_foamDrift) * u_foamCells;
+    const vec2 c = floor(0.35 * q), f = 0.35 * q - c, s = f * f * (3.0 - 2.0 * f);
+    q += 1.2 * (mix(mix(hfx_hash2(c), hfx_hash2(c + vec2(1, 0)), s.x),
+                    mix(hfx_hash2(c + vec2(0, 1)), hfx_hash2(c + vec2(1, 1)), s.x), s.y) - 0.5);
+    const float cellsPerPixel = u_foamCells * footprint;
+    vec2 lace = vec2(0.0);
+    const float sizes[2] = float[2](1.0, 2.7), weights[2] = float[2](0.55, 0.45);
+    for (int i = 0; i < 2; ++i) {
+        const float fade = smoothstep(0.2, 0.4, cellsPerPixel * sizes[i]);
+        const float value = fade < 1.0 ? hfx_bubbles(q * sizes[i] + 17.0 * float(i)) : 0.6;
+        lace += weights[i] * vec2(mix(value, 0.6, fade), 0.5 * fade);
+    }
+    return lace;
+}
+
+// Wind streaks (spindrift, above Beaufort 7): foam drawn out downwind into thin lines, along `w`
+// (unit, texcoords) at `strength`, u_streakCells lattice cells per texcoord across the wind and 12
+// times longer along it, riding with the foam's drift. A line runs where a value noise over that
+// lattice crosses its middle, wavering as the noise does, broken into lengths by the noise's
+// second value; it is 0.12 of a cell wide (12 cm at OceanEffect's 1 m), measured across the wind
+// from the noise's slope, and what of it a pixel `footprint` texcoords wide covers is its share
+// of the pixel (a box filter: far off a faint line, not an aliased one). Returns the streaks'
+// cover, 0..0.8 strength.
+float hfx_streaks(vec2 uv, float footprint, vec2 w, float strength) {
+    if (!(strength > 0.0)) return 0.0;
+    const vec2 d = uv - u_foamDrift;
     const float along = dot(d, w) * u_streakCells, across = dot(d, vec2(-w.y, w.x)) * u_streakCells;
     const vec2 q = vec2(across, along / 12.0), cell = floor(q), f = q - cell;
     const vec2 s = f * f * (3.0 - 2.0 * f);
@@ -45,7 +84,15 @@ float hfx_spindrift(vec2 uv, float footprint) {
     const float halfWidth = 0.06, pixel = max(u_streakCells * footprint, 1e-4);
     const float covered =
         max(min(dist + 0.5 * pixel, halfWidth) - max(dist - 0.5 * pixel, -halfWidth), 0.0) / pixel;
-    return 0.8 * u_spindrift * smoothstep(0.35, 0.65, n.y) * covered;
+    return 0.8 * strength * smoothstep(0.35, 0.65, n.y) * covered;
+}
+
+// The wind's streaks (u_spindrift along u_windDirection) and, over a wind change, the last
+// wind's fading out where they lie (u_spindriftFrom along u_windDirectionFrom).
+float hfx_spindrift(vec2 uv, float footprint) {
+    return min(hfx_streaks(uv, footprint, u_windDirection, u_spindrift) +
+                   hfx_streaks(uv, footprint, u_windDirectionFrom, u_spindriftFrom),
+               0.8);
 }
 
 vec3 hfx_shade(HfxSurfacePoint p) {
@@ -58,14 +105,27 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float roughness = clamp(sqrt(p.slopeVariance), 0.0, 1.0);
     const float cosView = clamp(dot(p.normal, p.viewDir), 0.0, 1.0);
     const float fresnel = u_fresnelF0 + (max(1.0 - roughness, u_fresnelF0) - u_fresnelF0) * pow(1.0 - cosView, 5.0);
-    // Foam breaks up where it thins: a layer's coverage f shows where the next finer waves stand
-    // highest, a fraction f of them, so young foam is solid and old foam frays into patches; the
-    // layers' foams combine as independent coverages. Where it shows it is white: foam dimmed by
-    // its coverage read as a grey veil, and a calm sea's thin whitecaps did not show at all
-    // (OceanShading.WhitecapsCoverTheFrameAsMonahansLawSays).
+    // Foam breaks up where it thins: a layer's coverage f shows where its structure stands
+    // highest, a fraction f of it. The structure is the next finer waves' relief (the ripple) and
+    // the foam's bubbles (hfx_foam_lace): young foam, a breaking crest's, is mostly the ripple,
+    // solid where its coverage is high and frayed by the bubbles at its edges; as it ages it
+    // becomes the bubbles' walls, a lace whose holes open as it thins, and shows less of the
+    // water's white. The layers' foams combine as independent coverages. Where it shows it is
+    // white: foam dimmed by its coverage read as a grey veil, and a calm sea's thin whitecaps did
+    // not show at all (OceanShading.WhitecapsCoverTheFrameAsMonahansLawSays).
     const vec4 ripple = clamp(0.5 + 3.0 * (p.foamDetail - 0.5), 0.0, 1.0);
     const vec4 coverage = clamp(p.foam, 0.0, 1.0);
-    const vec4 shown = smoothstep(1.0 - coverage, 1.4 - coverage, ripple);
+    vec4 structure = ripple, spread = vec4(0.0), opacity = vec4(1.0), thin = coverage;
+    vec2 lace = vec2(0.6, 0.0); // the lace's mean where it is not drawn
+    if (u_foamCells > 0.0 && any(greaterThan(coverage, vec4(0.0)))) {
+        const vec4 young = clamp(p.foamYoung / max(coverage, 1.0 / 255.0), 0.0, 1.0);
+        lace = hfx_foam_lace(p.texcoord, p.footprint);
+        structure = mix(0.3 * ripple + 0.7 * lace.x, 0.7 * ripple + 0.3 * lace.x, young);
+        spread = lace.y * mix(vec4(0.7), vec4(0.3), young);
+        opacity = mix(vec4(0.85), vec4(1.0), young);
+        thin = coverage * mix(vec4(0.8), vec4(1.0), young); // aged foam's bubbles stay open
+    }
+    const vec4 shown = opacity * smoothstep(1.0 - thin - spread, 1.4 - thin + spread, structure);
     const vec4 clear = 1.0 - shown;
     // The wind's streaks over it, in a gale.
     const float foam = u_foam != 0 ? max(1.0 - clear.x * clear.y * clear.z * clear.w,
@@ -75,8 +135,10 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float power = u_glintPower / (1.0 + 4.0 * u_glintPower * variance);
     const float glint = u_glintStrength * (power + 2.0) / (u_glintPower + 2.0) * pow(max(dot(reflected, p.lightDir), 0.0), power);
     vec3 color = mix(body, hfx_sky(reflected), fresnel) + p.lit * glint * u_lightColor;
-    // Foam: a rough white layer, lit like snow, that hides the water under it.
-    const vec3 foamLit = u_foamColor * (u_ambient + p.lit * max(dot(p.normal, p.lightDir), 0.0) * u_lightColor);
+    // Foam: a rough white layer, lit like snow, that hides the water under it; its bubbles shade
+    // dense foam a little where they show, about its mean brightness (no flat white sheet).
+    const vec3 foamLit = u_foamColor * (1.0 + 0.3 * (lace.x - 0.6)) *
+                         (u_ambient + p.lit * max(dot(p.normal, p.lightDir), 0.0) * u_lightColor);
     color = mix(color, foamLit, foam);
     const float distance = length(u_cameraPos - p.position);
     color = mix(color, hfx_haze(p.position - u_cameraPos), distance / (distance + u_hazeDistance));

@@ -99,6 +99,7 @@ private:
     std::vector<Ring> rings_;
     glm::dvec2 foamDrift_{0.0}; ///< texcoords the foam has drifted downwind
     float spindriftFrom_ = 0.0f; ///< the streaks' strength a wind change blends from
+    glm::vec2 streaksFrom_{1.0f, 0.0f}; ///< ... and their direction
     OceanField ocean_;
     float exaggeration_;
     double windBlendSeconds_;

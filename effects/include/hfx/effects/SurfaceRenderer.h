@@ -61,9 +61,13 @@ struct WaterLook {
     /// the eye. 0: none; 1 lights a crest two sigma of the sea high, seen against the sun, with
     /// six times the shallow colour.
     float translucency = 1.0f;
-    /// The albedo's alpha is foam coverage (OceanEffect writes it per cascade): foam is drawn in
-    /// foamColor, lit like snow, and widens the glint by foamRoughness.
+    /// The albedo's alpha is foam coverage and its red the young part of it (OceanEffect writes
+    /// them per cascade): foam is drawn in foamColor, lit like snow, and widens the glint by
+    /// foamRoughness. Young foam (a breaking crest's) is dense; as it ages it opens into a lace
+    /// of bubbles foamCells to the texcoord (OceanEffect: 2 per metre; 0 draws no lace) that
+    /// thins as the coverage falls, and every foam's edge frays through the same bubbles.
     bool foam = false;
+    float foamCells = 0.0f;
     glm::vec3 foamColor{0.9f, 0.93f, 0.95f};
     float foamRoughness = 0.6f;
     /// Wind streaks (spindrift, shade/water.glsl): foam drawn out downwind into long thin lines,
@@ -71,11 +75,16 @@ struct WaterLook {
     /// of Beaufort 7, 1 from that of 10), windDirection where the wind blows in texcoords (unit),
     /// streakCells the streaks' lattice cells per texcoord across the wind (OceanEffect: one per
     /// metre). They ride with the foam: foamDrift (texcoords) is how far it has drifted downwind
-    /// (OceanEffect moves it every step).
+    /// (OceanEffect moves it every step). Over a wind change the last wind's streaks fade out
+    /// where they lie, spindriftFrom their strength and windDirectionFrom their direction, as the
+    /// new wind's fade in (OceanEffect blends them as the waves are): turned at once, the lines
+    /// swung about the texcoords' origin.
     glm::vec2 foamDrift{0.0f};
     float spindrift = 0.0f;
     glm::vec2 windDirection{1.0f, 0.0f};
     float streakCells = 0.0f;
+    float spindriftFrom = 0.0f;
+    glm::vec2 windDirectionFrom{1.0f, 0.0f};
     /// Optional equirectangular sky (a GL texture the caller owns; 0 = procedural sky).
     unsigned environment = 0;
     /// Rings of waves spreading from impacts (OceanEffect::disturb fills them each frame), added

@@ -81,14 +81,16 @@ struct WaterUniforms {
     int foam = 0;
     float sunGlow = 0.0f;
     float translucency = 0.0f;
-    float reserved = 0.0f;
+    float foamCells = 0.0f;
     glm::vec3 foamColor{1.0f};
     float foamRoughness = 0.0f;
     glm::vec2 foamDrift{0.0f};
     glm::vec2 windDirection{1.0f, 0.0f};
     float spindrift = 0.0f;
     float streakCells = 0.0f;
-    glm::vec2 padding{0.0f}; ///< the block's size, a multiple of 16 bytes
+    glm::vec2 windDirectionFrom{1.0f, 0.0f};
+    float spindriftFrom = 0.0f;
+    float padding[3] = {0.0f, 0.0f, 0.0f}; ///< the block's size, a multiple of 16 bytes
 };
 
 /// HfxRings (shaders/surface/uniforms.glsl, binding 2): the water's impact rings.
@@ -121,7 +123,9 @@ static_assert(offsetof(WaterUniforms, translucency) == 72);
 static_assert(offsetof(WaterUniforms, foamColor) == 80);
 static_assert(offsetof(WaterUniforms, foamDrift) == 96);
 static_assert(offsetof(WaterUniforms, spindrift) == 112);
-static_assert(sizeof(WaterUniforms) == 128);
+static_assert(offsetof(WaterUniforms, windDirectionFrom) == 120);
+static_assert(offsetof(WaterUniforms, spindriftFrom) == 128);
+static_assert(sizeof(WaterUniforms) == 144);
 static_assert(offsetof(RingUniforms, wave) == 16 * kMaxWaterRings);
 static_assert(offsetof(RingUniforms, count) == 32 * kMaxWaterRings);
 
