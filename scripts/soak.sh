@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The long runs alone (they are part of scripts/test.sh too): every user for HFX_SOAK_STEPS
-# updates (default 20,000, the planet 4,000) with random parameter changes and stamp storms; prints the resident
+# updates (default 10,000, the planet 4,000) with random parameter changes and stamp storms; prints the resident
 # set after warm-up and at the end.
 #   HFX_SOAK_STEPS=2000 scripts/soak.sh
 set -euo pipefail
