@@ -373,6 +373,16 @@ TEST_F(OceanShading, AgedFoamOpensIntoALaceAndYoungFoamFraysAtItsEdges) {
     EXPECT_LT(agedSolid, 0.5 * plainSolid) << "aged foam is still solid blobs";
     EXPECT_GT(youngSolid, 1.5 * agedSolid) << "young foam is no denser than aged";
     EXPECT_GT(youngEdge, 1.15 * plainEdge) << "young foam's edges do not fray";
+
+    // The bubbles' size is the effect's to set; 0 draws none, a negative one is refused by name.
+    const OceanEffect plain(cl(), {.ocean = {.size = 16, .cascades = 1}, .foamCellMeters = 0.0f});
+    EXPECT_EQ(plain.material().water.foamCells, 0.0f);
+    try {
+        OceanEffect(cl(), {.ocean = {.size = 16, .cascades = 1}, .foamCellMeters = -1.0f});
+        ADD_FAILURE() << "a negative bubble size was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("foamCellMeters"), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {

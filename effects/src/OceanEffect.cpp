@@ -18,14 +18,19 @@ void OceanEffectConfig::validate() const {
         throw Error(str("OceanEffectConfig.windBlendSeconds must be >= 0 and finite, got ", windBlendSeconds));
     if (!(untracedShare >= 0.0f && untracedShare < 1.0f))
         throw Error(str("OceanEffectConfig.untracedShare must be in [0, 1), got ", untracedShare));
+    if (!(foamCellMeters >= 0.0f && foamCellMeters <= 100.0f))
+        throw Error(
+            str("OceanEffectConfig.foamCellMeters must be in [0, 100] (0: no bubbles), got ",
+                foamCellMeters));
     if (surface.pyramid && ocean.cascades > 1)
         throw Error(str("OceanEffectConfig: a height pyramid (the hier technique) traces one grid; the ocean has ",
                         ocean.cascades, " cascades (set ocean.cascades = 1 for hier)"));
 }
 
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
-    : Effect(validated(config).material), ocean_(cl, config.ocean), exaggeration_(config.reliefExaggeration),
-      windBlendSeconds_(config.windBlendSeconds), untracedShare_(config.untracedShare) {
+    : Effect(validated(config).material), ocean_(cl, config.ocean),
+      exaggeration_(config.reliefExaggeration), windBlendSeconds_(config.windBlendSeconds),
+      untracedShare_(config.untracedShare), foamCellMeters_(config.foamCellMeters) {
     const std::vector<bool> traced = tracedCascades(cascadeWeights());
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
         // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
@@ -119,9 +124,6 @@ namespace {
 // The wind streaks' lattice across the wind, metres (the noise crosses its middle in about half
 // its cells: a line of foam every 2 m or so).
 constexpr double kStreakMeters = 1.0;
-// The foam's bubble lattice, metres (its walls' lace, shade/water.glsl; a second size 2.7 times
-// finer).
-constexpr double kFoamCellMeters = 0.5;
 } // namespace
 
 void OceanEffect::updateFoamLook(double dt) {
@@ -135,7 +137,7 @@ void OceanEffect::updateFoamLook(double dt) {
     w.foamDrift = glm::vec2(foamDrift_);
     w.windDirection = glm::vec2(downwind);
     w.streakCells = float(double(c.patchMeters) / kStreakMeters);
-    w.foamCells = float(double(c.patchMeters) / kFoamCellMeters);
+    w.foamCells = foamCellMeters_ > 0.0f ? c.patchMeters / foamCellMeters_ : 0.0f;
     // Streaks from the middle of Beaufort 7 (a near gale, where spray starts to blow off the
     // crests) to full at that of 10.
     const float strength =

@@ -39,6 +39,9 @@ struct OceanEffectConfig {
     /// a fetch per search and shadow step; their height moves the hit by at most half their share
     /// of the depth. 0 traces every cascade.
     float untracedShare = 0.05f;
+    /// The foam's bubbles, metres across (WaterLook::foamCells, which the effect sets every step:
+    /// aged foam opens into their lace, every foam's edge frays through them); 0 draws none.
+    float foamCellMeters = 0.5f;
     /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
     SurfaceOptions surface;
     void validate() const; ///< throws hfx::Error naming the bad field and its value
@@ -104,6 +107,7 @@ private:
     float exaggeration_;
     double windBlendSeconds_;
     float untracedShare_;
+    float foamCellMeters_;
     std::vector<std::unique_ptr<SurfacePipeline>> surfaces_; ///< one per cascade
 };
 

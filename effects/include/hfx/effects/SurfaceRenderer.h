@@ -64,8 +64,9 @@ struct WaterLook {
     /// The albedo's alpha is foam coverage and its red the young part of it (OceanEffect writes
     /// them per cascade): foam is drawn in foamColor, lit like snow, and widens the glint by
     /// foamRoughness. Young foam (a breaking crest's) is dense; as it ages it opens into a lace
-    /// of bubbles foamCells to the texcoord (OceanEffect: 2 per metre; 0 draws no lace) that
-    /// thins as the coverage falls, and every foam's edge frays through the same bubbles.
+    /// of bubbles foamCells to the texcoord (OceanEffect: from OceanEffectConfig::foamCellMeters,
+    /// 0.5 m; 0 draws no lace) that thins as the coverage falls, and every foam's edge frays
+    /// through the same bubbles.
     bool foam = false;
     float foamCells = 0.0f;
     glm::vec3 foamColor{0.9f, 0.93f, 0.95f};
