@@ -16,6 +16,11 @@ shape) is printed with its nesting.
     python3 scripts/walk_instructions.py [--accessors renderer|mip] [--shaders DIR] [--defines D=1 ...]
                                          [--keep DIR] [--show LOOP]
 
+With --water it counts the water's shading instead (shade/water.glsl's hfx_shade, the sky and the
+foam with it, in a fragment shader that shades one point): the instructions of the whole optimised
+shader, both sides of each branch and each loop's body once, a device-neutral figure of what a
+change to it costs where no GPU is at hand to time it.
+
 Needs glslang-tools and spirv-tools (scripts/setup.sh installs them).
 """
 import argparse
@@ -66,6 +71,48 @@ NOT_WORK = {"OpLabel", "OpSelectionMerge", "OpLoopMerge", "OpPhi", "OpBranch", "
 VECTOR = re.compile(r"= Op\w+ %v([234])(?:int|uint|float|bool)\b")
 
 
+# --water: one point shaded by hfx_shade, every field of the point from the inputs.
+WATER_MAIN = """
+layout(location = 0) in vec4 v_a;
+layout(location = 1) in vec4 v_b;
+layout(location = 0) out vec4 o_color;
+void main() {
+    HfxSurfacePoint p;
+    p.albedo = v_a.xyz;
+    p.normal = normalize(v_b.xyz);
+    p.geometricNormal = vec3(0.0, 1.0, 0.0);
+    p.position = 10.0 * v_a.xyz;
+    p.texcoord = v_a.xy;
+    p.footprint = v_a.w;
+    p.viewDir = normalize(v_b.zyx);
+    p.lightDir = normalize(v_b.yxz);
+    p.height = v_b.w;
+    p.lit = v_a.z;
+    p.cosView = v_a.w;
+    p.diffuse = v_b.x;
+    p.specular = v_b.y;
+    p.roughness = 0.0;
+    p.occlusion = 1.0;
+    p.slopeVariance = v_a.x * v_a.y;
+    p.foam = v_a;
+    p.foamDetail = v_b;
+    YOUNG
+    o_color = vec4(hfx_shade(p), 1.0);
+}
+"""
+
+
+def compose_water(shaders):
+    parts = ["#version 450 core"]
+    for name in ("bindings.glsl", "surface/uniforms.glsl", "shade/common.glsl", "shade/sky.glsl", "shade/water.glsl"):
+        with open(os.path.join(shaders, name)) as f:
+            parts.append(f.read())
+    # Trees before the foam's young part (HfxSurfacePoint::foamYoung) compose too.
+    young = "p.foamYoung = v_b.wzyx;" if "foamYoung" in parts[3] else ""
+    parts.append(WATER_MAIN.replace("YOUNG", young))
+    return "\n".join(parts)
+
+
 def compose(shaders, defines, accessors):
     parts = ["#version 450 core", "layout(local_size_x = 64) in;"]
     parts += [f"#define {d.replace('=', ' ', 1)}" for d in defines]
@@ -81,8 +128,9 @@ def compose(shaders, defines, accessors):
     return "\n".join(parts)
 
 
-def compile_spirv(source, work):
-    comp, spv, opt, asm = (os.path.join(work, n) for n in ("walk.comp", "walk.spv", "walk.opt.spv", "walk.spvasm"))
+def compile_spirv(source, work, stage="comp"):
+    comp, spv, opt, asm = (os.path.join(work, n)
+                           for n in (f"walk.{stage}", "walk.spv", "walk.opt.spv", "walk.spvasm"))
     with open(comp, "w") as f:
         f.write(source)
     for cmd in (["glslangValidator", "-G", "--auto-map-locations", "--auto-map-bindings", "-o", spv, comp],
@@ -186,9 +234,17 @@ def main():
     ap.add_argument("--show", type=int, help="print the instructions of this loop's fewest step")
     ap.add_argument("--show-most", type=int, help="print the instructions of this loop's longest one-fetch step")
     ap.add_argument("--limit", type=int, help="fail (exit 1) where a one-fetch step of a walk takes more instructions")
+    ap.add_argument("--water", action="store_true", help="count the water's shading instead of the walks")
     args = ap.parse_args()
     work_dir = args.keep or tempfile.mkdtemp(prefix="hfx-walk-")
     os.makedirs(work_dir, exist_ok=True)
+    if args.water:
+        blocks, order = parse_blocks(compile_spirv(compose_water(args.shaders), work_dir, "frag"))
+        total = [sum(work(blocks[b])[i] for b in order) for i in (0, 1)]
+        loops = sum(1 for b in order if blocks[b]["loop"])
+        print(f"water hfx_shade ({os.path.normpath(args.shaders)}, spirv-opt -O): {total[0]} instructions "
+              f"({total[1]} scalar operations), {loops} loops")
+        return
     blocks, order = parse_blocks(compile_spirv(compose(args.shaders, args.defines, args.accessors), work_dir))
     headers = [b for b in order if blocks[b]["loop"]]
     bodies = {h: loop_body(blocks, h) for h in headers}

@@ -38,14 +38,17 @@ float hfx_bubbles(vec2 q) {
     return smoothstep(0.2, 1.0, nearest);
 }
 
+// The lace's mean (hfx_foam_lace): what it fades to far off, and what the foam is shaded about.
+const float HFX_LACE_MEAN = 0.6;
+
 // The foam's lace: 1 between its bubbles, 0 in their middles, bubbles of two sizes (u_foamCells to
 // the texcoord and 2.7 times as many) in a lattice bent by a value noise so that they do not
 // line up, riding with the foam's drift. A size whose cells span less than 2.5 pixels
-// (`footprint` texcoords a pixel) fades to about its mean, 0.6 (0.64, its spread 0.36, over
-// 200,000 points in numpy), and what it no longer shows goes into
-// y, the half-width of the values the pixel covers: a threshold on the lace (hfx_shade's foam)
-// is then a ramp that wide, the share of the pixel above it, rather than aliased, and far off
-// thin foam still shows where the lace's peaks would have shown it.
+// (`footprint` texcoords a pixel) fades to about its mean, HFX_LACE_MEAN (0.64, its spread 0.36,
+// over 200,000 points in numpy), and what it no longer shows goes into y, the half-width of the
+// values the pixel covers: a threshold on the lace (hfx_shade's foam) is then a ramp that wide,
+// the share of the pixel above it, rather than aliased, and far off thin foam still shows where
+// the lace's peaks would have shown it.
 vec2 hfx_foam_lace(vec2 uv, float footprint) {
     vec2 q = (uv - u_foamDrift) * u_foamCells;
     const vec2 c = floor(0.35 * q), f = 0.35 * q - c, s = f * f * (3.0 - 2.0 * f);
@@ -56,8 +59,9 @@ vec2 hfx_foam_lace(vec2 uv, float footprint) {
     const float sizes[2] = float[2](1.0, 2.7), weights[2] = float[2](0.55, 0.45);
     for (int i = 0; i < 2; ++i) {
         const float fade = smoothstep(0.2, 0.4, cellsPerPixel * sizes[i]);
-        const float value = fade < 1.0 ? hfx_bubbles(q * sizes[i] + 17.0 * float(i)) : 0.6;
-        lace += weights[i] * vec2(mix(value, 0.6, fade), 0.5 * fade);
+        const float value =
+            fade < 1.0 ? hfx_bubbles(q * sizes[i] + 17.0 * float(i)) : HFX_LACE_MEAN;
+        lace += weights[i] * vec2(mix(value, HFX_LACE_MEAN, fade), 0.5 * fade);
     }
     return lace;
 }
@@ -117,7 +121,7 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const vec4 ripple = clamp(0.5 + 3.0 * (p.foamDetail - 0.5), 0.0, 1.0);
     const vec4 coverage = clamp(p.foam, 0.0, 1.0);
     vec4 structure = ripple, spread = vec4(0.0), opacity = vec4(1.0), thin = coverage;
-    vec2 lace = vec2(0.6, 0.0); // the lace's mean where it is not drawn
+    vec2 lace = vec2(HFX_LACE_MEAN, 0.0); // where it is not drawn
     if (u_foamCells > 0.0 && any(greaterThan(coverage, vec4(0.0)))) {
         const vec4 young = clamp(p.foamYoung / max(coverage, 1.0 / 255.0), 0.0, 1.0);
         lace = hfx_foam_lace(p.texcoord, p.footprint);
@@ -138,7 +142,7 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     vec3 color = mix(body, hfx_sky(reflected), fresnel) + p.lit * glint * u_lightColor;
     // Foam: a rough white layer, lit like snow, that hides the water under it; its bubbles shade
     // dense foam a little where they show, about its mean brightness (no flat white sheet).
-    const vec3 foamLit = u_foamColor * (1.0 + 0.3 * (lace.x - 0.6)) *
+    const vec3 foamLit = u_foamColor * (1.0 + 0.3 * (lace.x - HFX_LACE_MEAN)) *
                          (u_ambient + p.lit * max(dot(p.normal, p.lightDir), 0.0) * u_lightColor);
     color = mix(color, foamLit, foam);
     const float distance = length(u_cameraPos - p.position);

@@ -90,8 +90,9 @@ private:
     std::vector<bool> tracedCascades(const std::vector<float>& weights) const;
     /// Writes the live rings into material_.water for the sea's time now.
     void updateRings();
-    /// Writes the wind streaks into material_.water for the present wind (their strength blended
-    /// from the last wind's as the waves are), drifted by dt seconds of the foam's drift.
+    /// Writes the foam's look into material_.water for the present wind: its bubbles' lattice, and
+    /// the wind streaks (the last wind's fading out as the new wind's fade in, as the waves
+    /// blend), drifted by dt seconds of the foam's drift.
     void updateFoamLook(double dt);
 
     struct Ring {
