@@ -20,11 +20,17 @@ public:
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, o.cameraDistance, 0.3f, 0.25f);
         camera_.aspect = o.aspect();
         light_.direction = {0.95f, 0.15f, -0.2f}; // 83 degrees from the view: the terminator crosses the disc
+        // With rings: the sun 25 degrees above their plane (Saturn's reaches 27), so their shadow
+        // lies across the southern hemisphere below them.
+        if (o.rings) light_.direction = {0.95f, 0.47f, -0.2f};
         light_.color = {1.0f, 0.97f, 0.92f};
         light_.ambient = {0.03f, 0.03f, 0.04f};
     }
 
-    void draw() override { drawSurface(renderer_, light_); }
+    void draw() override {
+        drawSurface(renderer_, light_);
+        if (planet_.rings()) planet_.rings()->draw(model(), camera_, light_);
+    }
     Effect& effect() override { return planet_; }
     const char* name() const override { return "planet"; }
     const Mesh& mesh() const override { return sphere_; }
@@ -50,6 +56,7 @@ private:
         c.timeScale = o.timeScale;
         c.seed = o.seed;
         c.surface = o.surfaceOptions();
+        if (o.rings) c.rings = PlanetRingsConfig{.seed = o.seed};
         return c;
     }
 

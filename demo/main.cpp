@@ -274,6 +274,9 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(0.0, 600.0))->capture_default_str();
     app.add_option("--camera-distance", s.cameraDistance, "planet: the camera's distance from the centre in radii (close-up: 1.3)")
         ->check(kFinite)->check(CLI::Range(1.05, 100.0))->capture_default_str();
+    app.add_option("--rings", s.rings, "planet: rings in the equatorial plane, casting and receiving shadows (1.24-2.27 radii: "
+                                       "--camera-distance 5 shows them whole)")
+        ->capture_default_str();
     app.add_option("--detail-scale", s.detailScale,
                    "planet: cloud-top detail texels per gas cell, 1, 2, 4 or 8 (0: 4 on a GPU, 2 on a CPU device, at most 2048 or 1024 wide)")
         ->check(CLI::IsMember({0, 1, 2, 4, 8}))->capture_default_str();

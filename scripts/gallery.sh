@@ -3,7 +3,8 @@
 # default grazing cameras, after enough frames for the field to develop (the seas' foam with 20 s
 # of wind behind it, --foam-history; the decal volley: 196 bullets and 5 explosions with their
 # scorch; the planet's storms). Writes
-# docs/gallery/{water,decals,planet,noise}.jpg, the planet close up (planet-closeup.jpg), the sea
+# docs/gallery/{water,decals,planet,noise}.jpg, the planet close up (planet-closeup.jpg) and with
+# rings (planet-rings.jpg), the sea
 # calm (Beaufort 3) and rough (Beaufort 7), a Beaufort 4 / 7 / 10 strip, the far field seen 5 degrees down (water-horizon.jpg),
 # the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
 # (water.mp4, needs ffmpeg).
@@ -42,5 +43,6 @@ render noise 2 --noise-kind psrd --fractal ridged --warp 0.6
 # The planet as a GPU draws it (4 detail texels per gas cell), and a close-up after 12 s of its
 # gas (the festoons and filaments of its advected detail).
 render planet 150 --detail-scale 4 --camera-distance 1.8 --time-scale 3 && mv docs/gallery/planet.jpg docs/gallery/planet-closeup.jpg
+render planet 120 --detail-scale 4 --rings 1 --camera-distance 5 && mv docs/gallery/planet.jpg docs/gallery/planet-rings.jpg
 render planet 120 --detail-scale 4
 ls -l docs/gallery

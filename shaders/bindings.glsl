@@ -26,7 +26,9 @@
 #define HFX_UNIT_PYRAMID3 14
 #define HFX_UNIT_TEXEL_SHADOWS 15 // the texel shadows of the light (TexelShadowPass)
 #define HFX_UNIT_BEAM_START 16    // the beam prepass's depth per block of pixels
-#define HFX_TEXTURE_UNITS 17      // how many the surface program's fragment stage needs
+#define HFX_UNIT_RING_PROFILE 17  // planet: its rings' radial profile (hfx::PlanetRings)
+#define HFX_UNIT_RING_BEHIND 18   // the rings' draw: a copy of what the frame held behind them
+#define HFX_TEXTURE_UNITS 19      // the table's units: a draw's fragment stage binds at most these
 
 // Image units (PyramidLayout::Atlas, llvmpipe's: GlWorkarounds::pyramidAtlas).
 #define HFX_IMAGE_PYRAMID 0       // layer i's atlas pyramid at HFX_IMAGE_PYRAMID + i
@@ -39,7 +41,8 @@
 // Uniform blocks.
 #define HFX_BLOCK_SURFACE 0       // HfxSurface: hfx::SurfaceUniforms
 #define HFX_BLOCK_WATER 1         // HfxWater: the water's look
-#define HFX_BLOCK_RINGS 2         // HfxRings: hfx::RingUniforms
+#define HFX_BLOCK_RINGS 2         // HfxRings: hfx::RingUniforms (the water's impact rings)
+#define HFX_BLOCK_PLANET 3        // HfxPlanet: hfx::PlanetUniforms (a planet's rings and their shadows)
 
 // The exact tracer's beam start: its prepass walks one ray per block of this many pixels on
 // each axis (ExactTracer, trace/hier/beam.frag) and the draw reads the block's depth.

@@ -110,6 +110,20 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         glGetActiveUniformBlockiv(p, index, GL_UNIFORM_BLOCK_DATA_SIZE, &dataSize);
         EXPECT_EQ(dataSize, GLint(size)) << block;
     }
+    // The planet's block (its rings and their shadows), in the planet shading's variant.
+    const GLuint planet = renderer.program({}, {.shading = Shading::Planet}).id();
+    const std::pair<const char*, size_t> planetMembers[] = {
+        {"u_planetCentre", offsetof(PlanetUniforms, planetCentre)}, {"u_planetRadius", offsetof(PlanetUniforms, planetRadius)},
+        {"u_ringAxis", offsetof(PlanetUniforms, ringAxis)},         {"u_ringInner", offsetof(PlanetUniforms, ringInner)},
+        {"u_ringOuter", offsetof(PlanetUniforms, ringOuter)},       {"u_sunRadius", offsetof(PlanetUniforms, sunRadius)},
+        {"u_ringTexels", offsetof(PlanetUniforms, ringTexels)},
+    };
+    for (const auto& [name, offset] : planetMembers) EXPECT_EQ(offsetOf(planet, name), GLint(offset)) << name;
+    const GLuint index = glGetUniformBlockIndex(planet, "HfxPlanet");
+    ASSERT_NE(index, GL_INVALID_INDEX);
+    GLint dataSize = 0;
+    glGetActiveUniformBlockiv(planet, index, GL_UNIFORM_BLOCK_DATA_SIZE, &dataSize);
+    EXPECT_EQ(dataSize, GLint(sizeof(PlanetUniforms)));
 }
 
 /// Every harness program starts with this: 64 invocations per group.

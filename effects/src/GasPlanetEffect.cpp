@@ -43,6 +43,12 @@ void GasPlanetConfig::validate() const {
     if (!(poleCap >= 0.0f && poleCap <= 0.25f))
         throw Error(str("GasPlanetConfig.poleCap must be in [0, 0.25], got ", poleCap));
     if (detail.scale != 0) detail.validate(gas); // scale 0 is validated once the device picks one
+    if (rings) {
+        rings->validate();
+        if (rings->radius != 1.0f)
+            throw Error(str("GasPlanetConfig.rings.radius must be 1 (the planet's sphere is the unit one), got ",
+                            rings->radius));
+    }
     material.validate();
 }
 
@@ -93,6 +99,10 @@ GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
         largest = std::max(largest, float(std::abs(jetProfile(v + h) - jetProfile(v - h)) / (2.0 * h)));
     }
     maxShear_ = largest > 0.0f ? largest : 1.0f;
+    if (config_.rings) {
+        rings_ = std::make_unique<PlanetRings>(*config_.rings);
+        material_.planet = rings_->look();
+    }
     refresh();
 }
 

@@ -100,7 +100,7 @@ private:
         GLint name, level, layered, layer, access, format;
     };
     Image images_[kImages];
-    static constexpr GLuint kBlocks = 3; // surface, water, rings
+    static constexpr GLuint kBlocks = HFX_BLOCK_PLANET + 1; // surface, water, water rings, planet
     GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
 };

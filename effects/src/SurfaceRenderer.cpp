@@ -94,6 +94,38 @@ void SurfaceMaterial::validate() const {
         if (water.environment != 0 && !glIsTexture(water.environment))
             throw Error(str("WaterLook.environment ", water.environment, " is not a GL texture"));
     }
+    if (shading == Shading::Planet) planet.validate();
+}
+
+void PlanetLook::validate() const {
+    if (!(radius > 0.0f) || !std::isfinite(radius))
+        throw Error(str("PlanetLook.radius must be positive, got ", radius));
+    if (!(sunAngularRadius >= 0.0f && sunAngularRadius <= 0.1f))
+        throw Error(str("PlanetLook.sunAngularRadius must be in [0, 0.1] radians, got ", sunAngularRadius));
+    if (ringOuter == 0.0f) return; // no rings
+    if (!(ringInner > radius && ringOuter > ringInner) || !std::isfinite(ringOuter))
+        throw Error(str("PlanetLook: the rings must lie beyond the planet, radius ", radius, " < ringInner ", ringInner,
+                        " < ringOuter ", ringOuter));
+    if (ringProfile == 0 || !glIsTexture(ringProfile))
+        throw Error(str("PlanetLook.ringProfile ", ringProfile, " is not a GL texture"));
+}
+
+PlanetUniforms planetUniforms(const PlanetLook& look, const glm::mat4& model) {
+    PlanetUniforms u;
+    const glm::mat3 linear(model);
+    const float scale = std::cbrt(std::abs(glm::determinant(linear))); // uniform: its cube root
+    u.planetCentre = glm::vec3(model[3]);
+    u.planetRadius = look.radius * scale;
+    u.ringAxis = glm::normalize(glm::transpose(glm::inverse(linear)) * glm::vec3(0.0f, 1.0f, 0.0f));
+    u.ringInner = look.ringInner * scale;
+    u.ringOuter = look.ringOuter * scale;
+    u.sunRadius = look.sunAngularRadius;
+    if (look.ringProfile != 0) {
+        GLint width = 1;
+        glGetTextureLevelParameteriv(look.ringProfile, 0, GL_TEXTURE_WIDTH, &width);
+        u.ringTexels = float(width);
+    }
+    return u;
 }
 
 namespace {
@@ -102,7 +134,7 @@ constexpr GLuint kTextureUnits[] = {HFX_UNIT_SURFACE,  HFX_UNIT_ALBEDO,      HFX
                                     HFX_UNIT_SURFACE1, HFX_UNIT_SURFACE2,    HFX_UNIT_SURFACE3,    HFX_UNIT_ALBEDO1,
                                     HFX_UNIT_ALBEDO2,  HFX_UNIT_ALBEDO3,     HFX_UNIT_CHANNELS,    HFX_UNIT_SHADOW_MAP,
                                     HFX_UNIT_PYRAMID1, HFX_UNIT_PYRAMID2,    HFX_UNIT_PYRAMID3,    HFX_UNIT_TEXEL_SHADOWS,
-                                    HFX_UNIT_BEAM_START};
+                                    HFX_UNIT_BEAM_START, HFX_UNIT_RING_PROFILE, HFX_UNIT_RING_BEHIND};
 constexpr bool unitsDistinct() {
     for (size_t i = 0; i < std::size(kTextureUnits); ++i) {
         if (kTextureUnits[i] >= HFX_TEXTURE_UNITS) return false;
@@ -320,6 +352,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
             rings.wave[i] = {r.wavenumber, r.amplitude, r.foam, 0.0f};
         }
         updateBlock(ringBlock_, HFX_BLOCK_RINGS, rings);
+    }
+    if (material.shading == Shading::Planet) {
+        updateBlock(planetBlock_, HFX_BLOCK_PLANET, planetUniforms(material.planet, model));
+        glBindTextureUnit(HFX_UNIT_RING_PROFILE, material.planet.ringProfile);
     }
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     glBindTextureUnit(HFX_UNIT_ALBEDO, textures.albedo());

@@ -10,7 +10,11 @@
 // (tau the haze's optical depth, mu0 the sun's elevation over the sphere) and casts the relief's
 // shadows; the rest arrives diffuse and fills them. So low suns, whose straight light crosses
 // the most haze, cast the palest shadows, where bare relief at grazing light would speckle the
-// terminator's side with black.
+// terminator's side with black. Where the planet has rings, their shadow (shade/rings.glsl)
+// dims the sunlight before it reaches the haze: the straight light, its glint and the limb's glow.
+
+#include "shade/rings.glsl"
+
 const float HFX_TWILIGHT = 0.1;   // w: about 6 degrees of the sun's elevation
 const float HFX_NIGHT_SKY = 0.05; // the night side's share of the ambient light
 const float HFX_HAZE_DEPTH = 0.1; // tau: 37% of the light straight at 6 degrees, 90% overhead
@@ -32,7 +36,8 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float haze = 0.5 * pow(1.0 - p.cosView, 3.0) * day;
     const float straight = exp(-HFX_HAZE_DEPTH / max(muSphere, 1e-3));
     const float lit = 1.0 - straight * (1.0 - p.lit);
+    const float rings = hfx_ring_shadow(p.position, p.lightDir);
     return p.albedo * u_ambient * p.occlusion * sky +
-           lit * u_lightColor * (p.albedo * diffuse + day * u_specularStrength * p.specular) +
-           haze * vec3(0.35, 0.55, 1.0) * u_lightColor;
+           rings * u_lightColor *
+               (lit * (p.albedo * diffuse + day * u_specularStrength * p.specular) + haze * vec3(0.35, 0.55, 1.0));
 }

@@ -13,11 +13,13 @@
 #include "hfx/compute/FlowDetail.h"
 #include "hfx/core/Random.h"
 #include "hfx/effects/Effect.h"
+#include "hfx/effects/PlanetRings.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace hfx {
@@ -62,6 +64,10 @@ struct GasPlanetConfig {
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
                              .shading = Shading::Planet, .silhouetteFade = 0.25f};
     SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    /// Rings (PlanetRings) in the planet's equatorial plane, their radii in planet radii (the
+    /// config's radius must be 1: the sphere's); none by default. Their shadow falls on the cloud
+    /// tops (material().planet); draw them with rings()->draw after the planet.
+    std::optional<PlanetRingsConfig> rings;
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 
@@ -104,6 +110,8 @@ public:
     const std::vector<glm::vec2>& seededStorms() const { return seeded_; }
     /// Rotation about +Y after time() seconds: the planet's model matrix (scale not included).
     glm::mat4 modelMatrix() const;
+    /// The planet's rings (GasPlanetConfig::rings), nullptr without.
+    PlanetRings* rings() { return rings_.get(); }
 
 private:
     const SurfacePipeline& surface() const override { return surface_; }
@@ -125,6 +133,7 @@ private:
     void spin(const Storm& storm, float force);
     std::vector<glm::vec2> seeded_;
     SurfacePipeline surface_;
+    std::unique_ptr<PlanetRings> rings_; ///< none without GasPlanetConfig::rings
 };
 
 } // namespace hfx

@@ -95,6 +95,26 @@ struct WaterLook {
     bool operator==(const WaterLook&) const = default;
 };
 
+/// The planet look (Shading::Planet): its rings, whose shadow falls on the cloud tops
+/// (shaders/shade/rings.glsl; PlanetRings::look() fills it). Lengths are in the mesh's model units:
+/// the planet is the sphere of `radius` about the model's origin, and the rings lie in the
+/// model's xz plane (makeSphere's equator), under a model matrix that scales uniformly.
+struct PlanetLook {
+    float radius = 1.0f;               ///< the planet's (makeSphere's radius)
+    float ringInner = 0.0f;            ///< from the centre, beyond radius
+    float ringOuter = 0.0f;            ///< 0: no rings
+    float sunAngularRadius = 0.00465f; ///< radians, the sun's disc (the Sun's from Earth): the shadows' penumbrae
+    /// The rings' radial profile (a GL texture the caller owns, PlanetRings'): one row of RGBA
+    /// texels from ringInner to ringOuter, rgb the particles' albedo, a the opacity seen along
+    /// the rings' normal, with mips and a border of 0.
+    unsigned ringProfile = 0;
+    void validate() const; ///< throws hfx::Error naming the field and its value
+    bool operator==(const PlanetLook&) const = default;
+};
+/// The HfxPlanet block of `look` for a planet drawn with `model`: its centre, radius and rings in
+/// world space.
+PlanetUniforms planetUniforms(const PlanetLook& look, const glm::mat4& model);
+
 struct SurfaceMaterial {
     float depthScale = 0.05f;    ///< texture units between h = 1 and h = 0
     int minSamples = 8;          ///< linear-search steps seen head-on
@@ -109,6 +129,7 @@ struct SurfaceMaterial {
     float specularPower = 48.0f;
     Shading shading = Shading::Lit;
     WaterLook water;
+    PlanetLook planet;
     /// Curved meshes: the relief fades out where the view grazes the geometry (cos below this),
     /// so silhouettes keep the mesh's outline instead of smearing texels. 0 = off.
     float silhouetteFade = 0.0f;
@@ -276,7 +297,7 @@ private:
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
     ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
-    GlBuffer surfaceBlock_, waterBlock_, ringBlock_;
+    GlBuffer surfaceBlock_, waterBlock_, ringBlock_, planetBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
     ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' pyramids
 };

@@ -1,9 +1,9 @@
 #pragma once
 // The C++ mirrors of the surface shaders' std140 uniform blocks: HfxSurface
-// (shaders/surface/uniforms.glsl, binding 0) and HfxWater (shaders/shade/sky.glsl, binding
-// 1). SurfaceRenderer fills them once per draw into uniform buffers; the layout is checked at
-// compile time here (std140: a vec3 takes 16 bytes unless a scalar follows it) and against the
-// driver's own offsets by a test.
+// (shaders/surface/uniforms.glsl, binding 0), HfxWater (shaders/shade/sky.glsl, binding 1),
+// HfxRings (binding 2) and HfxPlanet (shaders/shade/rings.glsl, binding 3). SurfaceRenderer fills
+// them once per draw into uniform buffers; the layout is checked at compile time here (std140: a
+// vec3 takes 16 bytes unless a scalar follows it) and against the driver's own offsets by a test.
 //
 // Thread: any (plain values).
 
@@ -102,6 +102,19 @@ struct RingUniforms {
     int padding[3] = {0, 0, 0};
 };
 
+/// HfxPlanet (shaders/shade/rings.glsl, binding 3): a planet's rings, in world space, for the
+/// planet's shading (their shadow) and the rings' draw (the planet's shadow on them).
+struct PlanetUniforms {
+    glm::vec3 planetCentre{0.0f};
+    float planetRadius = 1.0f;
+    glm::vec3 ringAxis{0.0f, 1.0f, 0.0f};
+    float ringInner = 0.0f;
+    float ringOuter = 0.0f; ///< 0: no rings
+    float sunRadius = 0.0f; ///< radians
+    float ringTexels = 1.0f;
+    float padding = 0.0f;
+};
+
 // std140 offsets of the GLSL blocks, member by member where alignment could slip.
 static_assert(offsetof(SurfaceUniforms, patchBounds) == 192);
 static_assert(offsetof(SurfaceUniforms, depthScale) == 220);
@@ -126,6 +139,9 @@ static_assert(offsetof(WaterUniforms, spindrift) == 112);
 static_assert(offsetof(WaterUniforms, windDirectionFrom) == 120);
 static_assert(offsetof(WaterUniforms, spindriftFrom) == 128);
 static_assert(sizeof(WaterUniforms) == 144);
+static_assert(offsetof(PlanetUniforms, ringAxis) == 16);
+static_assert(offsetof(PlanetUniforms, ringOuter) == 32);
+static_assert(sizeof(PlanetUniforms) == 48);
 static_assert(offsetof(RingUniforms, wave) == 16 * kMaxWaterRings);
 static_assert(offsetof(RingUniforms, count) == 32 * kMaxWaterRings);
 

@@ -1,0 +1,54 @@
+#version 450 core
+// A planet's rings (hfx::PlanetRings), drawn on an annulus in their plane after the planet, over
+// it and the sky: composed in linear light over a copy of what the frame held behind them
+// (s_behind, display values), so a thin ring adds its own light to the planet or the sky behind
+// and dims them by the share it covers, as light does, not as display values would blend.
+//
+// Each radius is a slab of particles of normal optical depth tau (shade/rings.glsl's profile).
+// Seen at cosine mu to the slab's normal it covers 1 - e^(-tau / mu) of what lies behind.
+// Sunlight arriving at cosine mu0 is scattered once (Chandrasekhar's single scattering with an
+// isotropic phase function, scaled to a Lambert surface of the same albedo seen head-on):
+//   lit face     2 w mu0 / (mu0 + mu) (1 - e^(-tau (1/mu + 1/mu0)))
+//   unlit face   2 w mu0 / (mu - mu0) (e^(-tau / mu) - e^(-tau / mu0))   (seen through the slab)
+// so dense rings are bright on their lit face and dark from behind, and thin ones glow on both.
+// The planet's shadow takes the share of the sun's disc it covers; the ambient light lights
+// what the rings cover.
+
+#include "bindings.glsl"
+#include "surface/uniforms.glsl"
+#include "shade/rings.glsl"
+
+in vec3 v_worldPos;
+in vec3 v_normal;
+in vec3 v_tangent;
+in vec3 v_bitangent;
+in vec2 v_texcoord;
+
+layout(location = 0) out vec4 o_color;
+layout(binding = HFX_UNIT_RING_BEHIND) uniform sampler2D s_behind;
+uniform ivec2 u_viewportOrigin; // s_behind's texel (0, 0) in window pixels
+
+void main() {
+    const vec3 q = v_worldPos;
+    const float s = hfx_ring_coordinate(length(q - u_planetCentre));
+    if (s < 0.0 || s > 1.0) discard; // the annulus's polygon reaches past its circles
+    const vec3 toEye = normalize(u_cameraPos - q), toLight = normalize(u_lightDir);
+    const float viewSide = dot(toEye, u_ringAxis), lightSide = dot(toLight, u_ringAxis);
+    const float mu = max(abs(viewSide), 1e-3), mu0 = max(abs(lightSide), 1e-3);
+    // Filtered over the pixel's footprint (the mip chain): ringlets finer than a pixel average.
+    const vec4 profile = texture(s_ringProfile, vec2(s, 0.5));
+    const float tau = -log(max(1.0 - profile.a, 1e-6));
+    const float cover = 1.0 - exp(-tau / mu);
+    float scattered;
+    if (viewSide * lightSide > 0.0) {
+        scattered = 2.0 * mu0 / (mu0 + mu) * (1.0 - exp(-tau * (1.0 / mu + 1.0 / mu0)));
+    } else if (abs(mu - mu0) > 1e-3) {
+        scattered = 2.0 * mu0 / (mu - mu0) * (exp(-tau / mu) - exp(-tau / mu0));
+    } else {
+        scattered = 2.0 * tau / mu * exp(-tau / mu); // the limit mu -> mu0
+    }
+    const float sun = hfx_planet_sunlit(q, toLight);
+    const vec3 color = profile.rgb * (u_lightColor * sun * scattered + u_ambient * cover);
+    const vec3 behind = pow(texelFetch(s_behind, ivec2(gl_FragCoord.xy) - u_viewportOrigin, 0).rgb, vec3(2.2));
+    o_color = vec4(pow(clamp(behind * (1.0 - cover) + color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+}
