@@ -3,6 +3,7 @@
 
 #include "Scene.h"
 
+#include "hfx/core/Error.h"
 #include "hfx/effects/GasPlanetEffect.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -46,11 +47,12 @@ public:
 private:
     static GasPlanetConfig config(const SceneOptions& o) {
         GasPlanetConfig c;
-        if (o.fieldSize > 0) {
-            c.gas.width = o.fieldSize;
-            c.gas.height = std::max(4, o.fieldSize / 2);
-            c.gas.initialBands = std::min(c.gas.initialBands, float(c.gas.height) / 4.0f);
-        }
+        // The gas on the device's grid (1024x512 on a GPU), or as wide as asked, with the same
+        // weather: its rates scale with the grid (GasPlanetConfig::gridScale).
+        if (o.fieldSize > 0 && (o.fieldSize < 128 || o.fieldSize > 2048))
+            throw Error(str("planet: --field is the gas's width, 128 to 2048 (", c.gas.width, " its reference), got ",
+                            o.fieldSize));
+        c.gridScale = o.fieldSize > 0 ? float(o.fieldSize) / float(c.gas.width) : 0.0f;
         c.gas.seed = o.seed;
         c.detail.scale = o.detailScale;
         c.timeScale = o.timeScale;

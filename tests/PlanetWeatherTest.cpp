@@ -1,6 +1,6 @@
 // The gas giant's weather: storms are seeded only in the middle of the bands, the jets fade at
-// the poles, a 10^4 time scale stays finite and bounded, and a seeded vortex outlives twenty
-// rotations.
+// the poles, a 10^4 time scale stays finite and bounded, a seeded vortex outlives twenty
+// rotations, and the weather is the same in planet units on a finer grid (the device's).
 
 #include "support/Fixtures.h"
 
@@ -90,6 +90,64 @@ TEST_F(PlanetWeather, ASeededVortexIsStillThereAfterTwentyRotations) {
     }
     ASSERT_EQ(planet.storms().size(), 1u) << "its life is 40 rotations";
     EXPECT_GT(vortexRatio(), 3.0) << "the vortex stands out of its band after 20 rotations";
+}
+
+/// The planet's zonal wind and a storm's wind after `seconds` of gas, in planet units (map widths
+/// per second): the RMS of the zonal-mean east wind over the latitudes, and the fastest wind
+/// relative to its latitude's mean within two storm radii of a storm added at the start.
+struct Weather {
+    double zonalWind, stormWind;
+    int width;
+};
+Weather weatherOf(ClContext& cl, const GasPlanetConfig& config, double seconds) {
+    GasPlanetEffect planet(cl, config);
+    planet.addStorm(0.5f, 0.5f, true, 2.0f);
+    while (planet.time() < seconds) planet.update(1.0 / 30.0);
+    std::vector<float> u, v, dye;
+    planet.gas().readState(u, v, dye);
+    const int W = planet.gas().width(), H = planet.gas().height();
+    std::vector<double> mean(size_t(H), 0.0);
+    double sum = 0.0;
+    for (int j = 0; j < H; ++j) {
+        for (int i = 0; i < W; ++i) mean[size_t(j)] += u[size_t(j) * W + i] / W;
+        sum += (mean[size_t(j)] / W) * (mean[size_t(j)] / W); // cells per second -> widths per second
+    }
+    const GasPlanetEffect::Storm& storm = planet.storms().at(0);
+    const int ci = int(storm.u * W), cj = int(storm.v * H), reach = int(2.0f * storm.radius * W);
+    double wind = 0.0;
+    for (int j = std::max(0, cj - reach); j <= std::min(H - 1, cj + reach); ++j)
+        for (int di = -reach; di <= reach; ++di) {
+            const size_t at = size_t(j) * W + size_t(((ci + di) % W + W) % W);
+            wind = std::max(wind, std::hypot(u[at] - mean[size_t(j)], double(v[at])) / W);
+        }
+    return {std::sqrt(sum / H), wind, W};
+}
+
+TEST_F(PlanetWeather, AFinerGridKeepsTheWeatherInPlanetUnits) {
+    // The same planet on its reference grid (64x32), on twice the cells through gridScale (what a
+    // GPU gets), and on twice the cells with the rates left in cells per second (what a finer
+    // grid did before gridScale). A minute of gas at 30x: the jets have relaxed (rate 0.2 per
+    // second) and a storm has spun up.
+    const GasPlanetConfig reference{.gas = {.width = 64, .height = 32, .pressureIterations = 20, .vorticity = 0.35f,
+                                            .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,
+                                            .maxSpeed = 56.0f, .initialBands = 6.0f},
+                                    .stormsPerSecond = 0.0f, .stormRadius = 0.05f, .timeScale = 30.0f, .poleCap = 0.0f,
+                                    .detail = {.amount = 0.0f}};
+    GasPlanetConfig scaled = reference;
+    scaled.gridScale = 2.0f;
+    GasPlanetConfig finer = reference;
+    finer.gas.width = 128;
+    finer.gas.height = 64;
+    const Weather a = weatherOf(cl(), reference, 60.0), b = weatherOf(cl(), scaled, 60.0), c = weatherOf(cl(), finer, 60.0);
+    std::printf("[grid] zonal wind and storm wind (widths/s): %d wide: %.4f, %.4f; %d scaled: %.4f, %.4f; %d "
+                "unscaled: %.4f, %.4f\n",
+                a.width, a.zonalWind, a.stormWind, b.width, b.zonalWind, b.stormWind, c.width, c.zonalWind, c.stormWind);
+    ASSERT_EQ(b.width, 128);
+    EXPECT_NEAR(b.zonalWind / a.zonalWind, 1.0, 0.1) << "the jets' speed changed with the grid";
+    EXPECT_NEAR(b.stormWind / a.stormWind, 1.0, 0.2) << "the storm's wind changed with the grid";
+    EXPECT_LT(c.zonalWind / a.zonalWind, 0.85) << "unscaled, a finer grid should slow the jets (the test's premise)";
+    EXPECT_THROW(GasPlanetEffect(cl(), GasPlanetConfig{.gridScale = 8.0f}), Error);
+    EXPECT_THROW(GasPlanetEffect(cl(), GasPlanetConfig{.gridScale = -1.0f}), Error);
 }
 
 } // namespace

@@ -40,6 +40,9 @@ void GasPlanetConfig::validate() const {
         throw Error(str("GasPlanetConfig.stormLifeRotations must be in (0, 10000], got ", stormLifeRotations));
     if (maxStorms < 1 || maxStorms > 1024)
         throw Error(str("GasPlanetConfig.maxStorms must be in [1, 1024], got ", maxStorms));
+    if (!(gridScale == 0.0f || (gridScale >= 0.25f && gridScale <= 4.0f)))
+        throw Error(str("GasPlanetConfig.gridScale must be 0 (the device's) or in [0.25, 4], got ", gridScale));
+    if (gridScale > 0.0f) scaledGas(gas, gridScale).validate();
     if (!(poleCap >= 0.0f && poleCap <= 0.25f))
         throw Error(str("GasPlanetConfig.poleCap must be in [0, 0.25], got ", poleCap));
     if (detail.scale != 0) detail.validate(gas); // scale 0 is validated once the device picks one
@@ -60,12 +63,33 @@ int autoDetailScale(const ClContext& cl, int gasWidth) {
     return 1;
 }
 
+float autoGridScale(const ClContext& cl) {
+    return (cl.device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0 ? 2.0f : 1.0f;
+}
+
+GasConfig scaledGas(const GasConfig& gas, float gridScale) {
+    if (gridScale == 1.0f) return gas;
+    GasConfig g = gas;
+    const double s = gridScale;
+    g.width = std::max(4, int(std::lround(gas.width * s)));
+    g.height = std::max(4, int(std::lround(gas.height * s)));
+    g.jetSpeed = float(gas.jetSpeed * s);
+    g.maxSpeed = float(gas.maxSpeed * s);
+    g.viscosity = float(gas.viscosity * s * s);
+    g.pressureIterations = std::clamp(int(std::lround(gas.pressureIterations * s * s)), 1, 10000);
+    return g;
+}
+
 namespace {
 // Detail or a pole cap to put on the gas's heights: else the surface is the gas's own.
 bool hasDetail(const GasPlanetConfig& c) { return c.detail.amount > 0.0f || c.poleCap > 0.0f; }
 
 // The configuration with the detail's scale and pole cap settled for this device.
 GasPlanetConfig settled(const ClContext& cl, GasPlanetConfig config) {
+    if (config.gridScale == 0.0f) config.gridScale = autoGridScale(cl);
+    config.gas = scaledGas(config.gas, config.gridScale);
+    config.stormForce *= config.gridScale; // cells per second^2
+    config.gridScale = 1.0f;               // the scaled gas is the one simulated
     if (config.detail.scale == 0) config.detail.scale = autoDetailScale(cl, config.gas.width);
     if (!hasDetail(config)) config.detail.scale = 1;
     config.detail.capRows = config.poleCap * float(config.gas.height);

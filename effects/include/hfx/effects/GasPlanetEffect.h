@@ -59,6 +59,15 @@ struct GasPlanetConfig {
     /// device: the largest of 4, 2 and 1 that keeps the surface at most 2048 texels wide on a
     /// GPU, 1024 on a CPU device (autoDetailScale). amount 0 draws the gas's own heights alone.
     FlowDetailConfig detail{.scale = 0};
+    /// The gas's grid per device: `gas` is the planet at its reference grid, and the simulation
+    /// runs on gridScale times its cells on each axis with the same weather in planet units:
+    /// the rates in cells (gas.jetSpeed, gas.maxSpeed, stormForce) scale by gridScale, the
+    /// viscosity (cells^2 per second) by its square, and the pressure projection's iterations by
+    /// its square too (Jacobi spreads a correction over the square root of its iterations in
+    /// cells). The vorticity confinement (epsilon h |curl|, h a cell) weakens with the cell, as
+    /// the numerical dissipation it makes up for does. 0: the device's (autoGridScale: 2 on a
+    /// GPU, 1024x512 from the default, 1 on a CPU device); else in [0.25, 4].
+    float gridScale = 1.0f;
     std::uint64_t seed = 1;
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
@@ -73,6 +82,10 @@ struct GasPlanetConfig {
 
 /// The detail scale `scale` 0 stands for on `cl`'s device for a gas `gasWidth` cells wide.
 int autoDetailScale(const ClContext& cl, int gasWidth);
+/// The grid scale GasPlanetConfig::gridScale 0 stands for on `cl`'s device: 2 on a GPU, else 1.
+float autoGridScale(const ClContext& cl);
+/// `gas` on gridScale times its cells, its rates scaled to keep the weather (GasPlanetConfig::gridScale).
+GasConfig scaledGas(const GasConfig& gas, float gridScale);
 
 class GasPlanetEffect final : public Effect {
 public:
