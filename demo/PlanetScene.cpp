@@ -21,9 +21,10 @@ public:
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, o.cameraDistance, 0.3f, 0.25f);
         camera_.aspect = o.aspect();
         light_.direction = {0.95f, 0.15f, -0.2f}; // 83 degrees from the view: the terminator crosses the disc
-        // With rings: the sun 25 degrees above their plane (Saturn's reaches 27), so their shadow
-        // lies across the southern hemisphere below them.
-        if (o.rings) light_.direction = {0.95f, 0.47f, -0.2f};
+        // With rings: the sun 25 degrees below their plane (Saturn's reaches 27) and the camera
+        // above it, so their shadow lies across the hemisphere in view and their unlit face shows
+        // (the dense ring dark, the thin ones glowing with the light they let through).
+        if (o.rings) light_.direction = {0.95f, -0.47f, -0.2f};
         light_.color = {1.0f, 0.97f, 0.92f};
         light_.ambient = {0.03f, 0.03f, 0.04f};
     }
