@@ -50,8 +50,8 @@ private:
         GasPlanetConfig c;
         // The gas on the device's grid (1024x512 on a GPU), or as wide as asked, with the same
         // weather: its rates scale with the grid (GasPlanetConfig::gridScale).
-        if (o.fieldSize > 0 && (o.fieldSize < 128 || o.fieldSize > 2048))
-            throw Error(str("planet: --field is the gas's width, 128 to 2048 (", c.gas.width, " its reference), got ",
+        if (o.fieldSize > 0 && (o.fieldSize < 32 || o.fieldSize > 2048))
+            throw Error(str("planet: --field is the gas's width, 32 to 2048 (", c.gas.width, " its reference), got ",
                             o.fieldSize));
         c.gridScale = o.fieldSize > 0 ? float(o.fieldSize) / float(c.gas.width) : 0.0f;
         c.gas.seed = o.seed;

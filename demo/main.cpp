@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
     app.add_option("--height", o.height, "image height in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
     app.add_option("--dt", o.dt, "seconds between frames")->check(kFinite)->check(CLI::Range(1e-6, 10.0))->capture_default_str();
     app.add_option("--field", s.fieldSize, "height-field texels per edge (default: the scene's; ocean: a power of two; planet: the gas's width, "
-                   "128-2048, its weather kept: 1024 on a GPU, 512 on a CPU device)")
+                   "32-2048, its weather kept: 1024 on a GPU, 512 on a CPU device)")
         ->check(CLI::Range(8, 8192));
     std::vector<std::string> techniques{"auto"};
     std::string techniqueHelp = "surface technique (hfx-demo techniques lists them):\n  auto: hier where the scene's surface "

@@ -226,15 +226,33 @@ TEST_F(PlanetRingsTest, TheirShadowFallsOnTheCloudTopsWhereTheSunsRayCrossesThem
     EXPECT_GT(cMeasured, bMeasured + 0.3) << "the faint ring shadows as deeply as the dense one";
 }
 
-/// The rings alone (no planet drawn: its shadow is what is measured), seen from above their
-/// plane, lit from 15 degrees above it by a sun of `sun` radians, or not lit at all.
+/// viewRings' light: towards +x, 15 degrees above the rings' plane.
+glm::dvec3 ringLight() { return glm::normalize(glm::dvec3(1.0, std::tan(15.0 * kPi / 180.0), 0.0)); }
+
+/// Where pixel (x, y)'s ray (image rows top first) meets the rings' plane y = 0: t along the ray
+/// (not positive: it never does), the point, and its share s of the span from inner to outer.
+struct PlanePixel {
+    Ray ray;
+    double t;
+    glm::dvec3 q;
+    double s;
+};
+PlanePixel onRingPlane(const Camera& camera, int x, int y, const PlanetRingsConfig& rc) {
+    const Ray ray = camera.rayThroughPixel(x + 0.5, kImage - y - 0.5, kImage, kImage);
+    const double t = -ray.origin.y / ray.direction.y;
+    const glm::dvec3 q = ray.origin + t * ray.direction;
+    return {ray, t, q, (glm::length(q) - rc.inner) / (rc.outer - rc.inner)};
+}
+
+/// The rings alone (no planet drawn: its shadow is what is measured), seen from `eye`, lit by
+/// ringLight() with a sun of `sun` radians, or not lit at all.
 Image viewRings(float sun, bool lit, glm::vec3 eye) {
     PlanetRings rings({.sunAngularRadius = sun});
     RenderTarget target(kImage, kImage);
     target.bind();
     target.clear();
     DirectionalLight light;
-    light.direction = glm::vec3(1.0f, std::tan(float(15.0 * kPi / 180.0)), 0.0f);
+    light.direction = glm::vec3(ringLight());
     light.color = lit ? glm::vec3(1.0f) : glm::vec3(0.0f);
     light.ambient = {0.03f, 0.03f, 0.04f};
     rings.draw(glm::mat4(1.0f), cameraAt(eye), light);
@@ -251,18 +269,15 @@ TEST_F(PlanetRingsTest, ThePlanetsShadowOnThemIsTheShareOfTheSunsDiscItCovers) {
     const Image unlit = viewRings(0.08f, false, eye);
     writeImage(outputPath("rings_penumbra.png"), wide);
     const Camera camera = cameraAt(eye);
-    const glm::dvec3 l = glm::normalize(glm::dvec3(1.0, std::tan(15.0 * kPi / 180.0), 0.0));
+    const glm::dvec3 l = ringLight();
     const PlanetRingsConfig rc;
     int umbra = 0, umbraLit = 0, full = 0, fullOff = 0, penumbra = 0;
     double error = 0.0, worst = 0.0;
     for (int y = 0; y < kImage; ++y)
         for (int x = 0; x < kImage; ++x) {
-            const Ray ray = camera.rayThroughPixel(x + 0.5, kImage - y - 0.5, kImage, kImage);
-            const double t = -ray.origin.y / ray.direction.y;
-            const glm::dvec3 q = ray.origin + t * ray.direction;
-            const double s = (glm::length(q) - rc.inner) / (rc.outer - rc.inner);
-            if (!(t > 0.0) || s < 0.02 || s > 0.98) continue; // off the rings, or at their edges
-            const double fSharp = sunlit(q, l, 0.002), fWide = sunlit(q, l, 0.08);
+            const PlanePixel p = onRingPlane(camera, x, y, rc);
+            if (!(p.t > 0.0) || p.s < 0.02 || p.s > 0.98) continue; // off the rings, or at their edges
+            const double fSharp = sunlit(p.q, l, 0.002), fWide = sunlit(p.q, l, 0.08);
             const double termSharp = luminance(sharp, x, y) - luminance(unlit, x, y);
             const double termWide = luminance(wide, x, y) - luminance(unlit, x, y);
             if (fWide == 0.0) {
@@ -300,17 +315,13 @@ TEST_F(PlanetRingsTest, DenseRingsAreBrightOnTheirLitFaceAndDarkFromBehind) {
         const glm::vec3 eye(-1.0f, side == 0 ? 5.0f : -5.0f, 3.0f);
         const Image lit = viewRings(0.002f, true, eye), unlit = viewRings(0.002f, false, eye);
         const Camera camera = cameraAt(eye);
-        const glm::dvec3 l = glm::normalize(glm::dvec3(1.0, std::tan(15.0 * kPi / 180.0), 0.0));
         double sum[2] = {};
         int count[2] = {};
         for (int y = 0; y < kImage; ++y)
             for (int x = 0; x < kImage; ++x) {
-                const Ray ray = camera.rayThroughPixel(x + 0.5, kImage - y - 0.5, kImage, kImage);
-                const double t = -ray.origin.y / ray.direction.y;
-                const glm::dvec3 q = ray.origin + t * ray.direction;
-                const double s = (glm::length(q) - rc.inner) / (rc.outer - rc.inner);
-                if (!(t > 0.0) || sunlit(q, l, 0.002) < 1.0 || sphereHit(ray)) continue;
-                const int zone = s > 0.32 && s < 0.67 ? 0 : s > 0.02 && s < 0.26 ? 1 : -1;
+                const PlanePixel p = onRingPlane(camera, x, y, rc);
+                if (!(p.t > 0.0) || sunlit(p.q, ringLight(), 0.002) < 1.0 || sphereHit(p.ray)) continue;
+                const int zone = p.s > 0.32 && p.s < 0.67 ? 0 : p.s > 0.02 && p.s < 0.26 ? 1 : -1;
                 if (zone < 0) continue;
                 sum[zone] += luminance(lit, x, y) - luminance(unlit, x, y);
                 ++count[zone];

@@ -40,8 +40,8 @@ void GasPlanetConfig::validate() const {
         throw Error(str("GasPlanetConfig.stormLifeRotations must be in (0, 10000], got ", stormLifeRotations));
     if (maxStorms < 1 || maxStorms > 1024)
         throw Error(str("GasPlanetConfig.maxStorms must be in [1, 1024], got ", maxStorms));
-    if (!(gridScale == 0.0f || (gridScale >= 0.25f && gridScale <= 4.0f)))
-        throw Error(str("GasPlanetConfig.gridScale must be 0 (the device's) or in [0.25, 4], got ", gridScale));
+    if (!(gridScale == 0.0f || (gridScale >= 0.0625f && gridScale <= 4.0f)))
+        throw Error(str("GasPlanetConfig.gridScale must be 0 (the device's) or in [1/16, 4], got ", gridScale));
     if (gridScale > 0.0f) scaledGas(gas, gridScale).validate();
     if (!(poleCap >= 0.0f && poleCap <= 0.25f))
         throw Error(str("GasPlanetConfig.poleCap must be in [0, 0.25], got ", poleCap));

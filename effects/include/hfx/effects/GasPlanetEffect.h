@@ -66,7 +66,7 @@ struct GasPlanetConfig {
     /// its square too (Jacobi spreads a correction over the square root of its iterations in
     /// cells). The vorticity confinement (epsilon h |curl|, h a cell) weakens with the cell, as
     /// the numerical dissipation it makes up for does. 0: the device's (autoGridScale: 2 on a
-    /// GPU, 1024x512 from the default, 1 on a CPU device); else in [0.25, 4].
+    /// GPU, 1024x512 from the default, 1 on a CPU device); else in [1/16, 4].
     float gridScale = 1.0f;
     std::uint64_t seed = 1;
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
