@@ -6,8 +6,12 @@
 #include "hfx/core/Error.h"
 #include "hfx/effects/GasPlanetEffect.h"
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
 #include <imgui.h>
+
+#include <cmath>
 
 namespace hfx::demo {
 namespace {
@@ -42,6 +46,15 @@ public:
         float scale = planet_.timeScale();
         if (ImGui::SliderFloat("time scale", &scale, 1.0f, 1e4f, "%.0fx", ImGuiSliderFlags_Logarithmic))
             planet_.setTimeScale(scale);
+        if (planet_.rings()) { // swing the sun through the rings' plane: their shadow sweeps the disc
+            const glm::vec3 d = glm::normalize(light_.direction);
+            float elevation = glm::degrees(std::asin(d.y));
+            if (ImGui::SliderFloat("sun above the rings", &elevation, -60.0f, 60.0f, "%.0f deg")) {
+                const glm::vec2 across = glm::normalize(glm::vec2(d.x, d.z));
+                const float e = glm::radians(elevation);
+                light_.direction = {across.x * std::cos(e), std::sin(e), across.y * std::cos(e)};
+            }
+        }
         ImGui::Text("click: a storm there, E: a big one");
     }
 

@@ -358,6 +358,28 @@ TEST(Demo, ImpactsLandInTheWaterAndOnThePlanet) {
     EXPECT_NE(off.output.find("line 1"), std::string::npos) << off.output;
 }
 
+// --rings 1 gives the planet its rings: from 5 radii they reach out beside the disc, where the
+// ringless frame is black sky.
+TEST(Demo, ThePlanetsRingsShowBesideItsDisc) {
+    double beside[2];
+    for (int rings = 0; rings < 2; ++rings) {
+        const std::string out = outputPath(std::string("demo_rings_") + std::to_string(rings));
+        const Result r = runDemo("planet --headless --frames 1 --width 320 --height 180 --field 64 --camera-distance 5 "
+                                 "--rings " + std::to_string(rings) + " --out " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const Image frame = readImage(out + "/planet_0000.png");
+        // Left of the disc (x 117-202 of 320 at this distance), the rings' band (x 52-267).
+        double sum = 0.0;
+        int n = 0;
+        for (int y = 80; y < 120; ++y)
+            for (int x = 58; x < 108; ++x, ++n) sum += (frame.at(x, y, 0) + frame.at(x, y, 1) + frame.at(x, y, 2)) / 3.0;
+        beside[rings] = sum / n;
+    }
+    std::printf("[rings] mean display value left of the disc: %.3f without, %.3f with rings\n", beside[0], beside[1]);
+    EXPECT_LT(beside[0], 0.03);
+    EXPECT_GT(beside[1], 0.1);
+}
+
 TEST(Demo, WritesAVideoWhenFfmpegIsThere) {
     if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
         GTEST_SKIP() << "ffmpeg is not installed (Debian package ffmpeg)";

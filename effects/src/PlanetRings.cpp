@@ -162,6 +162,7 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     glGetIntegerv(GL_VIEWPORT, viewport);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
+    if (viewport[2] <= 0 || viewport[3] <= 0) return; // nothing to draw into (a minimised window)
     // What the frame holds behind the rings, which they are composed over in linear light.
     if (viewport[2] > behindWidth_ || viewport[3] > behindHeight_ || !behind_) {
         behindWidth_ = std::max(viewport[2], behindWidth_);
