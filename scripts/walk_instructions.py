@@ -16,10 +16,10 @@ shape) is printed with its nesting.
     python3 scripts/walk_instructions.py [--accessors renderer|mip] [--shaders DIR] [--defines D=1 ...]
                                          [--keep DIR] [--show LOOP]
 
-With --water it counts the water's shading instead (shade/water.glsl's hfx_shade, the sky and the
-foam with it, in a fragment shader that shades one point): the instructions of the whole optimised
-shader, both sides of each branch and each loop's body once, a device-neutral figure of what a
-change to it costs where no GPU is at hand to time it.
+With --shading MODEL (--water for water) it counts a shading model's instead (shade/MODEL.glsl's
+hfx_shade, the sky and what the model includes with it, in a fragment shader that shades one
+point): the instructions of the whole optimised shader, both sides of each branch and each loop's
+body once, a device-neutral figure of what a change to it costs where no GPU is at hand to time it.
 
 Needs glslang-tools and spirv-tools (scripts/setup.sh installs them).
 """
@@ -71,7 +71,7 @@ NOT_WORK = {"OpLabel", "OpSelectionMerge", "OpLoopMerge", "OpPhi", "OpBranch", "
 VECTOR = re.compile(r"= Op\w+ %v([234])(?:int|uint|float|bool)\b")
 
 
-# --water: one point shaded by hfx_shade, every field of the point from the inputs.
+# --shading: one point shaded by hfx_shade, every field of the point from the inputs.
 WATER_MAIN = """
 layout(location = 0) in vec4 v_a;
 layout(location = 1) in vec4 v_b;
@@ -102,11 +102,28 @@ void main() {
 """
 
 
-def compose_water(shaders):
+def expand(shaders, name, seen):
+    """A shader file with its #include "..." lines replaced by the files (each once), as the
+    renderer's embedding composes them."""
+    if name in seen:
+        return ""
+    seen.add(name)
+    with open(os.path.join(shaders, name)) as f:
+        lines = f.read().split("\n")
+    out = []
+    for line in lines:
+        m = re.match(r'\s*#include\s+"([^"]+)"', line)
+        out.append(expand(shaders, m.group(1), seen) if m else line)
+    return "\n".join(out)
+
+
+def compose_shading(shaders, model):
+    """One point shaded by shade/<model>.glsl's hfx_shade, the sky composed before it as in the
+    surface program."""
+    seen = set()
     parts = ["#version 450 core"]
-    for name in ("bindings.glsl", "surface/uniforms.glsl", "shade/common.glsl", "shade/sky.glsl", "shade/water.glsl"):
-        with open(os.path.join(shaders, name)) as f:
-            parts.append(f.read())
+    for name in ("bindings.glsl", "surface/uniforms.glsl", "shade/common.glsl", "shade/sky.glsl", f"shade/{model}.glsl"):
+        parts.append(expand(shaders, name, seen))
     # Trees before the foam's young part (HfxSurfacePoint::foamYoung) compose too.
     young = "p.foamYoung = v_b.wzyx;" if "foamYoung" in parts[3] else ""
     parts.append(WATER_MAIN.replace("YOUNG", young))
@@ -235,14 +252,20 @@ def main():
     ap.add_argument("--show-most", type=int, help="print the instructions of this loop's longest one-fetch step")
     ap.add_argument("--limit", type=int, help="fail (exit 1) where a one-fetch step of a walk takes more instructions")
     ap.add_argument("--water", action="store_true", help="count the water's shading instead of the walks")
+    ap.add_argument("--shading", choices=("water", "planet", "lit", "rings"),
+                    help="count this shading model's hfx_shade instead of the walks (--water: water; rings: "
+                         "the planet's rings' own fragment shader, rings.frag)")
     args = ap.parse_args()
     work_dir = args.keep or tempfile.mkdtemp(prefix="hfx-walk-")
     os.makedirs(work_dir, exist_ok=True)
-    if args.water:
-        blocks, order = parse_blocks(compile_spirv(compose_water(args.shaders), work_dir, "frag"))
+    model = "water" if args.water else args.shading
+    if model:
+        source = expand(args.shaders, "rings.frag", set()) if model == "rings" else compose_shading(args.shaders, model)
+        blocks, order = parse_blocks(compile_spirv(source, work_dir, "frag"))
         total = [sum(work(blocks[b])[i] for b in order) for i in (0, 1)]
         loops = sum(1 for b in order if blocks[b]["loop"])
-        print(f"water hfx_shade ({os.path.normpath(args.shaders)}, spirv-opt -O): {total[0]} instructions "
+        what = "rings.frag" if model == "rings" else f"{model} hfx_shade"
+        print(f"{what} ({os.path.normpath(args.shaders)}, spirv-opt -O): {total[0]} instructions "
               f"({total[1]} scalar operations), {loops} loops")
         return
     blocks, order = parse_blocks(compile_spirv(compose(args.shaders, args.defines, args.accessors), work_dir))
