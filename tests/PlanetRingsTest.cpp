@@ -144,6 +144,22 @@ TEST_F(PlanetRingsTest, ABadPlanetLookIsRefusedByName) {
     m.planet = rings.look();
     m.planet.sunAngularRadius = -1.0f;
     EXPECT_THROW(m.validate(), Error);
+
+    // Composed over a copy of the frame, the rings refuse a multisampled one by name.
+    GlRenderbuffer colour = GlRenderbuffer::create(), depth = GlRenderbuffer::create();
+    glNamedRenderbufferStorageMultisample(colour.id(), 4, GL_RGBA8, 64, 64);
+    glNamedRenderbufferStorageMultisample(depth.id(), 4, GL_DEPTH_COMPONENT24, 64, 64);
+    GlFramebuffer multisampled = GlFramebuffer::create();
+    glNamedFramebufferRenderbuffer(multisampled.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour.id());
+    glNamedFramebufferRenderbuffer(multisampled.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id());
+    ASSERT_EQ(glCheckNamedFramebufferStatus(multisampled.id(), GL_DRAW_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    glBindFramebuffer(GL_FRAMEBUFFER, multisampled.id());
+    glViewport(0, 0, 64, 64);
+    Camera camera;
+    camera.position = {0.0f, 3.0f, 5.0f};
+    const std::string message = messageOf([&] { rings.draw(glm::mat4(1.0f), camera, DirectionalLight{}); });
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    EXPECT_NE(message.find("multisampled"), std::string::npos) << message;
 }
 
 TEST_F(PlanetRingsTest, TheirShadowFallsOnTheCloudTopsWhereTheSunsRayCrossesThemAsDeepAsTheyAreOpaque) {

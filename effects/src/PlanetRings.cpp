@@ -163,6 +163,12 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
     if (viewport[2] <= 0 || viewport[3] <= 0) return; // nothing to draw into (a minimised window)
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
+    if (samples != 0) // a copy from it is an error, and a release build would compose over stale texels
+        throw Error("PlanetRings::draw: the bound framebuffer is multisampled; the rings are composed over a copy "
+                    "of it, which GL takes only from a single-sampled one (draw them before the resolve's target, "
+                    "or into a single-sampled framebuffer)");
     // What the frame holds behind the rings, which they are composed over in linear light.
     if (viewport[2] > behindWidth_ || viewport[3] > behindHeight_ || !behind_) {
         behindWidth_ = std::max(viewport[2], behindWidth_);
