@@ -167,8 +167,8 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
     if (samples != 0) // a copy from it is an error, and a release build would compose over stale texels
         throw Error("PlanetRings::draw: the bound framebuffer is multisampled; the rings are composed over a copy "
-                    "of it, which GL takes only from a single-sampled one (draw them before the resolve's target, "
-                    "or into a single-sampled framebuffer)");
+                    "of it, which GL takes only from a single-sampled one (resolve it first and draw the rings into "
+                    "the resolved target)");
     // What the frame holds behind the rings, which they are composed over in linear light.
     if (viewport[2] > behindWidth_ || viewport[3] > behindHeight_ || !behind_) {
         behindWidth_ = std::max(viewport[2], behindWidth_);

@@ -56,9 +56,9 @@ public:
     PlanetLook look() const;
     /// Draws the rings of the planet drawn with `model`, seen by `camera`, lit by `light`, into the
     /// bound framebuffer over what it holds: it copies the viewport's colour first (a GL_RGBA8
-    /// copy: draw the rings into a framebuffer of display values, not multisampled) and composes
-    /// them over it in linear light; depth tested, no depth written. Restores the GL state it
-    /// changes.
+    /// copy: draw the rings into a framebuffer of display values) and composes them over it in
+    /// linear light; depth tested, no depth written. Throws hfx::Error for a multisampled
+    /// framebuffer (GL copies from none). Restores the GL state it changes.
     void draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light);
     const PlanetRingsConfig& config() const { return config_; }
     GLuint profile() const { return profile_.id(); }
