@@ -72,7 +72,7 @@ VECTOR = re.compile(r"= Op\w+ %v([234])(?:int|uint|float|bool)\b")
 
 
 # --shading: one point shaded by hfx_shade, every field of the point from the inputs.
-WATER_MAIN = """
+SHADE_MAIN = """
 layout(location = 0) in vec4 v_a;
 layout(location = 1) in vec4 v_b;
 layout(location = 0) out vec4 o_color;
@@ -126,7 +126,7 @@ def compose_shading(shaders, model):
         parts.append(expand(shaders, name, seen))
     # Trees before the foam's young part (HfxSurfacePoint::foamYoung) compose too.
     young = "p.foamYoung = v_b.wzyx;" if "foamYoung" in parts[3] else ""
-    parts.append(WATER_MAIN.replace("YOUNG", young))
+    parts.append(SHADE_MAIN.replace("YOUNG", young))
     return "\n".join(parts)
 
 
