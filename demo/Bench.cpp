@@ -192,7 +192,7 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
             if (!wanted(name) || (size == 256 && std::string(name) != "noise")) continue;
             SceneOptions o = options;
             o.fieldSize = size;
-            // The pyramid (hier) is built each frame, so its cost shows; the ocean as shipped has
+            // The height bounds (hier) are built each frame, so their cost shows; the ocean as shipped has
             // four cascades, which hier cannot trace (one grid), so water runs POM.
             o.technique = std::string(name) == "water" ? Technique::ParallaxOcclusion : Technique::Hierarchical;
             o.width = width;
@@ -268,8 +268,8 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                 "frame |\n|---|---|---|---|---|---|---|\n");
     auto scaling = [&](int size, int w, int h) {
         SceneOptions o = options;
-        // POM, as the water ships: the bench's own default technique (hier) would have asked
-        // for a pyramid, and the ocean runs a single cascade then.
+        // POM, as the water ships: with the bench's own default technique (hier) the ocean runs
+        // a single cascade.
         o.technique = Technique::ParallaxOcclusion;
         o.fieldSize = size;
         o.width = w;

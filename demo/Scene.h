@@ -39,10 +39,8 @@ struct SceneOptions {
     float aspect() const { return float(width) / float(height); }
     SurfaceFormat surfaceFormat = SurfaceFormat::Float32; ///< storage of the surface textures
     TransferPath transfer = TransferPath::Auto;           ///< how the surface reaches GL
-    /// An effect's surface options: the height pyramid exactly when the technique needs it.
-    SurfaceOptions surfaceOptions() const {
-        return {.pyramid = technique == Technique::Hierarchical, .format = surfaceFormat, .transfer = transfer};
-    }
+    /// An effect's surface options: the storage and the path to GL.
+    SurfaceOptions surfaceOptions() const { return {.format = surfaceFormat, .transfer = transfer}; }
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)
     float windSpeed = 10.0f, windDirection = 0.6f; ///< water: U10 (m/s), radians from +x
     int beaufort = -1;                 ///< water: a Beaufort force 0..12 sets the wind (-1: windSpeed)
@@ -167,7 +165,7 @@ std::unique_ptr<Scene> makeNoiseScene(ClContext& cl, const SceneOptions& options
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options);
 
 /// --technique auto, every scene's default: the exact tracer (hier) wherever the scene's surface
-/// can carry its pyramid (one grid of power-of-two sizes in a float format); POM for the ocean,
+/// can carry its height bounds (one grid of power-of-two sizes in a float format); POM for the ocean,
 /// whose cascades are layers on different grids (no common cells to walk), and for fields or
 /// height maps of other sizes. Reads a height map's header (maps, decals) for its size.
 Technique defaultTechnique(const std::string& scene, const SceneOptions& options);

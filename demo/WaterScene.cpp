@@ -40,9 +40,9 @@ OceanEffectConfig oceanConfig(const SceneOptions& o) {
     c.ocean.sea.depthMeters = o.depthMeters;
     c.ocean.sea.swell.energy = o.swell;
     c.ocean.sea.swell.direction = o.windDirection + 0.9f;
-    // A pyramid for hier needs one grid: the ocean then runs one cascade.
+    // hier traces one grid: the ocean then runs one cascade.
     c.surface = o.surfaceOptions();
-    if (c.surface.pyramid) c.ocean.cascades = 1;
+    if (o.technique == Technique::Hierarchical) c.ocean.cascades = 1;
     return c;
 }
 

@@ -105,11 +105,13 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     if (!options_.out.empty()) std::filesystem::create_directories(options_.out);
     int screenshots = 0;
     double drawMs = 0.0, frameMs = 0.0, last = nowMs();
-    // The techniques this scene can draw: those that need the per-frame pyramid only when it was
-    // started with one (--technique hier, or auto where the surface can carry it).
+    // The techniques this scene can draw: those that walk the height bounds only on one grid
+    // that can carry them (not the ocean's cascades; power-of-two sizes, a float format).
     std::vector<Technique> offered;
+    const bool boundable = scene.effect().layers().size() == 1 &&
+                           boundsRefusal(scene.effect().textures().config()).empty();
     for (const TechniqueInfo& t : kTechniqueTable)
-        if (!t.needsPyramid || scene.effect().textures().pyramid() != 0) offered.push_back(t.technique);
+        if (!t.needsPyramid || boundable) offered.push_back(t.technique);
     int techniqueIndex = 0;
     for (int i = 0; i < int(offered.size()); ++i)
         if (offered[i] == scene.technique) techniqueIndex = i;

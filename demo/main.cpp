@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(8, 8192));
     std::vector<std::string> techniques{"auto"};
     std::string techniqueHelp = "surface technique (hfx-demo techniques lists them):\n  auto: hier where the scene's surface "
-                                "can carry its pyramid (one power-of-two grid, float storage), pom elsewhere (the ocean's "
+                                "can carry its height bounds (one power-of-two grid, float storage), pom elsewhere (the ocean's "
                                 "cascades)";
     for (const TechniqueInfo& t : kTechniqueTable) {
         techniques.emplace_back(t.name);

@@ -36,7 +36,7 @@ TEST_F(BeamStart, AnOffsetViewportGetsTheSameHitsInFewerFetchesAndItsStateBack) 
     constexpr int N = 64, width = 203, height = 117;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}});
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
-    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
     surface.run(field.buffer());
     const Mesh plane(makePlane({.size = 2.0f}));
     ASSERT_TRUE(plane.flatPatch());
@@ -106,7 +106,7 @@ TEST_F(BeamStart, AShadowMapCastsTheSameTracedDepthWithItAsWithout) {
     constexpr int N = 64, size = 256;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}});
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
-    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
     surface.run(field.buffer());
     const Mesh plane(makePlane({.size = 2.0f}));
     const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f, .shadows = false};

@@ -1,6 +1,6 @@
-// The exact tracer's unit (ExactTracer): it decides the texel shadows from the view it is given
-// (no caller asks), draws them once for a surface's heights and light, and draws them again when
-// either changes.
+// The exact tracer's unit (ExactTracer): it holds every surface's height bounds and decides the
+// texel shadows from the view it is given (no caller asks), draws them once for a surface's
+// heights and light, and draws them again when either changes.
 
 #include "support/Fields.h"
 #include "support/Fixtures.h"
@@ -31,7 +31,7 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
     constexpr int N = 64;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}});
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
-    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
     surface.run(field.buffer());
     const Mesh plane(makePlane({.size = 2.0f}));
     const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
@@ -89,6 +89,59 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
     const std::vector<float> movedOnce = draw(nearCamera, TexelShadowChoice::Auto, moved);
     EXPECT_EQ(draw(nearCamera, TexelShadowChoice::Auto, moved), movedOnce);
     EXPECT_EQ(draw(nearCamera, TexelShadowChoice::Auto, light), read) << "texel shadows kept past a moved light";
+}
+
+TEST_F(ExactTracerTest, ItReadsAProducersBoundsWhereTheyHoldAndItsOwnElsewhere) {
+    // Where the compute device builds a surface's bounds (GlWorkarounds::pyramidFromCompute,
+    // forced on here), the first hier draw builds the tracer's own and notes the pipeline's as
+    // read; the pipeline's next frame carries them, and the tracer reads them: spoiled bounds
+    // change the frame, the next frame's put it back. Drawn without the pipeline's, the tracer
+    // holds its own again; once no draw reads them, the device stops building them.
+    const WorkaroundsSet set("pyramid-from-compute=1");
+    constexpr int N = 64;
+    StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
+    surface.run(field.buffer());
+    ASSERT_NE(surface.bounds(), nullptr);
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
+    DirectionalLight light;
+    light.direction = {0.7f, 0.45f, 0.3f};
+    SurfaceRenderer renderer;
+    RenderTarget target(160, 90);
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.5f, 0.3f, 1.0f);
+    camera.aspect = 160.0f / 90.0f;
+    auto draw = [&](bool withTheirs) {
+        target.bind();
+        target.clear();
+        const SurfaceLayer layer{.textures = &surface.textures(), .bounds = withTheirs ? surface.bounds() : nullptr};
+        renderer.draw(plane, glm::mat4(1.0f), std::span(&layer, 1), material, camera, light,
+                      {.technique = Technique::Hierarchical, .beamStart = false,
+                       .texelShadows = TexelShadowChoice::Off});
+        return target.readColor().pixels;
+    };
+    const std::vector<float> own = draw(true); // the tracer's, built from the texels
+    EXPECT_FALSE(surface.bounds()->holds(surface.textures()));
+    surface.run(field.buffer()); // read by that draw: the device builds them
+    ASSERT_TRUE(surface.bounds()->holds(surface.textures()));
+    EXPECT_EQ(draw(true), own) << "the device's bounds draw otherwise than GL's";
+
+    // Bounds with every cell's top at the floor: rays that trust them walk to the floor.
+    size_t floats = 0;
+    for (int level = 0; level < surface.bounds()->levels(); ++level)
+        floats += 2 * size_t(std::max(N >> level, 1)) * size_t(std::max(N >> level, 1));
+    const std::vector<float> floor(floats, 0.0f);
+    surface.bounds()->upload(floor.data(), surface.textures());
+    EXPECT_NE(draw(true), own) << "the tracer did not read the pipeline's bounds";
+    EXPECT_EQ(draw(false), own) << "its own bounds, drawn without the pipeline's";
+    surface.run(field.buffer()); // noted as read by the spoiled draw: the device builds them
+    ASSERT_TRUE(surface.bounds()->holds(surface.textures()));
+    EXPECT_EQ(draw(true), own);
+    surface.run(field.buffer()); // noted by that draw
+    surface.run(field.buffer()); // by none
+    surface.run(field.buffer());
+    EXPECT_FALSE(surface.bounds()->holds(surface.textures())) << "built though no draw read them";
+    EXPECT_EQ(draw(true), own);
 }
 
 } // namespace

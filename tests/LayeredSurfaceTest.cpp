@@ -30,7 +30,7 @@ struct Layers {
 
 /// `relief` scales the waves' amplitudes: at 1 the sum spans most of the depth; the ocean's
 /// cascades, whose depth is 8 sigma, keep most of their heights within the middle half.
-Layers makeLayers(ClContext& cl, bool pyramids = false, double relief = 1.0) {
+Layers makeLayers(ClContext& cl, double relief = 1.0) {
     Layers l;
     l.a = sumOfSines(N, {{0.25 * relief, 2, 1, 0.3}, {0.1 * relief, -1, 4, 1.0}});
     l.b = sumOfSines(N / 2, {{0.3 * relief, 1, 2, 0.8}, {0.12 * relief, 3, -2, 0.1}});
@@ -42,7 +42,7 @@ Layers makeLayers(ClContext& cl, bool pyramids = false, double relief = 1.0) {
     l.fieldB = std::make_unique<StaticField>(cl, N / 2, N / 2, EdgeMode::Wrap, l.b);
     l.fieldSum = std::make_unique<StaticField>(cl, N, N, EdgeMode::Wrap, l.sum);
     // Each with normals for a depth of its own: the renderer combines their slopes.
-    const SurfaceOptions options{.mipmaps = false, .pyramid = pyramids};
+    const SurfaceOptions options{.mipmaps = false};
     l.surfaceA = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldA, 0.05f, options));
     l.surfaceB = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldB, 0.02f, options));
     l.surfaceSum = std::make_unique<SurfacePipeline>(cl, SurfacePipelineConfig::of(*l.fieldSum, 0.08f, {.mipmaps = false}));
@@ -165,12 +165,12 @@ TEST_F(LayeredSurface, AnUntracedLayerIsFlatInTheTraceAndStillShades) {
     EXPECT_GT(double(shadedAlike) / double(pixels), 0.95) << "of the pixels hit alike shade alike";
 }
 
-// Bounded searches (SurfaceMaterial::boundedSearch, each layer's pyramid) on waves that keep to the
+// Bounded searches (SurfaceMaterial::boundedSearch, each layer's bounds) on waves that keep to the
 // middle of the depth, as the ocean's do, with the ocean's 8..40 samples: the hits keep the exact
 // intersection of the sum, the shadows agree with the unbounded search's, and fewer heights are
 // read (the steps are no longer; the depths above the path's maximum and below its minimum go).
 TEST_F(LayeredSurface, BoundedSearchesKeepTheHitsAndReadFewerHeights) {
-    const Layers l = makeLayers(cl(), true, 0.4);
+    const Layers l = makeLayers(cl(), 0.4);
     const SurfaceLayer layered[] = {{.textures = &l.surfaceA->textures(), .weight = kWeightA},
                                     {.textures = &l.surfaceB->textures(), .texcoordScale = 2.0f, .weight = kWeightB}};
     DirectionalLight light;

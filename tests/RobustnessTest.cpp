@@ -61,8 +61,8 @@ TEST_F(Robustness, BadTimeStepsAndDepthScalesChangeNothing) {
     EXPECT_EQ(water.time(), 0.02);
 }
 
-TEST_F(Robustness, TexelShadowsNeedThePyramidAndHoldOnlyTheirHeightsAndLight) {
-    // The texel shadows are the pyramid's walk: a surface without one refuses them by name. A bad
+TEST_F(Robustness, TexelShadowsNeedFittingBoundsAndHoldOnlyTheirHeightsAndLight) {
+    // The texel shadows are the bounds' walk: bounds of another size are refused by name. A bad
     // light is refused before anything is drawn and leaves the last texel shadows as they were;
     // they hold only the texels and the light they were drawn from (the exact tracer redraws them
     // when either changes).
@@ -72,23 +72,23 @@ TEST_F(Robustness, TexelShadowsNeedThePyramidAndHoldOnlyTheirHeightsAndLight) {
     ShadowLight bad = light;
     bad.penumbra = 2.0f;
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
-    SurfacePipeline flat(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = false}));
-    TexelShadowPass pass;
-    TexelShadows shadows;
-    std::string m = messageOf([&] { pass.draw(flat.textures(), light, 1, shadows); });
-    EXPECT_NE(m.find("height pyramid"), std::string::npos) << m;
-    EXPECT_EQ(shadows.texture(), 0u);
-
-    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
     surface.run(field.buffer());
     const SurfaceTextures& drawn = surface.textures();
-    pass.draw(drawn, light, 1, shadows);
+    TexelShadowPass pass;
+    TexelShadows shadows;
+    HeightBounds other(N / 2, N, EdgeMode::Wrap), bounds(drawn.config());
+    std::string m = messageOf([&] { pass.draw(drawn, other, light, 1, shadows); });
+    EXPECT_NE(m.find("height bounds are 16x32"), std::string::npos) << m;
+    EXPECT_EQ(shadows.texture(), 0u);
+
+    pass.draw(drawn, bounds, light, 1, shadows);
     ASSERT_NE(shadows.texture(), 0u);
     EXPECT_EQ(shadows.light(), light);
     EXPECT_TRUE(shadows.holds(drawn, light, 1));
     EXPECT_FALSE(shadows.holds(drawn, light, 2));
     EXPECT_FALSE(shadows.holds(drawn, ShadowLight::of({0.05f, 0.03f}, 2.0f), 1));
-    m = messageOf([&] { pass.draw(drawn, bad, 1, shadows); });
+    m = messageOf([&] { pass.draw(drawn, bounds, bad, 1, shadows); });
     EXPECT_NE(m.find("ShadowLight.penumbra"), std::string::npos) << m;
     EXPECT_EQ(shadows.light(), light);
     EXPECT_TRUE(shadows.holds(drawn, light, 1));
@@ -114,12 +114,13 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
                                        t.data()));
         return t;
     };
-    const auto config = SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true});
+    const auto config = SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false});
     SurfacePipeline reference(cl(), config), surface(cl(), config);
     for (SurfacePipeline* s : {&reference, &surface}) s->run(field.buffer());
     TexelShadowPass pass;
     TexelShadows referenceShadows, shadows;
-    pass.draw(reference.textures(), light, 1, referenceShadows); // from a clean state
+    HeightBounds referenceBounds(config.width, config.height, config.edges), bounds(N, N, EdgeMode::Wrap);
+    pass.draw(reference.textures(), referenceBounds, light, 1, referenceShadows); // from a clean state
     const std::vector<float> clean = texels(referenceShadows);
     ASSERT_GT(*std::max_element(clean.begin(), clean.end()), 0.1f) << "the light must cast some shadow";
 
@@ -137,7 +138,7 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     GLint boundBefore = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &boundBefore);
     TexelShadowPass fresh; // the same heights, a fresh pass: nothing built before
-    fresh.draw(surface.textures(), light, 1, shadows);
+    fresh.draw(surface.textures(), bounds, light, 1, shadows);
     GLint imageName = 0, imageAccess = 0, imageFormat = 0;
     glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &imageName);
     glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 0, &imageAccess);
@@ -206,11 +207,12 @@ TEST(TexelShadowStride, EverySampleWhereThatPaysElseTheFewestWithinThePixelBudge
 TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
     constexpr int N = 32;
     StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}}));
-    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false, .pyramid = true}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
     surface.run(field.buffer());
     const ShadowLight light = ShadowLight::of({0.05f, 0.02f}, 2.0f);
     TexelShadowPass pass;
     TexelShadows shadows;
+    HeightBounds bounds(surface.textures().config());
     SurfaceRenderer renderer;
     const Mesh plane(makePlane());
     RenderTarget target(64, 64);
@@ -219,7 +221,7 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
     sun.direction = {0.3f, 0.8f, 0.2f};
     const SurfaceMaterial material{.depthScale = 0.1f};
     for (const int stride : {3, 64, -2}) {
-        std::string m = messageOf([&] { pass.draw(surface.textures(), light, stride, shadows); });
+        std::string m = messageOf([&] { pass.draw(surface.textures(), bounds, light, stride, shadows); });
         EXPECT_NE(m.find("stride"), std::string::npos) << m;
         EXPECT_NE(m.find("32x32"), std::string::npos) << m;
         m = messageOf([&] {
@@ -232,7 +234,7 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
     }
     EXPECT_EQ(shadows.texture(), 0u);
     // A good one draws a 16x16 target.
-    pass.draw(surface.textures(), light, 2, shadows);
+    pass.draw(surface.textures(), bounds, light, 2, shadows);
     ASSERT_NE(shadows.texture(), 0u);
     EXPECT_EQ(shadows.stride(), 2);
     GLint width = 0;

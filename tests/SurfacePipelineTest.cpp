@@ -132,7 +132,7 @@ TEST_F(Pipeline, NormalsStoredForOneDepthDrawAsTheNormalsOfAnother) {
     EXPECT_GT(differs, 0.1) << "the depth drawn does not change the shading: the comparison above proves nothing";
 }
 
-TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
+TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndTheirBounds) {
     constexpr int N = 64;
     const auto heights = sumOfSines(N, {{0.25, 1, 2, 0.5}, {0.1, 3, -1, 0.0}});
     const std::string map = writeMap("pipeline_formats.exr", heights, N); // float: the heights as they are
@@ -142,7 +142,7 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
             const bool hasPyramid = format != SurfaceFormat::Unorm8;
             ImageSurface surface(cl(), {.maps = readSurfaceMaps(map, "", ""),
                                         .material = {.depthScale = 0.08f},
-                                        .surface = {.mipmaps = false, .pyramid = hasPyramid, .format = format, .transfer = path}});
+                                        .surface = {.mipmaps = false, .format = format, .transfer = path}});
             EXPECT_EQ(surface.transferPath(), path);
             const std::vector<float> texels = readSurface(surface.textures());
             // Each format's rounding: none, half floats near 1 (2^-11), half a step of 1/255 (the
@@ -154,7 +154,7 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
                 worst = std::max(worst, std::abs(stored - sobel[i]));
             }
             EXPECT_LE(worst, bound) << surfaceFormatName(format) << ", " << transferPathName(path);
-            ASSERT_EQ(surface.textures().pyramid() != 0, hasPyramid);
+            ASSERT_EQ(boundsRefusal(surface.textures().config()).empty(), hasPyramid);
             if (!hasPyramid) continue;
             // Every level where the device's layout holds it: the bounds of the heights as stored
             // (rounded to the format), which are what the tracers read.
@@ -163,7 +163,7 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
             const auto pyramid = pyramidReference(storedHeights, N, N);
             const SurfaceTextures& t = surface.textures();
             size_t offset = 0;
-            for (int level = 0; level < t.pyramidLevels(); ++level) {
+            for (int level = 0; level < HeightBounds(t.config()).levels(); ++level) {
                 const std::vector<float> stored = readPyramidLevel(t, level); // (max, min) pairs
                 EXPECT_EQ(stored, std::vector<float>(pyramid.begin() + offset, pyramid.begin() + offset + stored.size()))
                     << surfaceFormatName(format) << ", level " << level;
@@ -173,30 +173,13 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndThePyramid) {
         }
 }
 
-/// Sets HFX_GL_WORKAROUNDS for its lifetime, and puts back what was there.
-class WorkaroundsSet {
-public:
-    explicit WorkaroundsSet(const char* value) {
-        if (const char* old = std::getenv("HFX_GL_WORKAROUNDS")) old_ = old;
-        setenv("HFX_GL_WORKAROUNDS", value, 1);
-    }
-    ~WorkaroundsSet() {
-        if (old_) setenv("HFX_GL_WORKAROUNDS", old_->c_str(), 1);
-        else unsetenv("HFX_GL_WORKAROUNDS");
-    }
-    WorkaroundsSet(const WorkaroundsSet&) = delete;
-    WorkaroundsSet& operator=(const WorkaroundsSet&) = delete;
-
-private:
-    std::optional<std::string> old_;
-};
-
 TEST_F(Pipeline, ThePyramidGlBuildsFromTheTexelsIsTheComputeDevicesToTheBit) {
-    // BoundsPass builds the pyramid from what GL holds; on a CPU rasteriser a float32 surface's
-    // comes from the compute device (GlWorkarounds::pyramidFromCompute). Both, on an oblong field
-    // with isolated spikes and pits (a wrong corner or a lost lone row shows), in either layout
-    // and edge mode, must hold the same bounds to the bit, and where the field wraps the plain
-    // reference's.
+    // BoundsPass builds the bounds from what GL holds; on a CPU rasteriser a float32 surface's
+    // come from the compute device (GlWorkarounds::pyramidFromCompute, SurfacePipeline::bounds)
+    // while a draw reads them. Both, on an oblong field with isolated spikes and pits (a wrong
+    // corner or a lost lone row shows), in either layout and edge mode, must hold the same
+    // bounds to the bit, and where the field wraps the plain reference's. The device stops
+    // building them once no draw reads them.
     constexpr int W = 64, H = 16;
     std::mt19937 random(11);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -210,15 +193,28 @@ TEST_F(Pipeline, ThePyramidGlBuildsFromTheTexelsIsTheComputeDevicesToTheBit) {
         for (const EdgeMode edges : {EdgeMode::Wrap, EdgeMode::Clamp}) {
             std::vector<float> built[2];
             for (int fromCompute = 0; fromCompute < 2; ++fromCompute) {
-                const WorkaroundsSet set(fromCompute ? "pyramid-from-compute=1" : "pyramid-from-compute=0");
+                const WorkaroundsSet set(str("pyramid-atlas=", layout == PyramidLayout::Atlas ? 1 : 0,
+                                             ",pyramid-from-compute=", fromCompute).c_str());
                 StaticField field(cl(), W, H, edges, heights);
-                SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f,
-                                                                         {.mipmaps = false, .pyramid = true, .pyramidLayout = layout}));
+                SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false}));
                 surface.run(field.buffer());
-                ASSERT_EQ(surface.textures().pyramidCurrent(), fromCompute == 1) << "the device's pyramid was not uploaded";
-                for (int level = 0; level < surface.textures().pyramidLevels(); ++level) {
-                    const std::vector<float> stored = readPyramidLevel(surface.textures(), level);
+                ASSERT_EQ(surface.bounds() != nullptr, fromCompute == 1);
+                const HeightBounds levels(surface.textures().config(), layout);
+                if (fromCompute) {
+                    EXPECT_EQ(surface.bounds()->layout(), layout);
+                    EXPECT_FALSE(surface.bounds()->holds(surface.textures())) << "built before any draw read them";
+                    surface.bounds()->noteWanted(); // as the exact tracer does
+                    surface.run(field.buffer());
+                    ASSERT_TRUE(surface.bounds()->holds(surface.textures())) << "the device's bounds were not uploaded";
+                }
+                for (int level = 0; level < levels.levels(); ++level) {
+                    const std::vector<float> stored = fromCompute ? readBoundsLevel(*surface.bounds(), level)
+                                                                  : readPyramidLevel(surface.textures(), level, layout);
                     built[fromCompute].insert(built[fromCompute].end(), stored.begin(), stored.end());
+                }
+                if (fromCompute) {
+                    surface.run(field.buffer()); // read by no draw since
+                    EXPECT_FALSE(surface.bounds()->holds(surface.textures())) << "built though no draw read them";
                 }
             }
             const char* where = layout == PyramidLayout::Atlas ? "atlas" : "mip chain";

@@ -503,17 +503,28 @@ TEST_F(Techniques, FinitePatchSilhouettesDiscardRaysThatLeaveThePatch) {
     EXPECT_EQ(drawnClipped + outsideFree, drawnFree) << "clipping discarded more than the rays that left";
 }
 
-TEST_F(Techniques, HierarchicalNeedsAPyramidAndNamesIt) {
-    SurfaceTextures plain({.width = 16, .height = 16, .mipmaps = false});
+TEST_F(Techniques, HierarchicalNeedsSurfacesThatCanCarryBoundsAndSaysWhy) {
+    // Textures the bounds cannot halve, or whose heights round past them, are refused by name;
+    // any other surface is drawn, its bounds made by the tracer.
     SurfaceRenderer renderer;
     const Mesh plane(makePlane({}));
-    try {
-        renderer.draw(plane, glm::mat4(1.0f), plain, {}, Camera{}, {}, {.technique = Technique::Hierarchical});
-        FAIL() << "drew the hierarchical technique without a pyramid";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("pyramid"), std::string::npos) << e.what();
+    RenderTarget target(16, 16);
+    target.bind();
+    for (const auto& [config, why] : {std::pair{SurfaceTexturesConfig{.width = 48, .height = 32, .mipmaps = false},
+                                                "power-of-two sizes, got 48x32"},
+                                      std::pair{SurfaceTexturesConfig{.width = 16, .height = 16, .mipmaps = false,
+                                                                      .format = SurfaceFormat::Unorm8},
+                                                "unorm8"}}) {
+        const SurfaceTextures refused(config);
+        const std::string m = messageOf([&] {
+            renderer.draw(plane, glm::mat4(1.0f), refused, {}, Camera{}, {}, {.technique = Technique::Hierarchical});
+        });
+        EXPECT_NE(m.find("hier technique walks the surface's height pyramid"), std::string::npos) << m;
+        EXPECT_NE(m.find(why), std::string::npos) << m;
+        EXPECT_THROW(HeightBounds{config}, Error);
     }
-    EXPECT_THROW(SurfaceTextures({.width = 48, .height = 32, .pyramid = true}), Error);
+    const SurfaceTextures plain({.width = 16, .height = 16, .mipmaps = false});
+    renderer.draw(plane, glm::mat4(1.0f), plain, {}, Camera{}, {}, {.technique = Technique::Hierarchical});
     EXPECT_THROW(parseTechnique("cone"), Error);
     for (Technique t : kTechniques) EXPECT_EQ(parseTechnique(techniqueName(t)), t);
 }

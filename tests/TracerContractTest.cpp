@@ -151,7 +151,7 @@ vec2 hfx_bounds(ivec2 cell, int level) {
     const ivec2 n = max(hfx_size() >> level, ivec2(1));
     const ivec2 texel = mix(clamp(cell, ivec2(0), n - 1), (cell % n + n) % n, bvec2(u_wrap));
 #if HFX_PYRAMID_ATLAS
-    // The image's layout (SurfaceTextures::pyramidAtlasOrigin), counted level by level.
+    // The image's layout (HeightBounds::atlasOrigin), counted level by level.
     ivec2 origin = ivec2(level > 0 ? hfx_size().x : 0, 0);
     for (int k = 1; k < level; ++k) origin.y += max(hfx_size().y >> k, 1);
     return imageLoad(i_pyramid, origin + texel).rg;
@@ -246,17 +246,20 @@ enum class Accessors { Harness, Renderer };
 /// (u, v, depth fraction, 0), or with kShadowMain each shadow ray's shadow in x and, with the
 /// renderer's accessors, the reads it made in y. With the renderer's accessors and `texelShadows`,
 /// those texel shadows are read as a draw reads them (HFX_TEXEL_SHADOWS, their light's uniforms,
-/// surface/shadow.glsl).
+/// surface/shadow.glsl). The textures' bounds are built here in `layout`, as a harness of its own
+/// builds them (HeightBounds).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique,
                                       const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain,
                                       Accessors accessors = Accessors::Harness,
-                                      const TexelShadows* texelShadows = nullptr) {
+                                      const TexelShadows* texelShadows = nullptr,
+                                      PyramidLayout layout = PyramidLayout::Auto) {
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && texelShadows));
+    HeightBounds bounds(textures.config(), layout);
     std::vector<SourceFile> parts{kComputeHeader, surfaceShader("bindings.glsl"),
                                   {"harness_layout.comp",
-                                   str("#define HFX_PYRAMID_ATLAS ", textures.pyramidLayout() == PyramidLayout::Atlas ? 1 : 0, "\n"),
+                                   str("#define HFX_PYRAMID_ATLAS ", bounds.layout() == PyramidLayout::Atlas ? 1 : 0, "\n"),
                                    "test"}};
     if (texelShadows) parts.push_back({"harness_texels.comp", "#define HFX_TEXEL_SHADOWS 1\n", "test"});
     if (own) parts.push_back(kHarness);
@@ -278,9 +281,9 @@ std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique
         glNamedBufferStorage(block.id(), sizeof u, &u, 0);
         glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, block.id());
     }
-    BoundsPass().refresh(textures); // the pyramid, and the atlas layout's level-0 cells heights.glsl reads
+    BoundsPass().refresh(textures, bounds); // and the atlas layout's level-0 cells heights.glsl reads
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
-    textures.bindPyramid(0);
+    bounds.bind(0);
     glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, texelShadows ? texelShadows->texture() : 0);
     std::vector<glm::vec4> hits = runHarness(p, rays);
     glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, 0);
@@ -629,9 +632,10 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
     const glm::vec3 lights[] = {{0.6f, 0.55f, 0.3f}, {-0.2f, 0.3f, -0.9f}};
     constexpr int kRays = 1 << 18;
     TexelShadowPass pass;
+    HeightBounds bounds(N, N, EdgeMode::Wrap);
     for (const ShadowField& field : fields) {
         StaticField source(cl(), N, N, EdgeMode::Wrap, field.heights);
-        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .pyramid = true}));
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false}));
         const HeightFieldTracer exact(field.heights, N, N, EdgeMode::Wrap);
         for (size_t li = 0; li < std::size(lights); ++li) {
             for (const auto& [sharpness, stride] : {std::pair{2.0f, 1}, std::pair{8.0f, 1}, std::pair{2.0f, 2}, std::pair{8.0f, 2}}) {
@@ -644,7 +648,7 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                 surface.run(source.buffer());
                 const SurfaceTextures& textures = surface.textures();
                 TexelShadows shadows;
-                pass.draw(textures, *c, stride, shadows);
+                pass.draw(textures, bounds, *c, stride, shadows);
                 ASSERT_NE(shadows.texture(), 0u);
                 std::vector<float> texels(size_t(M) * M);
                 glGetTextureImage(shadows.texture(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
@@ -727,7 +731,7 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     constexpr int N = 128, stride = 2;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 3, 1, 0.0}, {0.12, -4, 7, 0.7}, {0.05, 11, -9, 0.3}});
     StaticField source(cl(), N, N, EdgeMode::Clamp, heights);
-    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, 0.1f, {.mipmaps = false, .pyramid = true}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, 0.1f, {.mipmaps = false}));
     const HeightFieldTracer exact(heights, N, N, EdgeMode::Clamp);
     DirectionalLight light;
     light.direction = {0.6f, 0.35f, 0.3f}; // towards +u, +v: the rays from the far strips cross the field
@@ -737,7 +741,8 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     surface.run(source.buffer());
     TexelShadowPass pass;
     TexelShadows shadows;
-    pass.draw(surface.textures(), *c, stride, shadows);
+    HeightBounds bounds(surface.textures().config());
+    pass.draw(surface.textures(), bounds, *c, stride, shadows);
     ASSERT_EQ(shadows.stride(), stride);
     std::mt19937 random(3);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -787,18 +792,18 @@ void main() {
                                   "test"};
 
 TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareAndOblongFields) {
-    // Every level lies inside the atlas image and apart from the others (SurfaceTextures::
-    // pyramidAtlasOrigin), and heights.glsl's read of a level's cell, wrapped from anywhere, is
+    // Every level lies inside the atlas image and apart from the others (HeightBounds::
+    // atlasOrigin), and heights.glsl's read of a level's cell, wrapped from anywhere, is
     // the CPU pyramid's in either layout (the atlas, the mip chain): fields wider than tall,
     // taller than wide, square, and one row high.
     std::mt19937 random(17);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (const auto& [W, H] : {std::pair{64, 16}, std::pair{16, 64}, std::pair{32, 32}, std::pair{128, 2}, std::pair{4, 256}}) {
-        const auto [atlasW, atlasH] = SurfaceTextures::pyramidAtlasSize(W, H);
+        const auto [atlasW, atlasH] = HeightBounds::atlasSize(W, H);
         const int levels = int(std::bit_width(unsigned(std::max(W, H))));
         std::vector<glm::ivec4> rects; // x, y, width, height
         for (int level = 0; level < levels; ++level) {
-            const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(W, H, level);
+            const auto [x, y] = HeightBounds::atlasOrigin(W, H, level);
             const glm::ivec4 r(x, y, std::max(W >> level, 1), std::max(H >> level, 1));
             EXPECT_TRUE(r.x >= 0 && r.y >= 0 && r.x + r.z <= atlasW && r.y + r.w <= atlasH)
                 << W << "x" << H << " level " << level << " at " << r.x << "," << r.y << " outside " << atlasW << "x" << atlasH;
@@ -811,8 +816,7 @@ TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareA
         for (float& h : heights) h = unit(random);
         StaticField field(cl(), W, H, EdgeMode::Wrap, heights);
         for (const PyramidLayout layout : {PyramidLayout::Atlas, PyramidLayout::MipChain}) {
-        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f,
-                                                                {.mipmaps = false, .pyramid = true, .pyramidLayout = layout}));
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false}));
         surface.run(field.buffer());
         const std::vector<float> reference = pyramidReference(heights, W, H);
         std::vector<glm::vec4> items;
@@ -830,7 +834,7 @@ TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareA
             offset += size_t(w) * h;
         }
         const std::vector<glm::vec4> read = traceInHarness(surface.textures(), Technique::Hierarchical, items, kPyramidReadMain,
-                                                           Accessors::Renderer);
+                                                           Accessors::Renderer, nullptr, layout);
         int wrong = 0;
         for (size_t i = 0; i < read.size(); ++i) wrong += glm::vec2(read[i]) != expected[i];
         EXPECT_EQ(wrong, 0) << W << "x" << H << (layout == PyramidLayout::Atlas ? ", atlas: " : ", mip chain: ") << wrong
@@ -867,17 +871,10 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
             for (float& h : first) h = unit(random);
             for (float& h : second) h = unit(random);
             StaticField a(cl(), W, H, edges, first), b(cl(), W, H, edges, second);
-            SurfacePipeline surface(cl(), SurfacePipelineConfig::of(a, 0.05f,
-                                                                    {.mipmaps = false,
-                                                                     .pyramid = true,
-                                                                     .pyramidLayout = PyramidLayout::Atlas,
-                                                                     .format = format}));
-            SurfacePipeline gathered(cl(), SurfacePipelineConfig::of(a, 0.05f,
-                                                                     {.mipmaps = false,
-                                                                      .pyramid = true,
-                                                                      .pyramidLayout = PyramidLayout::MipChain,
-                                                                      .format = format}));
+            SurfacePipeline surface(cl(), SurfacePipelineConfig::of(a, 0.05f, {.mipmaps = false, .format = format}));
+            SurfacePipeline gathered(cl(), SurfacePipelineConfig::of(a, 0.05f, {.mipmaps = false, .format = format}));
             BoundsPass cells;
+            HeightBounds atlas(surface.textures().config(), PyramidLayout::Atlas);
             // Cells from beyond the field on every side: [-W, 2W) x [-H, 2H).
             std::vector<glm::vec4> items;
             std::vector<glm::ivec2> cellsAsked;
@@ -891,7 +888,7 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                 std::vector<glm::vec4> texels(size_t(W) * H), read(size_t(W) * H);
                 const SurfaceTextures& textures = surface.textures();
                 glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(glm::vec4)), texels.data());
-                glGetTextureImage(textures.cells(), 0, GL_RGBA, GL_FLOAT, GLsizei(read.size() * sizeof(glm::vec4)), read.data());
+                glGetTextureImage(atlas.cells(), 0, GL_RGBA, GL_FLOAT, GLsizei(read.size() * sizeof(glm::vec4)), read.data());
                 auto h = [&](int i, int j) {
                     i = wrapsU(edges) ? i % W : std::min(i, W - 1);
                     j = wrapsV(edges) ? j % H : std::min(j, H - 1);
@@ -911,7 +908,8 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
                 for (const SurfacePipeline* s : {&surface, &gathered}) {
                     const std::vector<glm::vec4> got =
                         traceInHarness(s->textures(), Technique::Hierarchical, items, kCellReadMain,
-                                       Accessors::Renderer);
+                                       Accessors::Renderer, nullptr,
+                                       s == &surface ? PyramidLayout::Atlas : PyramidLayout::MipChain);
                     int off = 0;
                     for (size_t k = 0; k < got.size(); ++k) off += got[k] != samples(cellsAsked[k]);
                     EXPECT_EQ(off, 0) << surfaceFormatName(format) << ", " << edgeModeName(edges) << ", " << which
@@ -921,16 +919,16 @@ TEST_F(TracerContract, TheCellsHoldTheSamplesAGatherReadsAndFollowEveryUpload) {
             };
             surface.run(a.buffer());
             gathered.run(a.buffer());
-            EXPECT_FALSE(surface.textures().cellsCurrent());
-            cells.refresh(surface.textures());
-            EXPECT_TRUE(surface.textures().cellsCurrent());
+            EXPECT_FALSE(atlas.cellsHold(surface.textures()));
+            cells.refresh(surface.textures(), atlas);
+            EXPECT_TRUE(atlas.cellsHold(surface.textures()));
             check("first heights");
             surface.run(b.buffer());
             surface.run(b.buffer()); // both of the pipeline's texture pairs
             gathered.run(b.buffer());
             gathered.run(b.buffer());
-            EXPECT_FALSE(surface.textures().cellsCurrent()) << "an upload must leave the cells stale";
-            cells.refresh(surface.textures());
+            EXPECT_FALSE(atlas.cellsHold(surface.textures())) << "an upload must leave the cells stale";
+            cells.refresh(surface.textures(), atlas);
             check("second heights");
         }
 }
@@ -968,7 +966,7 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
     const auto smooth = sumOfSines(N / 2, {{0.3, 1, 2, 0.8}, {0.12, 3, -2, 0.1}});
     for (const PyramidLayout layout : {PyramidLayout::Atlas, PyramidLayout::MipChain})
     for (const EdgeMode edges : {EdgeMode::Wrap, EdgeMode::Clamp}) {
-        const SurfaceOptions options{.mipmaps = true, .pyramid = true, .pyramidLayout = layout};
+        const SurfaceOptions options{.mipmaps = true};
         StaticField fieldA(cl(), N, N, edges, noise), fieldB(cl(), N / 2, N / 2, EdgeMode::Wrap, smooth);
         SurfacePipeline a(cl(), SurfacePipelineConfig::of(fieldA, 0.05f, options));
         SurfacePipeline b(cl(), SurfacePipelineConfig::of(fieldB, 0.05f, options));
@@ -1002,13 +1000,14 @@ TEST_F(TracerContract, TheSearchBoundsHoldEveryHeightTheSearchReadsOnItsSegment)
             {{"HFX_LAYERS", std::to_string(layers)},
              {"HFX_BOUNDED_SEARCH", "1"},
              {"HFX_PYRAMID_ATLAS", layout == PyramidLayout::Atlas ? "1" : "0"}});
-        BoundsPass bounds; // binds the surface it builds from to unit HFX_UNIT_SURFACE: first
-        bounds.refresh(a.textures(), false);
-        bounds.refresh(b.textures(), false);
+        BoundsPass pass; // binds the surface it builds from to unit HFX_UNIT_SURFACE: first
+        HeightBounds boundsA(a.textures().config(), layout), boundsB(b.textures().config(), layout);
+        pass.refresh(a.textures(), boundsA, false);
+        pass.refresh(b.textures(), boundsB, false);
         glBindTextureUnit(HFX_UNIT_SURFACE, a.textures().surface());
-        a.textures().bindPyramid(0);
+        boundsA.bind(0);
         glBindTextureUnit(HFX_UNIT_SURFACE1, b.textures().surface());
-        b.textures().bindPyramid(1);
+        boundsB.bind(1);
         glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, block.id());
         const std::vector<glm::vec4> result = runHarness(p, segments);
         glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, 0);

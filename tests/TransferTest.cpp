@@ -17,11 +17,13 @@ namespace {
 
 class Transfer : public DeviceTest {};
 
-/// Every texture a surface has, as GL holds it, by name: the surface's level 0, and where they
-/// exist the pyramid, the albedo and the shading channels (bytes, as floats).
+/// Every texture an effect's surface has, as GL holds it, by name: the surface's level 0, and
+/// where they exist the height bounds (the device's where it built them, else GL's from the
+/// texels), the albedo and the shading channels (bytes, as floats).
 using Streams = std::vector<std::pair<std::string, std::vector<float>>>;
 
-Streams allTextures(const SurfaceTextures& t) {
+Streams allTextures(const Effect& effect) {
+    const SurfaceTextures& t = effect.textures();
     Streams out{{"texels", readSurface(t)}};
     auto append = [&](const char* name, GLuint texture, GLenum format, GLenum type, size_t values) {
         if (!texture) return;
@@ -36,7 +38,13 @@ Streams allTextures(const SurfaceTextures& t) {
         out.emplace_back(name, std::move(v));
     };
     const size_t texels = size_t(t.config().width) * t.config().height;
-    for (int level = 0; level < t.pyramidLevels(); ++level) out.emplace_back(str("pyramid level ", level), readPyramidLevel(t, level));
+    if (const HeightBounds* device = effect.layers()[0].bounds; device && device->holds(t)) {
+        for (int level = 0; level < device->levels(); ++level)
+            out.emplace_back(str("device's bounds, level ", level), readBoundsLevel(*device, level));
+    } else if (boundsRefusal(t.config()).empty()) {
+        for (int level = 0; level < HeightBounds(t.config()).levels(); ++level)
+            out.emplace_back(str("bounds level ", level), readPyramidLevel(t, level));
+    }
     append("albedo", t.albedo(), GL_RGBA, GL_UNSIGNED_BYTE, texels * 4);
     append("shading channels", t.channels(), GL_RGBA, GL_UNSIGNED_BYTE, texels * 4);
     return out;
@@ -63,7 +71,8 @@ std::string difference(const Streams& a, const Streams& b) {
 
 // Every path this device can take (GlSharing only where the context shares GL) delivers the same
 // textures, bit for bit, in every format: the sine waves (texels alone) and the decal wall (texels,
-// pyramid, albedo and shading channels), frame after frame,
+// height bounds, read by a draw each frame so that a CPU rasteriser's device builds them, albedo
+// and shading channels), frame after frame,
 // sequential and overlapped. The first path runs twice: where its two runs differ, the device's
 // kernels are not deterministic, and no path is to blame.
 TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
@@ -77,19 +86,22 @@ TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
             effects.push_back(std::make_unique<SineWavesEffect>(
                 cl(), SineWavesConfig{.waves = {.size = 64}, .surface = {.format = format, .transfer = path}}));
         for (TransferPath path : paths) {
-            const bool pyramid = format != SurfaceFormat::Unorm8;
             auto wall = std::make_unique<DecalWallEffect>(
-                cl(), DecalWallConfig{.bricks = {.size = 64}, .surface = {.pyramid = pyramid, .format = format, .transfer = path}});
+                cl(), DecalWallConfig{.bricks = {.size = 64}, .surface = {.format = format, .transfer = path}});
             wall->shoot(0.4, 0.6);
             effects.push_back(std::move(wall));
         }
         const size_t n = paths.size();
+        auto readByADraw = [&] { // as the exact tracer notes it: the device builds them the next frame
+            for (auto& e : effects)
+                if (HeightBounds* b = e->layers()[0].bounds) b->noteWanted();
+        };
         auto compare = [&](const char* how, int frame) {
             for (size_t user = 0; user < 2; ++user) {
-                const Streams reference = allTextures(effects[user * n]->textures());
+                const Streams reference = allTextures(*effects[user * n]);
                 for (size_t p = 1; p < n; ++p) {
                     EXPECT_EQ(effects[user * n + p]->transferPath(), paths[p]);
-                    EXPECT_EQ(difference(allTextures(effects[user * n + p]->textures()), reference), "")
+                    EXPECT_EQ(difference(allTextures(*effects[user * n + p]), reference), "")
                         << (user ? "decal wall, " : "sine waves, ") << surfaceFormatName(format) << ", "
                         << transferPathName(paths[p]) << (p + 1 == n ? " (its second run)" : "") << " against "
                         << transferPathName(paths[0]) << ", " << how << " frame " << frame;
@@ -97,11 +109,13 @@ TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
             }
         };
         for (int frame = 0; frame < 3; ++frame) {
+            readByADraw();
             for (auto& e : effects) e->update(0.1);
             compare("sequential", frame);
         }
         // Overlapped: the next field's kernels (and the staged reads) run while this one is read.
         for (int frame = 0; frame < 3; ++frame) {
+            readByADraw();
             for (auto& e : effects) e->beginUpdate(0.1);
             for (auto& e : effects) e->endUpdate();
             compare("overlapped", frame);
@@ -110,9 +124,9 @@ TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
         // a stale buffer would still match above.
         static_cast<DecalWallEffect&>(*effects.back()).shoot(0.7, 0.2);
         for (size_t i = 0; i < effects.size(); i += n) {
-            const Streams before = allTextures(effects[i + n - 1]->textures());
+            const Streams before = allTextures(*effects[i + n - 1]);
             effects[i + n - 1]->update(0.1);
-            EXPECT_NE(allTextures(effects[i + n - 1]->textures()), before) << surfaceFormatName(format);
+            EXPECT_NE(allTextures(*effects[i + n - 1]), before) << surfaceFormatName(format);
         }
     }
 }

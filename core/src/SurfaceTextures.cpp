@@ -1,8 +1,6 @@
 #include "hfx/core/SurfaceTextures.h"
 
-#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
-#include "hfx/core/GlRenderer.h"
 
 #include <algorithm>
 #include <atomic>
@@ -17,13 +15,8 @@ namespace hfx {
 void SurfaceTexturesConfig::validate() const {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         throw Error(str("surface size must be in 1..16384, got ", width, "x", height));
-    if (pyramid && (!std::has_single_bit(unsigned(width)) || !std::has_single_bit(unsigned(height))))
-        throw Error(str("a surface with a height pyramid needs power-of-two sizes, got ", width, "x", height));
     if (!(normalDepth > 0.0f) || !std::isfinite(normalDepth))
         throw Error(str("SurfaceTexturesConfig.normalDepth must be positive and finite, got ", normalDepth));
-    if (pyramid && format == SurfaceFormat::Unorm8)
-        throw Error("a surface with a height pyramid needs a float format (float32 or float16): unorm8 "
-                    "heights round up to 1/510 above the pyramid's bound and the hierarchical tracer would miss");
 }
 
 namespace {
@@ -81,83 +74,6 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     for (int level = 0; level < levels_; ++level)
         HFX_GL_CHECK(glClearTexImage(channels_.id(), level, GL_RGBA, GL_UNSIGNED_BYTE, open));
     uploadTexels(flatTexels(config.format, static_cast<size_t>(config.width) * config.height).data());
-    if (config.pyramid) {
-        layout_ = config.pyramidLayout != PyramidLayout::Auto ? config.pyramidLayout
-                  : glWorkarounds(currentGlRenderer()).pyramidAtlas ? PyramidLayout::Atlas
-                                                                    : PyramidLayout::MipChain;
-        pyramid_ = GlTexture::create();
-        pyramidLevels_ = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(config.width, config.height))));
-        if (layout_ == PyramidLayout::Atlas) {
-            const auto [atlasWidth, atlasHeight] = pyramidAtlasSize(config.width, config.height);
-            HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), 1, GL_RG32F, atlasWidth, atlasHeight));
-        } else {
-            HFX_GL_CHECK(glTextureStorage2D(pyramid_.id(), pyramidLevels_, GL_RG32F, config.width, config.height));
-            glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAX_LEVEL, pyramidLevels_ - 1);
-        }
-        // A mipmapped filter for the mip chain: a texelFetch past the base level is defined only
-        // on a texture complete as a mip chain.
-        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MIN_FILTER,
-                            layout_ == PyramidLayout::MipChain ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
-        glTextureParameteri(pyramid_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
-}
-
-std::pair<int, int> SurfaceTextures::pyramidAtlasOrigin(int width, int height, int level) {
-    if (level == 0) return {0, 0};
-    // Levels 1, 2, ... stacked in a column right of level 0: level k starts below levels 1..k-1,
-    // whose heights are height >> 1, >> 2, ... and 1 each once the halving reaches 1.
-    const int above = level - 1, halvings = std::countr_zero(static_cast<unsigned>(height));
-    return {width, height - std::max(height >> above, 1) + std::max(0, above - halvings)};
-}
-
-std::pair<int, int> SurfaceTextures::pyramidAtlasSize(int width, int height) {
-    const int levels = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(width, height))));
-    const auto [x, y] = pyramidAtlasOrigin(width, height, levels - 1);
-    return {width + std::max(width >> 1, 1), std::max(height, y + 1)};
-}
-
-GLuint SurfaceTextures::cells() const {
-    if (pyramid_.id() && layout_ == PyramidLayout::Atlas && !cells_.id()) { // allocated by the first reader: layers never traced by hier have none
-        cells_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(cells_.id(), 1, GL_RGBA32F, config_.width, config_.height));
-        cellsVersion_ = 0;
-    }
-    return cells_.id();
-}
-
-GLuint SurfaceTextures::pyramidUnit(int layer) {
-    // heights.glsl's s_pyramid, s_pyramid1..3.
-    static constexpr GLuint kUnits[] = {HFX_UNIT_PYRAMID, HFX_UNIT_PYRAMID1, HFX_UNIT_PYRAMID2, HFX_UNIT_PYRAMID3};
-    if (layer < 0 || layer > 3) throw Error(str("pyramidUnit: layer must be 0 to 3, got ", layer));
-    return kUnits[layer];
-}
-
-void SurfaceTextures::bindPyramid(int layer) const {
-    if (!pyramid_.id()) throw Error("bindPyramid: these surface textures were made without a pyramid");
-    if (!pyramidCurrent())
-        throw Error("bindPyramid: the pyramid is older than the texels (BoundsPass::refresh builds it from them)");
-    if (layout_ == PyramidLayout::MipChain)
-        glBindTextureUnit(pyramidUnit(layer), pyramid_.id());
-    else
-        HFX_GL_CHECK(glBindImageTexture(GLuint(HFX_IMAGE_PYRAMID + layer), pyramid_.id(), 0, GL_FALSE, 0, GL_READ_ONLY,
-                                        GL_RG32F));
-}
-
-void SurfaceTextures::uploadPyramid(const float* levels) {
-    if (!pyramid_.id()) throw Error("uploadPyramid: these surface textures were made without a pyramid");
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    size_t offset = 0;
-    for (int level = 0; level < pyramidLevels_; ++level) {
-        const int w = std::max(config_.width >> level, 1), h = std::max(config_.height >> level, 1);
-        if (layout_ == PyramidLayout::MipChain) {
-            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), level, 0, 0, w, h, GL_RG, GL_FLOAT, levels + offset));
-        } else {
-            const auto [x, y] = pyramidAtlasOrigin(config_.width, config_.height, level);
-            HFX_GL_CHECK(glTextureSubImage2D(pyramid_.id(), 0, x, y, w, h, GL_RG, GL_FLOAT, levels + offset));
-        }
-        offset += 2 * static_cast<size_t>(w) * h;
-    }
-    pyramidBuilt();
 }
 
 void SurfaceTextures::uploadTexels(const void* texels) {
@@ -165,7 +81,7 @@ void SurfaceTextures::uploadTexels(const void* texels) {
     HFX_GL_CHECK(glTextureSubImage2D(surface_.id(), 0, 0, 0, config_.width, config_.height, GL_RGBA,
                         texelType(config_.format), texels));
     if (levels_ > 1) HFX_GL_CHECK(glGenerateTextureMipmap(surface_.id()));
-    ++texelsVersion_; // the cells are stale
+    ++texelsVersion_; // whatever was derived from the texels is stale
 }
 
 void SurfaceTextures::uploadAlbedo(const unsigned char* rgba) {

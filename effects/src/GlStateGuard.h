@@ -92,7 +92,7 @@ private:
     GLboolean depthTest_;
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
-    // the atlas pyramids of layers 0-3 (SurfaceTextures::bindPyramid), layer 0's cells, BoundsPass's two
+    // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two
     static constexpr GLuint kImages = HFX_IMAGE_BOUNDS + 1;
     static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages,
                   "hfx/core/Bindings.h: the guard saves every image unit");

@@ -22,34 +22,23 @@ void OceanEffectConfig::validate() const {
         throw Error(
             str("OceanEffectConfig.foamCellMeters must be in [0, 100] (0: no bubbles), got ",
                 foamCellMeters));
-    if (surface.pyramid && ocean.cascades > 1)
-        throw Error(str("OceanEffectConfig: a height pyramid (the hier technique) traces one grid; the ocean has ",
-                        ocean.cascades, " cascades (set ocean.cascades = 1 for hier)"));
 }
 
 OceanEffect::OceanEffect(ClContext& cl, const OceanEffectConfig& config)
     : Effect(validated(config).material), ocean_(cl, config.ocean),
       exaggeration_(config.reliefExaggeration), windBlendSeconds_(config.windBlendSeconds),
       untracedShare_(config.untracedShare), foamCellMeters_(config.foamCellMeters) {
-    const std::vector<bool> traced = tracedCascades(cascadeWeights());
     for (int i = 0; i < ocean_.cascadeCount(); ++i) {
         // Each cascade's normals for its own relief: 8 sigma_i metres over its patch, in its own
         // texcoords, so the renderer adds physical slopes (SurfaceUniforms::layerSlope).
         const OceanCascade& c = ocean_.cascade(i);
         const float depth = std::max(8.0f * c.sigma / c.patchMeters, 1e-6f);
-        // The cascades traced now get a bounds pyramid each where the material bounds its
-        // searches (unorm8 takes none: its rounding exceeds the bounds' margin). A sea whose wind
-        // later brings another cascade into the trace, or whose material turns the bounds on
-        // later, draws with unbounded searches (SurfaceRenderer).
-        SurfaceOptions options = config.surface;
-        options.pyramid = options.pyramid || (config.material.boundedSearch && traced[size_t(i)] &&
-                                              options.format != SurfaceFormat::Unorm8);
         surfaces_.push_back(std::make_unique<SurfacePipeline>(
             cl, SurfacePipelineConfig{.width = ocean_.config().size,
                                       .height = ocean_.config().size,
                                       .edges = EdgeMode::Wrap,
                                       .normalDepth = depth,
-                                      .options = options}));
+                                      .options = config.surface}));
     }
     material_.depthScale = physicalDepthScale();
     updateFoamLook(0.0);
@@ -100,7 +89,8 @@ std::vector<SurfaceLayer> OceanEffect::layers() const {
                           .texcoordScale = ocean_.config().patchMeters / c.patchMeters,
                           .weight = weights[size_t(i)],
                           .traced = traced[size_t(i)],
-                          .restHeight = 0.5f});
+                          .restHeight = 0.5f,
+                          .bounds = surfaces_[size_t(i)]->bounds()});
     }
     return layers;
 }

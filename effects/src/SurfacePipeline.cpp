@@ -36,8 +36,6 @@ SurfaceTexturesConfig texturesConfig(const SurfacePipelineConfig& c) {
             .height = c.height,
             .mipmaps = c.options.mipmaps,
             .edges = c.edges,
-            .pyramid = c.options.pyramid,
-            .pyramidLayout = c.options.pyramidLayout,
             .format = c.options.format,
             .normalDepth = c.normalDepth};
 }
@@ -78,9 +76,11 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
                 std::make_unique<SurfaceTextures>(texturesConfig(config))} {
     // A float32 surface's stored heights are the device's: where GL builds the bounds slower than
     // the device and the copy (GlWorkarounds::pyramidFromCompute), they come from the device.
-    uploadsPyramid_ = config.options.pyramid && config.options.format == SurfaceFormat::Float32 &&
-                      glWorkarounds(currentGlRenderer()).pyramidFromCompute;
-    if (uploadsPyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl, config.width, config.height, config.edges);
+    boundsFromDevice_ = config.options.format == SurfaceFormat::Float32 &&
+                        glWorkarounds(currentGlRenderer()).pyramidFromCompute &&
+                        boundsRefusal(textures_[0]->config()).empty();
+    if (boundsFromDevice_)
+        for (auto& b : bounds_) b = std::make_unique<HeightBounds>(textures_[0]->config()); // storage on first upload
     if (config.options.format != SurfaceFormat::Float32)
         packer_ = std::make_unique<SurfacePacker>(cl, config.width, config.height, config.options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);
@@ -118,6 +118,7 @@ void SurfacePipeline::begin(StageTiming timing) {
     // whatever it enqueued wrote nothing GL reads.
     state_ = State::Begun;
     timing_ = timing;
+    boundsThisFrame_ = false;
     albedo_ = cl::Buffer();
     channels_ = cl::Buffer();
     times_ = {};
@@ -132,7 +133,12 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     sobel_.run(heights);
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
-    if (uploadsPyramid_) pyramid_->build(heights);
+    // Either pair's bounds read since the last frame: the device goes on building them.
+    boundsThisFrame_ = boundsFromDevice_ && (bounds_[0]->takeWanted() | bounds_[1]->takeWanted());
+    if (boundsThisFrame_) {
+        if (!pyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
+        pyramid_->build(heights);
+    }
     state_ = State::Derived;
 }
 
@@ -151,7 +157,7 @@ void SurfacePipeline::submit(const cl::Buffer* albedo, const cl::Buffer* channel
         const size_t texels = size_t(config_.width) * config_.height;
         const cl::Buffer& source = packer_ ? packer_->output() : sobel_.output();
         streams_->enqueue(StreamTransfer::Texels, source, texelBytes(config_.options.format) * texels);
-        if (uploadsPyramid_)
+        if (boundsThisFrame_)
             streams_->enqueue(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float));
         if (albedo_()) streams_->enqueue(StreamTransfer::Albedo, albedo_, 4 * texels);
         if (channels_()) streams_->enqueue(StreamTransfer::Channels, channels_, 4 * texels);
@@ -212,10 +218,10 @@ void SurfacePipeline::finish() {
         uploadStream(StreamTransfer::Texels, source, bytes, "uploading the surface",
                      [&](const void* from) { back.uploadTexels(from); });
     }
-    if (uploadsPyramid_)
+    if (boundsThisFrame_)
         uploadStream(StreamTransfer::Pyramid, pyramid_->buffer(), pyramid_->totalTexels() * 2 * sizeof(float),
-                     "uploading the pyramid",
-                     [&](const void* levels) { back.uploadPyramid(static_cast<const float*>(levels)); });
+                     "uploading the height bounds",
+                     [&](const void* levels) { bounds_[1 - front_]->upload(levels, back); });
     if (albedo_())
         uploadStream(StreamTransfer::Albedo, albedo_, 4 * texels, "uploading the albedo",
                      [&](const void* rgba) { back.uploadAlbedo(static_cast<const unsigned char*>(rgba)); });

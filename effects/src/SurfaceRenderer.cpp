@@ -230,10 +230,6 @@ void validateLayers(std::span<const SurfaceLayer> layers, const TechniqueInfo& t
             if (l.textures->config().edges != EdgeMode::Wrap)
                 throw Error(str("surface layer ", i, " does not tile (edges ", edgeModeName(l.textures->config().edges),
                                 "): the layers of a surface repeat at their own scales"));
-            if (l.textures->pyramid() && layers[0].textures->pyramid() &&
-                l.textures->pyramidLayout() != layers[0].textures->pyramidLayout())
-                throw Error(str("surface layer ", i, "'s pyramid is laid out otherwise than layer 0's ",
-                                "(PyramidLayout): a surface's layers share one layout"));
             if (l.textures->config().format != layers[0].textures->config().format)
                 throw Error(str("surface layer ", i, " is ", surfaceFormatName(l.textures->config().format),
                                 ", layer 0 ", surfaceFormatName(layers[0].textures->config().format),
@@ -245,9 +241,9 @@ void validateLayers(std::span<const SurfaceLayer> layers, const TechniqueInfo& t
     if (technique.needsPyramid && layers.size() > 1)
         throw Error(str("the ", technique.name, " technique traces one grid; a layered surface (", layers.size(),
                         " layers) needs another technique"));
-    if (technique.needsPyramid && !layers[0].textures->pyramid())
-        throw Error(str("the ", technique.name, " technique needs surface textures with a height pyramid "
-                        "(SurfaceOptions::pyramid, SurfaceTexturesConfig::pyramid)"));
+    if (technique.needsPyramid)
+        if (const std::string why = boundsRefusal(layers[0].textures->config()); !why.empty())
+            throw Error(str("the ", technique.name, " technique walks the surface's height pyramid, and ", why));
 }
 } // namespace
 
@@ -324,7 +320,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         if (!l.traced) u.untracedHeight += l.weight * l.restHeight;
     }
     const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
-    // The exact tracer's data and passes, and the pyramids of a bounded search, as it decides.
+    // The exact tracer's data and passes, and the bounds of a bounded search, as it decides.
     const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, options,
                                                 caster != nullptr, u);
     const ShaderProgram& p = program(options, {.shading = material.shading,

@@ -142,7 +142,7 @@ float hfx_layers_height(vec2 uv, float level) {
 ivec2 hfx_size() { return textureSize(s_surface, 0); }
 
 // A pyramid cell's texel at a level whose last texel is `last`: wrapped or clamped as the field's
-// edges are. The pyramid's sizes are powers of two (SurfaceTexturesConfig::pyramid), so a wrap is
+// edges are. The pyramid's sizes are powers of two (HeightBounds), so a wrap is
 // a bitwise and, negative cells included (two's complement), and a clamp after it changes nothing;
 // a clamping axis ands with -1 (all bits). integer % has no vector form on a CPU rasteriser.
 ivec2 hfx_pyramid_texel(ivec2 cell, ivec2 last) {
@@ -157,7 +157,7 @@ ivec2 hfx_field_texel(ivec2 cell, int level) {
 }
 
 #if HFX_PYRAMID_ATLAS
-// Where a level's texel (0, 0) lies in the pyramid's image (SurfaceTextures::pyramidAtlasOrigin):
+// Where a level's texel (0, 0) lies in the pyramid's image (HeightBounds::atlasOrigin):
 // level 0 at the origin, level 1 at (width, 0), each further level below the one before.
 ivec2 hfx_atlas_origin(ivec2 size, int level) {
     const int above = max(level - 1, 0);

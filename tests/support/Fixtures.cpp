@@ -116,19 +116,23 @@ std::string shaderSourceDir() {
     return env && *env ? env : HFX_SHADER_SOURCE_DIR;
 }
 
-std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level) {
-    BoundsPass().refresh(textures, false); // what a draw would read: built from the current texels
-    const SurfaceTexturesConfig& c = textures.config();
-    const int w = std::max(c.width >> level, 1), h = std::max(c.height >> level, 1);
+std::vector<float> readBoundsLevel(const HeightBounds& bounds, int level) {
+    const int w = std::max(bounds.width() >> level, 1), h = std::max(bounds.height() >> level, 1);
     std::vector<float> stored(2 * size_t(w) * size_t(h));
     const GLsizei bytes = GLsizei(stored.size() * sizeof(float));
-    if (textures.pyramidLayout() == PyramidLayout::MipChain) {
-        glGetTextureImage(textures.pyramid(), level, GL_RG, GL_FLOAT, bytes, stored.data());
+    if (bounds.layout() == PyramidLayout::MipChain) {
+        glGetTextureImage(bounds.pyramid(), level, GL_RG, GL_FLOAT, bytes, stored.data());
     } else {
-        const auto [x, y] = SurfaceTextures::pyramidAtlasOrigin(c.width, c.height, level);
-        glGetTextureSubImage(textures.pyramid(), 0, x, y, 0, w, h, 1, GL_RG, GL_FLOAT, bytes, stored.data());
+        const auto [x, y] = HeightBounds::atlasOrigin(bounds.width(), bounds.height(), level);
+        glGetTextureSubImage(bounds.pyramid(), 0, x, y, 0, w, h, 1, GL_RG, GL_FLOAT, bytes, stored.data());
     }
     return stored;
+}
+
+std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level, PyramidLayout layout) {
+    HeightBounds bounds(textures.config(), layout);
+    BoundsPass().refresh(textures, bounds, false); // what a draw would read: built from the current texels
+    return readBoundsLevel(bounds, level);
 }
 
 std::vector<float> readSurface(const SurfaceTextures& textures) {

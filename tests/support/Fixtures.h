@@ -7,11 +7,14 @@
 #include "hfx/platform/GlContext.h"
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/core/SurfaceTextures.h"
+#include "hfx/effects/tracer/HeightBounds.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +33,24 @@ protected:
     void TearDown() override; ///< fails the test where it left a GL error unchecked
 };
 
+/// Sets HFX_GL_WORKAROUNDS for its lifetime, and puts back what was there.
+class WorkaroundsSet {
+public:
+    explicit WorkaroundsSet(const char* value) {
+        if (const char* old = std::getenv("HFX_GL_WORKAROUNDS")) old_ = old;
+        setenv("HFX_GL_WORKAROUNDS", value, 1);
+    }
+    ~WorkaroundsSet() {
+        if (old_) setenv("HFX_GL_WORKAROUNDS", old_->c_str(), 1);
+        else unsetenv("HFX_GL_WORKAROUNDS");
+    }
+    WorkaroundsSet(const WorkaroundsSet&) = delete;
+    WorkaroundsSet& operator=(const WorkaroundsSet&) = delete;
+
+private:
+    std::optional<std::string> old_;
+};
+
 /// GL and CL both (scenes); skips if either is missing.
 class DeviceTest : public ::testing::Test {
 protected:
@@ -41,9 +62,12 @@ protected:
 /// Level 0 of a surface texture as GL holds it: width*height float4 (normal.xyz, height), row 0
 /// at v = 0. Needs the texture's context current.
 std::vector<float> readSurface(const SurfaceTextures& textures);
-/// The pyramid's level `level` as a draw reads it (BoundsPass builds it from the current texels
-/// first), (max, min) pairs row by row, in either layout.
-std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level);
+/// Level `level` of `bounds` as they hold it, (max, min) pairs row by row, in either layout.
+std::vector<float> readBoundsLevel(const HeightBounds& bounds, int level);
+/// The same of bounds in `layout` as a draw reads them, built by BoundsPass from the textures'
+/// current texels.
+std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level,
+                                    PyramidLayout layout = PyramidLayout::Auto);
 
 /// The first `count` floats of a device buffer (waits for the queue).
 std::vector<float> readFloats(ClContext& cl, const cl::Buffer& buffer, size_t count);

@@ -112,17 +112,19 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
     : size_(size), exact_(heights, size, size, EdgeMode::Wrap), field_(cl, size, size, EdgeMode::Wrap, heights),
       surface_(cl, SurfacePipelineConfig::of(field_, normalDepth,
                                              // mip level 0 only: the figures speak of the search, not the filter
-                                             {.mipmaps = false,
-                                              .pyramid = format != SurfaceFormat::Unorm8,
-                                              .pyramidLayout = layout,
-                                              .format = format})),
+                                             {.mipmaps = false, .format = format})),
       plane_(makePlane({.size = kPlaneSize})), timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})),
-      cl_(cl) {
+      cl_(cl), layout_(resolvedLayout(layout)) {
     surface_.run(field_.buffer());
 }
 
+HeightBounds& AccuracyProbe::bounds() {
+    if (!bounds_) bounds_ = std::make_unique<HeightBounds>(textures().config(), layout_);
+    return *bounds_;
+}
+
 std::optional<ShadowLight> AccuracyProbe::shadowLight(const AccuracyConfig& config) const {
-    if (!config.shadows || textures().pyramid() == 0) return std::nullopt;
+    if (!config.shadows || !boundsRefusal(textures().config()).empty()) return std::nullopt;
     DirectionalLight l;
     l.direction = config.light;
     return flatSurfaceLight(SurfaceFrame::ofPlane({.size = kPlaneSize}), l, materialOf(config));
@@ -133,11 +135,11 @@ GlTime AccuracyProbe::timeTexelShadows(const AccuracyConfig& config, int repeats
     if (!light) return {};
     std::vector<GlTime> times;
     // The pass as the exact tracer runs it before a draw that reads them, for heights just
-    // uploaded: the pyramid's build from them first, then the walks (GPU time by timer queries).
+    // uploaded: their bounds' build from them first, then the walks (GPU time by timer queries).
     for (int i = -kWarmupFrames; i < repeats; ++i) { // warm-ups: the programs' builds
         surface_.run(field_.buffer());
         const GlTime t = timeGl(timer_, "texel shadows",
-                                [&] { texelPass_.draw(textures(), *light, config.texelStride, texels_); });
+                                [&] { texelPass_.draw(textures(), bounds(), *light, config.texelStride, texels_); });
         if (i >= 0) times.push_back(t);
     }
     return median(times);
@@ -145,12 +147,13 @@ GlTime AccuracyProbe::timeTexelShadows(const AccuracyConfig& config, int repeats
 
 /// The draw options of config: its beam start, its texel shadows (forced either way: the probe
 /// measures them where asked, not where they would pay).
-DrawOptions AccuracyProbe::drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput) {
+DrawOptions AccuracyProbe::drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput) const {
     return {.technique = technique,
             .traceOutput = traceOutput,
             .beamStart = config.beamStart,
             .texelShadows = config.texelShadows ? TexelShadowChoice::On : TexelShadowChoice::Off,
-            .texelStride = config.texelStride};
+            .texelStride = config.texelStride,
+            .boundsLayout = layout_};
 }
 
 AccuracyResult AccuracyProbe::measure(Technique technique, const AccuracyConfig& config) {
@@ -410,7 +413,7 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
         glNamedBufferStorage(computeOut_.id(), GLsizeiptr(size_t(computeRays_) * sizeof(glm::vec4)), nullptr, 0);
         computeKey_ = key;
     }
-    const bool atlas = t.pyramidLayout() == PyramidLayout::Atlas;
+    const bool atlas = layout_ == PyramidLayout::Atlas;
     const auto programKey = std::make_tuple(technique, atlas, material.boundedSearch);
     auto it = computePrograms_.find(programKey);
     if (it == computePrograms_.end()) {
@@ -436,9 +439,9 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
         glNamedBufferStorage(computeBlock_.id(), sizeof u, nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
     glNamedBufferSubData(computeBlock_.id(), 0, sizeof u, &u);
-    if (t.pyramid()) {
-        bounds_.refresh(t); // the pyramid and the atlas layout's cells (image unit 4), from the texels
-        t.bindPyramid(0);
+    if (boundsRefusal(t.config()).empty()) {
+        boundsPass_.refresh(t, bounds(), true); // and the atlas layout's cells (image unit 4), from the texels
+        bounds().bind(0);
     }
     glBindTextureUnit(HFX_UNIT_SURFACE, t.surface());
     glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, computeBlock_.id());

@@ -35,23 +35,29 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     const bool hier = techniqueInfo(options.technique).needsPyramid;
     const SurfaceTextures& textures = *layers[0].textures;
     const size_t traced = size_t(std::ranges::count_if(layers, [](const SurfaceLayer& l) { return l.traced; }));
-    // Bounded searches where asked and every traced layer has its pyramid.
+    // Bounded searches where asked and every traced layer can carry bounds (the renderer checked
+    // hier's layer).
     frame.boundedSearch = !hier && material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
-                              return !l.traced || l.textures->pyramid() != 0;
+                              return !l.traced || boundsRefusal(l.textures->config()).empty();
                           });
-    // The layers' pyramids share one layout (the renderer checks): the device's.
-    const auto withPyramid = std::ranges::find_if(layers, [](const SurfaceLayer& l) { return l.textures->pyramid() != 0; });
-    frame.atlas = withPyramid != layers.end() && withPyramid->textures->pyramidLayout() == PyramidLayout::Atlas;
-    // The pyramids the draw reads (hier's, a bounded search's traced layers'), built from the
-    // current texels where they are older; hier's patch solve also reads the atlas layout's cells.
+    const PyramidLayout layout = resolvedLayout(options.boundsLayout);
+    HeightBounds* bounds0 = nullptr;
+    // The bounds the draw reads (hier's, a bounded search's traced layers'), built from the
+    // current texels where they are older; hier's patch solve also reads the atlas layout's
+    // cells (bound by the refresh of layer 0, the last).
     if (hier || frame.boundedSearch) {
-        for (size_t i = traced; i-- > 0;) bounds_.refresh(*layers[i].textures, i == 0 && hier);
-        for (size_t i = 0; i < traced; ++i) layers[i].textures->bindPyramid(int(i));
+        frame.atlas = layout == PyramidLayout::Atlas;
+        for (size_t i = traced; i-- > 0;) {
+            HeightBounds& bounds = boundsFor(layers[i], layout);
+            boundsPass_.refresh(*layers[i].textures, bounds, i == 0 && hier);
+            bounds.bind(int(i));
+            if (i == 0) bounds0 = &bounds;
+        }
     }
     glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, 0);
     if (!hier) return frame;
 
-    frame.texelShadows = texelShadowsFor(textures, mesh, model, viewProj, light, material, options, caster, frame);
+    frame.texelShadows = texelShadowsFor(textures, *bounds0, mesh, model, viewProj, light, material, options, caster, frame);
     if (frame.texelShadows) {
         const ShadowLight& l = *frame.texelShadows->light();
         u.shadowLight = {l.uvPerClimb, l.penumbra, l.slack};
@@ -71,7 +77,29 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     return frame;
 }
 
-const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures, const Mesh& mesh,
+HeightBounds& ExactTracer::boundsFor(const SurfaceLayer& layer, PyramidLayout layout) {
+    const SurfaceTextures& textures = *layer.textures;
+    auto held = std::ranges::find_if(bounds_, [&](const Bounds& b) {
+        return b.uid == textures.uid() && b.bounds->layout() == layout;
+    });
+    // The producer's, where they hold these texels (and noted as read, built or not, so it goes
+    // on building them); those held here for the same textures are then let go.
+    if (HeightBounds* given = layer.bounds; given && given->layout() == layout && given->fits(textures.config())) {
+        given->noteWanted();
+        if (given->holds(textures)) {
+            if (held != bounds_.end()) *held = Bounds{};
+            return *given;
+        }
+    }
+    if (held == bounds_.end()) {
+        held = std::ranges::min_element(bounds_, {}, &Bounds::used); // a free slot's is 0
+        *held = Bounds{.uid = textures.uid(), .bounds = std::make_unique<HeightBounds>(textures.config(), layout)};
+    }
+    held->used = ++clock_;
+    return *held->bounds;
+}
+
+const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures, HeightBounds& bounds, const Mesh& mesh,
                                                  const glm::mat4& model, const glm::mat4& viewProj,
                                                  const DirectionalLight& light, const SurfaceMaterial& material,
                                                  const DrawOptions& options, bool caster, TracerFrame& frame) {
@@ -108,7 +136,7 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     }
     it->used = ++clock_;
     if (!it->shadows.holds(textures, *shadowLight, stride))
-        texelPass_.draw(textures, *shadowLight, stride, it->shadows);
+        texelPass_.draw(textures, bounds, *shadowLight, stride, it->shadows);
     return &it->shadows;
 }
 

@@ -38,15 +38,17 @@ int texelShadowStride(double pixels, int width, int height, float pixelBudget, i
 
 TexelShadowPass::TexelShadowPass() : framebuffer_(GlFramebuffer::create()), empty_(GlVertexArray::create()) {}
 
-void TexelShadowPass::draw(const SurfaceTextures& textures, const ShadowLight& light, int stride, TexelShadows& into) {
-    if (!textures.pyramid())
-        throw Error("TexelShadowPass::draw: the surface needs its height pyramid (SurfaceOptions::pyramid)");
-    light.validate();
+void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds, const ShadowLight& light, int stride,
+                           TexelShadows& into) {
     const SurfaceTexturesConfig& config = textures.config();
+    if (!bounds.fits(config))
+        throw Error(str("TexelShadowPass::draw: the height bounds are ", bounds.width(), "x", bounds.height(),
+                        ", the surface ", config.width, "x", config.height, " (or their edges differ)"));
+    light.validate();
     if (!isTexelStride(stride, config.width, config.height))
         throw Error(str("TexelShadowPass::draw: the texel shadows' stride must be a power of two that divides the "
                         "field's ", config.width, "x", config.height, " samples, got ", stride));
-    const bool atlas = textures.pyramidLayout() == PyramidLayout::Atlas;
+    const bool atlas = bounds.layout() == PyramidLayout::Atlas;
     std::optional<ShaderProgram>& program = programs_[atlas ? 1 : 0];
     if (!program) program = texelProgram(atlas);
     const int width = config.width / stride, height = config.height / stride;
@@ -67,7 +69,7 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, const ShadowLight& l
     }
     into.drawn_ = false; // until this draw has written them
     GlStateGuard guard;
-    bounds_.refresh(textures); // the pyramid, and the atlas layout's patch samples (uses its own program)
+    bounds_.refresh(textures, bounds); // where stale, and the atlas layout's patch samples (its own program)
     const GpuScope scope("texel shadows");
     attachPassTarget(framebuffer_, into.texture_.id(), width, height, "R32F", "TexelShadowPass");
     const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
@@ -78,7 +80,7 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, const ShadowLight& l
     program->use();
     program->set("u_texelStride", stride);
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
-    textures.bindPyramid(0);
+    bounds.bind(0);
     glBindVertexArray(empty_.id());
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
     into.stride_ = stride;

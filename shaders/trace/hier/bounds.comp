@@ -15,7 +15,7 @@
 //   k - 1 (a lone last row or column counts alone).
 //
 // A mip chain's level k - 1 and level k are bound to the two image units; the atlas (every level
-// in one image, at the origins C++ computes: SurfaceTextures::pyramidAtlasOrigin) to both.
+// in one image, at the origins C++ computes: HeightBounds::atlasOrigin) to both.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "bindings.glsl"
 #ifndef HFX_PYRAMID_ATLAS

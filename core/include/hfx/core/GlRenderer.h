@@ -30,15 +30,15 @@ struct GlWorkarounds {
     /// GpuTimer: the CPU clock between two glFinish times a pass. A CPU rasteriser has no device
     /// clock: its timer queries stamp one tile of a pass, a fraction of the work.
     bool cpuClockTimer = false;
-    /// SurfaceTextures: the bounds pyramid as one RG32F image read with imageLoad, and the level-0
+    /// HeightBounds (effects): the bounds pyramid as one RG32F image read with imageLoad, and the level-0
     /// cells' samples as an RGBA32F image (BoundsPass), instead of a mip chain read with
     /// texelFetch at the lane's level and a textureGather of the heights. On llvmpipe a texelFetch
     /// with a level per lane is a call that spills the walk's vectors (1.6x an imageLoad) and a
     /// gather costs 2.2x an RGBA32F imageLoad; on a GPU each is one texture instruction.
     bool pyramidAtlas = false;
-    /// SurfacePipeline: a float32 surface's bounds pyramid built on the compute device from the
-    /// heights and uploaded with the texels (as SurfaceTextures::uploadPyramid takes it), instead
-    /// of built by GL from the stored texels (BoundsPass). On llvmpipe beside PoCL, GL's build
+    /// SurfacePipeline (effects): a float32 surface's bounds pyramid built on the compute device
+    /// from the heights and uploaded with the texels while draws read them (as
+    /// HeightBounds::upload takes it, SurfacePipeline::bounds), instead of built by GL from the stored texels (BoundsPass). On llvmpipe beside PoCL, GL's build
     /// (four texelFetch calls a cell) cost 10-11 ms more than PoCL's and the copy at 512² and
     /// 54 ms at 1024² (the decal wall's hier draw), 34-106 ms a frame for the ocean's four
     /// cascades; on a GPU the build is one small pass and saves moving 10.7 bytes a texel.

@@ -42,7 +42,7 @@ struct DecalWallConfig {
     DamageLogConfig damage;
     int maxStampsPerBatch = 65536; ///< stamps per rebuild: the budget's impacts with their debris
     SurfaceMaterial material{.depthScale = 0.06f, .maxSamples = 48, .shadowSharpness = 3.0f};
-    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    SurfaceOptions surface; ///< mip maps, storage format, path to GL
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 

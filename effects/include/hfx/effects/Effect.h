@@ -42,9 +42,11 @@ public:
 
     /// The textures to draw now (they change after each update: ask every frame).
     const SurfaceTextures& textures() const { return surface().textures(); }
-    /// What to draw: SurfaceRenderer::draw's layers. One, textures(), for most effects; the
-    /// ocean's cascades for the ocean.
-    virtual std::vector<SurfaceLayer> layers() const { return {{.textures = &textures()}}; }
+    /// What to draw: SurfaceRenderer::draw's layers. One, textures() with the bounds the pipeline
+    /// builds for them, for most effects; the ocean's cascades for the ocean.
+    virtual std::vector<SurfaceLayer> layers() const {
+        return {{.textures = &textures(), .bounds = surface().bounds()}};
+    }
     const SurfaceMaterial& material() const { return material_; }
     /// Replaces the material; throws hfx::Error naming the bad field and changes nothing.
     void setMaterial(const SurfaceMaterial& material);

@@ -72,7 +72,7 @@ struct GasPlanetConfig {
     SurfaceMaterial material{.depthScale = 0.006f, .minSamples = 8, .maxSamples = 32,
                              .shadowSharpness = 1.5f, .specularStrength = 0.05f, .specularPower = 16.0f,
                              .shading = Shading::Planet, .silhouetteFade = 0.25f};
-    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    SurfaceOptions surface; ///< mip maps, storage format, path to GL
     /// Rings (PlanetRings) in the planet's equatorial plane, their radii in planet radii (the
     /// config's radius must be 1: the sphere's); none by default. Their shadow falls on the cloud
     /// tops (material().planet); draw them with rings()->draw after the planet.

@@ -3,7 +3,7 @@
 // own loaders): a height map, an optional tangent-space normal map and an optional colour map.
 // The heights go down the same
 // SurfacePipeline as a generated field's (as a StaticField), so a map from files gets the Sobel
-// normals, the height pyramid, every surface format and both transfer paths; a normal map is
+// normals, the exact tracer's height bounds, every surface format and both transfer paths; a normal map is
 // laid over them by the same pass the decal wall uses (DetailNormals), which with unchanged
 // heights gives the map exactly. Derived once: update() only checks dt.
 //
@@ -25,7 +25,7 @@ struct ImageSurfaceConfig {
     SurfaceMaps maps;
     SurfaceMaterial material{.depthScale = 0.08f};
     EdgeMode edges = EdgeMode::Wrap; ///< tileable maps wrap; others clamp
-    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    SurfaceOptions surface; ///< mip maps, storage format, path to GL
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 

@@ -23,7 +23,7 @@ struct NoiseSurfaceConfig {
     std::vector<ColorStop> palette = noisePalette();
     SurfaceMaterial material{.depthScale = 0.06f, .maxSamples = 48, .shadowSharpness = 2.0f,
                              .specularStrength = 0.15f, .specularPower = 24.0f};
-    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    SurfaceOptions surface; ///< mip maps, storage format, path to GL
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 

@@ -23,10 +23,11 @@ namespace hfx {
 struct OceanEffectConfig {
     OceanConfig ocean;
     /// The look; its depthScale is replaced by the sea state's (physicalDepthScale()). With
-    /// boundedSearch (on by default) each traced cascade gets a height-bounds pyramid, built every
-    /// frame: the searches (POM and the other sampled techniques) then step only through the
-    /// depths the waves reach on each ray's path, and shadow rays only below the waves' top there
-    /// (hfx_segment_bounds). It costs a pyramid build and upload per traced cascade.
+    /// boundedSearch (on by default) the renderer's exact tracer builds each traced cascade's
+    /// height bounds every frame: the searches (POM and the other sampled techniques) then step
+    /// only through the depths the waves reach on each ray's path, and shadow rays only below the
+    /// waves' top there (hfx_segment_bounds). It costs a bounds build per traced cascade (unorm8
+    /// takes none: its rounding exceeds the bounds' margin, and the searches go unbounded).
     SurfaceMaterial material{.minSamples = 8, .maxSamples = 40, .shadowSharpness = 1.0f,
                              .specularStrength = 0.0f, .shading = Shading::Water, .water = {.foam = true},
                              .boundedSearch = true};
@@ -42,7 +43,7 @@ struct OceanEffectConfig {
     /// The foam's bubbles, metres across (WaterLook::foamCells, which the effect sets every step:
     /// aged foam opens into their lace, every foam's edge frays through them); 0 draws none.
     float foamCellMeters = 0.5f;
-    /// Storage and path to GL, for every cascade. A pyramid (hier) needs one cascade.
+    /// Storage and path to GL, for every cascade. hier traces one grid: it needs one cascade.
     SurfaceOptions surface;
     void validate() const; ///< throws hfx::Error naming the bad field and its value
 };

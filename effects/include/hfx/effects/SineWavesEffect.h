@@ -15,7 +15,7 @@ struct SineWavesConfig {
     WaveConfig waves;
     SurfaceMaterial material{.depthScale = 0.04f, .shadowSharpness = 1.0f,
                              .specularStrength = 0.8f, .specularPower = 96.0f};
-    SurfaceOptions surface; ///< mip maps, height pyramid, storage format, path to GL
+    SurfaceOptions surface; ///< mip maps, storage format, path to GL
     void validate() const;  ///< throws hfx::Error naming the bad field and its value
 };
 

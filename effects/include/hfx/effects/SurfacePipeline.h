@@ -2,18 +2,18 @@
 // The one path from a height buffer on the compute device to the textures a renderer draws:
 //
 //   heights --Sobel--> normals (float4: normal.xyz, h) --[passes]--> pack --transfer--> textures
-//   (the height-bounds pyramid, where asked for, is built on the GL side from the textures'
-//   heights when first read, BoundsPass; on a CPU rasteriser it is built here and transferred,
-//   GlWorkarounds::pyramidFromCompute)
+//   (the exact tracer builds its height bounds on the GL side from the textures' heights,
+//   BoundsPass; on a CPU rasteriser a float32 surface's are built here and transferred while a
+//   draw reads them, GlWorkarounds::pyramidFromCompute, bounds())
 //
 // Every user goes down it: the generated fields (ocean, waves, gas, decals), a static map from
 // files (ImageSurface, via StaticField) and the accuracy probe. A frame is five calls, in order:
 //
 //   surface.begin(timing);          // the frame's clock starts; the source steps after this
-//   surface.derive(heights);        // Sobel (+ pyramid) of the source's buffer, enqueued
+//   surface.derive(heights);        // Sobel (+ bounds) of the source's buffer, enqueued
 //   ... passes on surface.normals() // effect-specific work, e.g. DetailNormals::apply
 //   surface.submit(&albedo);        // packing into the storage format; the device work is flushed
-//   surface.finish();               // waits, moves texels (+ pyramid, albedo) to GL, swaps
+//   surface.finish();               // waits, moves texels (+ bounds, albedo) to GL, swaps
 //
 // With StageTiming::Staged each stage is waited for and timed (lastTimes() reads the budget
 // stage by stage); with Overlapped nothing waits until finish(), so a draw issued between
@@ -31,6 +31,7 @@
 #include "hfx/core/PixelBuffer.h"
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/TransferPath.h"
+#include "hfx/effects/tracer/HeightBounds.h"
 
 #include <memory>
 #include <string>
@@ -42,10 +43,6 @@ class StreamTransfer;
 /// How a surface is stored and moved; each effect's configuration holds one as `surface`.
 struct SurfaceOptions {
     bool mipmaps = true;
-    /// Also build the height-bounds pyramid each frame (for Technique::Hierarchical; the
-    /// field's sizes must be powers of two and the format a float one).
-    bool pyramid = false;
-    PyramidLayout pyramidLayout = PyramidLayout::Auto; ///< the device's unless a test or bench picks
     /// The surface textures' storage; other than Float32, a SurfacePacker packs the texels on
     /// the device before the transfer.
     SurfaceFormat format = SurfaceFormat::Float32;
@@ -70,12 +67,12 @@ struct SurfacePipelineConfig {
 
 /// Wall-clock milliseconds of the last frame, by stage (measured on the host around waits).
 struct StageTimes {
-    double compute = 0.0; ///< field step + normals + pyramid and passes + packing
+    double compute = 0.0; ///< field step + normals + bounds and passes + packing
     double upload = 0.0;  ///< map, GL upload, mip generation
     // The parts of compute, each waited for on its own (so they add up to compute):
     double field = 0.0;   ///< the source's step
     double normals = 0.0; ///< Sobel
-    double extra = 0.0;   ///< the effect's passes, packing (and llvmpipe's pyramid)
+    double extra = 0.0;   ///< the effect's passes, packing (and llvmpipe's bounds)
     // With StageTiming::Overlapped the parts are not waited for one by one: compute is then the
     // time finish() still had to wait, the part the draw did not hide.
     bool staged = true; ///< the parts above were waited for one by one
@@ -98,7 +95,8 @@ public:
     /// Starts a frame (finishing one still in flight first: never two at once). The time until
     /// derive() is the source's step.
     void begin(StageTiming timing);
-    /// Enqueues the Sobel normals (and the pyramid) of `heights`, width*height floats.
+    /// Enqueues the Sobel normals of `heights`, width*height floats, and where the device builds
+    /// the height bounds and a draw read them since the last derive(), the bounds.
     void derive(const cl::Buffer& heights);
     /// The float4 normals derive() writes: passes between derive() and submit() may edit them.
     const cl::Buffer& normals() const { return sobel_.output(); }
@@ -117,6 +115,11 @@ public:
 
     /// The textures to draw now (they change at each finish(): ask every frame).
     const SurfaceTextures& textures() const { return *textures_[front_]; }
+    /// Their height bounds where the compute device builds them (float32 texels on a CPU
+    /// rasteriser, GlWorkarounds::pyramidFromCompute: the device and the copy beat GL's build
+    /// there), for SurfaceLayer::bounds; null elsewhere. Built while draws read them (noteWanted):
+    /// the frame after the first such draw on, that draw's tracer builds its own.
+    HeightBounds* bounds() const { return boundsFromDevice_ ? bounds_[front_].get() : nullptr; }
     /// A fixed albedo for both texture pairs (an image of the surface's size, or 1x1).
     void setAlbedo(const Image& albedo);
     StageTimes lastTimes() const { return times_; }
@@ -137,10 +140,12 @@ private:
     std::unique_ptr<PixelBuffer> pixels_; ///< the PixelBuffer path's staging, else null
     std::unique_ptr<StreamTransfer> streams_; ///< the Staged and GlSharing paths' memory, else null
     SobelNormals sobel_;
-    /// The pyramid on the compute device, where uploadsPyramid_: the textures'
-    /// textures' (GlWorkarounds::pyramidFromCompute)
+    /// Where the device builds the bounds (GlWorkarounds::pyramidFromCompute): its pyramid,
+    /// made when first read, and each texture pair's bounds on the GL side.
+    bool boundsFromDevice_ = false;
+    bool boundsThisFrame_ = false; ///< derive() enqueued them
     std::unique_ptr<BoundsPyramid> pyramid_;
-    bool uploadsPyramid_ = false;
+    std::unique_ptr<HeightBounds> bounds_[2];
     std::unique_ptr<SurfacePacker> packer_; ///< null for Float32: the normals are the texels
     std::unique_ptr<SurfaceTextures> textures_[2];
     int front_ = 0;

@@ -142,7 +142,8 @@ struct SurfaceMaterial {
     /// relief is small on the screen (far away, seen from above).
     float pixelBudget = 0.0f;
     /// Bound the sampled searches (pom, secant, relief, steep) by the height pyramid, where every
-    /// traced layer has one: each ray steps only through the depths the heights on its path reach
+    /// traced layer can carry one (HeightBounds: power-of-two sizes, a float format; the exact
+    /// tracer builds them each frame the heights change): each ray steps only through the depths the heights on its path reach
     /// (four pyramid fetches per layer give them), and each shadow ray only below their top,
     /// with steps no longer than without. It pays where rays take many steps through a relief
     /// whose range along them is small against its depth (the ocean's cascades: OceanEffect sets
@@ -192,6 +193,11 @@ struct SurfaceLayer {
     float weight = 1.0f;
     bool traced = true;
     float restHeight = 0.5f;
+    /// The textures' height bounds where their producer builds them (SurfacePipeline::bounds:
+    /// the compute device's, GlWorkarounds::pyramidFromCompute); the exact tracer reads them
+    /// where they hold the current texels in the draw's layout, and builds its own otherwise.
+    /// null: it always builds its own.
+    HeightBounds* bounds = nullptr;
 };
 inline constexpr int kMaxSurfaceLayers = 4;
 
@@ -213,6 +219,9 @@ struct DrawOptions {
     /// With texelShadows On: every texelStride-th sample on each axis (a power of two dividing
     /// the field's size; 0: the policy's stride, or 1).
     int texelStride = 0;
+    /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
+    /// benches pick one side).
+    PyramidLayout boundsLayout = PyramidLayout::Auto;
 };
 
 /// The side of the beam start's blocks, in pixels (DrawOptions::beamStart).
@@ -227,7 +236,7 @@ struct SurfaceVariant {
     int layers = 1;             ///< HFX_LAYERS
     int traced = 0;             ///< HFX_TRACED_LAYERS (0: all the layers)
     bool selfShadows = true;    ///< HFX_SELF_SHADOW where the technique has them: SurfaceMaterial::shadows
-    bool boundedSearch = false; ///< HFX_BOUNDED_SEARCH: SurfaceMaterial::boundedSearch, every traced layer with a pyramid
+    bool boundedSearch = false; ///< HFX_BOUNDED_SEARCH: SurfaceMaterial::boundedSearch, every traced layer can carry bounds
     bool shadowMap = false;     ///< HFX_SHADOW_MAP: the light has a ShadowMap
     bool rings = false;         ///< HFX_RINGS: water with impact rings (WaterLook::ringCount > 0)
     bool environment = false;   ///< HFX_ENVIRONMENT: water reflecting an image (WaterLook::environment)
@@ -239,8 +248,8 @@ struct SurfaceVariant {
     /// HFX_BEAM_START: hier's view rays start at the beam prepass's depth for their block
     /// (DrawOptions::beamStart on a flat patch)
     bool beamStart = false;
-    /// HFX_PYRAMID_ATLAS: the surfaces' pyramids are in PyramidLayout::Atlas (llvmpipe's
-    /// workaround, GlWorkarounds::pyramidAtlas), not mip chains
+    /// HFX_PYRAMID_ATLAS: the bounds read are in PyramidLayout::Atlas (llvmpipe's workaround,
+    /// GlWorkarounds::pyramidAtlas), not mip chains
     bool pyramidAtlas = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
@@ -299,7 +308,7 @@ private:
     ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_, planetBlock_;
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
-    ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' pyramids
+    ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' bounds
 };
 
 } // namespace hfx

@@ -35,7 +35,7 @@ struct TechniqueInfo {
     const char* summary;     ///< what it does, one line
     SelfShadow shadow;
     bool traces;             ///< displaces the texcoords (and writes gl_FragDepth); false: plain normal mapping
-    bool needsPyramid;       ///< reads the per-frame height-bounds pyramid (SurfaceOptions::pyramid)
+    bool needsPyramid;       ///< reads the per-frame height bounds (HeightBounds, which ExactTracer builds)
 };
 
 /// Every technique, in the order the docs and menus list them (cheapest first).

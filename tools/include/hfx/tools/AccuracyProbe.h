@@ -111,10 +111,10 @@ class AccuracyProbe {
 public:
     /// heights: size x size in [0,1], row 0 at v = 0, tiling (edges wrap); size a power of two.
     /// The surface is made by the frames' own path (a StaticField down a SurfacePipeline:
-    /// normals for `normalDepth`, the pyramid, packing, transfer), so the figures are those of
-    /// what the effects draw; measure() may draw any depth. format: the surface's storage (to
-    /// measure what a smaller format costs); unorm8 takes no pyramid, so it cannot measure the
-    /// hierarchical technique.
+    /// normals for `normalDepth`, packing, transfer), so the figures are those of what the
+    /// effects draw; measure() may draw any depth. format: the surface's storage (to measure what
+    /// a smaller format costs); unorm8 takes no height bounds, so it cannot measure the
+    /// hierarchical technique. layout: how the tracer holds its bounds (DrawOptions::boundsLayout).
     AccuracyProbe(ClContext& cl, std::vector<float> heights, int size, float normalDepth,
                   SurfaceFormat format = SurfaceFormat::Float32, PyramidLayout layout = PyramidLayout::Auto);
 
@@ -156,7 +156,7 @@ private:
     /// config's light as the exact tracer's shadow rays see it on the probe's plane; empty
     /// without shadows or a pyramid.
     std::optional<ShadowLight> shadowLight(const AccuracyConfig& config) const;
-    static DrawOptions drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput);
+    DrawOptions drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput) const;
 
     int size_;
     HeightFieldTracer exact_;
@@ -176,7 +176,12 @@ private:
     int computeRays_ = 0;
     GlBuffer computeIn_, computeOut_, computeBlock_;
     std::map<std::tuple<Technique, bool, bool>, ShaderProgram> computePrograms_; ///< by technique, atlas, bounded search
-    BoundsPass bounds_;
+    PyramidLayout layout_; ///< resolved
+    /// The texel-shadow pass's and the compute harness's bounds of the surface, made on first use
+    /// (the renderer's tracer holds its own)
+    HeightBounds& bounds();
+    std::unique_ptr<HeightBounds> bounds_;
+    BoundsPass boundsPass_;
 };
 
 } // namespace hfx

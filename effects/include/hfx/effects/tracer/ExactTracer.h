@@ -4,8 +4,10 @@
 // policy that decides it. SurfaceRenderer owns one and calls prepare() before every hier draw and
 // every bounded search; nothing outside decides anything per frame for it.
 //
-//   bounds      the height-bounds pyramid of every traced layer, built from the stored texels
-//               where they changed (BoundsPass; hier's and the bounded searches')
+//   bounds      the height-bounds pyramid of every traced layer (HeightBounds), held here per
+//               surface and built from the stored texels where they changed (BoundsPass; hier's
+//               and the bounded searches'), or the layer's own where its producer built them
+//               (SurfaceLayer::bounds)
 //   texel       the exact self-shadow at every stride-th sample of the field (TexelShadowPass),
 //   shadows     where they pay on this view: a flat patch showing more pixels than its samples
 //               (texelShadowStride, with SurfaceMaterial::pixelBudget); kept per surface while
@@ -28,6 +30,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 
@@ -54,7 +57,7 @@ std::optional<ShadowLight> flatPatchLight(const Mesh& mesh, const glm::mat4& mod
 /// What ExactTracer::prepare decided for one draw: the surface program's variant follows it.
 struct TracerFrame {
     bool boundedSearch = false; ///< a sampled search bounded by every traced layer's pyramid
-    bool atlas = false;         ///< the pyramids are in PyramidLayout::Atlas
+    bool atlas = false;         ///< the bounds read are in PyramidLayout::Atlas
     const TexelShadows* texelShadows = nullptr; ///< hier's shadows read these where set
     int texelStride = 0;                        ///< their stride; 0: none read
     double pixelsPerTexel = 0.0;                ///< the flat patch's screen pixels per field texel (0: not flat)
@@ -64,8 +67,8 @@ struct TracerFrame {
 class ExactTracer {
 public:
     /// Makes and binds what a draw of `layers` reads besides their textures, as the view, the
-    /// light and the material decide: the traced layers' pyramids for hier and a bounded search
-    /// (SurfaceMaterial::boundedSearch where every traced layer has one), and for hier the
+    /// light and the material decide: the traced layers' bounds for hier and a bounded search
+    /// (SurfaceMaterial::boundedSearch where every traced layer can carry them), and for hier the
     /// texel shadows (DrawOptions::texelShadows) and the beam start (DrawOptions::beamStart).
     /// `viewProj` is the camera's or, for a caster, the shadow map's (no texel shadows: a caster
     /// writes depth only). `u` is the draw's uniform block, filled but for the transform:
@@ -79,16 +82,28 @@ public:
     const TracerFrame& last() const { return last_; }
 
 private:
+    /// The bounds of `layer`'s textures in `layout`: the layer's own where they hold its current
+    /// texels, else the ones held here (made for a new surface, not yet built).
+    HeightBounds& boundsFor(const SurfaceLayer& layer, PyramidLayout layout);
     /// The texel shadows the draw reads (nullptr: none): the policy's stride from the view, then
     /// the cached ones where they still hold, else drawn.
-    const TexelShadows* texelShadowsFor(const SurfaceTextures& textures, const Mesh& mesh, const glm::mat4& model,
+    const TexelShadows* texelShadowsFor(const SurfaceTextures& textures, HeightBounds& bounds, const Mesh& mesh,
+                                        const glm::mat4& model,
                                         const glm::mat4& viewProj, const DirectionalLight& light,
                                         const SurfaceMaterial& material, const DrawOptions& options, bool caster,
                                         TracerFrame& frame);
     void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
                        bool atlas);
 
-    BoundsPass bounds_;
+    BoundsPass boundsPass_;
+    /// The bounds of the surfaces drawn lately, by SurfaceTextures::uid and layout (0: a free
+    /// slot), the least recently used remade for a new surface: the ocean's four cascades of two
+    /// texture pairs each fit.
+    struct Bounds {
+        std::uint64_t uid = 0, used = 0;
+        std::unique_ptr<HeightBounds> bounds;
+    };
+    std::array<Bounds, 8> bounds_{};
     TexelShadowPass texelPass_;
     /// The texel shadows of the surfaces drawn lately, by SurfaceTextures::uid (a pipeline's
     /// two texture pairs each have theirs; 0: a free slot), the least recently used given to a

@@ -77,15 +77,18 @@ class TexelShadowPass {
 public:
     TexelShadowPass();
     /// Draws `textures`' texel shadows for `light` at every stride-th sample on each axis into
-    /// `into` (allocated or remade where the size or stride changes). Throws hfx::Error without a pyramid,
-    /// for an invalid light or a stride that is not a power of two dividing the field's size,
-    /// leaving `into` as it was. The same texels whatever blending, scissor test or colour mask
-    /// the caller has set; it puts those back, and every other GL state it changes.
-    void draw(const SurfaceTextures& textures, const ShadowLight& light, int stride, TexelShadows& into);
+    /// `into` (allocated or remade where the size or stride changes), walking `bounds` (built
+    /// here from the texels where they do not hold them). Throws hfx::Error for bounds that do
+    /// not fit the textures, an invalid light or a stride that is not a power of two dividing
+    /// the field's size, leaving `into` as it was. The same texels whatever blending, scissor
+    /// test or colour mask the caller has set; it puts those back, and every other GL state it
+    /// changes.
+    void draw(const SurfaceTextures& textures, HeightBounds& bounds, const ShadowLight& light, int stride,
+              TexelShadows& into);
 
 private:
-    std::optional<ShaderProgram> programs_[2]; ///< by the pyramid's layout, each built by its first draw
-    BoundsPass bounds_; ///< the walk's pyramid and level-0 cells, built from the texels
+    std::optional<ShaderProgram> programs_[2]; ///< by the bounds' layout, each built by its first draw
+    BoundsPass bounds_; ///< the walk's bounds and level-0 cells, where they are stale
     GlFramebuffer framebuffer_;
     GlVertexArray empty_;
     GlBuffer block_;
