@@ -28,7 +28,8 @@
 #define HFX_UNIT_BEAM_START 16    // the beam prepass's depth per block of pixels
 #define HFX_UNIT_RING_PROFILE 17  // planet: its rings' radial profile (hfx::PlanetRings)
 #define HFX_UNIT_RING_BEHIND 18   // the rings' draw: a copy of what the frame held behind them
-#define HFX_TEXTURE_UNITS 19      // the table's units: a draw's fragment stage binds at most these
+#define HFX_UNIT_RING_SHINE 19    // planet: the light its rings scatter onto it (shade/ringshine.comp)
+#define HFX_TEXTURE_UNITS 20      // the table's units: a draw's fragment stage binds at most these
 
 // Image units (PyramidLayout::Atlas, llvmpipe's: GlWorkarounds::pyramidAtlas).
 #define HFX_IMAGE_PYRAMID 0       // layer i's atlas pyramid at HFX_IMAGE_PYRAMID + i
@@ -37,6 +38,7 @@
 // pyramid leaves every other binding as it was.
 #define HFX_IMAGE_BOUNDS_FINER 5  // the level it reduces (or the atlas)
 #define HFX_IMAGE_BOUNDS 6        // the level it writes (or the atlas)
+#define HFX_IMAGE_RING_SHINE 7    // the rings' light on their planet, as the renderer builds it (shade/ringshine.comp)
 
 // Uniform blocks.
 #define HFX_BLOCK_SURFACE 0       // HfxSurface: hfx::SurfaceUniforms

@@ -6,11 +6,8 @@
 //
 // Each radius is a slab of particles of normal optical depth tau (shade/rings.glsl's profile).
 // Seen at cosine mu to the slab's normal it covers 1 - e^(-tau / mu) of what lies behind.
-// Sunlight arriving at cosine mu0 is scattered once (Chandrasekhar's single scattering with an
-// isotropic phase function, scaled to a Lambert surface of the same albedo seen head-on):
-//   lit face     2 w mu0 / (mu0 + mu) (1 - e^(-tau (1/mu + 1/mu0)))
-//   unlit face   2 w mu0 / (mu - mu0) (e^(-tau / mu) - e^(-tau / mu0))   (seen through the slab)
-// so dense rings are bright on their lit face and dark from behind, and thin ones glow on both.
+// Sunlight arriving at cosine mu0 is scattered once (hfx_ring_scattered), times the particles'
+// albedo w: dense rings are bright on their lit face and dark from behind, thin ones glow on both.
 // The planet's shadow takes the share of the sun's disc it covers; the ambient light lights
 // what the rings cover.
 
@@ -39,14 +36,7 @@ void main() {
     const vec4 profile = texture(s_ringProfile, vec2(s, 0.5));
     const float tau = -log(max(1.0 - profile.a, 1e-6));
     const float cover = 1.0 - exp(-tau / mu);
-    float scattered;
-    if (viewSide * lightSide > 0.0) {
-        scattered = 2.0 * mu0 / (mu0 + mu) * (1.0 - exp(-tau * (1.0 / mu + 1.0 / mu0)));
-    } else if (abs(mu - mu0) > 1e-3) {
-        scattered = 2.0 * mu0 / (mu - mu0) * (exp(-tau / mu) - exp(-tau / mu0));
-    } else {
-        scattered = 2.0 * tau / mu * exp(-tau / mu); // the limit mu -> mu0
-    }
+    const float scattered = hfx_ring_scattered(tau, mu, mu0, viewSide * lightSide > 0.0);
     const float sun = hfx_planet_sunlit(q, toLight);
     const vec3 color = profile.rgb * (u_lightColor * sun * scattered + u_ambient * cover);
     const vec3 behind = pow(texelFetch(s_behind, ivec2(gl_FragCoord.xy) - u_viewportOrigin, 0).rgb, vec3(2.2));

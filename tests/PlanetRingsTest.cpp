@@ -190,11 +190,12 @@ TEST_F(PlanetRingsTest, TheirShadowFallsOnTheCloudTopsWhereTheSunsRayCrossesThem
         renderer.draw(sphere, glm::mat4(1.0f), planet.textures(), material, camera, l);
         return target.readColor();
     };
-    SurfaceMaterial bare = planet.material();
+    SurfaceMaterial bare = planet.material(), shadowOnly = planet.material();
     bare.planet = PlanetLook{};
+    shadowOnly.planet.ringShine = false; // their shadow alone: their light has a test of its own
     DirectionalLight dark = light;
     dark.color = glm::vec3(0.0f);
-    const Image a = frame(bare, light), b = frame(planet.material(), light), c = frame(planet.material(), dark);
+    const Image a = frame(bare, light), b = frame(shadowOnly, light), c = frame(shadowOnly, dark);
     writeImage(outputPath("planet_ring_shadow.png"), b);
 
     const glm::dvec3 l = glm::normalize(glm::dvec3(light.direction));
@@ -349,6 +350,129 @@ TEST_F(PlanetRingsTest, DenseRingsAreBrightOnTheirLitFaceAndDarkFromBehind) {
     std::printf("[ring faces] B ring over C ring: %.2fx from the lit face, %.2fx from the unlit face\n", ratio[0], ratio[1]);
     EXPECT_GT(ratio[0], 1.5);
     EXPECT_LT(ratio[1], 0.7);
+}
+
+/// The rings' light on the unit sphere's point p (its normal), for the sun towards l (unit; the
+/// rings in the plane y = 0), as a share of the sun's, per colour: the irradiance of the light
+/// the rings scatter once towards p (the face the sun lights where p is on its side of the
+/// plane, else through the slab), integrated over the rings above p's horizon, less the part
+/// in the planet's shadow; 8 profile texels a radial step (the renderer's: 128), a degree around
+/// (its: 5.6).
+glm::dvec3 ringShineAt(const glm::dvec3& p, const glm::dvec3& l, const PlanetRingsConfig& rc,
+                       const std::vector<glm::vec4>& profile) {
+    constexpr int kPerStep = 8, kAround = 360;
+    const int radial = int(profile.size()) / kPerStep;
+    const double dr = (rc.outer - rc.inner) / radial, da = 2.0 * kPi / kAround;
+    const double mu0 = std::max(std::abs(l.y), 1e-3);
+    const bool litFace = p.y * l.y > 0.0;
+    auto scattered = [&](double tau, double mu) {
+        if (litFace) return 2.0 * mu0 / (mu0 + mu) * (1.0 - std::exp(-tau * (1.0 / mu + 1.0 / mu0)));
+        if (std::abs(mu - mu0) < 1e-6) return 2.0 * tau / mu * std::exp(-tau / mu);
+        return 2.0 * mu0 / (mu - mu0) * (std::exp(-tau / mu) - std::exp(-tau / mu0));
+    };
+    glm::dvec3 light(0.0);
+    for (int i = 0; i < radial; ++i) {
+        const double r = rc.inner + (i + 0.5) * dr;
+        glm::dvec3 albedo(0.0);
+        double opacity = 0.0;
+        for (int k = 0; k < kPerStep; ++k) {
+            const glm::vec4& t = profile[size_t(i * kPerStep + k)];
+            albedo += glm::dvec3(t.r, t.g, t.b) / double(kPerStep);
+            opacity += t.a / double(kPerStep);
+        }
+        const double tau = -std::log(std::max(1.0 - opacity, 1e-6));
+        double sum = 0.0;
+        for (int j = 0; j < kAround; ++j) {
+            const glm::dvec3 q(r * std::cos((j + 0.5) * da), 0.0, r * std::sin((j + 0.5) * da));
+            const glm::dvec3 d = q - p;
+            const double distance = glm::length(d), cosPoint = glm::dot(p, d) / distance;
+            const double along = glm::dot(q, l);
+            if (cosPoint <= 0.0 || (along < 0.0 && r * r - along * along < 1.0)) continue;
+            const double mu = std::abs(p.y) / distance;
+            if (mu > 0.0) sum += scattered(tau, mu) * cosPoint * mu / (distance * distance);
+        }
+        light += albedo * (sum * r * dr * da / kPi);
+    }
+    return light;
+}
+
+TEST_F(PlanetRingsTest, TheirLightOnTheNightSideIsWhatTheyScatterTowardsIt) {
+    // The night side, seen from below the rings' plane, lit from 25 degrees below it: the
+    // southern hemisphere sees the rings' lit face, the northern one their unlit face. Three
+    // frames without ambient light: with the rings' light (B), without it (A), and with an
+    // ambient of 1 and no sun (U: the cloud tops' albedo times their occlusion times the night
+    // sky's share, HFX_NIGHT_SKY, where the sun is far below the horizon). The rings' light at
+    // a pixel is then (B - A) / (U / 0.05) in linear light, per colour; the CPU integrates it
+    // over the rings at the point the pixel's ray meets the sphere.
+    GasPlanetConfig config{.gas = {.width = 128, .height = 64, .initialBands = 9.0f},
+                           .detail = {.amount = 0.0f},
+                           .rings = PlanetRingsConfig{}};
+    GasPlanetEffect planet(cl(), config);
+    planet.update(1.0 / 30.0);
+    const PlanetRingsConfig& rc = *config.rings;
+    const std::vector<glm::vec4> profile = ringProfile(rc);
+    SurfaceRenderer renderer;
+    const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
+    const Camera camera = cameraAt({2.6f, -0.9f, 1.2f});
+    const glm::dvec3 l = glm::normalize(glm::dvec3(-std::cos(25.0 * kPi / 180.0), -std::sin(25.0 * kPi / 180.0), 0.3));
+    DirectionalLight sun;
+    sun.direction = glm::vec3(l);
+    sun.color = glm::vec3(1.0f);
+    sun.ambient = glm::vec3(0.0f);
+    DirectionalLight sky = sun;
+    sky.color = glm::vec3(0.0f);
+    sky.ambient = glm::vec3(1.0f);
+    RenderTarget target(kImage, kImage);
+    auto frame = [&](bool shine, const DirectionalLight& light) {
+        SurfaceMaterial m = planet.material();
+        m.planet.ringShine = shine;
+        target.bind();
+        target.clear();
+        renderer.draw(sphere, glm::mat4(1.0f), planet.textures(), m, camera, light);
+        return target.readColor();
+    };
+    const Image b = frame(true, sun), a = frame(false, sun), u = frame(false, sky);
+    writeImage(outputPath("planet_ring_shine.png"), b);
+
+    // Per hemisphere: the mean measured and traced light over the night pixels, per colour.
+    double measured[2][3] = {}, traced[2][3] = {};
+    int count[2] = {};
+    double without = 0.0; // the night's own light, without the rings'
+    for (int y = 0; y < kImage; y += 6)
+        for (int x = 0; x < kImage; x += 6) {
+            const std::optional<glm::dvec3> p = sphereHit(camera.rayThroughPixel(x + 0.5, kImage - y - 0.5, kImage, kImage));
+            if (!p || glm::dot(*p, l) > -0.5 || std::abs(p->y) < 0.1) continue; // deep night, off the equator
+            const int side = p->y < 0.0 ? 0 : 1;
+            const glm::dvec3 t = ringShineAt(*p, l, rc, profile);
+            double base[3];
+            bool usable = true;
+            for (int c = 0; c < 3; ++c) {
+                base[c] = std::pow(u.at(x, y, c), 2.2) / 0.05;
+                usable = usable && u.at(x, y, c) > 0.08 && b.at(x, y, c) < 0.98;
+            }
+            if (!usable) continue;
+            without += std::pow(a.at(x, y, 1), 2.2) / base[1];
+            for (int c = 0; c < 3; ++c) {
+                measured[side][c] += (std::pow(b.at(x, y, c), 2.2) - std::pow(a.at(x, y, c), 2.2)) / base[c];
+                traced[side][c] += t[c];
+            }
+            ++count[side];
+        }
+    for (int side = 0; side < 2; ++side)
+        std::printf("[ring shine] %s (%s face): %d pixels, measured (%.4f, %.4f, %.4f), traced (%.4f, %.4f, %.4f)\n",
+                    side == 0 ? "south" : "north", side == 0 ? "lit" : "unlit", count[side],
+                    measured[side][0] / std::max(count[side], 1), measured[side][1] / std::max(count[side], 1),
+                    measured[side][2] / std::max(count[side], 1), traced[side][0] / std::max(count[side], 1),
+                    traced[side][1] / std::max(count[side], 1), traced[side][2] / std::max(count[side], 1));
+    EXPECT_LT(without / std::max(count[0] + count[1], 1), 0.002) << "the deep night is lit without the rings' light";
+    for (int side = 0; side < 2; ++side) {
+        ASSERT_GT(count[side], 200) << (side == 0 ? "south" : "north") << ": too few night pixels in view";
+        for (int c = 0; c < 3; ++c) {
+            const double m = measured[side][c] / count[side], t = traced[side][c] / count[side];
+            EXPECT_GT(t, 0.005) << "no light to measure";
+            EXPECT_NEAR(m, t, 0.12 * t) << (side == 0 ? "south" : "north") << ", colour " << c;
+        }
+    }
 }
 
 } // namespace

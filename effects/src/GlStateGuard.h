@@ -92,9 +92,10 @@ private:
     GLboolean depthTest_;
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
-    // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two
-    static constexpr GLuint kImages = HFX_IMAGE_BOUNDS + 1;
-    static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages,
+    // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,
+    // the rings' light's pass
+    static constexpr GLuint kImages = HFX_IMAGE_RING_SHINE + 1;
+    static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages,
                   "hfx/core/Bindings.h: the guard saves every image unit");
     struct Image {
         GLint name, level, layered, layer, access, format;

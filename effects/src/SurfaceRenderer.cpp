@@ -125,6 +125,7 @@ PlanetUniforms planetUniforms(const PlanetLook& look, const glm::mat4& model) {
         glGetTextureLevelParameteriv(look.ringProfile, 0, GL_TEXTURE_WIDTH, &width);
         u.ringTexels = float(width);
     }
+    u.ringShine = look.ringShine && look.ringOuter > 0.0f ? 1.0f : 0.0f;
     return u;
 }
 
@@ -134,7 +135,8 @@ constexpr GLuint kTextureUnits[] = {HFX_UNIT_SURFACE,  HFX_UNIT_ALBEDO,      HFX
                                     HFX_UNIT_SURFACE1, HFX_UNIT_SURFACE2,    HFX_UNIT_SURFACE3,    HFX_UNIT_ALBEDO1,
                                     HFX_UNIT_ALBEDO2,  HFX_UNIT_ALBEDO3,     HFX_UNIT_CHANNELS,    HFX_UNIT_SHADOW_MAP,
                                     HFX_UNIT_PYRAMID1, HFX_UNIT_PYRAMID2,    HFX_UNIT_PYRAMID3,    HFX_UNIT_TEXEL_SHADOWS,
-                                    HFX_UNIT_BEAM_START, HFX_UNIT_RING_PROFILE, HFX_UNIT_RING_BEHIND};
+                                    HFX_UNIT_BEAM_START, HFX_UNIT_RING_PROFILE, HFX_UNIT_RING_BEHIND,
+                                    HFX_UNIT_RING_SHINE};
 constexpr bool unitsDistinct() {
     for (size_t i = 0; i < std::size(kTextureUnits); ++i) {
         if (kTextureUnits[i] >= HFX_TEXTURE_UNITS) return false;
@@ -350,8 +352,16 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         updateBlock(ringBlock_, HFX_BLOCK_RINGS, rings);
     }
     if (material.shading == Shading::Planet) {
-        updateBlock(planetBlock_, HFX_BLOCK_PLANET, planetUniforms(material.planet, model));
-        glBindTextureUnit(HFX_UNIT_RING_PROFILE, material.planet.ringProfile);
+        const PlanetLook& look = material.planet;
+        const PlanetUniforms planet = planetUniforms(look, model);
+        updateBlock(planetBlock_, HFX_BLOCK_PLANET, planet);
+        glBindTextureUnit(HFX_UNIT_RING_SHINE,
+                          planet.ringShine > 0.0f && !caster
+                              ? ringShine_.texture(look.ringProfile, look.ringInner / look.radius,
+                                                   look.ringOuter / look.radius,
+                                                   glm::dot(glm::normalize(light.direction), planet.ringAxis))
+                              : 0);
+        glBindTextureUnit(HFX_UNIT_RING_PROFILE, look.ringProfile);
     }
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     glBindTextureUnit(HFX_UNIT_ALBEDO, textures.albedo());

@@ -11,7 +11,9 @@
 // shadows; the rest arrives diffuse and fills them. So low suns, whose straight light crosses
 // the most haze, cast the palest shadows, where bare relief at grazing light would speckle the
 // terminator's side with black. Where the planet has rings, their shadow (shade/rings.glsl)
-// dims the sunlight before it reaches the haze: the straight light, its glint and the limb's glow.
+// dims the sunlight before it reaches the haze: the straight light, its glint and the limb's glow;
+// and the sunlight they scatter lights it in turn (ring shine: hfx_ring_shine, a fill from a
+// large part of its sky, so it casts no relief shadows), the night side under their lit face most.
 
 #include "shade/rings.glsl"
 
@@ -37,7 +39,8 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float straight = exp(-HFX_HAZE_DEPTH / max(muSphere, 1e-3));
     const float lit = 1.0 - straight * (1.0 - p.lit);
     const float rings = hfx_ring_shadow(p.position, p.lightDir);
-    return p.albedo * u_ambient * p.occlusion * sky +
+    const vec3 shine = u_ringShine > 0.0 ? hfx_ring_shine(p.geometricNormal, p.lightDir) : vec3(0.0);
+    return p.albedo * p.occlusion * (u_ambient * sky + u_lightColor * shine) +
            rings * u_lightColor *
                (lit * (p.albedo * diffuse + day * u_specularStrength * p.specular) + haze * vec3(0.35, 0.55, 1.0));
 }

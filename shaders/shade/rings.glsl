@@ -12,6 +12,9 @@
 //                    the profile is read averaged over it (its mip at that width)
 //   planet on rings  the share of the sun's disc the planet's disc leaves uncovered, from the
 //                    area where two discs overlap, as seen from the ring point
+// The sunlight the rings scatter lights the planet in turn (ring shine, brightest on the night
+// side under their lit face): the renderer integrates it over the rings per point of the planet
+// in a frame fixed to the sun (shade/ringshine.comp) and the shading reads it (hfx_ring_shine).
 
 layout(std140, binding = HFX_BLOCK_PLANET) uniform HfxPlanet {
     vec3 u_planetCentre; // world
@@ -21,13 +24,26 @@ layout(std140, binding = HFX_BLOCK_PLANET) uniform HfxPlanet {
     float u_ringOuter;
     float u_sunRadius;   // the sun's angular radius, radians
     float u_ringTexels;  // the profile's texels from u_ringInner to u_ringOuter
-    float u_ringPadding;
+    float u_ringShine;   // 1: the rings light the planet (s_ringShine holds that light), 0: not
 };
 // rgb the particles' albedo, a the normal opacity, from u_ringInner (s = 0) to u_ringOuter
 // (s = 1); a border of 0 beyond, at every level.
 layout(binding = HFX_UNIT_RING_PROFILE) uniform sampler2D s_ringProfile;
 
 const float HFX_RING_PI = 3.14159265;
+
+// The sunlight a slab of normal optical depth tau scatters once towards a direction at cosine mu
+// to its normal, for sunlight arriving at cosine mu0 (Chandrasekhar's single scattering with an
+// isotropic phase function, scaled to a Lambert surface of the same albedo seen head-on), on the
+// face the sun lights or through the slab from the other:
+//   lit face     2 mu0 / (mu0 + mu) (1 - e^(-tau (1/mu + 1/mu0)))
+//   unlit face   2 mu0 / (mu - mu0) (e^(-tau / mu) - e^(-tau / mu0))
+// so dense rings are bright on their lit face and dark from behind, and thin ones glow on both.
+float hfx_ring_scattered(float tau, float mu, float mu0, bool litFace) {
+    if (litFace) return 2.0 * mu0 / (mu0 + mu) * (1.0 - exp(-tau * (1.0 / mu + 1.0 / mu0)));
+    if (abs(mu - mu0) > 1e-3) return 2.0 * mu0 / (mu - mu0) * (exp(-tau / mu) - exp(-tau / mu0));
+    return 2.0 * tau / mu * exp(-tau / mu); // the limit mu -> mu0
+}
 
 // Where radius r falls in the profile.
 float hfx_ring_coordinate(float r) {
@@ -74,4 +90,16 @@ float hfx_planet_sunlit(vec3 q, vec3 l) {
     const float apart = atan(length(cross(d, l)), dot(d, l)); // between its centre and the sun's
     const float sun = max(u_sunRadius, 1e-5);
     return 1.0 - hfx_disc_overlap(sun, planet, apart) / (HFX_RING_PI * sun * sun);
+}
+
+// The rings' light on the cloud tops at unit normal n (from the planet's centre), for light
+// towards l, over the sun's own (a Lambert surface's irradiance as a share of the sun's, per
+// colour): s_ringShine by latitude (sin, -1 to 1, up its rows) and by the longitude from the
+// sun's meridian (0 to pi across its columns; the rings are symmetric about that meridian).
+layout(binding = HFX_UNIT_RING_SHINE) uniform sampler2D s_ringShine;
+vec3 hfx_ring_shine(vec3 n, vec3 l) {
+    const float sinLatitude = dot(n, u_ringAxis);
+    const vec3 across = n - sinLatitude * u_ringAxis, sun = l - dot(l, u_ringAxis) * u_ringAxis;
+    const float c = dot(across, sun) * inversesqrt(max(dot(across, across) * dot(sun, sun), 1e-20));
+    return texture(s_ringShine, vec2(acos(clamp(c, -1.0, 1.0)) / HFX_RING_PI, 0.5 + 0.5 * sinLatitude)).rgb;
 }

@@ -17,6 +17,7 @@
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/Picking.h"
+#include "hfx/effects/RingShine.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/Technique.h"
 #include "hfx/effects/tracer/ExactTracer.h"
@@ -108,6 +109,9 @@ struct PlanetLook {
     /// texels from ringInner to ringOuter, rgb the particles' albedo, a the opacity seen along
     /// the rings' normal, with mips and a border of 0.
     unsigned ringProfile = 0;
+    /// The sunlight the rings scatter lights the planet (the renderer integrates it over the
+    /// rings, RingShine): what lights the night side under their lit face.
+    bool ringShine = true;
     void validate() const; ///< throws hfx::Error naming the field and its value
     bool operator==(const PlanetLook&) const = default;
 };
@@ -307,6 +311,7 @@ private:
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
     ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_, planetBlock_;
+    RingShine ringShine_; ///< a planet's rings' light on it
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
     ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' bounds
 };

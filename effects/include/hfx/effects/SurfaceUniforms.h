@@ -112,7 +112,7 @@ struct PlanetUniforms {
     float ringOuter = 0.0f; ///< 0: no rings
     float sunRadius = 0.0f; ///< radians
     float ringTexels = 1.0f;
-    float padding = 0.0f;
+    float ringShine = 0.0f; ///< 1: the rings light the planet (RingShine's table)
 };
 
 // std140 offsets of the GLSL blocks, member by member where alignment could slip.
