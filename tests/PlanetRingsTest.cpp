@@ -89,6 +89,22 @@ std::optional<glm::dvec3> sphereHit(const Ray& ray) {
     return ray.origin + ray.direction * (-b - std::sqrt(disc));
 }
 
+/// A banded planet (no advected detail) with the default rings, one step in: its profile and a
+/// unit sphere to draw it on.
+struct RingedPlanet {
+    explicit RingedPlanet(ClContext& cl)
+        : planet(cl, {.gas = {.width = 128, .height = 64, .initialBands = 9.0f},
+                      .detail = {.amount = 0.0f},
+                      .rings = PlanetRingsConfig{}}),
+          config(planet.rings() ? planet.rings()->config() : PlanetRingsConfig{}), profile(ringProfile(config)) {
+        planet.update(1.0 / 30.0);
+    }
+    GasPlanetEffect planet;
+    PlanetRingsConfig config;
+    std::vector<glm::vec4> profile;
+    Mesh sphere{makeSphere({.radius = 1.0f, .segments = 128, .rings = 64})};
+};
+
 TEST(PlanetRingsProfile, IsSeededBoundedAndHasTheMainRingsAndTheirGaps) {
     const PlanetRingsConfig config;
     const std::vector<glm::vec4> a = ringProfile(config), b = ringProfile(config);
@@ -169,15 +185,12 @@ TEST_F(PlanetRingsTest, TheirShadowFallsOnTheCloudTopsWhereTheSunsRayCrossesThem
     // so the transmittance measured at a pixel is (B - C) / (A - C) in linear light; the CPU
     // traces the pixel's ray to the unit sphere, the sun's ray from there to the rings' plane,
     // and takes the profile's opacity there, averaged over the sun's disc, along the slant.
-    GasPlanetConfig config{.gas = {.width = 128, .height = 64, .initialBands = 9.0f},
-                           .detail = {.amount = 0.0f},
-                           .rings = PlanetRingsConfig{}};
-    GasPlanetEffect planet(cl(), config);
-    planet.update(1.0 / 30.0);
-    const PlanetRingsConfig& rc = *config.rings;
-    const std::vector<glm::vec4> profile = ringProfile(rc);
+    const RingedPlanet ringed(cl());
+    const GasPlanetEffect& planet = ringed.planet;
+    const PlanetRingsConfig& rc = ringed.config;
+    const std::vector<glm::vec4>& profile = ringed.profile;
+    const Mesh& sphere = ringed.sphere;
     SurfaceRenderer renderer;
-    const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
     const Camera camera = cameraAt({0.0f, -1.4f, 2.8f});
     DirectionalLight light;
     light.direction = glm::normalize(glm::vec3(0.85f, 0.45f, 0.3f));
@@ -404,15 +417,12 @@ TEST_F(PlanetRingsTest, TheirLightOnTheNightSideIsWhatTheyScatterTowardsIt) {
     // sky's share, HFX_NIGHT_SKY, where the sun is far below the horizon). The rings' light at
     // a pixel is then (B - A) / (U / 0.05) in linear light, per colour; the CPU integrates it
     // over the rings at the point the pixel's ray meets the sphere.
-    GasPlanetConfig config{.gas = {.width = 128, .height = 64, .initialBands = 9.0f},
-                           .detail = {.amount = 0.0f},
-                           .rings = PlanetRingsConfig{}};
-    GasPlanetEffect planet(cl(), config);
-    planet.update(1.0 / 30.0);
-    const PlanetRingsConfig& rc = *config.rings;
-    const std::vector<glm::vec4> profile = ringProfile(rc);
+    const RingedPlanet ringed(cl());
+    const GasPlanetEffect& planet = ringed.planet;
+    const PlanetRingsConfig& rc = ringed.config;
+    const std::vector<glm::vec4>& profile = ringed.profile;
+    const Mesh& sphere = ringed.sphere;
     SurfaceRenderer renderer;
-    const Mesh sphere(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64}));
     const Camera camera = cameraAt({2.6f, -0.9f, 1.2f});
     const glm::dvec3 l = glm::normalize(glm::dvec3(-std::cos(25.0 * kPi / 180.0), -std::sin(25.0 * kPi / 180.0), 0.3));
     DirectionalLight sun;
