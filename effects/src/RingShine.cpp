@@ -12,15 +12,22 @@ namespace hfx {
 
 GLuint RingShine::texture(GLuint profile, float inner, float outer, float sinElevation) {
     const Key key{.profile = profile, .inner = inner, .outer = outer, .sinElevation = std::clamp(sinElevation, -1.0f, 1.0f)};
-    if (key_ == key) return table_.id();
-    if (!table_) {
-        table_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(table_.id(), 1, GL_RGBA16F, kLongitudes, kLatitudes));
-        glTextureParameteri(table_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(table_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(table_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(table_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const auto kept = std::ranges::find_if(tables_, [&](const Table& t) { return t.used != 0 && t.key == key; });
+    if (kept != tables_.end()) {
+        kept->used = ++clock_;
+        return kept->texture.id();
     }
+    Table& table = *std::ranges::min_element(tables_, {}, &Table::used); // a free one's is 0
+    if (!table.texture) {
+        table.texture = GlTexture::create();
+        const GLuint t = table.texture.id();
+        HFX_GL_CHECK(glTextureStorage2D(t, 1, GL_RGBA16F, kLongitudes, kLatitudes));
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    table.used = 0; // until it holds the new key's light
     if (!program_) program_ = ShaderProgram::compute(surfaceStage("shade/ringshine.comp"));
     GLint texels = 1;
     glGetTextureLevelParameteriv(profile, 0, GL_TEXTURE_WIDTH, &texels);
@@ -35,12 +42,13 @@ GLuint RingShine::texture(GLuint profile, float inner, float outer, float sinEle
     p.set("u_radial", kRadial);
     p.set("u_around", kAround);
     glBindTextureUnit(HFX_UNIT_RING_PROFILE, profile);
-    HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_RING_SHINE, table_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F));
+    HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_RING_SHINE, table.texture.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F));
     HFX_GL_CHECK(glDispatchCompute(GLuint((kLongitudes + 7) / 8), GLuint((kLatitudes + 7) / 8), 1));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the planet's draw samples it
     glUseProgram(0);
-    key_ = key;
-    return table_.id();
+    table.key = key;
+    table.used = ++clock_;
+    return table.texture.id();
 }
 
 } // namespace hfx

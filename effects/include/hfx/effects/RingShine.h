@@ -3,14 +3,18 @@
 // sunlight scattered by a planet's rings brings to each point of its cloud tops, by latitude and
 // by longitude from the sun's meridian, which the planet's shading reads (hfx_ring_shine). It
 // depends on the rings' profile and radii and on the sun's elevation over their plane only, so
-// it is made again only where one of those changes (a planet that turns, or moves, keeps it).
-// SurfaceRenderer owns one.
+// it is made again only where one of those changes (a planet that turns, or moves, keeps it);
+// the tables of the last kTables such keys are kept (several ringed planets, each under its own
+// sun, each keep theirs). SurfaceRenderer owns one.
 //
-// Owns its texture and program. Thread: the thread whose GL context is current.
+// Owns its textures and program. Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlObject.h"
 #include "hfx/core/ShaderProgram.h"
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 
 namespace hfx {
@@ -19,6 +23,7 @@ class RingShine {
 public:
     /// The table's size: longitudes, latitudes; the elements its integral sums over the rings.
     static constexpr int kLongitudes = 32, kLatitudes = 32, kRadial = 32, kAround = 64;
+    static constexpr size_t kTables = 4;
 
     /// The table for rings of radial profile `profile` (PlanetLook::ringProfile) from `inner` to
     /// `outer` planet radii, the sun at `sinElevation` over their plane (towards the side their
@@ -33,8 +38,13 @@ private:
         float inner = 0.0f, outer = 0.0f, sinElevation = 0.0f;
         bool operator==(const Key&) const = default;
     };
-    std::optional<Key> key_;
-    GlTexture table_;
+    struct Table {
+        Key key;
+        std::uint64_t used = 0; ///< 0: never made
+        GlTexture texture;
+    };
+    std::array<Table, kTables> tables_{};
+    std::uint64_t clock_ = 0;
     std::optional<ShaderProgram> program_;
 };
 
