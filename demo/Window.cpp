@@ -109,7 +109,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     // that can carry them (not the ocean's cascades; power-of-two sizes, a float format).
     std::vector<Technique> offered;
     const bool boundable = scene.effect().layers().size() == 1 &&
-                           boundsRefusal(scene.effect().textures().config()).empty();
+                           carriesBounds(scene.effect().textures().config());
     for (const TechniqueInfo& t : kTechniqueTable)
         if (!t.needsPyramid || boundable) offered.push_back(t.technique);
     int techniqueIndex = 0;

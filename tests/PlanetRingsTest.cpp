@@ -481,24 +481,28 @@ TEST_F(PlanetRingsTest, TheirLightOnTheNightSideIsWhatTheyScatterTowardsIt) {
 
 TEST_F(PlanetRingsTest, TheirLightIsKeptPerSunAndRemadeForANewOne) {
     // The renderer keeps the rings' light per sun elevation: a planet drawn under one sun, then
-    // another, then the first again draws the first frame to the bit; the second sun's frame
-    // is a fresh renderer's, and differs from the first.
+    // another, then the first again draws the first frame to the bit, and the second sun's frame
+    // is a fresh renderer's. Both suns' frames show the rings' light (without it they differ),
+    // or the comparisons would hold with any table.
     const RingedPlanet ringed(cl());
     const Camera camera = cameraAt({2.6f, -0.9f, 1.2f});
     RenderTarget target(96, 96);
-    auto frame = [&](SurfaceRenderer& renderer, float elevationDegrees) {
+    auto frame = [&](SurfaceRenderer& renderer, float elevationDegrees, bool shine = true) {
         DirectionalLight sun;
         const float e = elevationDegrees * float(kPi) / 180.0f;
         sun.direction = glm::vec3(-std::cos(e), std::sin(e), 0.3f);
         sun.ambient = glm::vec3(0.0f);
         target.bind();
         target.clear();
-        renderer.draw(ringed.sphere, glm::mat4(1.0f), ringed.planet.textures(), ringed.planet.material(), camera, sun);
+        SurfaceMaterial material = ringed.planet.material();
+        material.planet.ringShine = shine;
+        renderer.draw(ringed.sphere, glm::mat4(1.0f), ringed.planet.textures(), material, camera, sun);
         return target.readColor().pixels;
     };
     SurfaceRenderer renderer, fresh;
     const std::vector<float> first = frame(renderer, -25.0f), second = frame(renderer, -10.0f);
-    EXPECT_NE(second, first) << "the rings' light did not follow the sun";
+    EXPECT_NE(frame(fresh, -25.0f, false), first) << "no rings' light in the first sun's frame";
+    EXPECT_NE(frame(fresh, -10.0f, false), second) << "no rings' light in the second sun's frame";
     EXPECT_EQ(frame(renderer, -25.0f), first);
     EXPECT_EQ(frame(fresh, -10.0f), second);
 }

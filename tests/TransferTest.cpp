@@ -41,7 +41,7 @@ Streams allTextures(const Effect& effect) {
     if (const HeightBounds* device = effect.layers()[0].bounds; device && device->holds(t)) {
         for (int level = 0; level < device->levels(); ++level)
             out.emplace_back(str("device's bounds, level ", level), readBoundsLevel(*device, level));
-    } else if (boundsRefusal(t.config()).empty()) {
+    } else if (carriesBounds(t.config())) {
         for (int level = 0; level < HeightBounds(t.config()).levels(); ++level)
             out.emplace_back(str("bounds level ", level), readPyramidLevel(t, level));
     }

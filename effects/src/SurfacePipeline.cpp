@@ -78,7 +78,7 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
     // the device and the copy (GlWorkarounds::pyramidFromCompute), they come from the device.
     boundsFromDevice_ = config.options.format == SurfaceFormat::Float32 &&
                         glWorkarounds(currentGlRenderer()).pyramidFromCompute &&
-                        boundsRefusal(textures_[0]->config()).empty();
+                        carriesBounds(textures_[0]->config());
     if (boundsFromDevice_)
         for (auto& b : bounds_) b = std::make_unique<HeightBounds>(textures_[0]->config()); // storage on first upload
     if (config.options.format != SurfaceFormat::Float32)

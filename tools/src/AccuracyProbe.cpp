@@ -124,7 +124,7 @@ HeightBounds& AccuracyProbe::bounds() {
 }
 
 std::optional<ShadowLight> AccuracyProbe::shadowLight(const AccuracyConfig& config) const {
-    if (!config.shadows || !boundsRefusal(textures().config()).empty()) return std::nullopt;
+    if (!config.shadows || !carriesBounds(textures().config())) return std::nullopt;
     DirectionalLight l;
     l.direction = config.light;
     return flatSurfaceLight(SurfaceFrame::ofPlane({.size = kPlaneSize}), l, materialOf(config));
@@ -439,7 +439,7 @@ GlTime AccuracyProbe::timeCompute(Technique technique, const AccuracyConfig& con
         glNamedBufferStorage(computeBlock_.id(), sizeof u, nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
     glNamedBufferSubData(computeBlock_.id(), 0, sizeof u, &u);
-    if (boundsRefusal(t.config()).empty()) {
+    if (carriesBounds(t.config())) {
         boundsPass_.refresh(t, bounds(), true); // and the atlas layout's cells (image unit 4), from the texels
         bounds().bind(0);
     }

@@ -38,7 +38,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     // Bounded searches where asked and every traced layer can carry bounds (the renderer checked
     // hier's layer).
     frame.boundedSearch = !hier && material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
-                              return !l.traced || boundsRefusal(l.textures->config()).empty();
+                              return !l.traced || carriesBounds(l.textures->config());
                           });
     const PyramidLayout layout = resolvedLayout(options.boundsLayout);
     HeightBounds* bounds0 = nullptr;

@@ -9,7 +9,13 @@
 
 namespace hfx {
 
+bool carriesBounds(const SurfaceTexturesConfig& config) {
+    return std::has_single_bit(unsigned(config.width)) && std::has_single_bit(unsigned(config.height)) &&
+           config.format != SurfaceFormat::Unorm8;
+}
+
 std::string boundsRefusal(const SurfaceTexturesConfig& config) {
+    if (carriesBounds(config)) return {};
     if (!std::has_single_bit(unsigned(config.width)) || !std::has_single_bit(unsigned(config.height)))
         return str("height bounds need power-of-two sizes, got ", config.width, "x", config.height);
     if (config.format == SurfaceFormat::Unorm8)

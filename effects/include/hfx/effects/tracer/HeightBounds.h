@@ -42,6 +42,9 @@ PyramidLayout resolvedLayout(PyramidLayout layout);
 /// power-of-two sizes, and unorm8 heights round up to 1/510 above a bound, so the exact tracer
 /// would miss.
 std::string boundsRefusal(const SurfaceTexturesConfig& config);
+/// Whether textures of `config` can carry height bounds (boundsRefusal's empty case, without
+/// building its message: the tracer asks every draw).
+bool carriesBounds(const SurfaceTexturesConfig& config);
 
 class HeightBounds {
 public:
