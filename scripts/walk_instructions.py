@@ -8,10 +8,12 @@ llvmpipe's atlas) are composed into a compute shader that runs the view walk (hf
 walk (hfx_shadow) and the beam walk (hfx_beam_depth), compiled to SPIR-V by glslangValidator
 (OpenGL rules) and optimised by spirv-opt -O (inlining, constant folding, dead code). Each loop of
 the result is a walk (or a loop inside one); a step is one trip around it: every path from the
-loop's header back to it. Per loop this prints the shortest and the longest such path that reads
-a texture or image (a walk step fetches), counted in instructions that do work: everything but
-labels, merge annotations, phis and unconditional branches. A loop inside a loop (the older walk's
-shape) is printed with its nesting.
+loop's header back to it. Per loop and kind of step (one that reads a bound; with --defines
+HFX_LEVEL0_SAMPLES=1 one that reads a level-0 cell's samples as its bound; one that solves a
+patch) this prints the shortest and the longest such path that reads a texture or image (a walk
+step fetches), counted in instructions that do work: everything but labels, merge annotations,
+phis and unconditional branches. --limit holds the steps reading a bound to a budget. A loop
+inside a loop (the older walk's shape) is printed with its nesting.
 
     python3 scripts/walk_instructions.py [--accessors renderer|mip] [--shaders DIR] [--defines D=1 ...]
                                          [--keep DIR] [--show LOOP]
@@ -67,7 +69,8 @@ FETCH = re.compile(r"\bOp(ImageRead|ImageFetch|ImageGather|ImageSample\w*|ImageD
 # SPIR-V's plumbing (a vector's component, a splat, a shuffle, the image of a sampler), which a
 # GPU's instructions read in place.
 NOT_WORK = {"OpLabel", "OpSelectionMerge", "OpLoopMerge", "OpPhi", "OpBranch", "OpLine", "OpNoLine",
-            "OpCompositeExtract", "OpCompositeConstruct", "OpVectorShuffle", "OpImage", "OpCopyObject"}
+            "OpCompositeExtract", "OpCompositeConstruct", "OpVectorShuffle", "OpImage", "OpCopyObject",
+            "OpMemoryBarrier"}
 VECTOR = re.compile(r"= Op\w+ %v([234])(?:int|uint|float|bool)\b")
 
 
@@ -142,7 +145,21 @@ def compose(shaders, defines, accessors):
         with open(os.path.join(shaders, name)) as f:
             parts.append(f.read())
     parts.append(HARNESS_MAIN)
-    return "\n".join(parts)
+    return mark_solves("\n".join(parts))
+
+
+# A step that solves a patch is told from one that does not by a marker the optimiser keeps: a
+# barrier (not counted) before each walk's patch solve, hfx_patch_along's statement. (Where a
+# level-0 step reads the cell's samples as its bound, HFX_LEVEL0_SAMPLES, both make one fetch.)
+SOLVE = re.compile(r"^(\s*)(const vec3 along = hfx_patch_along\()", re.M)
+MARKER = "OpMemoryBarrier"
+
+
+def mark_solves(source):
+    marked, n = SOLVE.subn(r"\1groupMemoryBarrier();\n\1\2", source)
+    if n != 2:
+        sys.exit(f"expected the view and the light walk's patch solves (hfx_patch_along), found {n}")
+    return marked
 
 
 def compile_spirv(source, work, stage="comp"):
@@ -222,9 +239,26 @@ def fetches(block):
     return sum(1 for _, line in block["ops"] if FETCH.search(line))
 
 
+def solves(block):
+    return any(op == MARKER for op, _ in block["ops"])
+
+
+def gathers(block):
+    return any(op == "OpImageGather" for op, _ in block["ops"])
+
+
+def step_kind(path, blocks):
+    """What a step does: solves a patch, reads a level-0 cell's samples as its bound (a gather:
+    HFX_LEVEL0_SAMPLES over the mip chain), or reads a bound."""
+    if any(solves(blocks[b]) for b in path):
+        return "solves a patch"
+    return "a step at level 0 (its samples)" if any(gathers(blocks[b]) for b in path) else "a step (a bound)"
+
+
 def step_paths(blocks, header, body, inner_headers, limit=200000):
-    """(work, fetches) of every acyclic path header -> ... -> header inside the body; an inner
-    loop's body is entered at its header and left at its merge block, counted as its header only."""
+    """(work, fetches, path, kind) of every acyclic path header -> ... -> header inside the body;
+    an inner loop's body is entered at its header and left at its merge block, counted as its
+    header only."""
     results, stack = [], [(header, (0, 0), 0, frozenset([header]), (header,))]
     while stack and len(results) < limit:
         b, w, f, seen, path = stack.pop()
@@ -235,7 +269,7 @@ def step_paths(blocks, header, body, inner_headers, limit=200000):
             succ = [blocks[b]["loop"][0]]
         for s in succ:
             if s == header:
-                results.append((w, f, path))
+                results.append((w, f, path, step_kind(path, blocks)))
             elif s in body and s not in seen:
                 stack.append((s, w, f, seen | {s}, path + (s,)))
     return results
@@ -250,7 +284,7 @@ def main():
     ap.add_argument("--keep", help="write the composed shader and its SPIR-V here")
     ap.add_argument("--show", type=int, help="print the instructions of this loop's fewest step")
     ap.add_argument("--show-most", type=int, help="print the instructions of this loop's longest one-fetch step")
-    ap.add_argument("--limit", type=int, help="fail (exit 1) where a one-fetch step of a walk takes more instructions")
+    ap.add_argument("--limit", type=int, help="fail (exit 1) where a walk's step reading a bound takes more instructions")
     ap.add_argument("--water", action="store_true", help="count the water's shading instead of the walks")
     ap.add_argument("--shading", choices=("water", "planet", "lit", "rings"),
                     help="count this shading model's hfx_shade instead of the walks (--water: water; rings: "
@@ -273,30 +307,32 @@ def main():
     bodies = {h: loop_body(blocks, h) for h in headers}
     print(f"{len(headers)} loops in the composed walks ({args.accessors} accessors, spirv-opt -O; defines: "
           f"{' '.join(args.defines) or 'none'})")
-    print("| loop | nested in | blocks | fetches a step | instructions a step (scalar operations), fewest - most |")
-    print("|---|---|---|---|---|")
+    print("| loop | nested in | blocks | step | fetches | instructions (scalar operations), fewest - most |")
+    print("|---|---|---|---|---|---|")
     over = []
     for n, h in enumerate(headers, 1):
         outer = [str(headers.index(o) + 1) for o in headers if o != h and h in bodies[o]]
         inner = {o for o in headers if o != h and o in bodies[h]}
         paths = [p for p in step_paths(blocks, h, bodies[h], inner) if p[1] > 0]
         if not paths:
-            print(f"| {n} | {','.join(outer) or '-'} | {len(bodies[h])} | 0 | (no step reads) |")
+            print(f"| {n} | {','.join(outer) or '-'} | {len(bodies[h])} | - | 0 | (no step reads) |")
             continue
         shown = {args.show: min(paths)}
         if args.show_most is not None:
-            shown[args.show_most] = max(p for p in paths if p[1] == 1)
+            shown[args.show_most] = max(p for p in paths if p[1] == 1 and p[3] != "solves a patch")
         if n in shown:
             for b in shown[n][2]:
                 print("\n".join(f"    {line}" for op, line in blocks[b]["ops"] if op not in NOT_WORK))
-        # Steps by their fetches: a walk step reads one bound; the rare one that also solves a
-        # patch reads its samples too.
-        for fetched in sorted({p[1] for p in paths}):
-            same = [p[0] for p in paths if p[1] == fetched]
+        # Steps by what they do: a walk step reads one bound (at level 0 on a GPU the cell's
+        # samples); the rare one that also solves a patch (reading the samples after the bound
+        # where HFX_LEVEL0_BOUNDS).
+        for kind in sorted({(p[3], p[1]) for p in paths}, key=lambda k: (k[0] == "solves a patch", k)):
+            same = [p[0] for p in paths if (p[3], p[1]) == kind]
             lo, hi = min(same), max(same)
-            print(f"| {n} | {','.join(outer) or '-'} | {len(bodies[h])} | {fetched} | "
-                  f"{lo[0]} ({lo[1]}) - {hi[0]} ({hi[1]}) |")
-            if args.limit is not None and fetched == 1 and hi[0] > args.limit:
+            what, fetched = kind
+            print(f"| {n} | {','.join(outer) or '-'} | {len(bodies[h])} | {what} | "
+                  f"{fetched} | {lo[0]} ({lo[1]}) - {hi[0]} ({hi[1]}) |")
+            if args.limit is not None and what == "a step (a bound)" and hi[0] > args.limit:
                 over.append(f"loop {n}: a step takes up to {hi[0]} instructions, more than {args.limit}")
     if over:
         sys.exit("\n".join(over))

@@ -41,6 +41,7 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     // The texel shadows' light (hfx::ShadowLight; read where HFX_TEXEL_SHADOWS is 1): texcoords
     // per unit climbed, penumbra, slack
     vec4 u_shadowLight;
+    vec2 u_texelSize;         // 1 / the field's size: a level-0 cell's gather coordinate in one fma
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

@@ -60,12 +60,16 @@ struct SurfaceUniforms {
     /// The texel shadows' light (ShadowLight: uvPerClimb, penumbra, slack; read where
     /// HFX_TEXEL_SHADOWS is 1).
     glm::vec4 shadowLight{0.0f};
+    /// 1 / the field's size (setField): where the exact tracer gathers a level-0 cell's samples.
+    glm::vec2 texelSize{1.0f};
+    glm::vec2 padding2{0.0f}; ///< std140 rounds the block up to 16 bytes
 
     /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
     /// two where the pyramid is read), its edges wrapped or clamped.
     constexpr void setField(glm::ivec2 size, EdgeMode edges) {
         fieldLast = size - 1;
         wrapMask = {wrapsU(edges) ? fieldLast.x : -1, wrapsV(edges) ? fieldLast.y : -1};
+        texelSize = 1.0f / glm::vec2(size);
     }
 };
 
@@ -129,7 +133,8 @@ static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
 static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
 static_assert(offsetof(SurfaceUniforms, shadowBias) == 464);
 static_assert(offsetof(SurfaceUniforms, shadowLight) == 480);
-static_assert(sizeof(SurfaceUniforms) == 496);
+static_assert(offsetof(SurfaceUniforms, texelSize) == 496);
+static_assert(sizeof(SurfaceUniforms) == 512);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, translucency) == 72);
