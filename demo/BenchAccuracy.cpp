@@ -177,8 +177,9 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
 /// exact tracer walking every light ray, with a one-pixel budget, and with the texel shadows of
 /// the light, with and without the beam start; what drawing the texel shadows costs after new
 /// heights; beside them each one's fetches per pixel in the same draw (AccuracyProbe::
-/// countFetches: the mean and in lockstep blocks). Prints a table and, with --out, writes
-/// tracers.csv. `only` restricts the maps by name.
+/// countFetches: the mean and in lockstep blocks). Prints a table, then what a 32-lane warp would
+/// wait for with the walks capped and finished in a compute pass (FetchCounts::lanes32Capped),
+/// and with --out writes tracers.csv. `only` restricts the maps by name.
 int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDir, int field,
                     const std::vector<std::string>& only, int rounds, int width, int height) {
     rounds = std::max(rounds, kTimedFrames);
@@ -199,10 +200,11 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                                 {Technique::Hierarchical, 1.0f, "hier 1px"},
                                 {Technique::Hierarchical, 0.0f, "hier, texel shadows", true},
                                 {Technique::Hierarchical, 0.0f, "hier, texel shadows, no beam start", true, false}};
+    std::string stragglers; // the cap table's rows
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
            "fetches_lanes32,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
-           "compute_pom_ms,compute_hier_ms\n";
+           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap\n";
     std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
                 "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
                 "clock around glFinish of the same draws.\n"
@@ -262,7 +264,8 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                     << "," << (variants[i].texels ? 1 : 0) << ",soft," << gpuMs[i] << "," << gpuMs[i] / pom << ","
                     << counts[i].mean << "," << counts[i].lanes8 << "," << counts[i].lanes32 << ","
                     << texelMs << "," << (variants[i].beam ? 1 : 0) << "," << wall[i] << ","
-                    << wall[i] / wall[0] << "," << width << "," << height << "," << cPom << "," << cHier << "\n";
+                    << wall[i] / wall[0] << "," << width << "," << height << "," << cPom << "," << cHier << ","
+                    << counts[i].lanes32Capped << "," << counts[i].cap << "\n";
             const FetchCounts &p = counts[0], &h = counts[1], &x = counts[3], &b = counts[4];
             std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f, %.1f, %.1f, %.1f "
                         "| %.2fx | %.2fx | %.2fx | %.2fx | %.2f, %.2f | %.2fx |\n",
@@ -271,8 +274,17 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                         x.lanes8 / p.lanes8, x.lanes32 / p.lanes32, (gpuMs[3] / x.lanes8) / (pom / p.lanes8), cPom, cHier,
                         cHier / cPom);
             std::fflush(stdout);
+            char row[256];
+            std::snprintf(row, sizeof row, "| %s | %.0f | %.1f | %.1f, %.1f (%d) | %.1f, %.1f (%d) |\n", map.name.c_str(),
+                          angle, p.lanes32, h.lanes32, h.lanes32Capped, h.cap, x.lanes32, x.lanes32Capped, x.cap);
+            stragglers += row;
         }
     }
+    // Would a cap on the walks pay on a 32-lane GPU (FetchCounts::lanes32Capped)?
+    std::printf("\nA 32-lane warp's fetches per pixel, and with the walks capped in the draw and finished in a compute\n"
+                "pass (the best cap of those tried, in brackets; 0: none pays; %.0f fetches to take a walk up again):\n\n"
+                "| map | angle | pom | hier, capped (cap) | texels, capped (cap) |\n|---|---|---|---|---|\n%s",
+                kStragglerRestart, stragglers.c_str());
     if (!outDir.empty()) {
         std::filesystem::create_directories(outDir);
         const std::string path = (std::filesystem::path(outDir) / "tracers.csv").string();

@@ -377,11 +377,17 @@ TEST_F(Techniques, LockstepFetchCountsAreEachBlocksLongestLane) {
     EXPECT_EQ(one.mean, 1.0);
     EXPECT_EQ(one.lanes8, 1.0);
     EXPECT_EQ(one.lanes32, 1.0);
+    EXPECT_EQ(one.cap, 0) << "no walk to cap"; // every cap is over one fetch: none leaves fewer
+    EXPECT_EQ(one.lanes32Capped, 1.0);
     const FetchCounts timed = probe.countFetches(Technique::Hierarchical, {.angleDegrees = 70, .shadows = true}, 1280, 720);
     std::printf("hier at 1280x720: %.1f fetches, 8 lanes %.1f, 32 lanes %.1f\n", timed.mean, timed.lanes8, timed.lanes32);
     EXPECT_GT(timed.mean, 3.0);
     EXPECT_GT(timed.lanes8, 1.05 * timed.mean);
     EXPECT_GT(timed.lanes32, timed.lanes8);
+    // A cap moves fetches to a pass, it does not drop them: never below the mean, nor above none.
+    std::printf("hier capped at %d fetches, the rest in a pass: %.1f\n", timed.cap, timed.lanes32Capped);
+    EXPECT_GE(timed.lanes32Capped, timed.mean);
+    EXPECT_LE(timed.lanes32Capped, timed.lanes32);
 }
 
 TEST_F(Techniques, SelfShadowOfABoxAgreesWithExactShadowRays) {

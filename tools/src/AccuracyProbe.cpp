@@ -74,6 +74,36 @@ double lockstepFetches(const std::vector<glm::vec4>& trace, int width, int heigh
     return drawn ? sum / double(drawn) : 0.0;
 }
 
+// lockstepFetches in 8x4 blocks with every pixel stopped after `cap` fetches, plus a pass over
+// the stopped pixels in screen order, 32 to a warp, each as long as its warp's longest rest plus
+// the restart (FetchCounts::lanes32Capped).
+double cappedLockstepFetches(const std::vector<glm::vec4>& trace, int width, int height, int cap, double restart) {
+    double sum = 0.0;
+    size_t drawn = 0;
+    std::vector<double> rests;
+    for (int by = 0; by < height; by += 4)
+        for (int bx = 0; bx < width; bx += 8) {
+            double most = 0.0;
+            size_t count = 0;
+            for (int y = by; y < std::min(by + 4, height); ++y)
+                for (int x = bx; x < std::min(bx + 8, width); ++x) {
+                    const float f = trace[size_t(y) * width + x].w;
+                    if (f == 0.0f) continue; // not drawn
+                    const double fetches = std::floor(double(f));
+                    most = std::max(most, std::min(fetches, double(cap)));
+                    if (fetches > cap) rests.push_back(fetches - cap + restart);
+                    ++count;
+                }
+            sum += most * double(count);
+            drawn += count;
+        }
+    for (size_t i = 0; i < rests.size(); i += 32) {
+        const size_t end = std::min(i + 32, rests.size());
+        sum += *std::max_element(rests.begin() + i, rests.begin() + end) * double(end - i);
+    }
+    return drawn ? sum / double(drawn) : 0.0;
+}
+
 } // namespace
 
 Camera accuracyCamera(double angleDegrees, float distance, float aspect) {
@@ -337,9 +367,18 @@ FetchCounts AccuracyProbe::countFetches(Technique technique, const AccuracyConfi
                    light, drawOptions(technique, config, true));
     const std::vector<glm::vec4> trace = target.readTrace();
     // One pixel per block: each lane on its own, the plain mean.
-    return {.mean = lockstepFetches(trace, width, height, 1, 1),
-            .lanes8 = lockstepFetches(trace, width, height, 4, 2),
-            .lanes32 = lockstepFetches(trace, width, height, 8, 4)};
+    FetchCounts counts{.mean = lockstepFetches(trace, width, height, 1, 1),
+                       .lanes8 = lockstepFetches(trace, width, height, 4, 2),
+                       .lanes32 = lockstepFetches(trace, width, height, 8, 4)};
+    counts.lanes32Capped = counts.lanes32;
+    for (const int cap : kStragglerCaps) {
+        const double capped = cappedLockstepFetches(trace, width, height, cap, kStragglerRestart);
+        if (capped < counts.lanes32Capped) {
+            counts.lanes32Capped = capped;
+            counts.cap = cap;
+        }
+    }
+    return counts;
 }
 
 namespace {

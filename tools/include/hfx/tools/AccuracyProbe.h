@@ -81,9 +81,20 @@ struct AccuracyConfig {
 /// Height and bound fetches per drawn pixel, the view's and the light walk's together: the mean,
 /// and per pixel when the pixels of each 4x2 block (llvmpipe's 8 lanes) or 8x4 block (a 32-lane
 /// GPU warp) run in lockstep, each as long as its block's longest.
+///
+/// And what a cap on the walks would leave a 32-lane GPU: each pixel stops after `cap` fetches in
+/// the draw (its 8x4 block as long as its longest capped pixel), and a compute pass finishes the
+/// pixels it stopped, 32 to a warp in screen order, each as long as its warp's longest rest plus
+/// kStragglerRestart fetches for taking up the walk again (its setup, its state written and read).
+/// `cap` is the one of kStragglerCaps that leaves the fewest; 0 where no cap leaves fewer than
+/// none (lanes32Capped is then lanes32).
 struct FetchCounts {
     double mean = 0, lanes8 = 0, lanes32 = 0;
+    double lanes32Capped = 0;
+    int cap = 0;
 };
+inline constexpr int kStragglerCaps[] = {4, 6, 8, 12, 16, 24, 32, 48, 64};
+inline constexpr double kStragglerRestart = 3.0;
 
 struct AccuracyResult {
     size_t pixels = 0;              ///< pixels on the plane compared
