@@ -185,6 +185,13 @@ void main() {
     const vec3 viewTS = textureFromWorld * toEye;
     // Parallax offset vector: where the view ray has moved in uv when it reaches h = 0.
     const vec2 parallax = viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
+#if HFX_SELF_SHADOW
+    // The light in texture space, here: the inverse frame (nine registers) then dies before the
+    // view walk instead of living through it. With the walk carrying no more than its start
+    // (HfxWalk), the fragment shader needs 64 vector registers where it needed 72 on RDNA2 (68 on
+    // GCN), as AMD's compiler builds it: more waves to hide the walk's fetches (docs/BENCHMARKS.md).
+    const vec3 lightTS = textureFromWorld * normalize(u_lightDir);
+#endif
 #endif
 
     const vec2 uv0 = v_texcoord;
@@ -320,7 +327,6 @@ void main() {
     // the foot of a wall it turns away while the light ray, traced, still meets the wall.
     float lit = 1.0;
 #if HFX_SELF_SHADOW
-    const vec3 lightTS = textureFromWorld * lightDir;
     const float h0 = 1.0 - depthFraction;
     if (lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && h0 < 1.0 &&
         mipLevel <= u_lodThreshold && depthScale > 0.0) {

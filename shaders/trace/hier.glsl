@@ -62,8 +62,8 @@ const float HFX_TOUCH_ULPS = 2.0;
 // A walk of the ray p0 + dir t (cell space, t in [0, 1]) through the pyramid's cells.
 struct HfxWalk {
     vec2 q0;     // the ray's start in the walk's frame: relative to base, each back axis mirrored
+    vec2 start;  // ... and unmirrored (the patch solve's coordinates)
     vec2 rate;   // 1 / the ray's move per unit t along each axis, in cells (1e30: it does not move)
-    ivec2 base;  // the frame's origin in the field: an even multiple of its size (every level's cells align)
     ivec2 flip;  // per axis: ~0 where the ray moves back (frame cell c is field cell ~c), else 0
     ivec2 cell;  // the cell of `level` the ray is in, in the frame
     int level;
@@ -77,11 +77,15 @@ vec2 hfx_walk_cross(HfxWalk w, ivec2 edge) { return (vec2(edge) - w.q0) * w.rate
 HfxWalk hfx_walk_begin(vec2 p0, vec2 dir, float t, int level) {
     HfxWalk w;
     const ivec2 size = hfx_size();
-    w.base = ivec2(floor((p0 + 0.5) / vec2(2 * size))) * (2 * size); // 0 for texcoords in [0, 2)
+    // The frame's origin in the field: an even multiple of its size (every level's cells align),
+    // 0 for texcoords in [0, 2). Not kept, nor is p0: the start relative to it is what the patch
+    // solve needs (two registers fewer through the loop: docs/BENCHMARKS.md).
+    const ivec2 base = ivec2(floor((p0 + 0.5) / vec2(2 * size))) * (2 * size);
     const bvec2 back = lessThan(dir, vec2(0.0));
     w.flip = -ivec2(back);
-    const vec2 start = p0 - vec2(w.base), speed = abs(dir);
+    const vec2 start = p0 - vec2(base), speed = abs(dir);
     w.q0 = mix(start, -start, back);
+    w.start = start;
     w.rate = vec2(speed.x > 0.0 ? 1.0 / speed.x : 1e30, speed.y > 0.0 ? 1.0 / speed.y : 1e30);
     w.level = level;
     w.t = t;
@@ -91,11 +95,11 @@ HfxWalk hfx_walk_begin(vec2 p0, vec2 dir, float t, int level) {
 }
 
 // The walk's cell in the field relative to the frame's origin (the accessors wrap or clamp it; the
-// origin is a multiple of every level's size, and 0 where a clamped field is entered), and its
-// point at depth t relative to that origin, unmirrored (the patch solve's coordinates: the cell
-// spans [cell, cell + 1]).
+// origin is a multiple of every level's size, and 0 where a clamped field is entered), and the
+// ray's point at depth t relative to the corner of the walk's level-0 cell, unmirrored (the patch
+// solve's coordinates: the cell spans [0, 1]).
 ivec2 hfx_walk_texel(HfxWalk w) { return w.cell ^ w.flip; }
-vec2 hfx_walk_point(HfxWalk w, vec2 p0, vec2 dir, float t) { return p0 - vec2(w.base) + dir * t; }
+vec2 hfx_walk_local(HfxWalk w, vec2 dir, float t) { return w.start + dir * t - vec2(hfx_walk_texel(w)); }
 
 // HFX_LEVEL0_SAMPLES 1: a level-0 step reads the cell's four samples as its bound (a bilinear
 // patch lies between its lowest and highest corner), so a cell the ray dips into costs one fetch,
@@ -155,11 +159,10 @@ void hfx_walk_skip(inout HfxWalk w, float tExit, bool mayClimb, const bool cappe
 }
 
 // The bilinear patch of a level-0 cell's samples (x: (i, j+1), y: (i+1, j+1), z: (i+1, j),
-// w: (i, j)) along the ray from p (in the cell, whose corner (i, j) is `cell`): its height at
-// p + dir * s is A s^2 + B s + C, returned as (A, B, C).
-vec3 hfx_patch_along(vec4 s, vec2 cell, vec2 p, vec2 dir) {
+// w: (i, j)) along the ray from `local` (the point in the cell, relative to its corner (i, j)):
+// its height at local + dir * s is A s^2 + B s + C, returned as (A, B, C).
+vec3 hfx_patch_along(vec4 s, vec2 local, vec2 dir) {
     const float a = s.w, b = s.z - s.w, c = s.x - s.w, e = s.y - s.x - s.z + s.w;
-    const vec2 local = p - cell;
     return vec3(e * dir.x * dir.y, b * dir.x + c * dir.y + e * (local.x * dir.y + local.y * dir.x),
                 a + b * local.x + c * local.y + e * local.x * local.y);
 }
@@ -206,7 +209,7 @@ float hfx_trace_depth(HfxRay ray) {
             // A level-0 cell (s: its samples): from tIn (the ray is above the patch before it,
             // which is no higher than its largest sample) the patch's height minus the ray's
             // (1 - t, falling) along the cell, A s^2 + B s + C; its first root within the cell, if any.
-            const vec3 along = hfx_patch_along(s, vec2(w.cell ^ w.flip), hfx_walk_point(w, p0, dir, tIn), dir);
+            const vec3 along = hfx_patch_along(s, hfx_walk_local(w, dir, tIn), dir);
             const float A = along.x, B = along.y + 1.0, C = along.z - (1.0 - tIn);
             // The patch's rise over a move of `touch` on both axes: |b| + |e| and |c| + |e| at most.
             const vec3 rise = abs(vec3(s.z - s.w, s.x - s.w, s.y - s.x - s.z + s.w));
@@ -318,7 +321,7 @@ float hfx_shadow(HfxShadowRay ray) {
             // f(s) = patch - ray (h0 + climb t, rising) along the cell, s in [0, S]: A s^2 + B s + C.
             const float t = w.t;
             if (HFX_LEVEL0_SAMPLES == 0) s = hfx_cell_samples(hfx_walk_texel(w));
-            const vec3 along = hfx_patch_along(s, vec2(w.cell ^ w.flip), hfx_walk_point(w, p0, dir, t), dir);
+            const vec3 along = hfx_patch_along(s, hfx_walk_local(w, dir, t), dir);
             const float A = along.x, B = along.y - climb, C = along.z - (ray.h0 + climb * t);
             const float S = tExit - t;
             const float sv = A < 0.0 ? clamp(-0.5 * B / A, 0.0, S) : 0.0; // the maximum's place
