@@ -4,7 +4,8 @@ surface.vert + surface.frag (composed as the renderer composes them: its include
 tracer and the shading model in their slots, its defines), compiled to SPIR-V by glslangValidator
 and built into a graphics pipeline on RADV's null device (Mesa's Vulkan driver for AMD GPUs, with
 RADV_FORCE_FAMILY: no hardware needed), whose compiler (ACO) reports the fragment shader's
-statistics (RADV_DEBUG=shaderstats): vector registers, the waves a SIMD then holds, instructions,
+statistics (RADV_DEBUG=shaderstats): vector registers (and before scheduling: how far the count is
+from the next step of the allocation), the waves a SIMD then holds, instructions,
 ACO's estimates of latency and inverse throughput (cycles), and the clauses of memory reads (a
 clause issues its fetches back to back: fetches that do not wait for each other).
 
@@ -32,7 +33,7 @@ import walk_instructions  # noqa: E402  (its include expansion and its tools' ch
 
 ICD = "/usr/share/vulkan/icd.d/radeon_icd.x86_64.json"
 DEFAULT_VARIANTS = ["pom", "hier", "hier:HFX_TEXEL_SHADOWS=1,HFX_BEAM_START=1"]
-STATS = ("VGPRs", "Subgroups per SIMD", "Instructions", "Latency", "Inverse Throughput", "VMEM Clause")
+STATS = ("VGPRs", "Pre-Sched VGPRs", "Subgroups per SIMD", "Instructions", "Latency", "Inverse Throughput", "VMEM Clause")
 
 
 def compose(shaders, stage, tracer, defines, shading="lit"):
