@@ -165,14 +165,15 @@ float hfx_shade_level(float entryLevel, vec2 dx, vec2 dy) {
 }
 
 void main() {
-    const vec3 geometricNormal = normalize(v_normal);
-    const mat3 worldFromTexture = hfx_world_from_texture(geometricNormal, v_tangent, v_bitangent);
+    // The polygon's frame, for the view ray (after the walk: geometricNormal, worldFromTexture).
+    const vec3 entryNormal = normalize(v_normal);
+    const mat3 entryFrame = hfx_world_from_texture(entryNormal, v_tangent, v_bitangent);
 #if HFX_SHADOW_CASTER
     const vec3 toEye = u_lightDir; // the light is the eye, infinitely far
 #else
     const vec3 toEye = u_cameraPos - v_worldPos;
 #endif
-    const float cosView = clamp(dot(geometricNormal, normalize(toEye)), 0.0, 1.0);
+    const float cosView = clamp(dot(entryNormal, normalize(toEye)), 0.0, 1.0);
     // A degenerate frame (a sphere's poles, where dP/du vanishes) has no texture space: there the
     // surface is normal mapped. Silhouettes of curved meshes fade the relief out.
     const bool frameOk = length(v_tangent) > 1e-3 * length(v_bitangent) &&
@@ -181,15 +182,13 @@ void main() {
         frameOk ? u_depthScale * (u_silhouetteFade > 0.0 ? smoothstep(0.0, u_silhouetteFade, cosView) : 1.0)
                 : 0.0;
 #if HFX_TRACES
-    const mat3 textureFromWorld = frameOk ? inverse(worldFromTexture) : mat3(1.0);
+    const mat3 textureFromWorld = frameOk ? inverse(entryFrame) : mat3(1.0);
     const vec3 viewTS = textureFromWorld * toEye;
     // Parallax offset vector: where the view ray has moved in uv when it reaches h = 0.
     const vec2 parallax = viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
 #if HFX_SELF_SHADOW
     // The light in texture space, here: the inverse frame (nine registers) then dies before the
-    // view walk instead of living through it. With the walk carrying no more than its start
-    // (HfxWalk), the fragment shader needs 64 vector registers where it needed 72 on RDNA2 (68 on
-    // GCN), as AMD's compiler builds it: more waves to hide the walk's fetches (docs/BENCHMARKS.md).
+    // view walk instead of living through it (below, the frame after the walk).
     const vec3 lightTS = textureFromWorld * normalize(u_lightDir);
 #endif
 #endif
@@ -233,6 +232,24 @@ void main() {
     }
 #endif
 
+#if HFX_TRACES && defined(HFX_FRAME_AFTER_TRACE)
+    // After a tracer that asks for it (hier's walk), the polygon's frame and position are
+    // interpolated again (interpolateAtOffset at offset 0: the pixel centre's values, a few
+    // instructions) instead of kept through the walk. A GPU's compiler then holds fewer vector
+    // registers across it, and a SIMD more waves to hide its fetches: with the light turned
+    // before the walk and the walk carrying no more than its start (HfxWalk), hier's fragment
+    // shader needs 56 where it needed 72 on RDNA2 (AMD's compiler, scripts/gpu_compiler_stats.py;
+    // docs/BENCHMARKS.md). POM's search holds few registers: it keeps the frame (48 either way).
+    const vec3 position = interpolateAtOffset(v_worldPos, vec2(0.0));
+    const vec3 geometricNormal = normalize(interpolateAtOffset(v_normal, vec2(0.0)));
+    const vec3 tangent = interpolateAtOffset(v_tangent, vec2(0.0));
+    const vec3 bitangent = interpolateAtOffset(v_bitangent, vec2(0.0));
+    const mat3 worldFromTexture = hfx_world_from_texture(geometricNormal, tangent, bitangent);
+#else
+    const vec3 position = v_worldPos, geometricNormal = entryNormal, tangent = v_tangent, bitangent = v_bitangent;
+    const mat3 worldFromTexture = entryFrame;
+#endif
+
     // The traced hits' spread to the next pixel (derivatives: here, in uniform control flow).
     const vec2 hitDx = dFdx(uv), hitDy = dFdy(uv);
     const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels);
@@ -243,7 +260,7 @@ void main() {
         discard;
 
     const vec3 displacedTS = vec3(uv - uv0, -depthFraction * depthScale);
-    const vec3 displacedWorld = v_worldPos + worldFromTexture * displacedTS;
+    const vec3 displacedWorld = position + worldFromTexture * displacedTS;
 #if HFX_TRACES
     // Depth of the displaced point, so geometry crossing the relief is clipped at the relief.
     // (Normal mapping keeps the polygon's depth and with it early depth testing.)
@@ -313,8 +330,8 @@ void main() {
 #define HFX_SHADED_FOAM layerFoam
 #define HFX_SHADED_YOUNG layerYoung
 #endif
-    const vec3 tangentUnit = frameOk ? normalize(v_tangent) : vec3(0.0);
-    const vec3 bitangentUnit = frameOk ? normalize(v_bitangent) : vec3(0.0);
+    const vec3 tangentUnit = frameOk ? normalize(tangent) : vec3(0.0);
+    const vec3 bitangentUnit = frameOk ? normalize(bitangent) : vec3(0.0);
     const vec3 normal = normalize(tangentUnit * HFX_SHADED_NORMAL.x + bitangentUnit * HFX_SHADED_NORMAL.y +
                                   geometricNormal * HFX_SHADED_NORMAL.z);
     const vec3 lightDir = normalize(u_lightDir);

@@ -46,6 +46,10 @@
 // walk's climb needs no level cap of its own (its clearance test fails at the top level); the
 // depths that only a dipped-into cell needs are worked out inside that branch.
 
+// To the fragment stage (surface.frag): interpolate the polygon's frame again after the trace
+// rather than keep it through the walk, whose state and patch solve hold many registers.
+#define HFX_FRAME_AFTER_TRACE 1
+
 const int HFX_MAX_TRACE_STEPS = 1 << 18; // only against a NaN ray; the real bound is per ray
 // The view walk climbs past a cell only where the ray leaves it at least this many cells' widths
 // (along the ray's major axis, at the ray's descent) above the cell's maximum: nearer, the
