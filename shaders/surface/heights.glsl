@@ -188,7 +188,7 @@ vec2 hfx_pyramid_load(int layer, ivec2 size, ivec2 texel, int level) {
 // the field's edges do); in the atlas layout the cells image's copy of the same.
 vec4 hfx_cell_samples(ivec2 cell) {
     g_fetches += 1.0;
-    const ivec2 texel = clamp(cell & u_wrapMask, ivec2(0), u_fieldLast); // hfx_field_texel at level 0
+    const ivec2 texel = hfx_field_texel(cell, 0);
 #if HFX_PYRAMID_ATLAS
     return imageLoad(i_cells, texel);
 #else
