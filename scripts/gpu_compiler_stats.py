@@ -29,7 +29,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-import walk_instructions  # noqa: E402  (its include expansion and its tools' checks)
+import walk_instructions  # noqa: E402  (its include expansion, the renderer's)
 
 ICD = "/usr/share/vulkan/icd.d/radeon_icd.x86_64.json"
 DEFAULT_VARIANTS = ["pom", "hier", "hier:HFX_TEXEL_SHADOWS=1,HFX_BEAM_START=1"]

@@ -51,42 +51,19 @@ Spread spreadOf(std::vector<double>& values, double threshold) {
     return s;
 }
 
-// The fetches per drawn pixel when the pixels of each w x h block (from the image's corner) run
-// in lockstep, every lane as long as the block's longest: a loop on a SIMD machine runs until its
-// last lane is done.
-double lockstepFetches(const std::vector<glm::vec4>& trace, int width, int height, int w, int h) {
-    double sum = 0.0;
-    size_t drawn = 0;
-    for (int by = 0; by < height; by += h)
-        for (int bx = 0; bx < width; bx += w) {
-            double most = 0.0;
-            size_t count = 0;
-            for (int y = by; y < std::min(by + h, height); ++y)
-                for (int x = bx; x < std::min(bx + w, width); ++x) {
-                    const float f = trace[size_t(y) * width + x].w;
-                    if (f == 0.0f) continue; // not drawn
-                    most = std::max(most, std::floor(double(f)));
-                    ++count;
-                }
-            sum += most * double(count);
-            drawn += count;
-        }
-    return drawn ? sum / double(drawn) : 0.0;
-}
+} // namespace
 
-// lockstepFetches in 8x4 blocks with every pixel stopped after `cap` fetches, plus a pass over
-// the stopped pixels in screen order, 32 to a warp, each as long as its warp's longest rest plus
-// the restart (FetchCounts::lanes32Capped).
-double cappedLockstepFetches(const std::vector<glm::vec4>& trace, int width, int height, int cap, double restart) {
+double lockstepFetches(const std::vector<glm::vec4>& trace, int width, int height, int blockWidth, int blockHeight,
+                       int cap, double restart) {
     double sum = 0.0;
     size_t drawn = 0;
-    std::vector<double> rests;
-    for (int by = 0; by < height; by += 4)
-        for (int bx = 0; bx < width; bx += 8) {
+    std::vector<double> rests; // what the capped pixels leave to the pass, in screen order of their blocks
+    for (int by = 0; by < height; by += blockHeight)
+        for (int bx = 0; bx < width; bx += blockWidth) {
             double most = 0.0;
             size_t count = 0;
-            for (int y = by; y < std::min(by + 4, height); ++y)
-                for (int x = bx; x < std::min(bx + 8, width); ++x) {
+            for (int y = by; y < std::min(by + blockHeight, height); ++y)
+                for (int x = bx; x < std::min(bx + blockWidth, width); ++x) {
                     const float f = trace[size_t(y) * width + x].w;
                     if (f == 0.0f) continue; // not drawn
                     const double fetches = std::floor(double(f));
@@ -97,14 +74,13 @@ double cappedLockstepFetches(const std::vector<glm::vec4>& trace, int width, int
             sum += most * double(count);
             drawn += count;
         }
-    for (size_t i = 0; i < rests.size(); i += 32) {
-        const size_t end = std::min(i + 32, rests.size());
+    const size_t lanes = size_t(blockWidth) * size_t(blockHeight);
+    for (size_t i = 0; i < rests.size(); i += lanes) {
+        const size_t end = std::min(i + lanes, rests.size());
         sum += *std::max_element(rests.begin() + i, rests.begin() + end) * double(end - i);
     }
     return drawn ? sum / double(drawn) : 0.0;
 }
-
-} // namespace
 
 Camera accuracyCamera(double angleDegrees, float distance, float aspect) {
     const float elevation = float((90.0 - angleDegrees) * std::numbers::pi / 180.0);
@@ -372,7 +348,7 @@ FetchCounts AccuracyProbe::countFetches(Technique technique, const AccuracyConfi
                        .lanes32 = lockstepFetches(trace, width, height, 8, 4)};
     counts.lanes32Capped = counts.lanes32;
     for (const int cap : kStragglerCaps) {
-        const double capped = cappedLockstepFetches(trace, width, height, cap, kStragglerRestart);
+        const double capped = lockstepFetches(trace, width, height, 8, 4, cap, kStragglerRestart);
         if (capped < counts.lanes32Capped) {
             counts.lanes32Capped = capped;
             counts.cap = cap;

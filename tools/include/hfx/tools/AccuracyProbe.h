@@ -18,6 +18,7 @@
 #include "hfx/effects/tracer/TexelShadowPass.h"
 #include "hfx/tools/Timing.h"
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -95,6 +96,15 @@ struct FetchCounts {
 };
 inline constexpr int kStragglerCaps[] = {4, 6, 8, 12, 16, 24, 32, 48, 64};
 inline constexpr double kStragglerRestart = 3.0;
+
+/// The fetches per drawn pixel of a trace image (w: the fetches in its integer part, 0 where
+/// nothing was drawn) when the pixels of each blockWidth x blockHeight block (from the image's
+/// corner) run in lockstep, each as long as its block's longest: a loop on a SIMD machine runs
+/// until its last lane is done. With a cap, each pixel stops after `cap` fetches, and a pass
+/// finishes the pixels stopped, a block's worth of lanes at a time in screen order, each as long as
+/// its group's longest rest plus `restart` (FetchCounts::lanes32Capped).
+double lockstepFetches(const std::vector<glm::vec4>& trace, int width, int height, int blockWidth, int blockHeight,
+                       int cap = std::numeric_limits<int>::max(), double restart = 0.0);
 
 struct AccuracyResult {
     size_t pixels = 0;              ///< pixels on the plane compared
