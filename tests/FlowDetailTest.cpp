@@ -1,7 +1,8 @@
 // The gas's advected detail (FlowDetail, FlowMath.h): a uniform wind carries the noise's
 // coordinates exactly, the kernels match the shared math run on the host, a shear stretches the
-// noise into filaments along it, the layers regenerate at their period, and the detail stays
-// periodic in u and finite at 10^4 times the time scale.
+// noise into filaments along it, a warp frays the gas's edges and leaves its flats flat, the
+// layers regenerate at their period, and the detail stays periodic in u and finite at 10^4 times
+// the time scale.
 
 #include "support/Fixtures.h"
 
@@ -158,10 +159,56 @@ TEST_F(Flow, AShearStretchesTheNoiseIntoFilamentsAlongIt) {
     EXPECT_GT(ratio[1], 2.0) << "still " << ratio[0]; // 2.34 on PoCL (a shear of 3 cells per cell: sqrt(10) for an ideal slope)
 }
 
+TEST_F(Flow, AWarpFraysTheGassEdgesAndLeavesItsFlatsFlat) {
+    // A still gas with one edge: dye 0.2 below row H / 2, 0.8 from it. The warp reads it at points
+    // moved by at most warp * (w0 + w1) / 2 < 2.2 cells, through a B-spline reaching 2 cells: rows
+    // 5 cells or more from the edge see the flat alone, and the edge becomes a frayed line along x.
+    GasField gas(cl(), gasConfig());
+    std::vector<float> zero(W * H, 0.0f), dye(W * H);
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) dye[j * W + i] = j < H / 2 ? 0.2f : 0.8f;
+    gas.setState(zero, zero, dye);
+    FlowDetail detail(cl(), gas, {.scale = 4, .amount = 0.0f, .warp = 3.0f, .calm = 1.0f, .period = 4.0f});
+    for (int s = 0; s < 7; ++s) detail.step(0.2);
+    ASSERT_GT(detail.weight(0), 0.0f);
+    ASSERT_GT(detail.weight(1), 0.0f);
+    detail.run();
+    const std::vector<float> drawn = detail.readHeights(), planes = detail.readPlanes(), heights = gas.readHeights();
+    const int columns = W * 4, rows = H * 4;
+    double worst = 0, flat = 0, lo = 1, hi = 0, fray = 0;
+    for (int fy = 0; fy < rows; ++fy) {
+        const float y = (float(fy) + 0.5f) / 4.0f;
+        double sum = 0, sum2 = 0;
+        for (int fx = 0; fx < columns; ++fx) {
+            const float x = (float(fx) + 0.5f) / 4.0f, h = drawn[size_t(fy) * columns + fx];
+            worst = std::max(worst, double(std::abs(h - hfx_flow_height(heights.data(), planes.data(), W, H, x, y,
+                                                                            detail.params()))));
+            if (std::abs(y - 0.5f * H) >= 5.0f) flat = std::max(flat, double(std::abs(h - (y < 0.5f * H ? 0.2f : 0.8f))));
+            lo = std::min(lo, double(h));
+            hi = std::max(hi, double(h));
+            sum += h;
+            sum2 += double(h) * h;
+        }
+        fray = std::max(fray, std::sqrt(std::max(0.0, sum2 / columns - (sum / columns) * (sum / columns))));
+    }
+    EXPECT_LT(worst, 1e-5) << "the kernel against FlowMath.h on the host";
+    EXPECT_LT(flat, 1e-6) << "a flat band stays flat";
+    EXPECT_GE(lo, 0.2f - 1e-6);
+    EXPECT_LE(hi, 0.8f + 1e-6) << "a warped height is a blend of the gas's own";
+    // Unwarped, every row is constant along x (the gas is); warped, the edge's rows vary along it.
+    EXPECT_GT(fray, 0.05);
+    // Without a warp the same detail leaves the edge straight.
+    FlowDetail straight(cl(), gas, {.scale = 4, .amount = 0.0f, .warp = 0.0f, .calm = 1.0f, .period = 4.0f, .capRows = 1.0f});
+    straight.run();
+    const std::vector<float> plain = straight.readHeights();
+    for (int fy = 8; fy < rows - 8; ++fy)
+        for (int fx = 1; fx < columns; ++fx) ASSERT_NEAR(plain[size_t(fy) * columns + fx], plain[size_t(fy) * columns], 1e-6);
+}
+
 TEST_F(Flow, LayersRegenerateAtTheirPeriodAndStayPeriodicInUAndFiniteAtLongSteps) {
     GasField gas(cl(), {.width = W, .height = H, .edges = EdgeMode::WrapU, .vorticity = 0.35f, .jetSpeed = 14.0f,
                         .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f, .initialBands = 4.0f});
-    FlowDetail detail(cl(), gas, {.scale = 4, .amount = 0.25f, .period = 4.0f, .capRows = 1.0f});
+    FlowDetail detail(cl(), gas, {.scale = 4, .amount = 0.25f, .warp = 2.0f, .period = 4.0f, .capRows = 1.0f});
     // A regenerated layer starts from no displacement: layer 0 turns over at t = 4.
     for (int s = 0; s < 39; ++s) {
         gas.step(0.1);
@@ -214,6 +261,7 @@ TEST_F(Flow, BadConfigurationsAreRefusedByName) {
     };
     refuses({.scale = 3}, "scale");
     refuses({.amount = -0.1f}, "amount");
+    refuses({.warp = 9.0f}, "warp");
     refuses({.frequency = 0.3f}, "frequency"); // 64 * 0.3 is not whole: the noise would not wrap
     refuses({.octaves = 0}, "octaves");
     refuses({.aspect = 0.5f}, "aspect");

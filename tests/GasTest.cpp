@@ -1,5 +1,6 @@
 // The gas against analytic truth (projection per frequency band, Taylor-Green decay), its
-// conservation and robustness, and a plain C++ reference of the same step.
+// conservation and robustness, a plain C++ reference of the same step, and the planet's bands:
+// their variety and the dye's relaxation towards them.
 
 #include "support/Fixtures.h"
 #include "support/References.h"
@@ -7,7 +8,9 @@
 #include "hfx/compute/GasField.h"
 #include "hfx/compute/shared/GasMath.h"
 #include "hfx/core/Error.h"
+#include "hfx/core/Random.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -171,7 +174,93 @@ TEST_F(Gas, KernelsMatchCppReference) {
     }
 }
 
+TEST_F(Gas, TheDyeRelaxesTowardsItsBandsAndVarietyShadesThem) {
+    constexpr int W = 64, H = 32;
+    const GasConfig plain{.width = W, .height = H, .edges = EdgeMode::WrapU, .initialBands = 4.0f, .seed = 7};
+    // Variety 0 starts as it always did: 0.5 + 0.45 sin(2 pi bands y) and the seed's noise
+    // (drawn after each cell's wind).
+    GasField same(cl(), plain);
+    const std::vector<float> start = same.readHeights();
+    SplitMix64 random(plain.seed);
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            random.next();
+            const double y = (j + 0.5) / H, expected = 0.5 + 0.45 * std::sin(kTwoPi * 4.0 * y) + 0.05 * random.uniform(-1, 1);
+            ASSERT_NEAR(start[size_t(j) * W + i], expected, 1e-6) << i << "," << j;
+        }
+    // A still gas with variety: the dye moves towards fixed bands T at the rate,
+    // d(t) = T + (d0 - T) e^(-rate t). T from the first step, the law checked on the second.
+    GasConfig varied = plain;
+    varied.bandVariety = 1.0f;
+    varied.dyeRate = 0.5f;
+    GasField gas(cl(), varied);
+    const std::vector<float> d0 = gas.readHeights(), zero(W * H, 0.0f);
+    gas.setState(zero, zero, d0);
+    const double t1 = 0.8, t2 = 1.3, e1 = std::exp(-0.5 * t1), e2 = std::exp(-0.5 * t2);
+    gas.step(t1);
+    const std::vector<float> d1 = gas.readHeights();
+    gas.step(t2);
+    const std::vector<float> d2 = gas.readHeights();
+    std::vector<double> bands(H);
+    double worst = 0, along = 0, noise = 0;
+    for (int j = 0; j < H; ++j) {
+        double mean = 0;
+        for (int i = 0; i < W; ++i) {
+            const size_t k = size_t(j) * W + i;
+            const double T = (d1[k] - d0[k] * e1) / (1.0 - e1);
+            if (i == 0) bands[size_t(j)] = T;
+            along = std::max(along, std::abs(T - bands[size_t(j)]));
+            worst = std::max(worst, std::abs(d2[k] - (T + (d1[k] - T) * e2)));
+            mean += d0[k] - T;
+        }
+        noise = std::max(noise, std::abs(mean / W));
+    }
+    EXPECT_LT(worst, 1e-5) << "the relaxation's law";
+    EXPECT_LT(along, 1e-4) << "a band is one value along its row";
+    EXPECT_LT(noise, 0.02) << "the bands are the start without its noise";
+    // Each half period (8 of them) swings to its own depth: with variety 1 the peaks' distance
+    // from 0.5 spreads over up to 0.6 of 0.45; without it, every one is the same.
+    double lowest = 1, highest = 0;
+    for (int half = 0; half < 8; ++half) {
+        double peak = 0;
+        for (int j = half * H / 8; j < (half + 1) * H / 8; ++j) peak = std::max(peak, std::abs(bands[size_t(j)] - 0.5));
+        lowest = std::min(lowest, peak);
+        highest = std::max(highest, peak);
+    }
+    EXPECT_GT(highest - lowest, 0.05) << "the bands are all alike";
+    EXPECT_LE(highest, 0.5 + 1e-6);
+}
+
+TEST_F(Gas, ASplatIsItsGaussianEverywhereAcrossTheSeam) {
+    // Dye alone into a still, empty gas, centred half a radius from the seam at u = 0 and near
+    // a wall: the splat runs over a window 6 radii about its centre, wrapped in x and cut at the
+    // wall, and beyond it the Gaussian is below what the step can show.
+    constexpr int W = 128, H = 64;
+    for (EdgeMode edges : {EdgeMode::WrapU, EdgeMode::Wrap}) {
+        GasField gas(cl(), {.width = W, .height = H, .edges = edges});
+        const GasSplat splat{.u = 0.995f, .v = 0.06f, .radius = 0.04f, .dye = 0.5f};
+        gas.addSplat(splat);
+        gas.step(0.01);
+        const std::vector<float> dye = gas.readHeights();
+        const double x = splat.u * W, y = splat.v * H, r = splat.radius * W;
+        double worst = 0, total = 0;
+        for (int j = 0; j < H; ++j)
+            for (int i = 0; i < W; ++i) {
+                double dx = i + 0.5 - x, dy = j + 0.5 - y;
+                dx -= W * std::nearbyint(dx / W);
+                if (edges == EdgeMode::Wrap) dy -= H * std::nearbyint(dy / H);
+                const double expected = 0.5 * std::exp(-(dx * dx + dy * dy) / (r * r));
+                worst = std::max(worst, std::abs(dye[size_t(j) * W + i] - expected));
+                total += dye[size_t(j) * W + i];
+            }
+        EXPECT_LT(worst, 1e-6) << edgeModeName(edges);
+        EXPECT_GT(total, 0.25 * std::numbers::pi * r * r) << "the splat is there"; // half its 0.5 pi r^2 at least (the wall)
+    }
+}
+
 TEST_F(Gas, BadInputIsRefused) {
+    EXPECT_THROW(GasField(cl(), {.bandVariety = 1.5f}), Error);
+    EXPECT_THROW(GasField(cl(), {.dyeRate = -0.1f}), Error);
     EXPECT_THROW(GasField(cl(), {.width = 2}), Error);
     EXPECT_THROW(GasField(cl(), {.pressureIterations = 0}), Error);
     EXPECT_THROW(GasField(cl(), {.viscosity = -1.0f}), Error);

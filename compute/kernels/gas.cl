@@ -27,17 +27,24 @@ __kernel void maccormack(__global const float* u, __global const float* v, __glo
                  : hfx_gas_maccormack(u, v, src, forward, backward, W, H, i, j, ox, oy, dt, WALLS);
 }
 
-/* A round splat of force (cells/s^2 for dt seconds) and dye at (x, y) cells, Gaussian radius r. */
+/* A round splat of force (cells/s^2 for dt seconds) and dye at (x, y) cells, Gaussian radius r,
+   over the w x h window of cells from (i0, j0) (GasField::step: 6 radii about the centre, where
+   the Gaussian falls below 10^-15 of its peak; x wraps, and y too where there are no walls). */
 __kernel void splat(__global float* u, __global float* v, __global float* dye, int W, int H, float x,
-                    float y, float r, float fx, float fy, float amount, float dt) {
-    ID
+                    float y, float r, float fx, float fy, float amount, float dt, int i0, int j0, int w, int h) {
+    int gi = get_global_id(0), gj = get_global_id(1);
+    if (gi >= w || gj >= h) return;
+    int i = hfx_gas_wrap(i0 + gi, W), j = j0 + gj;
+    if (WALLS ? (j < 0 || j >= H) : 0) return;
+    j = hfx_gas_wrap(j, H);
+    int k = j * W + i;
     float dx = (float)i + 0.5f - x, dy = (float)j + 0.5f - y;
     dx -= W * rint(dx / W);
     if (!WALLS) dy -= H * rint(dy / H);
-    float w = exp(-(dx * dx + dy * dy) / (r * r));
+    float e = exp(-(dx * dx + dy * dy) / (r * r));
     u[k] += dt * fx * exp(-((dx + 0.5f) * (dx + 0.5f) + dy * dy) / (r * r));
     if (!(WALLS && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
-    dye[k] = clamp(dye[k] + amount * w, 0.0f, 1.0f);
+    dye[k] = clamp(dye[k] + amount * e, 0.0f, 1.0f);
 }
 
 /* Zonal jets: u relaxes towards speed * sin(2 pi bands y / H) at `rate` per second, faded
@@ -48,6 +55,12 @@ __kernel void jets(__global float* u, int W, int H, float speed, float bands, fl
     float target = speed * sin(6.28318530717958647692f * bands * y);
     if (polar > 0.0f) target *= pow(sin(3.14159265358979323846f * y), polar);
     u[k] += (target - u[k]) * (1.0f - exp(-rate * dt));
+}
+
+/* The dye moves `share` of the way to its row's band (GasConfig::dyeRate). */
+__kernel void relax_dye(__global float* dye, __global const float* rows, int W, int H, float share) {
+    ID
+    dye[k] += (rows[j] - dye[k]) * share;
 }
 
 /* Bounds the velocity: each component to +-limit cells per second. */

@@ -19,6 +19,7 @@ void FlowDetailConfig::validate(const GasConfig& gas) const {
         throw Error(str("FlowDetailConfig.scale ", scale, " makes the ", gas.width, "x", gas.height,
                         " gas's detail larger than 16384 texels"));
     if (!(amount >= 0.0f && amount <= 1.0f)) throw Error(str("FlowDetailConfig.amount must be in [0, 1], got ", amount));
+    if (!(warp >= 0.0f && warp <= 8.0f)) throw Error(str("FlowDetailConfig.warp must be in [0, 8] cells, got ", warp));
     const float lattice = float(gas.width) * frequency;
     if (!(frequency > 0.0f && frequency <= 8.0f) || lattice != std::floor(lattice))
         throw Error(str("FlowDetailConfig.frequency must be in (0, 8] with width * frequency whole (the noise wraps ",
@@ -123,7 +124,7 @@ int FlowDetail::octaves() const {
 HfxFlowParams FlowDetail::params() const {
     const FlowDetailConfig& c = config_;
     return {.amount = c.amount, .frequency = c.frequency, .aspect = c.aspect, .calm = c.calm, .strainScale = c.strainScale,
-            .octaves = octaves(), .w0 = weight(0), .w1 = weight(1), .z0 = generation(0), .z1 = generation(1)};
+            .octaves = octaves(), .w0 = weight(0), .w1 = weight(1), .z0 = generation(0), .z1 = generation(1), .warp = c.warp};
 }
 
 std::vector<float> FlowDetail::readPlanes() {

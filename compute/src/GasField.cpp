@@ -3,6 +3,7 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Random.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -31,6 +32,10 @@ void GasConfig::validate() const {
         throw Error(str("GasConfig.maxSpeed must be >= 0 and finite, got ", maxSpeed));
     if (!(initialBands >= 0.0f) || initialBands > float(height))
         throw Error(str("GasConfig.initialBands must be in [0, height], got ", initialBands));
+    if (!(bandVariety >= 0.0f && bandVariety <= 1.0f))
+        throw Error(str("GasConfig.bandVariety must be in [0, 1], got ", bandVariety));
+    if (!(dyeRate >= 0.0f && dyeRate <= 1.0f))
+        throw Error(str("GasConfig.dyeRate must be in [0, 1] per second, got ", dyeRate));
 }
 
 GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(config) {
@@ -61,21 +66,38 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         rowSums_ = cl::Kernel(program, "row_sums");
         massFactor_ = cl::Kernel(program, "mass_factor");
         scale_ = cl::Kernel(program, "scale");
+        relaxDye_ = cl::Kernel(program, "relax_dye");
     });
     // Initial state: jets already blowing, banded dye with a little noise to seed the storms.
-    std::vector<float> u(n), v(n, 0.0f), dye(n);
+    std::vector<float> u(n), v(n, 0.0f), dye(n), rows(size_t(config.height), 0.0f);
     SplitMix64 random(config.seed);
     const double twoPi = 2.0 * std::numbers::pi;
-    for (int j = 0; j < config.height; ++j)
+    // Each half period's depth and inner bands (their own stream: variety 0 draws nothing).
+    const int halves = int(std::ceil(2.0 * config.initialBands)) + 1;
+    std::vector<double> depth(size_t(halves), 1.0), inner(size_t(halves), 0.0);
+    SplitMix64 bands(config.seed ^ 0x6a09e667f3bcc909ull);
+    for (int k = 0; k < halves && config.bandVariety > 0.0f; ++k) {
+        depth[size_t(k)] = 1.0 - 0.6 * config.bandVariety * bands.next();
+        inner[size_t(k)] = 0.12 * config.bandVariety * bands.uniform(-1, 1);
+    }
+    for (int j = 0; j < config.height; ++j) {
+        const double y = (j + 0.5) / config.height;
+        const double swing = std::sin(twoPi * config.initialBands * y);
+        const size_t half = std::min(size_t(2.0 * config.initialBands * y), size_t(halves - 1));
+        const double band = 0.45 * depth[half] * swing +
+                            inner[half] * std::abs(swing) * std::sin(3.0 * twoPi * config.initialBands * y);
+        rows[size_t(j)] = config.initialBands > 0 ? float(std::clamp(0.5 + band, 0.0, 1.0)) : 0.0f;
         for (int i = 0; i < config.width; ++i) {
-            const double y = (j + 0.5) / config.height;
             u[size_t(j) * config.width + i] =
                 float(config.jetSpeed * std::sin(twoPi * config.jetBands * y) * (1.0 + 0.05 * random.uniform(-1, 1)));
             dye[size_t(j) * config.width + i] =
-                config.initialBands > 0
-                    ? float(0.5 + 0.45 * std::sin(twoPi * config.initialBands * y) + 0.05 * random.uniform(-1, 1))
-                    : 0.0f;
+                config.initialBands > 0 ? float(std::clamp(0.5 + band + 0.05 * random.uniform(-1, 1), 0.0, 1.0)) : 0.0f;
         }
+    }
+    clGuard("creating the gas's bands", [&] {
+        bandRows_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(float) * rows.size(),
+                               rows.data());
+    });
     setState(u, v, dye);
 }
 
@@ -126,8 +148,20 @@ void GasField::step(double dtSeconds) {
         const size_t bytes = sizeof(float) * size_t(W) * H;
         for (const GasSplat& s : splats_) {
             const float x = s.u * W, y = s.v * H, r = s.radius * W;
-            run(splat_, {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r), arg(s.forceX),
-                         arg(s.forceY), arg(s.dye), arg(dt)});
+            // Only the cells within 6 radii (and the half cell of the faces' offsets): beyond, the
+            // Gaussian is below 10^-15 of its peak, under a float's resolution of what it adds to
+            // (PlanetWeather's vortex keeps its gas to the bit; at 4 radii, 10^-7, that chaotic
+            // flow drifts elsewhere). A planet's storms are kept spinning by two splats each a
+            // step, so a whole-grid splat cost it most of its step.
+            const int reach = int(std::ceil(6.0f * r)) + 1;
+            const int w = std::min(W, 2 * reach + 1), h = std::min(H, 2 * reach + 1);
+            const int i0 = w == W ? 0 : int(std::floor(x)) - reach, j0 = h == H ? 0 : int(std::floor(y)) - reach;
+            cl_uint a = 0;
+            for (const auto& [size, value] : {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r),
+                                              arg(s.forceX), arg(s.forceY), arg(s.dye), arg(dt), arg(i0), arg(j0),
+                                              arg(w), arg(h)})
+                splat_.setArg(a++, size, value);
+            cl_.enqueue(splat_, cl::NDRange(size_t(w), size_t(h)));
         }
         splats_.clear();
         if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f)
@@ -175,6 +209,10 @@ void GasField::step(double dtSeconds) {
             massFactor_.setArg(3, factor_);
             cl_.enqueue(massFactor_, cl::NDRange(1));
             run(scale_, {arg(dye_), arg(factor_), arg(W), arg(H)});
+        }
+        if (config_.dyeRate > 0.0f) {
+            const float share = float(1.0 - std::exp(-double(config_.dyeRate) * dtSeconds));
+            run(relaxDye_, {arg(dye_), arg(bandRows_), arg(W), arg(H), arg(share)});
         }
         writeHeight();
     });

@@ -3,8 +3,8 @@
 // regenerated layers). The gas planet's cloud tops: filaments where the jets shear, spiral arms
 // around storms. Each step() advects the layers' noise coordinates with the gas's velocity (at
 // the gas's resolution: coordinates are smooth); run() writes the heights at `scale` texels per
-// gas cell: the gas's heights between cell centres plus the layers' noises, which carry the
-// wavelengths the grid cannot.
+// gas cell: the gas's heights between cell centres, read where the layers' noises warp each
+// point to and with their noise added, which carry the wavelengths the grid cannot.
 //
 // Owns its displacement planes, its output and its kernels. Thread: the thread that owns the
 // ClContext.
@@ -24,6 +24,10 @@ struct FlowDetailConfig {
     int scale = 4;
     /// Heights get amount times the noise (about [-0.5, 0.5]), in [0, 1].
     float amount = 0.25f;
+    /// The gas's heights are read at each point moved by up to half this many cells times the
+    /// noise along each axis (FlowMath.h), in [0, 8]: band edges fray into filaments, flat
+    /// bands stay flat. 0: no warp.
+    float warp = 0.0f;
     /// The coarsest octave's lattice cells per gas cell along x; width * frequency must be whole
     /// (the noise wraps around the longitude). Each further octave doubles it.
     float frequency = 0.5f;

@@ -34,7 +34,16 @@ struct GasConfig {
     /// After the forces, each velocity component is clamped to +-maxSpeed cells per second, so
     /// steps of any length stay bounded (the planet's large time scales); 0: no clamp.
     float maxSpeed = 0.0f;
-    float initialBands = 0.0f;    ///< dye starts as 0.5 + 0.5 sin(2 pi bands y / H) plus noise
+    float initialBands = 0.0f;    ///< dye starts as 0.5 + 0.45 sin(2 pi bands y / H) plus noise
+    /// 0: every initial band alike. Up to 1: each zone and belt (each half period of the bands)
+    /// gets its own depth, down to 1 - 0.6 variety of the full swing, and thinner bands inside it
+    /// of up to 0.12 variety, drawn from the seed: belts and zones of different shades, as a
+    /// gas giant's are.
+    float bandVariety = 0.0f;
+    /// Per second, in [0, 1]: the dye relaxes towards its initial bands (each row's starting
+    /// value, without the noise) at this rate, as a giant's zones and belts are kept by up- and
+    /// downwelling while storms and shear mix them; 0: it only mixes (and, in time, greys out).
+    float dyeRate = 0.0f;
     std::uint64_t seed = 1;
     void validate() const;
 };
@@ -84,9 +93,9 @@ private:
     ClContext& cl_;
     GasConfig config_;
     std::vector<GasSplat> splats_;
-    cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_;
+    cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_;
     cl::Kernel advect_, maccormack_, splat_, jets_, clampSpeed_, curlKernel_, confine_, diffuse_, divergence_,
-        pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_;
+        pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_, relaxDye_;
 };
 
 } // namespace hfx

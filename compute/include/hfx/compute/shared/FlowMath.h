@@ -14,6 +14,13 @@
    zero. Layer k's phase is a_k = frac(time / period + k / 2), its weight sin(pi a_k): the two
    weights' squares sum to 1, so the blend of two zero-mean noises keeps its contrast.
 
+   The layers' noise reaches the heights two ways. Added (`amount`), it is a texture of its own
+   everywhere. As a warp (`warp`, in cells), each layer's two noises (at z and z + 101) move the
+   point at which the gas's heights are read: where the gas is flat (a band's middle) nothing
+   changes, and where its colour changes (a band's edge, a storm's rim) the edge frays into the
+   filaments the flow has stretched; a warped height is a blend of the gas's own, never outside
+   the range around it.
+
    The detail is strongest where the flow strains (band edges, where the jets shear, and the rims
    of storms) and fades to a `calm` share of it where the flow only translates or turns as a
    whole (the middle of a band, a storm's eye): its amplitude follows the strain rate s (per
@@ -94,6 +101,7 @@ typedef struct HfxFlowParams {
     float amount, frequency, aspect, calm, strainScale;
     int octaves;
     float w0, w1, z0, z1;
+    float warp;
 } HfxFlowParams;
 
 /* Layer k's noise at the point (x, y) (cells): read at the point's carried coordinates. */
@@ -105,20 +113,31 @@ HFX_FN float hfx_flow_layer(HFX_GLOBAL const float* planes, int W, int H, float 
                           p.aspect, p.octaves);
 }
 
-/* A detailed height at the point (x, y) (cells) of the fine grid: the gas's heights there
-   (hfx_flow_base) plus amount times the two layers' noises, each weighted, times the strain's
-   share; clamped to [0, 1]. planes: the five planes (layer 0's x and y displacement, layer 1's,
-   the strain), each W x H. The branches are uniform: a layer at weight 0, or no amount (a pole
-   cap alone), reads no noise. */
+/* A detailed height at the point (x, y) (cells) of the fine grid: the gas's heights
+   (hfx_flow_base) read at the point moved by warp times the layers' noises (x by each layer's
+   noise at z_k, y by its noise at z_k + 101), plus amount times the noises at z_k, each layer
+   weighted, both times the strain's share; clamped to [0, 1]. planes: the five planes (layer 0's
+   x and y displacement, layer 1's, the strain), each W x H. The branches are uniform: a layer at
+   weight 0, no warp, or no detail at all (a pole cap alone) reads no noise. */
 HFX_FN float hfx_flow_height(HFX_GLOBAL const float* heights, HFX_GLOBAL const float* planes, int W,
                              int H, float x, float y, HfxFlowParams p) {
-    float h = hfx_flow_base(heights, W, H, x, y);
-    if (p.amount > 0.0f) {
-        float detail = 0.0f;
-        if (p.w0 > 0.0f) detail += p.w0 * hfx_flow_layer(planes, W, H, x, y, 0, p.z0, p);
-        if (p.w1 > 0.0f) detail += p.w1 * hfx_flow_layer(planes, W, H, x, y, 1, p.z1, p);
+    float h;
+    if (p.amount > 0.0f || p.warp > 0.0f) {
+        float along = 0.0f, across = 0.0f;
+        if (p.w0 > 0.0f) {
+            along += p.w0 * hfx_flow_layer(planes, W, H, x, y, 0, p.z0, p);
+            if (p.warp > 0.0f) across += p.w0 * hfx_flow_layer(planes, W, H, x, y, 0, p.z0 + 101.0f, p);
+        }
+        if (p.w1 > 0.0f) {
+            along += p.w1 * hfx_flow_layer(planes, W, H, x, y, 1, p.z1, p);
+            if (p.warp > 0.0f) across += p.w1 * hfx_flow_layer(planes, W, H, x, y, 1, p.z1 + 101.0f, p);
+        }
         float s = hfx_gas_sample(planes + 4 * W * H, W, H, x, y, 0.5f, 0.5f, 1);
-        h += p.amount * (p.calm + (1.0f - p.calm) * s / (s + p.strainScale)) * detail;
+        float share = p.calm + (1.0f - p.calm) * s / (s + p.strainScale);
+        h = hfx_flow_base(heights, W, H, x + p.warp * share * along, y + p.warp * share * across) +
+            p.amount * share * along;
+    } else {
+        h = hfx_flow_base(heights, W, H, x, y);
     }
     return h < 0.0f ? 0.0f : (h > 1.0f ? 1.0f : h);
 }
