@@ -11,7 +11,9 @@
 #include <glm/trigonometric.hpp>
 #include <imgui.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace hfx::demo {
 namespace {
@@ -22,6 +24,13 @@ public:
         : ImpactScene(o), planet_(cl, config(o)), sphere_(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64})),
           impacts_(planet_) {
         applyOptions(o);
+        if (o.spinUp > 0.0f) { // a minute of a 512x256 gas takes seconds on a CPU device: say why the start waits
+            const auto start = std::chrono::steady_clock::now();
+            planet_.spinUp(o.spinUp);
+            cl.queue().finish();
+            std::fprintf(stderr, "hfx: planet: %.0f s of weather spun up in %.1f s (--spin-up)\n", double(o.spinUp),
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, o.cameraDistance, 0.3f, 0.25f);
         camera_.aspect = o.aspect();
         light_.direction = {0.95f, 0.15f, -0.2f}; // 83 degrees from the view: the terminator crosses the disc

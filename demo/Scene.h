@@ -56,6 +56,7 @@ struct SceneOptions {
     float cameraDistance = 2.6f;       ///< planet: the camera's distance from the centre, in radii
     int detailScale = 0;               ///< planet: detail texels per gas cell (0: the device's)
     float timeScale = 1.0f;            ///< planet: simulated seconds per second, 1 to 10^4
+    float spinUp = 60.0f;              ///< planet: simulated seconds of weather before the first frame
     bool rings = false;                ///< planet: rings (PlanetRings) and their shadows
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)

@@ -268,6 +268,10 @@ int main(int argc, char** argv) {
     app.add_option("--cascades", s.cascades, "water: ocean cascades, 1-4 (default 4)")->check(CLI::Range(1, 4));
     app.add_option("--time-scale", s.timeScale, "planet: simulated seconds per second (1 to 10000; storms live many rotations)")
         ->check(kFinite)->check(CLI::Range(1.0, 10000.0))->capture_default_str();
+    app.add_option("--spin-up", s.spinUp,
+                   "planet: simulated seconds of weather before the first frame (storms and shear work the bands; 0: "
+                   "the bands as they start)")
+        ->check(kFinite)->check(CLI::Range(0.0, 3600.0))->capture_default_str();
     app.add_option("--camera-pitch", s.cameraPitch, "water: degrees the camera looks below the horizon (small: the far field)")
         ->check(kFinite)->check(CLI::Range(0.0, 89.0))->capture_default_str();
     app.add_option("--foam-history", s.foamHistory,

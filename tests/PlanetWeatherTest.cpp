@@ -34,6 +34,30 @@ TEST_F(PlanetWeather, StormsAreSeededOnlyWhereTheBandShearIsLowAndJetsFadeAtTheP
     EXPECT_EQ(planet.timeScale(), 1.0f);
 }
 
+TEST_F(PlanetWeather, ASpinUpIsTheWeatherOfLivingThroughItWhateverTheTimeScale) {
+    // 20 simulated seconds at once on a planet shown 10x faster, against five 4-second frames of
+    // one shown in real time: the same substeps (8 of 0.5 s a frame), storms and all, so the
+    // same gas to the bit.
+    GasPlanetConfig config{.gas = {.width = 64, .height = 32, .vorticity = 0.35f, .jetSpeed = 14.0f, .jetBands = 4.5f,
+                                   .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f, .initialBands = 4.0f,
+                                   .bandVariety = 1.0f, .dyeRate = 0.15f}};
+    GasPlanetEffect lived(cl(), config);
+    for (int i = 0; i < 5; ++i) lived.update(4.0);
+    config.timeScale = 10.0f;
+    GasPlanetEffect spun(cl(), config);
+    spun.spinUp(20.0);
+    EXPECT_DOUBLE_EQ(spun.time(), 20.0);
+    EXPECT_EQ(spun.seededStorms().size(), lived.seededStorms().size());
+    EXPECT_GE(spun.seededStorms().size(), 10u) << "0.6 storms a second";
+    std::vector<float> u[2], v[2], dye[2];
+    lived.gas().readState(u[0], v[0], dye[0]);
+    spun.gas().readState(u[1], v[1], dye[1]);
+    EXPECT_EQ(u[0], u[1]);
+    EXPECT_EQ(dye[0], dye[1]);
+    EXPECT_NE(messageOf([&] { spun.spinUp(-1.0); }).find("spinUp"), std::string::npos);
+    EXPECT_DOUBLE_EQ(spun.time(), 20.0);
+}
+
 TEST_F(PlanetWeather, ATimeScaleOfTenThousandRunsAThousandStepsWithoutNaN) {
     GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .pressureIterations = 20, .vorticity = 0.35f,
                                           .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,

@@ -11,8 +11,8 @@
 namespace hfx {
 
 std::vector<ColorStop> gasGiantPalette() {
-    return {{0.0f, {0.30f, 0.19f, 0.12f}},  {0.25f, {0.55f, 0.36f, 0.22f}}, {0.45f, {0.80f, 0.62f, 0.42f}},
-            {0.62f, {0.93f, 0.86f, 0.72f}}, {0.8f, {0.98f, 0.95f, 0.88f}},  {1.0f, {0.78f, 0.38f, 0.22f}}};
+    return {{0.0f, {0.26f, 0.16f, 0.10f}},  {0.3f, {0.48f, 0.30f, 0.18f}}, {0.48f, {0.70f, 0.50f, 0.32f}},
+            {0.64f, {0.92f, 0.84f, 0.70f}}, {0.8f, {0.98f, 0.95f, 0.88f}},  {1.0f, {0.78f, 0.38f, 0.22f}}};
 }
 
 void GasPlanetConfig::validate() const {
@@ -82,7 +82,7 @@ GasConfig scaledGas(const GasConfig& gas, float gridScale) {
 
 namespace {
 // Detail or a pole cap to put on the gas's heights: else the surface is the gas's own.
-bool hasDetail(const GasPlanetConfig& c) { return c.detail.amount > 0.0f || c.poleCap > 0.0f; }
+bool hasDetail(const GasPlanetConfig& c) { return c.detail.amount > 0.0f || c.detail.warp > 0.0f || c.poleCap > 0.0f; }
 
 // The configuration with the detail's scale and pole cap settled for this device.
 GasPlanetConfig settled(const ClContext& cl, GasPlanetConfig config) {
@@ -207,6 +207,14 @@ void GasPlanetEffect::advance(double dt) {
         gas_.step(step);
         if (detail_) detail_->step(step);
     }
+}
+
+void GasPlanetEffect::spinUp(double seconds) {
+    if (!(seconds >= 0.0 && seconds <= 1e6))
+        throw Error(str("GasPlanetEffect::spinUp: seconds must be in [0, 10^6], got ", seconds));
+    // In pieces that advance() splits into whole substeps of maxSubstep (its time scale undone).
+    const double piece = double(config_.maxSubstep) * config_.maxSubsteps;
+    for (double left = seconds; left > 0.0; left -= piece) advance(std::min(left, piece) / config_.timeScale);
 }
 
 void GasPlanetEffect::enqueueSurface() {

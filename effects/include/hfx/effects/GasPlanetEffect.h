@@ -30,7 +30,7 @@ std::vector<ColorStop> gasGiantPalette();
 struct GasPlanetConfig {
     GasConfig gas{.width = 512, .height = 256, .pressureIterations = 30, .vorticity = 0.35f,
                   .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f,
-                  .initialBands = 9.0f};
+                  .initialBands = 9.0f, .bandVariety = 1.0f, .dyeRate = 0.15f};
     std::vector<ColorStop> palette = gasGiantPalette();
     float stormsPerSecond = 0.6f;  ///< new storms (vortex pairs of force plus dye)
     float stormRadius = 0.025f;    ///< in map widths
@@ -57,8 +57,10 @@ struct GasPlanetConfig {
     /// The cloud tops' detail finer than the gas's grid, advected by its flow (FlowDetail; its
     /// capRows come from poleCap, its seed from seed). scale 0 picks one for the compute
     /// device: the largest of 4, 2 and 1 that keeps the surface at most 2048 texels wide on a
-    /// GPU, 1024 on a CPU device (autoDetailScale). amount 0 draws the gas's own heights alone.
-    FlowDetailConfig detail{.scale = 0};
+    /// GPU, 1024 on a CPU device (autoDetailScale). Mostly a warp (band edges fray into
+    /// filaments, the bands' middles stay smooth), with a little added noise; amount and warp 0
+    /// draw the gas's own heights alone.
+    FlowDetailConfig detail{.scale = 0, .amount = 0.0f, .warp = 2.0f};
     /// The gas's grid per device: `gas` is the planet at its reference grid, and the simulation
     /// runs on gridScale times its cells on each axis with the same weather in planet units:
     /// the rates in cells (gas.jetSpeed, gas.maxSpeed, stormForce) scale by gridScale, the
@@ -94,11 +96,15 @@ public:
     /// A storm now: a vortex of the configured size (times the cube root of `strength`, > 0)
     /// at texcoords (u in [0,1), v in [0,1)).
     void addStorm(float u, float v, bool clockwise, float strength = 1.0f);
+    /// Runs the weather `seconds` simulated seconds ([0, 10^6]) at once, in substeps of
+    /// maxSubstep, storms and all, drawing nothing: a planet that starts with its bands already
+    /// worked by storms and shear (the demo spins up a minute). The next update() draws it.
+    void spinUp(double seconds);
     GasField& gas() { return gas_; }
     /// The heights drawn (the gas's, with the cloud tops' detail, surfaceWidth() x
     /// surfaceHeight()), row 0 at v = 0; waits.
     std::vector<float> readHeights();
-    /// The cloud tops' detail: none when its amount and poleCap are 0 (the surface is the gas's).
+    /// The cloud tops' detail: none when its amount, warp and poleCap are 0 (the surface is the gas's).
     const FlowDetail* detail() const { return detail_.get(); }
     int surfaceWidth() const { return surface_.config().width; }
     int surfaceHeight() const { return surface_.config().height; }
@@ -136,7 +142,7 @@ private:
     ClContext& cl_;
     GasPlanetConfig config_;
     GasField gas_;
-    std::unique_ptr<FlowDetail> detail_; ///< none when config.detail.amount and poleCap are 0
+    std::unique_ptr<FlowDetail> detail_; ///< none when config.detail.amount, warp and poleCap are 0
     ColorRamp colors_;
     SplitMix64 random_;
     double time_ = 0.0, stormClock_ = 0.0;
