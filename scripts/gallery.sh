@@ -40,7 +40,7 @@ printf 'explosion 1 760 560 3\nclick 1 420 600\nclick 1 440 610\n' > "$work/wate
 render water 31 --foam-history 20 --shots "$work/water-shots.txt" && mv docs/gallery/water.jpg docs/gallery/water-explosion.jpg
 render water 30 --foam-history 20
 render noise 2 --noise-kind psrd --fractal ridged --warp 0.6
-# The planet as a GPU draws it (4 detail texels per gas cell), and a close-up after 12 s of its
+# The planet as a GPU draws it (4 detail texels per gas cell) after its minute of spin-up, and a close-up after 12 s more of its
 # gas (the festoons and filaments of its advected detail).
 render planet 150 --detail-scale 4 --camera-distance 1.8 --time-scale 3 && mv docs/gallery/planet.jpg docs/gallery/planet-closeup.jpg
 render planet 120 --detail-scale 4 --rings 1 --camera-distance 5 && mv docs/gallery/planet.jpg docs/gallery/planet-rings.jpg
