@@ -108,12 +108,18 @@ TEST_F(PlanetWeather, ASeededVortexIsStillThereAfterTwentyRotations) {
         std::nth_element(band.begin(), band.begin() + long(band.size() / 2), band.end());
         return extremum / std::max(band[band.size() / 2], 1e-6);
     };
+    // The flow is chaotic: a change of 10^-7 in the forces moves one rotation's ratio by half
+    // (4.13 against 2.65 at rotation 20), so the claim is held over the last five rotations' median.
+    std::vector<double> last;
     for (int r = 1; r <= 20; ++r) {
         while (planet.time() < r * rotation) planet.update(1.0 / 30.0);
+        if (r > 15) last.push_back(vortexRatio());
         if (r == 1 || r % 5 == 0) std::printf("rotation %d: vortex / band median %.2f\n", r, vortexRatio());
     }
     ASSERT_EQ(planet.storms().size(), 1u) << "its life is 40 rotations";
-    EXPECT_GT(vortexRatio(), 3.0) << "the vortex stands out of its band after 20 rotations";
+    std::nth_element(last.begin(), last.begin() + 2, last.end());
+    std::printf("rotations 16-20: median ratio %.2f\n", last[2]);
+    EXPECT_GT(last[2], 3.0) << "the vortex stands out of its band over rotations 16 to 20";
 }
 
 /// The planet's zonal wind and a storm's wind after `seconds` of gas, in planet units (map widths
