@@ -101,10 +101,10 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
     setState(u, v, dye);
 }
 
-void GasField::run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args) {
+void GasField::run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args, cl::NDRange range) {
     cl_uint index = 0;
     for (const auto& [size, value] : args) kernel.setArg(index++, size, value);
-    cl_.enqueue(kernel, cl::NDRange(config_.width, config_.height));
+    cl_.enqueue(kernel, range.dimensions() == 0 ? cl::NDRange(config_.width, config_.height) : range);
 }
 
 namespace {
@@ -156,12 +156,9 @@ void GasField::step(double dtSeconds) {
             const int reach = int(std::ceil(6.0f * r)) + 1;
             const int w = std::min(W, 2 * reach + 1), h = std::min(H, 2 * reach + 1);
             const int i0 = w == W ? 0 : int(std::floor(x)) - reach, j0 = h == H ? 0 : int(std::floor(y)) - reach;
-            cl_uint a = 0;
-            for (const auto& [size, value] : {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r),
-                                              arg(s.forceX), arg(s.forceY), arg(s.dye), arg(dt), arg(i0), arg(j0),
-                                              arg(w), arg(h)})
-                splat_.setArg(a++, size, value);
-            cl_.enqueue(splat_, cl::NDRange(size_t(w), size_t(h)));
+            run(splat_, {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r), arg(s.forceX),
+                         arg(s.forceY), arg(s.dye), arg(dt), arg(i0), arg(j0), arg(w), arg(h)},
+                cl::NDRange(size_t(w), size_t(h)));
         }
         splats_.clear();
         if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f)

@@ -86,7 +86,9 @@ public:
     const GasConfig& config() const { return config_; }
 
 private:
-    void run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args);
+    /// Sets the kernel's arguments in order and enqueues it over `range` (default: every cell).
+    void run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args,
+             cl::NDRange range = cl::NullRange);
     void advectField(cl::Buffer& field, float ox, float oy, float dt, bool wallRow);
     void writeHeight();
 

@@ -57,8 +57,8 @@ struct GasPlanetConfig {
     /// The cloud tops' detail finer than the gas's grid, advected by its flow (FlowDetail; its
     /// capRows come from poleCap, its seed from seed). scale 0 picks one for the compute
     /// device: the largest of 4, 2 and 1 that keeps the surface at most 2048 texels wide on a
-    /// GPU, 1024 on a CPU device (autoDetailScale). Mostly a warp (band edges fray into
-    /// filaments, the bands' middles stay smooth), with a little added noise; amount and warp 0
+    /// GPU, 1024 on a CPU device (autoDetailScale). A warp alone (band edges fray into
+    /// filaments, the bands' middles stay smooth; added noise read as fur); amount and warp 0
     /// draw the gas's own heights alone.
     FlowDetailConfig detail{.scale = 0, .amount = 0.0f, .warp = 2.0f};
     /// The gas's grid per device: `gas` is the planet at its reference grid, and the simulation
