@@ -7,8 +7,8 @@
 #
 # It prints the card and the driver, then runs, each step within its share of the budget and
 # its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
-# GL tests (the tracer's first), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout,
-# and with the walk reading level-0 samples) and 3840x2160, and the frame bench (water, decals, planet, the transfer table) at both sizes, and the ringed planet at 1280x720. A step that runs out of time is cut and says so; the rest go
+# GL tests (the tracer's first), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout)
+# and 3840x2160, and the frame bench (water, decals, planet, the transfer table) at both sizes, and the ringed planet at 1280x720. A step that runs out of time is cut and says so; the rest go
 # on. HFX_GPU_STEPS may name fewer steps (say "gl-tests bench-tracers-720p"): the budget is then
 # shared among those. Nothing here installs anything: the bundle carries what the binaries need.
 set -uo pipefail
@@ -21,7 +21,7 @@ run=(bash "$bundle/run.sh")
 
 # Each step's share of the budget, in percent of all steps; HFX_GPU_STEPS selects.
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10 [bench-tracers-720p]=12
-                   [bench-tracers-720p-atlas]=10 [bench-tracers-720p-samples]=10 [bench-tracers-4k]=12 [bench-720p]=18
+                   [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
                    [bench-4k]=14 [bench-planet-rings]=8)
 selected=${HFX_GPU_STEPS:-${!shares[*]}}
 total=0
@@ -68,16 +68,6 @@ step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height
 # the mip chain and the gather are worth here.
 step bench-tracers-720p-atlas env HFX_GL_WORKAROUNDS=pyramid-atlas=1 "${run[@]}" hfx-demo bench-tracers --width 1280 \
     --height 720 --out "$out/720p-atlas"
-# The same draws with hier's walk reading a level-0 cell's samples as its bound (HFX_LEVEL0_SAMPLES
-# in trace/hier.glsl, through a copy of the bundle's shaders): 14-25% fewer fetches a pixel and
-# 3-6% more instructions; whether that pays on a GPU is this step's question.
-samples_dir="$out/shaders-level0-samples"
-rm -rf "$samples_dir" && cp -r "$bundle/shaders" "$samples_dir" &&
-    sed -i 's/^#define HFX_LEVEL0_SAMPLES 0$/#define HFX_LEVEL0_SAMPLES 1/' "$samples_dir/trace/hier.glsl" &&
-    grep -q '^#define HFX_LEVEL0_SAMPLES 1$' "$samples_dir/trace/hier.glsl" ||
-    echo "gpu-check: could not switch HFX_LEVEL0_SAMPLES in $samples_dir" | tee -a "$out/summary.txt"
-step bench-tracers-720p-samples env HFX_SHADER_DIR="$samples_dir" "${run[@]}" hfx-demo bench-tracers --width 1280 \
-    --height 720 --out "$out/720p-samples"
 step bench-tracers-4k "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2160 --out "$out/4k"
 step bench-720p "${run[@]}" hfx-demo bench --bench-only water,decals,planet,transfer --width 1280 --height 720
 step bench-4k "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160

@@ -8,8 +8,7 @@ llvmpipe's atlas) are composed into a compute shader that runs the view walk (hf
 walk (hfx_shadow) and the beam walk (hfx_beam_depth), compiled to SPIR-V by glslangValidator
 (OpenGL rules) and optimised by spirv-opt -O (inlining, constant folding, dead code). Each loop of
 the result is a walk (or a loop inside one); a step is one trip around it: every path from the
-loop's header back to it. Per loop and kind of step (one that reads a bound; with --defines
-HFX_LEVEL0_SAMPLES=1 one that reads a level-0 cell's samples as its bound; one that solves a
+loop's header back to it. Per loop and kind of step (one that reads a bound; one that solves a
 patch) this prints the shortest and the longest such path that reads a texture or image (a walk
 step fetches), counted in instructions that do work: everything but labels, merge annotations,
 phis and unconditional branches. --limit holds the steps reading a bound to a budget. A loop
@@ -149,8 +148,7 @@ def compose(shaders, defines, accessors):
 
 
 # A step that solves a patch is told from one that does not by a marker the optimiser keeps: a
-# barrier (not counted) before each walk's patch solve, hfx_patch_along's statement. (Where a
-# level-0 step reads the cell's samples as its bound, HFX_LEVEL0_SAMPLES, both make one fetch.)
+# barrier (not counted) before each walk's patch solve, hfx_patch_along's statement.
 SOLVE = re.compile(r"^(\s*)(const vec3 along = hfx_patch_along\()", re.M)
 MARKER = "OpMemoryBarrier"
 
@@ -243,16 +241,10 @@ def solves(block):
     return any(op == MARKER for op, _ in block["ops"])
 
 
-def gathers(block):
-    return any(op == "OpImageGather" for op, _ in block["ops"])
-
-
 def step_kind(path, blocks):
-    """What a step does: solves a patch, reads a level-0 cell's samples as its bound (a gather:
-    HFX_LEVEL0_SAMPLES over the mip chain), or reads a bound."""
-    if any(solves(blocks[b]) for b in path):
-        return "solves a patch"
-    return "a step at level 0 (its samples)" if any(gathers(blocks[b]) for b in path) else "a step (a bound)"
+    """What a step does: solves a patch (reading the cell's samples after its bound), or reads a
+    bound."""
+    return "solves a patch" if any(solves(blocks[b]) for b in path) else "a step (a bound)"
 
 
 def step_paths(blocks, header, body, inner_headers, limit=200000):
@@ -323,9 +315,8 @@ def main():
         if n in shown:
             for b in shown[n][2]:
                 print("\n".join(f"    {line}" for op, line in blocks[b]["ops"] if op not in NOT_WORK))
-        # Steps by what they do: a walk step reads one bound (at level 0 on a GPU the cell's
-        # samples); the rare one that also solves a patch (reading the samples after the bound
-        # where HFX_LEVEL0_BOUNDS).
+        # Steps by what they do: a walk step reads one bound; the rare one that also solves a
+        # patch reads the cell's samples after it.
         for kind in sorted({(p[3], p[1]) for p in paths}, key=lambda k: (k[0] == "solves a patch", k)):
             same = [p[0] for p in paths if (p[3], p[1]) == kind]
             lo, hi = min(same), max(same)

@@ -241,9 +241,10 @@ std::vector<glm::vec4> runHarness(const ShaderProgram& p, const std::vector<glm:
 /// the pyramid's wrapping across the tile's edges included).
 enum class Accessors { Harness, Renderer };
 
-/// The pyramid's layout for a walk order: reading a level-0 cell's samples as its bound is a GPU's
-/// candidate, so it gathers them (the mip chain); the other, the device's own.
-PyramidLayout layoutFor(bool level0Samples) { return level0Samples ? PyramidLayout::MipChain : PyramidLayout::Auto; }
+/// Both pyramid layouts, whatever the device draws with: the mip chain a GPU reads (a texelFetch at
+/// the level, the patch's samples gathered) and llvmpipe's atlas and cells images.
+constexpr PyramidLayout kLayouts[] = {PyramidLayout::MipChain, PyramidLayout::Atlas};
+const char* layoutName(PyramidLayout layout) { return layout == PyramidLayout::Atlas ? "atlas" : "mip chain"; }
 
 /// Traces a batch of rays (two vec4 each, as Rays above) with one technique through the compute
 /// harness over `textures` (wrapped or clamped as their field's edges say); returns each hit as
@@ -251,21 +252,19 @@ PyramidLayout layoutFor(bool level0Samples) { return level0Samples ? PyramidLayo
 /// renderer's accessors, the reads it made in y. With the renderer's accessors and `texelShadows`,
 /// those texel shadows are read as a draw reads them (HFX_TEXEL_SHADOWS, their light's uniforms,
 /// surface/shadow.glsl). The textures' bounds are built here in `layout`, as a harness of its own
-/// builds them (HeightBounds). `level0Samples`: hier's walk reads a level-0 cell's samples as its
-/// bound (HFX_LEVEL0_SAMPLES, the order that waits for a GPU's figure).
+/// builds them (HeightBounds).
 std::vector<glm::vec4> traceInHarness(const SurfaceTextures& textures, Technique technique,
                                       const std::vector<glm::vec4>& rays,
                                       const SourceFile& main = kHarnessMain,
                                       Accessors accessors = Accessors::Harness,
                                       const TexelShadows* texelShadows = nullptr,
-                                      PyramidLayout layout = PyramidLayout::Auto, bool level0Samples = false) {
+                                      PyramidLayout layout = PyramidLayout::Auto) {
     const bool own = accessors == Accessors::Harness;
     HFX_CHECK(!(own && texelShadows));
     HeightBounds bounds(textures.config(), layout);
     std::vector<SourceFile> parts{kComputeHeader, surfaceShader("bindings.glsl"),
                                   {"harness_layout.comp",
-                                   str("#define HFX_PYRAMID_ATLAS ", bounds.layout() == PyramidLayout::Atlas ? 1 : 0,
-                                       "\n#define HFX_LEVEL0_SAMPLES ", level0Samples ? 1 : 0, "\n"),
+                                   str("#define HFX_PYRAMID_ATLAS ", bounds.layout() == PyramidLayout::Atlas ? 1 : 0, "\n"),
                                    "test"}};
     if (texelShadows) parts.push_back({"harness_texels.comp", "#define HFX_TEXEL_SHADOWS 1\n", "test"});
     if (own) parts.push_back(kHarness);
@@ -392,12 +391,13 @@ TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
         }
         // Exact, then with a tolerance (a pixel budget's depth fraction): the hit may then stop short
         // of the exact one by up to the tolerance, never more and never past it.
-        // Both walk orders: a level-0 step reading the pyramid's bound, or the cell's samples.
-        for (const auto& [samples, tolerance] : {std::pair{false, 0.0f}, {false, 0.01f}, {true, 0.0f}, {true, 0.01f}}) {
+        // Both pyramid layouts, each exact and with the tolerance.
+        for (const auto& [layout, tolerance] : {std::pair{PyramidLayout::MipChain, 0.0f}, {PyramidLayout::MipChain, 0.01f},
+                                                {PyramidLayout::Atlas, 0.0f}, {PyramidLayout::Atlas, 0.01f}}) {
             for (int i = 0; i < kRays; ++i) rays[2 * size_t(i) + 1].w = tolerance;
             // The renderer's accessors: rays run up to 5.7 texcoords, across the tile's edges.
             const std::vector<glm::vec4> hits = traceInHarness(probe.textures(), Technique::Hierarchical, rays, kHarnessMain,
-                                                               Accessors::Renderer, nullptr, layoutFor(samples), samples);
+                                                               Accessors::Renderer, nullptr, layout);
             int deeper = 0, off = 0, early = 0, touches = 0;
             double worst = 0.0;
             for (int i = 0; i < kRays; ++i) {
@@ -428,12 +428,12 @@ TEST_F(TracerContract, TheExactTracerNeverStepsOverASurfaceOnAMillionRays) {
                 }
                 worst = std::max(worst, std::abs(texels) - (texels < 0.0 ? allowed : 0.0));
             }
-            std::printf("[tunnel] top %g, tolerance %g, level 0 reads %s: %d of %d rays deeper than the exact hit, %d off by > "
+            std::printf("[tunnel] top %g, tolerance %g, %s: %d of %d rays deeper than the exact hit, %d off by > "
                         "0.05 texel beyond the tolerance (worst %.3f texels), %d stopped short within it, %d on a top they graze\n",
-                        top, tolerance, samples ? "samples" : "bounds", deeper, kRays, off, worst, early, touches);
-            EXPECT_EQ(deeper, 0) << "top " << top << ", tolerance " << tolerance << ", samples " << samples;
-            EXPECT_EQ(off, 0) << "top " << top << ", tolerance " << tolerance << ", samples " << samples;
-            EXPECT_LT(touches, kRays / 10000) << "top " << top << ", tolerance " << tolerance << ", samples " << samples;
+                        top, tolerance, layoutName(layout), deeper, kRays, off, worst, early, touches);
+            EXPECT_EQ(deeper, 0) << "top " << top << ", tolerance " << tolerance << ", " << layoutName(layout);
+            EXPECT_EQ(off, 0) << "top " << top << ", tolerance " << tolerance << ", " << layoutName(layout);
+            EXPECT_LT(touches, kRays / 10000) << "top " << top << ", tolerance " << tolerance << ", " << layoutName(layout);
             if (tolerance > 0.0f) {
                 EXPECT_GT(early, kRays / 100) << "the tolerance was not used";
             }
@@ -472,9 +472,9 @@ TEST_F(TracerContract, ATouchWithinRoundingAtAPlateausTopIsAHit) {
                         rays.emplace_back(uv.x, uv.y, float(parallax.x), float(parallax.y));
                         rays.emplace_back(float(std::cos(angle * std::numbers::pi / 180.0)), 0.0f, 32.0f, 0.0f);
                     }
-    for (const bool samples : {false, true}) { // a level-0 step reading the bound, or the samples
+    for (const PyramidLayout layout : kLayouts) {
         const std::vector<glm::vec4> hits = traceInHarness(probe.textures(), Technique::Hierarchical, rays, kHarnessMain,
-                                                           Accessors::Renderer, nullptr, layoutFor(samples), samples);
+                                                           Accessors::Renderer, nullptr, layout);
         int walkedOn = 0;
         double deepest = 0.0;
         for (size_t i = 0; i < hits.size(); ++i) {
@@ -483,9 +483,9 @@ TEST_F(TracerContract, ATouchWithinRoundingAtAPlateausTopIsAHit) {
                 std::printf("[touch] uv (%.9g, %.9g) parallax (%.6g, %.6g): depth %.4f\n", rays[2 * i].x, rays[2 * i].y,
                             rays[2 * i].z, rays[2 * i].w, hits[i].z);
         }
-        std::printf("[touch] level 0 reads %s: %d of %zu entries on the plateau's edge walked on (deepest hit %.2g)\n",
-                    samples ? "samples" : "bounds", walkedOn, hits.size(), deepest);
-        EXPECT_EQ(walkedOn, 0) << "samples " << samples;
+        std::printf("[touch] %s: %d of %zu entries on the plateau's edge walked on (deepest hit %.2g)\n",
+                    layoutName(layout), walkedOn, hits.size(), deepest);
+        EXPECT_EQ(walkedOn, 0) << layoutName(layout);
     }
 }
 
@@ -520,9 +520,9 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
         origins.emplace_back(uv, h0);
         directions.push_back(direction);
     }
-    for (const bool samples : {false, true}) { // a level-0 step reading the bound, or the samples
+    for (const PyramidLayout layout : kLayouts) {
         const std::vector<glm::vec4> shadow = traceInHarness(probe.textures(), Technique::Hierarchical, rays, kShadowMain,
-                                                             Accessors::Renderer, nullptr, layoutFor(samples), samples);
+                                                             Accessors::Renderer, nullptr, layout);
         int missed = 0, invented = 0, blocked = 0, grazing = 0;
         for (int i = 0; i < kRays; ++i) {
             const glm::dvec3 o = origins[size_t(i)], d = directions[size_t(i)];
@@ -547,11 +547,11 @@ TEST_F(TracerContract, TheExactShadowNeverMissesABlockerOnAMillionRays) {
                 ++invented;
             }
         }
-        std::printf("[shadow] level 0 reads %s: %d of %d rays blocked, %d grazing; %d blockers missed, %d invented\n",
-                    samples ? "samples" : "bounds", blocked, kRays, grazing, missed, invented);
+        std::printf("[shadow] %s: %d of %d rays blocked, %d grazing; %d blockers missed, %d invented\n", layoutName(layout),
+                    blocked, kRays, grazing, missed, invented);
         EXPECT_GT(blocked, kRays / 10);
-        EXPECT_EQ(missed, 0) << "samples " << samples;
-        EXPECT_EQ(invented, 0) << "samples " << samples;
+        EXPECT_EQ(missed, 0) << layoutName(layout);
+        EXPECT_EQ(invented, 0) << layoutName(layout);
     }
 }
 

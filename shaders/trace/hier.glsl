@@ -44,7 +44,11 @@
 // What a step costs: `python3 scripts/walk_instructions.py` counts it in the compiled shader. The
 // bound's texel is the frame cell's bits flipped (the accessors wrap or clamp it); the view
 // walk's climb needs no level cap of its own (its clearance test fails at the top level); the
-// depths that only a dipped-into cell needs are worked out inside that branch.
+// depths that only a dipped-into cell needs are worked out inside that branch. On an NVIDIA H200
+// the walk is bound by the instructions it issues, not by its fetches' waits: fetching the next
+// cells of a level ahead, a level-0 step reading the cell's samples (fewer fetches, more
+// instructions) and the solves gathered after the bounds' loop were each slower, or faster on some
+// maps and slower on others (docs/BENCHMARKS.md). A cheaper pixel needs fewer instructions.
 
 // To the fragment stage (surface.frag): interpolate the polygon's frame again after the trace
 // rather than keep it through the walk, whose state and patch solve hold many registers.
@@ -104,32 +108,6 @@ HfxWalk hfx_walk_begin(vec2 p0, vec2 dir, float t, int level) {
 // solve's coordinates: the cell spans [0, 1]).
 ivec2 hfx_walk_texel(HfxWalk w) { return w.cell ^ w.flip; }
 vec2 hfx_walk_local(HfxWalk w, vec2 dir, float t) { return w.start + dir * t - vec2(hfx_walk_texel(w)); }
-
-// HFX_LEVEL0_SAMPLES 1: a level-0 step reads the cell's four samples as its bound (a bilinear
-// patch lies between its lowest and highest corner), so a cell the ray dips into costs one fetch,
-// not a bound and then its samples, one waiting for the other: 14-25% fewer fetches a pixel for
-// 3-6% more instructions (a step reading a bound 2 more, for the level's test; one at level 0 8
-// more; a solve 7 fewer). It waits for a GPU's figure (docs/BENCHMARKS.md): on llvmpipe, whose
-// lanes run both sides of a branch they disagree on, it made hier's draw 1-15% slower.
-// 0 (the default): every step reads the pyramid's bound, the solve the samples.
-#ifndef HFX_LEVEL0_SAMPLES
-#define HFX_LEVEL0_SAMPLES 0
-#endif
-
-// The walk's cell's bounds (max, min): the pyramid's, or with HFX_LEVEL0_SAMPLES at level 0 the
-// cell's samples (`samples`; vec4(0) elsewhere), which its solve then reads. One fetch either way.
-vec2 hfx_walk_bounds(HfxWalk w, out vec4 samples) {
-    samples = vec4(0.0);
-    vec2 bounds;
-    if (HFX_LEVEL0_SAMPLES == 0 || w.level > 0) {
-        bounds = hfx_bounds(hfx_walk_texel(w), w.level);
-    } else {
-        samples = hfx_cell_samples(hfx_walk_texel(w));
-        const vec2 high = max(samples.xy, samples.zw), low = min(samples.xy, samples.zw);
-        bounds = vec2(max(high.x, high.y), min(low.x, low.y));
-    }
-    return bounds;
-}
 
 // Where the walk leaves its cell (within [t, 1]).
 float hfx_walk_exit(HfxWalk w) { return clamp(min(w.tNext.x, w.tNext.y), w.t, 1.0); }
@@ -197,8 +175,7 @@ float hfx_trace_depth(HfxRay ray) {
     HfxWalk w = hfx_walk_begin(p0, dir, clamp(max(1.0 - hfx_field_max(), ray.start), 0.0, 1.0), 0);
     for (int steps = 0; steps < maxSteps && w.t < 1.0; ++steps) {
         const float tExit = hfx_walk_exit(w);
-        vec4 s;
-        const vec2 bounds = hfx_walk_bounds(w, s);
+        const vec2 bounds = hfx_bounds(hfx_walk_texel(w), w.level);
         const float tDown = 1.0 - bounds.x; // where the ray comes down to the cell's maximum
         if (tDown < tExit) {
             const float tBelow = 1.0 - bounds.y; // ... and passes its minimum: the hit is in [tIn, tBelow]
@@ -209,7 +186,7 @@ float hfx_trace_depth(HfxRay ray) {
                 hfx_walk_descend(w, tIn);
                 continue;
             }
-            if (HFX_LEVEL0_SAMPLES == 0) s = hfx_cell_samples(hfx_walk_texel(w));
+            const vec4 s = hfx_cell_samples(hfx_walk_texel(w));
             // A level-0 cell (s: its samples): from tIn (the ray is above the patch before it,
             // which is no higher than its largest sample) the patch's height minus the ray's
             // (1 - t, falling) along the cell, A s^2 + B s + C; its first root within the cell, if any.
@@ -315,8 +292,7 @@ float hfx_shadow(HfxShadowRay ray) {
         const float tExit = hfx_walk_exit(w);
         // (A graze within HFX_SHADOW_EPSILON sets r < 0: the edge never rises above the ray.)
         const float coneLow = fma(slope, rising ? w.t : tExit, ray.h0);
-        vec4 s;
-        const vec2 bounds = hfx_walk_bounds(w, s);
+        const vec2 bounds = hfx_bounds(hfx_walk_texel(w), w.level);
         if (bounds.x >= coneLow) {
             if (w.level > 0) {
                 hfx_walk_descend(w, w.t);
@@ -324,7 +300,7 @@ float hfx_shadow(HfxShadowRay ray) {
             }
             // f(s) = patch - ray (h0 + climb t, rising) along the cell, s in [0, S]: A s^2 + B s + C.
             const float t = w.t;
-            if (HFX_LEVEL0_SAMPLES == 0) s = hfx_cell_samples(hfx_walk_texel(w));
+            const vec4 s = hfx_cell_samples(hfx_walk_texel(w));
             const vec3 along = hfx_patch_along(s, hfx_walk_local(w, dir, t), dir);
             const float A = along.x, B = along.y - climb, C = along.z - (ray.h0 + climb * t);
             const float S = tExit - t;
