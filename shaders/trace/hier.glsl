@@ -45,10 +45,11 @@
 // bound's texel is the frame cell's bits flipped (the accessors wrap or clamp it); the view
 // walk's climb needs no level cap of its own (its clearance test fails at the top level); the
 // depths that only a dipped-into cell needs are worked out inside that branch. On an NVIDIA H200
-// the walk is bound by the instructions it issues, not by its fetches' waits: fetching the next
-// cells of a level ahead, a level-0 step reading the cell's samples (fewer fetches, more
-// instructions) and the solves gathered after the bounds' loop were each slower, or faster on some
-// maps and slower on others (docs/BENCHMARKS.md). A cheaper pixel needs fewer instructions.
+// the walks are the draw's cost (without them it is 0.5-0.7x POM's) and are bound by the
+// instructions they issue, not by their fetches' waits: a level-0 step reading the cell's samples
+// (fewer fetches, more instructions) was slower, the solves gathered after the bounds' loop much
+// slower, and fetching the next cell of a level with each one a few per cent faster on most views
+// and slower on others (docs/BENCHMARKS.md). A cheaper pixel needs fewer steps.
 
 // To the fragment stage (surface.frag): interpolate the polygon's frame again after the trace
 // rather than keep it through the walk, whose state and patch solve hold many registers.
