@@ -53,6 +53,7 @@ TEST_F(PlanetWeather, ASpinUpIsTheWeatherOfLivingThroughItWhateverTheTimeScale) 
     lived.gas().readState(u[0], v[0], dye[0]);
     spun.gas().readState(u[1], v[1], dye[1]);
     EXPECT_EQ(u[0], u[1]);
+    EXPECT_EQ(v[0], v[1]);
     EXPECT_EQ(dye[0], dye[1]);
     EXPECT_NE(messageOf([&] { spun.spinUp(-1.0); }).find("spinUp"), std::string::npos);
     EXPECT_DOUBLE_EQ(spun.time(), 20.0);
