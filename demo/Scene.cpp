@@ -23,6 +23,7 @@ void Scene::applyOptions(const SceneOptions& o) {
     technique = o.technique;
     texelShadows = o.texelShadows;
     beamStart = o.beamStart;
+    deferShadowWalks = o.deferShadowWalks;
 }
 
 std::string Scene::texelShadowsLabel() const {

@@ -34,6 +34,9 @@ struct SceneOptions {
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
     /// hier's beam start on flat surfaces (DrawOptions::beamStart): the same hits in shorter walks.
     bool beamStart = true;
+    /// The light walks the texel shadows leave done by a pass after the draw
+    /// (DrawOptions::deferShadowWalks): the same image.
+    bool deferShadowWalks = false;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -109,9 +112,13 @@ public:
     virtual glm::mat4 model() const { return glm::mat4(1.0f); }
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto; ///< SceneOptions::texelShadows
     bool beamStart = true;                                    ///< SceneOptions::beamStart
+    bool deferShadowWalks = false;                            ///< SceneOptions::deferShadowWalks
     /// How this scene's surface is drawn, by the camera and into a shadow map alike.
     DrawOptions drawOptions() const {
-        return {.technique = technique, .beamStart = beamStart, .texelShadows = texelShadows};
+        return {.technique = technique,
+                .beamStart = beamStart,
+                .texelShadows = texelShadows,
+                .deferShadowWalks = deferShadowWalks};
     }
     /// The last draw's texel shadows as the exact tracer chose them (ExactTracer::last): "off",
     /// "on" or "on, stride N", for the panel and the bench table, and the flat surface's pixels

@@ -235,6 +235,10 @@ int main(int argc, char** argv) {
     app.add_flag("--no-beam-start", noBeamStart,
                  "flat surfaces drawn by hier walk every view ray from the top, without the beam prepass that starts "
                  "each 8x8-pixel block's rays where they may first meet the relief (the same image, more steps)");
+    app.add_flag("--defer-shadow-walks", s.deferShadowWalks,
+                 "hier with texel shadows: the light walks they leave (where a hard shadow's edge crosses the samples "
+                 "around a pixel) are done by a pass after the draw, one to a lane, instead of holding up their warp "
+                 "(the same image; slower on llvmpipe)");
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")

@@ -40,6 +40,9 @@
 #define HFX_IMAGE_BOUNDS 6        // the level it writes (or the atlas)
 #define HFX_IMAGE_RING_SHINE 7    // the rings' light on their planet, as the renderer builds it (shade/ringshine.comp)
 
+// Shader storage buffers.
+#define HFX_BUFFER_DEFERRED_SHADOWS 0 // the light walks a surface draw leaves to the pass after it (trace/hier/deferred.glsl)
+
 // Uniform blocks.
 #define HFX_BLOCK_SURFACE 0       // HfxSurface: hfx::SurfaceUniforms
 #define HFX_BLOCK_WATER 1         // HfxWater: the water's look

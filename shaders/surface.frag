@@ -30,6 +30,8 @@
 //                     (bindings.glsl)
 //   HFX_TEXEL_SHADOWS 1 when the exact tracer's shadow is read from its texel shadows where they
 //                     hold it (surface/shadow.glsl)
+//   HFX_DEFERRED_SHADOWS 1 with HFX_TEXEL_SHADOWS: a light ray they do not hold is appended for the
+//                     pass after the draw (trace/hier/deferred.glsl) instead of walked here
 //   HFX_ENVIRONMENT   1 for water reflecting an equirectangular image (WaterLook::environment)
 //   HFX_PYRAMID_ATLAS 1 on llvmpipe: the pyramids in one image each (surface/heights.glsl,
 //                     GlWorkarounds::pyramidAtlas); the only define a device picks
@@ -59,6 +61,12 @@
 #ifndef HFX_BEAM_START
 #define HFX_BEAM_START 0
 #endif
+#ifndef HFX_DEFERRED_SHADOWS
+#define HFX_DEFERRED_SHADOWS 0
+#endif
+#if HFX_DEFERRED_SHADOWS && (HFX_TRACE_OUTPUT || HFX_SHADOW_CASTER || !HFX_TEXEL_SHADOWS)
+#error "HFX_DEFERRED_SHADOWS defers the walks HFX_TEXEL_SHADOWS leave, of a drawn colour: not with HFX_TRACE_OUTPUT or HFX_SHADOW_CASTER"
+#endif
 
 #include "bindings.glsl"
 #include "surface/uniforms.glsl"
@@ -66,6 +74,9 @@
 #include "surface/shadowmap.glsl"
 #include "trace/common.glsl"
 #include <tracer>
+#if HFX_DEFERRED_SHADOWS
+#include "trace/hier/deferred.glsl"
+#endif
 #include "surface/shadow.glsl"
 #include "shade/common.glsl"
 #include "shade/sky.glsl"
@@ -343,6 +354,7 @@ void main() {
     // where the shading normal faces away: it is smoothed over texels (Sobel, mip levels), so at
     // the foot of a wall it turns away while the light ray, traced, still meets the wall.
     float lit = 1.0;
+    int deferred = -1; // where the light walk left to the pass after the draw is (HFX_DEFERRED_SHADOWS)
 #if HFX_SELF_SHADOW
     const float h0 = 1.0 - depthFraction;
     if (lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && h0 < 1.0 &&
@@ -356,12 +368,15 @@ void main() {
         // view ray through x + parallax * (1 - h) does, so its extent is span - parallax * (1 - h0).
         shadowRay.samples = hfx_budget_samples(u_shadowSamples, hfx_screen_pixels(shadowRay.span - parallax * (1.0 - h0), dx, dy));
         shadowRay.sharpness = u_shadowSharpness;
-        lit = 1.0 - hfx_surface_shadow(shadowRay) * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
+        const float fade = smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
+        lit = 1.0 - hfx_surface_shadow(shadowRay, fade, deferred) * fade;
     }
 #endif
+    const float selfLit = lit;
 
     // Other geometry's shadow (and the relief's own at a distance, through the map's rounding).
-    lit *= hfx_shadow_map(displacedWorld, geometricNormal);
+    const float mapLit = hfx_shadow_map(displacedWorld, geometricNormal);
+    lit *= mapLit;
 
     HfxSurfacePoint point;
     point.albedo = albedo;
@@ -389,7 +404,25 @@ void main() {
     point.specular = nDotL > 0.0 ? (power + 2.0) / (u_specularPower + 2.0) *
                                        pow(max(dot(normal, normalize(lightDir + point.viewDir)), 0.0), power)
                                  : 0.0;
+    // A deferred walk's pixel (HFX_DEFERRED_SHADOWS): the colour is affine in the light factor, so
+    // shaded with no direct light (with the others, in step) and then with it unshadowed, any
+    // self-shadow's colour follows; the pass after the draw finds it from these two. Until then
+    // the texel shadows' blend.
+#if HFX_DEFERRED_SHADOWS
+    if (deferred >= 0) point.lit = 0.0;
+    vec3 color = hfx_shade(point);
+    if (deferred >= 0) {
+        const vec3 dark = color;
+        point.lit = mapLit;
+        const vec3 direct = hfx_shade(point) - dark;
+        const int at = HFX_DEFERRED_VEC4S * deferred;
+        hfx_deferredRays[at + 2].yzw = dark;
+        hfx_deferredRays[at + 3] = vec4(direct, 0.0);
+        color = dark + selfLit * direct;
+    }
+#else
     const vec3 color = hfx_shade(point);
+#endif
     o_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 #if HFX_TRACE_OUTPUT
     // w: the fetch count in its integer part, the light (0..1) in half of its fraction.

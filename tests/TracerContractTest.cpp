@@ -211,7 +211,8 @@ void main() { // a: uv, span; b: h0, level, samples, sharpness
     ray.sharpness = b.w;
     // The caller's shadow: with the renderer's accessors and its texel shadows, read from them
     // where they hold it (surface/shadow.glsl); else the tracer's walk.
-    const float shadow = hfx_surface_shadow(ray);
+    int deferred; // never: the harness has no HFX_DEFERRED_SHADOWS
+    const float shadow = hfx_surface_shadow(ray, 1.0, deferred);
     hits[i] = vec4(shadow, g_fetches, 0.0, 0.0);
 }
 )",

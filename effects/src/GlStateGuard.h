@@ -42,6 +42,12 @@ public:
     GlStateGuard() {
         depthTest_ = glIsEnabled(GL_DEPTH_TEST);
         glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
+        glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
+        programPointSize_ = glIsEnabled(GL_PROGRAM_POINT_SIZE);
+        glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &indirect_);
+        glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, HFX_BUFFER_DEFERRED_SHADOWS, &storage_);
+        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, HFX_BUFFER_DEFERRED_SHADOWS, &storageStart_);
+        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, HFX_BUFFER_DEFERRED_SHADOWS, &storageSize_);
         glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
         glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
         glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
@@ -67,6 +73,14 @@ public:
     ~GlStateGuard() {
         (depthTest_ ? glEnable : glDisable)(GL_DEPTH_TEST);
         glDepthFunc(static_cast<GLenum>(depthFunc_));
+        glDepthMask(depthMask_);
+        (programPointSize_ ? glEnable : glDisable)(GL_PROGRAM_POINT_SIZE);
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, GLuint(indirect_));
+        if (storage_ != 0 && storageSize_ > 0)
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_DEFERRED_SHADOWS, GLuint(storage_), storageStart_,
+                              storageSize_);
+        else
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_DEFERRED_SHADOWS, GLuint(storage_));
         // A program the caller deleted while it was current lives only while it stays current:
         // once the guarded pass has used another, its name is gone, and the caller has none.
         glUseProgram(program_ != 0 && glIsProgram(GLuint(program_)) ? GLuint(program_) : 0);
@@ -89,7 +103,9 @@ public:
     GlStateGuard& operator=(const GlStateGuard&) = delete;
 
 private:
-    GLboolean depthTest_;
+    GLboolean depthTest_, depthMask_, programPointSize_;
+    GLint indirect_, storage_; // the draw-indirect buffer; the deferred walks' storage binding (ExactTracer)
+    GLint64 storageStart_, storageSize_;
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
     // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,

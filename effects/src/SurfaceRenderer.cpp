@@ -170,6 +170,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
+    v.deferredShadows = v.deferredShadows && v.texelShadows && !options.traceOutput;
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -189,6 +190,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"},
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
+                                                   {"HFX_DEFERRED_SHADOWS", v.deferredShadows ? "1" : "0"},
                                                    {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
@@ -336,6 +338,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                                .caster = caster != nullptr,
                                                .texelShadows = frame.texelShadows != nullptr,
                                                .beamStart = frame.beamStart,
+                                               .deferredShadows = frame.deferredShadows,
                                                .pyramidAtlas = frame.atlas});
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
@@ -374,8 +377,14 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     p.use();
-    const GpuScope scope(caster ? "shadow map" : "draw");
-    mesh.draw();
+    {
+        const GpuScope scope(caster ? "shadow map" : "draw");
+        mesh.draw();
+    }
+    if (frame.deferredShadows) {
+        const GpuScope scope("deferred walks");
+        tracer_.finish(frame);
+    }
 }
 
 std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,

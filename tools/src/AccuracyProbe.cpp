@@ -159,6 +159,7 @@ DrawOptions AccuracyProbe::drawOptions(Technique technique, const AccuracyConfig
             .beamStart = config.beamStart,
             .texelShadows = config.texelShadows ? TexelShadowChoice::On : TexelShadowChoice::Off,
             .texelStride = config.texelStride,
+            .deferShadowWalks = config.deferShadowWalks,
             .boundsLayout = layout_};
 }
 

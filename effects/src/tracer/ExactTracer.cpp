@@ -64,6 +64,13 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, frame.texelShadows->texture());
     }
 
+    // The light walks the texel shadows do not hold, left to finish() where asked: not where the
+    // draw's pixels are blended or stencilled (finish writes them a second time), its trace
+    // output read, or the context's vertex stage cannot read the buffer (GL asks none of it).
+    frame.deferredShadows = frame.texelShadows && options.deferShadowWalks && !options.traceOutput &&
+                            !glIsEnabled(GL_BLEND) && !glIsEnabled(GL_STENCIL_TEST) && vertexStageWalks(frame.atlas);
+    if (frame.deferredShadows) prepareDeferred();
+
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
     frame.beamStart = options.beamStart && layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
                       material.depthScale > 0.0f;
@@ -138,6 +145,65 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     if (!it->shadows.holds(textures, *shadowLight, stride))
         texelPass_.draw(textures, bounds, *shadowLight, stride, it->shadows);
     return &it->shadows;
+}
+
+bool ExactTracer::vertexStageWalks(bool atlas) {
+    if (vertexStorage_ < 0) {
+        glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexStorage_);
+        glGetIntegerv(GL_MAX_VERTEX_IMAGE_UNIFORMS, &vertexImages_);
+    }
+    // The buffer; the atlas layout's pyramid and cells images.
+    return vertexStorage_ >= 1 && (!atlas || vertexImages_ >= 2);
+}
+
+void ExactTracer::prepareDeferred() {
+    // Room for a ray per 16 pixels of the viewport, at least 256 (the edges of the hard shadow
+    // are a few per cent of a view's pixels); a ray past it is walked in the draw.
+    GLint viewport[4];
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    const int capacity = std::max(viewport[2] * viewport[3] / 16, 256);
+    if (capacity > deferredCapacity_ || !deferred_) {
+        deferredCapacity_ = capacity;
+        deferred_ = GlBuffer::create();
+        HFX_GL_CHECK(glNamedBufferStorage(deferred_.id(), GLsizeiptr(kDeferredHeader + size_t(capacity) * kDeferredRay),
+                                          nullptr, GL_DYNAMIC_STORAGE_BIT));
+    }
+    // A draw-indirect command of no points yet, one instance; the capacity.
+    const std::array<GLuint, 8> header{0, 1, 0, 0, GLuint(deferredCapacity_), 0, 0, 0};
+    static_assert(sizeof header == kDeferredHeader);
+    HFX_GL_CHECK(glNamedBufferSubData(deferred_.id(), 0, sizeof header, header.data()));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_DEFERRED_SHADOWS, deferred_.id());
+}
+
+void ExactTracer::finish(const TracerFrame& frame) {
+    if (!frame.deferredShadows) return;
+    ShaderProgram& pass = deferredPass_[frame.atlas ? 1 : 0];
+    if (!pass.id())
+        pass = ShaderProgram(surfaceStage("trace/hier/deferred.vert"), surfaceStage("trace/hier/deferred.frag"),
+                             {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", frame.atlas ? "1" : "0"}});
+    if (!noVertices_) noVertices_ = GlVertexArray::create();
+    GLint viewport[4];
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    // The draw's appends, its command's count among them, before the points read them.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    pass.use();
+    pass.set("u_viewport", glm::vec4(viewport[0], viewport[1], viewport[2], viewport[3]));
+    // Where the draw's depth still stands (it tested GL_LESS and wrote it): nothing nearer
+    // drawn over the pixel since, not a fragment of the draw that another covered.
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glBindVertexArray(noVertices_.id());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, deferred_.id());
+    glDrawArraysIndirect(GL_POINTS, nullptr);
+}
+
+int ExactTracer::deferredWalks() const {
+    if (!deferred_) return 0;
+    GLuint count = 0;
+    glGetNamedBufferSubData(deferred_.id(), 0, sizeof count, &count);
+    return int(count);
 }
 
 void ExactTracer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,

@@ -223,6 +223,16 @@ struct DrawOptions {
     /// With texelShadows On: every texelStride-th sample on each axis (a power of two dividing
     /// the field's size; 0: the policy's stride, or 1).
     int texelStride = 0;
+    /// With texel shadows read on a camera's draw: a light ray they do not hold (the hard
+    /// shadow's edge crosses its cell) is walked after the draw, one to a lane, and its pixel
+    /// written again (ExactTracer::finish), instead of in the draw, where its warp waits for
+    /// that one lane's walk. The same pixels. Not with traceOutput, nor where the caller draws
+    /// with blending or a stencil test (the pixel is written twice), nor on a context whose vertex
+    /// stage reads no storage buffer: those walk in the draw.
+    /// Off until a GPU has timed it: on llvmpipe it is slower (a vertex stage runs on one thread
+    /// there, and 8 lanes wait for less than a GPU's 32); bench-tracers' 'deferred' column
+    /// times it against the walks in the draw (docs/BENCHMARKS.md).
+    bool deferShadowWalks = false;
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).
     PyramidLayout boundsLayout = PyramidLayout::Auto;
@@ -252,6 +262,9 @@ struct SurfaceVariant {
     /// HFX_BEAM_START: hier's view rays start at the beam prepass's depth for their block
     /// (DrawOptions::beamStart on a flat patch)
     bool beamStart = false;
+    /// HFX_DEFERRED_SHADOWS: with texelShadows, a light ray they do not hold is left to the pass
+    /// after the draw (ExactTracer::finish, DrawOptions::deferShadowWalks)
+    bool deferredShadows = false;
     /// HFX_PYRAMID_ATLAS: the bounds read are in PyramidLayout::Atlas (llvmpipe's workaround,
     /// GlWorkarounds::pyramidAtlas), not mip chains
     bool pyramidAtlas = false;

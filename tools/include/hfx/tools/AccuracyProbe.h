@@ -65,6 +65,9 @@ struct AccuracyConfig {
     int texelStride = 1;
     /// The exact tracer's beam start (DrawOptions::beamStart; the probe's planes are flat patches).
     bool beamStart = true;
+    /// With texelShadows: the light walks they leave go to the pass after the draw
+    /// (DrawOptions::deferShadowWalks; never where the draw writes its trace output).
+    bool deferShadowWalks = false;
     /// measure()'s camera distance from the plane's centre, world units (the plane is 2 wide);
     /// 0: the default, 8, from where the whole plane is seen.
     float cameraDistance = 0.0f;

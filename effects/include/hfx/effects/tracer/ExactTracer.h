@@ -14,6 +14,9 @@
 //               its texels and the light stay
 //   beam start  a prepass walking one ray per block of kBeamBlock² pixels, where the view rays
 //               start (DrawOptions::beamStart, a flat patch)
+//   deferred    the light walks the texel shadows do not hold, left by the draw to a pass after
+//   walks       it (finish, trace/hier/deferred.glsl): 32 walks to a warp, not one lane's walk
+//               holding up its warp (DrawOptions::deferShadowWalks)
 //
 // Thread: the thread whose GL context is current.
 
@@ -62,6 +65,9 @@ struct TracerFrame {
     int texelStride = 0;                        ///< their stride; 0: none read
     double pixelsPerTexel = 0.0;                ///< the flat patch's screen pixels per field texel (0: not flat)
     bool beamStart = false;                     ///< the beam prepass ran; its target is bound
+    /// The draw appends the light rays its texel shadows do not hold (HFX_DEFERRED_SHADOWS), and
+    /// finish() walks them and writes their pixels again; the buffer is bound.
+    bool deferredShadows = false;
 };
 
 class ExactTracer {
@@ -80,6 +86,15 @@ public:
                         const DrawOptions& options, bool caster, SurfaceUniforms& u);
     /// The last camera (not caster) hier draw's decision, for reports.
     const TracerFrame& last() const { return last_; }
+    /// After the draw that prepare() was for, with its textures, units and uniform block still
+    /// bound: where it deferred light walks (TracerFrame::deferredShadows), walks them one to a
+    /// lane (trace/hier/deferred.vert) and writes their pixels again where the draw's depth still
+    /// stands. Changes the program, the vertex array and the depth function: inside the
+    /// renderer's GlStateGuard.
+    void finish(const TracerFrame& frame);
+    /// How many light walks the last draw that deferred them appended (past the buffer's
+    /// capacity, the rest were walked in the draw). Reads the buffer back: for tests and reports.
+    int deferredWalks() const;
 
 private:
     /// The bounds of `layer`'s textures in `layout`: the layer's own where they hold its current
@@ -92,6 +107,11 @@ private:
                                         const glm::mat4& viewProj, const DirectionalLight& light,
                                         const SurfaceMaterial& material, const DrawOptions& options, bool caster,
                                         TracerFrame& frame);
+    /// Sizes the deferred walks' buffer for the viewport, empties it and binds it.
+    void prepareDeferred();
+    /// Whether this context's vertex stage can walk the deferred rays: read a storage buffer and,
+    /// in the atlas layout, two images (GL 4.5 promises neither).
+    bool vertexStageWalks(bool atlas);
     void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
                        bool atlas);
 
@@ -123,6 +143,14 @@ private:
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
     int beamWidth_ = 0, beamHeight_ = 0;
     GlBuffer block_; ///< the prepass's uniform block
+    /// The deferred light walks: the buffer (trace/hier/deferred.glsl), its capacity in rays, and
+    /// their pass by the pyramid's layout.
+    static constexpr size_t kDeferredHeader = 32, kDeferredRay = 64; // bytes: trace/hier/deferred.glsl
+    GlBuffer deferred_;
+    int deferredCapacity_ = 0;
+    ShaderProgram deferredPass_[2];
+    GlVertexArray noVertices_;
+    GLint vertexStorage_ = -1, vertexImages_ = -1; ///< the context's limits, read once
 };
 
 } // namespace hfx

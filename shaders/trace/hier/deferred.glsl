@@ -1,0 +1,25 @@
+// The light walks a surface draw leaves to the pass after it (HFX_DEFERRED_SHADOWS, hfx::ExactTracer):
+// a pixel whose texel shadows do not hold its shadow (the hard shadow's edge crosses its cell)
+// would walk its light ray inside the draw, and its warp would wait for that one lane's walk; it
+// appends the ray instead, with what its colour needs, and the pass (trace/hier/deferred.vert)
+// walks the rays packed one to a lane and writes those pixels again. The colour is affine in the
+// light factor (every shading model adds lit * its direct light), so two shadings give it for
+// any shadow the walk finds.
+//
+// The buffer: a glDrawArraysIndirect command (count = rays appended, possibly past capacity;
+// 1 instance), the capacity in rays, then per ray four vec4s:
+//   (pixel centre x, y in window coordinates, gl_FragDepth written, the shadow's fade)
+//   (the ray's uv, h0, span.x)       (span.y, the colour's linear rgb with no direct light)
+//   (the direct light's linear rgb at no shadow, 0)
+// A ray past the capacity is walked in the draw, as without the deferral.
+
+layout(std430, binding = HFX_BUFFER_DEFERRED_SHADOWS) buffer HfxDeferredShadows {
+    uint hfx_deferredCount;
+    uint hfx_deferredInstances;
+    uint hfx_deferredFirst;
+    uint hfx_deferredBaseInstance;
+    uint hfx_deferredCapacity;
+    uint hfx_deferredPad0, hfx_deferredPad1, hfx_deferredPad2;
+    vec4 hfx_deferredRays[];
+};
+const int HFX_DEFERRED_VEC4S = 4; // per ray
