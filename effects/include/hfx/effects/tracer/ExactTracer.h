@@ -15,7 +15,7 @@
 //   beam start  a prepass walking one ray per block of kBeamBlock² pixels, where the view rays
 //               start (DrawOptions::beamStart, a flat patch)
 //   deferred    the light walks the texel shadows do not hold, left by the draw to a pass after
-//   walks       it (finish, trace/hier/deferred.glsl): 32 walks to a warp, not one lane's walk
+//   walks       it (finish, trace/hier/deferred.glsl): one walk to a lane, not one lane's walk
 //               holding up its warp (DrawOptions::deferShadowWalks)
 //
 // Thread: the thread whose GL context is current.
