@@ -404,7 +404,8 @@ void main() {
     point.specular = nDotL > 0.0 ? (power + 2.0) / (u_specularPower + 2.0) *
                                        pow(max(dot(normal, normalize(lightDir + point.viewDir)), 0.0), power)
                                  : 0.0;
-    // A deferred walk's pixel (HFX_DEFERRED_SHADOWS): the colour is affine in the light factor, so
+    // A deferred walk's pixel (HFX_DEFERRED_SHADOWS, shadings affine in the light factor: hfx::
+    // shadingAffineInLight): the colour is affine in that factor, so
     // shaded with no direct light (with the others, in step) and then with it unshadowed, any
     // self-shadow's colour follows; the pass after the draw finds it from these two. Until then
     // the texel shadows' blend.

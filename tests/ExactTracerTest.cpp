@@ -210,6 +210,16 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
             EXPECT_LE(worst, 1.0 / 255.0 + 1e-6);
             EXPECT_LE(differ, inDraw.pixels.size() / 10000);
         }
+        // Water's colour is not affine in the light (its highlights roll off): its walks stay in
+        // the draw.
+        SurfaceMaterial water = material;
+        water.shading = Shading::Water;
+        target.bind();
+        renderer.draw(plane, glm::mat4(1.0f), surface.textures(), water, camera, light,
+                      {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On,
+                       .deferShadowWalks = true});
+        EXPECT_NE(renderer.tracer().last().texelShadows, nullptr);
+        EXPECT_FALSE(renderer.tracer().last().deferredShadows);
     }
 }
 

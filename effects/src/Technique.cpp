@@ -45,4 +45,6 @@ std::string techniqueTableMarkdown() {
 
 const char* shadingShader(Shading shading) { return nameOf(kShadingShaders, shading); }
 
+bool shadingAffineInLight(Shading shading) { return shading != Shading::Water; }
+
 } // namespace hfx

@@ -65,10 +65,12 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     }
 
     // The light walks the texel shadows do not hold, left to finish() where asked: not where the
+    // shading is not affine in the light (the pass rebuilds the colour from two shadings), the
     // draw's pixels are blended or stencilled (finish writes them a second time), its trace
     // output read, or the context's vertex stage cannot read the buffer (GL asks none of it).
-    frame.deferredShadows = frame.texelShadows && options.deferShadowWalks && !options.traceOutput &&
-                            !glIsEnabled(GL_BLEND) && !glIsEnabled(GL_STENCIL_TEST) && vertexStageWalks(frame.atlas);
+    frame.deferredShadows = frame.texelShadows && options.deferShadowWalks && shadingAffineInLight(material.shading) &&
+                            !options.traceOutput && !glIsEnabled(GL_BLEND) && !glIsEnabled(GL_STENCIL_TEST) &&
+                            vertexStageWalks(frame.atlas);
     if (frame.deferredShadows) prepareDeferred();
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.

@@ -3,8 +3,9 @@
 // would walk its light ray inside the draw, and its warp would wait for that one lane's walk; it
 // appends the ray instead, with what its colour needs, and the pass (trace/hier/deferred.vert)
 // walks the rays packed one to a lane and writes those pixels again. The colour is affine in the
-// light factor (every shading model adds lit * its direct light), so two shadings give it for
-// any shadow the walk finds.
+// light factor where the shading model adds it times its direct light (lit, planet: hfx::
+// shadingAffineInLight; the water's highlights roll off, and its walks stay in the draw), so two
+// shadings give it for any shadow the walk finds.
 //
 // The buffer: a glDrawArraysIndirect command (count = rays appended, possibly past capacity;
 // 1 instance), the capacity in rays, then per ray four vec4s:

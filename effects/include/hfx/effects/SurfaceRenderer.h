@@ -226,9 +226,10 @@ struct DrawOptions {
     /// With texel shadows read on a camera's draw: a light ray they do not hold (the hard
     /// shadow's edge crosses its cell) is walked after the draw, one to a lane, and its pixel
     /// written again (ExactTracer::finish), instead of in the draw, where its warp waits for
-    /// that one lane's walk. The same pixels. Not with traceOutput, nor where the caller draws
-    /// with blending or a stencil test (the pixel is written twice), nor on a context whose vertex
-    /// stage reads no storage buffer: those walk in the draw.
+    /// that one lane's walk. The same pixels. Not with traceOutput, nor for water (its colour is
+    /// not affine in the light: shadingAffineInLight), nor where the caller draws with blending or
+    /// a stencil test (the pixel is written twice), nor on a context whose vertex stage reads no
+    /// storage buffer: those walk in the draw.
     /// Off until a GPU has timed it: on llvmpipe it is slower (a vertex stage runs on one thread
     /// there, and 8 lanes wait for less than a GPU's 32); bench-tracers' 'deferred' column
     /// times it against the walks in the draw (docs/BENCHMARKS.md).

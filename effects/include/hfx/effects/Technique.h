@@ -85,5 +85,10 @@ enum class Shading {
 };
 /// "shade/lit.glsl", "shade/water.glsl", "shade/planet.glsl".
 const char* shadingShader(Shading shading);
+/// Whether the model's colour is affine in the light factor (HfxSurfacePoint::lit), so that two
+/// shadings give it for any self-shadow: what the exact tracer's deferred light walks rebuild a
+/// pixel from (DrawOptions::deferShadowWalks). Lit and Planet add lit times their direct light;
+/// Water's highlights roll off above a knee, which is not affine.
+bool shadingAffineInLight(Shading shading);
 
 } // namespace hfx
