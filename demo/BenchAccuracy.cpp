@@ -207,7 +207,7 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
            "fetches_lanes32,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
-           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,deferred_walks\n";
+           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,defer_shadow_walks\n";
     std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
                 "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
                 "clock around glFinish of the same draws.\n"

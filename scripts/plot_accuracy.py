@@ -130,9 +130,10 @@ def time_vs_fetches(path, out):
     hier = [r for r in rows if r["technique"] == "hier" and float(r["pixel_budget"]) == 0.0
             and r.get("clearance_map", "0") == "0" and r.get("texel_shadows", "0") == "0"]
     # hier reading the texel shadows of the light, where the file has them, with
-    # the beam start (files written before it had no column: theirs had none).
+    # the beam start (files written before it had no column: theirs had none) and the walks they
+    # leave in the draw (the deferred variant's fetches are counted in the draw alike).
     texels = [r for r in rows if r["technique"] == "hier" and r.get("texel_shadows", "0") == "1"
-              and r.get("beam_start", "1") == "1"]
+              and r.get("beam_start", "1") == "1" and r.get("defer_shadow_walks", "0") == "0"]
     maps = ordered(r["map"] for r in hier)
     colors = {m: f"C{i}" for i, m in enumerate(maps)}
 

@@ -230,9 +230,11 @@ struct DrawOptions {
     /// not affine in the light: shadingAffineInLight), nor where the caller draws with blending or
     /// a stencil test (the pixel is written twice), nor on a context whose vertex stage reads no
     /// storage buffer: those walk in the draw.
-    /// Off until a GPU has timed it: on llvmpipe it is slower (a vertex stage runs on one thread
-    /// there, and 8 lanes wait for less than a GPU's 32); bench-tracers' 'deferred' column
-    /// times it against the walks in the draw (docs/BENCHMARKS.md).
+    /// Off until a GPU has timed it: what it saves a 32-lane warp is counted, not timed, and AMD's
+    /// compiler gives the deferring draw 8 more vector registers (the walk past the buffer's
+    /// capacity stays in it); on llvmpipe, no guide to a GPU here (a vertex stage runs on one
+    /// thread), it is slower. bench-tracers' 'deferred' column times it against the walks in the
+    /// draw (docs/BENCHMARKS.md).
     bool deferShadowWalks = false;
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).
