@@ -207,13 +207,14 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
            "fetches_lanes32,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
-           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,defer_shadow_walks\n";
+           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,defer_shadow_walks,deferred_rays\n";
     std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
                 "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
                 "clock around glFinish of the same draws.\n"
                 "hier walks every pixel's light ray; 'texels' reads the texel shadows of the light instead where they\n"
                 "hold the ray's shadow, 'no beam' the same without the beam start (DrawOptions::beamStart), 'deferred'\n"
-                "with the light walks they leave done by the pass after the draw (DrawOptions::deferShadowWalks).\n"
+                "with the light walks they leave done by a compute pass after the draw (DrawOptions::deferShadowWalks);\n"
+                "deferred rays: how many it appended, per 100 pixels of the view (past a ray per 16, the draw walks them).\n"
                 "texels ms: the texel shadows' pass after new heights, their pyramid's build included (GL timer queries,\n"
                 "median of 30). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in\n"
                 "the shader of the timed draw itself (with the texel shadows' walks in the draw): the mean, and per pixel\n"
@@ -223,9 +224,9 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "compute shader (AccuracyProbe::timeCompute: the view ray and its soft shadow, no beam start), by pom and\n"
                 "by hier, GPU time of one dispatch, median of the same rounds.\n\n"
                 "| map | angle | pom ms | hier ms | hier / pom | wall: hier / pom | hier 1px / pom | texels / pom | "
-                "texels, no beam / pom | texels, deferred / pom | texels ms | fetches pom, hier, texels, no beam | texels: fetches | "
+                "texels, no beam / pom | texels, deferred / pom | deferred rays | texels ms | fetches pom, hier, texels, no beam | texels: fetches | "
                 "8 lanes | 32 lanes | ms per 8-lane fetch | compute: pom ms, hier ms | compute: hier / pom |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                 devices.summary().c_str(), field, field, width, height, rounds, kWarmupFrames);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
@@ -243,6 +244,9 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                     const GlTime t = probe.timeDraw(variants[i].technique, configOf(variants[i]), width, height, 1, 0);
                     if (r >= 0) times[i].push_back(t);
                 }
+            // The last draw of the rounds was the deferring variant's.
+            static_assert(std::size(variants) == 6);
+            const int deferred = probe.deferredWalks();
             std::vector<double> gpuMs, wall;
             for (const auto& v : times) {
                 gpuMs.push_back(median(v).gpu);
@@ -271,12 +275,13 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                     << texelMs << "," << (variants[i].beam ? 1 : 0) << "," << wall[i] << ","
                     << wall[i] / wall[0] << "," << width << "," << height << "," << cPom << "," << cHier << ","
                     << counts[i].lanes32Capped << "," << counts[i].cap << ","
-                    << (variants[i].texels && variants[i].defer ? 1 : 0) << "\n";
+                    << (variants[i].texels && variants[i].defer ? 1 : 0) << ","
+                    << (variants[i].texels && variants[i].defer ? deferred : 0) << "\n";
             const FetchCounts &p = counts[0], &h = counts[1], &x = counts[3], &b = counts[4];
-            std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f | %.1f, %.1f, %.1f, %.1f "
+            std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f%% | %.1f | %.1f, %.1f, %.1f, %.1f "
                         "| %.2fx | %.2fx | %.2fx | %.2fx | %.2f, %.2f | %.2fx |\n",
                         map.name.c_str(), angle, pom, gpuMs[1], gpuMs[1] / pom, wall[1] / wall[0], gpuMs[2] / pom,
-                        gpuMs[3] / pom, gpuMs[4] / pom, gpuMs[5] / pom, texelMs, p.mean, h.mean, x.mean, b.mean, x.mean / p.mean,
+                        gpuMs[3] / pom, gpuMs[4] / pom, gpuMs[5] / pom, 100.0 * deferred / (double(width) * height), texelMs, p.mean, h.mean, x.mean, b.mean, x.mean / p.mean,
                         x.lanes8 / p.lanes8, x.lanes32 / p.lanes32, (gpuMs[3] / x.lanes8) / (pom / p.lanes8), cPom, cHier,
                         cHier / cPom);
             std::fflush(stdout);

@@ -17,6 +17,8 @@ could batch. It is one compiler for one architecture (RDNA2 by default), not NVI
 
 A variant is a technique and defines, "hier" or "hier:HFX_TEXEL_SHADOWS=1,HFX_BEAM_START=1";
 without any, POM, hier and hier with texel shadows and the beam start, as bench-tracers draws them.
+A compute shader of the shaders folder and its defines, "trace/hier/deferred.comp:HFX_LAYERS=1",
+is built into a compute pipeline, and its statistics are the compute shader's.
 Needs glslang-tools, spirv-tools, Mesa's Vulkan drivers and the Vulkan loader (apt-get install
 mesa-vulkan-drivers libvulkan1) and Python's vulkan bindings (pip install vulkan).
 """
@@ -36,10 +38,11 @@ DEFAULT_VARIANTS = ["pom", "hier", "hier:HFX_TEXEL_SHADOWS=1,HFX_BEAM_START=1"]
 STATS = ("VGPRs", "Pre-Sched VGPRs", "Subgroups per SIMD", "Instructions", "Latency", "Inverse Throughput", "VMEM Clause")
 
 
-def compose(shaders, stage, tracer, defines, shading="lit"):
-    """surface.<stage> with its slots filled and includes expanded, the defines after #version.
-    Vulkan's GLSL has no gl_DepthRange: the default range (0, 1) stands in for it."""
-    with open(os.path.join(shaders, f"surface.{stage}")) as f:
+def compose(shaders, stage, tracer, defines, shading="lit", path=None):
+    """surface.<stage> (or the file `path`) with its slots filled and includes expanded, the
+    defines after #version. Vulkan's GLSL has no gl_DepthRange: the default range (0, 1) stands
+    in for it."""
+    with open(os.path.join(shaders, path or f"surface.{stage}")) as f:
         source = f.read()
     source = source.replace("#include <tracer>", f'#include "trace/{tracer}.glsl"')
     source = source.replace("#include <shading>", f'#include "shade/{shading}.glsl"')
@@ -89,6 +92,37 @@ def descriptors(spv_paths):
                 sys.exit(f"{path}: binding {binding} of {storage} {kind} has no descriptor type here")
             found[int(binding)] = (name, count)
     return found
+
+
+def build_compute(comp):
+    """Builds the compute pipeline on the first Vulkan device, as build_pipeline does."""
+    import vulkan as vk
+
+    def info(cls, kind, **kw):
+        return getattr(vk, cls)(sType=getattr(vk, "VK_STRUCTURE_TYPE_" + kind), **kw)
+
+    app = info("VkApplicationInfo", "APPLICATION_INFO", pApplicationName="hfx", apiVersion=vk.VK_MAKE_VERSION(1, 2, 0))
+    instance = vk.vkCreateInstance(info("VkInstanceCreateInfo", "INSTANCE_CREATE_INFO", pApplicationInfo=app), None)
+    physical = vk.vkEnumeratePhysicalDevices(instance)[0]
+    queue = info("VkDeviceQueueCreateInfo", "DEVICE_QUEUE_CREATE_INFO", queueFamilyIndex=0, queueCount=1,
+                 pQueuePriorities=[1.0])
+    device = vk.vkCreateDevice(physical, info("VkDeviceCreateInfo", "DEVICE_CREATE_INFO", queueCreateInfoCount=1,
+                                              pQueueCreateInfos=[queue]), None)
+    with open(comp, "rb") as f:
+        code = f.read()
+    module = vk.vkCreateShaderModule(device, info("VkShaderModuleCreateInfo", "SHADER_MODULE_CREATE_INFO",
+                                                  codeSize=len(code), pCode=code), None)
+    bindings = [vk.VkDescriptorSetLayoutBinding(binding=b, descriptorType=getattr(vk, "VK_DESCRIPTOR_TYPE_" + t),
+                                                descriptorCount=n, stageFlags=vk.VK_SHADER_STAGE_ALL)
+                for b, (t, n) in sorted(descriptors([comp]).items())]
+    set_layout = vk.vkCreateDescriptorSetLayout(device, info("VkDescriptorSetLayoutCreateInfo", "DESCRIPTOR_SET_LAYOUT_CREATE_INFO",
+                                                             bindingCount=len(bindings), pBindings=bindings), None)
+    layout = vk.vkCreatePipelineLayout(device, info("VkPipelineLayoutCreateInfo", "PIPELINE_LAYOUT_CREATE_INFO",
+                                                    setLayoutCount=1, pSetLayouts=[set_layout]), None)
+    stage = info("VkPipelineShaderStageCreateInfo", "PIPELINE_SHADER_STAGE_CREATE_INFO",
+                 stage=vk.VK_SHADER_STAGE_COMPUTE_BIT, module=module, pName="main")
+    pipeline = info("VkComputePipelineCreateInfo", "COMPUTE_PIPELINE_CREATE_INFO", stage=stage, layout=layout)
+    vk.vkCreateComputePipelines(device, None, 1, [pipeline], None)
 
 
 def build_pipeline(vert, frag):
@@ -164,25 +198,30 @@ def build_pipeline(vert, frag):
 
 
 def stats(shaders, family, tracer, defines):
-    """The fragment shader's statistics (name -> number) of one variant."""
+    """The fragment shader's statistics (name -> number) of one variant; a compute shader's
+    where `tracer` names a .comp file."""
     work = tempfile.mkdtemp(prefix="hfx-gpu-stats-")
-    vert = spirv(compose(shaders, "vert", tracer, defines), "vert", work)
-    frag = spirv(compose(shaders, "frag", tracer, defines), "frag", work)
+    if tracer.endswith(".comp"):
+        files, shader = [spirv(compose(shaders, "comp", None, defines, path=tracer), "comp", work)], "Compute Shader"
+    else:
+        files = [spirv(compose(shaders, "vert", tracer, defines), "vert", work),
+                 spirv(compose(shaders, "frag", tracer, defines), "frag", work)]
+        shader = "Pixel Shader"
     env = dict(os.environ, RADV_FORCE_FAMILY=family, RADV_DEBUG="shaderstats,nocache", VK_ICD_FILENAMES=ICD,
                XDG_RUNTIME_DIR=os.environ.get("XDG_RUNTIME_DIR", work))
-    run = subprocess.run([sys.executable, os.path.abspath(__file__), "--build", vert, frag], env=env,
+    run = subprocess.run([sys.executable, os.path.abspath(__file__), "--build", *files], env=env,
                          capture_output=True, text=True)
     text = run.stdout + run.stderr
-    m = re.search(r"Pixel Shader:\s*\*\*\* SHADER STATS \*\*\*(.*?)\*{8}", text, re.S)
+    m = re.search(shader + r":\s*\*\*\* SHADER STATS \*\*\*(.*?)\*{8}", text, re.S)
     if run.returncode or not m:
-        sys.exit(f"no fragment shader statistics from RADV's null device ({family}):\n{text[-3000:]}")
+        sys.exit(f"no {shader.lower()} statistics from RADV's null device ({family}):\n{text[-3000:]}")
     return {k: float(v) for k, v in re.findall(r"^([A-Za-z -]+): (\d+)", m.group(1), re.M)}
 
 
 def main():
-    if len(sys.argv) == 4 and sys.argv[1] == "--build":
+    if len(sys.argv) in (3, 4) and sys.argv[1] == "--build":
         try:
-            build_pipeline(sys.argv[2], sys.argv[3])
+            build_pipeline(sys.argv[2], sys.argv[3]) if len(sys.argv) == 4 else build_compute(sys.argv[2])
         except ImportError:
             sys.exit("Python's vulkan bindings are not installed (pip install vulkan)")
         return
@@ -193,7 +232,7 @@ def main():
     args = ap.parse_args()
     if not os.path.exists(ICD):
         sys.exit(f"{ICD} is missing: apt-get install mesa-vulkan-drivers libvulkan1")
-    print(f"RADV null device ({args.family}), ACO; the fragment shader of surface.frag per variant "
+    print(f"RADV null device ({args.family}), ACO; the fragment shader of surface.frag per variant (a .comp: its own) "
           f"({os.path.normpath(args.shaders)})\n")
     print("| variant | " + " | ".join(STATS) + " |")
     print("|---" * (len(STATS) + 1) + "|")

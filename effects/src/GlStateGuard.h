@@ -45,6 +45,7 @@ public:
         glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
         programPointSize_ = glIsEnabled(GL_PROGRAM_POINT_SIZE);
         glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &indirect_);
+        glGetIntegerv(GL_DISPATCH_INDIRECT_BUFFER_BINDING, &dispatch_);
         glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, HFX_BUFFER_DEFERRED_SHADOWS, &storage_);
         glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, HFX_BUFFER_DEFERRED_SHADOWS, &storageStart_);
         glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, HFX_BUFFER_DEFERRED_SHADOWS, &storageSize_);
@@ -76,6 +77,7 @@ public:
         glDepthMask(depthMask_);
         (programPointSize_ ? glEnable : glDisable)(GL_PROGRAM_POINT_SIZE);
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, GLuint(indirect_));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, GLuint(dispatch_));
         if (storage_ != 0 && storageSize_ > 0)
             glBindBufferRange(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_DEFERRED_SHADOWS, GLuint(storage_), storageStart_,
                               storageSize_);
@@ -104,7 +106,7 @@ public:
 
 private:
     GLboolean depthTest_, depthMask_, programPointSize_;
-    GLint indirect_, storage_; // the draw-indirect buffer; the deferred walks' storage binding (ExactTracer)
+    GLint indirect_, dispatch_, storage_; // the deferred walks' indirect buffers and storage binding (ExactTracer)
     GLint64 storageStart_, storageSize_;
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;

@@ -23,6 +23,7 @@ float hfx_surface_shadow(HfxShadowRay ray, float fade, out int slot) {
         const uint at = atomicAdd(hfx_deferredCount, 1u);
         if (at < hfx_deferredCapacity) {
             slot = int(at);
+            if (at % uint(HFX_DEFERRED_GROUP) == 0u) atomicAdd(hfx_deferredGroups, 1u); // a group begun
             const int i = HFX_DEFERRED_VEC4S * slot;
             hfx_deferredRays[i] = vec4(gl_FragCoord.xy, gl_FragDepth, fade);
             hfx_deferredRays[i + 1] = vec4(ray.uv, ray.h0, ray.span.x);

@@ -505,4 +505,6 @@ GlTime AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
     return median(times);
 }
 
+int AccuracyProbe::deferredWalks() const { return renderer_.tracer().deferredWalks(); }
+
 } // namespace hfx

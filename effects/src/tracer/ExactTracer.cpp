@@ -67,10 +67,11 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     // The light walks the texel shadows do not hold, left to finish() where asked: not where the
     // shading is not affine in the light (the pass rebuilds the colour from two shadings), the
     // draw's pixels are blended or stencilled (finish writes them a second time), its trace
-    // output read, or the context's vertex stage cannot read the buffer (GL asks none of it).
+    // output read, or the context's vertex stage cannot read the buffer to place the pixels
+    // (GL asks it of none).
     frame.deferredShadows = frame.texelShadows && options.deferShadowWalks && shadingAffineInLight(material.shading) &&
                             !options.traceOutput && !glIsEnabled(GL_BLEND) && !glIsEnabled(GL_STENCIL_TEST) &&
-                            vertexStageWalks(frame.atlas);
+                            vertexStageReadsBuffer();
     if (frame.deferredShadows) prepareDeferred();
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
@@ -149,47 +150,60 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     return &it->shadows;
 }
 
-bool ExactTracer::vertexStageWalks(bool atlas) {
-    if (vertexStorage_ < 0) {
-        glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexStorage_);
-        glGetIntegerv(GL_MAX_VERTEX_IMAGE_UNIFORMS, &vertexImages_);
-    }
-    // The buffer; the atlas layout's pyramid and cells images.
-    return vertexStorage_ >= 1 && (!atlas || vertexImages_ >= 2);
+bool ExactTracer::vertexStageReadsBuffer() {
+    if (vertexStorage_ < 0) glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexStorage_);
+    return vertexStorage_ >= 1;
 }
 
 void ExactTracer::prepareDeferred() {
     // Room for a ray per 16 pixels of the viewport, at least 256 (the edges of the hard shadow
-    // are a few per cent of a view's pixels); a ray past it is walked in the draw.
+    // are a few per cent of a view's pixels: 0.4-3% on smooth waves, 5-18% on bricks at
+    // 640x360); a ray past it is walked in the draw. Where the last draw that deferred appended
+    // more and the GPU is past it (its count read back without waiting), room for that and a
+    // quarter more, up to a ray per pixel: a view that keeps its rays walks them all after.
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
-    const int capacity = std::max(viewport[2] * viewport[3] / 16, 256);
+    const int pixels = std::max(viewport[2] * viewport[3], 1);
+    int capacity = std::max(pixels / 16, 256);
+    if (deferredDone_.done()) {
+        const int appended = deferredWalks();
+        if (appended > deferredCapacity_) capacity = std::max(capacity, int(std::min(appended * 1.25, double(pixels))));
+        deferredDone_ = GlFence();
+    }
     if (capacity > deferredCapacity_ || !deferred_) {
         deferredCapacity_ = capacity;
         deferred_ = GlBuffer::create();
         HFX_GL_CHECK(glNamedBufferStorage(deferred_.id(), GLsizeiptr(kDeferredHeader + size_t(capacity) * kDeferredRay),
                                           nullptr, GL_DYNAMIC_STORAGE_BIT));
     }
-    // A draw-indirect command of no points yet, one instance; the capacity.
-    const std::array<GLuint, 8> header{0, 1, 0, 0, GLuint(deferredCapacity_), 0, 0, 0};
-    static_assert(sizeof header == kDeferredHeader);
+    // A draw-indirect command of no points yet, one instance; the capacity; a dispatch command
+    // of no groups yet.
+    const std::array<GLuint, 8> header{0, 1, 0, 0, GLuint(deferredCapacity_), 0, 1, 1};
+    static_assert(sizeof header == kDeferredHeader && kDeferredDispatch == 5 * sizeof(GLuint));
     HFX_GL_CHECK(glNamedBufferSubData(deferred_.id(), 0, sizeof header, header.data()));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_DEFERRED_SHADOWS, deferred_.id());
 }
 
 void ExactTracer::finish(const TracerFrame& frame) {
     if (!frame.deferredShadows) return;
-    ShaderProgram& pass = deferredPass_[frame.atlas ? 1 : 0];
-    if (!pass.id())
-        pass = ShaderProgram(surfaceStage("trace/hier/deferred.vert"), surfaceStage("trace/hier/deferred.frag"),
-                             {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", frame.atlas ? "1" : "0"}});
+    ShaderProgram& walk = deferredWalk_[frame.atlas ? 1 : 0];
+    if (!walk.id())
+        walk = ShaderProgram::compute(surfaceStage("trace/hier/deferred.comp"),
+                                      {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", frame.atlas ? "1" : "0"}});
+    if (!deferredPixels_.id())
+        deferredPixels_ = ShaderProgram(surfaceStage("trace/hier/deferred.vert"), surfaceStage("trace/hier/deferred.frag"));
     if (!noVertices_) noVertices_ = GlVertexArray::create();
+    // The draw's appends, its commands' counts among them, before the walks read them; the
+    // walks' colours before the points read them.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    walk.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, deferred_.id());
+    glDispatchComputeIndirect(kDeferredDispatch);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
-    // The draw's appends, its command's count among them, before the points read them.
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    pass.use();
-    pass.set("u_viewport", glm::vec4(viewport[0], viewport[1], viewport[2], viewport[3]));
+    deferredPixels_.use();
+    deferredPixels_.set("u_viewport", glm::vec4(viewport[0], viewport[1], viewport[2], viewport[3]));
     // Where the draw's depth still stands (it tested GL_LESS and wrote it): nothing nearer
     // drawn over the pixel since, not a fragment of the draw that another covered.
     glEnable(GL_DEPTH_TEST);
@@ -199,6 +213,7 @@ void ExactTracer::finish(const TracerFrame& frame) {
     glBindVertexArray(noVertices_.id());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, deferred_.id());
     glDrawArraysIndirect(GL_POINTS, nullptr);
+    deferredDone_ = GlFence::insert();
 }
 
 int ExactTracer::deferredWalks() const {

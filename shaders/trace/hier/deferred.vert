@@ -1,15 +1,10 @@
 #version 450 core
-// The deferred light walks (trace/hier/deferred.glsl, hfx::ExactTracer): one point per ray the
-// surface draw appended, drawn indirectly with the buffer's count. The vertex stage walks the
-// ray (hfx_shadow, trace/hier.glsl: the walk the draw would have made), so 32 walks share a
-// warp, and puts the point on its pixel with the colour that shadow gives; deferred.frag writes
-// it where the draw's own depth still stands (GL_EQUAL).
+// The deferred light walks' pixels (trace/hier/deferred.glsl, hfx::ExactTracer::finish): one
+// point per ray the surface draw appended, drawn indirectly with the buffer's count, after
+// deferred.comp walked them. It puts the point on its pixel with the colour the walk gave;
+// deferred.frag writes it where the draw's own depth still stands (GL_EQUAL).
 
 #include "bindings.glsl"
-#include "surface/uniforms.glsl"
-#include "surface/heights.glsl"
-#include "trace/common.glsl"
-#include "trace/hier.glsl"
 #include "trace/hier/deferred.glsl"
 
 uniform vec4 u_viewport; // x, y, width, height: the draw's
@@ -24,17 +19,8 @@ void main() {
         v_depth = 0.0;
         return;
     }
-    const vec4 a = hfx_deferredRays[HFX_DEFERRED_VEC4S * i], b = hfx_deferredRays[HFX_DEFERRED_VEC4S * i + 1],
-               c = hfx_deferredRays[HFX_DEFERRED_VEC4S * i + 2], d = hfx_deferredRays[HFX_DEFERRED_VEC4S * i + 3];
-    HfxShadowRay ray;
-    ray.uv = b.xy;
-    ray.h0 = b.z;
-    ray.span = vec2(b.w, c.x);
-    ray.level = 0.0;
-    ray.samples = 0;
-    ray.sharpness = u_shadowSharpness;
-    const vec3 color = c.yzw + (1.0 - hfx_shadow(ray) * a.w) * d.xyz;
-    v_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    const vec4 a = hfx_deferredRays[HFX_DEFERRED_VEC4S * i];
+    v_color = hfx_deferredRays[HFX_DEFERRED_VEC4S * i + 3];
     v_depth = a.z;
     gl_Position = vec4((a.xy - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0, 0.0, 1.0);
     gl_PointSize = 1.0;

@@ -171,6 +171,9 @@ public:
     /// the exact tracer runs it after new heights (their pyramid's build included), on both
     /// clocks; 0 without shadows.
     GlTime timeTexelShadows(const AccuracyConfig& config, int repeats);
+    /// The light walks the last timeDraw() that deferred them left to the pass after the draw
+    /// (ExactTracer::deferredWalks: past the buffer's capacity, walked in the draw).
+    int deferredWalks() const;
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
     const HeightFieldTracer& exact() const { return exact_; }

@@ -20,6 +20,7 @@
 //
 // Thread: the thread whose GL context is current.
 
+#include "hfx/core/GlFence.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/ShadowLight.h"
@@ -88,13 +89,17 @@ public:
     const TracerFrame& last() const { return last_; }
     /// After the draw that prepare() was for, with its textures, units and uniform block still
     /// bound: where it deferred light walks (TracerFrame::deferredShadows), walks them one to a
-    /// lane (trace/hier/deferred.vert) and writes their pixels again where the draw's depth still
-    /// stands. Changes the program, the vertex array and the depth function: inside the
+    /// lane in a compute dispatch (trace/hier/deferred.comp) and writes their pixels again with
+    /// a draw of points where the draw's depth still stands (deferred.vert). Changes the
+    /// program, the vertex array, the indirect buffers and the depth function: inside the
     /// renderer's GlStateGuard.
     void finish(const TracerFrame& frame);
     /// How many light walks the last draw that deferred them appended (past the buffer's
     /// capacity, the rest were walked in the draw). Reads the buffer back: for tests and reports.
     int deferredWalks() const;
+    /// How many rays the deferred walks' buffer holds: a ray per 16 pixels of the viewport, grown
+    /// to what a draw appended once the GPU is past it (up to a ray per pixel).
+    int deferredCapacity() const { return deferredCapacity_; }
 
 private:
     /// The bounds of `layer`'s textures in `layout`: the layer's own where they hold its current
@@ -107,11 +112,12 @@ private:
                                         const glm::mat4& viewProj, const DirectionalLight& light,
                                         const SurfaceMaterial& material, const DrawOptions& options, bool caster,
                                         TracerFrame& frame);
-    /// Sizes the deferred walks' buffer for the viewport, empties it and binds it.
+    /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
+    /// deferred appended (where the GPU is past it), empties it and binds it.
     void prepareDeferred();
-    /// Whether this context's vertex stage can walk the deferred rays: read a storage buffer and,
-    /// in the atlas layout, two images (GL 4.5 promises neither).
-    bool vertexStageWalks(bool atlas);
+    /// Whether this context's vertex stage can read the deferred rays' buffer (GL 4.5 does not
+    /// promise it; the compute stage that walks them has storage buffers and images).
+    bool vertexStageReadsBuffer();
     void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
                        bool atlas);
 
@@ -143,14 +149,16 @@ private:
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
     int beamWidth_ = 0, beamHeight_ = 0;
     GlBuffer block_; ///< the prepass's uniform block
-    /// The deferred light walks: the buffer (trace/hier/deferred.glsl), its capacity in rays, and
-    /// their pass by the pyramid's layout.
+    /// The deferred light walks: the buffer (trace/hier/deferred.glsl), its capacity in rays,
+    /// their walk by the pyramid's layout, and the points that write their pixels.
     static constexpr size_t kDeferredHeader = 32, kDeferredRay = 64; // bytes: trace/hier/deferred.glsl
+    static constexpr GLintptr kDeferredDispatch = 20;                // bytes: the dispatch command's offset
     GlBuffer deferred_;
     int deferredCapacity_ = 0;
-    ShaderProgram deferredPass_[2];
+    GlFence deferredDone_; ///< after the last pass that read the buffer: its count read once passed
+    ShaderProgram deferredWalk_[2], deferredPixels_;
     GlVertexArray noVertices_;
-    GLint vertexStorage_ = -1, vertexImages_ = -1; ///< the context's limits, read once
+    GLint vertexStorage_ = -1; ///< the context's limit, read once
 };
 
 } // namespace hfx
