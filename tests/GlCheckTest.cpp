@@ -8,6 +8,7 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "hfx/core/GlFence.h"
 
 namespace hfx::test {
 namespace {
@@ -22,6 +23,20 @@ TEST_F(GlCheck, AFailingCallIsAnErrorNamingTheCallAndWhereItStands) {
     EXPECT_NE(m.find("GlCheckTest.cpp:"), std::string::npos) << m;
     // A good call passes, and the failed one left no error behind for the next check.
     EXPECT_EQ(messageOf([] { HFX_GL_CHECK(glBindTexture(GL_TEXTURE_2D, 0)); }), "(no error)");
+}
+
+TEST_F(GlCheck, AFenceIsDoneOnceGlHasRunWhatCameBeforeItAndAnEmptyOneNever) {
+    GlFence none;
+    EXPECT_FALSE(none);
+    EXPECT_FALSE(none.done());
+    GlFence fence = GlFence::insert();
+    ASSERT_TRUE(fence);
+    glFinish(); // everything before it has run
+    EXPECT_TRUE(fence.done());
+    EXPECT_TRUE(fence.done()) << "asked again";
+    none = std::move(fence); // the fence moves, its owner empties
+    EXPECT_TRUE(none.done());
+    EXPECT_FALSE(fence.done()); // NOLINT(bugprone-use-after-move): moved-from is empty
 }
 
 TEST(Check, AViolatedContractAbortsPrintingBothValues) {
