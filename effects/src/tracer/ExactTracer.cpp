@@ -163,6 +163,9 @@ void ExactTracer::prepareDeferred() {
     // quarter more, up to a ray per pixel: a view that keeps its rays walks them all after.
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
+    // The last deferring draw's and pass's shader writes before the count is read back and the
+    // header rewritten, and before this draw's appends overwrite the rays the last points read.
+    if (deferred_) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     const int pixels = std::max(viewport[2] * viewport[3], 1);
     int capacity = std::max(pixels / 16, 256);
     if (deferredDone_.done()) {
@@ -219,6 +222,7 @@ void ExactTracer::finish(const TracerFrame& frame) {
 int ExactTracer::deferredWalks() const {
     if (!deferred_) return 0;
     GLuint count = 0;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // the draw's atomic count, written by a shader
     glGetNamedBufferSubData(deferred_.id(), 0, sizeof count, &count);
     return int(count);
 }
