@@ -94,35 +94,47 @@ def descriptors(spv_paths):
     return found
 
 
-def build_compute(comp):
-    """Builds the compute pipeline on the first Vulkan device, as build_pipeline does."""
+def _info(vk, cls, kind, **kw):
+    return getattr(vk, cls)(sType=getattr(vk, "VK_STRUCTURE_TYPE_" + kind), **kw)
+
+
+def _device_and_layout(spv_paths):
+    """The first Vulkan device (the null device the caller's environment names), a loader for
+    the modules' code, and a pipeline layout of one set holding every resource they declare."""
     import vulkan as vk
-
-    def info(cls, kind, **kw):
-        return getattr(vk, cls)(sType=getattr(vk, "VK_STRUCTURE_TYPE_" + kind), **kw)
-
-    app = info("VkApplicationInfo", "APPLICATION_INFO", pApplicationName="hfx", apiVersion=vk.VK_MAKE_VERSION(1, 2, 0))
-    instance = vk.vkCreateInstance(info("VkInstanceCreateInfo", "INSTANCE_CREATE_INFO", pApplicationInfo=app), None)
+    app = _info(vk, "VkApplicationInfo", "APPLICATION_INFO", pApplicationName="hfx", apiVersion=vk.VK_MAKE_VERSION(1, 2, 0))
+    instance = vk.vkCreateInstance(_info(vk, "VkInstanceCreateInfo", "INSTANCE_CREATE_INFO", pApplicationInfo=app), None)
     physical = vk.vkEnumeratePhysicalDevices(instance)[0]
-    queue = info("VkDeviceQueueCreateInfo", "DEVICE_QUEUE_CREATE_INFO", queueFamilyIndex=0, queueCount=1,
-                 pQueuePriorities=[1.0])
-    device = vk.vkCreateDevice(physical, info("VkDeviceCreateInfo", "DEVICE_CREATE_INFO", queueCreateInfoCount=1,
-                                              pQueueCreateInfos=[queue]), None)
-    with open(comp, "rb") as f:
-        code = f.read()
-    module = vk.vkCreateShaderModule(device, info("VkShaderModuleCreateInfo", "SHADER_MODULE_CREATE_INFO",
-                                                  codeSize=len(code), pCode=code), None)
+    queue = _info(vk, "VkDeviceQueueCreateInfo", "DEVICE_QUEUE_CREATE_INFO", queueFamilyIndex=0, queueCount=1,
+                  pQueuePriorities=[1.0])
+    device = vk.vkCreateDevice(physical, _info(vk, "VkDeviceCreateInfo", "DEVICE_CREATE_INFO", queueCreateInfoCount=1,
+                                                pQueueCreateInfos=[queue]), None)
+
+    def module(path):
+        with open(path, "rb") as f:
+            code = f.read()
+        return vk.vkCreateShaderModule(device, _info(vk, "VkShaderModuleCreateInfo", "SHADER_MODULE_CREATE_INFO",
+                                                     codeSize=len(code), pCode=code), None)
+
     bindings = [vk.VkDescriptorSetLayoutBinding(binding=b, descriptorType=getattr(vk, "VK_DESCRIPTOR_TYPE_" + t),
                                                 descriptorCount=n, stageFlags=vk.VK_SHADER_STAGE_ALL)
-                for b, (t, n) in sorted(descriptors([comp]).items())]
-    set_layout = vk.vkCreateDescriptorSetLayout(device, info("VkDescriptorSetLayoutCreateInfo", "DESCRIPTOR_SET_LAYOUT_CREATE_INFO",
-                                                             bindingCount=len(bindings), pBindings=bindings), None)
-    layout = vk.vkCreatePipelineLayout(device, info("VkPipelineLayoutCreateInfo", "PIPELINE_LAYOUT_CREATE_INFO",
-                                                    setLayoutCount=1, pSetLayouts=[set_layout]), None)
-    stage = info("VkPipelineShaderStageCreateInfo", "PIPELINE_SHADER_STAGE_CREATE_INFO",
-                 stage=vk.VK_SHADER_STAGE_COMPUTE_BIT, module=module, pName="main")
-    pipeline = info("VkComputePipelineCreateInfo", "COMPUTE_PIPELINE_CREATE_INFO", stage=stage, layout=layout)
-    vk.vkCreateComputePipelines(device, None, 1, [pipeline], None)
+                for b, (t, n) in sorted(descriptors(spv_paths).items())]
+    set_layout = vk.vkCreateDescriptorSetLayout(device, _info(vk, "VkDescriptorSetLayoutCreateInfo",
+                                                              "DESCRIPTOR_SET_LAYOUT_CREATE_INFO",
+                                                              bindingCount=len(bindings), pBindings=bindings), None)
+    layout = vk.vkCreatePipelineLayout(device, _info(vk, "VkPipelineLayoutCreateInfo", "PIPELINE_LAYOUT_CREATE_INFO",
+                                                     setLayoutCount=1, pSetLayouts=[set_layout]), None)
+    return device, module, layout
+
+
+def build_compute(comp):
+    """Builds the compute pipeline; the driver prints the shader's statistics as it compiles it."""
+    import vulkan as vk
+    device, module, layout = _device_and_layout([comp])
+    stage = _info(vk, "VkPipelineShaderStageCreateInfo", "PIPELINE_SHADER_STAGE_CREATE_INFO",
+                  stage=vk.VK_SHADER_STAGE_COMPUTE_BIT, module=module(comp), pName="main")
+    vk.vkCreateComputePipelines(device, None, 1, [_info(vk, "VkComputePipelineCreateInfo", "COMPUTE_PIPELINE_CREATE_INFO",
+                                                        stage=stage, layout=layout)], None)
 
 
 def build_pipeline(vert, frag):
@@ -131,29 +143,9 @@ def build_pipeline(vert, frag):
     import vulkan as vk
 
     def info(cls, kind, **kw):
-        return getattr(vk, cls)(sType=getattr(vk, "VK_STRUCTURE_TYPE_" + kind), **kw)
+        return _info(vk, cls, kind, **kw)
 
-    app = info("VkApplicationInfo", "APPLICATION_INFO", pApplicationName="hfx", apiVersion=vk.VK_MAKE_VERSION(1, 2, 0))
-    instance = vk.vkCreateInstance(info("VkInstanceCreateInfo", "INSTANCE_CREATE_INFO", pApplicationInfo=app), None)
-    physical = vk.vkEnumeratePhysicalDevices(instance)[0]
-    queue = info("VkDeviceQueueCreateInfo", "DEVICE_QUEUE_CREATE_INFO", queueFamilyIndex=0, queueCount=1,
-                 pQueuePriorities=[1.0])
-    device = vk.vkCreateDevice(physical, info("VkDeviceCreateInfo", "DEVICE_CREATE_INFO", queueCreateInfoCount=1,
-                                              pQueueCreateInfos=[queue]), None)
-
-    def module(path):
-        with open(path, "rb") as f:
-            code = f.read()
-        return vk.vkCreateShaderModule(device, info("VkShaderModuleCreateInfo", "SHADER_MODULE_CREATE_INFO",
-                                                    codeSize=len(code), pCode=code), None)
-
-    bindings = [vk.VkDescriptorSetLayoutBinding(binding=b, descriptorType=getattr(vk, "VK_DESCRIPTOR_TYPE_" + t),
-                                                descriptorCount=n, stageFlags=vk.VK_SHADER_STAGE_ALL)
-                for b, (t, n) in sorted(descriptors([vert, frag]).items())]
-    set_layout = vk.vkCreateDescriptorSetLayout(device, info("VkDescriptorSetLayoutCreateInfo", "DESCRIPTOR_SET_LAYOUT_CREATE_INFO",
-                                                             bindingCount=len(bindings), pBindings=bindings), None)
-    layout = vk.vkCreatePipelineLayout(device, info("VkPipelineLayoutCreateInfo", "PIPELINE_LAYOUT_CREATE_INFO",
-                                                    setLayoutCount=1, pSetLayouts=[set_layout]), None)
+    device, module, layout = _device_and_layout([vert, frag])
     attachment = vk.VkAttachmentDescription(
         format=vk.VK_FORMAT_R16G16B16A16_SFLOAT, samples=vk.VK_SAMPLE_COUNT_1_BIT,
         loadOp=vk.VK_ATTACHMENT_LOAD_OP_CLEAR, storeOp=vk.VK_ATTACHMENT_STORE_OP_STORE,
