@@ -226,15 +226,15 @@ struct DrawOptions {
     /// With texel shadows read on a camera's draw: a light ray they do not hold (the hard
     /// shadow's edge crosses its cell) is walked after the draw by a compute pass, one to a
     /// lane, and its pixel written again (ExactTracer::finish), instead of in the draw, where
-    /// its warp waits for that one lane's walk. The same pixels. Not with traceOutput, nor for water (its colour is
-    /// not affine in the light: shadingAffineInLight), nor where the caller draws with blending or
-    /// a stencil test (the pixel is written twice), nor on a context whose vertex stage reads no
-    /// storage buffer: those walk in the draw.
-    /// Off until a GPU has timed it: what it saves a 32-lane warp is counted, not timed, and AMD's
-    /// compiler gives the deferring draw 8 more vector registers (the walk past the buffer's
-    /// capacity stays in it); on llvmpipe, no guide to a GPU here (8 lanes wait for less), it
-    /// is slower. bench-tracers' 'deferred' column times it against the walks in the
-    /// draw (docs/BENCHMARKS.md).
+    /// its warp waits for that one lane's walk. The same pixels. Not with traceOutput, nor for
+    /// water (its colour is not affine in the light: shadingAffineInLight), nor where the caller
+    /// draws with blending or a stencil test (the pixel is written twice), nor on a context whose
+    /// vertex stage reads no storage buffer: those walk in the draw.
+    /// Off until a GPU has timed it: what it saves a 32-lane warp is counted, not timed, and the
+    /// deferring draw shades those pixels twice and, on AMD's compiler, schedules for 16 waves
+    /// a SIMD instead of 18 (64 vector registers against 56); on llvmpipe, no guide to a GPU
+    /// here (8 lanes wait for less), it is slower. bench-tracers' 'deferred' column times it
+    /// against the walks in the draw (docs/BENCHMARKS.md).
     bool deferShadowWalks = false;
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).
