@@ -16,7 +16,12 @@
 //   pixel's colour as written (gamma-encoded rgb, 1)
 // A ray past the capacity is walked in the draw, as without the deferral.
 
-layout(std430, binding = HFX_BUFFER_DEFERRED_SHADOWS) buffer HfxDeferredShadows {
+// A stage that only reads it defines HFX_DEFERRED_ACCESS readonly first (deferred.vert: a vertex
+// stage need not be able to write storage).
+#ifndef HFX_DEFERRED_ACCESS
+#define HFX_DEFERRED_ACCESS
+#endif
+layout(std430, binding = HFX_BUFFER_DEFERRED_SHADOWS) HFX_DEFERRED_ACCESS buffer HfxDeferredShadows {
     uint hfx_deferredCount;
     uint hfx_deferredInstances;
     uint hfx_deferredFirst;

@@ -5,6 +5,7 @@
 // deferred.frag writes it where the draw's own depth still stands (GL_EQUAL).
 
 #include "bindings.glsl"
+#define HFX_DEFERRED_ACCESS readonly
 #include "trace/hier/deferred.glsl"
 
 uniform vec4 u_viewport; // x, y, width, height: the draw's
