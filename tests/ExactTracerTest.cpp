@@ -157,7 +157,8 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
     // the relief: the relief's fragments behind it append their rays too, and the pass must not
     // write them through it (its depth test). At 64x36 the buffer first holds 256 rays, fewer
     // than the draw appends: the rest walk in the draw, and the frame is still the same; the
-    // next deferring draw has room for them all (the count read back once the GPU was past it).
+    // next deferring draw has room for more (the count read back once the GPU was past it), up to
+    // a ray per 4 pixels (the rough field appends one for half of them).
     // In both layouts of the bounds: the pass's walk is compiled for each.
     constexpr int N = 64;
     const Mesh plane(makePlane({.size = 2.0f}));
@@ -214,7 +215,9 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
                             inDraw.pixels.size(), worst);
                 EXPECT_GT(walks, size == 64 ? 256 : 300) << "too few rays deferred to tell";
                 if (size == 64 && !covered) EXPECT_GT(walks, capacity) << "the walks past the buffer's room not tried";
-                else EXPECT_LE(walks, capacity) << "the buffer did not grow to what the last draw appended";
+                else // room for what the last draw appended, up to a ray per 4 pixels (64x36: 576 of 1238)
+                    EXPECT_GE(capacity, std::min(walks, inDraw.width * inDraw.height / 4))
+                        << "the buffer did not grow to what the last draw appended";
                 // Measured: none differ. Without the pass 394 channels of the 320x180 frame differ,
                 // by up to 3/255; with it writing through the nearer plane, 360 by up to 77/255.
                 EXPECT_LE(worst, 1.0 / 255.0 + 1e-6);

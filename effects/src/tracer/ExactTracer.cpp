@@ -160,7 +160,8 @@ void ExactTracer::prepareDeferred() {
     // are a few per cent of a view's pixels: 0.4-3% on smooth waves, 5-18% on bricks at
     // 640x360); a ray past it is walked in the draw. Where the last draw that deferred appended
     // more and the GPU is past it (its count read back without waiting), room for that and a
-    // quarter more, up to a ray per pixel: a view that keeps its rays walks them all after.
+    // quarter more, up to a ray per 4 pixels (64 bytes a ray: 15 MB at 1280x720, 133 MB at
+    // 3840x2160): a view that keeps its rays walks them all after.
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
     // The last deferring draw's and pass's shader writes before the count is read back and the
@@ -170,7 +171,8 @@ void ExactTracer::prepareDeferred() {
     int capacity = std::max(pixels / 16, 256);
     if (deferredDone_.done()) {
         const int appended = deferredWalks();
-        if (appended > deferredCapacity_) capacity = std::max(capacity, int(std::min(appended * 1.25, double(pixels))));
+        if (appended > deferredCapacity_)
+            capacity = std::max(capacity, int(std::min(appended * 1.25, double(pixels) / 4.0)));
         deferredDone_ = GlFence();
     }
     if (capacity > deferredCapacity_ || !deferred_) {

@@ -98,7 +98,7 @@ public:
     /// capacity, the rest were walked in the draw). Reads the buffer back: for tests and reports.
     int deferredWalks() const;
     /// How many rays the deferred walks' buffer holds: a ray per 16 pixels of the viewport, grown
-    /// to what a draw appended once the GPU is past it (up to a ray per pixel).
+    /// to what a draw appended once the GPU is past it (up to a ray per 4 pixels).
     int deferredCapacity() const { return deferredCapacity_; }
 
 private:
