@@ -196,7 +196,7 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
         bool beam = true;
         bool defer = false;
     };
-    const Variant variants[] = {{Technique::ParallaxOcclusion, 0.0f, "pom"},
+    constexpr Variant variants[] = {{Technique::ParallaxOcclusion, 0.0f, "pom"},
                                 {Technique::Hierarchical, 0.0f, "hier"},
                                 {Technique::Hierarchical, 1.0f, "hier 1px"},
                                 {Technique::Hierarchical, 0.0f, "hier, texel shadows", true},
@@ -214,7 +214,7 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "hier walks every pixel's light ray; 'texels' reads the texel shadows of the light instead where they\n"
                 "hold the ray's shadow, 'no beam' the same without the beam start (DrawOptions::beamStart), 'deferred'\n"
                 "with the light walks they leave done by a compute pass after the draw (DrawOptions::deferShadowWalks);\n"
-                "deferred rays: how many it appended, per 100 pixels of the view (past a ray per 16, the draw walks them).\n"
+                "deferred rays: how many it appended, per 100 pixels of the view (past the buffer's room, the draw walks them).\n"
                 "texels ms: the texel shadows' pass after new heights, their pyramid's build included (GL timer queries,\n"
                 "median of 30). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in\n"
                 "the shader of the timed draw itself (with the texel shadows' walks in the draw): the mean, and per pixel\n"
@@ -244,8 +244,8 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                     const GlTime t = probe.timeDraw(variants[i].technique, configOf(variants[i]), width, height, 1, 0);
                     if (r >= 0) times[i].push_back(t);
                 }
-            // The last draw of the rounds was the deferring variant's.
-            static_assert(std::size(variants) == 6);
+            // The last draw of the rounds was the deferring variant's: the rays it appended.
+            static_assert(variants[std::size(variants) - 1].defer);
             const int deferred = probe.deferredWalks();
             std::vector<double> gpuMs, wall;
             for (const auto& v : times) {

@@ -158,10 +158,10 @@ bool ExactTracer::vertexStageReadsBuffer() {
 void ExactTracer::prepareDeferred() {
     // Room for a ray per 16 pixels of the viewport, at least 256 (the cells a hard shadow's edge
     // crosses hold 0.4-3% of a view's pixels on smooth waves, up to 21% on a brick wall:
-    // bench-tracers' 'deferred rays'); a ray past it is walked in the draw. Where the last draw that deferred appended
-    // more and the GPU is past it (its count read back without waiting), room for that and a
-    // quarter more, up to a ray per 4 pixels (64 bytes a ray: 15 MB at 1280x720, 133 MB at
-    // 3840x2160): a view that keeps its rays walks them all after.
+    // bench-tracers' 'deferred rays'); a ray past it is walked in the draw. Where the last draw
+    // that deferred appended more and the GPU is past it (its count read back without waiting),
+    // room for that and a quarter more, up to a ray per 4 pixels (64 bytes a ray: 15 MB at
+    // 1280x720, 133 MB at 3840x2160): a view that keeps its rays walks them all after.
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
     // The last deferring draw's and pass's shader writes before the count is read back and the
