@@ -32,6 +32,9 @@
 //                     hold it (surface/shadow.glsl)
 //   HFX_DEFERRED_SHADOWS 1 with HFX_TEXEL_SHADOWS: a light ray they do not hold is appended for the
 //                     pass after the draw (trace/hier/deferred.glsl) instead of walked here
+//   HFX_COMPUTE_TRACE 1 or 2: the exact tracer's walks in a compute pass between two draws
+//                     (trace/hier/trace.glsl): 1 = the rays draw, which stores each pixel's view ray
+//                     and shades nothing; 2 = the shading draw, which reads the hit and its shadow
 //   HFX_ENVIRONMENT   1 for water reflecting an equirectangular image (WaterLook::environment)
 //   HFX_PYRAMID_ATLAS 1 on llvmpipe: the pyramids in one image each (surface/heights.glsl,
 //                     GlWorkarounds::pyramidAtlas); the only define a device picks
@@ -64,6 +67,12 @@
 #ifndef HFX_DEFERRED_SHADOWS
 #define HFX_DEFERRED_SHADOWS 0
 #endif
+#ifndef HFX_COMPUTE_TRACE
+#define HFX_COMPUTE_TRACE 0
+#endif
+#if HFX_COMPUTE_TRACE && (HFX_SHADOW_CASTER || HFX_DEFERRED_SHADOWS || !HFX_TRACES)
+#error "HFX_COMPUTE_TRACE walks a camera's view rays in a compute pass: not with HFX_SHADOW_CASTER or HFX_DEFERRED_SHADOWS"
+#endif
 #if HFX_DEFERRED_SHADOWS && (HFX_TRACE_OUTPUT || HFX_SHADOW_CASTER || !HFX_TEXEL_SHADOWS)
 #error "HFX_DEFERRED_SHADOWS defers the walks HFX_TEXEL_SHADOWS leave, of a drawn colour: not with HFX_TRACE_OUTPUT or HFX_SHADOW_CASTER"
 #endif
@@ -78,6 +87,13 @@
 #include "trace/hier/deferred.glsl"
 #endif
 #include "surface/shadow.glsl"
+#if HFX_COMPUTE_TRACE
+#include "trace/hier/trace.glsl"
+#endif
+#if HFX_COMPUTE_TRACE == 1
+// Only the fragments that pass the depth test store their ray (and the draw writes no depth).
+layout(early_fragment_tests) in;
+#endif
 #include "shade/common.glsl"
 #include "shade/sky.glsl"
 #include <shading>
@@ -213,6 +229,27 @@ void main() {
 
     vec2 uv = uv0;
     float depthFraction = 0.0; // of u_depthScale, along the view ray, at the hit
+#if HFX_COMPUTE_TRACE
+    const int slot = hfx_trace_slot(ivec2(gl_FragCoord.xy));
+#endif
+#if HFX_COMPUTE_TRACE == 1
+    uvec2 traceInfo = uvec2(0u, hfx_trace_mark(false)); // normal mapped, unless traced below
+#elif HFX_COMPUTE_TRACE == 2
+    // The walks pass's hit (the ray this pixel's fragment of the rays draw stored): 1 where the slot
+    // holds this draw's traced ray, 2 where it holds this draw's normal-mapped pixel, 0 where it
+    // holds neither (a helper lane past the mesh's edge, below).
+    const uvec2 traceInfo = hfx_traceInfo[slot];
+    const uint mark = traceInfo.y & 0xffff0000u;
+    const uint computed = mark == hfx_trace_mark(true) ? 1u : mark == hfx_trace_mark(false) ? 2u : 0u;
+    float computedShadow = -1.0; // the walks' self-shadow before the fade, -1: none walked
+    if (computed == 1u) {
+        const vec4 hit = hfx_traceRays[slot];
+        uv = hit.xy;
+        depthFraction = hit.z;
+        computedShadow = hit.w;
+        g_fetches += float(traceInfo.x);
+    }
+#endif
 
 #if HFX_TRACES
     if (mipLevel <= u_lodThreshold && viewTS.z > 0.0 && depthScale > 0.0) {
@@ -234,12 +271,40 @@ void main() {
 #else
         ray.start = 0.0;
 #endif
-        const HfxHit hit = hfx_trace(ray);
         // Level of detail: within one mip level of the threshold, fade the parallax out so the
         // change to normal mapping is not seen as a seam.
         const float blend = clamp(mipLevel - (u_lodThreshold - 1.0), 0.0, 1.0);
+#if HFX_COMPUTE_TRACE == 1
+        traceInfo = uvec2(floatBitsToUint(ray.tolerance), hfx_trace_mark(true) | (packUnorm2x16(vec2(blend, 0.0)) & 0xffffu));
+        hfx_traceRays[slot] = vec4(ray.uv, ray.parallax);
+#elif HFX_COMPUTE_TRACE == 2
+        // (The walks pass's hit, read above.)
+#else
+        const HfxHit hit = hfx_trace(ray);
         uv = mix(hit.uv, uv0, blend);
         depthFraction = mix(hit.depth, 0.0, blend);
+#endif
+    }
+#endif
+#if HFX_COMPUTE_TRACE == 1
+    hfx_traceInfo[slot] = traceInfo;
+    return; // the walks pass takes it from here
+#elif HFX_COMPUTE_TRACE == 2
+    // A helper lane past the mesh's edge has no slot. The hits' spread below (the shading's level)
+    // needs its hit: its own ray at the depth of a quad neighbour that has one, across, else
+    // above or below (a lane of a 2x2 quad at even window coordinates finds its neighbour's value
+    // from the difference and which side it is on). Walking it here would cost this program the
+    // walk's registers.
+    const float known = computed != 0u ? 1.0 : 0.0, knownDepth = known * depthFraction;
+    const bool left = (int(gl_FragCoord.x) & 1) == 0, below = (int(gl_FragCoord.y) & 1) == 0;
+    const vec2 acrossKnown = vec2(dFdxFine(known), dFdxFine(knownDepth)) * (left ? 1.0 : -1.0);
+    const vec2 upKnown = vec2(dFdyFine(known), dFdyFine(knownDepth)) * (below ? 1.0 : -1.0);
+    if (computed == 0u) {
+        const float t = known + acrossKnown.x > 0.5 ? knownDepth + acrossKnown.y
+                        : known + upKnown.x > 0.5   ? knownDepth + upKnown.y
+                                                    : 0.0;
+        depthFraction = t;
+        uv = uv0 - parallax * t;
     }
 #endif
 
@@ -266,6 +331,11 @@ void main() {
     const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels);
     const float footprint = max(length(hitDx), length(hitDy));
 
+#if HFX_COMPUTE_TRACE == 2
+    // A fragment whose slot holds no ray of this draw's failed the rays draw's depth test at the
+    // polygon: its hit lies behind what is there (its depth here passed by a rounding).
+    if (computed == 0u) discard;
+#endif
     // Silhouettes of finite patches: a ray that left the patch hit nothing of it.
     if (u_clipToPatch != 0 && (any(lessThan(uv, u_patchBounds.xy)) || any(greaterThan(uv, u_patchBounds.zw))))
         discard;
@@ -369,7 +439,12 @@ void main() {
         shadowRay.samples = hfx_budget_samples(u_shadowSamples, hfx_screen_pixels(shadowRay.span - parallax * (1.0 - h0), dx, dy));
         shadowRay.sharpness = u_shadowSharpness;
         const float fade = smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
+#if HFX_COMPUTE_TRACE == 2
+        // The walks pass's (-1 where it walked none: a pixel at the top of the relief).
+        lit = 1.0 - max(computedShadow, 0.0) * fade;
+#else
         lit = 1.0 - hfx_surface_shadow(shadowRay, fade, deferred) * fade;
+#endif
     }
 #endif
     const float selfLit = lit;

@@ -25,6 +25,15 @@ namespace {
 
 class ExactTracerTest : public DeviceTest {};
 
+/// A plane of relief under a low light (long shadows), and a smaller plane nearer over part of it.
+struct CoveredPlane {
+    Mesh plane{makePlane({.size = 2.0f})};
+    Mesh cover{makePlane({.size = 0.6f})};
+    SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
+    DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    glm::mat4 nearer = glm::translate(glm::mat4(1.0f), glm::vec3(-0.3f, 0.35f, 0.2f));
+};
+
 TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeightsAndLight) {
     // A 64² field on a 320x180 image: seen from near, the plane shows on several pixels per
     // texel and the texel shadows pay (drawn at every sample); from far, on well under one, and
@@ -161,12 +170,8 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
     // a ray per 4 pixels (the rough field appends one for half of them).
     // In both layouts of the bounds: the pass's walk is compiled for each.
     constexpr int N = 64;
-    const Mesh plane(makePlane({.size = 2.0f}));
-    const Mesh cover(makePlane({.size = 0.6f}));
-    const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
-    DirectionalLight light;
-    light.direction = {0.7f, 0.45f, 0.3f}; // low: long shadows
-    const glm::mat4 nearer = glm::translate(glm::mat4(1.0f), glm::vec3(-0.3f, 0.35f, 0.2f));
+    const CoveredPlane scene;
+    const auto& [plane, cover, material, light, nearer] = scene;
     for (const int size : {320, 64}) {
         SCOPED_TRACE(str(size, "x", size * 9 / 16));
         // At 64x36 a rougher field: more of its cells hold a shadow's edge than the buffer holds rays.
@@ -236,6 +241,116 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
         EXPECT_NE(renderer.tracer().last().texelShadows, nullptr);
         EXPECT_FALSE(renderer.tracer().last().deferredShadows);
     }
+}
+
+TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours) {
+    // TracePass::Compute (trace/hier/trace.glsl): a rays draw stores each pixel's view ray, a
+    // compute pass walks it and its light ray, the shading draw reads the hit. Every pixel must
+    // show what the draw that walks its own rays shows: the hit (uv, depth), the self-shadow, the
+    // fetches and the colour, with and without texel shadows and the beam start, in both layouts
+    // of the bounds, where a nearer plane hides part of the relief (the rays draw must leave the
+    // hidden pixels to it), in a viewport offset into the target (the slots count from its
+    // origin), for two views in a row (a slot of the first view must not serve the second).
+    // A shading draw that read nothing, or the wrong slots, shows uv (0, 0) or another pixel's hit.
+    // On blocks (plateaus with sharp edges) a light ray can graze an edge: there the pass's ray,
+    // turned by the flat patch's frame (ExactTracer's light, the texel shadows'), and the draw's,
+    // turned by the pixel's interpolated frame, may fall on either side of it.
+    constexpr int N = 64;
+    struct Case {
+        const char* name;
+        std::vector<float> heights;
+        double shadowsOff; // the share of traced pixels whose shadow may differ
+    };
+    const Case cases[] = {{"smooth", sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}}), 0.0005},
+                          {"blocks", blocks(N, 4), 0.003}};
+    const CoveredPlane scene;
+    const auto& [plane, cover, material, light, nearer] = scene;
+    constexpr int W = 320, H = 180, X0 = 24, Y0 = 16, VW = 256, VH = 144;
+    RenderTarget target(W, H, true);
+    Camera nearView = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f);
+    Camera grazing = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.4f, -0.6f, 0.25f);
+    nearView.aspect = grazing.aspect = float(VW) / float(VH);
+    for (const Case& c : cases) {
+        StaticField field(cl(), N, N, EdgeMode::Wrap, c.heights);
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
+        surface.run(field.buffer());
+        for (const PyramidLayout layout : {PyramidLayout::MipChain, PyramidLayout::Atlas})
+            for (const TexelShadowChoice texels : {TexelShadowChoice::Off, TexelShadowChoice::On})
+                for (const bool beam : {true, false}) {
+                    const std::string what = str(c.name, ", ", layout == PyramidLayout::Atlas ? "atlas" : "mip chain",
+                                                 texels == TexelShadowChoice::On ? ", texel shadows" : "",
+                                                 beam ? ", beam start" : "");
+                    SCOPED_TRACE(what);
+                    SurfaceRenderer renderer;
+                    auto draw = [&](const Camera& camera, TracePass pass) {
+                        target.bind();
+                        target.clear();
+                        glViewport(X0, Y0, VW, VH);
+                        renderer.draw(cover, nearer, surface.textures(), material, camera, light,
+                                      {.technique = Technique::NormalMapping, .traceOutput = true});
+                        renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, light,
+                                      {.technique = Technique::Hierarchical, .traceOutput = true, .beamStart = beam,
+                                       .texelShadows = texels, .tracePass = pass, .boundsLayout = layout});
+                        EXPECT_EQ(renderer.tracer().last().computeTrace, pass == TracePass::Compute);
+                        EXPECT_EQ(renderer.tracer().last().beamStart, beam);
+                        return std::pair(target.readTrace(), target.readColor());
+                    };
+                    for (const Camera* camera : {&nearView, &grazing}) {
+                        SCOPED_TRACE(camera == &nearView ? "near view" : "grazing view");
+                        const auto [walkedTrace, walkedColor] = draw(*camera, TracePass::InDraw);
+                        const auto [computedTrace, computedColor] = draw(*camera, TracePass::Compute);
+                        size_t traced = 0, hitsOff = 0, shadowsOff = 0;
+                        double fetchesWalked = 0.0, fetchesComputed = 0.0;
+                        for (size_t i = 0; i < walkedTrace.size(); ++i) {
+                            const glm::vec4 a = walkedTrace[i], b = computedTrace[i];
+                            if (a.z <= 0.0f) { // the cover, the background, or normal mapped: the same in both
+                                EXPECT_EQ(a, b) << "pixel " << i;
+                                continue;
+                            }
+                            ++traced;
+                            hitsOff += glm::length(glm::vec2(a) - glm::vec2(b)) * N > 1e-3 || std::abs(a.z - b.z) > 1e-4;
+                            const float litA = 2.0f * (a.w - std::floor(a.w)), litB = 2.0f * (b.w - std::floor(b.w));
+                            shadowsOff += std::abs(litA - litB) > 1e-3f;
+                            fetchesWalked += std::floor(a.w);
+                            fetchesComputed += std::floor(b.w);
+                        }
+                        size_t colours = 0;
+                        for (size_t i = 0; i < walkedColor.pixels.size(); ++i)
+                            colours += std::abs(walkedColor.pixels[i] - computedColor.pixels[i]) > 1.0f / 255.0f + 1e-6f;
+                        std::printf("[computed walks] %s, %s: %zu traced pixels, %zu hits and %zu shadows differ, "
+                                    "%zu colour channels by more than 1/255; fetches %.2f walked in the draw, %.2f "
+                                    "computed\n",
+                                    what.c_str(), camera == &nearView ? "near" : "grazing", traced, hitsOff, shadowsOff,
+                                    colours, fetchesWalked / double(std::max<size_t>(traced, 1)),
+                                    fetchesComputed / double(std::max<size_t>(traced, 1)));
+                        EXPECT_GT(traced, size_t(VW * VH / 2)) << "too little relief to tell";
+                        EXPECT_LE(hitsOff, traced / 2000);
+                        EXPECT_LE(double(shadowsOff), c.shadowsOff * double(traced));
+                        EXPECT_LE(double(colours), 3.0 * c.shadowsOff * double(walkedColor.pixels.size()));
+                        EXPECT_NEAR(fetchesComputed, fetchesWalked, 0.002 * fetchesWalked);
+                    }
+                }
+    }
+    StaticField field(cl(), N, N, EdgeMode::Wrap, cases[0].heights);
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
+    surface.run(field.buffer());
+    // Where the two draws could meet a pixel more or less than once each, the draw walks.
+    SurfaceRenderer renderer;
+    target.bind();
+    glEnable(GL_STENCIL_TEST);
+    renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, nearView, light,
+                  {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute});
+    glDisable(GL_STENCIL_TEST);
+    EXPECT_FALSE(renderer.tracer().last().computeTrace) << "under a stencil test";
+    SurfaceMaterial faded = material;
+    faded.silhouetteFade = 0.2f;
+    renderer.draw(plane, glm::mat4(1.0f), surface.textures(), faded, nearView, light,
+                  {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute});
+    EXPECT_FALSE(renderer.tracer().last().computeTrace) << "with a silhouette fade (a depth per pixel)";
+    const Mesh sphere(makeSphere({}));
+    renderer.draw(sphere, glm::mat4(1.0f), surface.textures(), material, nearView, light,
+                  {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute});
+    EXPECT_FALSE(renderer.tracer().last().computeTrace) << "on a curved mesh";
 }
 
 } // namespace

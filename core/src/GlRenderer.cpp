@@ -28,7 +28,10 @@ GlRendererInfo currentGlRenderer() {
 
 GlWorkarounds glWorkarounds(const GlRendererInfo& renderer) {
     const bool software = renderer.software();
-    GlWorkarounds w{.cpuClockTimer = software, .pyramidAtlas = software, .pyramidFromCompute = software};
+    GlWorkarounds w{.cpuClockTimer = software,
+                    .pyramidAtlas = software,
+                    .pyramidFromCompute = software,
+                    .traceInDraw = software};
     const char* env = std::getenv("HFX_GL_WORKAROUNDS");
     if (!env || !*env) return w;
     std::stringstream list(env);
@@ -39,10 +42,11 @@ GlWorkarounds glWorkarounds(const GlRendererInfo& renderer) {
         bool* flag = name == "cpu-clock-timer"        ? &w.cpuClockTimer
                      : name == "pyramid-atlas"        ? &w.pyramidAtlas
                      : name == "pyramid-from-compute" ? &w.pyramidFromCompute
+                     : name == "trace-in-draw"        ? &w.traceInDraw
                                                       : nullptr;
         if (!flag || (value != "0" && value != "1"))
             throw Error(str("HFX_GL_WORKAROUNDS: '", entry, "' is not name=0 or name=1 with a name of "
-                            "cpu-clock-timer, pyramid-atlas, pyramid-from-compute (in '", env, "')"));
+                            "cpu-clock-timer, pyramid-atlas, pyramid-from-compute, trace-in-draw (in '", env, "')"));
         *flag = value == "1";
     }
     return w;

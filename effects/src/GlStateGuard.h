@@ -13,6 +13,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <ios>
 
 namespace hfx {
@@ -46,9 +47,11 @@ public:
         programPointSize_ = glIsEnabled(GL_PROGRAM_POINT_SIZE);
         glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &indirect_);
         glGetIntegerv(GL_DISPATCH_INDIRECT_BUFFER_BINDING, &dispatch_);
-        glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, HFX_BUFFER_DEFERRED_SHADOWS, &storage_);
-        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, HFX_BUFFER_DEFERRED_SHADOWS, &storageStart_);
-        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, HFX_BUFFER_DEFERRED_SHADOWS, &storageSize_);
+        for (GLuint index = 0; index < kStorage; ++index) {
+            glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, index, &storage_[index]);
+            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, index, &storageStart_[index]);
+            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, index, &storageSize_[index]);
+        }
         glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
         glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
         glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
@@ -78,11 +81,13 @@ public:
         (programPointSize_ ? glEnable : glDisable)(GL_PROGRAM_POINT_SIZE);
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, GLuint(indirect_));
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, GLuint(dispatch_));
-        if (storage_ != 0 && storageSize_ > 0)
-            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_DEFERRED_SHADOWS, GLuint(storage_), storageStart_,
-                              storageSize_);
-        else
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_DEFERRED_SHADOWS, GLuint(storage_));
+        for (GLuint index = 0; index < kStorage; ++index) {
+            if (storage_[index] != 0 && storageSize_[index] > 0)
+                glBindBufferRange(GL_SHADER_STORAGE_BUFFER, index, GLuint(storage_[index]), storageStart_[index],
+                                  storageSize_[index]);
+            else
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, index, GLuint(storage_[index]));
+        }
         // A program the caller deleted while it was current lives only while it stays current:
         // once the guarded pass has used another, its name is gone, and the caller has none.
         glUseProgram(program_ != 0 && glIsProgram(GLuint(program_)) ? GLuint(program_) : 0);
@@ -106,8 +111,13 @@ public:
 
 private:
     GLboolean depthTest_, depthMask_, programPointSize_;
-    GLint indirect_, dispatch_, storage_; // the deferred walks' indirect buffers and storage binding (ExactTracer)
-    GLint64 storageStart_, storageSize_;
+    GLint indirect_, dispatch_; // the deferred walks' indirect buffers (ExactTracer)
+    // the storage buffers of hfx/core/Bindings.h: the deferred walks', the computed walks' two
+    static constexpr GLuint kStorage = HFX_BUFFER_TRACE_INFO + 1;
+    static_assert(HFX_BUFFER_DEFERRED_SHADOWS < kStorage && HFX_BUFFER_TRACE_RAYS < kStorage,
+                  "hfx/core/Bindings.h: the guard saves every storage binding");
+    GLint storage_[kStorage];
+    GLint64 storageStart_[kStorage], storageSize_[kStorage];
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
     // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,
@@ -122,6 +132,31 @@ private:
     static constexpr GLuint kBlocks = HFX_BLOCK_PLANET + 1; // surface, water, water rings, planet
     GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
+};
+
+/// For its scope a draw writes no colour to any draw buffer and no depth (ExactTracer's rays draw,
+/// whose fragments only store their rays); puts back the caller's masks when it ends.
+class NoFramebufferWrites {
+public:
+    NoFramebufferWrites() {
+        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &buffers_);
+        buffers_ = std::min(buffers_, kBuffers);
+        for (GLint i = 0; i < buffers_; ++i) glGetBooleani_v(GL_COLOR_WRITEMASK, GLuint(i), masks_[i]);
+        glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glDepthMask(GL_FALSE);
+    }
+    ~NoFramebufferWrites() {
+        for (GLint i = 0; i < buffers_; ++i) glColorMaski(GLuint(i), masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
+        glDepthMask(depth_);
+    }
+    NoFramebufferWrites(const NoFramebufferWrites&) = delete;
+    NoFramebufferWrites& operator=(const NoFramebufferWrites&) = delete;
+
+private:
+    static constexpr GLint kBuffers = 8; // GL 4.5 promises 8 draw buffers
+    GLint buffers_ = 0;
+    GLboolean masks_[kBuffers][4] = {}, depth_ = GL_TRUE;
 };
 
 /// Attaches `texture` (width x height, `format` named in the error) as colour attachment 0 of

@@ -191,6 +191,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
                                                    {"HFX_DEFERRED_SHADOWS", v.deferredShadows ? "1" : "0"},
+                                                   {"HFX_COMPUTE_TRACE", std::to_string(v.computeTrace)},
                                                    {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
@@ -327,19 +328,21 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     // The exact tracer's data and passes, and the bounds of a bounded search, as it decides.
     const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, options,
                                                 caster != nullptr, u);
-    const ShaderProgram& p = program(options, {.shading = material.shading,
-                                               .layers = int(layers.size()),
-                                               .traced = traced,
-                                               .selfShadows = material.shadows,
-                                               .boundedSearch = frame.boundedSearch,
-                                               .shadowMap = light.shadowMap != nullptr,
-                                               .rings = material.water.ringCount > 0,
-                                               .environment = material.water.environment != 0,
-                                               .caster = caster != nullptr,
-                                               .texelShadows = frame.texelShadows != nullptr,
-                                               .beamStart = frame.beamStart,
-                                               .deferredShadows = frame.deferredShadows,
-                                               .pyramidAtlas = frame.atlas});
+    const SurfaceVariant variant{.shading = material.shading,
+                                 .layers = int(layers.size()),
+                                 .traced = traced,
+                                 .selfShadows = material.shadows,
+                                 .boundedSearch = frame.boundedSearch,
+                                 .shadowMap = light.shadowMap != nullptr,
+                                 .rings = material.water.ringCount > 0,
+                                 .environment = material.water.environment != 0,
+                                 .caster = caster != nullptr,
+                                 .texelShadows = frame.texelShadows != nullptr,
+                                 .beamStart = frame.beamStart,
+                                 .deferredShadows = frame.deferredShadows,
+                                 .computeTrace = frame.computeTrace ? 2 : 0,
+                                 .pyramidAtlas = frame.atlas};
+    const ShaderProgram& p = program(options, variant);
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
@@ -376,6 +379,23 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     bindUniforms(u, model, viewProj);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
+    if (frame.computeTrace) {
+        // The walks in a compute pass (trace/hier/trace.glsl): the rays draw stores each pixel's
+        // ray, the tracer walks them, and the draw below reads the hits.
+        DrawOptions rays = options;
+        rays.traceOutput = false;
+        SurfaceVariant raysVariant = variant;
+        raysVariant.computeTrace = 1;
+        const ShaderProgram& r = program(rays, raysVariant);
+        {
+            const GpuScope scope("rays");
+            const NoFramebufferWrites none;
+            r.use();
+            mesh.draw();
+        }
+        const GpuScope scope("walks");
+        tracer_.walks(frame);
+    }
     p.use();
     {
         const GpuScope scope(caster ? "shadow map" : "draw");

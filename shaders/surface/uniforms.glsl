@@ -42,6 +42,12 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     // per unit climbed, penumbra, slack
     vec4 u_shadowLight;
     vec2 u_texelSize;         // 1 / the field's size: a level-0 cell's gather coordinate in one fma
+    // The exact tracer's walks in a compute pass (HFX_COMPUTE_TRACE, trace/hier/trace.glsl):
+    int u_traceWidth;         // the viewport's width: a pixel's slot is (y - y0) * width + x - x0
+    uint u_traceStamp;        // this draw's mark on the slots its pixels wrote
+    ivec2 u_traceOrigin;      // the viewport's origin, x0 and y0
+    int u_traceHeight;        // the viewport's height
+    int u_traceShadows;       // 1: the walks pass walks the light rays (the light above the flat patch)
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

@@ -3,6 +3,7 @@
 #include "hfx/core/Bindings.h"
 #include "hfx/core/Camera.h"
 #include "hfx/core/Error.h"
+#include "hfx/core/GlRenderer.h"
 #include "hfx/core/GpuTimer.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceRenderer.h"
@@ -57,6 +58,20 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, 0);
     if (!hier) return frame;
 
+    // The walks in a compute pass where asked (or the device's choice) and where the rays draw
+    // and the shading draw meet the same pixels once each: a camera's view of a flat patch (a
+    // fragment per pixel, its light one uniform), drawn without a stencil test (the rays draw
+    // would run its operations) into a single-sampled target (one fragment a pixel).
+    const TracePass pass = options.tracePass != TracePass::Auto ? options.tracePass
+                           : glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw
+                                                                           : TracePass::Compute;
+    if (pass == TracePass::Compute && !caster && mesh.flatPatch() && layers.size() == 1 &&
+        material.silhouetteFade == 0.0f && material.depthScale > 0.0f && !glIsEnabled(GL_STENCIL_TEST)) {
+        GLint samples = 0;
+        glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
+        frame.computeTrace = samples == 0;
+    }
+
     frame.texelShadows = texelShadowsFor(textures, *bounds0, mesh, model, viewProj, light, material, options, caster, frame);
     if (frame.texelShadows) {
         const ShadowLight& l = *frame.texelShadows->light();
@@ -69,10 +84,20 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     // draw's pixels are blended or stencilled (finish writes them a second time), its trace
     // output read, or the context's vertex stage cannot read the buffer to place the pixels
     // (GL asks it of none).
-    frame.deferredShadows = frame.texelShadows && options.deferShadowWalks && shadingAffineInLight(material.shading) &&
+    frame.deferredShadows = !frame.computeTrace && frame.texelShadows && options.deferShadowWalks &&
+                            shadingAffineInLight(material.shading) &&
                             !options.traceOutput && !glIsEnabled(GL_BLEND) && !glIsEnabled(GL_STENCIL_TEST) &&
                             vertexStageReadsBuffer();
     if (frame.deferredShadows) prepareDeferred();
+    if (frame.computeTrace) {
+        // Every pixel's light ray is the flat patch's light (the texel shadows' where they are read).
+        const std::optional<ShadowLight> l = flatPatchLight(mesh, model, light, material);
+        u.traceShadows = l.has_value() ? 1 : 0;
+        if (l) u.shadowLight = {l->uvPerClimb, l->penumbra, l->slack};
+        GLint viewport[4];
+        glGetIntegerv(GL_VIEWPORT, viewport);
+        prepareComputeTrace(viewport, u);
+    }
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
     frame.beamStart = options.beamStart && layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
@@ -219,6 +244,49 @@ void ExactTracer::finish(const TracerFrame& frame) {
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, deferred_.id());
     glDrawArraysIndirect(GL_POINTS, nullptr);
     deferredDone_ = GlFence::insert();
+}
+
+void ExactTracer::prepareComputeTrace(const GLint viewport[4], SurfaceUniforms& u) {
+    const int slots = std::max(viewport[2], 1) * std::max(viewport[3], 1);
+    // A stamp per draw tells a slot this draw's rays draw wrote from another's (a helper lane past
+    // the mesh's edge reads one): fresh buffers are cleared, and cleared again before the stamp
+    // could wrap, so no slot holds a stamp not yet given.
+    if (slots > traceSlots_ || traceStamp_ >= kTraceStamps) {
+        traceSlots_ = std::max(slots, traceSlots_);
+        traceRays_ = GlBuffer::create();
+        traceInfo_ = GlBuffer::create();
+        HFX_GL_CHECK(glNamedBufferStorage(traceRays_.id(), GLsizeiptr(size_t(traceSlots_) * kTraceRay), nullptr, 0));
+        HFX_GL_CHECK(glNamedBufferStorage(traceInfo_.id(), GLsizeiptr(size_t(traceSlots_) * kTraceInfo), nullptr, 0));
+        const GLuint zero = 0;
+        glClearNamedBufferData(traceInfo_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        traceStamp_ = 0;
+    }
+    ++traceStamp_;
+    traceWidth_ = std::max(viewport[2], 1);
+    traceHeight_ = std::max(viewport[3], 1);
+    u.traceWidth = traceWidth_;
+    u.traceStamp = traceStamp_;
+    u.traceOrigin = {viewport[0], viewport[1]};
+    u.traceHeight = traceHeight_;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_TRACE_RAYS, traceRays_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_TRACE_INFO, traceInfo_.id());
+}
+
+void ExactTracer::walks(const TracerFrame& frame) {
+    if (!frame.computeTrace) return;
+    const bool beam = frame.beamStart, texel = frame.texelShadows != nullptr;
+    ShaderProgram& walk = traceWalks_[int(frame.atlas) | int(beam) << 1 | int(texel) << 2];
+    if (!walk.id())
+        walk = ShaderProgram::compute(surfaceStage("trace/hier/trace.comp"),
+                                      {{"HFX_LAYERS", "1"},
+                                       {"HFX_PYRAMID_ATLAS", frame.atlas ? "1" : "0"},
+                                       {"HFX_BEAM_START", beam ? "1" : "0"},
+                                       {"HFX_TEXEL_SHADOWS", texel ? "1" : "0"}});
+    // The rays draw's stores before the walks read them; the walks' before the shading draw's.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    walk.use();
+    HFX_GL_CHECK(glDispatchCompute(GLuint((traceWidth_ + 7) / 8), GLuint((traceHeight_ + 7) / 8), 1));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 int ExactTracer::deferredWalks() const {

@@ -3,11 +3,12 @@
 // shading model: the program is composed from shaders/surface.frag, the technique's trace file
 // and the model's shade file, built per variant on first use and kept. Per-draw uniforms go in
 // one uniform buffer (SurfaceUniforms). It draws into whatever framebuffer and context the
-// caller has bound and restores the GL state it changes (program, vertex array, depth test,
-// texture units 0-15, uniform-buffer bindings 0-2; around the beam start's prepass, the draw
-// framebuffer, viewport, blending, scissor test and draw buffer 0's colour mask). What the exact
-// tracer reads besides the surface textures, and when it is made, is its ExactTracer's
-// (tracer/ExactTracer.h).
+// caller has bound and restores the GL state it changes (program, vertex array, depth test, the
+// texture units, image units, uniform-buffer and storage-buffer bindings of Bindings.h; around the
+// beam start's prepass, the draw framebuffer, viewport, blending, scissor test and draw buffer 0's
+// colour mask; around the computed walks' rays draw, every draw buffer's colour mask and the
+// depth mask). What the exact tracer reads besides the surface textures, and when it is made, is
+// its ExactTracer's (tracer/ExactTracer.h).
 //
 // Thread: the thread whose GL context is current.
 
@@ -236,6 +237,10 @@ struct DrawOptions {
     /// here (8 lanes wait for less), it is slower. bench-tracers' 'deferred' column times it
     /// against the walks in the draw (docs/BENCHMARKS.md).
     bool deferShadowWalks = false;
+    /// Where the exact tracer walks a camera's view rays and their light rays on a flat patch
+    /// (one layer, no silhouette fade, no stencil test, a single-sampled target): Auto, the
+    /// device's (GlWorkarounds::traceInDraw).
+    TracePass tracePass = TracePass::Auto;
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).
     PyramidLayout boundsLayout = PyramidLayout::Auto;
@@ -268,6 +273,9 @@ struct SurfaceVariant {
     /// HFX_DEFERRED_SHADOWS: with texelShadows, a light ray they do not hold is left to the pass
     /// after the draw (ExactTracer::finish, DrawOptions::deferShadowWalks)
     bool deferredShadows = false;
+    /// HFX_COMPUTE_TRACE: 1 for the rays draw of TracePass::Compute, 2 for its shading draw
+    /// (trace/hier/trace.glsl); 0: the draw walks its rays
+    int computeTrace = 0;
     /// HFX_PYRAMID_ATLAS: the bounds read are in PyramidLayout::Atlas (llvmpipe's workaround,
     /// GlWorkarounds::pyramidAtlas), not mip chains
     bool pyramidAtlas = false;

@@ -15,6 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstddef>
+#include <cstdint>
 
 namespace hfx {
 
@@ -62,7 +63,14 @@ struct SurfaceUniforms {
     glm::vec4 shadowLight{0.0f};
     /// 1 / the field's size (setField): where the exact tracer gathers a level-0 cell's samples.
     glm::vec2 texelSize{1.0f};
-    glm::vec2 padding2{0.0f}; ///< std140 rounds the block up to 16 bytes
+    /// The exact tracer's walks in a compute pass (ExactTracer, HFX_COMPUTE_TRACE): the viewport's
+    /// width, the draw's stamp on the slots it wrote, the viewport's origin and height, and 1 where
+    /// the light rays are walked (the light above the flat patch, self-shadows asked for).
+    int traceWidth = 0;
+    std::uint32_t traceStamp = 0;
+    glm::ivec2 traceOrigin{0};
+    int traceHeight = 0;
+    int traceShadows = 0;
 
     /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
     /// two where the pyramid is read), its edges wrapped or clamped.
@@ -134,7 +142,9 @@ static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
 static_assert(offsetof(SurfaceUniforms, shadowBias) == 464);
 static_assert(offsetof(SurfaceUniforms, shadowLight) == 480);
 static_assert(offsetof(SurfaceUniforms, texelSize) == 496);
-static_assert(sizeof(SurfaceUniforms) == 512);
+static_assert(offsetof(SurfaceUniforms, traceWidth) == 504);
+static_assert(offsetof(SurfaceUniforms, traceOrigin) == 512);
+static_assert(sizeof(SurfaceUniforms) == 528);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, translucency) == 72);

@@ -17,6 +17,9 @@
 //   deferred    the light walks the texel shadows do not hold, left by the draw to a pass after
 //   walks       it (finish, trace/hier/deferred.glsl): one walk to a lane, not one lane's walk
 //               holding up its warp (DrawOptions::deferShadowWalks)
+//   computed    on a GPU, a camera's flat patch: a rays draw stores each pixel's view ray, walks()
+//   walks       walks it and its light ray a lane per pixel in a compute pass, and the shading
+//               draw reads the hits (DrawOptions::tracePass, trace/hier/trace.glsl)
 //
 // Thread: the thread whose GL context is current.
 
@@ -52,6 +55,17 @@ enum class TexelShadowChoice {
     Off,  ///< never: every pixel walks its light ray
 };
 
+/// Where a hier draw walks its rays (DrawOptions::tracePass).
+enum class TracePass {
+    Auto,    ///< the device's: InDraw where GlWorkarounds::traceInDraw says so, else Compute
+    InDraw,  ///< the surface draw's fragments walk their view and light rays
+    /// Where it holds (a camera's draw of a flat patch: ExactTracer::prepare), a rays draw stores
+    /// each pixel's view ray, a compute pass walks it and its light ray a lane per pixel, and the
+    /// shading draw reads the hit (trace/hier/trace.glsl): the same hits, walked on every core a
+    /// compute dispatch reaches. Elsewhere InDraw.
+    Compute,
+};
+
 /// The light as the exact tracer's shadow rays see it on a flat mesh (Mesh::patch) drawn with
 /// `model`: flatSurfaceLight of its frame. Empty for a mesh that is no flat patch or where no
 /// shadow ray is traced. What the renderer's texel shadows are drawn for.
@@ -69,6 +83,9 @@ struct TracerFrame {
     /// The draw appends the light rays its texel shadows do not hold (HFX_DEFERRED_SHADOWS), and
     /// finish() walks them and writes their pixels again; the buffer is bound.
     bool deferredShadows = false;
+    /// The rays draw, walks() and the shading draw (TracePass::Compute): the buffers are bound and
+    /// the uniform block's trace fields set.
+    bool computeTrace = false;
 };
 
 class ExactTracer {
@@ -87,6 +104,10 @@ public:
                         const DrawOptions& options, bool caster, SurfaceUniforms& u);
     /// The last camera (not caster) hier draw's decision, for reports.
     const TracerFrame& last() const { return last_; }
+    /// Between the rays draw and the shading draw of a frame with computeTrace, with the draw's
+    /// textures, units and uniform block bound: walks every ray the rays draw stored, a lane per
+    /// pixel (trace/hier/trace.comp). Changes the program: inside the renderer's GlStateGuard.
+    void walks(const TracerFrame& frame);
     /// After the draw that prepare() was for, with its textures, units and uniform block still
     /// bound: where it deferred light walks (TracerFrame::deferredShadows), walks them one to a
     /// lane in a compute dispatch (trace/hier/deferred.comp) and writes their pixels again with
@@ -115,6 +136,9 @@ private:
     /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
     /// deferred appended (where the GPU is past it), empties it and binds it.
     void prepareDeferred();
+    /// Sizes the computed walks' buffers for the viewport, stamps this draw, binds them and fills
+    /// the uniform block's trace fields.
+    void prepareComputeTrace(const GLint viewport[4], SurfaceUniforms& u);
     /// Whether this context's vertex stage can read the deferred rays' buffer (GL 4.5 does not
     /// promise it; the compute stage that walks them has storage buffers and images).
     bool vertexStageReadsBuffer();
@@ -159,6 +183,15 @@ private:
     ShaderProgram deferredWalk_[2], deferredPixels_;
     GlVertexArray noVertices_;
     GLint vertexStorage_ = -1; ///< the context's limit, read once
+    /// The computed walks (TracePass::Compute): a slot per pixel of the viewport in each buffer
+    /// (trace/hier/trace.glsl), the stamp of the last draw, and the pass by its variant (the
+    /// pyramid's layout, the beam start, the texel shadows).
+    static constexpr size_t kTraceRay = 16, kTraceInfo = 8; // bytes a slot
+    static constexpr std::uint32_t kTraceStamps = 32767;     // a slot's mark holds 15 bits of it
+    GlBuffer traceRays_, traceInfo_;
+    int traceSlots_ = 0, traceWidth_ = 0, traceHeight_ = 0;
+    std::uint32_t traceStamp_ = 0;
+    std::map<int, ShaderProgram> traceWalks_;
 };
 
 } // namespace hfx
