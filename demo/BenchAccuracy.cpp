@@ -195,25 +195,30 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
         bool texels = false;
         bool beam = true;
         bool defer = false;
+        TracePass pass = TracePass::InDraw;
     };
-    constexpr Variant variants[] = {{Technique::ParallaxOcclusion, 0.0f, "pom"},
-                                {Technique::Hierarchical, 0.0f, "hier"},
-                                {Technique::Hierarchical, 1.0f, "hier 1px"},
-                                {Technique::Hierarchical, 0.0f, "hier, texel shadows", true},
-                                {Technique::Hierarchical, 0.0f, "hier, texel shadows, no beam start", true, false},
-                                {Technique::Hierarchical, 0.0f, "hier, texel shadows, their walks after the draw", true, true,
-                                 true}};
+    constexpr Variant variants[] = {
+        {Technique::ParallaxOcclusion, 0.0f, "pom"},
+        {Technique::Hierarchical, 0.0f, "hier"},
+        {Technique::Hierarchical, 1.0f, "hier 1px"},
+        {Technique::Hierarchical, 0.0f, "hier, texel shadows", true},
+        {Technique::Hierarchical, 0.0f, "hier, texel shadows, no beam start", true, false},
+        {Technique::Hierarchical, 0.0f, "hier, walks in a compute pass", false, true, false, TracePass::Compute},
+        {Technique::Hierarchical, 0.0f, "hier, texel shadows, walks in a compute pass", true, true, false, TracePass::Compute},
+        {Technique::Hierarchical, 0.0f, "hier, texel shadows, their walks after the draw", true, true, true}};
     std::string stragglers; // the cap table's rows
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
            "fetches_lanes32,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
-           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,defer_shadow_walks,deferred_rays\n";
+           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,defer_shadow_walks,deferred_rays,compute_trace\n";
     std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
                 "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
                 "clock around glFinish of the same draws.\n"
                 "hier walks every pixel's light ray; 'texels' reads the texel shadows of the light instead where they\n"
                 "hold the ray's shadow, 'no beam' the same without the beam start (DrawOptions::beamStart), 'deferred'\n"
                 "with the light walks they leave done by a compute pass after the draw (DrawOptions::deferShadowWalks);\n"
+                "'computed' hier (every light ray walked) and 'texels, computed' with the walks in a compute pass between a\n"
+                "rays draw and the shading draw (TracePass::Compute; the others walk in the draw, TracePass::InDraw);\n"
                 "deferred rays: how many it appended, per 100 pixels of the view (past the buffer's room, the draw walks them).\n"
                 "texels ms: the texel shadows' pass after new heights, their pyramid's build included (GL timer queries,\n"
                 "median of 30). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in\n"
@@ -224,9 +229,9 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "compute shader (AccuracyProbe::timeCompute: the view ray and its soft shadow, no beam start), by pom and\n"
                 "by hier, GPU time of one dispatch, median of the same rounds.\n\n"
                 "| map | angle | pom ms | hier ms | hier / pom | wall: hier / pom | hier 1px / pom | texels / pom | "
-                "texels, no beam / pom | texels, deferred / pom | deferred rays | texels ms | fetches pom, hier, texels, no beam | texels: fetches | "
+                "texels, no beam / pom | computed / pom | texels, computed / pom | texels, deferred / pom | deferred rays | texels ms | fetches pom, hier, texels, no beam | texels: fetches | "
                 "8 lanes | 32 lanes | ms per 8-lane fetch | compute: pom ms, hier ms | compute: hier / pom |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                 devices.summary().c_str(), field, field, width, height, rounds, kWarmupFrames);
     for (const AccuracyMap& map : accuracyMaps(cl, field)) {
         if (!only.empty() && std::find(only.begin(), only.end(), map.name) == only.end()) continue;
@@ -236,7 +241,8 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
         for (double angle : {0.0, 45.0, 70.0, 80.0}) {
             auto configOf = [&](const Variant& v) {
                 return AccuracyConfig{.angleDegrees = angle, .shadows = true, .light = light, .pixelBudget = v.pixelBudget,
-                                      .texelShadows = v.texels, .beamStart = v.beam, .deferShadowWalks = v.defer};
+                                      .texelShadows = v.texels, .beamStart = v.beam, .deferShadowWalks = v.defer,
+                                      .tracePass = v.pass};
             };
             std::vector<std::vector<GlTime>> times(std::size(variants));
             for (int r = -kWarmupFrames; r < rounds; ++r) // interleaved: a noisy neighbour hits them alike
@@ -276,12 +282,13 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                     << wall[i] / wall[0] << "," << width << "," << height << "," << cPom << "," << cHier << ","
                     << counts[i].lanes32Capped << "," << counts[i].cap << ","
                     << (variants[i].texels && variants[i].defer ? 1 : 0) << ","
-                    << (variants[i].texels && variants[i].defer ? deferred : 0) << "\n";
+                    << (variants[i].texels && variants[i].defer ? deferred : 0) << ","
+                    << (variants[i].pass == TracePass::Compute ? 1 : 0) << "\n";
             const FetchCounts &p = counts[0], &h = counts[1], &x = counts[3], &b = counts[4];
-            std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f%% | %.1f | %.1f, %.1f, %.1f, %.1f "
+            std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f%% | %.1f | %.1f, %.1f, %.1f, %.1f "
                         "| %.2fx | %.2fx | %.2fx | %.2fx | %.2f, %.2f | %.2fx |\n",
                         map.name.c_str(), angle, pom, gpuMs[1], gpuMs[1] / pom, wall[1] / wall[0], gpuMs[2] / pom,
-                        gpuMs[3] / pom, gpuMs[4] / pom, gpuMs[5] / pom, 100.0 * deferred / (double(width) * height), texelMs, p.mean, h.mean, x.mean, b.mean, x.mean / p.mean,
+                        gpuMs[3] / pom, gpuMs[4] / pom, gpuMs[5] / pom, gpuMs[6] / pom, gpuMs[7] / pom, 100.0 * deferred / (double(width) * height), texelMs, p.mean, h.mean, x.mean, b.mean, x.mean / p.mean,
                         x.lanes8 / p.lanes8, x.lanes32 / p.lanes32, (gpuMs[3] / x.lanes8) / (pom / p.lanes8), cPom, cHier,
                         cHier / cPom);
             std::fflush(stdout);

@@ -160,6 +160,7 @@ DrawOptions AccuracyProbe::drawOptions(Technique technique, const AccuracyConfig
             .texelShadows = config.texelShadows ? TexelShadowChoice::On : TexelShadowChoice::Off,
             .texelStride = config.texelStride,
             .deferShadowWalks = config.deferShadowWalks,
+            .tracePass = config.tracePass,
             .boundsLayout = layout_};
 }
 

@@ -68,6 +68,8 @@ struct AccuracyConfig {
     /// With texelShadows: the light walks they leave go to the pass after the draw
     /// (DrawOptions::deferShadowWalks; never where the draw writes its trace output).
     bool deferShadowWalks = false;
+    /// Where hier walks its rays (DrawOptions::tracePass): Auto, the device's choice.
+    TracePass tracePass = TracePass::Auto;
     /// measure()'s camera distance from the plane's centre, world units (the plane is 2 wide);
     /// 0: the default, 8, from where the whole plane is seen.
     float cameraDistance = 0.0f;
