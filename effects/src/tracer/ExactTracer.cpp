@@ -248,6 +248,8 @@ void ExactTracer::finish(const TracerFrame& frame) {
 
 void ExactTracer::prepareComputeTrace(const GLint viewport[4], SurfaceUniforms& u) {
     const int slots = std::max(viewport[2], 1) * std::max(viewport[3], 1);
+    // The last computed draw's shading draw reads its slots before this one's rays draw writes them.
+    if (traceRays_) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // A stamp per draw tells a slot this draw's rays draw wrote from another's (a helper lane past
     // the mesh's edge reads one): fresh buffers are cleared, and cleared again before the stamp
     // could wrap, so no slot holds a stamp not yet given.
