@@ -57,6 +57,9 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     }
     glBindTextureUnit(HFX_UNIT_TEXEL_SHADOWS, 0);
     if (!hier) return frame;
+    // The viewport, read once for every pass below.
+    Viewport viewport;
+    glGetIntegerv(GL_VIEWPORT, viewport.data());
 
     // The walks in a compute pass where asked (or the device's choice) and where the rays draw
     // and the shading draw meet the same pixels once each: a camera's view of a flat patch (a
@@ -72,7 +75,8 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         frame.computeTrace = samples == 0;
     }
 
-    frame.texelShadows = texelShadowsFor(textures, *bounds0, mesh, model, viewProj, light, material, options, caster, frame);
+    frame.texelShadows =
+        texelShadowsFor(textures, *bounds0, mesh, model, viewProj, viewport, light, material, options, caster, frame);
     if (frame.texelShadows) {
         const ShadowLight& l = *frame.texelShadows->light();
         u.shadowLight = {l.uvPerClimb, l.penumbra, l.slack};
@@ -88,14 +92,12 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
                             shadingAffineInLight(material.shading) &&
                             !options.traceOutput && !glIsEnabled(GL_BLEND) && !glIsEnabled(GL_STENCIL_TEST) &&
                             vertexStageReadsBuffer();
-    if (frame.deferredShadows) prepareDeferred();
+    if (frame.deferredShadows) prepareDeferred(viewport);
     if (frame.computeTrace) {
         // Every pixel's light ray is the flat patch's light (the texel shadows' where they are read).
         const std::optional<ShadowLight> l = flatPatchLight(mesh, model, light, material);
         u.traceShadows = l.has_value() ? 1 : 0;
         if (l) u.shadowLight = {l->uvPerClimb, l->penumbra, l->slack};
-        GLint viewport[4];
-        glGetIntegerv(GL_VIEWPORT, viewport);
         prepareComputeTrace(viewport, u);
     }
 
@@ -105,7 +107,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     if (frame.beamStart) { // the prepass reads the surface, the pyramid bound above and the block
         glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
         const GpuScope scope("beam");
-        drawBeamStart(mesh, model, u, viewProj, frame.atlas);
+        drawBeamStart(mesh, model, u, viewProj, viewport, frame.atlas);
         glBindTextureUnit(HFX_UNIT_BEAM_START, beamTarget_.id());
     }
     if (!caster) last_ = frame;
@@ -136,12 +138,11 @@ HeightBounds& ExactTracer::boundsFor(const SurfaceLayer& layer, PyramidLayout la
 
 const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures, HeightBounds& bounds, const Mesh& mesh,
                                                  const glm::mat4& model, const glm::mat4& viewProj,
-                                                 const DirectionalLight& light, const SurfaceMaterial& material,
-                                                 const DrawOptions& options, bool caster, TracerFrame& frame) {
+                                                 const Viewport& viewport, const DirectionalLight& light,
+                                                 const SurfaceMaterial& material, const DrawOptions& options, bool caster,
+                                                 TracerFrame& frame) {
     if (caster || !mesh.patch()) return nullptr; // a caster writes depth only
     const SurfaceTexturesConfig& field = textures.config();
-    GLint viewport[4];
-    glGetIntegerv(GL_VIEWPORT, viewport);
     std::array<glm::vec3, 4> corners;
     for (size_t i = 0; i < corners.size(); ++i)
         corners[i] = glm::vec3(model * glm::vec4(mesh.patch()->corners[i], 1.0f));
@@ -180,15 +181,13 @@ bool ExactTracer::vertexStageReadsBuffer() {
     return vertexStorage_ >= 1;
 }
 
-void ExactTracer::prepareDeferred() {
+void ExactTracer::prepareDeferred(const Viewport& viewport) {
     // Room for a ray per 16 pixels of the viewport, at least 256 (the cells a hard shadow's edge
     // crosses hold 0.4-3% of a view's pixels on smooth waves, up to 21% on a brick wall:
     // bench-tracers' 'deferred rays'); a ray past it is walked in the draw. Where the last draw
     // that deferred appended more and the GPU is past it (its count read back without waiting),
     // room for that and a quarter more, up to a ray per 4 pixels (64 bytes a ray: 15 MB at
     // 1280x720, 133 MB at 3840x2160): a view that keeps its rays walks them all after.
-    GLint viewport[4];
-    glGetIntegerv(GL_VIEWPORT, viewport);
     // The last deferring draw's and pass's shader writes before the count is read back and the
     // header rewritten, and before this draw's appends overwrite the rays the last points read.
     if (deferred_) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -246,7 +245,7 @@ void ExactTracer::finish(const TracerFrame& frame) {
     deferredDone_ = GlFence::insert();
 }
 
-void ExactTracer::prepareComputeTrace(const GLint viewport[4], SurfaceUniforms& u) {
+void ExactTracer::prepareComputeTrace(const Viewport& viewport, SurfaceUniforms& u) {
     const int slots = std::max(viewport[2], 1) * std::max(viewport[3], 1);
     // The last computed draw's shading draw reads its slots before this one's rays draw writes them.
     if (traceRays_) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -300,9 +299,7 @@ int ExactTracer::deferredWalks() const {
 }
 
 void ExactTracer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
-                                bool atlas) {
-    GLint viewport[4];
-    glGetIntegerv(GL_VIEWPORT, viewport);
+                                const Viewport& viewport, bool atlas) {
     // Texel (i, j) covers the window's pixels [B i, B i + B) x [B j, B j + B): the target spans
     // the viewport's far corner, and the transform maps the draw's NDC onto the target's.
     const int width = std::max((viewport[0] + viewport[2] + kBeamBlock - 1) / kBeamBlock, 1);

@@ -123,27 +123,27 @@ public:
     int deferredCapacity() const { return deferredCapacity_; }
 
 private:
+    using Viewport = std::array<GLint, 4>; ///< x, y, width, height (GL_VIEWPORT)
     /// The bounds of `layer`'s textures in `layout`: the layer's own where they hold its current
     /// texels, else the ones held here (made for a new surface, not yet built).
     HeightBounds& boundsFor(const SurfaceLayer& layer, PyramidLayout layout);
     /// The texel shadows the draw reads (nullptr: none): the policy's stride from the view, then
     /// the cached ones where they still hold, else drawn.
     const TexelShadows* texelShadowsFor(const SurfaceTextures& textures, HeightBounds& bounds, const Mesh& mesh,
-                                        const glm::mat4& model,
-                                        const glm::mat4& viewProj, const DirectionalLight& light,
-                                        const SurfaceMaterial& material, const DrawOptions& options, bool caster,
-                                        TracerFrame& frame);
+                                        const glm::mat4& model, const glm::mat4& viewProj, const Viewport& viewport,
+                                        const DirectionalLight& light, const SurfaceMaterial& material,
+                                        const DrawOptions& options, bool caster, TracerFrame& frame);
     /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
     /// deferred appended (where the GPU is past it), empties it and binds it.
-    void prepareDeferred();
+    void prepareDeferred(const Viewport& viewport);
     /// Sizes the computed walks' buffers for the viewport, stamps this draw, binds them and fills
     /// the uniform block's trace fields.
-    void prepareComputeTrace(const GLint viewport[4], SurfaceUniforms& u);
+    void prepareComputeTrace(const Viewport& viewport, SurfaceUniforms& u);
     /// Whether this context's vertex stage can read the deferred rays' buffer (GL 4.5 does not
     /// promise it; the compute stage that walks them has storage buffers and images).
     bool vertexStageReadsBuffer();
     void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
-                       bool atlas);
+                       const Viewport& viewport, bool atlas);
 
     BoundsPass boundsPass_;
     /// The bounds of the surfaces drawn lately, by SurfaceTextures::uid and layout (0: a free
