@@ -337,8 +337,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .rings = material.water.ringCount > 0,
                                  .environment = material.water.environment != 0,
                                  .caster = caster != nullptr,
-                                 .texelShadows = frame.texelShadows != nullptr,
-                                 .beamStart = frame.beamStart,
+                                 // (With the walks in the compute pass, neither draw reads the
+                                 // texel shadows or the beam start: the pass does.)
+                                 .texelShadows = frame.texelShadows != nullptr && !frame.computeTrace,
+                                 .beamStart = frame.beamStart && !frame.computeTrace,
                                  .deferredShadows = frame.deferredShadows,
                                  .computeTrace = frame.computeTrace ? 2 : 0,
                                  .pyramidAtlas = frame.atlas};
