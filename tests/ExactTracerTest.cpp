@@ -252,17 +252,15 @@ TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours)
     // hidden pixels to it), in a viewport offset into the target (the slots count from its
     // origin), for two views in a row (a slot of the first view must not serve the second).
     // A shading draw that read nothing, or the wrong slots, shows uv (0, 0) or another pixel's hit.
-    // On blocks (plateaus with sharp edges) a light ray can graze an edge: there the pass's ray,
-    // turned by the flat patch's frame (ExactTracer's light, the texel shadows'), and the draw's,
-    // turned by the pixel's interpolated frame, may fall on either side of it.
+    // A smooth field, and blocks (plateaus with sharp edges, which a light ray can graze: the
+    // pass's light ray is the flat patch's, the draw's turned by the pixel's interpolated frame).
+    // Measured: none differ on either.
     constexpr int N = 64;
     struct Case {
         const char* name;
         std::vector<float> heights;
-        double shadowsOff; // the share of traced pixels whose shadow may differ
     };
-    const Case cases[] = {{"smooth", sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}}), 0.0005},
-                          {"blocks", blocks(N, 4), 0.003}};
+    const Case cases[] = {{"smooth", sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}})}, {"blocks", blocks(N, 4)}};
     const CoveredPlane scene;
     const auto& [plane, cover, material, light, nearer] = scene;
     constexpr int W = 320, H = 180, X0 = 24, Y0 = 16, VW = 256, VH = 144;
@@ -325,8 +323,8 @@ TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours)
                                     fetchesComputed / double(std::max<size_t>(traced, 1)));
                         EXPECT_GT(traced, size_t(VW * VH / 2)) << "too little relief to tell";
                         EXPECT_LE(hitsOff, traced / 2000);
-                        EXPECT_LE(double(shadowsOff), c.shadowsOff * double(traced));
-                        EXPECT_LE(double(colours), 3.0 * c.shadowsOff * double(walkedColor.pixels.size()));
+                        EXPECT_LE(shadowsOff, traced / 2000);
+                        EXPECT_LE(colours, walkedColor.pixels.size() / 2000);
                         EXPECT_NEAR(fetchesComputed, fetchesWalked, 0.002 * fetchesWalked);
                     }
                 }
