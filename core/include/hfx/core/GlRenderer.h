@@ -46,9 +46,9 @@ struct GlWorkarounds {
     /// ExactTracer (effects): hier's view and light walks in the surface draw's fragment stage,
     /// instead of a rays draw, a compute pass that walks them a lane per pixel, and the shading
     /// draw (TracePass::Compute). A GPU may give graphics a few of its cores and compute all of
-    /// them (an H200 traced the same rays in 0.21 ms in a compute pass against 5.9 ms in its
-    /// draw); llvmpipe runs both on the same threads, where the rays draw and the stored rays
-    /// are only extra work.
+    /// them (an H200 traced the same rays in 0.07-0.25 ms in a compute pass against 2.8-7.0 ms
+    /// in hier's draw); llvmpipe runs both on the same threads, its compute stage slower, and
+    /// there the three passes cost 1.9-2.5x the draw that walks (docs/BENCHMARKS.md).
     bool traceInDraw = false;
 };
 
