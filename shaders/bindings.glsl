@@ -44,6 +44,7 @@
 #define HFX_BUFFER_DEFERRED_SHADOWS 0 // the light walks a surface draw leaves to the pass after it (trace/hier/deferred.glsl)
 #define HFX_BUFFER_TRACE_RAYS 1       // the exact tracer's walks in a compute pass: a ray, then its hit, per pixel (trace/hier/trace.glsl)
 #define HFX_BUFFER_TRACE_INFO 2       // ... and what goes with it
+#define HFX_BUFFER_TRACE_LIGHTS 3     // ... and its light ray, where the light is not one for the draw (a curved mesh, a silhouette fade)
 
 // Uniform blocks.
 #define HFX_BLOCK_SURFACE 0       // HfxSurface: hfx::SurfaceUniforms

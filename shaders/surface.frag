@@ -35,6 +35,8 @@
 //   HFX_COMPUTE_TRACE 1 or 2: the exact tracer's walks in a compute pass between two draws
 //                     (trace/hier/trace.glsl): 1 = the rays draw, which stores each pixel's view ray
 //                     and shades nothing; 2 = the shading draw, which reads the hit and its shadow
+//   HFX_TRACE_LIGHTS  1: the rays draw stores each pixel's light ray too (the light is not one for
+//                     the draw: a curved mesh, a silhouette fade)
 //   HFX_ENVIRONMENT   1 for water reflecting an equirectangular image (WaterLook::environment)
 //   HFX_PYRAMID_ATLAS 1 on llvmpipe: the pyramids in one image each (surface/heights.glsl,
 //                     GlWorkarounds::pyramidAtlas); the only define a device picks
@@ -236,11 +238,15 @@ void main() {
     uvec2 traceInfo = uvec2(0u, hfx_trace_mark(false)); // normal mapped, unless traced below
 #elif HFX_COMPUTE_TRACE == 2
     // The walks pass's hit (the ray this pixel's fragment of the rays draw stored): 1 where the slot
-    // holds this draw's traced ray, 2 where it holds this draw's normal-mapped pixel, 0 where it
-    // holds neither (a helper lane past the mesh's edge, below).
+    // holds this draw's traced ray, 2 where it holds this draw's normal-mapped pixel or the
+    // fragment is a back face's (it stored none: normal mapped), 0 where it holds neither (a
+    // helper lane past the mesh's edge, below).
     const uvec2 traceInfo = hfx_traceInfo[slot];
     const uint mark = traceInfo.y & 0xffff0000u;
-    const uint computed = mark == hfx_trace_mark(true) ? 1u : mark == hfx_trace_mark(false) ? 2u : 0u;
+    const uint computed = !gl_FrontFacing              ? 2u
+                          : mark == hfx_trace_mark(true)  ? 1u
+                          : mark == hfx_trace_mark(false) ? 2u
+                                                          : 0u;
     float computedShadow = -1.0; // the walks' self-shadow before the fade, -1: none walked
     if (computed == 1u) {
         const vec4 hit = hfx_traceRays[slot];
@@ -275,8 +281,18 @@ void main() {
         // change to normal mapping is not seen as a seam.
         const float blend = clamp(mipLevel - (u_lodThreshold - 1.0), 0.0, 1.0);
 #if HFX_COMPUTE_TRACE == 1
-        traceInfo = uvec2(floatBitsToUint(ray.tolerance), hfx_trace_mark(true) | (packUnorm2x16(vec2(blend, 0.0)) & 0xffffu));
-        hfx_traceRays[slot] = vec4(ray.uv, ray.parallax);
+        // The light ray is walked where the shading draw's test below holds at the entry (the
+        // walks pass tests the hit's height). A back face stores nothing (trace/hier/trace.glsl).
+        bool walksLight = false;
+#if HFX_SELF_SHADOW
+        walksLight = lightTS.z > 0.0 && dot(entryNormal, normalize(u_lightDir)) > 0.0;
+#if HFX_TRACE_LIGHTS
+        if (walksLight && gl_FrontFacing) hfx_traceLights[slot] = lightTS.xy / lightTS.z * depthScale;
+#endif
+#endif
+        traceInfo = uvec2(floatBitsToUint(ray.tolerance) | (walksLight ? HFX_TRACE_WALKS_LIGHT : 0u),
+                          hfx_trace_mark(true) | (packUnorm2x16(vec2(blend, 0.0)) & 0xffffu));
+        if (gl_FrontFacing) hfx_traceRays[slot] = vec4(ray.uv, ray.parallax);
 #elif HFX_COMPUTE_TRACE == 2
         // (The walks pass's hit, read above.)
 #else
@@ -287,7 +303,7 @@ void main() {
     }
 #endif
 #if HFX_COMPUTE_TRACE == 1
-    hfx_traceInfo[slot] = traceInfo;
+    if (gl_FrontFacing) hfx_traceInfo[slot] = traceInfo;
     return; // the walks pass takes it from here
 #elif HFX_COMPUTE_TRACE == 2
     // A helper lane past the mesh's edge has no slot. The hits' spread below (the shading's level)

@@ -4,6 +4,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <utility>
+
 namespace hfx {
 namespace {
 
@@ -79,6 +81,29 @@ TEST(FlatPatch, PlanesAreOneFlatPatchAndSpheresAndBentOrMislabelledPlanesAreNot)
     MeshData turned = makePlane({.subdivisions = 4});
     turned.vertices[7].tangent = glm::vec3(0.0f, 0.0f, 2.0f); // a second texture frame
     EXPECT_FALSE(isFlatPatch(turned));
+}
+
+TEST(Convex, PlanesAndSpheresSayTheyAreConvexAndAreAndBumpsAndFlippedFacesAreNot) {
+    // MeshData::convex is what the exact tracer's compute pass trusts: one fragment per pixel.
+    for (const MeshData& mesh : {makePlane({}), makePlane({.subdivisions = 8}), makeSphere({}),
+                                 makeSphere({.radius = 3.0f, .segments = 7, .rings = 3})}) {
+        EXPECT_TRUE(mesh.convex);
+        EXPECT_TRUE(isConvex(mesh));
+    }
+    MeshData bump = makeSphere({.segments = 12, .rings = 6});
+    bump.vertices[30].position *= 1.05f; // out past its neighbours' faces
+    EXPECT_FALSE(isConvex(bump));
+    MeshData dent = makeSphere({.segments = 12, .rings = 6});
+    dent.vertices[30].position *= 0.9f; // its own faces tilt in: the neighbours' points lie in front
+    EXPECT_FALSE(isConvex(dent));
+    MeshData inward = makeSphere({.segments = 12, .rings = 6});
+    for (size_t t = 0; t < inward.indices.size(); t += 3) std::swap(inward.indices[t + 1], inward.indices[t + 2]);
+    EXPECT_FALSE(isConvex(inward)) << "faces turned inwards";
+    MeshData valley = makePlane({.subdivisions = 2});
+    valley.vertices[4].position.y -= 0.1f; // its rim lies in front of its faces
+    EXPECT_FALSE(isConvex(valley));
+    EXPECT_FALSE(isConvex(MeshData{}));
+    EXPECT_FALSE(MeshData{}.convex) << "a mesh of one's own is not trusted unless it says so";
 }
 
 } // namespace

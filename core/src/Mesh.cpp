@@ -41,6 +41,7 @@ MeshData makePlane(const PlaneConfig& config) {
             const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + (n + 1), d = c + 1;
             mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
         }
+    mesh.convex = true; // one plane
     return mesh;
 }
 
@@ -76,7 +77,34 @@ MeshData makeSphere(const SphereConfig& config) {
             const uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
             mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
         }
+    // Each quad's corners lie on two parallels and two meridians: a plane's, and the sphere's
+    // points are on the outer side of none (the pole's triangles are degenerate, of no area).
+    mesh.convex = true;
     return mesh;
+}
+
+bool isConvex(const MeshData& data) {
+    if (data.vertices.empty() || data.indices.size() < 3) return false;
+    glm::dvec3 lo(data.vertices.front().position), hi = lo;
+    for (const Vertex& v : data.vertices) {
+        lo = glm::min(lo, glm::dvec3(v.position));
+        hi = glm::max(hi, glm::dvec3(v.position));
+    }
+    const double tolerance = 1e-5 * std::max(glm::length(hi - lo), 1e-12);
+    for (size_t t = 0; t + 2 < data.indices.size(); t += 3) {
+        const glm::dvec3 a(data.vertices[data.indices[t]].position), b(data.vertices[data.indices[t + 1]].position),
+            c(data.vertices[data.indices[t + 2]].position);
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        const double area = glm::length(n);
+        const double longest = std::max({glm::dot(b - a, b - a), glm::dot(c - a, c - a), glm::dot(c - b, c - b)});
+        if (!(area > 1e-6 * longest)) continue; // degenerate (a sphere's pole): no plane, no front
+        const glm::dvec3 unit = n / area;
+        // It faces where its vertices' normals point, and nothing lies in front of its plane.
+        if (glm::dot(unit, glm::dvec3(data.vertices[data.indices[t]].normal)) < 0.0) return false;
+        for (const Vertex& v : data.vertices)
+            if (glm::dot(unit, glm::dvec3(v.position) - a) > tolerance) return false;
+    }
+    return true;
 }
 
 bool isFlatPatch(const MeshData& data) {
@@ -121,7 +149,7 @@ std::optional<FlatPatch> flatPatchOf(const MeshData& data) {
 Mesh::Mesh(const MeshData& data)
     : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
       vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())),
-      patch_(flatPatchOf(data)) {
+      patch_(flatPatchOf(data)), convex_(data.convex || patch_.has_value()) {
     if (data.vertices.empty() || data.indices.empty() || data.indices.size() % 3 != 0)
         throw Error(str("mesh needs triangles, got ", data.vertices.size(), " vertices and ",
                         data.indices.size(), " indices"));

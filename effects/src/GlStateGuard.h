@@ -112,9 +112,10 @@ public:
 private:
     GLboolean depthTest_, depthMask_, programPointSize_;
     GLint indirect_, dispatch_; // the deferred walks' indirect buffers (ExactTracer)
-    // the storage buffers of hfx/core/Bindings.h: the deferred walks', the computed walks' two
-    static constexpr GLuint kStorage = HFX_BUFFER_TRACE_INFO + 1;
-    static_assert(HFX_BUFFER_DEFERRED_SHADOWS < kStorage && HFX_BUFFER_TRACE_RAYS < kStorage,
+    // the storage buffers of hfx/core/Bindings.h: the deferred walks', the computed walks' three
+    static constexpr GLuint kStorage = HFX_BUFFER_TRACE_LIGHTS + 1;
+    static_assert(HFX_BUFFER_DEFERRED_SHADOWS < kStorage && HFX_BUFFER_TRACE_RAYS < kStorage &&
+                      HFX_BUFFER_TRACE_INFO < kStorage,
                   "hfx/core/Bindings.h: the guard saves every storage binding");
     GLint storage_[kStorage];
     GLint64 storageStart_[kStorage], storageSize_[kStorage];

@@ -171,6 +171,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                      options.technique == Technique::Hierarchical;
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
     v.deferredShadows = v.deferredShadows && v.texelShadows && !options.traceOutput;
+    v.traceLights = v.traceLights && v.computeTrace == 1 && v.selfShadows; // only the rays draw stores them
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -192,6 +193,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
                                                    {"HFX_DEFERRED_SHADOWS", v.deferredShadows ? "1" : "0"},
                                                    {"HFX_COMPUTE_TRACE", std::to_string(v.computeTrace)},
+                                                   {"HFX_TRACE_LIGHTS", v.traceLights ? "1" : "0"},
                                                    {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
@@ -388,6 +390,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         rays.traceOutput = false;
         SurfaceVariant raysVariant = variant;
         raysVariant.computeTrace = 1;
+        raysVariant.traceLights = frame.traceLights;
         const ShaderProgram& r = program(rays, raysVariant);
         {
             const GpuScope scope("rays");

@@ -47,7 +47,6 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     uint u_traceStamp;        // this draw's mark on the slots its pixels wrote
     ivec2 u_traceOrigin;      // the viewport's origin, x0 and y0
     int u_traceHeight;        // the viewport's height
-    int u_traceShadows;       // 1: the walks pass walks the light rays (the light above the flat patch)
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

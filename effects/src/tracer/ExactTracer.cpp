@@ -62,14 +62,15 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     glGetIntegerv(GL_VIEWPORT, viewport.data());
 
     // The walks in a compute pass where asked (or the device's choice) and where the rays draw
-    // and the shading draw meet the same pixels once each: a camera's view of a flat patch (a
-    // fragment per pixel, its light one uniform), drawn without a stencil test (the rays draw
-    // would run its operations) into a single-sampled target (one fragment a pixel).
+    // and the shading draw meet the same pixels once each: a camera's view of a convex mesh (its
+    // front faces a fragment per pixel at most; a back face's is normal mapped), drawn without a
+    // stencil test (the rays draw would run its operations) into a single-sampled target (one
+    // fragment a pixel).
     const TracePass pass = options.tracePass != TracePass::Auto ? options.tracePass
                            : glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw
                                                                            : TracePass::Compute;
-    if (pass == TracePass::Compute && !caster && mesh.flatPatch() && layers.size() == 1 &&
-        material.silhouetteFade == 0.0f && material.depthScale > 0.0f && !glIsEnabled(GL_STENCIL_TEST)) {
+    if (pass == TracePass::Compute && !caster && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
+        !glIsEnabled(GL_STENCIL_TEST)) {
         GLint samples = 0;
         glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
         frame.computeTrace = samples == 0;
@@ -94,11 +95,14 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
                             vertexStageReadsBuffer();
     if (frame.deferredShadows) prepareDeferred(viewport);
     if (frame.computeTrace) {
-        // Every pixel's light ray is the flat patch's light (the texel shadows' where they are read).
-        const std::optional<ShadowLight> l = flatPatchLight(mesh, model, light, material);
-        u.traceShadows = l.has_value() ? 1 : 0;
+        // Every pixel's light ray is the flat patch's light (the texel shadows' where they are
+        // read) where it has one and no silhouette fade scales its depth pixel by pixel; else the
+        // rays draw stores each pixel's.
+        const std::optional<ShadowLight> l =
+            material.silhouetteFade == 0.0f ? flatPatchLight(mesh, model, light, material) : std::nullopt;
         if (l) u.shadowLight = {l->uvPerClimb, l->penumbra, l->slack};
-        prepareComputeTrace(viewport, u);
+        frame.traceLights = !l && material.shadows;
+        prepareComputeTrace(viewport, frame.traceLights, u);
     }
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
@@ -245,7 +249,7 @@ void ExactTracer::finish(const TracerFrame& frame) {
     deferredDone_ = GlFence::insert();
 }
 
-void ExactTracer::prepareComputeTrace(const Viewport& viewport, SurfaceUniforms& u) {
+void ExactTracer::prepareComputeTrace(const Viewport& viewport, bool lights, SurfaceUniforms& u) {
     const int slots = std::max(viewport[2], 1) * std::max(viewport[3], 1);
     // The last computed draw's shading draw reads its slots before this one's rays draw writes them.
     if (traceRays_) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -260,7 +264,13 @@ void ExactTracer::prepareComputeTrace(const Viewport& viewport, SurfaceUniforms&
         HFX_GL_CHECK(glNamedBufferStorage(traceInfo_.id(), GLsizeiptr(size_t(traceSlots_) * kTraceInfo), nullptr, 0));
         const GLuint zero = 0;
         glClearNamedBufferData(traceInfo_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        traceLights_ = {};
         traceStamp_ = 0;
+    }
+    // (A slot's light is read only where this draw's rays draw marked it walked, and wrote it.)
+    if (lights && !traceLights_) {
+        traceLights_ = GlBuffer::create();
+        HFX_GL_CHECK(glNamedBufferStorage(traceLights_.id(), GLsizeiptr(size_t(traceSlots_) * kTraceLight), nullptr, 0));
     }
     ++traceStamp_;
     traceWidth_ = std::max(viewport[2], 1);
@@ -271,18 +281,20 @@ void ExactTracer::prepareComputeTrace(const Viewport& viewport, SurfaceUniforms&
     u.traceHeight = traceHeight_;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_TRACE_RAYS, traceRays_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_TRACE_INFO, traceInfo_.id());
+    if (lights) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_TRACE_LIGHTS, traceLights_.id());
 }
 
 void ExactTracer::walks(const TracerFrame& frame) {
     if (!frame.computeTrace) return;
-    const bool beam = frame.beamStart, texel = frame.texelShadows != nullptr;
-    ShaderProgram& walk = traceWalks_[int(frame.atlas) | int(beam) << 1 | int(texel) << 2];
+    const bool beam = frame.beamStart, texel = frame.texelShadows != nullptr, lights = frame.traceLights;
+    ShaderProgram& walk = traceWalks_[int(frame.atlas) | int(beam) << 1 | int(texel) << 2 | int(lights) << 3];
     if (!walk.id())
         walk = ShaderProgram::compute(surfaceStage("trace/hier/trace.comp"),
                                       {{"HFX_LAYERS", "1"},
                                        {"HFX_PYRAMID_ATLAS", frame.atlas ? "1" : "0"},
                                        {"HFX_BEAM_START", beam ? "1" : "0"},
-                                       {"HFX_TEXEL_SHADOWS", texel ? "1" : "0"}});
+                                       {"HFX_TEXEL_SHADOWS", texel ? "1" : "0"},
+                                       {"HFX_TRACE_LIGHTS", lights ? "1" : "0"}});
     // The rays draw's stores before the walks read them; the walks' before the shading draw's.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     walk.use();

@@ -1,9 +1,10 @@
 #version 450 core
 // The exact tracer's walks (trace/hier/trace.glsl, hfx::ExactTracer): a lane per pixel of the
 // viewport in groups of 8x8 pixels, where the rays draw stored this draw's ray: its view walk
-// (hfx_trace, from the beam start's depth where HFX_BEAM_START), then, where the self-shadow is
-// traced (u_traceShadows), its light walk as the draw would make it (hfx_surface_shadow: the texel
-// shadows where they hold it). The hit, the shadow and the fetches go back into the slot.
+// (hfx_trace, from the beam start's depth where HFX_BEAM_START), then, where the rays draw marked
+// its light ray walked, that walk as the draw would make it (hfx_surface_shadow: the texel shadows
+// where they hold it), along the flat patch's light or, with HFX_TRACE_LIGHTS, the pixel's. The
+// hit, the shadow and the fetches go back into the slot.
 
 #include "bindings.glsl"
 #include "surface/uniforms.glsl"
@@ -33,7 +34,7 @@ void main() {
     ray.cosTheta = 1.0; // (the sampled searches' business)
     ray.level = 0.0;
     ray.samples = 1;
-    ray.tolerance = uintBitsToFloat(info.x);
+    ray.tolerance = uintBitsToFloat(info.x & ~HFX_TRACE_WALKS_LIGHT);
 #if HFX_BEAM_START
     ray.start = texelFetch(s_beamStart, (pixel + u_traceOrigin) / HFX_BEAM_BLOCK, 0).r;
 #else
@@ -45,13 +46,18 @@ void main() {
     const float depthFraction = mix(hit.depth, 0.0, blend);
     float shadow = -1.0;
     const float h0 = 1.0 - depthFraction;
-    if (u_traceShadows != 0 && h0 < 1.0) {
-        // surface.frag's light ray: on a flat patch the texel shadows' light (u_shadowLight.xy:
-        // texcoords per unit climbed) is every pixel's.
+    if ((info.x & HFX_TRACE_WALKS_LIGHT) != 0u && h0 < 1.0) {
+        // surface.frag's light ray (texcoords per unit climbed): the pixel's, or on a flat patch
+        // the texel shadows' light (u_shadowLight.xy), every pixel's.
+#if HFX_TRACE_LIGHTS
+        const vec2 light = hfx_traceLights[slot];
+#else
+        const vec2 light = u_shadowLight.xy;
+#endif
         HfxShadowRay shadowRay;
         shadowRay.uv = uv;
         shadowRay.h0 = h0;
-        shadowRay.span = u_shadowLight.xy * (1.0 - h0);
+        shadowRay.span = light * (1.0 - h0);
         shadowRay.level = 0.0;
         shadowRay.samples = 1;
         shadowRay.sharpness = u_shadowSharpness;

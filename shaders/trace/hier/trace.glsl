@@ -16,19 +16,36 @@
 // lane past the mesh's edge has none either: for the derivatives it takes a quad neighbour's
 // depth along its own ray. So the shading draw holds no walk, and none of the walk's registers.
 //
+// The two draws meet each pixel at most once where the mesh is convex (Mesh::convex: a flat patch,
+// a sphere): its front faces do not overlap on the screen. Only front faces store a ray; a back
+// face's fragment (hidden behind a front face, or seen from inside) is normal mapped, as the
+// draw's own test (the view below the polygon) has it.
+//
 // The buffers, a slot per pixel of the viewport, (y - y0) * u_traceWidth + x - x0:
-//   hfx_traceRays  rays: (the ray's uv, its parallax); walks: (the hit's uv, depth fraction, the
-//                  self-shadow before the caller's fade, or -1 where no light ray is walked)
-//   hfx_traceInfo  x: rays: the ray's tolerance (its float's bits); walks: the fetches the walks
-//                  made. y: the mark (hfx_trace_mark: the draw's stamp, and whether the pixel's ray
-//                  is traced or normal mapped) in the high 16 bits, the level-of-detail blend to
-//                  the entry in the low 16 (unorm)
+//   hfx_traceRays   rays: (the ray's uv, its parallax); walks: (the hit's uv, depth fraction, the
+//                   self-shadow before the caller's fade, or -1 where no light ray is walked)
+//   hfx_traceInfo   x: rays: the ray's tolerance (its float's bits), the sign bit set where the
+//                   light ray is to be walked (the draw's test: the light above the polygon);
+//                   walks: the fetches the walks made. y: the mark (hfx_trace_mark: the draw's
+//                   stamp, and whether the pixel's ray is traced or normal mapped) in the high 16
+//                   bits, the level-of-detail blend to the entry in the low 16 (unorm)
+//   hfx_traceLights with HFX_TRACE_LIGHTS (the light is not one for the whole draw: a curved mesh,
+//                   a silhouette fade): the light ray's texcoords per unit climbed; else every
+//                   pixel's is u_shadowLight.xy (the flat patch's, ExactTracer)
 
 #ifndef HFX_TRACE_ACCESS
 #define HFX_TRACE_ACCESS
 #endif
 layout(std430, binding = HFX_BUFFER_TRACE_RAYS) HFX_TRACE_ACCESS buffer HfxTraceRays { vec4 hfx_traceRays[]; };
 layout(std430, binding = HFX_BUFFER_TRACE_INFO) HFX_TRACE_ACCESS buffer HfxTraceInfo { uvec2 hfx_traceInfo[]; };
+#ifndef HFX_TRACE_LIGHTS
+#define HFX_TRACE_LIGHTS 0
+#endif
+#if HFX_TRACE_LIGHTS
+layout(std430, binding = HFX_BUFFER_TRACE_LIGHTS) HFX_TRACE_ACCESS buffer HfxTraceLights { vec2 hfx_traceLights[]; };
+#endif
+// hfx_traceInfo's x: the tolerance's bits, its sign bit where the light ray is walked.
+const uint HFX_TRACE_WALKS_LIGHT = 0x80000000u;
 
 int hfx_trace_slot(ivec2 window) { return (window.y - u_traceOrigin.y) * u_traceWidth + window.x - u_traceOrigin.x; }
 // A slot's mark for this draw (u_traceStamp: 1 to 32767): its stamp and whether its ray is traced.

@@ -30,6 +30,11 @@ struct Vertex {
 struct MeshData {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices; ///< triangles, counter-clockwise seen from the normal side
+    /// The triangles bound a convex solid (or lie in one plane), counter-clockwise seen from
+    /// outside: seen from anywhere, no two front faces overlap on the screen. makePlane's and
+    /// makeSphere's are (isConvex checks it). What the exact tracer's walks in a compute pass need
+    /// (TracePass::Compute: one fragment per pixel). False by default: say so for your own mesh.
+    bool convex = false;
 };
 
 struct PlaneConfig {
@@ -53,6 +58,11 @@ struct SphereConfig {
 /// vertices are doubled, u = 0 and 1), v = 0 at the south pole and 1 at the north (+Y).
 /// T = dP/du, B = dP/dv exactly, so T x B points outwards; at the poles T vanishes.
 MeshData makeSphere(const SphereConfig& config = {});
+
+/// True where every vertex lies on or behind the plane of every triangle (within 1e-5 of the
+/// mesh's extent) and the triangles face outwards (the normal side): what MeshData::convex
+/// declares. O(triangles x vertices): a check for tests, not for every mesh made.
+bool isConvex(const MeshData& data);
 
 /// True where the mesh is one flat patch with one texture frame: every vertex has the first's
 /// normal, tangent and bitangent, and lies where its texcoords put it in that frame (position =
@@ -84,6 +94,7 @@ public:
     void draw() const;
     GLsizei indexCount() const { return indexCount_; }
     bool flatPatch() const { return patch_.has_value(); } ///< isFlatPatch of its data
+    bool convex() const { return convex_; }                ///< its data's MeshData::convex, or a flat patch
     const std::optional<FlatPatch>& patch() const { return patch_; } ///< flatPatchOf its data
 
 private:
@@ -91,6 +102,7 @@ private:
     GlVertexArray vao_;
     GLsizei indexCount_ = 0;
     std::optional<FlatPatch> patch_;
+    bool convex_ = false;
 };
 
 } // namespace hfx

@@ -237,9 +237,9 @@ struct DrawOptions {
     /// here (8 lanes wait for less), it is slower. bench-tracers' 'deferred' column times it
     /// against the walks in the draw (docs/BENCHMARKS.md).
     bool deferShadowWalks = false;
-    /// Where the exact tracer walks a camera's view rays and their light rays on a flat patch
-    /// (one layer, no silhouette fade, no stencil test, a single-sampled target): Auto, the
-    /// device's (GlWorkarounds::traceInDraw).
+    /// Where the exact tracer walks a camera's view rays and their light rays on a convex mesh
+    /// (Mesh::convex; one layer, no stencil test, a single-sampled target): Auto, the device's
+    /// (GlWorkarounds::traceInDraw).
     TracePass tracePass = TracePass::Auto;
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).
@@ -276,6 +276,8 @@ struct SurfaceVariant {
     /// HFX_COMPUTE_TRACE: 1 for the rays draw of TracePass::Compute, 2 for its shading draw
     /// (trace/hier/trace.glsl); 0: the draw walks its rays
     int computeTrace = 0;
+    /// HFX_TRACE_LIGHTS: the rays draw stores each pixel's light ray too (TracerFrame::traceLights)
+    bool traceLights = false;
     /// HFX_PYRAMID_ATLAS: the bounds read are in PyramidLayout::Atlas (llvmpipe's workaround,
     /// GlWorkarounds::pyramidAtlas), not mip chains
     bool pyramidAtlas = false;

@@ -64,13 +64,12 @@ struct SurfaceUniforms {
     /// 1 / the field's size (setField): where the exact tracer gathers a level-0 cell's samples.
     glm::vec2 texelSize{1.0f};
     /// The exact tracer's walks in a compute pass (ExactTracer, HFX_COMPUTE_TRACE): the viewport's
-    /// width, the draw's stamp on the slots it wrote, the viewport's origin and height, and 1 where
-    /// the light rays are walked (the light above the flat patch, self-shadows asked for).
+    /// width, the draw's stamp on the slots it wrote, the viewport's origin and height.
     int traceWidth = 0;
     std::uint32_t traceStamp = 0;
     glm::ivec2 traceOrigin{0};
     int traceHeight = 0;
-    int traceShadows = 0;
+    int tracePadding = 0; ///< the block's size a multiple of 16 bytes, as std140 rounds it
 
     /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
     /// two where the pyramid is read), its edges wrapped or clamped.

@@ -17,9 +17,10 @@
 //   deferred    the light walks the texel shadows do not hold, left by the draw to a pass after
 //   walks       it (finish, trace/hier/deferred.glsl): one walk to a lane, not one lane's walk
 //               holding up its warp (DrawOptions::deferShadowWalks)
-//   computed    on a GPU, a camera's flat patch: a rays draw stores each pixel's view ray, walks()
-//   walks       walks it and its light ray a lane per pixel in a compute pass, and the shading
-//               draw reads the hits (DrawOptions::tracePass, trace/hier/trace.glsl)
+//   computed    on a GPU, a camera's convex mesh (a flat patch, a sphere): a rays draw stores each
+//   walks       pixel's view ray, walks() walks it and its light ray a lane per pixel in a compute
+//               pass, and the shading draw reads the hits (DrawOptions::tracePass,
+//               trace/hier/trace.glsl)
 //
 // Thread: the thread whose GL context is current.
 
@@ -59,8 +60,9 @@ enum class TexelShadowChoice {
 enum class TracePass {
     Auto,    ///< the device's: InDraw where GlWorkarounds::traceInDraw says so, else Compute
     InDraw,  ///< the surface draw's fragments walk their view and light rays
-    /// Where it holds (a camera's draw of a flat patch: ExactTracer::prepare), a rays draw stores
-    /// each pixel's view ray, a compute pass walks it and its light ray a lane per pixel, and the
+    /// Where it holds (a camera's draw of a convex mesh, Mesh::convex: a flat patch, a sphere;
+    /// ExactTracer::prepare), a rays draw stores each pixel's view ray (and its light ray where
+    /// that is not one for the draw), a compute pass walks them a lane per pixel, and the
     /// shading draw reads the hit (trace/hier/trace.glsl): the same hits, walked on every core a
     /// compute dispatch reaches. Elsewhere InDraw.
     Compute,
@@ -86,6 +88,9 @@ struct TracerFrame {
     /// The rays draw, walks() and the shading draw (TracePass::Compute): the buffers are bound and
     /// the uniform block's trace fields set.
     bool computeTrace = false;
+    /// With computeTrace: the rays draw stores each pixel's light ray too (HFX_TRACE_LIGHTS), as
+    /// the light is not the flat patch's one for the draw (a curved mesh, a silhouette fade).
+    bool traceLights = false;
 };
 
 class ExactTracer {
@@ -136,9 +141,9 @@ private:
     /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
     /// deferred appended (where the GPU is past it), empties it and binds it.
     void prepareDeferred(const Viewport& viewport);
-    /// Sizes the computed walks' buffers for the viewport, stamps this draw, binds them and fills
-    /// the uniform block's trace fields.
-    void prepareComputeTrace(const Viewport& viewport, SurfaceUniforms& u);
+    /// Sizes the computed walks' buffers for the viewport (the lights' where `lights`), stamps
+    /// this draw, binds them and fills the uniform block's trace fields.
+    void prepareComputeTrace(const Viewport& viewport, bool lights, SurfaceUniforms& u);
     /// Whether this context's vertex stage can read the deferred rays' buffer (GL 4.5 does not
     /// promise it; the compute stage that walks them has storage buffers and images).
     bool vertexStageReadsBuffer();
@@ -184,11 +189,12 @@ private:
     GlVertexArray noVertices_;
     GLint vertexStorage_ = -1; ///< the context's limit, read once
     /// The computed walks (TracePass::Compute): a slot per pixel of the viewport in each buffer
-    /// (trace/hier/trace.glsl), the stamp of the last draw, and the pass by its variant (the
-    /// pyramid's layout, the beam start, the texel shadows).
-    static constexpr size_t kTraceRay = 16, kTraceInfo = 8; // bytes a slot
-    static constexpr std::uint32_t kTraceStamps = 32767;     // a slot's mark holds 15 bits of it
-    GlBuffer traceRays_, traceInfo_;
+    /// (trace/hier/trace.glsl; the lights' made when first needed, for as many slots), the stamp
+    /// of the last draw, and the pass by its variant (the pyramid's layout, the beam start, the
+    /// texel shadows, the lights).
+    static constexpr size_t kTraceRay = 16, kTraceInfo = 8, kTraceLight = 8; // bytes a slot
+    static constexpr std::uint32_t kTraceStamps = 32767; // a slot's mark holds 15 bits of it
+    GlBuffer traceRays_, traceInfo_, traceLights_;
     int traceSlots_ = 0, traceWidth_ = 0, traceHeight_ = 0;
     std::uint32_t traceStamp_ = 0;
     std::map<int, ShaderProgram> traceWalks_;
