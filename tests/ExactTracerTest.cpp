@@ -399,16 +399,19 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
         const char* name;
         const Mesh* mesh;
         Camera camera;
-        float depthScale, fade;
+        float depthScale, fade, sharpness;
         size_t leastTraced; // pixels
     };
-    const Case cases[] = {{"sphere, the planet's fade", &sphere, view(2.4f, 0.4f, 0.3f), 0.02f, 0.25f, 8000},
-                          {"sphere, no fade", &sphere, view(2.4f, -1.1f, 0.5f), 0.02f, 0.0f, 8000},
-                          {"sphere, from inside", &sphere, view(0.4f, 0.4f, 0.3f), 0.02f, 0.25f, 0},
-                          {"plane, a fade", &plane, view(1.6f, 0.3f, 0.5f), 0.1f, 0.3f, W * H / 2}};
+    // (A sharpness of 1 has no flat patch's light either: flatSurfaceLight gives none at or below 1.)
+    const Case cases[] = {{"sphere, the planet's fade", &sphere, view(2.4f, 0.4f, 0.3f), 0.02f, 0.25f, 2.0f, 8000},
+                          {"sphere, no fade", &sphere, view(2.4f, -1.1f, 0.5f), 0.02f, 0.0f, 2.0f, 8000},
+                          {"sphere, from inside", &sphere, view(0.4f, 0.4f, 0.3f), 0.02f, 0.25f, 2.0f, 0},
+                          {"plane, a fade", &plane, view(1.6f, 0.3f, 0.5f), 0.1f, 0.3f, 2.0f, W * H / 2},
+                          {"plane, a shadow sharpness of 1", &plane, view(1.6f, 0.3f, 0.5f), 0.1f, 0.0f, 1.0f, W * H / 2}};
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
-        const SurfaceMaterial material{.depthScale = c.depthScale, .lodThreshold = 100.0f, .silhouetteFade = c.fade};
+        SurfaceMaterial material{.depthScale = c.depthScale, .lodThreshold = 100.0f, .silhouetteFade = c.fade};
+        material.shadowSharpness = c.sharpness;
         SurfaceRenderer renderer;
         auto draw = [&](TracePass pass) {
             target.bind();
