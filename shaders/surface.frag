@@ -72,8 +72,8 @@
 #ifndef HFX_COMPUTE_TRACE
 #define HFX_COMPUTE_TRACE 0
 #endif
-#if HFX_COMPUTE_TRACE && (HFX_SHADOW_CASTER || HFX_DEFERRED_SHADOWS || !HFX_TRACES)
-#error "HFX_COMPUTE_TRACE walks a camera's view rays in a compute pass: not with HFX_SHADOW_CASTER or HFX_DEFERRED_SHADOWS"
+#if HFX_COMPUTE_TRACE && (HFX_DEFERRED_SHADOWS || !HFX_TRACES)
+#error "HFX_COMPUTE_TRACE walks the view rays in a compute pass: not with HFX_DEFERRED_SHADOWS, only for a tracer"
 #endif
 #if HFX_DEFERRED_SHADOWS && (HFX_TRACE_OUTPUT || HFX_SHADOW_CASTER || !HFX_TEXEL_SHADOWS)
 #error "HFX_DEFERRED_SHADOWS defers the walks HFX_TEXEL_SHADOWS leave, of a drawn colour: not with HFX_TRACE_OUTPUT or HFX_SHADOW_CASTER"
@@ -284,7 +284,7 @@ void main() {
         // The light ray is walked where the shading draw's test below holds at the entry (the
         // walks pass tests the hit's height). A back face stores nothing (trace/hier/trace.glsl).
         bool walksLight = false;
-#if HFX_SELF_SHADOW
+#if HFX_SELF_SHADOW && !HFX_SHADOW_CASTER // (a caster's pass walks no light ray: it shades nothing)
         walksLight = lightTS.z > 0.0 && dot(entryNormal, normalize(u_lightDir)) > 0.0;
 #if HFX_TRACE_LIGHTS
         if (walksLight && gl_FrontFacing) hfx_traceLights[slot] = lightTS.xy / lightTS.z * depthScale;

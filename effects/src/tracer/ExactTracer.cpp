@@ -62,14 +62,15 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     glGetIntegerv(GL_VIEWPORT, viewport.data());
 
     // The walks in a compute pass where asked (or the device's choice) and where the rays draw
-    // and the shading draw meet the same pixels once each: a camera's view of a convex mesh (its
+    // and the shading draw meet the same pixels once each: a view (a camera's, a caster's) of a
+    // convex mesh (its
     // front faces a fragment per pixel at most; a back face's is normal mapped), drawn without a
     // stencil test (the rays draw would run its operations) into a single-sampled target (one
     // fragment a pixel).
     const TracePass pass = options.tracePass != TracePass::Auto ? options.tracePass
                            : glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw
                                                                            : TracePass::Compute;
-    if (pass == TracePass::Compute && !caster && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
+    if (pass == TracePass::Compute && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
         !glIsEnabled(GL_STENCIL_TEST)) {
         GLint samples = 0;
         glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
@@ -97,11 +98,11 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     if (frame.computeTrace) {
         // Every pixel's light ray is the flat patch's light (the texel shadows' where they are
         // read) where it has one and no silhouette fade scales its depth pixel by pixel; else the
-        // rays draw stores each pixel's.
+        // rays draw stores each pixel's. A caster's pass walks no light ray.
         const std::optional<ShadowLight> l =
-            material.silhouetteFade == 0.0f ? flatPatchLight(mesh, model, light, material) : std::nullopt;
+            material.silhouetteFade == 0.0f && !caster ? flatPatchLight(mesh, model, light, material) : std::nullopt;
         if (l) u.shadowLight = {l->uvPerClimb, l->penumbra, l->slack};
-        frame.traceLights = !l && material.shadows;
+        frame.traceLights = !l && material.shadows && !caster;
         prepareComputeTrace(viewport, frame.traceLights, u);
     }
 
@@ -114,7 +115,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         drawBeamStart(mesh, model, u, viewProj, viewport, frame.atlas);
         glBindTextureUnit(HFX_UNIT_BEAM_START, beamTarget_.id());
     }
-    if (!caster) last_ = frame;
+    (caster ? lastCaster_ : last_) = frame;
     return frame;
 }
 

@@ -237,7 +237,8 @@ struct DrawOptions {
     /// here (8 lanes wait for less), it is slower. bench-tracers' 'deferred' column times it
     /// against the walks in the draw (docs/BENCHMARKS.md).
     bool deferShadowWalks = false;
-    /// Where the exact tracer walks a camera's view rays and their light rays on a convex mesh
+    /// Where the exact tracer walks the view rays (a camera's, a shadow caster's) and their light
+    /// rays on a convex mesh
     /// (Mesh::convex; one layer, no stencil test, a single-sampled target): Auto, the device's
     /// (GlWorkarounds::traceInDraw).
     TracePass tracePass = TracePass::Auto;

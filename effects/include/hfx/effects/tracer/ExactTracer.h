@@ -17,7 +17,7 @@
 //   deferred    the light walks the texel shadows do not hold, left by the draw to a pass after
 //   walks       it (finish, trace/hier/deferred.glsl): one walk to a lane, not one lane's walk
 //               holding up its warp (DrawOptions::deferShadowWalks)
-//   computed    on a GPU, a camera's convex mesh (a flat patch, a sphere): a rays draw stores each
+//   computed    on a GPU, a convex mesh (a flat patch, a sphere; a caster's too): a rays draw stores each
 //   walks       pixel's view ray, walks() walks it and its light ray a lane per pixel in a compute
 //               pass, and the shading draw reads the hits (DrawOptions::tracePass,
 //               trace/hier/trace.glsl)
@@ -60,7 +60,8 @@ enum class TexelShadowChoice {
 enum class TracePass {
     Auto,    ///< the device's: InDraw where GlWorkarounds::traceInDraw says so, else Compute
     InDraw,  ///< the surface draw's fragments walk their view and light rays
-    /// Where it holds (a camera's draw of a convex mesh, Mesh::convex: a flat patch, a sphere;
+    /// Where it holds (a camera's or a shadow caster's draw of a convex mesh, Mesh::convex: a
+    /// flat patch, a sphere;
     /// ExactTracer::prepare), a rays draw stores each pixel's view ray (and its light ray where
     /// that is not one for the draw), a compute pass walks them a lane per pixel, and the
     /// shading draw reads the hit (trace/hier/trace.glsl): the same hits, walked on every core a
@@ -109,6 +110,8 @@ public:
                         const DrawOptions& options, bool caster, SurfaceUniforms& u);
     /// The last camera (not caster) hier draw's decision, for reports.
     const TracerFrame& last() const { return last_; }
+    /// The last shadow caster's hier draw's decision (SurfaceRenderer::drawShadow).
+    const TracerFrame& lastCaster() const { return lastCaster_; }
     /// Between the rays draw and the shading draw of a frame with computeTrace, with the draw's
     /// textures, units and uniform block bound: walks every ray the rays draw stored, a lane per
     /// pixel (trace/hier/trace.comp). Changes the program: inside the renderer's GlStateGuard.
@@ -172,7 +175,7 @@ private:
     std::uint64_t clock_ = 0;
     /// The last stride drawn per mesh (0: none), so the policy holds on near its threshold.
     std::map<const Mesh*, int> strides_;
-    TracerFrame last_;
+    TracerFrame last_, lastCaster_;
     ShaderProgram beam_[2]; ///< by the pyramid's layout: a mip chain, the atlas
     GlFramebuffer beamFramebuffer_;
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
