@@ -24,6 +24,12 @@ void Scene::applyOptions(const SceneOptions& o) {
     texelShadows = o.texelShadows;
     beamStart = o.beamStart;
     deferShadowWalks = o.deferShadowWalks;
+    tracePass = o.tracePass;
+}
+
+std::string Scene::tracePassLabel() const {
+    if (technique != Technique::Hierarchical) return "";
+    return traced_.computeTrace ? "a compute pass" : "the draw";
 }
 
 std::string Scene::texelShadowsLabel() const {

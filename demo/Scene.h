@@ -37,6 +37,9 @@ struct SceneOptions {
     /// The light walks the texel shadows leave done by a pass after the draw
     /// (DrawOptions::deferShadowWalks): the same image.
     bool deferShadowWalks = false;
+    /// Where hier walks a convex mesh's rays (DrawOptions::tracePass): the device's by default,
+    /// in the draw or in a compute pass between a rays draw and the shading draw.
+    TracePass tracePass = TracePass::Auto;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -113,13 +116,18 @@ public:
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto; ///< SceneOptions::texelShadows
     bool beamStart = true;                                    ///< SceneOptions::beamStart
     bool deferShadowWalks = false;                            ///< SceneOptions::deferShadowWalks
+    TracePass tracePass = TracePass::Auto;                    ///< SceneOptions::tracePass
     /// How this scene's surface is drawn, by the camera and into a shadow map alike.
     DrawOptions drawOptions() const {
         return {.technique = technique,
                 .beamStart = beamStart,
                 .texelShadows = texelShadows,
-                .deferShadowWalks = deferShadowWalks};
+                .deferShadowWalks = deferShadowWalks,
+                .tracePass = tracePass};
     }
+    /// Where the last camera draw under hier walked its rays: "a compute pass" or "the draw"
+    /// ("" where the scene does not draw with hier).
+    std::string tracePassLabel() const;
     /// The last draw's texel shadows as the exact tracer chose them (ExactTracer::last): "off",
     /// "on" or "on, stride N", for the panel and the bench table, and the flat surface's pixels
     /// per field texel they were chosen from (0 where not flat or not hier).

@@ -47,6 +47,7 @@ struct Options {
     double dt = 1.0 / 30.0;
     std::string technique = "auto";
     std::string surfaceFormat = "float32";
+    std::string tracePass = "auto";
     std::string transfer = "auto";
     std::string format = "png";
     bool noProgress = false;
@@ -105,6 +106,8 @@ int runHeadless(const Options& o, Scene& scene) {
     if (scene.pixelsPerTexel() > 0.0)
         std::fprintf(stderr, "hfx: texel shadows %s (%.2f pixels per texel)\n", scene.texelShadowsLabel().c_str(),
                      scene.pixelsPerTexel());
+    if (const std::string pass = scene.tracePassLabel(); !pass.empty())
+        std::fprintf(stderr, "hfx: hier walked in %s\n", pass.c_str());
     if (!o.exportMaps.empty()) exportMaps(o.exportMaps, scene.effect().textures());
     scene.finish();
     return 0;
@@ -115,6 +118,9 @@ int run(const Options& o) {
     sceneOptions.surfaceFormat = parseSurfaceFormat(o.surfaceFormat);
     sceneOptions.technique = o.technique == "auto" ? defaultTechnique(o.scene, sceneOptions) : parseTechnique(o.technique);
     sceneOptions.transfer = parseTransferPath(o.transfer);
+    sceneOptions.tracePass = o.tracePass == "draw"      ? TracePass::InDraw
+                             : o.tracePass == "compute" ? TracePass::Compute
+                                                        : TracePass::Auto;
     sceneOptions.width = o.width;
     sceneOptions.height = o.height;
     if (o.scene == "techniques") {
@@ -239,6 +245,11 @@ int main(int argc, char** argv) {
                  "hier with texel shadows: the light walks they leave (where a hard shadow's edge crosses the samples "
                  "around a pixel) are done by a pass after the draw, one to a lane, instead of holding up their warp "
                  "(the same image; slower on llvmpipe)");
+    app.add_option("--trace-pass", o.tracePass,
+                   "where hier walks a convex surface's rays (a plane, the planet): auto (the device's: the draw on a "
+                   "CPU rasteriser, else a compute pass), draw, or compute (a rays draw, a compute pass a lane per "
+                   "pixel, the shading draw; the same hits)")
+        ->check(CLI::IsMember({"auto", "draw", "compute"}))->capture_default_str();
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
