@@ -8,8 +8,10 @@
 # It prints the card and the driver, then runs, each step within its share of the budget and
 # its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
 # GL tests (the tracer's first), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout)
-# and 3840x2160, and the frame bench (water, decals, planet, the transfer table) at both sizes, and the ringed planet at 1280x720. A step that runs out of time is cut and says so; the rest go
-# on. HFX_GPU_STEPS may name fewer steps (say "gl-tests bench-tracers-720p"): the budget is then
+# and 3840x2160, the frame bench (water, decals, planet, the transfer table) at both sizes, the
+# decal wall and the planet at 1280x720 again with hier walking in the draw (bench-720p has them
+# in the compute pass, a GPU's default), and the ringed planet at 1280x720. A step that runs out
+# of time is cut and says so; the rest go on. HFX_GPU_STEPS may name fewer steps (say "gl-tests bench-tracers-720p"): the budget is then
 # shared among those. Nothing here installs anything: the bundle carries what the binaries need.
 set -uo pipefail
 bundle=$(cd "${1:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}" && pwd)
@@ -22,7 +24,7 @@ run=(bash "$bundle/run.sh")
 # Each step's share of the budget, in percent of all steps; HFX_GPU_STEPS selects.
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10 [bench-tracers-720p]=12
                    [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
-                   [bench-4k]=14 [bench-planet-rings]=8)
+                   [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8)
 selected=${HFX_GPU_STEPS:-${!shares[*]}}
 total=0
 for n in $selected; do
@@ -70,6 +72,7 @@ step bench-tracers-720p-atlas env HFX_GL_WORKAROUNDS=pyramid-atlas=1 "${run[@]}"
     --height 720 --out "$out/720p-atlas"
 step bench-tracers-4k "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2160 --out "$out/4k"
 step bench-720p "${run[@]}" hfx-demo bench --bench-only water,decals,planet,transfer --width 1280 --height 720
+step bench-720p-in-draw "${run[@]}" hfx-demo bench --bench-only decals,planet --trace-pass draw --width 1280 --height 720
 step bench-4k "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160
 # The ringed planet seen whole (its rings' draw, their shadow and ring shine in the planet's draw).
 step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1 --camera-distance 5 --width 1280 --height 720
