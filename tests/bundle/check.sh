@@ -3,13 +3,15 @@
 # WORK, checks that its binaries load no library from outside it but the C runtime and the
 # drivers, then renders one frame and runs the core tests from a folder outside the tree, in a
 # clean environment, through its launcher.
-#   check.sh SOURCE_DIR WORK_DIR
+#   check.sh SOURCE_DIR WORK_DIR [BUILD_DIR]
+# BUILD_DIR (default WORK_DIR/build): the bundle's build tree, made afresh; beside the main tree,
+# at its depth, the compiler cache serves it the main tree's objects (CMakeLists.txt).
 set -euo pipefail
-src=$1 work=$2
-rm -rf "$work"
+src=$1 work=$2 build=${3:-$2/build}
+rm -rf "$work" "$build"
 mkdir -p "$work"
 # Only the programs it runs: the others are the same sources, built and tested in the main tree.
-HFX_BUNDLE_BUILD="$work/build" HFX_BUNDLE_TARGETS="hfx-demo hfx-tests-core" bash "$src/scripts/bundle.sh" "$work/bundle"
+HFX_BUNDLE_BUILD="$build" HFX_BUNDLE_TARGETS="hfx-demo hfx-tests-core" bash "$src/scripts/bundle.sh" "$work/bundle"
 bundle="$work/bundle"
 runtime='^(linux-vdso|ld-linux|libc\.so|libm\.so|libdl\.so|libpthread\.so|librt\.so|libstdc\+\+\.so|libgcc_s\.so)'
 for b in "$bundle"/bin/*; do
