@@ -14,8 +14,11 @@
 #include "hfx/tools/AccuracyMaps.h"
 #include "hfx/tools/AccuracyProbe.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -547,6 +550,103 @@ TEST_F(Techniques, HierarchicalNeedsSurfacesThatCanCarryBoundsAndSaysWhy) {
     renderer.draw(plane, glm::mat4(1.0f), plain, {}, Camera{}, {}, {.technique = Technique::Hierarchical});
     EXPECT_THROW(parseTechnique("cone"), Error);
     for (Technique t : kTechniques) EXPECT_EQ(parseTechnique(techniqueName(t)), t);
+}
+
+} // namespace
+} // namespace hfx::test
+
+namespace hfx::test {
+namespace {
+
+/// Samples that pass the depth test in `draw`, counted by an occlusion query.
+GLuint samplesPassed(const std::function<void()>& draw) {
+    GLuint query = 0, samples = 0;
+    glGenQueries(1, &query);
+    glBeginQuery(GL_SAMPLES_PASSED, query);
+    draw();
+    glEndQuery(GL_SAMPLES_PASSED);
+    glGetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+    glDeleteQueries(1, &query);
+    return samples;
+}
+
+TEST_F(Techniques, AClosedMeshsBackFacesAreCulledFromOutsideAndDrawnThroughANearPlaneCut) {
+    // A closed mesh (MeshData::closed: the sphere) seen from outside its bounds: its back faces
+    // lie behind its front faces, and a program that writes its depth cannot reject them early,
+    // so the renderer culls them. Then every sample that passes the depth test is a front face's,
+    // one per covered pixel; the same sphere not said to be closed passes more (its back faces
+    // drawn before the front faces over them), in the same image. Where the near plane cuts the
+    // sphere, its back faces show through the cut: not culled, the same image as the open one's.
+    const AccuracyProbe probe(cl(), sumOfSines(64, {{0.3, 2, 1, 0.0}}), 64, 0.1f);
+    MeshData data = makeSphere({});
+    ASSERT_TRUE(data.closed);
+    const Mesh closed(data);
+    data.closed = false;
+    const Mesh open(data);
+    const SurfaceMaterial material{.depthScale = 0.02f, .lodThreshold = 100.0f, .silhouetteFade = 0.25f};
+    const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    constexpr int W = 320, H = 180;
+    RenderTarget target(W, H);
+    for (const Technique technique : {Technique::ParallaxOcclusion, Technique::Hierarchical}) {
+        SCOPED_TRACE(techniqueName(technique));
+        SurfaceRenderer renderer;
+        auto draw = [&](const Mesh& mesh, const Camera& camera) {
+            target.bind();
+            target.clear();
+            const GLuint samples = samplesPassed([&] {
+                renderer.draw(mesh, glm::mat4(1.0f), probe.textures(), material, camera, light,
+                              {.technique = technique, .tracePass = TracePass::InDraw});
+            });
+            return std::pair(samples, target.readColor());
+        };
+        Camera outside = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.4f, 0.4f, 0.3f);
+        outside.aspect = float(W) / float(H);
+        const auto [closedSamples, closedImage] = draw(closed, outside);
+        const auto [openSamples, openImage] = draw(open, outside);
+        size_t covered = 0;
+        const Image background = [&] {
+            target.bind();
+            target.clear();
+            return target.readColor();
+        }();
+        for (size_t p = 0; p < closedImage.pixels.size(); p += size_t(closedImage.channels))
+            covered += std::memcmp(&closedImage.pixels[p], &background.pixels[p], 3 * sizeof(float)) != 0;
+        // Pixels that differ, and those of them farther than 3 pixels from the background. Near
+        // the rim the sphere is thinner than the relief there: a front face's hit can lie behind
+        // the back face's polygon, which the open sphere then shows.
+        const auto pixel = [](const Image& image, int x, int y) {
+            return &image.pixels[(size_t(y) * size_t(image.width) + size_t(x)) * size_t(image.channels)];
+        };
+        size_t differ = 0, inside = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                if (std::memcmp(pixel(closedImage, x, y), pixel(openImage, x, y), 3 * sizeof(float)) == 0) continue;
+                ++differ;
+                bool nearRim = false;
+                for (int dy = -3; dy <= 3 && !nearRim; ++dy)
+                    for (int dx = -3; dx <= 3 && !nearRim; ++dx) {
+                        const int u = std::clamp(x + dx, 0, W - 1), v = std::clamp(y + dy, 0, H - 1);
+                        nearRim = std::memcmp(pixel(closedImage, u, v), pixel(background, u, v), 3 * sizeof(float)) == 0;
+                    }
+                inside += !nearRim;
+            }
+        std::printf("[culling] %s, from outside: %u samples pass culled, %u not culled, %zu pixels covered, %zu "
+                    "differ (%zu of them more than 3 pixels inside the rim)\n",
+                    techniqueName(technique), closedSamples, openSamples, covered, differ, inside);
+        EXPECT_EQ(inside, 0u) << "the back faces showed inside the sphere";
+        EXPECT_LE(differ, covered / 100);
+        EXPECT_GT(covered, size_t(W * H / 10)) << "too little sphere to tell";
+        EXPECT_LE(closedSamples, covered + covered / 100) << "back faces passed the depth test: not culled";
+        EXPECT_GT(openSamples, closedSamples + covered / 20) << "the open sphere drew no back face first: no test";
+        // The near plane inside the sphere: its back faces fill the cut, culled or not.
+        Camera cut = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.05f, 0.4f, 0.3f);
+        cut.aspect = float(W) / float(H);
+        cut.nearPlane = 0.2f;
+        const auto [cutClosedSamples, cutClosedImage] = draw(closed, cut);
+        const auto [cutOpenSamples, cutOpenImage] = draw(open, cut);
+        EXPECT_EQ(cutClosedSamples, cutOpenSamples);
+        EXPECT_EQ(cutClosedImage.pixels, cutOpenImage.pixels) << "a cut's back faces were culled";
+    }
 }
 
 } // namespace

@@ -80,6 +80,7 @@ MeshData makeSphere(const SphereConfig& config) {
     // Each quad's corners lie on two parallels and two meridians: a plane's, and the sphere's
     // points are on the outer side of none (the pole's triangles are degenerate, of no area).
     mesh.convex = true;
+    mesh.closed = true;
     return mesh;
 }
 
@@ -149,7 +150,7 @@ std::optional<FlatPatch> flatPatchOf(const MeshData& data) {
 Mesh::Mesh(const MeshData& data)
     : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
       vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())),
-      patch_(flatPatchOf(data)), convex_(data.convex || patch_.has_value()) {
+      patch_(flatPatchOf(data)), convex_(data.convex || patch_.has_value()), closed_(data.closed) {
     if (data.vertices.empty() || data.indices.empty() || data.indices.size() % 3 != 0)
         throw Error(str("mesh needs triangles, got ", data.vertices.size(), " vertices and ",
                         data.indices.size(), " indices"));
@@ -157,6 +158,16 @@ Mesh::Mesh(const MeshData& data)
         if (index >= data.vertices.size())
             throw Error(str("mesh index ", index, " is out of range (", data.vertices.size(),
                             " vertices)"));
+    // The bounds: the box's centre, and the farthest vertex from it.
+    glm::dvec3 lo(data.vertices.front().position), hi = lo;
+    for (const Vertex& v : data.vertices) {
+        lo = glm::min(lo, glm::dvec3(v.position));
+        hi = glm::max(hi, glm::dvec3(v.position));
+    }
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    double radius = 0.0;
+    for (const Vertex& v : data.vertices) radius = std::max(radius, glm::length(glm::dvec3(v.position) - centre));
+    bounds_ = glm::vec4(glm::vec3(centre), float(radius * (1.0 + 1e-6)));
     HFX_GL_CHECK(glNamedBufferStorage(vertices_.id(), data.vertices.size() * sizeof(Vertex),
                          data.vertices.data(), 0));
     HFX_GL_CHECK(glNamedBufferStorage(indices_.id(), data.indices.size() * sizeof(uint32_t),

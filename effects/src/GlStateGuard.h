@@ -42,6 +42,9 @@ class GlStateGuard {
 public:
     GlStateGuard() {
         depthTest_ = glIsEnabled(GL_DEPTH_TEST);
+        cullFace_ = glIsEnabled(GL_CULL_FACE);
+        glGetIntegerv(GL_CULL_FACE_MODE, &cullMode_);
+        glGetIntegerv(GL_FRONT_FACE, &frontFace_);
         glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
         glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
         programPointSize_ = glIsEnabled(GL_PROGRAM_POINT_SIZE);
@@ -76,6 +79,9 @@ public:
     }
     ~GlStateGuard() {
         (depthTest_ ? glEnable : glDisable)(GL_DEPTH_TEST);
+        (cullFace_ ? glEnable : glDisable)(GL_CULL_FACE);
+        glCullFace(GLenum(cullMode_));
+        glFrontFace(GLenum(frontFace_));
         glDepthFunc(static_cast<GLenum>(depthFunc_));
         glDepthMask(depthMask_);
         (programPointSize_ ? glEnable : glDisable)(GL_PROGRAM_POINT_SIZE);
@@ -110,7 +116,8 @@ public:
     GlStateGuard& operator=(const GlStateGuard&) = delete;
 
 private:
-    GLboolean depthTest_, depthMask_, programPointSize_;
+    GLboolean depthTest_, depthMask_, programPointSize_, cullFace_;
+    GLint cullMode_, frontFace_; // a closed mesh's back faces culled, a mirrored model's winding
     GLint indirect_, dispatch_; // the deferred walks' indirect buffers (ExactTracer)
     // the storage buffers of hfx/core/Bindings.h: the deferred walks', the computed walks' three
     static constexpr GLuint kStorage = HFX_BUFFER_TRACE_LIGHTS + 1;

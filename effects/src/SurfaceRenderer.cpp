@@ -280,6 +280,22 @@ void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
     light.shadowMap->fillReceiver(u);
     glBindTextureUnit(HFX_UNIT_SHADOW_MAP, light.shadowMap->texture());
 }
+
+/// Whether a closed mesh (MeshData::closed) drawn with `model` shows its viewer front faces only:
+/// a shadow map's light (from outside everything it holds), or a camera whose eye lies outside the
+/// mesh's bounds by more than its near plane reaches (a near plane that cut the mesh would show
+/// back faces through the cut).
+bool backFacesHidden(const Mesh& mesh, const glm::mat4& model, const Camera& camera, bool caster) {
+    if (!mesh.closed()) return false;
+    if (caster) return true;
+    const glm::vec4 b = mesh.bounds();
+    const glm::vec3 centre(model * glm::vec4(glm::vec3(b), 1.0f));
+    const glm::mat3 m(model);
+    const float scale = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+    const float t = std::tan(0.5f * camera.fovY);
+    const float reach = camera.nearPlane * std::sqrt(1.0f + t * t * (1.0f + camera.aspect * camera.aspect));
+    return glm::length(camera.position - centre) > b.w * scale + reach;
+}
 } // namespace
 
 void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
@@ -383,6 +399,13 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     bindUniforms(u, model, viewProj);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
+    // The mesh's winding as the model leaves it (a mirroring model turns it): the compute pass's
+    // draws tell front faces by it, and the back faces a closed mesh hides are culled.
+    if (frame.computeTrace || mesh.closed()) glFrontFace(glm::determinant(glm::mat3(model)) < 0.0f ? GL_CW : GL_CCW);
+    if (backFacesHidden(mesh, model, camera, caster != nullptr)) {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+    }
     if (frame.computeTrace) {
         // The walks in a compute pass (trace/hier/trace.glsl): the rays draw stores each pixel's
         // ray, the tracer walks them, and the draw below reads the hits.

@@ -11,6 +11,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
 #include <cstdint>
@@ -35,6 +36,11 @@ struct MeshData {
     /// makeSphere's are (isConvex checks it). What the exact tracer's walks in a compute pass need
     /// (TracePass::Compute: one fragment per pixel). False by default: say so for your own mesh.
     bool convex = false;
+    /// The triangles enclose a solid, counter-clockwise seen from outside: from a point outside
+    /// it, every back face lies behind a front face. makeSphere's do. The renderer then culls the
+    /// back faces where the eye is outside the mesh's bounds (SurfaceRenderer: a program that
+    /// writes its depth has no early depth test to reject them behind the front faces).
+    bool closed = false;
 };
 
 struct PlaneConfig {
@@ -95,6 +101,9 @@ public:
     GLsizei indexCount() const { return indexCount_; }
     bool flatPatch() const { return patch_.has_value(); } ///< isFlatPatch of its data
     bool convex() const { return convex_; }                ///< its data's MeshData::convex, or a flat patch
+    bool closed() const { return closed_; }                ///< its data's MeshData::closed
+    /// A sphere around every vertex: its centre (xyz) and radius (w), in the mesh's space.
+    glm::vec4 bounds() const { return bounds_; }
     const std::optional<FlatPatch>& patch() const { return patch_; } ///< flatPatchOf its data
 
 private:
@@ -102,7 +111,8 @@ private:
     GlVertexArray vao_;
     GLsizei indexCount_ = 0;
     std::optional<FlatPatch> patch_;
-    bool convex_ = false;
+    bool convex_ = false, closed_ = false;
+    glm::vec4 bounds_{0.0f};
 };
 
 } // namespace hfx
