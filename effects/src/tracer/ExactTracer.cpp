@@ -63,10 +63,9 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
 
     // The walks in a compute pass where asked (or the device's choice) and where the rays draw
     // and the shading draw meet the same pixels once each: a view (a camera's, a caster's) of a
-    // convex mesh (its
-    // front faces a fragment per pixel at most; a back face's is normal mapped), drawn without a
-    // stencil test (the rays draw would run its operations) into a single-sampled target (one
-    // fragment a pixel).
+    // convex mesh (its front faces a fragment per pixel at most; a back face's is normal mapped),
+    // drawn without a stencil test (the rays draw would run its operations) into a
+    // single-sampled target (one fragment a pixel).
     const TracePass pass = options.tracePass != TracePass::Auto ? options.tracePass
                            : glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw
                                                                            : TracePass::Compute;
