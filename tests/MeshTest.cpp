@@ -4,6 +4,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <string>
 #include <utility>
 
 namespace hfx {
@@ -104,6 +106,39 @@ TEST(Convex, PlanesAndSpheresSayTheyAreConvexAndAreAndBumpsAndFlippedFacesAreNot
     EXPECT_FALSE(isConvex(valley));
     EXPECT_FALSE(isConvex(MeshData{}));
     EXPECT_FALSE(MeshData{}.convex) << "a mesh of one's own is not trusted unless it says so";
+}
+
+TEST(Convex, AMeshsClaimsAreCheckedAtItsEdgesAndAFalseOneNamesTheEdge) {
+    // Mesh's constructor calls checkMeshClaims: the renderer culls a closed mesh's back faces and
+    // walks a convex one's rays in the compute pass, so a false claim would show as wrong pixels.
+    for (const MeshData& mesh : {makePlane({}), makePlane({.subdivisions = 8}), makeSphere({}),
+                                 makeSphere({.radius = 3.0f, .segments = 7, .rings = 3})})
+        EXPECT_NO_THROW(checkMeshClaims(mesh));
+    auto message = [](const MeshData& mesh) {
+        try {
+            checkMeshClaims(mesh);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    MeshData holed = makeSphere({.segments = 12, .rings = 6});
+    // (Triangle 83: ring 3's quad 5, away from the poles, whose first triangles have no area.)
+    holed.indices.erase(holed.indices.begin() + 249, holed.indices.begin() + 252); // one triangle gone
+    EXPECT_NE(message(holed).find("MeshData::closed, but the edge from ("), std::string::npos) << message(holed);
+    EXPECT_NE(message(holed).find("has 1 face, not 2 (a hole)"), std::string::npos) << message(holed);
+    std::printf("[claims] %s\n", message(holed).c_str());
+    MeshData turned = makeSphere({.segments = 12, .rings = 6});
+    std::swap(turned.indices[250], turned.indices[251]); // one triangle wound the other way
+    EXPECT_NE(message(turned).find("wound the same way"), std::string::npos) << message(turned);
+    MeshData dent = makeSphere({.segments = 12, .rings = 6});
+    dent.vertices[30].position *= 0.9f;
+    EXPECT_NE(message(dent).find("MeshData::convex, but at the edge"), std::string::npos) << message(dent);
+    MeshData valley = makePlane({.subdivisions = 2});
+    valley.vertices[4].position.y -= 0.1f;
+    EXPECT_NE(message(valley).find("MeshData::convex"), std::string::npos) << message(valley);
+    valley.convex = false; // said of none: nothing to check
+    EXPECT_EQ(message(valley), "");
 }
 
 } // namespace

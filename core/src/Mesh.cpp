@@ -4,10 +4,18 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <utility>
 
 namespace hfx {
 
@@ -108,6 +116,111 @@ bool isConvex(const MeshData& data) {
     return true;
 }
 
+namespace {
+
+/// Vertices by position: those within `tolerance` of each other (a sphere's seam and poles, whose
+/// vertices are doubled) get one id. Cells 64 tolerances wide: a point's own, and the neighbours'
+/// where it lies within the tolerance of their side.
+std::vector<uint32_t> pointIds(const MeshData& data, double tolerance, std::vector<glm::dvec3>& points) {
+    struct Key {
+        std::int64_t x, y, z;
+        bool operator==(const Key&) const = default;
+    };
+    struct Hash {
+        size_t operator()(const Key& k) const {
+            return size_t(k.x * 73856093) ^ size_t(k.y * 19349663) ^ size_t(k.z * 83492791);
+        }
+    };
+    // A cell's first point, and each point's next in its cell (none: UINT32_MAX).
+    std::unordered_map<Key, uint32_t, Hash> cells;
+    cells.reserve(data.vertices.size());
+    std::vector<uint32_t> next, ids(data.vertices.size());
+    for (size_t v = 0; v < data.vertices.size(); ++v) {
+        const glm::dvec3 p(data.vertices[v].position);
+        const double cell = 64.0 * tolerance;
+        const glm::dvec3 q = glm::floor(p / cell), inside = p - q * cell;
+        const Key key{std::int64_t(q.x), std::int64_t(q.y), std::int64_t(q.z)};
+        const glm::ivec3 from(glm::lessThan(inside, glm::dvec3(tolerance))),
+            to(glm::greaterThan(inside, glm::dvec3(cell - tolerance)));
+        std::optional<uint32_t> found;
+        for (int dz = -from.z; dz <= to.z && !found; ++dz)
+            for (int dy = -from.y; dy <= to.y && !found; ++dy)
+                for (int dx = -from.x; dx <= to.x && !found; ++dx)
+                    if (auto it = cells.find({key.x + dx, key.y + dy, key.z + dz}); it != cells.end())
+                        for (uint32_t id = it->second; id != UINT32_MAX && !found; id = next[id])
+                            if (glm::length(points[id] - p) <= tolerance) found = id;
+        if (!found) {
+            found = uint32_t(points.size());
+            points.push_back(p);
+            auto [it, fresh] = cells.try_emplace(key, *found);
+            next.push_back(fresh ? UINT32_MAX : it->second);
+            it->second = *found;
+        }
+        ids[v] = *found;
+    }
+    return ids;
+}
+
+} // namespace
+
+void checkMeshClaims(const MeshData& data) {
+    if (!data.closed && !data.convex) return;
+    glm::dvec3 lo(data.vertices.front().position), hi = lo;
+    for (const Vertex& v : data.vertices) {
+        lo = glm::min(lo, glm::dvec3(v.position));
+        hi = glm::max(hi, glm::dvec3(v.position));
+    }
+    const double extent = std::max(glm::length(hi - lo), 1e-30), tolerance = 1e-6 * extent;
+    std::vector<glm::dvec3> points;
+    const std::vector<uint32_t> id = pointIds(data, tolerance, points);
+    // Each face's side of each edge: the edge's points (lower id first), the face, its corner off
+    // the edge (a vertex index), and whether the face runs along the edge from the lower id.
+    struct Side {
+        std::uint64_t edge;
+        std::uint32_t triangle, far;
+        bool forward;
+    };
+    std::vector<Side> sides;
+    sides.reserve(data.indices.size());
+    std::vector<glm::dvec3> normals(data.indices.size() / 3);
+    for (size_t t = 0; t < normals.size(); ++t) {
+        const std::array<uint32_t, 3> c = {data.indices[3 * t], data.indices[3 * t + 1], data.indices[3 * t + 2]};
+        const glm::dvec3 a(data.vertices[c[0]].position), b(data.vertices[c[1]].position), d(data.vertices[c[2]].position);
+        const glm::dvec3 n = glm::cross(b - a, d - a);
+        const double longest = std::max({glm::dot(b - a, b - a), glm::dot(d - a, d - a), glm::dot(d - b, d - b)});
+        if (!(glm::length(n) > 1e-6 * longest)) continue; // degenerate (a sphere's pole): no edges of its own
+        normals[t] = glm::normalize(n);
+        for (int e = 0; e < 3; ++e) {
+            const std::uint64_t p = id[c[size_t(e)]], q = id[c[size_t((e + 1) % 3)]];
+            sides.push_back({std::min(p, q) << 32 | std::max(p, q), std::uint32_t(t), c[size_t((e + 2) % 3)], p < q});
+        }
+    }
+    std::ranges::sort(sides, {}, &Side::edge);
+    for (size_t i = 0; i < sides.size();) {
+        size_t j = i;
+        while (j < sides.size() && sides[j].edge == sides[i].edge) ++j;
+        const std::span<const Side> on(sides.data() + i, j - i);
+        const auto where = [&] {
+            const glm::dvec3 a = points[on[0].edge >> 32], b = points[on[0].edge & 0xffffffffu];
+            return str("the edge from (", a.x, ", ", a.y, ", ", a.z, ") to (", b.x, ", ", b.y, ", ", b.z, ")");
+        };
+        if (data.closed && (on.size() != 2 || on[0].forward == on[1].forward))
+            throw Error(str("MeshData::closed, but ", where(), " has ", on.size(),
+                            on.size() == 2   ? " faces wound the same way"
+                            : on.size() == 1 ? " face, not 2 (a hole)"
+                                             : " faces, not 2"));
+        if (data.convex && on.size() == 2)
+            for (int k = 0; k < 2; ++k) {
+                const Side& mine = on[size_t(k)];
+                const Side& other = on[size_t(1 - k)];
+                const glm::dvec3 corner(data.vertices[data.indices[3 * size_t(mine.triangle)]].position);
+                if (glm::dot(normals[mine.triangle], glm::dvec3(data.vertices[other.far].position) - corner) > tolerance)
+                    throw Error(str("MeshData::convex, but at ", where(), " the faces fold outwards (a dent or a ridge)"));
+            }
+        i = j;
+    }
+}
+
 bool isFlatPatch(const MeshData& data) {
     if (data.vertices.empty()) return false;
     const Vertex& first = data.vertices.front();
@@ -158,6 +271,7 @@ Mesh::Mesh(const MeshData& data)
         if (index >= data.vertices.size())
             throw Error(str("mesh index ", index, " is out of range (", data.vertices.size(),
                             " vertices)"));
+    checkMeshClaims(data);
     // The bounds: the box's centre, and the farthest vertex from it.
     glm::dvec3 lo(data.vertices.front().position), hi = lo;
     for (const Vertex& v : data.vertices) {
