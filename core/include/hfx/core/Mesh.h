@@ -77,8 +77,8 @@ bool isConvex(const MeshData& data);
 /// edge, running along it in opposite directions; a convex one has each face's far corner on or
 /// behind the plane of the face beside it. Throws hfx::Error naming the claim and the edge; the
 /// Mesh constructor calls it. O(triangles log triangles): 3.5 ms for makeSphere's default, 0.7 s
-/// for a million triangles (llvmpipe's machine). (A closed mesh convex at every edge is convex;
-/// for an open one this is the part of isConvex that is cheap.)
+/// for a million triangles (on the 2-core development machine). A closed mesh convex at every
+/// edge is convex; for an open one this is the part of isConvex that is cheap.
 void checkMeshClaims(const MeshData& data);
 
 /// True where the mesh is one flat patch with one texture frame: every vertex has the first's
