@@ -41,7 +41,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     frame.boundedSearch = !hier && material.boundedSearch && std::ranges::all_of(layers, [](const SurfaceLayer& l) {
                               return !l.traced || carriesBounds(l.textures->config());
                           });
-    const PyramidLayout layout = resolvedLayout(options.boundsLayout);
+    const PyramidLayout layout = resolvedLayout(options.boundsLayout, workarounds());
     HeightBounds* bounds0 = nullptr;
     // The bounds the draw reads (hier's, a bounded search's traced layers'), built from the
     // current texels where they are older; hier's patch solve also reads the atlas layout's
@@ -67,8 +67,8 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     // drawn without a stencil test (the rays draw would run its operations) into a
     // single-sampled target (one fragment a pixel).
     const TracePass pass = options.tracePass != TracePass::Auto ? options.tracePass
-                           : glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw
-                                                                           : TracePass::Compute;
+                           : workarounds().traceInDraw              ? TracePass::InDraw
+                                                                    : TracePass::Compute;
     if (pass == TracePass::Compute && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
         !glIsEnabled(GL_STENCIL_TEST)) {
         GLint samples = 0;
@@ -76,8 +76,12 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         frame.computeTrace = samples == 0;
     }
 
+    // The flat patch's light: every pixel's light ray, the texel shadows' (none for a caster: it
+    // writes depth only).
+    const std::optional<ShadowLight> patchLight = caster ? std::nullopt : flatPatchLight(mesh, model, light, material);
     frame.texelShadows =
-        texelShadowsFor(textures, *bounds0, mesh, model, viewProj, viewport, light, material, options, caster, frame);
+        caster ? nullptr
+               : texelShadowsFor(textures, *bounds0, mesh, model, viewProj, viewport, patchLight, material, options, frame);
     if (frame.texelShadows) {
         const ShadowLight& l = *frame.texelShadows->light();
         u.shadowLight = {l.uvPerClimb, l.penumbra, l.slack};
@@ -98,10 +102,9 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         // Every pixel's light ray is the flat patch's light (the texel shadows' where they are
         // read) where it has one and no silhouette fade scales its depth pixel by pixel; else the
         // rays draw stores each pixel's. A caster's pass walks no light ray.
-        const std::optional<ShadowLight> l =
-            material.silhouetteFade == 0.0f && !caster ? flatPatchLight(mesh, model, light, material) : std::nullopt;
-        if (l) u.shadowLight = {l->uvPerClimb, l->penumbra, l->slack};
-        frame.traceLights = !l && material.shadows && !caster;
+        const bool uniformLight = patchLight && material.silhouetteFade == 0.0f;
+        if (uniformLight) u.shadowLight = {patchLight->uvPerClimb, patchLight->penumbra, patchLight->slack};
+        frame.traceLights = !uniformLight && material.shadows && !caster;
         prepareComputeTrace(viewport, frame.traceLights, u);
     }
 
@@ -142,10 +145,10 @@ HeightBounds& ExactTracer::boundsFor(const SurfaceLayer& layer, PyramidLayout la
 
 const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures, HeightBounds& bounds, const Mesh& mesh,
                                                  const glm::mat4& model, const glm::mat4& viewProj,
-                                                 const Viewport& viewport, const DirectionalLight& light,
-                                                 const SurfaceMaterial& material, const DrawOptions& options, bool caster,
+                                                 const Viewport& viewport, const std::optional<ShadowLight>& light,
+                                                 const SurfaceMaterial& material, const DrawOptions& options,
                                                  TracerFrame& frame) {
-    if (caster || !mesh.patch()) return nullptr; // a caster writes depth only
+    if (!mesh.patch()) return nullptr;
     const SurfaceTexturesConfig& field = textures.config();
     std::array<glm::vec3, 4> corners;
     for (size_t i = 0; i < corners.size(); ++i)
@@ -153,8 +156,7 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     const double pixels = screenArea(corners, viewProj, viewport[2], viewport[3]);
     frame.pixelsPerTexel = pixels / (double(field.width) * field.height);
     if (options.texelShadows == TexelShadowChoice::Off) return nullptr;
-    const std::optional<ShadowLight> shadowLight = flatPatchLight(mesh, model, light, material);
-    if (!shadowLight) return nullptr; // no shadow ray is traced
+    if (!light) return nullptr; // no shadow ray is traced
     // Every sample where that pays; under a pixel budget, every few samples where their spacing
     // on screen stays within it; forced on: the stride asked for, or the policy's, or every one.
     if (strides_.size() > 64) strides_.clear(); // meshes come and go: a held choice is a hint
@@ -175,8 +177,7 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
         it->uid = textures.uid();
     }
     it->used = ++clock_;
-    if (!it->shadows.holds(textures, *shadowLight, stride))
-        texelPass_.draw(textures, bounds, *shadowLight, stride, it->shadows);
+    if (!it->shadows.holds(textures, *light, stride)) texelPass_.draw(textures, bounds, *light, stride, it->shadows);
     return &it->shadows;
 }
 
@@ -247,6 +248,11 @@ void ExactTracer::finish(const TracerFrame& frame) {
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, deferred_.id());
     glDrawArraysIndirect(GL_POINTS, nullptr);
     deferredDone_ = GlFence::insert();
+}
+
+const GlWorkarounds& ExactTracer::workarounds() {
+    if (!workarounds_) workarounds_ = glWorkarounds(currentGlRenderer());
+    return *workarounds_;
 }
 
 void ExactTracer::prepareComputeTrace(const Viewport& viewport, bool lights, SurfaceUniforms& u) {

@@ -24,9 +24,13 @@ std::string boundsRefusal(const SurfaceTexturesConfig& config) {
     return {};
 }
 
-PyramidLayout resolvedLayout(PyramidLayout layout) {
+PyramidLayout resolvedLayout(PyramidLayout layout, const GlWorkarounds& device) {
     if (layout != PyramidLayout::Auto) return layout;
-    return glWorkarounds(currentGlRenderer()).pyramidAtlas ? PyramidLayout::Atlas : PyramidLayout::MipChain;
+    return device.pyramidAtlas ? PyramidLayout::Atlas : PyramidLayout::MipChain;
+}
+
+PyramidLayout resolvedLayout(PyramidLayout layout) {
+    return layout != PyramidLayout::Auto ? layout : resolvedLayout(layout, glWorkarounds(currentGlRenderer()));
 }
 
 HeightBounds::HeightBounds(int width, int height, EdgeMode edges, PyramidLayout layout)

@@ -17,14 +17,15 @@
 //   deferred    the light walks the texel shadows do not hold, left by the draw to a pass after
 //   walks       it (finish, trace/hier/deferred.glsl): one walk to a lane, not one lane's walk
 //               holding up its warp (DrawOptions::deferShadowWalks)
-//   computed    on a GPU, a convex mesh (a flat patch, a sphere; a caster's too): a rays draw stores each
-//   walks       pixel's view ray, walks() walks it and its light ray a lane per pixel in a compute
-//               pass, and the shading draw reads the hits (DrawOptions::tracePass,
+//   computed    on a GPU, a convex mesh (a flat patch, a sphere; a caster's too): a rays draw
+//   walks       stores each pixel's view ray, walks() walks it and its light ray a lane per pixel
+//               in a compute pass, and the shading draw reads the hits (DrawOptions::tracePass,
 //               trace/hier/trace.glsl)
 //
 // Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlFence.h"
+#include "hfx/core/GlRenderer.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/ShaderProgram.h"
 #include "hfx/core/ShadowLight.h"
@@ -61,11 +62,10 @@ enum class TracePass {
     Auto,    ///< the device's: InDraw where GlWorkarounds::traceInDraw says so, else Compute
     InDraw,  ///< the surface draw's fragments walk their view and light rays
     /// Where it holds (a camera's or a shadow caster's draw of a convex mesh, Mesh::convex: a
-    /// flat patch, a sphere;
-    /// ExactTracer::prepare), a rays draw stores each pixel's view ray (and its light ray where
-    /// that is not one for the draw), a compute pass walks them a lane per pixel, and the
-    /// shading draw reads the hit (trace/hier/trace.glsl): the same hits, walked on every core a
-    /// compute dispatch reaches. Elsewhere InDraw.
+    /// flat patch, a sphere; ExactTracer::prepare), a rays draw stores each pixel's view ray (and
+    /// its light ray where that is not one for the draw), a compute pass walks them a lane per
+    /// pixel, and the shading draw reads the hit (trace/hier/trace.glsl): the same hits, walked
+    /// on every core a compute dispatch reaches. Elsewhere InDraw.
     Compute,
 };
 
@@ -132,15 +132,20 @@ public:
 
 private:
     using Viewport = std::array<GLint, 4>; ///< x, y, width, height (GL_VIEWPORT)
+    /// This context's workarounds (the bounds' layout, where the walks run), read at the first
+    /// draw: a tracer lives in one context, and parsing them per draw cost two glGetString calls
+    /// and the environment's each time.
+    const GlWorkarounds& workarounds();
     /// The bounds of `layer`'s textures in `layout`: the layer's own where they hold its current
     /// texels, else the ones held here (made for a new surface, not yet built).
     HeightBounds& boundsFor(const SurfaceLayer& layer, PyramidLayout layout);
     /// The texel shadows the draw reads (nullptr: none): the policy's stride from the view, then
     /// the cached ones where they still hold, else drawn.
+    /// `light` is the flat patch's (flatPatchLight; empty for a caster or where none is traced).
     const TexelShadows* texelShadowsFor(const SurfaceTextures& textures, HeightBounds& bounds, const Mesh& mesh,
                                         const glm::mat4& model, const glm::mat4& viewProj, const Viewport& viewport,
-                                        const DirectionalLight& light, const SurfaceMaterial& material,
-                                        const DrawOptions& options, bool caster, TracerFrame& frame);
+                                        const std::optional<ShadowLight>& light, const SurfaceMaterial& material,
+                                        const DrawOptions& options, TracerFrame& frame);
     /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
     /// deferred appended (where the GPU is past it), empties it and binds it.
     void prepareDeferred(const Viewport& viewport);
@@ -176,6 +181,7 @@ private:
     /// The last stride drawn per mesh (0: none), so the policy holds on near its threshold.
     std::map<const Mesh*, int> strides_;
     TracerFrame last_, lastCaster_;
+    std::optional<GlWorkarounds> workarounds_;
     ShaderProgram beam_[2]; ///< by the pyramid's layout: a mip chain, the atlas
     GlFramebuffer beamFramebuffer_;
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin

@@ -18,6 +18,7 @@
 // Its storage is made by the first build or upload. Thread: the thread whose GL context is current.
 
 #include "hfx/core/GlObject.h"
+#include "hfx/core/GlRenderer.h"
 #include "hfx/core/SurfaceTextures.h"
 
 #include <cstdint>
@@ -37,6 +38,8 @@ enum class PyramidLayout {
 
 /// `layout`, or for Auto the current GL context's (GlWorkarounds::pyramidAtlas).
 PyramidLayout resolvedLayout(PyramidLayout layout);
+/// `layout`, or for Auto the one `device` says (a caller that holds its context's workarounds).
+PyramidLayout resolvedLayout(PyramidLayout layout, const GlWorkarounds& device);
 
 /// Why textures of `config` cannot carry height bounds, empty where they can: the pyramid halves
 /// power-of-two sizes, and unorm8 heights round up to 1/510 above a bound, so the exact tracer
