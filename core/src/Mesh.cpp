@@ -92,13 +92,23 @@ MeshData makeSphere(const SphereConfig& config) {
     return mesh;
 }
 
-bool isConvex(const MeshData& data) {
-    if (data.vertices.empty() || data.indices.size() < 3) return false;
+namespace {
+
+/// The box around a mesh's vertices (it has some): its lowest and highest corners.
+std::pair<glm::dvec3, glm::dvec3> positionBox(const MeshData& data) {
     glm::dvec3 lo(data.vertices.front().position), hi = lo;
     for (const Vertex& v : data.vertices) {
         lo = glm::min(lo, glm::dvec3(v.position));
         hi = glm::max(hi, glm::dvec3(v.position));
     }
+    return {lo, hi};
+}
+
+} // namespace
+
+bool isConvex(const MeshData& data) {
+    if (data.vertices.empty() || data.indices.size() < 3) return false;
+    const auto [lo, hi] = positionBox(data);
     const double tolerance = 1e-5 * std::max(glm::length(hi - lo), 1e-12);
     for (size_t t = 0; t + 2 < data.indices.size(); t += 3) {
         const glm::dvec3 a(data.vertices[data.indices[t]].position), b(data.vertices[data.indices[t + 1]].position),
@@ -165,11 +175,7 @@ std::vector<uint32_t> pointIds(const MeshData& data, double tolerance, std::vect
 
 void checkMeshClaims(const MeshData& data) {
     if (!data.closed && !data.convex) return;
-    glm::dvec3 lo(data.vertices.front().position), hi = lo;
-    for (const Vertex& v : data.vertices) {
-        lo = glm::min(lo, glm::dvec3(v.position));
-        hi = glm::max(hi, glm::dvec3(v.position));
-    }
+    const auto [lo, hi] = positionBox(data);
     const double extent = std::max(glm::length(hi - lo), 1e-30), tolerance = 1e-6 * extent;
     std::vector<glm::dvec3> points;
     const std::vector<uint32_t> id = pointIds(data, tolerance, points);
@@ -273,11 +279,7 @@ Mesh::Mesh(const MeshData& data)
                             " vertices)"));
     checkMeshClaims(data);
     // The bounds: the box's centre, and the farthest vertex from it.
-    glm::dvec3 lo(data.vertices.front().position), hi = lo;
-    for (const Vertex& v : data.vertices) {
-        lo = glm::min(lo, glm::dvec3(v.position));
-        hi = glm::max(hi, glm::dvec3(v.position));
-    }
+    const auto [lo, hi] = positionBox(data);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     double radius = 0.0;
     for (const Vertex& v : data.vertices) radius = std::max(radius, glm::length(glm::dvec3(v.position) - centre));
