@@ -13,7 +13,6 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
-#include <algorithm>
 #include <ios>
 
 namespace hfx {
@@ -147,23 +146,22 @@ private:
 class NoFramebufferWrites {
 public:
     NoFramebufferWrites() {
-        glGetIntegerv(GL_MAX_DRAW_BUFFERS, &buffers_);
-        buffers_ = std::min(buffers_, kBuffers);
-        for (GLint i = 0; i < buffers_; ++i) glGetBooleani_v(GL_COLOR_WRITEMASK, GLuint(i), masks_[i]);
+        for (GLuint i = 0; i < kBuffers; ++i) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
         glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_);
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glDepthMask(GL_FALSE);
     }
     ~NoFramebufferWrites() {
-        for (GLint i = 0; i < buffers_; ++i) glColorMaski(GLuint(i), masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
+        for (GLuint i = 0; i < kBuffers; ++i) glColorMaski(i, masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
         glDepthMask(depth_);
     }
     NoFramebufferWrites(const NoFramebufferWrites&) = delete;
     NoFramebufferWrites& operator=(const NoFramebufferWrites&) = delete;
 
 private:
-    static constexpr GLint kBuffers = 8; // GL 4.5 promises 8 draw buffers
-    GLint buffers_ = 0;
+    // GL 4.5 promises at least 8 draw buffers, and HFX draws into buffer 0 only: the first 8
+    // masks are saved (glColorMask set every buffer's), without asking the context its count.
+    static constexpr GLuint kBuffers = 8;
     GLboolean masks_[kBuffers][4] = {}, depth_ = GL_TRUE;
 };
 

@@ -401,7 +401,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     glDepthFunc(GL_LESS);
     // The mesh's winding as the model leaves it (a mirroring model turns it): the compute pass's
     // draws tell front faces by it, and the back faces a closed mesh hides are culled.
-    if (frame.computeTrace || mesh.closed()) glFrontFace(glm::determinant(glm::mat3(model)) < 0.0f ? GL_CW : GL_CCW);
+    glFrontFace(glm::determinant(glm::mat3(model)) < 0.0f ? GL_CW : GL_CCW);
     if (backFacesHidden(mesh, model, camera, caster != nullptr)) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
