@@ -11,7 +11,8 @@
 # and 3840x2160, the frame bench (water, decals, planet, the transfer table) at both sizes, the
 # decal wall and the planet at 1280x720 again with hier walking in the draw (bench-720p has them
 # in the compute pass, a GPU's default), and the ringed planet at 1280x720. A step that runs out
-# of time is cut and says so; the rest go on. HFX_GPU_STEPS may name fewer steps (say "gl-tests bench-tracers-720p"): the budget is then
+# of time is cut and says so; the rest go on. HFX_GPU_STEPS may name fewer steps (say
+# "gl-tests bench-tracers-720p"): the budget is then
 # shared among those. Nothing here installs anything: the bundle carries what the binaries need.
 set -uo pipefail
 bundle=$(cd "${1:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}" && pwd)

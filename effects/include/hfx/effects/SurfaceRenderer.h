@@ -3,8 +3,9 @@
 // shading model: the program is composed from shaders/surface.frag, the technique's trace file
 // and the model's shade file, built per variant on first use and kept. Per-draw uniforms go in
 // one uniform buffer (SurfaceUniforms). It draws into whatever framebuffer and context the
-// caller has bound and restores the GL state it changes (program, vertex array, depth test, the
-// texture units, image units, uniform-buffer and storage-buffer bindings of Bindings.h; around the
+// caller has bound and restores the GL state it changes (program, vertex array, depth test, face
+// culling and winding, the texture units, image units, uniform-buffer and storage-buffer bindings
+// of Bindings.h; around the
 // beam start's prepass, the draw framebuffer, viewport, blending, scissor test and draw buffer 0's
 // colour mask; around the computed walks' rays draw, every draw buffer's colour mask and the
 // depth mask). What the exact tracer reads besides the surface textures, and when it is made, is
@@ -238,9 +239,8 @@ struct DrawOptions {
     /// against the walks in the draw (docs/BENCHMARKS.md).
     bool deferShadowWalks = false;
     /// Where the exact tracer walks the view rays (a camera's, a shadow caster's) and their light
-    /// rays on a convex mesh
-    /// (Mesh::convex; one layer, no stencil test, a single-sampled target): Auto, the device's
-    /// (GlWorkarounds::traceInDraw).
+    /// rays on a convex mesh (Mesh::convex; one layer, no stencil test, a single-sampled target):
+    /// Auto, the device's (GlWorkarounds::traceInDraw).
     TracePass tracePass = TracePass::Auto;
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).
