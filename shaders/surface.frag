@@ -194,6 +194,11 @@ float hfx_shade_level(float entryLevel, vec2 dx, vec2 dy) {
 }
 
 void main() {
+#if HFX_COMPUTE_TRACE == 1
+    // A back face stores nothing (trace/hier/trace.glsl): its pixel's front face does, if any.
+    // (gl_FrontFacing is its primitive's: a 2x2 quad leaves together.)
+    if (!gl_FrontFacing) return;
+#endif
     // The polygon's frame, for the view ray (after the walk: geometricNormal, worldFromTexture).
     const vec3 entryNormal = normalize(v_normal);
     const mat3 entryFrame = hfx_world_from_texture(entryNormal, v_tangent, v_bitangent);
@@ -282,17 +287,17 @@ void main() {
         const float blend = clamp(mipLevel - (u_lodThreshold - 1.0), 0.0, 1.0);
 #if HFX_COMPUTE_TRACE == 1
         // The light ray is walked where the shading draw's test below holds at the entry (the
-        // walks pass tests the hit's height). A back face stores nothing (trace/hier/trace.glsl).
+        // walks pass tests the hit's height).
         bool walksLight = false;
 #if HFX_SELF_SHADOW && !HFX_SHADOW_CASTER // (a caster's pass walks no light ray: it shades nothing)
         walksLight = lightTS.z > 0.0 && dot(entryNormal, normalize(u_lightDir)) > 0.0;
 #if HFX_TRACE_LIGHTS
-        if (walksLight && gl_FrontFacing) hfx_traceLights[slot] = lightTS.xy / lightTS.z * depthScale;
+        if (walksLight) hfx_traceLights[slot] = lightTS.xy / lightTS.z * depthScale;
 #endif
 #endif
         traceInfo = uvec2(floatBitsToUint(ray.tolerance) | (walksLight ? HFX_TRACE_WALKS_LIGHT : 0u),
                           hfx_trace_mark(true) | (packUnorm2x16(vec2(blend, 0.0)) & 0xffffu));
-        if (gl_FrontFacing) hfx_traceRays[slot] = vec4(ray.uv, ray.parallax);
+        hfx_traceRays[slot] = vec4(ray.uv, ray.parallax);
 #elif HFX_COMPUTE_TRACE == 2
         // (The walks pass's hit, read above.)
 #else
@@ -303,7 +308,7 @@ void main() {
     }
 #endif
 #if HFX_COMPUTE_TRACE == 1
-    if (gl_FrontFacing) hfx_traceInfo[slot] = traceInfo;
+    hfx_traceInfo[slot] = traceInfo;
     return; // the walks pass takes it from here
 #elif HFX_COMPUTE_TRACE == 2
     // A helper lane past the mesh's edge has no slot. The hits' spread below (the shading's level)
