@@ -49,7 +49,7 @@
 // instructions they issue, not by their fetches' waits: a level-0 step reading the cell's samples
 // (fewer fetches, more instructions) was slower, the solves gathered after the bounds' loop much
 // slower, and fetching the next cell of a level with each one a few per cent faster on most views
-// and slower on others (docs/BENCHMARKS.md). A cheaper pixel needs fewer steps.
+// and slower on others (docs/history/tuning.md, issue 36's part). A cheaper pixel needs fewer steps.
 
 // To the fragment stage (surface.frag): interpolate the polygon's frame again after the trace
 // rather than keep it through the walk, whose state and patch solve hold many registers.
@@ -88,7 +88,7 @@ HfxWalk hfx_walk_begin(vec2 p0, vec2 dir, float t, int level) {
     const ivec2 size = hfx_size();
     // The frame's origin in the field: an even multiple of its size (every level's cells align),
     // 0 for texcoords in [0, 2). Not kept, nor is p0: the start relative to it is what the patch
-    // solve needs (two registers fewer through the loop: docs/BENCHMARKS.md).
+    // solve needs (two registers fewer through the loop: docs/history/tuning.md).
     const ivec2 base = ivec2(floor((p0 + 0.5) / vec2(2 * size))) * (2 * size);
     const bvec2 back = lessThan(dir, vec2(0.0));
     w.flip = -ivec2(back);
