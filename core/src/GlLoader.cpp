@@ -42,7 +42,7 @@ void glCheck(const char* call, const char* file, int line) {
         if (e == GL_NO_ERROR) break;
         errors += str(errors.empty() ? "" : ", ", glErrorName(e), " (0x", std::hex, e, std::dec, ")");
     }
-    if (!errors.empty()) throw Error(str(errors, " after ", call, " at ", file, ":", line));
+    if (!errors.empty()) throw Error(str(errors, " after ", call, " at ", sourceName(file), ":", line));
 }
 } // namespace detail
 

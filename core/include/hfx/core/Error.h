@@ -18,6 +18,11 @@ public:
 
 namespace detail {
 [[noreturn]] void checkFailed(const char* file, int line, const char* expr, const std::string& values);
+/// `file` (a __FILE__) as a path from the source tree's root ("effects/src/SurfaceRenderer.cpp"),
+/// however the compiler was handed it: absolute, or relative to the object's folder as ccache's
+/// CCACHE_BASEDIR makes it ("../../effects/src/SurfaceRenderer.cpp"). A path outside the tree is
+/// returned as it is.
+const char* sourceName(const char* file);
 
 template <typename A, typename B>
 std::string describe(const char* op, const A& a, const B& b) {
