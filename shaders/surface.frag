@@ -78,6 +78,14 @@
 #if HFX_DEFERRED_SHADOWS && (HFX_TRACE_OUTPUT || HFX_SHADOW_CASTER || !HFX_TEXEL_SHADOWS)
 #error "HFX_DEFERRED_SHADOWS defers the walks HFX_TEXEL_SHADOWS leave, of a drawn colour: not with HFX_TRACE_OUTPUT or HFX_SHADOW_CASTER"
 #endif
+#if HFX_TRACES
+// Conservative depth: the hit lies on the view ray at or behind the polygon, so the depth written
+// is never less than the fragment's own (clamped to it against rounding, and for parallax
+// mapping's offset-limited point). A GPU then keeps its early and hierarchical depth tests
+// against what is already drawn, where a plain gl_FragDepth write turns them off. The renderer
+// draws with GL_LESS, which needs a depth range whose near lies below its far.
+layout(depth_greater) out float gl_FragDepth;
+#endif
 
 #include "bindings.glsl"
 #include "surface/uniforms.glsl"
@@ -368,7 +376,8 @@ void main() {
     // (Normal mapping keeps the polygon's depth and with it early depth testing.)
     const vec4 clip = u_viewProj * vec4(displacedWorld, 1.0);
     const float ndcDepth = clip.z / clip.w;
-    gl_FragDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+    const float hitDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+    gl_FragDepth = max(hitDepth, gl_FragCoord.z);
 #endif
 #if HFX_SHADOW_CASTER
     return; // the map holds the traced depth; nothing to shade

@@ -39,9 +39,9 @@ struct MeshData {
     bool convex = false;
     /// The triangles enclose a solid, counter-clockwise seen from outside: from a point outside
     /// it, every back face lies behind a front face. makeSphere's do. The renderer then culls the
-    /// back faces where the eye is outside the mesh's bounds (SurfaceRenderer: a program that
-    /// writes its depth has no early depth test to reject them behind the front faces). Checked
-    /// by Mesh like `convex`.
+    /// back faces where the eye is outside the mesh's bounds (SurfaceRenderer: a back face drawn
+    /// before the front face over it is shaded, and on llvmpipe, where a program that writes its
+    /// depth has no early depth test, every one is). Checked by Mesh like `convex`.
     bool closed = false;
 };
 
