@@ -104,22 +104,30 @@ std::pair<glm::dvec3, glm::dvec3> positionBox(const MeshData& data) {
     return {lo, hi};
 }
 
+/// Triangle `t`'s first corner and unit normal (its winding's), or none where it is degenerate (a
+/// sphere's pole: no plane, no front, no edges of its own).
+std::optional<std::pair<glm::dvec3, glm::dvec3>> facePlane(const MeshData& data, size_t t) {
+    const glm::dvec3 a(data.vertices[data.indices[3 * t]].position), b(data.vertices[data.indices[3 * t + 1]].position),
+        c(data.vertices[data.indices[3 * t + 2]].position);
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double area = glm::length(n);
+    const double longest = std::max({glm::dot(b - a, b - a), glm::dot(c - a, c - a), glm::dot(c - b, c - b)});
+    if (!(area > 1e-6 * longest)) return std::nullopt;
+    return std::pair{a, n / area};
+}
+
 } // namespace
 
 bool isConvex(const MeshData& data) {
     if (data.vertices.empty() || data.indices.size() < 3) return false;
     const auto [lo, hi] = positionBox(data);
     const double tolerance = 1e-5 * std::max(glm::length(hi - lo), 1e-12);
-    for (size_t t = 0; t + 2 < data.indices.size(); t += 3) {
-        const glm::dvec3 a(data.vertices[data.indices[t]].position), b(data.vertices[data.indices[t + 1]].position),
-            c(data.vertices[data.indices[t + 2]].position);
-        const glm::dvec3 n = glm::cross(b - a, c - a);
-        const double area = glm::length(n);
-        const double longest = std::max({glm::dot(b - a, b - a), glm::dot(c - a, c - a), glm::dot(c - b, c - b)});
-        if (!(area > 1e-6 * longest)) continue; // degenerate (a sphere's pole): no plane, no front
-        const glm::dvec3 unit = n / area;
+    for (size_t t = 0; t < data.indices.size() / 3; ++t) {
+        const auto plane = facePlane(data, t);
+        if (!plane) continue;
+        const auto& [a, unit] = *plane;
         // It faces where its vertices' normals point, and nothing lies in front of its plane.
-        if (glm::dot(unit, glm::dvec3(data.vertices[data.indices[t]].normal)) < 0.0) return false;
+        if (glm::dot(unit, glm::dvec3(data.vertices[data.indices[3 * t]].normal)) < 0.0) return false;
         for (const Vertex& v : data.vertices)
             if (glm::dot(unit, glm::dvec3(v.position) - a) > tolerance) return false;
     }
@@ -190,12 +198,10 @@ void checkMeshClaims(const MeshData& data) {
     sides.reserve(data.indices.size());
     std::vector<glm::dvec3> normals(data.indices.size() / 3);
     for (size_t t = 0; t < normals.size(); ++t) {
+        const auto plane = facePlane(data, t);
+        if (!plane) continue;
+        normals[t] = plane->second;
         const std::array<uint32_t, 3> c = {data.indices[3 * t], data.indices[3 * t + 1], data.indices[3 * t + 2]};
-        const glm::dvec3 a(data.vertices[c[0]].position), b(data.vertices[c[1]].position), d(data.vertices[c[2]].position);
-        const glm::dvec3 n = glm::cross(b - a, d - a);
-        const double longest = std::max({glm::dot(b - a, b - a), glm::dot(d - a, d - a), glm::dot(d - b, d - b)});
-        if (!(glm::length(n) > 1e-6 * longest)) continue; // degenerate (a sphere's pole): no edges of its own
-        normals[t] = glm::normalize(n);
         for (int e = 0; e < 3; ++e) {
             const std::uint64_t p = id[c[size_t(e)]], q = id[c[size_t((e + 1) % 3)]];
             sides.push_back({std::min(p, q) << 32 | std::max(p, q), std::uint32_t(t), c[size_t((e + 2) % 3)], p < q});
