@@ -7,7 +7,8 @@
 #
 # It prints the card and the driver, then runs, each step within its share of the budget and
 # its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
-# GL tests (the tracer's first), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout)
+# GL tests (the tracer's first; gl-tests-compute-pass: the few that hold the compute pass, a GPU's
+# default, to the draw's hits, shadows, colours and depths), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout)
 # and 3840x2160, the frame bench (water, decals, planet, the transfer table) at both sizes, the
 # decal wall and the planet at 1280x720 again with hier walking in the draw (bench-720p has them
 # in the compute pass, a GPU's default), and the ringed planet at 1280x720. A step that runs out
@@ -23,10 +24,11 @@ start=$(date +%s)
 run=(bash "$bundle/run.sh")
 
 # Each step's share of the budget, in percent of all steps; HFX_GPU_STEPS selects.
-declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10 [bench-tracers-720p]=12
-                   [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
+declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10
+                   [gl-tests-compute-pass]=4 [bench-tracers-720p]=12 [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
                    [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8)
-selected=${HFX_GPU_STEPS:-${!shares[*]}}
+# By default every step but gl-tests-compute-pass, which gl-tests-rest holds.
+selected=${HFX_GPU_STEPS:-$(printf '%s\n' "${!shares[@]}" | grep -vx gl-tests-compute-pass | tr '\n' ' ')}
 total=0
 for n in $selected; do
     [ -n "${shares[$n]:-}" ] || { echo "gpu-check: no step '$n' (steps: ${!shares[*]})" >&2; exit 2; }
@@ -66,6 +68,10 @@ step cl-tests-pocl env HFX_CL_PLATFORM=portable "${run[@]}" hfx-tests-cl --gtest
 tracer='TracerContract.*:Techniques.*:Transfer.*:Users.*'
 step gl-tests-tracer "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="$tracer"
 step gl-tests-rest "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="-$tracer"
+# A subset of gl-tests-rest, for a run that times the compute pass: its walks against the draw's
+# (hits, shadows, colours; a caster's depths), and the depth output (4 s on llvmpipe).
+step gl-tests-compute-pass "${run[@]}" hfx-tests-gl --gtest_brief=1 \
+    --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*'
 step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
 # The same draws with llvmpipe's pyramid layout (GlWorkarounds::pyramidAtlas) on this GPU: what
 # the mip chain and the gather are worth here.
