@@ -206,6 +206,8 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
             if (scene->pixelsPerTexel() > 0.0)
                 std::snprintf(texels, sizeof texels, "%s (%.2f px/texel)", scene->texelShadowsLabel().c_str(),
                               scene->pixelsPerTexel());
+            // Where hier walked (TracePass::Auto: the device's, and its trial's medians where it timed both).
+            const std::string pass = scene->tracePassLabel();
             const auto [sequential, overlapped] = sequentialAndOverlapped(*scene, target, frames);
             const auto& config = scene->effect().textures().config();
             char ownDraw[96] = "(POM)", ownWall[64] = "(POM)";
@@ -221,17 +223,17 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
             char row[512];
             std::snprintf(row, sizeof row,
                           "| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2fx | %.1f%% | "
-                          "%.1f (%.1f sequential) | %ld | %s | %s |\n",
+                          "%.1f (%.1f sequential) | %ld | %s | %s | %s |\n",
                           name, config.width, config.height, b.field, b.normals, b.extra, b.upload, b.pom, b.unshadowed,
                           b.nm, b.frame(), 1000.0 / b.frame(), b.pom / b.nm, 100.0 * (b.compute() + b.upload) / b.frame(),
-                          overlapped, sequential, peakResidentMiB(), ownWall, texels);
+                          overlapped, sequential, peakResidentMiB(), ownWall, texels, pass.empty() ? "-" : pass.c_str());
             wallRows += row;
         }
     if (!wallRows.empty())
         std::printf("\nCPU wall clock, ms, each stage waited for (glFinish, clFinish) on its own, the same frames:\n\n"
                     "| scene | field | step | normals | pyramid/extra | upload | POM draw | POM no shadows | NM draw | "
                     "frame | fps | POM/NM | compute+upload share | overlapped frame | peak RSS MiB | own technique draw | "
-                    "texel shadows |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n%s",
+                    "texel shadows | hier walked in |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n%s",
                     wallRows.c_str());
 
     if (wanted("transfer")) {

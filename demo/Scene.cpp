@@ -29,7 +29,14 @@ void Scene::applyOptions(const SceneOptions& o) {
 
 std::string Scene::tracePassLabel() const {
     if (technique != Technique::Hierarchical) return "";
-    return traced_.computeTrace ? "a compute pass" : "the draw";
+    const char* pass = traced_.computeTrace ? "a compute pass" : "the draw";
+    if (!trial_.decided()) return pass;
+    const bool computed = trial_.chosen == TracePass::Compute;
+    char label[128];
+    std::snprintf(label, sizeof label, "%s (auto: %.2f ms, %s %.2f ms)", pass,
+                  computed ? trial_.computeMs : trial_.inDrawMs, computed ? "the draw" : "a compute pass",
+                  computed ? trial_.inDrawMs : trial_.computeMs);
+    return label;
 }
 
 std::string Scene::texelShadowsLabel() const {
@@ -41,6 +48,7 @@ void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light
     const std::vector<SurfaceLayer> layers = effect().layers();
     renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, drawOptions());
     traced_ = technique == Technique::Hierarchical ? renderer.tracer().last() : TracerFrame{};
+    trial_ = renderer.tracer().passTrial(false);
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

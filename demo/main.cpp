@@ -247,8 +247,8 @@ int main(int argc, char** argv) {
                  "(the same image; slower on llvmpipe)");
     app.add_option("--trace-pass", o.tracePass,
                    "where hier walks a convex surface's rays (a plane, the planet): auto (the device's: the draw on a "
-                   "CPU rasteriser, else a compute pass), draw, or compute (a rays draw, a compute pass a lane per "
-                   "pixel, the shading draw; the same hits)")
+                   "CPU rasteriser, else whichever of the two this device draws faster, timed on the first draws), "
+                   "draw, or compute (a rays draw, a compute pass a lane per pixel, the shading draw; the same hits)")
         ->check(CLI::IsMember({"auto", "draw", "compute"}))->capture_default_str();
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "

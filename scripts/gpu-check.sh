@@ -7,11 +7,12 @@
 #
 # It prints the card and the driver, then runs, each step within its share of the budget and
 # its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
-# GL tests (the tracer's first; gl-tests-compute-pass: the few that hold the compute pass, a GPU's
-# default, to the draw's hits, shadows, colours and depths), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout)
-# and 3840x2160, the frame bench (water, decals, planet, the transfer table) at both sizes, the
-# decal wall and the planet at 1280x720 again with hier walking in the draw (bench-720p has them
-# in the compute pass, a GPU's default), and the ringed planet at 1280x720. A step that runs out
+# GL tests (the tracer's first; gl-tests-compute-pass: the few that hold the exact tracer's
+# compute pass to the draw's hits, shadows, colours and depths), bench-tracers at 1280x720 (also
+# with llvmpipe's pyramid layout) and 3840x2160, the frame bench (water, decals, planet, the
+# transfer table) at both sizes, the decal wall and the planet at 1280x720 again with hier walking
+# in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
+# column gives its medians of both passes), and the ringed planet at 1280x720. A step that runs out
 # of time is cut and says so; the rest go on. HFX_GPU_STEPS may name fewer steps (say
 # "gl-tests bench-tracers-720p"): the budget is then
 # shared among those. Nothing here installs anything: the bundle carries what the binaries need.

@@ -313,8 +313,8 @@ TEST(Demo, TheBeamStartDrawsTheFlatScenesAsTheWalkFromTheTopDoes) {
 }
 
 TEST(Demo, TheTracePassDrawsTheScenesAsTheDrawDoes) {
-    // --trace-pass compute (hier's walks in a compute pass, the GPU's default) against draw (the
-    // walks in the surface draw, llvmpipe's): the decal wall (its shadow map's caster too) and the
+    // --trace-pass compute (hier's walks in a compute pass) against draw (the walks in the surface
+    // draw, llvmpipe's choice): the decal wall (its shadow map's caster too) and the
     // planet (a sphere, a silhouette fade) draw the same frame but where a 2x2 quad straddles two
     // triangles and the shading's mip level follows the neighbour's hit (docs/BENCHMARKS.md);
     // the log says where the walks ran. Normal mapped, the frames differ ten times as much at
@@ -334,6 +334,34 @@ TEST(Demo, TheTracePassDrawsTheScenesAsTheDrawDoes) {
         EXPECT_LE(d.far, 0.001) << scene;
         EXPECT_GT(off.mean, 10.0 * d.mean) << scene << ": the comparison could not tell frames apart";
     }
+}
+
+TEST(Demo, AutoSaysWhichTracePassItTimedFasterWhereNoWorkaroundDecides) {
+    // --trace-pass auto where no workaround decides (trace-in-draw off: a GPU's case): the trial
+    // times both passes on the first 8 frames and the log gives its choice and both medians; with
+    // llvmpipe's own workarounds the log names the draw and no trial.
+    std::string tried, decided;
+    {
+        const WorkaroundsSet set("trace-in-draw=0");
+        const std::string dir = outputPath("demo_pass_trial");
+        std::filesystem::remove_all(dir);
+        const Result r = runDemo("decals --headless --frames 10 --width 160 --height 90 --field 128 --out " + dir);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        tried = r.output;
+    }
+    const std::string dir = outputPath("demo_pass_device");
+    std::filesystem::remove_all(dir);
+    const Result r = runDemo("decals --headless --frames 10 --width 160 --height 90 --field 128 --out " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    decided = r.output;
+    const size_t at = tried.find("hfx: hier walked in ");
+    ASSERT_NE(at, std::string::npos) << tried;
+    const std::string line = tried.substr(at, tried.find('\n', at) - at);
+    std::printf("[trace pass trial] %s\n", line.c_str());
+    EXPECT_TRUE(line.find("the draw (auto: ") != std::string::npos || line.find("a compute pass (auto: ") != std::string::npos)
+        << line;
+    EXPECT_NE(line.find(" ms)"), std::string::npos) << line;
+    EXPECT_NE(decided.find("hfx: hier walked in the draw\n"), std::string::npos) << decided;
 }
 
 TEST(Demo, ASavedDamageLogLoadsIntoTheSameWall) {

@@ -436,5 +436,82 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
     }
 }
 
+
+TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
+    // TracePass::Auto on a device no workaround decides for (here: trace-in-draw turned off):
+    // the first draws that could take either pass alternate them, the compute pass first, each
+    // timed, until each has 1 + kCounted draws; every draw after takes the trial's choice, untimed;
+    // the choice is the side whose median is faster by the compute pass's margin. Both clocks: the
+    // CPU's between two glFinish (a CPU rasteriser's) and GL timestamps read back without waiting
+    // (a GPU's; glFinish between the draws here makes each one's ready by the next draw). Camera
+    // views and shadow casters are tried apart. Where the workaround decides, nothing is timed.
+    constexpr int N = 64;
+    StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
+    surface.run(field.buffer());
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    RenderTarget target(160, 90, true);
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f);
+    camera.aspect = 160.0f / 90.0f;
+    constexpr int kTrialDraws = 2 * (TracePassTrial::kWarmUp + TracePassTrial::kCounted);
+    for (const char* workarounds : {"trace-in-draw=0,cpu-clock-timer=1", "trace-in-draw=0,cpu-clock-timer=0"}) {
+        SCOPED_TRACE(workarounds);
+        const WorkaroundsSet set(workarounds);
+        SurfaceRenderer renderer;
+        std::vector<bool> computed, timed;
+        for (int draw = 0; draw < kTrialDraws + 4; ++draw) {
+            target.bind();
+            target.clear();
+            renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, light,
+                          {.technique = Technique::Hierarchical});
+            glFinish();
+            computed.push_back(renderer.tracer().last().computeTrace);
+            timed.push_back(renderer.tracer().last().timed);
+        }
+        for (int draw = 0; draw < kTrialDraws; ++draw) {
+            EXPECT_TRUE(timed[size_t(draw)]) << "draw " << draw;
+            EXPECT_EQ(computed[size_t(draw)], draw % 2 == 0) << "draw " << draw << ": the compute pass first, then by turns";
+        }
+        const TracePassTrialReport r = renderer.tracer().passTrial(false);
+        ASSERT_TRUE(r.decided()) << "after " << kTrialDraws << " timed draws";
+        EXPECT_EQ(r.inDrawDraws, TracePassTrial::kCounted);
+        EXPECT_EQ(r.computeDraws, TracePassTrial::kCounted);
+        EXPECT_EQ(r.chosen == TracePass::Compute, r.computeMs < TracePassTrial::kComputeMargin * r.inDrawMs)
+            << r.computeMs << " ms computed, " << r.inDrawMs << " ms in the draw";
+        for (int draw = kTrialDraws; draw < kTrialDraws + 4; ++draw) {
+            EXPECT_FALSE(timed[size_t(draw)]) << "draw " << draw;
+            EXPECT_EQ(computed[size_t(draw)], r.chosen == TracePass::Compute) << "draw " << draw;
+        }
+        std::printf("[trace pass trial] %s: %s (%.2f ms in the draw, %.2f ms with the compute pass)\n", workarounds,
+                    tracePassName(r.chosen), r.inDrawMs, r.computeMs);
+        if (std::string(workarounds).ends_with("=1")) {
+            EXPECT_GT(r.inDrawMs, 0.0);
+            EXPECT_GT(r.computeMs, 0.0);
+        }
+        const TracePassTrialReport casters = renderer.tracer().passTrial(true);
+        EXPECT_FALSE(casters.decided()) << "no shadow caster was drawn";
+        EXPECT_EQ(casters.inDrawDraws + casters.computeDraws, 0);
+        // A draw that asks for a side is not timed, and the trial's choice does not bind it.
+        const TracePass other = r.chosen == TracePass::Compute ? TracePass::InDraw : TracePass::Compute;
+        renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, light,
+                      {.technique = Technique::Hierarchical, .tracePass = other});
+        EXPECT_EQ(renderer.tracer().last().computeTrace, other == TracePass::Compute);
+        EXPECT_FALSE(renderer.tracer().last().timed);
+    }
+    // llvmpipe's own workarounds (trace-in-draw): Auto walks in the draw, untimed.
+    SurfaceRenderer renderer;
+    for (int draw = 0; draw < 3; ++draw) {
+        renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, light,
+                      {.technique = Technique::Hierarchical});
+        EXPECT_FALSE(renderer.tracer().last().computeTrace);
+        EXPECT_FALSE(renderer.tracer().last().timed);
+    }
+    const TracePassTrialReport untried = renderer.tracer().passTrial(false);
+    EXPECT_FALSE(untried.decided());
+    EXPECT_EQ(untried.inDrawDraws + untried.computeDraws, 0);
+}
+
 } // namespace
 } // namespace hfx::test

@@ -429,10 +429,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         const GpuScope scope(caster ? "shadow map" : "draw");
         mesh.draw();
     }
-    if (frame.deferredShadows) {
-        const GpuScope scope("deferred walks");
-        tracer_.finish(frame);
-    }
+    tracer_.finish(frame);
 }
 
 std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const DirectionalLight& light,

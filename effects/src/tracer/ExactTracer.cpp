@@ -11,6 +11,7 @@
 #include "../GlStateGuard.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace hfx {
 
@@ -66,15 +67,20 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     // convex mesh (its front faces a fragment per pixel at most; a back face's is normal mapped),
     // drawn without a stencil test (the rays draw would run its operations) into a
     // single-sampled target (one fragment a pixel).
-    const TracePass pass = options.tracePass != TracePass::Auto ? options.tracePass
-                           : workarounds().traceInDraw              ? TracePass::InDraw
-                                                                    : TracePass::Compute;
-    if (pass == TracePass::Compute && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
+    // Auto: the device's workaround, else the trial's side (only draws that could take either
+    // side are timed for it).
+    const bool inDrawOnly = options.tracePass == TracePass::InDraw ||
+                            (options.tracePass == TracePass::Auto && workarounds().traceInDraw);
+    bool computable = false;
+    if (!inDrawOnly && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
         !glIsEnabled(GL_STENCIL_TEST)) {
         GLint samples = 0;
         glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
-        frame.computeTrace = samples == 0;
+        computable = samples == 0;
     }
+    const auto [pass, timed] = computable ? tracePassFor(options.tracePass, caster)
+                                          : std::pair{TracePass::InDraw, false};
+    frame.computeTrace = pass == TracePass::Compute;
 
     // The flat patch's light: every pixel's light ray, the texel shadows' (none for a caster: it
     // writes depth only).
@@ -117,8 +123,91 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         drawBeamStart(mesh, model, u, viewProj, viewport, frame.atlas);
         glBindTextureUnit(HFX_UNIT_BEAM_START, beamTarget_.id());
     }
+    // A trial draw is timed from here (what comes before is the same on either side) to finish().
+    if (timed) {
+        beginTrialDraw(pass, caster);
+        frame.timed = true;
+    }
     (caster ? lastCaster_ : last_) = frame;
     return frame;
+}
+
+std::pair<TracePass, bool> ExactTracer::tracePassFor(TracePass asked, bool caster) {
+    if (asked != TracePass::Auto) return {asked, false};
+    readTrialDraws();
+    const TracePassTrial& trial = trials_[caster ? 1 : 0];
+    return {trial.next(), !trial.decided()};
+}
+
+void ExactTracer::beginTrialDraw(TracePass pass, bool caster) {
+    // A draw begun and never ended (it threw between prepare and finish) is not counted.
+    if (!trialDraws_.empty() && !trialDraws_.back().ended) {
+        const TrialDraw& open = trialDraws_.back();
+        trials_[open.caster ? 1 : 0].record(open.pass, std::numeric_limits<double>::quiet_NaN());
+        trialDraws_.pop_back();
+    }
+    trials_[caster ? 1 : 0].began(pass);
+    TrialDraw& d = trialDraws_.emplace_back();
+    d.pass = pass;
+    d.caster = caster;
+    if (workarounds().cpuClockTimer) {
+        glFinish();
+        d.cpuBegin = std::chrono::steady_clock::now();
+    } else {
+        d.begin = GlQuery::create();
+        glQueryCounter(d.begin.id(), GL_TIMESTAMP);
+    }
+}
+
+void ExactTracer::endTrialDraw() {
+    if (trialDraws_.empty() || trialDraws_.back().ended) return;
+    TrialDraw& d = trialDraws_.back();
+    d.ended = true;
+    if (workarounds().cpuClockTimer) {
+        glFinish();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d.cpuBegin).count();
+        const TrialDraw done = std::move(d);
+        trialDraws_.pop_back();
+        recordTrialDraw(done.pass, done.caster, ms);
+    } else {
+        d.end = GlQuery::create();
+        glQueryCounter(d.end.id(), GL_TIMESTAMP);
+    }
+}
+
+void ExactTracer::readTrialDraws() {
+    // In the order they began, each once the GPU has stamped its end: no wait.
+    while (!trialDraws_.empty() && trialDraws_.front().ended) {
+        const TrialDraw& d = trialDraws_.front();
+        GLint available = 0;
+        glGetQueryObjectiv(d.end.id(), GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available) break;
+        GLuint64 begin = 0, end = 0;
+        glGetQueryObjectui64v(d.begin.id(), GL_QUERY_RESULT, &begin);
+        glGetQueryObjectui64v(d.end.id(), GL_QUERY_RESULT, &end);
+        const double ms = end >= begin ? double(end - begin) * 1e-6 : std::numeric_limits<double>::quiet_NaN();
+        const TracePass pass = d.pass;
+        const bool caster = d.caster;
+        trialDraws_.pop_front();
+        recordTrialDraw(pass, caster, ms);
+    }
+}
+
+void ExactTracer::recordTrialDraw(TracePass pass, bool caster, double ms) {
+    TracePassTrial& trial = trials_[caster ? 1 : 0];
+    const bool wasDecided = trial.decided();
+    trial.record(pass, ms);
+    // Decided for the draw: the compute pass's buffers go, unless the other trial may use them
+    // (a draw that asks for the compute pass makes them again).
+    const TracePassTrial& other = trials_[caster ? 0 : 1];
+    if (!wasDecided && trial.decided() && trial.next() == TracePass::InDraw &&
+        (other.next() == TracePass::InDraw ? other.decided() : !other.started())) {
+        traceRays_ = {};
+        traceInfo_ = {};
+        traceLights_ = {};
+        traceSlots_ = 0;
+        traceWalks_.clear();
+    }
 }
 
 HeightBounds& ExactTracer::boundsFor(const SurfaceLayer& layer, PyramidLayout layout) {
@@ -219,7 +308,14 @@ void ExactTracer::prepareDeferred(const Viewport& viewport) {
 }
 
 void ExactTracer::finish(const TracerFrame& frame) {
-    if (!frame.deferredShadows) return;
+    if (frame.deferredShadows) {
+        const GpuScope scope("deferred walks");
+        walkDeferred(frame);
+    }
+    if (frame.timed) endTrialDraw();
+}
+
+void ExactTracer::walkDeferred(const TracerFrame& frame) {
     ShaderProgram& walk = deferredWalk_[frame.atlas ? 1 : 0];
     if (!walk.id())
         walk = ShaderProgram::compute(surfaceStage("trace/hier/deferred.comp"),

@@ -43,12 +43,15 @@ struct GlWorkarounds {
     /// 54 ms at 1024² (the decal wall's hier draw), 34-106 ms a frame for the ocean's four
     /// cascades; on a GPU the build is one small pass and saves moving 10.7 bytes a texel.
     bool pyramidFromCompute = false;
-    /// ExactTracer (effects): hier's view and light walks in the surface draw's fragment stage,
-    /// instead of a rays draw, a compute pass that walks them a lane per pixel, and the shading
-    /// draw (TracePass::Compute). A GPU may give graphics a few of its cores and compute all of
-    /// them (an H200 traced the same rays in 0.07-0.25 ms in a compute pass against 2.8-7.0 ms
-    /// in hier's draw); llvmpipe runs both on the same threads, its compute stage slower, and
-    /// there the three passes cost 1.9-2.5x the draw that walks (docs/BENCHMARKS.md).
+    /// ExactTracer (effects): TracePass::Auto walks hier's view and light rays in the surface
+    /// draw's fragment stage, with no trial of the compute pass (a rays draw, a dispatch that
+    /// walks them a lane per pixel, the shading draw: TracePass::Compute). Elsewhere Auto times
+    /// both on the first draws and keeps the faster (TracePassTrial): a GPU may give graphics a
+    /// few of its cores and compute all of them (an H200 traced the same rays in 0.07-0.25 ms in
+    /// a compute pass against 2.8-7.0 ms in hier's draw), or all of them to both. llvmpipe runs
+    /// both on the same threads, its compute stage slower: the three passes cost 1.9-2.5x the
+    /// draw that walks (docs/BENCHMARKS.md), and the trial, run there with this off, keeps the
+    /// draw; this saves its eight draws' glFinish and their frames' changes of pass.
     bool traceInDraw = false;
 };
 

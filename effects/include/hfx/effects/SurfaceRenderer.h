@@ -240,7 +240,8 @@ struct DrawOptions {
     bool deferShadowWalks = false;
     /// Where the exact tracer walks the view rays (a camera's, a shadow caster's) and their light
     /// rays on a convex mesh (Mesh::convex; one layer, no stencil test, a single-sampled target):
-    /// Auto, the device's (GlWorkarounds::traceInDraw).
+    /// Auto, the device's: the draw where GlWorkarounds::traceInDraw says so, else the faster of
+    /// the two on this device, timed on the first draws (TracePassTrial).
     TracePass tracePass = TracePass::Auto;
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).

@@ -20,7 +20,8 @@
 //   computed    on a GPU, a convex mesh (a flat patch, a sphere; a caster's too): a rays draw
 //   walks       stores each pixel's view ray, walks() walks it and its light ray a lane per pixel
 //               in a compute pass, and the shading draw reads the hits (DrawOptions::tracePass,
-//               trace/hier/trace.glsl)
+//               trace/hier/trace.glsl); TracePass::Auto takes it where this device draws it
+//               faster, timed on the first draws (TracePassTrial, passTrial)
 //
 // Thread: the thread whose GL context is current.
 
@@ -33,15 +34,19 @@
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/tracer/BoundsPass.h"
 #include "hfx/effects/tracer/TexelShadowPass.h"
+#include "hfx/effects/tracer/TracePassTrial.h"
 
 #include <glm/mat4x4.hpp>
 
 #include <array>
+#include <chrono>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
 #include <span>
+#include <utility>
 
 namespace hfx {
 
@@ -55,18 +60,6 @@ enum class TexelShadowChoice {
     Auto, ///< where they pay on the view, at the stride the policy picks (texelShadowStride)
     On,   ///< always on a flat patch: at DrawOptions::texelStride, else the policy's, else 1
     Off,  ///< never: every pixel walks its light ray
-};
-
-/// Where a hier draw walks its rays (DrawOptions::tracePass).
-enum class TracePass {
-    Auto,    ///< the device's: InDraw where GlWorkarounds::traceInDraw says so, else Compute
-    InDraw,  ///< the surface draw's fragments walk their view and light rays
-    /// Where it holds (a camera's or a shadow caster's draw of a convex mesh, Mesh::convex: a
-    /// flat patch, a sphere; ExactTracer::prepare), a rays draw stores each pixel's view ray (and
-    /// its light ray where that is not one for the draw), a compute pass walks them a lane per
-    /// pixel, and the shading draw reads the hit (trace/hier/trace.glsl): the same hits, walked
-    /// on every core a compute dispatch reaches. Elsewhere InDraw.
-    Compute,
 };
 
 /// The light as the exact tracer's shadow rays see it on a flat mesh (Mesh::patch) drawn with
@@ -92,6 +85,9 @@ struct TracerFrame {
     /// With computeTrace: the rays draw stores each pixel's light ray too (HFX_TRACE_LIGHTS), as
     /// the light is not the flat patch's one for the draw (a curved mesh, a silhouette fade).
     bool traceLights = false;
+    /// One of TracePass::Auto's trial draws (TracePassTrial): prepare() began timing its passes
+    /// (after its own), finish() ends it.
+    bool timed = false;
 };
 
 class ExactTracer {
@@ -116,13 +112,17 @@ public:
     /// textures, units and uniform block bound: walks every ray the rays draw stored, a lane per
     /// pixel (trace/hier/trace.comp). Changes the program: inside the renderer's GlStateGuard.
     void walks(const TracerFrame& frame);
-    /// After the draw that prepare() was for, with its textures, units and uniform block still
+    /// After every draw that prepare() was for, with its textures, units and uniform block still
     /// bound: where it deferred light walks (TracerFrame::deferredShadows), walks them one to a
     /// lane in a compute dispatch (trace/hier/deferred.comp) and writes their pixels again with
-    /// a draw of points where the draw's depth still stands (deferred.vert). Changes the
-    /// program, the vertex array, the indirect buffers and the depth function: inside the
-    /// renderer's GlStateGuard.
+    /// a draw of points where the draw's depth still stands (deferred.vert); then ends a trial
+    /// draw's timing (TracerFrame::timed). Changes the program, the vertex array, the indirect
+    /// buffers and the depth function: inside the renderer's GlStateGuard.
     void finish(const TracerFrame& frame);
+    /// Where TracePass::Auto stands on this device for camera views, or for shadow casters: the
+    /// trial's times and, once its draws are timed, its choice (undecided with no draw timed
+    /// where GlWorkarounds::traceInDraw decides, or no draw could take the compute pass).
+    TracePassTrialReport passTrial(bool caster) const { return trials_[caster ? 1 : 0].report(); }
     /// How many light walks the last draw that deferred them appended (past the buffer's
     /// capacity, the rest were walked in the draw). Reads the buffer back: for tests and reports.
     int deferredWalks() const;
@@ -149,6 +149,18 @@ private:
     /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
     /// deferred appended (where the GPU is past it), empties it and binds it.
     void prepareDeferred(const Viewport& viewport);
+    /// The pass of a draw that asked for `asked`, and whether it is one of the trial's timed draws.
+    std::pair<TracePass, bool> tracePassFor(TracePass asked, bool caster);
+    /// A trial draw's timing: begun once prepare's own passes are issued, ended by finish; the
+    /// times of earlier draws the GPU has stamped since read without waiting.
+    void beginTrialDraw(TracePass pass, bool caster);
+    void endTrialDraw();
+    void readTrialDraws();
+    /// Gives a trial draw's time to its trial; where that decides for the draw, the compute
+    /// pass's buffers go unless the other trial may take it.
+    void recordTrialDraw(TracePass pass, bool caster, double ms);
+    /// finish()'s deferred light walks.
+    void walkDeferred(const TracerFrame& frame);
     /// Sizes the computed walks' buffers for the viewport (the lights' where `lights`), stamps
     /// this draw, binds them and fills the uniform block's trace fields.
     void prepareComputeTrace(const Viewport& viewport, bool lights, SurfaceUniforms& u);
@@ -207,6 +219,18 @@ private:
     int traceSlots_ = 0, traceWidth_ = 0, traceHeight_ = 0;
     std::uint32_t traceStamp_ = 0;
     std::map<int, ShaderProgram> traceWalks_;
+    /// TracePass::Auto's trials, camera views' and shadow casters', and their timed draws whose
+    /// GL timestamps are not yet read (or, with GlWorkarounds::cpuClockTimer, the one under way,
+    /// timed by the CPU clock between two glFinish).
+    std::array<TracePassTrial, 2> trials_;
+    struct TrialDraw {
+        TracePass pass = TracePass::Auto;
+        bool caster = false;
+        bool ended = false; ///< finish() ended it
+        GlQuery begin, end;
+        std::chrono::steady_clock::time_point cpuBegin;
+    };
+    std::deque<TrialDraw> trialDraws_;
 };
 
 } // namespace hfx
