@@ -48,7 +48,7 @@ void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light
     const std::vector<SurfaceLayer> layers = effect().layers();
     renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, drawOptions());
     traced_ = technique == Technique::Hierarchical ? renderer.tracer().last() : TracerFrame{};
-    trial_ = renderer.tracer().passTrial(false);
+    trial_ = renderer.tracer().passTrial(mesh(), false);
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

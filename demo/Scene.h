@@ -145,7 +145,7 @@ protected:
 
 private:
     TracerFrame traced_; ///< the exact tracer's choice at the last drawSurface (none: not hier)
-    TracePassTrialReport trial_; ///< its TracePass::Auto trial of camera views then
+    TracePassTrialReport trial_; ///< its TracePass::Auto trial of the mesh's camera views then
 };
 
 /// A scene whose surface takes impacts through routeImpact (water, planet): a click fires a

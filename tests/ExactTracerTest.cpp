@@ -443,13 +443,17 @@ TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
     // timed, until each has 1 + kCounted draws; every draw after takes the trial's choice, untimed;
     // the choice is the side whose median is faster by the compute pass's margin. Both clocks: the
     // CPU's between two glFinish (a CPU rasteriser's) and GL timestamps read back without waiting
-    // (a GPU's; glFinish between the draws here makes each one's ready by the next draw). Camera
-    // views and shadow casters are tried apart. Where the workaround decides, nothing is timed.
+    // (a GPU's; glFinish between the draws here makes each one's ready by the next draw). Each
+    // mesh has its trial, camera views and shadow casters apart: two meshes drawn in turn take
+    // each side in turn each (one trial for both would give one mesh every compute pass and the
+    // other every draw). Where the workaround decides, nothing is timed.
     constexpr int N = 64;
     StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}}));
     SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
     surface.run(field.buffer());
     const Mesh plane(makePlane({.size = 2.0f}));
+    const Mesh inset(makePlane({.size = 0.5f}));
+    const glm::mat4 nearer = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.3f, 0.0f));
     const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
     const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
     RenderTarget target(160, 90, true);
@@ -460,7 +464,7 @@ TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
         SCOPED_TRACE(workarounds);
         const WorkaroundsSet set(workarounds);
         SurfaceRenderer renderer;
-        std::vector<bool> computed, timed;
+        std::vector<bool> computed, timed, insetComputed, insetTimed;
         for (int draw = 0; draw < kTrialDraws + 4; ++draw) {
             target.bind();
             target.clear();
@@ -469,12 +473,20 @@ TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
             glFinish();
             computed.push_back(renderer.tracer().last().computeTrace);
             timed.push_back(renderer.tracer().last().timed);
+            renderer.draw(inset, nearer, surface.textures(), material, camera, light,
+                          {.technique = Technique::Hierarchical});
+            glFinish();
+            insetComputed.push_back(renderer.tracer().last().computeTrace);
+            insetTimed.push_back(renderer.tracer().last().timed);
         }
         for (int draw = 0; draw < kTrialDraws; ++draw) {
             EXPECT_TRUE(timed[size_t(draw)]) << "draw " << draw;
             EXPECT_EQ(computed[size_t(draw)], draw % 2 == 0) << "draw " << draw << ": the compute pass first, then by turns";
+            EXPECT_TRUE(insetTimed[size_t(draw)]) << "the inset's draw " << draw;
+            EXPECT_EQ(insetComputed[size_t(draw)], draw % 2 == 0) << "the inset's draw " << draw;
         }
-        const TracePassTrialReport r = renderer.tracer().passTrial(false);
+        EXPECT_TRUE(renderer.tracer().passTrial(inset, false).decided());
+        const TracePassTrialReport r = renderer.tracer().passTrial(plane, false);
         ASSERT_TRUE(r.decided()) << "after " << kTrialDraws << " timed draws";
         EXPECT_EQ(r.inDrawDraws, TracePassTrial::kCounted);
         EXPECT_EQ(r.computeDraws, TracePassTrial::kCounted);
@@ -490,7 +502,7 @@ TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
             EXPECT_GT(r.inDrawMs, 0.0);
             EXPECT_GT(r.computeMs, 0.0);
         }
-        const TracePassTrialReport casters = renderer.tracer().passTrial(true);
+        const TracePassTrialReport casters = renderer.tracer().passTrial(plane, true);
         EXPECT_FALSE(casters.decided()) << "no shadow caster was drawn";
         EXPECT_EQ(casters.inDrawDraws + casters.computeDraws, 0);
         // A draw that asks for a side is not timed, and the trial's choice does not bind it.
@@ -508,7 +520,7 @@ TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
         EXPECT_FALSE(renderer.tracer().last().computeTrace);
         EXPECT_FALSE(renderer.tracer().last().timed);
     }
-    const TracePassTrialReport untried = renderer.tracer().passTrial(false);
+    const TracePassTrialReport untried = renderer.tracer().passTrial(plane, false);
     EXPECT_FALSE(untried.decided());
     EXPECT_EQ(untried.inDrawDraws + untried.computeDraws, 0);
 }

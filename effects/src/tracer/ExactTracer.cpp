@@ -78,7 +78,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
         computable = samples == 0;
     }
-    const auto [pass, timed] = computable ? tracePassFor(options.tracePass, caster)
+    const auto [pass, timed] = computable ? tracePassFor(options.tracePass, {&mesh, caster})
                                           : std::pair{TracePass::InDraw, false};
     frame.computeTrace = pass == TracePass::Compute;
 
@@ -125,31 +125,38 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     }
     // A trial draw is timed from here (what comes before is the same on either side) to finish().
     if (timed) {
-        beginTrialDraw(pass, caster);
+        beginTrialDraw(pass, {&mesh, caster});
         frame.timed = true;
     }
     (caster ? lastCaster_ : last_) = frame;
     return frame;
 }
 
-std::pair<TracePass, bool> ExactTracer::tracePassFor(TracePass asked, bool caster) {
-    if (asked != TracePass::Auto) return {asked, false};
-    readTrialDraws();
-    const TracePassTrial& trial = trials_[caster ? 1 : 0];
-    return {trial.next(), !trial.decided()};
+TracePassTrialReport ExactTracer::passTrial(const Mesh& mesh, bool caster) const {
+    const auto trial = trials_.find({&mesh, caster});
+    return trial == trials_.end() ? TracePassTrialReport{} : trial->second.report();
 }
 
-void ExactTracer::beginTrialDraw(TracePass pass, bool caster) {
+std::pair<TracePass, bool> ExactTracer::tracePassFor(TracePass asked, const TrialKey& key) {
+    if (asked != TracePass::Auto) return {asked, false};
+    readTrialDraws();
+    const TracePassTrial& trial = trials_[key];
+    // (A driver whose timestamps never come back would hold a query pair a draw: past a frame's
+    // worth of draws waiting, the turns go on untimed.)
+    return {trial.next(), !trial.decided() && trialDraws_.size() < kTrialDrawsWaiting};
+}
+
+void ExactTracer::beginTrialDraw(TracePass pass, const TrialKey& key) {
     // A draw begun and never ended (it threw between prepare and finish) is not counted.
     if (!trialDraws_.empty() && !trialDraws_.back().ended) {
         const TrialDraw& open = trialDraws_.back();
-        trials_[open.caster ? 1 : 0].record(open.pass, std::numeric_limits<double>::quiet_NaN());
+        trials_[open.key].record(open.pass, std::numeric_limits<double>::quiet_NaN());
         trialDraws_.pop_back();
     }
-    trials_[caster ? 1 : 0].began(pass);
+    trials_[key].began(pass);
     TrialDraw& d = trialDraws_.emplace_back();
     d.pass = pass;
-    d.caster = caster;
+    d.key = key;
     if (workarounds().cpuClockTimer) {
         glFinish();
         d.cpuBegin = std::chrono::steady_clock::now();
@@ -168,7 +175,7 @@ void ExactTracer::endTrialDraw() {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d.cpuBegin).count();
         const TrialDraw done = std::move(d);
         trialDraws_.pop_back();
-        recordTrialDraw(done.pass, done.caster, ms);
+        recordTrialDraw(done.key, done.pass, ms);
     } else {
         d.end = GlQuery::create();
         glQueryCounter(d.end.id(), GL_TIMESTAMP);
@@ -187,27 +194,28 @@ void ExactTracer::readTrialDraws() {
         glGetQueryObjectui64v(d.end.id(), GL_QUERY_RESULT, &end);
         const double ms = end >= begin ? double(end - begin) * 1e-6 : std::numeric_limits<double>::quiet_NaN();
         const TracePass pass = d.pass;
-        const bool caster = d.caster;
+        const TrialKey key = d.key;
         trialDraws_.pop_front();
-        recordTrialDraw(pass, caster, ms);
+        recordTrialDraw(key, pass, ms);
     }
 }
 
-void ExactTracer::recordTrialDraw(TracePass pass, bool caster, double ms) {
-    TracePassTrial& trial = trials_[caster ? 1 : 0];
+void ExactTracer::recordTrialDraw(const TrialKey& key, TracePass pass, double ms) {
+    TracePassTrial& trial = trials_[key];
     const bool wasDecided = trial.decided();
     trial.record(pass, ms);
-    // Decided for the draw: the compute pass's buffers go, unless the other trial may use them
-    // (a draw that asks for the compute pass makes them again).
-    const TracePassTrial& other = trials_[caster ? 0 : 1];
-    if (!wasDecided && trial.decided() && trial.next() == TracePass::InDraw &&
-        (other.next() == TracePass::InDraw ? other.decided() : !other.started())) {
-        traceRays_ = {};
-        traceInfo_ = {};
-        traceLights_ = {};
-        traceSlots_ = 0;
-        traceWalks_.clear();
-    }
+    if (wasDecided || !trial.decided() || trial.next() != TracePass::InDraw) return;
+    // Decided for the draw: the compute pass's buffers go, unless another trial may take it (a
+    // draw that asks for the compute pass makes them again).
+    const bool computeMayRun = std::ranges::any_of(trials_, [](const auto& t) {
+        return t.second.decided() ? t.second.next() == TracePass::Compute : t.second.started();
+    });
+    if (computeMayRun) return;
+    traceRays_ = {};
+    traceInfo_ = {};
+    traceLights_ = {};
+    traceSlots_ = 0;
+    traceWalks_.clear();
 }
 
 HeightBounds& ExactTracer::boundsFor(const SurfaceLayer& layer, PyramidLayout layout) {

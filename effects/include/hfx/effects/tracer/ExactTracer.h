@@ -119,10 +119,12 @@ public:
     /// draw's timing (TracerFrame::timed). Changes the program, the vertex array, the indirect
     /// buffers and the depth function: inside the renderer's GlStateGuard.
     void finish(const TracerFrame& frame);
-    /// Where TracePass::Auto stands on this device for camera views, or for shadow casters: the
-    /// trial's times and, once its draws are timed, its choice (undecided with no draw timed
-    /// where GlWorkarounds::traceInDraw decides, or no draw could take the compute pass).
-    TracePassTrialReport passTrial(bool caster) const { return trials_[caster ? 1 : 0].report(); }
+    /// Where TracePass::Auto stands on this device for `mesh`, seen by cameras or by shadow
+    /// casters: the trial's times and, once its draws are timed, its choice (undecided with no
+    /// draw timed where GlWorkarounds::traceInDraw decides, or no draw of it could take the
+    /// compute pass). A trial per mesh: a renderer that draws two meshes a frame would otherwise
+    /// give one of them every turn of each side.
+    TracePassTrialReport passTrial(const Mesh& mesh, bool caster) const;
     /// How many light walks the last draw that deferred them appended (past the buffer's
     /// capacity, the rest were walked in the draw). Reads the buffer back: for tests and reports.
     int deferredWalks() const;
@@ -149,16 +151,19 @@ private:
     /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
     /// deferred appended (where the GPU is past it), empties it and binds it.
     void prepareDeferred(const Viewport& viewport);
-    /// The pass of a draw that asked for `asked`, and whether it is one of the trial's timed draws.
-    std::pair<TracePass, bool> tracePassFor(TracePass asked, bool caster);
+    /// A trial's draws: a mesh, seen by a camera (false) or a shadow caster (true).
+    using TrialKey = std::pair<const Mesh*, bool>;
+    /// The pass of a draw of `key` that asked for `asked`, and whether it is one of the trial's
+    /// timed draws.
+    std::pair<TracePass, bool> tracePassFor(TracePass asked, const TrialKey& key);
     /// A trial draw's timing: begun once prepare's own passes are issued, ended by finish; the
     /// times of earlier draws the GPU has stamped since read without waiting.
-    void beginTrialDraw(TracePass pass, bool caster);
+    void beginTrialDraw(TracePass pass, const TrialKey& key);
     void endTrialDraw();
     void readTrialDraws();
     /// Gives a trial draw's time to its trial; where that decides for the draw, the compute
-    /// pass's buffers go unless the other trial may take it.
-    void recordTrialDraw(TracePass pass, bool caster, double ms);
+    /// pass's buffers go unless another trial may take it.
+    void recordTrialDraw(const TrialKey& key, TracePass pass, double ms);
     /// finish()'s deferred light walks.
     void walkDeferred(const TracerFrame& frame);
     /// Sizes the computed walks' buffers for the viewport (the lights' where `lights`), stamps
@@ -219,18 +224,19 @@ private:
     int traceSlots_ = 0, traceWidth_ = 0, traceHeight_ = 0;
     std::uint32_t traceStamp_ = 0;
     std::map<int, ShaderProgram> traceWalks_;
-    /// TracePass::Auto's trials, camera views' and shadow casters', and their timed draws whose
-    /// GL timestamps are not yet read (or, with GlWorkarounds::cpuClockTimer, the one under way,
+    /// TracePass::Auto's trials, per mesh and kind of view, and their timed draws whose GL
+    /// timestamps are not yet read (or, with GlWorkarounds::cpuClockTimer, the one under way,
     /// timed by the CPU clock between two glFinish).
-    std::array<TracePassTrial, 2> trials_;
+    std::map<TrialKey, TracePassTrial> trials_;
     struct TrialDraw {
         TracePass pass = TracePass::Auto;
-        bool caster = false;
+        TrialKey key{nullptr, false};
         bool ended = false; ///< finish() ended it
         GlQuery begin, end;
         std::chrono::steady_clock::time_point cpuBegin;
     };
     std::deque<TrialDraw> trialDraws_;
+    static constexpr size_t kTrialDrawsWaiting = 64;
 };
 
 } // namespace hfx

@@ -7,8 +7,9 @@
 // H200) gives graphics a few of its cores and compute all of them; llvmpipe's compute stage is
 // slower than its fragment stage (GlWorkarounds::traceInDraw decides there, measured).
 //
-// ExactTracer keeps a trial for camera views and one for shadow casters; this class holds a
-// trial's decision from the times it is given (no GL).
+// ExactTracer keeps a trial per mesh for camera views and one for shadow casters (a renderer that
+// drew two meshes a frame under one trial would give one of them every turn of each side); this
+// class holds a trial's decision from the times it is given (no GL).
 
 #include <vector>
 
@@ -17,8 +18,8 @@ namespace hfx {
 /// Where a hier draw walks its rays (DrawOptions::tracePass).
 enum class TracePass {
     /// The device's: InDraw where GlWorkarounds::traceInDraw says so; elsewhere the faster of
-    /// InDraw and Compute on this device, timed on the renderer's first such draws (camera views
-    /// and shadow casters apart: TracePassTrial, ExactTracer::passTrial).
+    /// InDraw and Compute on this device, timed on the renderer's first such draws of each mesh
+    /// (camera views and shadow casters apart: TracePassTrial, ExactTracer::passTrial).
     Auto,
     InDraw, ///< the surface draw's fragments walk their view and light rays
     /// Where it holds (a camera's or a shadow caster's draw of a convex mesh, Mesh::convex: a
