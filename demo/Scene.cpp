@@ -27,15 +27,24 @@ void Scene::applyOptions(const SceneOptions& o) {
     tracePass = o.tracePass;
 }
 
+namespace {
+
+/// A decided trial: "the draw (auto: 3.37 ms, a compute pass 7.30 ms)".
+std::string trialLabel(const TracePassTrialReport& trial) {
+    const bool computed = trial.chosen == TracePass::Compute;
+    char label[128];
+    std::snprintf(label, sizeof label, "%s (auto: %.2f ms, %s %.2f ms)", computed ? "a compute pass" : "the draw",
+                  computed ? trial.computeMs : trial.inDrawMs, computed ? "the draw" : "a compute pass",
+                  computed ? trial.inDrawMs : trial.computeMs);
+    return label;
+}
+
+} // namespace
+
 std::string Scene::tracePassLabel() const {
     if (technique != Technique::Hierarchical) return "";
-    const char* pass = traced_.computeTrace ? "a compute pass" : "the draw";
-    if (!trial_.decided()) return pass;
-    const bool computed = trial_.chosen == TracePass::Compute;
-    char label[128];
-    std::snprintf(label, sizeof label, "%s (auto: %.2f ms, %s %.2f ms)", pass,
-                  computed ? trial_.computeMs : trial_.inDrawMs, computed ? "the draw" : "a compute pass",
-                  computed ? trial_.inDrawMs : trial_.computeMs);
+    std::string label = trial_.decided() ? trialLabel(trial_) : traced_.computeTrace ? "a compute pass" : "the draw";
+    if (casterTrial_.decided()) label += "; its shadow map's, " + trialLabel(casterTrial_);
     return label;
 }
 
@@ -49,6 +58,7 @@ void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light
     renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, drawOptions());
     traced_ = technique == Technique::Hierarchical ? renderer.tracer().last() : TracerFrame{};
     trial_ = renderer.tracer().passTrial(mesh(), false);
+    casterTrial_ = renderer.tracer().passTrial(mesh(), true); // where the scene casts it (the decal wall)
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

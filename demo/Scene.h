@@ -127,7 +127,8 @@ public:
     }
     /// Where the last camera draw under hier walked its rays: "a compute pass" or "the draw"
     /// ("" where the scene does not draw with hier), and where TracePass::Auto timed both on this
-    /// device, its medians: "the draw (auto: 3.37 ms, a compute pass 7.30 ms)".
+    /// device, its medians: "the draw (auto: 3.37 ms, a compute pass 7.30 ms)", and the shadow
+    /// map's the same where the scene casts the mesh into one.
     std::string tracePassLabel() const;
     /// The last draw's texel shadows as the exact tracer chose them (ExactTracer::last): "off",
     /// "on" or "on, stride N", for the panel and the bench table, and the flat surface's pixels
@@ -146,6 +147,7 @@ protected:
 private:
     TracerFrame traced_; ///< the exact tracer's choice at the last drawSurface (none: not hier)
     TracePassTrialReport trial_; ///< its TracePass::Auto trial of the mesh's camera views then
+    TracePassTrialReport casterTrial_; ///< ... and of its casts into a shadow map
 };
 
 /// A scene whose surface takes impacts through routeImpact (water, planet): a click fires a
