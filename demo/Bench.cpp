@@ -220,7 +220,7 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                         config.width, config.height, b.kernels, b.glUpload, b.upload, b.gpuPom,
                         b.gpuUnshadowed, b.gpuNm, ownDraw, b.gpuFrame(), b.gpuPom / b.gpuNm, 100.0 * b.computeShare());
             std::fflush(stdout);
-            char row[512];
+            char row[768];
             std::snprintf(row, sizeof row,
                           "| %s | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.2fx | %.1f%% | "
                           "%.1f (%.1f sequential) | %ld | %s | %s | %s |\n",

@@ -17,7 +17,7 @@
 //   deferred    the light walks the texel shadows do not hold, left by the draw to a pass after
 //   walks       it (finish, trace/hier/deferred.glsl): one walk to a lane, not one lane's walk
 //               holding up its warp (DrawOptions::deferShadowWalks)
-//   computed    on a GPU, a convex mesh (a flat patch, a sphere; a caster's too): a rays draw
+//   computed    for a convex mesh (a flat patch, a sphere; a caster's too): a rays draw
 //   walks       stores each pixel's view ray, walks() walks it and its light ray a lane per pixel
 //               in a compute pass, and the shading draw reads the hits (DrawOptions::tracePass,
 //               trace/hier/trace.glsl); TracePass::Auto takes it where this device draws it
