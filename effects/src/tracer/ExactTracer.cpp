@@ -148,7 +148,7 @@ std::pair<TracePass, bool> ExactTracer::tracePassFor(TracePass asked, const Tria
 
 void ExactTracer::beginTrialDraw(TracePass pass, const TrialKey& key) {
     // A draw begun and never ended (it threw between prepare and finish) is not counted.
-    if (!trialDraws_.empty() && !trialDraws_.back().ended) {
+    if (!trialDraws_.empty() && !trialDraws_.back().end) {
         const TrialDraw& open = trialDraws_.back();
         trials_[open.key].record(open.pass, std::numeric_limits<double>::quiet_NaN());
         trialDraws_.pop_back();
@@ -167,9 +167,8 @@ void ExactTracer::beginTrialDraw(TracePass pass, const TrialKey& key) {
 }
 
 void ExactTracer::endTrialDraw() {
-    if (trialDraws_.empty() || trialDraws_.back().ended) return;
+    if (trialDraws_.empty() || trialDraws_.back().end) return;
     TrialDraw& d = trialDraws_.back();
-    d.ended = true;
     if (workarounds().cpuClockTimer) {
         glFinish();
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d.cpuBegin).count();
@@ -184,7 +183,7 @@ void ExactTracer::endTrialDraw() {
 
 void ExactTracer::readTrialDraws() {
     // In the order they began, each once the GPU has stamped its end: no wait.
-    while (!trialDraws_.empty() && trialDraws_.front().ended) {
+    while (!trialDraws_.empty() && trialDraws_.front().end) {
         const TrialDraw& d = trialDraws_.front();
         GLint available = 0;
         glGetQueryObjectiv(d.end.id(), GL_QUERY_RESULT_AVAILABLE, &available);

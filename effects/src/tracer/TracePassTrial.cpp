@@ -1,22 +1,10 @@
 #include "hfx/effects/tracer/TracePassTrial.h"
 
-#include <algorithm>
+#include "hfx/core/Median.h"
+
 #include <cmath>
 
 namespace hfx {
-
-namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    const size_t mid = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(mid), v.end());
-    const double upper = v[mid];
-    if (v.size() % 2 == 1) return upper;
-    return 0.5 * (*std::max_element(v.begin(), v.begin() + std::ptrdiff_t(mid)) + upper);
-}
-
-} // namespace
 
 const char* tracePassName(TracePass pass) {
     switch (pass) {
@@ -28,7 +16,7 @@ const char* tracePassName(TracePass pass) {
 }
 
 TracePass TracePassTrial::next() const {
-    if (decided()) return chosen_;
+    if (decided()) return report_.chosen;
     return compute_.begun <= inDraw_.begun ? TracePass::Compute : TracePass::InDraw;
 }
 
@@ -43,18 +31,14 @@ void TracePassTrial::record(TracePass pass, double ms) {
         --s.begun; // not counted: the side times another draw
         return;
     }
-    if (++s.recorded > kWarmUp) s.counted.push_back(ms);
-    if (int(inDraw_.counted.size()) >= kCounted && int(compute_.counted.size()) >= kCounted)
-        chosen_ = median(compute_.counted) < kComputeMargin * median(inDraw_.counted) ? TracePass::Compute
-                                                                                      : TracePass::InDraw;
-}
-
-TracePassTrialReport TracePassTrial::report() const {
-    return {.chosen = chosen_,
-            .inDrawMs = median(inDraw_.counted),
-            .computeMs = median(compute_.counted),
-            .inDrawDraws = int(inDraw_.counted.size()),
-            .computeDraws = int(compute_.counted.size())};
+    if (++s.recorded <= kWarmUp) return;
+    s.counted.push_back(ms);
+    report_.inDrawMs = median(inDraw_.counted);
+    report_.computeMs = median(compute_.counted);
+    report_.inDrawDraws = int(inDraw_.counted.size());
+    report_.computeDraws = int(compute_.counted.size());
+    if (report_.inDrawDraws >= kCounted && report_.computeDraws >= kCounted)
+        report_.chosen = report_.computeMs < kComputeMargin * report_.inDrawMs ? TracePass::Compute : TracePass::InDraw;
 }
 
 } // namespace hfx

@@ -9,6 +9,7 @@
 
 #include "hfx/core/Gl.h"
 #include "hfx/core/GpuTimer.h"
+#include "hfx/core/Median.h"
 
 #include <algorithm>
 #include <chrono>
@@ -20,11 +21,6 @@ namespace hfx {
 constexpr int kWarmupFrames = 10;
 /// Frames (or interleaved rounds) every bench takes the median of, at the least.
 constexpr int kTimedFrames = 30;
-
-inline double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    return values.empty() ? 0.0 : values[values.size() / 2];
-}
 
 /// Milliseconds of f() with the GL queue drained before and after.
 template <typename F>

@@ -225,13 +225,13 @@ private:
     std::uint32_t traceStamp_ = 0;
     std::map<int, ShaderProgram> traceWalks_;
     /// TracePass::Auto's trials, per mesh and kind of view, and their timed draws whose GL
-    /// timestamps are not yet read (or, with GlWorkarounds::cpuClockTimer, the one under way,
-    /// timed by the CPU clock between two glFinish).
+    /// timestamps are not yet read (ended where `end` is issued; or, with
+    /// GlWorkarounds::cpuClockTimer, the one under way, timed by the CPU clock between two
+    /// glFinish).
     std::map<TrialKey, TracePassTrial> trials_;
     struct TrialDraw {
         TracePass pass = TracePass::Auto;
         TrialKey key{nullptr, false};
-        bool ended = false; ///< finish() ended it
         GlQuery begin, end;
         std::chrono::steady_clock::time_point cpuBegin;
     };

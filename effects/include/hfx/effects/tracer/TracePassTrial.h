@@ -64,10 +64,11 @@ public:
     /// A timed draw's time, in milliseconds, in the order `pass`'s draws began. A time that is
     /// not finite or below 0 (a timestamp that wrapped) is not counted, and another draw is timed.
     void record(TracePass pass, double ms);
-    bool decided() const { return chosen_ != TracePass::Auto; }
+    bool decided() const { return report_.decided(); }
     /// Whether a timed draw has begun.
     bool started() const { return inDraw_.begun > 0 || compute_.begun > 0; }
-    TracePassTrialReport report() const;
+    /// Kept as the times come (no work per call: the demo reads it every frame).
+    const TracePassTrialReport& report() const { return report_; }
 
 private:
     struct Side {
@@ -77,7 +78,7 @@ private:
     };
     Side& side(TracePass pass) { return pass == TracePass::Compute ? compute_ : inDraw_; }
     Side inDraw_, compute_;
-    TracePass chosen_ = TracePass::Auto;
+    TracePassTrialReport report_;
 };
 
 } // namespace hfx
