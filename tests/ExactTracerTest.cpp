@@ -18,6 +18,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace hfx::test {
@@ -523,6 +525,53 @@ TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
     const TracePassTrialReport untried = renderer.tracer().passTrial(plane, false);
     EXPECT_FALSE(untried.decided());
     EXPECT_EQ(untried.inDrawDraws + untried.computeDraws, 0);
+}
+
+TEST_F(ExactTracerTest, AutoTriesANewMeshAgainWhereverItLiesAndHoldsTheTrialsOfTheMeshesDrawnLast) {
+    // A trial is a mesh's (Mesh::uid), not an address's: a mesh made where a freed one was
+    // starts its own trial (keyed by address, it took the freed one's decision, untimed). And
+    // the trials held are those of the kTrials meshes drawn last (an engine that makes meshes as
+    // it goes would otherwise grow them without end): a mesh drawn again after kTrials others is
+    // tried again from its first turn, the compute pass; one drawn within them goes on to its
+    // second, the draw.
+    constexpr int N = 32;
+    StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
+    surface.run(field.buffer());
+    const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    RenderTarget target(32, 18, true);
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f);
+    camera.aspect = 32.0f / 18.0f;
+    const WorkaroundsSet set("trace-in-draw=0,cpu-clock-timer=1");
+    SurfaceRenderer renderer;
+    const auto draw = [&](const Mesh& mesh) {
+        target.bind();
+        renderer.draw(mesh, glm::mat4(1.0f), surface.textures(), material, camera, light,
+                      {.technique = Technique::Hierarchical});
+        return std::pair{renderer.tracer().last().computeTrace, renderer.tracer().last().timed};
+    };
+    const MeshData planeData = makePlane({.size = 2.0f});
+
+    std::optional<Mesh> mesh(std::in_place, planeData);
+    const Mesh* const where = &*mesh;
+    for (int i = 0; i < 2 * (TracePassTrial::kWarmUp + TracePassTrial::kCounted); ++i) draw(*mesh);
+    ASSERT_TRUE(renderer.tracer().passTrial(*mesh, false).decided());
+    mesh.emplace(planeData);
+    ASSERT_EQ(&*mesh, where);
+    EXPECT_FALSE(renderer.tracer().passTrial(*mesh, false).decided()) << "a new mesh where the old one was";
+    EXPECT_EQ(draw(*mesh), std::pair(true, true)) << "its first draw: the trial's first turn";
+
+    // The first mesh, drawn once; then others, each drawn once; then the first and the last again.
+    const Mesh first(planeData);
+    EXPECT_EQ(draw(first), std::pair(true, true));
+    std::optional<Mesh> last;
+    for (size_t i = 0; i < ExactTracer::kTrials; ++i) {
+        last.emplace(planeData);
+        ASSERT_EQ(draw(*last), std::pair(true, true)) << "mesh " << i;
+    }
+    EXPECT_EQ(draw(*last), std::pair(false, true)) << "the last mesh's second turn: its trial is held";
+    EXPECT_EQ(draw(first), std::pair(true, true)) << "the first mesh's trial was let go: its first turn again";
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 #include "hfx/core/Error.h"
 #include "hfx/core/Mesh.h"
+#include "hfx/core/Uid.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -165,6 +166,23 @@ TEST(FlatPatch, APlaneKeepsItsTextureFrameAndCornersAndNothingElseHasOne) {
     MeshData lifted = makePlane(config);
     lifted.vertices[5].position.y += 0.01f;
     EXPECT_FALSE(flatPatchOf(lifted));
+}
+
+TEST(Uid, AMoveTakesTheIdentityAlongAndLeavesTheOwnerMovedFromANewOne) {
+    // What the exact tracer keys a mesh's choices on (Mesh::uid; SurfaceTextures::uid for the
+    // bounds): no two live owners share one, none is 0, none comes twice.
+    Uid a, b;
+    const std::uint64_t first = a.value(), second = b.value();
+    EXPECT_NE(first, 0u);
+    EXPECT_NE(first, second);
+    Uid moved(std::move(a));
+    EXPECT_EQ(moved.value(), first);
+    EXPECT_NE(a.value(), first);
+    EXPECT_NE(a.value(), second);
+    b = std::move(moved);
+    EXPECT_EQ(b.value(), first);
+    EXPECT_NE(moved.value(), first);
+    EXPECT_NE(moved.value(), a.value());
 }
 
 } // namespace

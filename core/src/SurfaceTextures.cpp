@@ -3,7 +3,6 @@
 #include "hfx/core/Error.h"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -43,14 +42,10 @@ std::vector<unsigned char> flatTexels(SurfaceFormat format, size_t count) {
     for (size_t i = 0; i < texels.size(); ++i) texels[i] = one[i % one.size()];
     return texels;
 }
-std::uint64_t nextUid() {
-    static std::atomic<std::uint64_t> next{1};
-    return next++;
-}
 } // namespace
 
 SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
-    : config_(config), uid_(nextUid()), surface_(GlTexture::create()), albedo_(GlTexture::create()),
+    : config_(config), surface_(GlTexture::create()), albedo_(GlTexture::create()),
       channels_(GlTexture::create()) {
     config_.validate();
     levels_ = config.mipmaps

@@ -78,7 +78,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
         computable = samples == 0;
     }
-    const auto [pass, timed] = computable ? tracePassFor(options.tracePass, {&mesh, caster})
+    const auto [pass, timed] = computable ? tracePassFor(options.tracePass, {mesh.uid(), caster})
                                           : std::pair{TracePass::InDraw, false};
     frame.computeTrace = pass == TracePass::Compute;
 
@@ -125,7 +125,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     }
     // A trial draw is timed from here (what comes before is the same on either side) to finish().
     if (timed) {
-        beginTrialDraw(pass, {&mesh, caster});
+        beginTrialDraw(pass, {mesh.uid(), caster});
         frame.timed = true;
     }
     (caster ? lastCaster_ : last_) = frame;
@@ -133,14 +133,33 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
 }
 
 TracePassTrialReport ExactTracer::passTrial(const Mesh& mesh, bool caster) const {
-    const auto trial = trials_.find({&mesh, caster});
-    return trial == trials_.end() ? TracePassTrialReport{} : trial->second.report();
+    const auto held = trials_.find({mesh.uid(), caster});
+    return held == trials_.end() ? TracePassTrialReport{} : held->second.trial.report();
+}
+
+TracePassTrial& ExactTracer::trialFor(const TrialKey& key) {
+    auto held = trials_.find(key);
+    if (held == trials_.end()) {
+        // The least recently drawn goes, but not one with a draw still waiting for its time (a
+        // trial made again for the same key would take it).
+        if (trials_.size() >= kTrials) {
+            auto oldest = trials_.end();
+            for (auto t = trials_.begin(); t != trials_.end(); ++t) {
+                const bool waits = std::ranges::any_of(trialDraws_, [&](const TrialDraw& d) { return d.key == t->first; });
+                if (!waits && (oldest == trials_.end() || t->second.used < oldest->second.used)) oldest = t;
+            }
+            if (oldest != trials_.end()) trials_.erase(oldest);
+        }
+        held = trials_.emplace(key, HeldTrial{}).first;
+    }
+    held->second.used = ++clock_;
+    return held->second.trial;
 }
 
 std::pair<TracePass, bool> ExactTracer::tracePassFor(TracePass asked, const TrialKey& key) {
     if (asked != TracePass::Auto) return {asked, false};
     readTrialDraws();
-    const TracePassTrial& trial = trials_[key];
+    const TracePassTrial& trial = trialFor(key);
     // (A driver whose timestamps never come back would hold a query pair a draw: past a frame's
     // worth of draws waiting, the turns go on untimed.)
     return {trial.next(), !trial.decided() && trialDraws_.size() < kTrialDrawsWaiting};
@@ -150,10 +169,10 @@ void ExactTracer::beginTrialDraw(TracePass pass, const TrialKey& key) {
     // A draw begun and never ended (it threw between prepare and finish) is not counted.
     if (!trialDraws_.empty() && !trialDraws_.back().end) {
         const TrialDraw& open = trialDraws_.back();
-        trials_[open.key].record(open.pass, std::numeric_limits<double>::quiet_NaN());
+        recordTrialDraw(open.key, open.pass, std::numeric_limits<double>::quiet_NaN());
         trialDraws_.pop_back();
     }
-    trials_[key].began(pass);
+    trialFor(key).began(pass);
     TrialDraw& d = trialDraws_.emplace_back();
     d.pass = pass;
     d.key = key;
@@ -200,14 +219,15 @@ void ExactTracer::readTrialDraws() {
 }
 
 void ExactTracer::recordTrialDraw(const TrialKey& key, TracePass pass, double ms) {
-    TracePassTrial& trial = trials_[key];
+    TracePassTrial& trial = trials_.at(key).trial; // (not let go while a draw waits)
     const bool wasDecided = trial.decided();
     trial.record(pass, ms);
     if (wasDecided || !trial.decided() || trial.next() != TracePass::InDraw) return;
     // Decided for the draw: the compute pass's buffers go, unless another trial may take it (a
     // draw that asks for the compute pass makes them again).
     const bool computeMayRun = std::ranges::any_of(trials_, [](const auto& t) {
-        return t.second.decided() ? t.second.next() == TracePass::Compute : t.second.started();
+        const TracePassTrial& other = t.second.trial;
+        return other.decided() ? other.next() == TracePass::Compute : other.started();
     });
     if (computeMayRun) return;
     traceRays_ = {};
@@ -256,7 +276,7 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     // Every sample where that pays; under a pixel budget, every few samples where their spacing
     // on screen stays within it; forced on: the stride asked for, or the policy's, or every one.
     if (strides_.size() > 64) strides_.clear(); // meshes come and go: a held choice is a hint
-    int& held = strides_[&mesh];
+    int& held = strides_[mesh.uid()];
     int stride = texelShadowStride(pixels, field.width, field.height, material.pixelBudget, held);
     if (options.texelShadows == TexelShadowChoice::On)
         stride = options.texelStride != 0 ? options.texelStride : std::max(stride, 1);

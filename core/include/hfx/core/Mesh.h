@@ -8,6 +8,7 @@
 // whose GL context is current; makePlane/makeSphere anywhere.
 
 #include "hfx/core/GlObject.h"
+#include "hfx/core/Uid.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -116,6 +117,9 @@ public:
     /// A sphere around every vertex: its centre (xyz) and radius (w), in the mesh's space.
     glm::vec4 bounds() const { return bounds_; }
     const std::optional<FlatPatch>& patch() const { return patch_; } ///< flatPatchOf its data
+    /// Unique to this mesh in this process (never reused; a move takes it along): what the exact
+    /// tracer keeps its choices for a mesh by (ExactTracer::passTrial).
+    std::uint64_t uid() const { return uid_.value(); }
 
 private:
     GlBuffer vertices_, indices_;
@@ -124,6 +128,7 @@ private:
     std::optional<FlatPatch> patch_;
     bool convex_ = false, closed_ = false;
     glm::vec4 bounds_{0.0f};
+    Uid uid_;
 };
 
 } // namespace hfx

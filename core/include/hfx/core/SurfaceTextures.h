@@ -16,6 +16,7 @@
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/SurfaceFormat.h"
+#include "hfx/core/Uid.h"
 
 #include <cstdint>
 #include <vector>
@@ -66,13 +67,13 @@ public:
     /// Unique to these textures in this process (never reused): with texelsVersion(), what a
     /// cache of something derived from the texels keys on (the exact tracer's bounds and texel
     /// shadows).
-    std::uint64_t uid() const { return uid_; }
+    std::uint64_t uid() const { return uid_.value(); }
     /// Counts uploadTexels: changes whenever the heights may have.
     std::uint64_t texelsVersion() const { return texelsVersion_; }
 
 private:
     SurfaceTexturesConfig config_;
-    std::uint64_t uid_;
+    Uid uid_;
     int levels_ = 1;
     GlTexture surface_, albedo_, channels_;
     std::uint64_t texelsVersion_ = 1; ///< counts uploadTexels

@@ -122,9 +122,11 @@ public:
     /// Where TracePass::Auto stands on this device for `mesh`, seen by cameras or by shadow
     /// casters: the trial's times and, once its draws are timed, its choice (undecided with no
     /// draw timed where GlWorkarounds::traceInDraw decides, or no draw of it could take the
-    /// compute pass). A trial per mesh: a renderer that draws two meshes a frame would otherwise
-    /// give one of them every turn of each side.
+    /// compute pass). A trial per mesh (Mesh::uid): a renderer that draws two meshes a frame
+    /// would otherwise give one of them every turn of each side. The trials of the kTrials meshes
+    /// drawn last are held; a mesh drawn again after that is tried again.
     TracePassTrialReport passTrial(const Mesh& mesh, bool caster) const;
+    static constexpr size_t kTrials = 256;
     /// How many light walks the last draw that deferred them appended (past the buffer's
     /// capacity, the rest were walked in the draw). Reads the buffer back: for tests and reports.
     int deferredWalks() const;
@@ -151,8 +153,11 @@ private:
     /// Sizes the deferred walks' buffer for the viewport and for what the last draw that
     /// deferred appended (where the GPU is past it), empties it and binds it.
     void prepareDeferred(const Viewport& viewport);
-    /// A trial's draws: a mesh, seen by a camera (false) or a shadow caster (true).
-    using TrialKey = std::pair<const Mesh*, bool>;
+    /// A trial's draws: a mesh (Mesh::uid), seen by a camera (false) or a shadow caster (true).
+    using TrialKey = std::pair<std::uint64_t, bool>;
+    /// The trial of `key`, made where there is none (the least recently drawn of kTrials let go
+    /// for it), and marked as drawn now.
+    TracePassTrial& trialFor(const TrialKey& key);
     /// The pass of a draw of `key` that asked for `asked`, and whether it is one of the trial's
     /// timed draws.
     std::pair<TracePass, bool> tracePassFor(TracePass asked, const TrialKey& key);
@@ -195,8 +200,9 @@ private:
     static constexpr size_t kCached = 4;
     std::array<Cached, kCached> cache_{};
     std::uint64_t clock_ = 0;
-    /// The last stride drawn per mesh (0: none), so the policy holds on near its threshold.
-    std::map<const Mesh*, int> strides_;
+    /// The last stride drawn per mesh (Mesh::uid; 0: none), so the policy holds on near its
+    /// threshold.
+    std::map<std::uint64_t, int> strides_;
     TracerFrame last_, lastCaster_;
     std::optional<GlWorkarounds> workarounds_;
     ShaderProgram beam_[2]; ///< by the pyramid's layout: a mip chain, the atlas
@@ -228,10 +234,16 @@ private:
     /// timestamps are not yet read (ended where `end` is issued; or, with
     /// GlWorkarounds::cpuClockTimer, the one under way, timed by the CPU clock between two
     /// glFinish).
-    std::map<TrialKey, TracePassTrial> trials_;
+    /// (Each with the clock_ of its last draw: an engine that makes meshes as it goes would
+    /// otherwise grow the map by one for every mesh it ever drew.)
+    struct HeldTrial {
+        TracePassTrial trial;
+        std::uint64_t used = 0;
+    };
+    std::map<TrialKey, HeldTrial> trials_;
     struct TrialDraw {
         TracePass pass = TracePass::Auto;
-        TrialKey key{nullptr, false};
+        TrialKey key{0, false};
         GlQuery begin, end;
         std::chrono::steady_clock::time_point cpuBegin;
     };
