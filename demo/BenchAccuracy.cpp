@@ -18,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 namespace hfx::demo {
 
@@ -207,10 +208,12 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
         {Technique::Hierarchical, 0.0f, "hier, texel shadows, walks in a compute pass", true, true, false, TracePass::Compute},
         {Technique::Hierarchical, 0.0f, "hier, texel shadows, their walks after the draw", true, true, true}};
     std::string stragglers; // the cap table's rows
+    std::string passRows;   // the compute pass's parts
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
            "fetches_lanes32,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
-           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,defer_shadow_walks,deferred_rays,compute_trace\n";
+           "compute_pom_ms,compute_hier_ms,fetches_lanes32_capped,cap,defer_shadow_walks,deferred_rays,compute_trace,"
+           "rays_ms,walks_ms,draw_ms\n";
     std::printf("%s\nfield %dx%d, %dx%d, median of %d interleaved draws after %d rounds of warm-up. Times are GPU time\n"
                 "(timer queries around the clear and the draw, beam start and cells included); 'wall' columns are the CPU\n"
                 "clock around glFinish of the same draws.\n"
@@ -245,11 +248,20 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                                       .tracePass = v.pass};
             };
             std::vector<std::vector<GlTime>> times(std::size(variants));
+            // Each draw's passes by name ("rays", "walks", "draw", "beam"), GPU ms.
+            std::vector<std::map<std::string, std::vector<double>, std::less<>>> passes(std::size(variants));
             for (int r = -kWarmupFrames; r < rounds; ++r) // interleaved: a noisy neighbour hits them alike
                 for (size_t i = 0; i < std::size(variants); ++i) {
                     const GlTime t = probe.timeDraw(variants[i].technique, configOf(variants[i]), width, height, 1, 0);
-                    if (r >= 0) times[i].push_back(t);
+                    if (r < 0) continue;
+                    times[i].push_back(t);
+                    for (const auto& [name, ms] : probe.lastPasses()) passes[i][name].push_back(ms);
                 }
+            // A pass's median over the rounds (0 where the variant has none).
+            auto passMs = [&](size_t i, std::string_view name) {
+                const auto it = passes[i].find(name);
+                return it == passes[i].end() ? 0.0 : median(it->second);
+            };
             // The last draw of the rounds was the deferring variant's: the rays it appended.
             static_assert(variants[std::size(variants) - 1].defer);
             const int deferred = probe.deferredWalks();
@@ -283,7 +295,8 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                     << counts[i].lanes32Capped << "," << counts[i].cap << ","
                     << (variants[i].texels && variants[i].defer ? 1 : 0) << ","
                     << (variants[i].texels && variants[i].defer ? deferred : 0) << ","
-                    << (variants[i].pass == TracePass::Compute ? 1 : 0) << "\n";
+                    << (variants[i].pass == TracePass::Compute ? 1 : 0) << "," << passMs(i, "rays") << ","
+                    << passMs(i, "walks") << "," << passMs(i, "draw") << "\n";
             const FetchCounts &p = counts[0], &h = counts[1], &x = counts[3], &b = counts[4];
             std::printf("| %s | %.0f | %.2f | %.2f | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.1f%% | %.1f | %.1f, %.1f, %.1f, %.1f "
                         "| %.2fx | %.2fx | %.2fx | %.2fx | %.2f, %.2f | %.2fx |\n",
@@ -292,6 +305,20 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                         x.lanes8 / p.lanes8, x.lanes32 / p.lanes32, (gpuMs[3] / x.lanes8) / (pom / p.lanes8), cPom, cHier,
                         cHier / cPom);
             std::fflush(stdout);
+            {
+                // Where the compute pass's time goes: its rays draw, its walks and its shading draw
+                // (the two draws run on the SMs that draw, the walks on every SM of a compute chip).
+                const double rays = passMs(5, "rays"), walks = passMs(5, "walks"), shade = passMs(5, "draw");
+                const double tRays = passMs(6, "rays"), tWalks = passMs(6, "walks"), tShade = passMs(6, "draw");
+                const double pomDraw = passMs(0, "draw"); // POM's draw alone, not the clear before it
+                char row[320];
+                std::snprintf(row, sizeof row,
+                              "| %s | %.0f | %.2f | %.2f, %.2f, %.2f | %.2fx | %.2f, %.2f, %.2f, %.2f | %.2fx | %.2fx |\n",
+                              map.name.c_str(), angle, pomDraw, rays, walks, shade, (rays + shade) / pomDraw,
+                              passMs(6, "beam"), tRays, tWalks, tShade, (tRays + tShade) / pomDraw,
+                              passMs(1, "draw") / pomDraw);
+                passRows += row;
+            }
             char row[256];
             std::snprintf(row, sizeof row, "| %s | %.0f | %.1f | %.1f, %.1f (%d) | %.1f, %.1f (%d) |\n", map.name.c_str(),
                           angle, p.lanes32, h.lanes32, h.lanes32Capped, h.cap, x.lanes32, x.lanes32Capped, x.cap);
@@ -303,6 +330,14 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "pass (the best cap of those tried, in brackets; 0: none pays; %.0f fetches to take a walk up again):\n\n"
                 "| map | angle | pom | hier, capped (cap) | texels, capped (cap) |\n|---|---|---|---|---|\n%s",
                 kStragglerRestart, stragglers.c_str());
+    std::printf("\nWhere the compute pass's time goes (TracePass::Compute): GPU ms of its rays draw, its walks and its\n"
+                "shading draw, medians of the same rounds; the two draws' sum over pom's draw (the fragment stage's\n"
+                "share), and hier's draw walking every light ray over pom's, for comparison (the draws alone: no clear,\n"
+                "no beam).\n\n"
+                "| map | angle | pom's draw, ms | computed: rays, walks, shading ms | computed: the two draws / pom | "
+                "texels, computed: beam, rays, walks, shading ms | texels, computed: the two draws / pom | hier's draw / pom |\n"
+                "|---|---|---|---|---|---|---|---|\n%s",
+                passRows.c_str());
     if (!outDir.empty()) {
         std::filesystem::create_directories(outDir);
         const std::string path = (std::filesystem::path(outDir) / "tracers.csv").string();

@@ -493,6 +493,7 @@ GlTime AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
     light.direction = config.light;
     std::vector<GlTime> times;
     for (int i = -std::max(warmups, 1); i < repeats; ++i) { // the first draw builds the shader
+        if (i == 0) timer_.clearSamples(); // the passes of the counted draws only
         target.bind();
         const GlTime t = timeGl(timer_, "draw total", [&] {
             target.clear();
@@ -501,6 +502,9 @@ GlTime AccuracyProbe::timeDraw(Technique technique, const AccuracyConfig& config
         });
         if (i >= 0) times.push_back(t);
     }
+    lastPasses_.clear();
+    for (const auto& [name, ms] : timer_.samples())
+        if (!ms.empty()) lastPasses_[name] = median(ms);
     timer_.clearSamples();
     lastFrame_ = target.readColor();
     return median(times);

@@ -21,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -178,6 +179,10 @@ public:
     int deferredWalks() const;
     /// The colour image of the last timeDraw() (top row first).
     const Image& lastFrame() const { return lastFrame_; }
+    /// GPU milliseconds of each pass the last timeDraw() ran, by the name of its GpuScope ("rays",
+    /// "walks" and "draw" of the compute pass, "beam", "draw total" around them all): the median of
+    /// its counted draws.
+    const std::map<std::string, double, std::less<>>& lastPasses() const { return lastPasses_; }
     const HeightFieldTracer& exact() const { return exact_; }
     const SurfaceTextures& textures() const { return surface_.textures(); }
 
@@ -195,6 +200,7 @@ private:
     std::unique_ptr<RenderTarget> target_;      ///< measure()'s, with the trace output
     std::unique_ptr<RenderTarget> timedTarget_; ///< timeDraw()'s
     Image lastFrame_;
+    std::map<std::string, double, std::less<>> lastPasses_;
     Mesh plane_, timedPlane_;
     TexelShadowPass texelPass_; ///< timeTexelShadows' pass, and what it draws into
     TexelShadows texels_;
