@@ -180,7 +180,7 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
 /// heights; beside them each one's fetches per pixel in the same draw (AccuracyProbe::
 /// countFetches: the mean and in lockstep blocks). Prints a table, then what a 32-lane warp would
 /// wait for with the walks capped and finished in a compute pass (FetchCounts::lanes32Capped),
-/// and with --out writes tracers.csv. `only` restricts the maps by name.
+/// and with --out writes tracers.csv (row by row, as they come). `only` restricts the maps by name.
 int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDir, int field,
                     const std::vector<std::string>& only, int rounds, int width, int height) {
     rounds = std::max(rounds, kTimedFrames);
@@ -209,6 +209,7 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
         {Technique::Hierarchical, 0.0f, "hier, texel shadows, their walks after the draw", true, true, true}};
     std::string stragglers; // the cap table's rows
     std::string passRows;   // the compute pass's parts
+    const std::string csvPath = (std::filesystem::path(outDir) / "tracers.csv").string();
     std::ostringstream csv;
     csv << "map,angle,technique,pixel_budget,texel_shadows,shadows,ms,ratio_to_pom,fetches,fetches_lanes8,"
            "fetches_lanes32,texel_shadows_ms,beam_start,wall_ms,wall_ratio_to_pom,width,height,"
@@ -305,6 +306,10 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                         x.lanes8 / p.lanes8, x.lanes32 / p.lanes32, (gpuMs[3] / x.lanes8) / (pom / p.lanes8), cPom, cHier,
                         cHier / cPom);
             std::fflush(stdout);
+            if (!outDir.empty()) { // as the rows come: a run cut short (gpu-check's steps) keeps them
+                std::filesystem::create_directories(outDir);
+                std::ofstream(csvPath) << csv.str();
+            }
             {
                 // Where the compute pass's time goes: its rays draw, its walks and its shading draw
                 // (the two draws run on the SMs that draw, the walks on every SM of a compute chip).
@@ -338,12 +343,7 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "texels, computed: beam, rays, walks, shading ms | texels, computed: the two draws / pom | hier's draw / pom |\n"
                 "|---|---|---|---|---|---|---|---|\n%s",
                 passRows.c_str());
-    if (!outDir.empty()) {
-        std::filesystem::create_directories(outDir);
-        const std::string path = (std::filesystem::path(outDir) / "tracers.csv").string();
-        std::ofstream(path) << csv.str();
-        std::printf("wrote %s\n", path.c_str());
-    }
+    if (!outDir.empty()) std::printf("wrote %s\n", csvPath.c_str());
     return 0;
 }
 
