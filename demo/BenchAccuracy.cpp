@@ -313,6 +313,9 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
             {
                 // Where the compute pass's time goes: its rays draw, its walks and its shading draw
                 // (the two draws run on the SMs that draw, the walks on every SM of a compute chip).
+                static_assert(variants[0].technique == Technique::ParallaxOcclusion &&
+                              variants[1].pass == TracePass::InDraw && variants[5].pass == TracePass::Compute &&
+                              !variants[5].texels && variants[6].pass == TracePass::Compute && variants[6].texels);
                 const double rays = passMs(5, "rays"), walks = passMs(5, "walks"), shade = passMs(5, "draw");
                 const double tRays = passMs(6, "rays"), tWalks = passMs(6, "walks"), tShade = passMs(6, "draw");
                 const double pomDraw = passMs(0, "draw"); // POM's draw alone, not the clear before it
