@@ -26,9 +26,8 @@ ctest --test-dir build-asan --output-on-failure -j2 -E "Package|Xvfb" "$@"
 # Each scene's demo, leaks checked, through OSMesa: the demo terminates its EGL display at exit,
 # which unloads Mesa's driver, so 240 bytes it keeps show up as "<unknown module>", which no
 # suppression can name (the tests never terminate theirs: the driver stays loaded, and lsan.supp
-# names what it keeps). Through EGL,
-# the default context, ASan and UBSan check everything but leaks. The decal wall also walks its
-# rays in the compute pass (--trace-pass compute).
+# names what it keeps). Through EGL, the default context, ASan and UBSan check everything but
+# leaks. The decal wall also walks its rays in the compute pass (--trace-pass compute).
 for scene in water decals planet; do
     ./build-asan/demo/hfx-demo "$scene" --gl osmesa --headless --frames 3 --width 320 --height 180 --field 128 \
         --out build-asan/frames --no-progress > /dev/null
