@@ -49,7 +49,7 @@ struct GlWorkarounds {
     /// both on the first draws and keeps the faster (TracePassTrial): a GPU may give graphics a
     /// few of its cores and compute all of them (an H200 traced the same rays in 0.07-0.25 ms in
     /// a compute pass against 2.8-7.0 ms in hier's draw), or all of them to both. llvmpipe runs
-    /// both on the same threads, its compute stage slower: the three passes cost 1.9-2.5x the
+    /// both on the same threads, its compute stage slower: the three passes cost 1.3-1.75x the
     /// draw that walks (docs/BENCHMARKS.md), and the trial, run there with this off, keeps the
     /// draw; this saves its eight draws' glFinish and their frames' changes of pass.
     bool traceInDraw = false;
