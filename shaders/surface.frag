@@ -336,8 +336,8 @@ void main() {
         // The view in texture space, turned here, where only such a lane needs it: a warp
         // without one skips the inverse frame (RDNA2: 497 instructions outside this branch, 566
         // when every lane turned it; scripts/gpu_compiler_stats.py). The light needs no turn in
-        // this draw (its self-shadow, below).
-        const vec3 helperTS = inverse(entryFrame) * toEye;
+        // this draw (its self-shadow, below). A degenerate frame has no inverse (and no depth).
+        const vec3 helperTS = (frameOk ? inverse(entryFrame) : mat3(1.0)) * toEye;
         uv = uv0 - (helperTS.z > 0.0 ? helperTS.xy / helperTS.z * depthScale : vec2(0.0)) * t;
     }
 #endif
