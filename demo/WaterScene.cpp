@@ -40,9 +40,15 @@ OceanEffectConfig oceanConfig(const SceneOptions& o) {
     c.ocean.sea.depthMeters = o.depthMeters;
     c.ocean.sea.swell.energy = o.swell;
     c.ocean.sea.swell.direction = o.windDirection + 0.9f;
-    // hier traces one grid: the ocean then runs one cascade.
+    // hier traces one grid: the ocean then runs one cascade, and refuses more asked by name
+    // rather than drawing fewer than asked.
     c.surface = o.surfaceOptions();
-    if (o.technique == Technique::Hierarchical) c.ocean.cascades = 1;
+    if (o.technique == Technique::Hierarchical) {
+        if (o.cascades > 1)
+            throw Error(str("--cascades ", o.cascades, ": the hier technique traces one grid and the ocean's cascades "
+                            "are one each (--technique pom draws them, or --cascades 1)"));
+        c.ocean.cascades = 1;
+    }
     return c;
 }
 

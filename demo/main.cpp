@@ -280,7 +280,7 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(0.0, 4.0))->capture_default_str();
     app.add_option("--choppiness", s.choppiness, "water: horizontal displacement (0: heights only; near 1 the crests sharpen)")
         ->check(kFinite)->check(CLI::Range(0.0, 4.0))->capture_default_str();
-    app.add_option("--cascades", s.cascades, "water: ocean cascades, 1-4 (default 4)")->check(CLI::Range(1, 4));
+    app.add_option("--cascades", s.cascades, "water: ocean cascades, 1-4 (default 4; 1 with --technique hier, which traces one grid)")->check(CLI::Range(1, 4));
     app.add_option("--time-scale", s.timeScale, "planet: simulated seconds per second (1 to 10000; storms live many rotations)")
         ->check(kFinite)->check(CLI::Range(1.0, 10000.0))->capture_default_str();
     app.add_option("--spin-up", s.spinUp,

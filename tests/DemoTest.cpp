@@ -580,6 +580,10 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
     }
     const Result r = runDemo("water --technique raytrace --headless");
     EXPECT_NE(r.output.find("raytrace"), std::string::npos) << r.output;
+    // hier traces one grid: the ocean's cascades asked of it are refused by name, not dropped.
+    const Result cascades = runDemo("water --technique hier --cascades 3 --headless --field 64");
+    EXPECT_NE(cascades.exitCode, 0);
+    EXPECT_NE(cascades.output.find("--cascades 3"), std::string::npos) << cascades.output;
     // NaN passes a range check (it compares false with both bounds): refused by name instead of
     // rendering the default. Infinity too.
     for (const char* option : {"--depth-scale", "--dt", "--lod-threshold", "--wind-speed", "--wind-dir"})
