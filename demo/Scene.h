@@ -16,6 +16,7 @@
 #include <optional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hfx::demo {
@@ -65,7 +66,7 @@ struct SceneOptions {
     float spinUp = 60.0f;              ///< planet: simulated seconds of weather before the first frame
     bool rings = false;                ///< planet: rings (PlanetRings) and their shadows
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
-    std::string shots;                 ///< decals: shot list file (headless default: a seeded volley)
+    std::string shots;                 ///< decals, water, planet: shot list file (decals headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image
     std::string saveDamage, loadDamage; ///< decals: damage log written after the last frame, read at start
     // noise: the NoiseField shown (NoiseConfig's fields)
@@ -175,6 +176,15 @@ private:
 
 /// The known scene names, for help texts and errors.
 inline constexpr const char* kSceneNames = "water, decals, planet, noise, maps";
+/// Whether `name` is one of them.
+inline bool isSceneName(std::string_view name) {
+    for (std::string_view rest = kSceneNames; !rest.empty();) {
+        const std::size_t comma = rest.find(", ");
+        if (rest.substr(0, comma) == name) return true;
+        rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 2);
+    }
+    return false;
+}
 
 std::unique_ptr<Scene> makeWaterScene(ClContext& cl, const SceneOptions& options);
 std::unique_ptr<Scene> makeDecalScene(ClContext& cl, const SceneOptions& options);

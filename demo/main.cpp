@@ -18,6 +18,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -65,6 +66,37 @@ const CLI::Validator kFinite(
         return std::isfinite(v) ? std::string() : "'" + text + "' is not a finite number";
     },
     "FINITE");
+
+/// The scenes an option is for, read from its help's label ("water: ...", "maps, decals: ..."); none
+/// for an option that every scene takes (no label, or one that names no scene).
+std::vector<std::string> optionScenes(const CLI::Option& option) {
+    const std::string description = option.get_description();
+    const std::size_t colon = description.find(':');
+    if (colon == std::string::npos) return {};
+    std::vector<std::string> scenes;
+    for (std::size_t at = 0; at < colon;) {
+        const std::size_t comma = std::min(description.find(", ", at), colon);
+        scenes.push_back(description.substr(at, comma - at));
+        at = comma == colon ? colon : comma + 2;
+    }
+    return std::all_of(scenes.begin(), scenes.end(), [](const std::string& name) { return isSceneName(name); })
+               ? scenes
+               : std::vector<std::string>{};
+}
+
+/// A scene refuses by name an option given on the command line that only other scenes take
+/// (`water --rings 1`), where it would otherwise draw as if it had not been given.
+void refuseOtherScenesOptions(const CLI::App& app, const std::string& scene) {
+    for (const CLI::Option* option : app.get_options()) {
+        if (option->count() == 0) continue;
+        const std::vector<std::string> scenes = optionScenes(*option);
+        if (scenes.empty() || std::find(scenes.begin(), scenes.end(), scene) != scenes.end()) continue;
+        std::string names = scenes[0];
+        for (std::size_t i = 1; i < scenes.size(); ++i) names += (i + 1 < scenes.size() ? ", " : " and ") + scenes[i];
+        throw Error(str(option->get_name(), " is for the ", names, " scene", scenes.size() > 1 ? "s" : "",
+                        ": the ", scene, " scene does not take it"));
+    }
+}
 
 const glm::vec4 kBackground{0.55f, 0.68f, 0.85f, 1.0f};
 
@@ -141,7 +173,7 @@ int run(const Options& o) {
         return runBenchTracers(o.devices, o.out, field, o.benchOnly, o.frames > 0 ? o.frames : kTimedFrames, o.width,
                                o.height);
     }
-    if (o.scene != "water" && o.scene != "maps" && o.scene != "decals" && o.scene != "planet" && o.scene != "noise")
+    if (!isSceneName(o.scene))
         throw Error(str("unknown scene '", o.scene, "' (known scenes: ", kSceneNames, ", bench)"));
     if (!o.video.empty()) checkVideoEncoder();
 
@@ -320,7 +352,9 @@ int main(int argc, char** argv) {
     app.add_option("--save-damage", s.saveDamage, "decals: after the last frame, write the damage log (impacts, clock) to this file");
     app.add_option("--load-damage", s.loadDamage,
                    "decals: start from a saved damage log (drawn exactly as saved; no automatic volley)");
-    app.add_option("--shots", s.shots, "decals: shot list to replay (lines 'bullet|explosion|click FRAME A B')");
+    app.add_option("--shots", s.shots,
+                   "decals, water, planet: shot list to replay (lines 'bullet|explosion|click FRAME A B': the wall's "
+                   "texcoords, else pixels)");
     app.add_option("--height-map", s.heightMap, "maps, decals: height map image (h in [0,1])");
     app.add_option("--normal-map", s.normalMap,
                    "maps, decals: tangent-space normal map (default: Sobel of the heights)");
@@ -343,6 +377,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        if (isSceneName(o.scene)) refuseOtherScenesOptions(app, o.scene);
         return run(o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "hfx-demo: error: %s\n", e.what());

@@ -584,6 +584,19 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
     const Result cascades = runDemo("water --technique hier --cascades 3 --headless --field 64");
     EXPECT_NE(cascades.exitCode, 0);
     EXPECT_NE(cascades.output.find("--cascades 3"), std::string::npos) << cascades.output;
+    // An option that only other scenes take is refused by name, not ignored; one the scene takes
+    // (the water's shot list: impacts land in every scene but the noise) passes that check.
+    for (const auto& [args, message] :
+         {std::pair{"water --rings 1", "--rings is for the planet scene: the water scene"},
+          std::pair{"planet --height-map wall.png", "--height-map is for the maps and decals scenes: the planet"},
+          std::pair{"noise --shots shots.txt", "--shots is for the decals, water and planet scenes: the noise"},
+          std::pair{"decals --beaufort 3", "--beaufort is for the water scene"}}) {
+        const Result other = runDemo(std::string(args) + " --headless");
+        EXPECT_NE(other.exitCode, 0) << args;
+        EXPECT_NE(other.output.find(message), std::string::npos) << args << "\n" << other.output;
+    }
+    const Result waterShots = runDemo("water --shots /no/such/shots.txt --headless");
+    EXPECT_NE(waterShots.output.find("/no/such/shots.txt"), std::string::npos) << waterShots.output;
     // NaN passes a range check (it compares false with both bounds): refused by name instead of
     // rendering the default. Infinity too.
     for (const char* option : {"--depth-scale", "--dt", "--lod-threshold", "--wind-speed", "--wind-dir"})
