@@ -40,8 +40,8 @@ OceanEffectConfig oceanConfig(const SceneOptions& o) {
     c.ocean.sea.depthMeters = o.depthMeters;
     c.ocean.sea.swell.energy = o.swell;
     c.ocean.sea.swell.direction = o.windDirection + 0.9f;
-    // hier traces one grid: the ocean then runs one cascade, and refuses more asked by name
-    // rather than drawing fewer than asked.
+    // hier traces one grid: the ocean then runs one cascade. More, asked for by --cascades, are
+    // refused by name rather than drawn as one.
     c.surface = o.surfaceOptions();
     if (o.technique == Technique::Hierarchical) {
         if (o.cascades > 1)

@@ -585,7 +585,7 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
     EXPECT_NE(cascades.exitCode, 0);
     EXPECT_NE(cascades.output.find("--cascades 3"), std::string::npos) << cascades.output;
     // An option that only other scenes take is refused by name, not ignored; one the scene takes
-    // (the water's shot list: impacts land in every scene but the noise) passes that check.
+    // (the water's shot list: the water, the wall and the planet take impacts) passes that check.
     for (const auto& [args, message] :
          {std::pair{"water --rings 1", "--rings is for the planet scene: the water scene"},
           std::pair{"planet --height-map wall.png", "--height-map is for the maps and decals scenes: the planet"},
