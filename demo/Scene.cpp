@@ -104,6 +104,21 @@ Technique defaultTechnique(const std::string& scene, const SceneOptions& o) {
     return Technique::Hierarchical;
 }
 
+std::vector<std::string> listedNames(std::string_view list) {
+    std::vector<std::string> names;
+    for (size_t at = 0; at < list.size();) {
+        const size_t comma = std::min(list.find(", ", at), list.size());
+        names.emplace_back(list.substr(at, comma - at));
+        at = comma + 2;
+    }
+    return names;
+}
+
+bool isSceneName(std::string_view name) {
+    const std::vector<std::string> scenes = listedNames(kSceneNames);
+    return std::find(scenes.begin(), scenes.end(), name) != scenes.end();
+}
+
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options) {
     if (name == "water") return makeWaterScene(cl, options);
     if (name == "decals") return makeDecalScene(cl, options);

@@ -176,15 +176,10 @@ private:
 
 /// The known scene names, for help texts and errors.
 inline constexpr const char* kSceneNames = "water, decals, planet, noise, maps";
-/// Whether `name` is one of them.
-inline bool isSceneName(std::string_view name) {
-    for (std::string_view rest = kSceneNames; !rest.empty();) {
-        const std::size_t comma = rest.find(", ");
-        if (rest.substr(0, comma) == name) return true;
-        rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 2);
-    }
-    return false;
-}
+/// The names of a list written "a, b, c" (kSceneNames; an option's scene label in --help).
+std::vector<std::string> listedNames(std::string_view list);
+/// Whether `name` is one of kSceneNames.
+bool isSceneName(std::string_view name);
 
 std::unique_ptr<Scene> makeWaterScene(ClContext& cl, const SceneOptions& options);
 std::unique_ptr<Scene> makeDecalScene(ClContext& cl, const SceneOptions& options);

@@ -73,12 +73,7 @@ std::vector<std::string> optionScenes(const CLI::Option& option) {
     const std::string description = option.get_description();
     const std::size_t colon = description.find(':');
     if (colon == std::string::npos) return {};
-    std::vector<std::string> scenes;
-    for (std::size_t at = 0; at < colon;) {
-        const std::size_t comma = std::min(description.find(", ", at), colon);
-        scenes.push_back(description.substr(at, comma - at));
-        at = comma == colon ? colon : comma + 2;
-    }
+    const std::vector<std::string> scenes = listedNames(std::string_view(description).substr(0, colon));
     return std::all_of(scenes.begin(), scenes.end(), [](const std::string& name) { return isSceneName(name); })
                ? scenes
                : std::vector<std::string>{};
