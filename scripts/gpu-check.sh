@@ -14,7 +14,7 @@
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
 # column gives its medians of both passes), and the ringed planet at 1280x720. A step that runs out
 # of time is cut and says so; the rest go on. HFX_GPU_STEPS may name fewer steps (say
-# "gl-tests bench-tracers-720p"): the budget is then
+# "gl-tests-tracer bench-tracers-720p"): the budget is then
 # shared among those. Nothing here installs anything: the bundle carries what the binaries need
 # but the GL and OpenCL drivers, and glvnd's libraries where a bare GPU image lacks them (EGL then
 # finds no device: unpack Debian's libegl1 libglvnd0 libopengl0 libgl1 libglx0 into / first, as

@@ -172,7 +172,7 @@ void ExactTracer::beginTrialDraw(TracePass pass, const TrialKey& key) {
         recordTrialDraw(open.key, open.pass, std::numeric_limits<double>::quiet_NaN());
         trialDraws_.pop_back();
     }
-    trialFor(key).began(pass);
+    trials_.at(key).trial.began(pass); // (tracePassFor made it for this draw)
     TrialDraw& d = trialDraws_.emplace_back();
     d.pass = pass;
     d.key = key;
