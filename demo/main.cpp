@@ -56,7 +56,21 @@ struct Options {
     SceneOptions sceneOptions;
     std::string gl = "auto";
     DeviceOptions devices;
+    std::vector<std::string> hierOptions; ///< those of kHierOptions given on the command line
 };
+
+/// The options only hier reads; a headless run that draws another technique refuses them by name
+/// (a window's panel may still switch to hier). --trace-pass auto, the default, passes.
+const char* const kHierOptions[] = {"--texel-shadows", "--no-texel-shadows", "--no-beam-start",
+                                    "--defer-shadow-walks", "--trace-pass"};
+
+/// The first of the hier options asked for, refused where the headless run draws `technique`.
+void refuseHierOptions(const Options& o, Technique technique) {
+    if (technique == Technique::Hierarchical || o.hierOptions.empty()) return;
+    throw Error(str(o.hierOptions[0], " is for the hier technique, and the ", o.scene, " scene draws ",
+                    techniqueName(technique), o.technique == "auto" ? " (--technique auto's choice for it)" : "",
+                    ": a headless run draws one technique"));
+}
 
 /// Refuses what CLI::Range lets through: NaN compares false with both bounds.
 const CLI::Validator kFinite(
@@ -176,6 +190,7 @@ int run(const Options& o) {
                                   !o.headless);
     GlContext* gl = devices.gl.get();
     ClContext& cl = *devices.cl;
+    if (gl->headless()) refuseHierOptions(o, sceneOptions.technique);
     auto scene = makeScene(o.scene, cl, sceneOptions);
     std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\nhfx: technique: %s%s\n", cl.programReport().c_str(),
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
@@ -258,20 +273,25 @@ int main(int argc, char** argv) {
     app.add_flag("--no-shadows", noShadows, "turn POM soft self-shadows off");
     bool texelShadowsOn = false, texelShadowsOff = false;
     app.add_flag("--texel-shadows", texelShadowsOn,
-                 "flat surfaces drawn by hier (decals, noise, maps) draw their self-shadow at every texel each frame "
+                 "decals, noise, maps: hier draws the flat surface's self-shadow at every texel each frame "
                  "(TexelShadowPass): pixels walk their light ray only where a hard shadow's edge crosses their cell; "
                  "by default they do wherever the pass pays (from 1.75 pixels per texel) or, under --pixel-budget, "
-                 "at every 2nd, 4th... texel where that pays and stays within the budget on screen");
-    app.add_flag("--no-texel-shadows", texelShadowsOff, "never draw the texel shadows (every pixel walks its light ray)")
+                 "at every 2nd, 4th... texel where that pays and stays within the budget on screen")
+        ->excludes("--no-shadows");
+    app.add_flag("--no-texel-shadows", texelShadowsOff,
+                 "decals, noise, maps: hier never draws the texel shadows (every pixel walks its light ray)")
         ->excludes("--texel-shadows");
     bool noBeamStart = false;
     app.add_flag("--no-beam-start", noBeamStart,
-                 "flat surfaces drawn by hier walk every view ray from the top, without the beam prepass that starts "
-                 "each 8x8-pixel block's rays where they may first meet the relief (the same image, more steps)");
+                 "decals, noise, maps, water: hier walks every view ray on the flat surface from the top, without the "
+                 "beam prepass that starts each 8x8-pixel block's rays where they may first meet the relief (the "
+                 "same image, more steps)");
     app.add_flag("--defer-shadow-walks", s.deferShadowWalks,
-                 "hier with texel shadows: the light walks they leave (where a hard shadow's edge crosses the samples "
-                 "around a pixel) are done by a pass after the draw, one to a lane, instead of holding up their warp "
-                 "(the same image; slower on llvmpipe)");
+                 "decals, noise, maps: the light walks hier's texel shadows leave (where a hard shadow's edge "
+                 "crosses the samples around a pixel) are done by a pass after the draw, one to a lane, instead of "
+                 "holding up their warp (the same image; slower on llvmpipe)")
+        ->excludes("--no-shadows")
+        ->excludes("--no-texel-shadows");
     app.add_option("--trace-pass", o.tracePass,
                    "where hier walks a convex surface's rays (a plane, the planet): auto (the device's: the draw on a "
                    "CPU rasteriser, else whichever of the two this device draws faster, timed on the first draws), "
@@ -366,6 +386,9 @@ int main(int argc, char** argv) {
     s.shadows = !noShadows;
     s.texelShadows = texelShadowsOn ? TexelShadowChoice::On : texelShadowsOff ? TexelShadowChoice::Off : TexelShadowChoice::Auto;
     s.beamStart = !noBeamStart;
+    for (const char* name : kHierOptions)
+        if (app.count(name) > 0 && (std::string_view(name) != "--trace-pass" || o.tracePass != "auto"))
+            o.hierOptions.emplace_back(name);
     if (s.maxSamples > 0 && s.minSamples > 0 && s.maxSamples < s.minSamples) {
         std::fprintf(stderr, "hfx-demo: error: --samples-max (%d) is below --samples-min (%d)\n", s.maxSamples,
                      s.minSamples);

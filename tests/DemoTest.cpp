@@ -595,6 +595,21 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
         EXPECT_NE(other.exitCode, 0) << args;
         EXPECT_NE(other.output.find(message), std::string::npos) << args << "\n" << other.output;
     }
+    // So is an option only hier reads where the headless run draws another technique, and one
+    // that a switch beside it undoes; --trace-pass auto, the default restated, passes.
+    for (const auto& [args, message] :
+         {std::pair{"water --trace-pass compute", "--trace-pass is for the hier technique, and the water scene draws pom"},
+          std::pair{"decals --field 64 --technique nm --no-beam-start", "--no-beam-start is for the hier technique"},
+          std::pair{"planet --texel-shadows", "--texel-shadows is for the decals, noise and maps scenes"},
+          std::pair{"noise --no-shadows --texel-shadows", "--no-shadows excludes --texel-shadows"},
+          std::pair{"decals --no-texel-shadows --defer-shadow-walks", "excludes --defer-shadow-walks"}}) {
+        const Result unread = runDemo(std::string(args) + " --headless");
+        EXPECT_NE(unread.exitCode, 0) << args;
+        EXPECT_NE(unread.output.find(message), std::string::npos) << args << "\n" << unread.output;
+    }
+    const Result restated = runDemo("decals --field 64 --technique pom --trace-pass auto --headless --width 64 "
+                                    "--height 36 --out " + outputPath("demo_restated"));
+    EXPECT_EQ(restated.exitCode, 0) << restated.output;
     const Result waterShots = runDemo("water --shots /no/such/shots.txt --headless");
     EXPECT_NE(waterShots.output.find("/no/such/shots.txt"), std::string::npos) << waterShots.output;
     // NaN passes a range check (it compares false with both bounds): refused by name instead of
