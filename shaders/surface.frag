@@ -334,7 +334,7 @@ void main() {
                                                     : 0.0;
         depthFraction = t;
         // The view in texture space, turned here, where only such a lane needs it: a warp
-        // without one skips the inverse frame (RDNA2: 497 instructions outside this branch, 566
+        // without one skips the inverse frame (RDNA2: 498 instructions outside this branch, 566
         // when every lane turned it; scripts/gpu_compiler_stats.py). The light needs no turn in
         // this draw (its self-shadow, below). A degenerate frame has no inverse (and no depth).
         const vec3 helperTS = (frameOk ? inverse(entryFrame) : mat3(1.0)) * toEye;
@@ -460,17 +460,15 @@ void main() {
     // the foot of a wall it turns away while the light ray, traced, still meets the wall.
     float lit = 1.0;
     int deferred = -1; // where the light walk left to the pass after the draw is (HFX_DEFERRED_SHADOWS)
-#if HFX_SELF_SHADOW
+#if HFX_SELF_SHADOW && HFX_COMPUTE_TRACE == 2
+    // The walks pass walked the light ray where the test in the branch below held (the rays
+    // draw's flag and its hit's height) and left -1 elsewhere: its shadow alone says it, without
+    // the light turned into texture space here.
+    lit = 1.0 - max(computedShadow, 0.0) * smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
+#elif HFX_SELF_SHADOW
     const float h0 = 1.0 - depthFraction;
-#if HFX_COMPUTE_TRACE == 2
-    // The walks pass walked the light ray where the test below held (the rays draw's flag and its
-    // hit's height) and left -1 elsewhere: its shadow alone says it, without the light turned
-    // into texture space here.
-    {
-#else
     if (lightTS.z > 0.0 && dot(geometricNormal, lightDir) > 0.0 && h0 < 1.0 &&
         mipLevel <= u_lodThreshold && depthScale > 0.0) {
-#endif
         HfxShadowRay shadowRay;
         shadowRay.uv = uv;
         shadowRay.h0 = h0;
@@ -481,12 +479,7 @@ void main() {
         shadowRay.samples = hfx_budget_samples(u_shadowSamples, hfx_screen_pixels(shadowRay.span - parallax * (1.0 - h0), dx, dy));
         shadowRay.sharpness = u_shadowSharpness;
         const float fade = smoothstep(0.0, 0.15, dot(geometricNormal, lightDir));
-#if HFX_COMPUTE_TRACE == 2
-        // The walks pass's (-1 where it walked none: a pixel at the top of the relief).
-        lit = 1.0 - max(computedShadow, 0.0) * fade;
-#else
         lit = 1.0 - hfx_surface_shadow(shadowRay, fade, deferred) * fade;
-#endif
     }
 #endif
     const float selfLit = lit;
