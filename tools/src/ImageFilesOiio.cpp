@@ -45,7 +45,8 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const Image
 }
 
 ImageSize readSize(const std::string& path, const ImageReadLimits& limits) {
-    const OIIO::ImageSpec& spec = openImage(path, limits)->spec();
+    const auto in = openImage(path, limits); // the spec lives in the input: it outlives the read
+    const OIIO::ImageSpec& spec = in->spec();
     return {spec.width, spec.height, std::min(spec.nchannels, 4)};
 }
 
