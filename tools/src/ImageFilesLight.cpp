@@ -73,8 +73,12 @@ struct ExrHeader {
         if (version.multipart || version.non_image)
             throw Error(str("image '", path, "' is a multi-part or deep OpenEXR file; one plain image is needed"));
         const char* err = nullptr;
-        if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err) != TINYEXR_SUCCESS)
+        if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err) != TINYEXR_SUCCESS) {
+            // A parse that fails part-way has filled some of the header (no destructor runs for
+            // a constructor that throws).
+            FreeEXRHeader(&header);
             exrFailure(path, "header", err);
+        }
     }
     ~ExrHeader() { FreeEXRHeader(&header); }
     int width() const { return header.data_window.max_x - header.data_window.min_x + 1; }
