@@ -6,10 +6,12 @@
 #include "hfx/compute/InverseRealFft.h"
 #include "hfx/core/Error.h"
 
+#include <clocale>
 #include <cmath>
 #include <complex>
 #include <numbers>
 #include <random>
+#include <string>
 
 namespace hfx::test {
 namespace {
@@ -121,6 +123,24 @@ TEST_F(InverseFft, KeepsParsevalsEnergy) {
         // Unscaled inverse: sum |f|^2 = n^2 sum |S|^2.
         EXPECT_NEAR(spatial / (double(n) * n * spectral), 1.0, 1e-5) << "batch " << b;
     }
+}
+
+TEST_F(InverseFft, PlanningKeepsTheCallersLocale) {
+    // A composite locale (one category apart, as GLFW's X11 start leaves it): VkFFT's code
+    // generator sets "C" and restored the old one through a pointer that call had freed
+    // (AddressSanitizer: a use after free; scripts/sanitize.sh). The plan leaves the locale as
+    // the caller had it.
+    const char* before = std::setlocale(LC_ALL, nullptr);
+    const std::string original = before ? before : "C";
+    if (!std::setlocale(LC_CTYPE, "C.UTF-8")) GTEST_SKIP() << "no C.UTF-8 locale here";
+    const std::string composite = std::setlocale(LC_ALL, nullptr);
+    EXPECT_NE(composite.find(';'), std::string::npos) << composite << ": not a composite locale";
+    {
+        InverseRealFft fft(cl(), 16, 1);
+    }
+    const char* after = std::setlocale(LC_ALL, nullptr);
+    EXPECT_EQ(std::string(after ? after : ""), composite);
+    std::setlocale(LC_ALL, original.c_str());
 }
 
 TEST_F(InverseFft, BadSizesAndBuffersAreRefusedByName) {

@@ -2,7 +2,9 @@
 
 #include "hfx/core/Error.h"
 
+#include <clocale>
 #include <cstdlib>
+#include <string>
 
 // VkFFT's OpenCL back end, in this file only: the header is 33,000 lines of code generator.
 #define VKFFT_BACKEND 3
@@ -42,6 +44,21 @@ auto withoutPoclWarnings(F&& plan) {
     if (ours) setenv("POCL_EXTRA_BUILD_FLAGS", "-w", 0);
     const auto result = plan();
     if (ours) unsetenv("POCL_EXTRA_BUILD_FLAGS");
+    return result;
+}
+
+/// VkFFT's code generator keeps the pointer setlocale(LC_ALL, NULL) returns, sets "C", and
+/// restores the locale through that pointer, which the "C" call has freed where the locale was a
+/// composite one (GLFW's X11 start sets LC_CTYPE alone: AddressSanitizer found the read in a
+/// window run). The plan is made under "C" here, so its save and restore both name the C
+/// locale's own string, and the caller's locale is put back from a copy.
+template <typename F>
+auto inTheCLocale(F&& plan) {
+    const char* current = std::setlocale(LC_ALL, nullptr);
+    const std::string saved = current ? current : "C";
+    std::setlocale(LC_ALL, "C");
+    const auto result = plan();
+    std::setlocale(LC_ALL, saved.c_str());
     return result;
 }
 
@@ -103,7 +120,8 @@ InverseRealFft::InverseRealFft(ClContext& cl, int n, int batch)
     c.inputBufferStride[0] = uint64_t(n);
     c.inputBufferStride[1] = uint64_t(n) * uint64_t(n);
     // On failure VkFFT has freed what it made (and printed the build log of a kernel that failed).
-    const VkFFTResult result = withoutPoclWarnings([&] { return initializeVkFFT(&p.app, c); });
+    const VkFFTResult result =
+        withoutPoclWarnings([&] { return inTheCLocale([&] { return initializeVkFFT(&p.app, c); }); });
     if (result != VKFFT_SUCCESS)
         throw Error(str("VkFFT could not plan the ", n, "x", n, " inverse real FFT (batch ", batch, ") on ",
                         cl.description(), ": ", vkfftResultName(result)));
