@@ -10,7 +10,9 @@
 // when the plan is made, so no frame pays for compiling them. The spectrum buffer is the
 // transform's scratch: it holds garbage afterwards.
 //
-// Owns the VkFFT plan. Thread: the thread that owns the ClContext.
+// Owns the VkFFT plan. Thread: the thread that owns the ClContext. Making one sets the process's
+// locale to "C" while VkFFT plans, and puts the caller's back (VkFFT's own save and restore reads
+// freed memory under a composite locale).
 
 #include "hfx/compute/ClContext.h"
 
