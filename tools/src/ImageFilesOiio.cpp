@@ -45,7 +45,7 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const Image
 }
 
 ImageSize readSize(const std::string& path, const ImageReadLimits& limits) {
-    const auto in = openImage(path, limits); // the spec lives in the input: it outlives the read
+    const auto in = openImage(path, limits); // held while its spec is read: the spec lives in it
     const OIIO::ImageSpec& spec = in->spec();
     return {spec.width, spec.height, std::min(spec.nchannels, 4)};
 }
