@@ -201,6 +201,18 @@ float hfx_shade_level(float entryLevel, vec2 dx, vec2 dy) {
     return clamp(hitLevel, entryLevel, entryLevel + HFX_FOOTPRINT_LEVELS);
 }
 
+// The polygon's texture space from the world's (the identity for a degenerate frame, whose
+// depth scale is 0 and which is normal mapped).
+mat3 hfx_texture_from_world(bool frameOk, mat3 worldFromTexture) {
+    return frameOk ? inverse(worldFromTexture) : mat3(1.0);
+}
+
+// The parallax offset vector: where the view ray (towards the eye, in texture space) has moved in
+// uv when it reaches h = 0; none for a ray from below the surface.
+vec2 hfx_parallax(vec3 viewTS, float depthScale) {
+    return viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
+}
+
 void main() {
 #if HFX_COMPUTE_TRACE == 1
     // A back face stores nothing (trace/hier/trace.glsl): its pixel's front face does, if any.
@@ -224,10 +236,9 @@ void main() {
         frameOk ? u_depthScale * (u_silhouetteFade > 0.0 ? smoothstep(0.0, u_silhouetteFade, cosView) : 1.0)
                 : 0.0;
 #if HFX_TRACES
-    const mat3 textureFromWorld = frameOk ? inverse(entryFrame) : mat3(1.0);
+    const mat3 textureFromWorld = hfx_texture_from_world(frameOk, entryFrame);
     const vec3 viewTS = textureFromWorld * toEye;
-    // Parallax offset vector: where the view ray has moved in uv when it reaches h = 0.
-    const vec2 parallax = viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
+    const vec2 parallax = hfx_parallax(viewTS, depthScale);
 #if HFX_SELF_SHADOW
     // The light in texture space, here: the inverse frame (nine registers) then dies before the
     // view walk instead of living through it (below, the frame after the walk).
@@ -336,9 +347,8 @@ void main() {
         // The view in texture space, turned here, where only such a lane needs it: a warp
         // without one skips the inverse frame (RDNA2: 498 instructions outside this branch, 566
         // when every lane turned it; scripts/gpu_compiler_stats.py). The light needs no turn in
-        // this draw (its self-shadow, below). A degenerate frame has no inverse (and no depth).
-        const vec3 helperTS = (frameOk ? inverse(entryFrame) : mat3(1.0)) * toEye;
-        uv = uv0 - (helperTS.z > 0.0 ? helperTS.xy / helperTS.z * depthScale : vec2(0.0)) * t;
+        // this draw (its self-shadow, below).
+        uv = uv0 - hfx_parallax(hfx_texture_from_world(frameOk, entryFrame) * toEye, depthScale) * t;
     }
 #endif
 
