@@ -33,10 +33,11 @@ def run(demo, shaders, extra, out):
             if row["technique"] == "pom":
                 pom[key] = float(row["ms"])
             elif (row["technique"] == "hier" and float(row["pixel_budget"]) == 0.0
-                  and row.get("texel_shadows", "0") == "0" and row.get("clearance_map", "0") == "0"):
+                  and row.get("texel_shadows", "0") == "0"):
                 # Every light ray walked: in the draw, or in the compute pass (one row each).
-                (computed if row.get("compute_trace", "0") == "1" else hier)[key] = float(row["ms"])
-                if row.get("compute_trace", "0") == "1" and float(row.get("draw_ms", "0") or 0) > 0:
+                in_pass = row.get("compute_trace", "0") == "1"
+                (computed if in_pass else hier)[key] = float(row["ms"])
+                if in_pass and float(row.get("draw_ms", "0") or 0) > 0:
                     shading[key] = float(row["draw_ms"])
     return pom, {"hier's draw": hier, "the compute pass": computed, "the compute pass's shading draw": shading}
 
@@ -49,6 +50,8 @@ def main():
     for tree in (a, b):
         if not os.path.isfile(os.path.join(tree, "surface.frag")):
             sys.exit(f"{tree}: not a shader tree (no surface.frag)")
+    if os.path.realpath(a) == os.path.realpath(b):
+        sys.exit(f"{a} is both A and B: copy it to time a tree against itself (the noise floor)")
     runs = {a: [], b: []}
     with tempfile.TemporaryDirectory() as tmp:
         for i in range(pairs):
@@ -62,8 +65,8 @@ def main():
         print(f"{name}:")
         print(f"{'map':<14} {'angle':>5}  {'hier/pom A':<16} {'hier/pom B':<16} {'pom ms A':>8} {'pom ms B':>8}  B/A")
         for key in keys:
-            ra = [hier[name][key] / pom[key] for pom, hier in runs[a]]
-            rb = [hier[name][key] / pom[key] for pom, hier in runs[b]]
+            ra = [timed[name][key] / pom[key] for pom, timed in runs[a]]
+            rb = [timed[name][key] / pom[key] for pom, timed in runs[b]]
             change = math.exp(sum(math.log(y / x) for x, y in zip(ra, rb)) / pairs)
             logs.append(math.log(change))
             pa = sum(pom[key] for pom, _ in runs[a]) / pairs
