@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -166,6 +167,54 @@ TEST(FlatPatch, APlaneKeepsItsTextureFrameAndCornersAndNothingElseHasOne) {
     MeshData lifted = makePlane(config);
     lifted.vertices[5].position.y += 0.01f;
     EXPECT_FALSE(flatPatchOf(lifted));
+}
+
+TEST(MeshDataCheck, AFaultyMeshNamesItsFaultAndADegenerateTextureFrameIsAllowed) {
+    // MeshData::validate, which the Mesh constructor calls before it uploads anything: a NaN or
+    // an infinity in any attribute, or a normal of no direction, would reach the shader as a NaN
+    // (it normalises the interpolated normal), a broken index as a read past the buffer.
+    const auto message = [](const MeshData& mesh) {
+        try {
+            mesh.validate();
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(message(makePlane({.subdivisions = 3})), "");
+    EXPECT_EQ(message(makeSphere({})), "") << "the poles' tangents are 0: a degenerate frame, allowed";
+    MeshData noFrame = makePlane({});
+    for (Vertex& v : noFrame.vertices) v.tangent = v.bitangent = glm::vec3(0.0f);
+    EXPECT_EQ(message(noFrame), "") << "no texture frame at all: normal mapped, allowed";
+    EXPECT_NE(message(MeshData{}).find("mesh needs triangles, got 0 vertices and 0 indices"), std::string::npos);
+    MeshData ragged = makePlane({});
+    ragged.indices.pop_back();
+    EXPECT_NE(message(ragged).find("mesh needs triangles, got 4 vertices and 5 indices"), std::string::npos);
+    MeshData past = makePlane({});
+    past.indices[4] = 9;
+    EXPECT_EQ(message(past), "mesh index 9 (entry 4) is out of range (4 vertices)");
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    struct Fault {
+        void (*spoil)(Vertex&, float);
+        float value;
+        const char* expected;
+    };
+    const Fault faults[] = {
+        {[](Vertex& v, float x) { v.position.y = x; }, nan, "mesh vertex 2: its position (-1, nan, -1) is not finite"},
+        {[](Vertex& v, float x) { v.normal.x = x; }, inf, "mesh vertex 2: its normal (inf, 1, 0) is not finite"},
+        {[](Vertex& v, float x) { v.tangent.z = x; }, -inf, "mesh vertex 2: its tangent (2, 0, -inf) is not finite"},
+        {[](Vertex& v, float x) { v.bitangent.x = x; }, nan, "mesh vertex 2: its bitangent (nan, 0, -2) is not finite"},
+        {[](Vertex& v, float x) { v.texcoord.y = x; }, nan, "mesh vertex 2: its texcoord (0, nan) is not finite"},
+        {[](Vertex& v, float x) { v.normal = glm::vec3(x); }, 0.0f,
+         "mesh vertex 2: its normal (0, 0, 0) has no direction (a unit normal is needed)"},
+    };
+    for (const Fault& fault : faults) {
+        MeshData spoilt = makePlane({});
+        fault.spoil(spoilt.vertices[2], fault.value);
+        EXPECT_EQ(message(spoilt), fault.expected);
+        spoilt.convex = true;
+        EXPECT_THROW(checkMeshClaims(spoilt), Error) << "the claims' check reads the vertices: it validates first";
+    }
 }
 
 TEST(Uid, AMoveTakesTheIdentityAlongAndLeavesTheOwnerMovedFromANewOne) {

@@ -61,6 +61,37 @@ void SphereConfig::validate() const {
                         " and ", rings));
 }
 
+void MeshData::validate() const {
+    if (vertices.empty() || indices.empty() || indices.size() % 3 != 0)
+        throw Error(str("mesh needs triangles, got ", vertices.size(), " vertices and ", indices.size(), " indices"));
+    for (size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] >= vertices.size())
+            throw Error(str("mesh index ", indices[i], " (entry ", i, ") is out of range (", vertices.size(),
+                            " vertices)"));
+    const auto text = [](auto v) {
+        std::string s = "(";
+        for (int k = 0; k < v.length(); ++k) s += str(k ? ", " : "", v[k]);
+        return s + ")";
+    };
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        const Vertex& v = vertices[i];
+        const auto check = [&](const char* name, auto value) {
+            bool finite = true;
+            for (int k = 0; k < value.length(); ++k) finite = finite && std::isfinite(value[k]);
+            if (!finite)
+                throw Error(str("mesh vertex ", i, ": its ", name, " ", text(value), " is not finite"));
+        };
+        check("position", v.position);
+        check("normal", v.normal);
+        check("tangent", v.tangent);
+        check("bitangent", v.bitangent);
+        check("texcoord", v.texcoord);
+        // (The shader normalises the interpolated normal: a zero one there is a NaN.)
+        if (!(glm::length(glm::dvec3(v.normal)) > 1e-6))
+            throw Error(str("mesh vertex ", i, ": its normal ", text(v.normal), " has no direction (a unit normal is needed)"));
+    }
+}
+
 MeshData makeSphere(const SphereConfig& config) {
     config.validate();
     MeshData mesh;
@@ -182,6 +213,7 @@ std::vector<uint32_t> pointIds(const MeshData& data, double tolerance, std::vect
 } // namespace
 
 void checkMeshClaims(const MeshData& data) {
+    data.validate();
     if (!data.closed && !data.convex) return;
     const auto [lo, hi] = positionBox(data);
     const double extent = std::max(glm::length(hi - lo), 1e-30), tolerance = 1e-6 * extent;
@@ -276,14 +308,7 @@ Mesh::Mesh(const MeshData& data)
     : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
       vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())),
       patch_(flatPatchOf(data)), convex_(data.convex || patch_.has_value()), closed_(data.closed) {
-    if (data.vertices.empty() || data.indices.empty() || data.indices.size() % 3 != 0)
-        throw Error(str("mesh needs triangles, got ", data.vertices.size(), " vertices and ",
-                        data.indices.size(), " indices"));
-    for (uint32_t index : data.indices)
-        if (index >= data.vertices.size())
-            throw Error(str("mesh index ", index, " is out of range (", data.vertices.size(),
-                            " vertices)"));
-    checkMeshClaims(data);
+    checkMeshClaims(data); // (MeshData::validate first)
     // The bounds: the box's centre, and the farthest vertex from it.
     const auto [lo, hi] = positionBox(data);
     const glm::dvec3 centre = 0.5 * (lo + hi);

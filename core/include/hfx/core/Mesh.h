@@ -44,6 +44,13 @@ struct MeshData {
     /// before the front face over it is shaded, and on llvmpipe, where a program that writes its
     /// depth has no early depth test, every one is). Checked by Mesh like `convex`.
     bool closed = false;
+
+    /// Throws hfx::Error naming the first fault: no triangles, an index count not a multiple of
+    /// 3, an index past the vertices, or a vertex whose position, normal, tangent, bitangent or
+    /// texcoord is not finite, or whose normal has no direction. A zero tangent or bitangent is
+    /// allowed: there the texture frame is degenerate (a sphere's pole) and every technique
+    /// normal maps. Mesh's constructor calls it (through checkMeshClaims).
+    void validate() const;
 };
 
 struct PlaneConfig {
@@ -76,10 +83,11 @@ bool isConvex(const MeshData& data);
 /// What MeshData::closed and convex claim, checked at the edges (vertices within 1e-6 of the
 /// mesh's extent are one point: a sphere's seam and poles): a closed mesh has two faces on every
 /// edge, running along it in opposite directions; a convex one has each face's far corner on or
-/// behind the plane of the face beside it. Throws hfx::Error naming the claim and the edge; the
-/// Mesh constructor calls it. O(triangles log triangles): 3.5 ms for makeSphere's default, 0.7 s
-/// for a million triangles (on the 2-core development machine). A closed mesh convex at every
-/// edge is convex; for an open one this is the part of isConvex that is cheap.
+/// behind the plane of the face beside it. Throws hfx::Error naming the claim and the edge (or
+/// MeshData::validate's fault: it calls that first); the Mesh constructor calls it. O(triangles
+/// log triangles): 3.5 ms for makeSphere's default, 0.7 s for a million triangles (on the 2-core
+/// development machine). A closed mesh convex at every edge is convex; for an open one this is
+/// the part of isConvex that is cheap.
 void checkMeshClaims(const MeshData& data);
 
 /// True where the mesh is one flat patch with one texture frame: every vertex has the first's
