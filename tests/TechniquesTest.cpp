@@ -21,6 +21,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <tuple>
 
 namespace hfx::test {
 namespace {
@@ -667,6 +668,100 @@ TEST_F(Techniques, AClosedMeshsBackFacesAreCulledFromOutsideAndDrawnThroughANear
         const auto [cutOpenSamples, cutOpenImage] = draw(open, cut);
         EXPECT_EQ(cutClosedSamples, cutOpenSamples);
         EXPECT_EQ(cutClosedImage.pixels, cutOpenImage.pixels) << "a cut's back faces were culled";
+    }
+}
+
+TEST_F(Techniques, AMeshWithoutATextureFrameIsNormalMappedByEveryTechnique) {
+    // Where dP/du or dP/dv vanishes, or is too small beside the other (a sphere's pole; a mesh
+    // whose texcoords barely vary one way), there is no texture space to turn the view ray into:
+    // surface.frag's frameOk test gives such a fragment no depth and the geometric normal, as
+    // normal mapping draws it, in every technique and pass. A technique that traced a sliver frame
+    // would turn its rays by a near-singular inverse and show texels far from the entry; one that
+    // turned the normal map's normals by a sliver frame would show their slopes. Two planes: one
+    // with no frame at all (tangent and bitangent 0), one whose tangent is 1e-4 of its bitangent;
+    // every technique must draw both as normal mapping draws the first. The same plane with its
+    // true frame must show relief (hits off their entry), or the test could not tell. (The
+    // compute pass's shading draw turns a helper lane's ray past the mesh's edge by the same
+    // guarded inverse, hfx_texture_from_world; without its guard no pixel here changes: the
+    // singular inverse gives a NaN view, which hfx_parallax's test turns into no offset.)
+    const AccuracyProbe probe(cl(), smooth(), kField, 0.1f);
+    const SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    constexpr int W = 256, H = 144;
+    RenderTarget target(W, H, true);
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 0.5f);
+    camera.aspect = float(W) / float(H);
+    const MeshData framed = makePlane({.subdivisions = 4});
+    MeshData noFrame = framed, sliver = framed;
+    for (Vertex& v : noFrame.vertices) v.tangent = v.bitangent = glm::vec3(0.0f);
+    for (Vertex& v : sliver.vertices) v.tangent *= 1e-4f;
+    struct Variant {
+        const char* name;
+        Technique technique;
+        TracePass pass;
+    };
+    const Variant variants[] = {{"normal mapping", Technique::NormalMapping, TracePass::InDraw},
+                                {"pom", Technique::ParallaxOcclusion, TracePass::InDraw},
+                                {"hier, in the draw", Technique::Hierarchical, TracePass::InDraw},
+                                {"hier, a compute pass", Technique::Hierarchical, TracePass::Compute}};
+    SurfaceRenderer renderer;
+    const auto draw = [&](const Mesh& mesh, const Variant& variant) {
+        target.bind();
+        target.clear();
+        renderer.draw(mesh, glm::mat4(1.0f), probe.textures(), material, camera, light,
+                      {.technique = variant.technique, .traceOutput = true, .tracePass = variant.pass});
+        if (variant.technique == Technique::Hierarchical) { // (the exact tracer's record)
+            EXPECT_EQ(renderer.tracer().last().computeTrace, variant.pass == TracePass::Compute) << variant.name;
+        }
+        return std::tuple(target.readColor(), target.readTrace(), target.readEntry());
+    };
+    const Image background = [&] {
+        target.bind();
+        target.clear();
+        return target.readColor();
+    }();
+    // Covered pixels, and those whose hit lies off their entry by more than a texel.
+    const auto count = [&](const Image& color, const std::vector<glm::vec4>& trace, const std::vector<glm::vec2>& entry) {
+        size_t covered = 0, displaced = 0, nonFinite = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const size_t top = (size_t(H - 1 - y) * W + size_t(x)) * size_t(color.channels), gl = size_t(y) * W + size_t(x);
+                if (std::memcmp(&color.pixels[top], &background.pixels[top], 3 * sizeof(float)) == 0) continue;
+                ++covered;
+                const glm::vec4 t = trace[gl];
+                nonFinite += !(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z) && std::isfinite(t.w));
+                displaced += glm::length(glm::vec2(t) - entry[gl]) * float(kField) > 1.0f;
+            }
+        return std::tuple(covered, displaced, nonFinite);
+    };
+    {
+        const Mesh mesh(framed);
+        const auto [color, trace, entry] = draw(mesh, variants[1]);
+        const auto [covered, displaced, nonFinite] = count(color, trace, entry);
+        std::printf("[no frame] the true frame, pom: %zu pixels covered, %zu of them displaced\n", covered, displaced);
+        EXPECT_GT(displaced, covered / 2) << "too little relief to tell";
+    }
+    const Image reference = std::get<0>(draw(Mesh(noFrame), variants[0]));
+    for (const auto& [name, data] : {std::pair("no frame", &noFrame), std::pair("a sliver frame", &sliver)}) {
+        SCOPED_TRACE(name);
+        const Mesh mesh(*data);
+        for (const Variant& variant : variants) {
+            SCOPED_TRACE(variant.name);
+            const auto [color, trace, entry] = draw(mesh, variant);
+            const auto [covered, displaced, nonFinite] = count(color, trace, entry);
+            float worst = 0.0f, worstDepth = 0.0f;
+            for (size_t i = 0; i < color.pixels.size(); ++i)
+                worst = std::max(worst, std::abs(color.pixels[i] - reference.pixels[i]));
+            for (const glm::vec4& t : trace) worstDepth = std::max(worstDepth, std::abs(t.z));
+            std::printf("[no frame] %s, %s: %zu pixels covered, %zu displaced, %zu not finite, colours off those "
+                        "normal mapping gives no frame by %.4f at most, depth %.4f\n",
+                        name, variant.name, covered, displaced, nonFinite, worst, worstDepth);
+            EXPECT_GT(covered, size_t(W * H / 4)) << "too little plane to tell";
+            EXPECT_EQ(displaced, 0u) << "a hit off its entry: the technique traced a frame it has not";
+            EXPECT_EQ(nonFinite, 0u);
+            EXPECT_EQ(worstDepth, 0.0f);
+            EXPECT_LE(worst, 1.0f / 255.0f + 1e-6f) << "not shaded as normal mapping shades it";
+        }
     }
 }
 
