@@ -1,6 +1,9 @@
 // The camera's screen area of a polygon (what the demo weighs the texel shadows' pass against):
 // against the analytic area of a square facing the camera, and against counting the pixels whose
-// centre ray meets the polygon, for quads crossing the near plane and the image's edges.
+// centre ray meets the polygon, for quads crossing the near plane and the image's edges; and the
+// camera's own check of its fields.
+
+#include "support/Fixtures.h"
 
 #include "hfx/core/Camera.h"
 
@@ -9,6 +12,7 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 
 namespace hfx::test {
 namespace {
@@ -90,6 +94,42 @@ TEST(ScreenArea, AgreesWithThePixelsWhoseRayMeetsAQuadThroughTheNearPlaneAndTheE
         const int hits = pixelsHit(camera, quad);
         ASSERT_GT(hits, 1000);
         EXPECT_NEAR(area, double(hits), 0.01 * hits) << "quad from (" << quad[0].x << ", " << quad[0].z << ")";
+    }
+}
+
+TEST(Camera, ABadFieldIsRefusedByNameAndTheUsualViewsPass) {
+    // Camera::validate, which every draw calls first: each of these makes the view or the
+    // projection a NaN (lookAt with no direction or no roll) or turns the image inside out.
+    EXPECT_NO_THROW(Camera{}.validate());
+    EXPECT_NO_THROW(lookingDownMinusZ().validate());
+    EXPECT_NO_THROW(Camera::orbit({1.0f, 2.0f, 3.0f}, 4.0f, 0.3f, 1.5f).validate());
+    Camera down = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.0f, 0.3f, 1.5707964f);
+    down.up = {0.0f, 0.0f, -1.0f}; // straight down, rolled as the accuracy camera is
+    EXPECT_NO_THROW(down.validate());
+    struct Case {
+        void (*spoil)(Camera&);
+        const char* expected;
+    };
+    const Case cases[] = {
+        {[](Camera& c) { c.position.x = std::nanf(""); }, "Camera.position must be finite, got (nan, 0, 0)"},
+        {[](Camera& c) { c.target.z = -INFINITY; }, "Camera.target must be finite, got (0, 0, -inf)"},
+        {[](Camera& c) { c.up = glm::vec3(std::nanf("")); }, "Camera.up must be finite, got (nan, nan, nan)"},
+        {[](Camera& c) { c.jitter.y = INFINITY; }, "Camera.jitter must be finite, got (0, inf)"},
+        {[](Camera& c) { c.target = c.position; }, "Camera.position (0, 0, 0) is its target: no view direction"},
+        {[](Camera& c) { c.up = {0.0f, 0.0f, 2.0f}; }, "Camera.up (0, 0, 2) is not across the view direction (0, 0, -1)"},
+        {[](Camera& c) { c.up = glm::vec3(0.0f); }, "Camera.up (0, 0, 0) is not across the view direction"},
+        {[](Camera& c) { c.fovY = 0.0f; }, "Camera.fovY must be in (0, pi) radians, got 0"},
+        {[](Camera& c) { c.fovY = 3.5f; }, "Camera.fovY must be in (0, pi) radians, got 3.5"},
+        {[](Camera& c) { c.aspect = -1.0f; }, "Camera.aspect must be positive, got -1"},
+        {[](Camera& c) { c.nearPlane = 0.0f; }, "Camera needs 0 < nearPlane < farPlane, both finite, got 0 and 100"},
+        {[](Camera& c) { c.farPlane = 0.001f; }, "Camera needs 0 < nearPlane < farPlane, both finite, got 0.01 and 0.001"},
+        {[](Camera& c) { c.farPlane = INFINITY; }, "Camera needs 0 < nearPlane < farPlane, both finite, got 0.01 and inf"},
+    };
+    for (const Case& c : cases) {
+        Camera camera = lookingDownMinusZ();
+        c.spoil(camera);
+        const std::string message = messageOf([&] { camera.validate(); });
+        EXPECT_EQ(message.substr(0, std::string(c.expected).size()), c.expected) << message;
     }
 }
 

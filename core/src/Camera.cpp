@@ -1,12 +1,33 @@
 #include "hfx/core/Camera.h"
 
+#include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
+
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace hfx {
+
+void Camera::validate() const {
+    for (const auto& [name, value] : {std::pair("position", position), std::pair("target", target), std::pair("up", up)})
+        if (!isFinite(value)) throw Error(str("Camera.", name, " must be finite, got ", text(value)));
+    if (!isFinite(jitter)) throw Error(str("Camera.jitter must be finite, got ", text(jitter)));
+    const glm::dvec3 forward = glm::dvec3(target) - glm::dvec3(position);
+    if (!(glm::length(forward) > 0.0))
+        throw Error(str("Camera.position ", text(position), " is its target: no view direction"));
+    if (!(glm::length(glm::cross(glm::normalize(forward), glm::dvec3(up))) > 1e-6 * glm::length(glm::dvec3(up))))
+        throw Error(str("Camera.up ", text(up), " is not across the view direction ", text(glm::vec3(forward)),
+                        " (or is zero): no roll to look with"));
+    if (!(fovY > 0.0f && fovY < 3.14159265f)) throw Error(str("Camera.fovY must be in (0, pi) radians, got ", fovY));
+    if (!(aspect > 0.0f) || !std::isfinite(aspect)) throw Error(str("Camera.aspect must be positive, got ", aspect));
+    if (!(nearPlane > 0.0f && nearPlane < farPlane) || !std::isfinite(farPlane))
+        throw Error(str("Camera needs 0 < nearPlane < farPlane, both finite, got ", nearPlane, " and ", farPlane));
+}
 
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 

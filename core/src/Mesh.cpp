@@ -1,6 +1,7 @@
 #include "hfx/core/Mesh.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -68,17 +69,10 @@ void MeshData::validate() const {
         if (indices[i] >= vertices.size())
             throw Error(str("mesh index ", indices[i], " (entry ", i, ") is out of range (", vertices.size(),
                             " vertices)"));
-    const auto text = [](auto v) {
-        std::string s = "(";
-        for (int k = 0; k < v.length(); ++k) s += str(k ? ", " : "", v[k]);
-        return s + ")";
-    };
     for (size_t i = 0; i < vertices.size(); ++i) {
         const Vertex& v = vertices[i];
         const auto check = [&](const char* name, auto value) {
-            bool finite = true;
-            for (int k = 0; k < value.length(); ++k) finite = finite && std::isfinite(value[k]);
-            if (!finite)
+            if (!isFinite(value))
                 throw Error(str("mesh vertex ", i, ": its ", name, " ", text(value), " is not finite"));
         };
         check("position", v.position);

@@ -29,6 +29,12 @@ struct Camera {
     /// fraction of the rasteriser's subpixel grid with it.
     glm::vec2 jitter{0.0f};
 
+    /// Throws hfx::Error naming the field: a position, target, up or jitter not finite, the
+    /// position on the target (no view direction), an up along the view direction (no roll),
+    /// fovY outside (0, pi), an aspect not positive, or not 0 < nearPlane < farPlane, all finite.
+    /// What the renderers call before they draw: any of these makes the view matrix a NaN.
+    void validate() const;
+
     glm::mat4 view() const;
     glm::mat4 projection() const;
     glm::mat4 viewProjection() const { return projection() * view(); }
