@@ -242,7 +242,11 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
     EXPECT_EQ(width, 16);
 }
 
-TEST_F(Robustness, BadMaterialsDrawNothing) {
+TEST_F(Robustness, BadMaterialsCamerasLightsAndModelMatricesDrawNothing) {
+    // Each makes a NaN or garbage the shaders would draw with: a material's field out of range, a
+    // camera with no view direction, a light with none (normalised), a model matrix with a NaN or
+    // a scale of 0 (the normals are turned by its inverse). Every draw refuses them by name
+    // before it changes anything.
     SineWavesEffect water(cl(), {.waves = {.size = 64}});
     RenderTarget target(64, 64);
     target.bind();
@@ -260,6 +264,39 @@ TEST_F(Robustness, BadMaterialsDrawNothing) {
           std::pair{SurfaceMaterial{.pixelBudget = -0.5f}, "pixelBudget"}}) {
         const std::string m = messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), material, camera, {}); });
         EXPECT_NE(m.find(field), std::string::npos) << m;
+    }
+    Camera noDirection = camera;
+    noDirection.target = noDirection.position;
+    const DirectionalLight light, dark{.direction = glm::vec3(0.0f)}, negative{.color = {1.0f, -0.1f, 1.0f}};
+    glm::mat4 nanModel(1.0f), flattened(1.0f);
+    nanModel[3][1] = std::nanf("");
+    flattened[1][1] = 0.0f;
+    const SurfaceMaterial material;
+    struct Case {
+        const char* what;
+        std::function<void()> draw;
+        const char* expected;
+    };
+    const Case cases[] = {
+        {"a camera on its target", [&] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), material, noDirection, light); },
+         "is its target: no view direction"},
+        {"a light of no direction", [&] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), material, camera, dark); },
+         "DirectionalLight.direction must be finite and not zero, got (0, 0, 0)"},
+        {"a negative light", [&] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), material, camera, negative); },
+         "DirectionalLight.color must be finite and not negative, got (1, -0.1, 1)"},
+        {"a NaN model", [&] { renderer.draw(plane, nanModel, water.textures(), material, camera, light); },
+         "the model matrix must be finite, got the columns (1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, nan, 0, 1)"},
+        {"a flattened model", [&] { renderer.draw(plane, flattened, water.textures(), material, camera, light); },
+         "the model matrix scales some axis to 0"},
+        {"a flat mesh, a flattened model", [&] { renderer.drawFlat(plane, flattened, camera, glm::vec4(1.0f), &light); },
+         "the model matrix scales some axis to 0"},
+        {"a flat mesh, a camera on its target", [&] { renderer.drawFlat(plane, glm::mat4(1.0f), noDirection, glm::vec4(1.0f)); },
+         "is its target: no view direction"},
+        {"the sky, a light of no direction", [&] { renderer.drawSky(camera, dark, WaterLook{}); }, "DirectionalLight.direction"},
+    };
+    for (const Case& c : cases) {
+        const std::string m = messageOf(c.draw);
+        EXPECT_NE(m.find(c.expected), std::string::npos) << c.what << ": " << m;
     }
     EXPECT_EQ(target.readColor().pixels, before.pixels) << "a refused draw left pixels behind";
 }

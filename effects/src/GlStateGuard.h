@@ -6,6 +6,7 @@
 
 #include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlObject.h"
 #include "hfx/effects/SurfaceUniforms.h"
@@ -26,6 +27,19 @@ void updateBlock(GlBuffer& buffer, GLuint binding, const Block& data) {
     }
     HFX_GL_CHECK(glNamedBufferSubData(buffer.id(), 0, sizeof(Block), &data));
     glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer.id());
+}
+
+/// Throws hfx::Error unless the model matrix is finite and its linear part invertible (the
+/// normals are turned by its inverse: a scale of 0 would make them NaN). What each draw checks
+/// first, with the camera and the light, before it changes anything.
+inline void checkModel(const glm::mat4& model) {
+    const auto columns = [&] {
+        return str(text(model[0]), ", ", text(model[1]), ", ", text(model[2]), ", ", text(model[3]));
+    };
+    if (!isFinite(model)) throw Error(str("the model matrix must be finite, got the columns ", columns()));
+    if (!isFinite(glm::inverse(glm::mat3(model))))
+        throw Error(str("the model matrix scales some axis to 0 (no inverse to turn the normals by), got the columns ",
+                        columns()));
 }
 
 /// Fills a surface block's transforms: the mesh's model matrix, the view-projection it is seen

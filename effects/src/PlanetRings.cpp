@@ -155,6 +155,9 @@ PlanetLook PlanetRings::look() const {
 }
 
 void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light) {
+    camera.validate();
+    light.validate();
+    checkModel(model);
     GlStateGuard guard;
     GLboolean depthWrites = GL_TRUE;
     glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);

@@ -97,6 +97,14 @@ void SurfaceMaterial::validate() const {
     if (shading == Shading::Planet) planet.validate();
 }
 
+void DirectionalLight::validate() const {
+    if (!isFinite(direction) || !(glm::length(glm::dvec3(direction)) > 0.0))
+        throw Error(str("DirectionalLight.direction must be finite and not zero, got ", text(direction)));
+    for (const auto& [name, value] : {std::pair("color", color), std::pair("ambient", ambient)})
+        if (!isFinite(value) || glm::any(glm::lessThan(value, glm::vec3(0.0f))))
+            throw Error(str("DirectionalLight.", name, " must be finite and not negative, got ", text(value)));
+}
+
 void PlanetLook::validate() const {
     if (!(radius > 0.0f) || !std::isfinite(radius))
         throw Error(str("PlanetLook.radius must be positive, got ", radius));
@@ -302,6 +310,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                   const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
                                   const DrawOptions& options, const ShadowMap* caster) {
     material.validate();
+    camera.validate();
+    light.validate();
+    checkModel(model);
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
@@ -445,6 +456,8 @@ std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const Dir
 }
 
 void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look) {
+    camera.validate();
+    light.validate();
     if (look.environment != 0 && !glIsTexture(look.environment))
         throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
     ShaderProgram& sky = sky_[look.environment != 0 ? 1 : 0];
@@ -466,6 +479,8 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
 
 void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
                                const glm::vec4& color, const DirectionalLight* light) {
+    camera.validate();
+    if (light) light->validate();
     drawFlatSeenBy(mesh, model, camera.viewProjection(), camera.position, color, light);
 }
 
@@ -476,6 +491,7 @@ void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, c
 
 void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj,
                                      glm::vec3 eye, const glm::vec4& color, const DirectionalLight* light) {
+    checkModel(model);
     const bool receives = light && light->shadowMap;
     ShaderProgram& flat = flat_[receives ? 1 : 0];
     if (!flat.id())

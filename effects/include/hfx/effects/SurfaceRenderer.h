@@ -177,6 +177,9 @@ struct DirectionalLight {
     /// Optional: the light's shadow map (drawn this frame by the caller); surfaces and lit flat
     /// meshes drawn under this light receive its shadows. The caller keeps it alive.
     const ShadowMap* shadowMap = nullptr;
+    /// Throws hfx::Error naming the field: a direction not finite or zero (it is normalised for
+    /// the shaders), a colour or ambient not finite or negative.
+    void validate() const;
 };
 
 /// The light as the exact tracer's shadow rays see it on a flat surface: its texture frame in
