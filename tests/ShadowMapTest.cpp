@@ -205,6 +205,8 @@ TEST_F(ShadowMaps, BadFitsAndSizesAreRefusedByName) {
     EXPECT_NE(messageOf([] { ShadowMap m(8); }).find("16..16384"), std::string::npos);
     ShadowMap map(64);
     EXPECT_NE(messageOf([&] { map.fit({0, 0, 0}, {0, 0, 0}, 1.0f); }).find("direction"), std::string::npos);
+    EXPECT_NE(messageOf([&] { map.fit({0, 1, 0}, {0, std::nanf(""), 0}, 1.0f); }).find("the centre must be finite, got (0, nan, 0)"),
+              std::string::npos);
     EXPECT_NE(messageOf([&] { map.fit({0, 1, 0}, {0, 0, 0}, -1.0f); }).find("radius"), std::string::npos);
 }
 

@@ -240,7 +240,7 @@ void checkMeshClaims(const MeshData& data) {
         const std::span<const Side> on(sides.data() + i, j - i);
         const auto where = [&] {
             const glm::dvec3 a = points[on[0].edge >> 32], b = points[on[0].edge & 0xffffffffu];
-            return str("the edge from (", a.x, ", ", a.y, ", ", a.z, ") to (", b.x, ", ", b.y, ", ", b.z, ")");
+            return str("the edge from ", text(a), " to ", text(b));
         };
         if (data.closed && (on.size() != 2 || on[0].forward == on[1].forward))
             throw Error(str("MeshData::closed, but ", where(), " has ", on.size(),

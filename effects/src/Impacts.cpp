@@ -1,6 +1,7 @@
 #include "hfx/effects/Impacts.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 #include "hfx/effects/DecalWallEffect.h"
 #include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/OceanEffect.h"
@@ -16,12 +17,10 @@
 namespace hfx {
 
 void Impact::validate() const {
-    if (!std::isfinite(origin.x) || !std::isfinite(origin.y) || !std::isfinite(origin.z))
-        throw Error(str("Impact.origin must be finite, got (", origin.x, ", ", origin.y, ", ", origin.z, ")"));
+    if (!isFinite(origin)) throw Error(str("Impact.origin must be finite, got ", text(origin)));
     const double length = glm::length(direction);
     if (!(length > 0.0) || !std::isfinite(length))
-        throw Error(str("Impact.direction must be finite and not zero, got (", direction.x, ", ", direction.y, ", ",
-                        direction.z, ")"));
+        throw Error(str("Impact.direction must be finite and not zero, got ", text(direction)));
     if (!(energy > 0.0f) || !std::isfinite(energy))
         throw Error(str("Impact.energy must be positive and finite, got ", energy));
     if (kind != ImpactKind::Bullet && kind != ImpactKind::Explosion)

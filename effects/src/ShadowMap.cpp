@@ -1,6 +1,7 @@
 #include "hfx/effects/ShadowMap.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -35,7 +36,9 @@ ShadowMap::ShadowMap(int size) : size_(size) {
 void ShadowMap::fit(glm::vec3 towardsLight, glm::vec3 centre, float radius) {
     const float length = glm::length(towardsLight);
     if (!(length > 0.0f) || !std::isfinite(length))
-        throw Error("ShadowMap::fit: the direction towards the light must be finite and non-zero");
+        throw Error(str("ShadowMap::fit: the direction towards the light must be finite and non-zero, got ",
+                        text(towardsLight)));
+    if (!isFinite(centre)) throw Error(str("ShadowMap::fit: the centre must be finite, got ", text(centre)));
     if (!(radius > 0.0f) || !std::isfinite(radius))
         throw Error(str("ShadowMap::fit: radius must be positive, got ", radius));
     towardsLight_ = towardsLight / length;
