@@ -146,6 +146,17 @@ TEST_F(Users, PickingMissesOutsideThePatchAndLookingAway) {
     const HeightFieldTracer flat(std::vector<float>(64, 1.0f), 8, 8, EdgeMode::Wrap);
     EXPECT_FALSE(pickSurface({{10, 0, 3}, {0, 0, -1}}, frame, flat, 0.05, {0, 0, 2, 2}));
     EXPECT_TRUE(pickSurface({{0, 0, 3}, {0, 0, -1}}, frame, flat, 0.05, {0, 0, 2, 2}));
+    // A ray from a cursor outside the window's numbers, or a frame from a broken model matrix, is
+    // refused by name, not missed.
+    EXPECT_EQ(messageOf([&] { pickSurface({{0, std::nan(""), 3}, {0, 0, -1}}, frame, flat, 0.05); }),
+              "pickSurface: the ray must be finite and have a direction, got origin (0, nan, 3) and direction (0, 0, -1)");
+    EXPECT_NE(messageOf([&] { pickSurface({{0, 0, 3}, {0, 0, 0}}, frame, flat, 0.05); }).find("direction (0, 0, 0)"),
+              std::string::npos);
+    SurfaceFrame broken = frame;
+    broken.normal.x = std::nan("");
+    EXPECT_NE(messageOf([&] { pickSurface({{0, 0, 3}, {0, 0, -1}}, broken, flat, 0.05); })
+                  .find("pickSurface: the surface frame must be finite"),
+              std::string::npos);
     EXPECT_THROW(wall.shoot(std::nan(""), 0.5), Error);
 }
 

@@ -1,6 +1,7 @@
 #include "hfx/effects/Picking.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -25,6 +26,12 @@ std::optional<SurfacePick> pickSurface(const Ray& ray, const SurfaceFrame& frame
                                        glm::dvec4 uvBounds) {
     if (!(depthScale >= 0.0) || !std::isfinite(depthScale))
         throw Error(str("pickSurface: depthScale must be >= 0 and finite, got ", depthScale));
+    if (!isFinite(ray.origin) || !isFinite(ray.direction) || !(glm::length(ray.direction) > 0.0))
+        throw Error(str("pickSurface: the ray must be finite and have a direction, got origin ", text(ray.origin),
+                        " and direction ", text(ray.direction)));
+    if (!isFinite(frame.origin) || !isFinite(frame.tangent) || !isFinite(frame.bitangent) || !isFinite(frame.normal))
+        throw Error(str("pickSurface: the surface frame must be finite, got origin ", text(frame.origin), ", tangent ",
+                        text(frame.tangent), ", bitangent ", text(frame.bitangent), ", normal ", text(frame.normal)));
     // Texture space as the shader builds it: columns T, B and the normal scaled to one
     // texcoord's length; its z is the depth below the patch in texture units.
     const double unitsPerTexcoord = std::sqrt(glm::length(frame.tangent) * glm::length(frame.bitangent));

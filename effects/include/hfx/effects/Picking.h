@@ -34,7 +34,8 @@ struct SurfacePick {
 };
 
 /// The first point where `ray` meets the relief under `frame`, or nothing. `uvBounds`
-/// (umin, vmin, umax, vmax) limits the patch: hits outside are misses.
+/// (umin, vmin, umax, vmax) limits the patch: hits outside are misses. Throws hfx::Error naming
+/// a ray or frame that is not finite, a ray of no direction, or a bad depthScale.
 std::optional<SurfacePick> pickSurface(const Ray& ray, const SurfaceFrame& frame,
                                        const HeightFieldTracer& heights, double depthScale,
                                        glm::dvec4 uvBounds = {-1e30, -1e30, 1e30, 1e30});
