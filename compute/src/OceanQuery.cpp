@@ -2,6 +2,7 @@
 #include "hfx/compute/shared/OceanMath.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 
 #include <fftw3.h>
 
@@ -188,9 +189,7 @@ void OceanQuery::check(std::span<const glm::vec2> points, double t) const {
     if (!std::isfinite(t))
         throw Error(str("OceanQuery: time must be finite, got ", t));
     for (size_t i = 0; i < points.size(); ++i)
-        if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
-            throw Error(str("OceanQuery: point ", i, " is not finite (", points[i].x, ", ",
-                            points[i].y, ")"));
+        if (!isFinite(points[i])) throw Error(str("OceanQuery: point ", i, " is not finite ", text(points[i])));
 }
 
 void OceanQuery::heights(std::span<const glm::vec2> points, double t, std::span<float> out) {

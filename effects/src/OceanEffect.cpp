@@ -3,6 +3,7 @@
 #include "hfx/compute/OceanSpectrum.h"
 #include "hfx/compute/shared/DecalMath.h"
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 
 #include <algorithm>
 #include <cmath>
@@ -144,8 +145,7 @@ constexpr double kRingDecaySeconds = 10.0, kRingFoamSeconds = 3.0, kRingLifeSeco
 } // namespace
 
 void OceanEffect::disturb(glm::dvec2 uv, float energy, ImpactKind kind) {
-    if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
-        throw Error(str("OceanEffect::disturb: texcoords must be finite, got ", uv.x, ", ", uv.y));
+    if (!isFinite(uv)) throw Error(str("OceanEffect::disturb: texcoords must be finite, got ", text(uv)));
     if (!(energy > 0.0f) || !std::isfinite(energy))
         throw Error(str("OceanEffect::disturb: energy must be positive and finite, got ", energy));
     const bool blast = kind == ImpactKind::Explosion;

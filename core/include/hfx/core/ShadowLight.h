@@ -7,6 +7,7 @@
 // Thread: any (plain values).
 
 #include "hfx/core/Error.h"
+#include "hfx/core/Finite.h"
 
 #include <glm/vec2.hpp>
 
@@ -32,8 +33,7 @@ struct ShadowLight {
         return {uvPerClimb, 1.0f / sharpness, 1e-3f * move + 1e-7f}; // validate() refuses a sharpness <= 1
     }
     void validate() const {
-        if (!std::isfinite(uvPerClimb.x) || !std::isfinite(uvPerClimb.y))
-            throw Error(str("ShadowLight.uvPerClimb must be finite, got (", uvPerClimb.x, ", ", uvPerClimb.y, ")"));
+        if (!isFinite(uvPerClimb)) throw Error(str("ShadowLight.uvPerClimb must be finite, got ", text(uvPerClimb)));
         if (!(penumbra >= 0.0f && penumbra <= 0.999f))
             throw Error(str("ShadowLight.penumbra must be in [0, 0.999] (a shadow sharpness above 1), got ",
                             penumbra));
