@@ -13,6 +13,7 @@
 #include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/ImageSurface.h"
 #include "hfx/effects/OceanEffect.h"
+#include "hfx/effects/PlanetRings.h"
 #include "hfx/effects/SineWavesEffect.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
@@ -245,8 +246,8 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
 TEST_F(Robustness, BadMaterialsCamerasLightsAndModelMatricesDrawNothing) {
     // Each makes a NaN or garbage the shaders would draw with: a material's field out of range, a
     // camera with no view direction, a light with none (normalised), a model matrix with a NaN or
-    // a scale of 0 (the normals are turned by its inverse). Every draw refuses them by name
-    // before it changes anything.
+    // a scale of 0 (the normals are turned by its inverse). Every draw, the planet's rings' too,
+    // refuses them by name before it changes anything.
     SineWavesEffect water(cl(), {.waves = {.size = 64}});
     RenderTarget target(64, 64);
     target.bind();
@@ -272,6 +273,7 @@ TEST_F(Robustness, BadMaterialsCamerasLightsAndModelMatricesDrawNothing) {
     nanModel[3][1] = std::nanf("");
     flattened[1][1] = 0.0f;
     const SurfaceMaterial material;
+    PlanetRings rings; // composed over a copy of the frame, so a refused draw that went on would change it
     struct Case {
         const char* what;
         std::function<void()> draw;
@@ -293,6 +295,13 @@ TEST_F(Robustness, BadMaterialsCamerasLightsAndModelMatricesDrawNothing) {
         {"a flat mesh, a camera on its target", [&] { renderer.drawFlat(plane, glm::mat4(1.0f), noDirection, glm::vec4(1.0f)); },
          "is its target: no view direction"},
         {"the sky, a light of no direction", [&] { renderer.drawSky(camera, dark, WaterLook{}); }, "DirectionalLight.direction"},
+        {"the rings, a camera on its target", [&] { rings.draw(glm::mat4(1.0f), noDirection, light); },
+         "is its target: no view direction"},
+        {"the rings, a negative light", [&] { rings.draw(glm::mat4(1.0f), camera, negative); },
+         "DirectionalLight.color must be finite and not negative"},
+        {"the rings, a NaN model", [&] { rings.draw(nanModel, camera, light); }, "the model matrix must be finite"},
+        {"the rings, a flattened model", [&] { rings.draw(flattened, camera, light); },
+         "the model matrix scales some axis to 0"},
     };
     for (const Case& c : cases) {
         const std::string m = messageOf(c.draw);
