@@ -24,8 +24,25 @@ export HFX_SOAK_STEPS=500 # the soak tests, shortened: the sanitizers slow them 
 # is unloaded before exit, so its leaks show up as "<unknown module>", which no suppression can
 # name: they run with ASan and UBSan but without the leak check, which the demo runs through
 # OSMesa below do.
-ctest --test-dir build-asan --output-on-failure -j2 -E "Package" -LE demo "$@"
-ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ctest --test-dir build-asan --output-on-failure -j2 -L demo "$@"
+# LeakSanitizer stops every thread to scan for leaks at exit; under load its tracer thread now and
+# then crashes ("Tracer caught signal 11") after a test has passed (1 of 292 tests in a run, a
+# different one each time). That is LeakSanitizer's, not HFX's: when every failed test's output
+# shows it, those tests run once more, and their second run decides.
+tests() {
+    ctest --test-dir build-asan --output-on-failure -j2 "$@" && return 0
+    local temporary=build-asan/Testing/Temporary failed
+    failed=$(cut -d: -f2 "$temporary/LastTestsFailed.log")
+    [ -n "$failed" ] || return 1
+    for name in $failed; do
+        awk -v name="$name" '/^[0-9]+\/[0-9]+ Test: / { inside = ($3 == name) }
+                             inside && /Tracer caught signal/ { found = 1 } END { exit !found }' \
+            "$temporary/LastTest.log" || return 1
+    done
+    echo "sanitize: LeakSanitizer's tracer crashed in $(echo $failed); running them again"
+    ctest --test-dir build-asan --output-on-failure --rerun-failed "$@"
+}
+tests -E "Package" -LE demo "$@"
+ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" tests -L demo "$@"
 # Each scene's demo, leaks checked, through OSMesa: the demo terminates its EGL display at exit,
 # which unloads Mesa's driver, so 240 bytes it keeps show up as "<unknown module>", which no
 # suppression can name (the tests never terminate theirs: the driver stays loaded, and lsan.supp
