@@ -5,6 +5,7 @@
 
 #include "hfx/core/Error.h"
 #include "Devices.h"
+#include "Frames.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/tools/AccuracyMaps.h"
 #include "hfx/tools/ImageFiles.h"
@@ -163,7 +164,7 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
        << "![error against view angle](accuracy/error_vs_angle.png)\n\n"
        << "![error against fetches and draw time](accuracy/cost_vs_error.png)\n\n"
        << "![the bricks map at 80 degrees, one crop per technique](accuracy/crops_80.png)\n";
-    std::filesystem::create_directories(std::filesystem::path(outDir) / "accuracy");
+    makeFolder((std::filesystem::path(outDir) / "accuracy").string(), "--out");
     writeImage((std::filesystem::path(outDir) / "accuracy" / "crops_80.jpg").string(), strip);
     std::ofstream(std::filesystem::path(outDir) / "accuracy" / "accuracy.csv") << csv.str();
     const std::string mdPath = (std::filesystem::path(outDir) / "ACCURACY.md").string();
@@ -307,7 +308,7 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                         cHier / cPom);
             std::fflush(stdout);
             if (!outDir.empty()) { // as the rows come: a run cut short (gpu-check's steps) keeps them
-                std::filesystem::create_directories(outDir);
+                makeFolder(outDir, "--out");
                 std::ofstream(csvPath) << csv.str();
             }
             {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <system_error>
 #include <vector>
 
 namespace hfx::demo {
@@ -38,6 +39,14 @@ void Progress::finish() {
     if (enabled_) std::fprintf(stderr, "\n");
 }
 
+void makeFolder(const std::string& dir, const char* option) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (!error && !std::filesystem::is_directory(dir, error))
+        error = std::make_error_code(std::errc::not_a_directory);
+    if (error) throw Error(str(option, ": cannot make the folder '", dir, "': ", error.message()));
+}
+
 void checkVideoEncoder() {
     if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
         throw Error("--video needs ffmpeg on the PATH (Debian: apt-get install ffmpeg)");
@@ -54,7 +63,7 @@ std::string shellQuote(const std::string& s) {
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
     : path_(path), width_(width), height_(height) {
     if (const auto parent = std::filesystem::path(path).parent_path(); !parent.empty())
-        std::filesystem::create_directories(parent);
+        makeFolder(parent.string(), "--video");
     char header[160];
     std::snprintf(header, sizeof header, "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s %dx%d -r %.6g -i - ",
                   width, height, fps);
@@ -89,7 +98,7 @@ void VideoWriter::close() {
 }
 
 void exportMaps(const std::string& dir, const SurfaceTextures& textures) {
-    std::filesystem::create_directories(dir);
+    makeFolder(dir, "--export-maps");
     const int w = textures.config().width, h = textures.config().height;
     std::vector<float> surface(size_t(w) * h * 4);
     glGetTextureImage(textures.surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(surface.size() * sizeof(float)), surface.data());

@@ -29,6 +29,10 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
+/// Makes the folder DIR (and its parents) for OPTION's files; throws hfx::Error naming the option,
+/// the folder and why when it cannot (a file in its place, no permission).
+void makeFolder(const std::string& dir, const char* option);
+
 /// Throws hfx::Error saying what to install when ffmpeg is not on the PATH.
 void checkVideoEncoder();
 

@@ -17,7 +17,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 namespace hfx::demo {
 namespace {
@@ -102,7 +101,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     RenderTarget target(options_.width, options_.height);
     Orbit orbit(scene.camera());
     KeyEdge explodeKey(GLFW_KEY_E), clearKey(GLFW_KEY_C), screenshotKey(GLFW_KEY_F12), escapeKey(GLFW_KEY_ESCAPE);
-    if (!options_.out.empty()) std::filesystem::create_directories(options_.out);
+    if (!options_.out.empty()) makeFolder(options_.out, "--out");
     int screenshots = 0;
     double drawMs = 0.0, frameMs = 0.0, last = nowMs();
     // The techniques this scene can draw: those that walk the height bounds only on one grid

@@ -118,7 +118,7 @@ int runHeadless(const Options& o, Scene& scene) {
     const int frames = o.frames > 0 ? o.frames : 1;
     std::string outDir = o.out;
     if (outDir.empty() && o.video.empty()) outDir = "frames";
-    if (!outDir.empty()) std::filesystem::create_directories(outDir);
+    if (!outDir.empty()) makeFolder(outDir, "--out");
     std::unique_ptr<VideoWriter> video;
     if (!o.video.empty()) video = std::make_unique<VideoWriter>(o.video, o.width, o.height, 1.0 / o.dt);
     Progress progress(frames, !o.noProgress && frames > 1);
@@ -168,6 +168,12 @@ int run(const Options& o) {
         std::printf("%s", techniqueTableMarkdown().c_str());
         return 0;
     }
+    // The folders the run writes to, made before any device opens: one that cannot be made is named
+    // at once, not after the scene's set-up or a bench's minutes.
+    if (!o.out.empty()) makeFolder(o.out, "--out");
+    if (!o.exportMaps.empty()) makeFolder(o.exportMaps, "--export-maps");
+    if (const auto parent = std::filesystem::path(o.video).parent_path(); !parent.empty())
+        makeFolder(parent.string(), "--video");
     if (o.scene == "bench")
         return runBench(o.devices, sceneOptions, o.width, o.height, std::max(o.frames, kTimedFrames), o.benchOnly);
     if (o.scene == "bench-mesh") return runBenchMesh(o.devices, o.width, o.height, std::max(o.frames, kTimedFrames));

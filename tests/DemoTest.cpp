@@ -518,6 +518,26 @@ TEST(Demo, UnknownSceneIsAClearError) {
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos);
 }
 
+TEST(Demo, AnOutputFolderThatCannotBeMadeIsNamedBeforeAnyDeviceOpens) {
+    // A file where the folder's parent should be: each option that names a folder is refused by
+    // name, with the folder, before the devices open (no device line in the log).
+    const std::string file = outputPath("demo_not_a_folder");
+    std::ofstream(file) << "a file\n";
+    for (const std::string option : {"--out", "--export-maps", "--video"}) {
+        const std::string folder = file + "/frames";
+        const std::string target = option == "--video" ? folder + "/water.mp4" : folder;
+        const Result r = runDemo("water --headless --frames 1 --width 64 --height 64 " + option + " " + target);
+        EXPECT_NE(r.exitCode, 0) << option;
+        EXPECT_NE(r.output.find(option + ": cannot make the folder '" + folder + "'"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("hfx: OpenCL device"), std::string::npos) << option << ": named after the devices opened\n"
+                                                                        << r.output;
+    }
+    // The benches too, before their minutes.
+    const Result bench = runDemo("bench-tracers --out " + file + "/tracers");
+    EXPECT_NE(bench.exitCode, 0);
+    EXPECT_NE(bench.output.find("--out: cannot make the folder"), std::string::npos) << bench.output;
+}
+
 TEST(Demo, TheReadmesTechniqueTableIsTheOneTheTablePrints) {
     // The C++ table drives the docs: README.md carries `hfx-demo techniques` verbatim.
     const Result r = runDemo("techniques");
