@@ -197,6 +197,9 @@ int run(const Options& o) {
     GlContext* gl = devices.gl.get();
     ClContext& cl = *devices.cl;
     if (gl->headless()) refuseHierOptions(o, sceneOptions.technique);
+    if (gl->headless() && !o.windowShot.empty()) // a window-only option, not dropped where none opened
+        throw Error(str("--window-shot saves what a window shows, and this run is headless",
+                        o.headless ? "" : " (no display)", ": its frames go to --out"));
     auto scene = makeScene(o.scene, cl, sceneOptions);
     std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\nhfx: technique: %s%s\n", cl.programReport().c_str(),
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),

@@ -607,7 +607,8 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
     // An option that only other scenes take is refused by name, not ignored; one the scene takes
     // (the water's shot list: the water, the wall and the planet take impacts) passes that check.
     // So is one only hier reads where the headless run draws another technique, and one that a
-    // switch beside it undoes; --trace-pass auto, the default restated, passes.
+    // switch beside it undoes, and one for a window where none opens; --trace-pass auto, the default
+    // restated, passes.
     for (const auto& [args, message] :
          {std::pair{"water --rings 1", "--rings is for the planet scene: the water scene"},
           std::pair{"planet --height-map wall.png", "--height-map is for the maps and decals scenes: the planet"},
@@ -617,7 +618,8 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
           std::pair{"decals --field 64 --technique nm --no-beam-start", "--no-beam-start is for the hier technique"},
           std::pair{"planet --texel-shadows", "--texel-shadows is for the decals, noise and maps scenes"},
           std::pair{"noise --no-shadows --texel-shadows", "--no-shadows excludes --texel-shadows"},
-          std::pair{"decals --no-texel-shadows --defer-shadow-walks", "excludes --defer-shadow-walks"}}) {
+          std::pair{"decals --no-texel-shadows --defer-shadow-walks", "excludes --defer-shadow-walks"},
+          std::pair{"water --window-shot shot.png", "--window-shot saves what a window shows, and this run is headless"}}) {
         const Result other = runDemo(std::string(args) + " --headless");
         EXPECT_NE(other.exitCode, 0) << args;
         EXPECT_NE(other.output.find(message), std::string::npos) << args << "\n" << other.output;
