@@ -1,7 +1,7 @@
 // The camera's screen area of a polygon (what the demo weighs the texel shadows' pass against):
 // against the analytic area of a square facing the camera, and against counting the pixels whose
-// centre ray meets the polygon, for quads crossing the near plane and the image's edges; and the
-// camera's own check of its fields.
+// centre ray meets the polygon, for quads crossing the near plane and the image's edges, in either
+// depth convention; the reversed-Z projection; and the camera's own check of its fields.
 
 #include "support/Fixtures.h"
 
@@ -89,11 +89,49 @@ TEST(ScreenArea, AgreesWithThePixelsWhoseRayMeetsAQuadThroughTheNearPlaneAndTheE
         {glm::vec3(-20, 0, 20), glm::vec3(20, 0, 20), glm::vec3(20, 0, -20), glm::vec3(-20, 0, -20)}, // past it
         {glm::vec3(-1, -1, 0), glm::vec3(1.5f, -0.5f, 0.3f), glm::vec3(1, 1, 0.5f), glm::vec3(-1.5f, 0.5f, 0.2f)},
     };
-    for (const auto& quad : quads) {
-        const double area = screenArea(quad, camera.viewProjection(), kWidth, kHeight);
-        const int hits = pixelsHit(camera, quad);
-        ASSERT_GT(hits, 1000);
-        EXPECT_NEAR(area, double(hits), 0.01 * hits) << "quad from (" << quad[0].x << ", " << quad[0].z << ")";
+    for (const bool reversed : {false, true})
+        for (const auto& quad : quads) {
+            Camera c = camera;
+            c.reversedZ = reversed; // the near plane at clip depth 1, not -1: clipped there too
+            const double area = screenArea(quad, c.viewProjection(), kWidth, kHeight);
+            const int hits = pixelsHit(c, quad);
+            ASSERT_GT(hits, 1000);
+            EXPECT_NEAR(area, double(hits), 0.01 * hits)
+                << "quad from (" << quad[0].x << ", " << quad[0].z << ")" << (reversed ? ", reversed Z" : "");
+        }
+}
+
+TEST(Camera, AReversedZProjectionPutsTheNearPlaneAtOneAndTheFarAtZero) {
+    // The same image (x, y and the rays through pixels, jitter included), the depth reversed onto
+    // GL's [0, 1] clip depth; the default keeps [-1, 1] with the near plane at -1.
+    Camera standard = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.0f, 0.4f, 0.5f);
+    standard.nearPlane = 0.1f;
+    standard.farPlane = 50.0f;
+    standard.jitter = {0.003f, -0.002f};
+    Camera reversed = standard;
+    reversed.reversedZ = true;
+    const glm::vec3 forward = glm::normalize(standard.target - standard.position);
+    const glm::vec3 aside = glm::normalize(glm::cross(forward, standard.up));
+    auto ndc = [](const Camera& c, glm::vec3 p) {
+        const glm::vec4 clip = c.viewProjection() * glm::vec4(p, 1.0f);
+        return glm::vec3(clip) / clip.w;
+    };
+    for (const float distance : {0.1f, 0.7f, 3.0f, 50.0f}) {
+        const glm::vec3 p = standard.position + forward * distance + aside * (0.2f * distance);
+        const glm::vec3 a = ndc(standard, p), b = ndc(reversed, p);
+        EXPECT_NEAR(a.x, b.x, 1e-5f) << distance;
+        EXPECT_NEAR(a.y, b.y, 1e-5f) << distance;
+        const double n = standard.nearPlane, f = standard.farPlane;
+        EXPECT_NEAR(a.z, (f + n - 2.0 * n * f / distance) / (f - n), 1e-4) << distance;
+        EXPECT_NEAR(b.z, n * (f - distance) / (distance * (f - n)), 1e-5) << distance;
+    }
+    EXPECT_NEAR(ndc(reversed, standard.position + forward * 0.1f).z, 1.0f, 1e-5f);
+    EXPECT_NEAR(ndc(reversed, standard.position + forward * 50.0f).z, 0.0f, 1e-5f);
+    for (const glm::dvec2 pixel : {glm::dvec2(0.5, 0.5), glm::dvec2(160.5, 90.5), glm::dvec2(319.5, 10.5)}) {
+        const Ray r0 = standard.rayThroughPixel(pixel.x, pixel.y, kWidth, kHeight);
+        const Ray r1 = reversed.rayThroughPixel(pixel.x, pixel.y, kWidth, kHeight);
+        EXPECT_LT(glm::length(r0.direction - r1.direction), 1e-6) << pixel.x << ", " << pixel.y;
+        EXPECT_EQ(r0.origin, r1.origin);
     }
 }
 

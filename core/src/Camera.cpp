@@ -32,7 +32,9 @@ void Camera::validate() const {
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
 glm::mat4 Camera::projection() const {
-    const glm::mat4 p = glm::perspective(fovY, aspect, nearPlane, farPlane);
+    // Reversed Z: [0, 1] clip depth with the planes swapped, near at 1 and far at 0.
+    const glm::mat4 p = reversedZ ? glm::perspectiveRH_ZO(fovY, aspect, farPlane, nearPlane)
+                                  : glm::perspective(fovY, aspect, nearPlane, farPlane);
     if (jitter == glm::vec2(0.0f)) return p;
     // x' = x + jitter.x * w in clip space: the image moves by jitter in NDC.
     return glm::translate(glm::mat4(1.0f), glm::vec3(jitter, 0.0f)) * p;
@@ -41,8 +43,8 @@ glm::mat4 Camera::projection() const {
 Ray Camera::rayThroughPixel(double x, double y, int width, int height) const {
     const glm::dmat4 inverse = glm::inverse(glm::dmat4(projection()) * glm::dmat4(view()));
     const double ndcX = 2.0 * x / width - 1.0, ndcY = 2.0 * y / height - 1.0;
-    glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, -1.0, 1.0);
-    glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
+    glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, reversedZ ? 1.0 : -1.0, 1.0);
+    glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, reversedZ ? 0.0 : 1.0, 1.0);
     nearPoint /= nearPoint.w;
     farPoint /= farPoint.w;
     return {glm::dvec3(position), glm::normalize(glm::dvec3(farPoint - nearPoint))};
@@ -81,8 +83,10 @@ double screenArea(std::span<const glm::vec3> polygon, const glm::mat4& viewProje
     std::vector<glm::dvec4> clip;
     for (const glm::vec3& p : polygon) clip.push_back(m * glm::dvec4(glm::dvec3(p), 1.0));
     // In clip space, before the divide, so a polygon through the camera's plane clips right: the
-    // near plane, then the image's four edges (-w <= x, y <= w, which also leave w > 0 only).
+    // near and far planes (either convention's, above), then the image's four edges (-w <= x, y <= w,
+    // which also leave w > 0 only).
     clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.z + c.w; });
+    clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w - c.z; });
     clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w - c.x; });
     clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w + c.x; });
     clip = clipPolygon(clip, [](const glm::dvec4& c) { return c.w - c.y; });

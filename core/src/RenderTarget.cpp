@@ -38,15 +38,14 @@ void RenderTarget::bind() const {
     glViewport(0, 0, width_, height_);
 }
 
-void RenderTarget::clear(const glm::vec4& color, const glm::vec4& trace) const {
+void RenderTarget::clear(const glm::vec4& color, const glm::vec4& trace, float depth) const {
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, &color.x);
     if (withTrace_) {
         glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, &trace.x);
         const float zero[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 2, zero);
     }
-    const float one = 1.0f;
-    glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &one);
+    glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &depth);
 }
 
 Image RenderTarget::readColor() const {

@@ -28,6 +28,13 @@ struct Camera {
     /// subpixel jitter, as temporal anti-aliasing uses; the accuracy tests move a render by a
     /// fraction of the rasteriser's subpixel grid with it.
     glm::vec2 jitter{0.0f};
+    /// The depth convention. false (GL's default): the near plane at depth -1 and the far at 1 in
+    /// clip space ([-1, 1]), depth tested with GL_LESS over a depth cleared to 1. true (reversed Z):
+    /// the near plane at 1 and the far at 0, for GL's [0, 1] clip depth
+    /// (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)), depth tested with GL_GREATER over a depth
+    /// cleared to 0; a float depth buffer then keeps its precision into the distance. The
+    /// renderers draw a camera only under its own clip control and refuse the other by name.
+    bool reversedZ = false;
 
     /// Throws hfx::Error naming the field: a position, target, up or jitter not finite, the
     /// position on the target (no view direction), an up along the view direction (no roll),
@@ -48,8 +55,10 @@ struct Camera {
 };
 
 /// The pixels of a width x height image that a convex planar polygon (world space, its corners
-/// in order) covers under `viewProjection`: clipped at the near plane and at the image's edges,
-/// either side facing. 0 where it is behind the camera or off the image.
+/// in order) covers under `viewProjection`: clipped at the image's edges and at -w <= z <= w, the
+/// near and far planes of GL's default depth (of a reversed-Z projection, the near plane z = w, and
+/// a little past its far one, z = 0), either side facing. 0 where it is behind the camera or off
+/// the image.
 double screenArea(std::span<const glm::vec3> polygon, const glm::mat4& viewProjection, int width, int height);
 
 } // namespace hfx

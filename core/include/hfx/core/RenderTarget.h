@@ -22,7 +22,9 @@ public:
     RenderTarget(int width, int height, bool withTrace = false);
 
     void bind() const; ///< binds the framebuffer and sets the viewport to its size
-    void clear(const glm::vec4& color = {0, 0, 0, 1}, const glm::vec4& trace = {0, 0, 0, 0}) const;
+    /// Clears the colour, the trace outputs and the depth: to 1, the far plane of GL's default
+    /// depth; a reversed-Z view (Camera::reversedZ) clears it to 0.
+    void clear(const glm::vec4& color = {0, 0, 0, 1}, const glm::vec4& trace = {0, 0, 0, 0}, float depth = 1.0f) const;
 
     int width() const { return width_; }
     int height() const { return height_; }
