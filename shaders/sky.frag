@@ -11,7 +11,9 @@ layout(location = 0) out vec4 o_color;
 uniform mat4 u_inverseViewProj;
 
 void main() {
-    const vec4 far = u_inverseViewProj * vec4(v_ndc, 1.0, 1.0);
+    // The far plane's clip depth: 1, or 0 for a reversed-Z camera (whose 1 is the near plane, a
+    // hair from the eye).
+    const vec4 far = u_inverseViewProj * vec4(v_ndc, u_reversedZ != 0 ? 0.0 : 1.0, 1.0);
     const vec3 dir = normalize(far.xyz / far.w - u_cameraPos);
     o_color = vec4(pow(clamp(hfx_sky(dir), 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 }

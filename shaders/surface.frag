@@ -38,6 +38,8 @@
 //   HFX_TRACE_LIGHTS  1: the rays draw stores each pixel's light ray too (the light is not one for
 //                     the draw: a curved mesh, a silhouette fade)
 //   HFX_ENVIRONMENT   1 for water reflecting an equirectangular image (WaterLook::environment)
+//   HFX_REVERSED_Z    1 for a reversed-Z camera (hfx::Camera::reversedZ): the traced depth is
+//                     written for GL's [0, 1] clip depth, drawn with GL_GREATER
 //   HFX_PYRAMID_ATLAS 1 on llvmpipe: the pyramids in one image each (surface/heights.glsl,
 //                     GlWorkarounds::pyramidAtlas); the only define a device picks
 //   HFX_TRACE_OUTPUT  1 = also write (u, v, depth fraction, fetches + lit / 2) of the hit to
@@ -72,6 +74,9 @@
 #ifndef HFX_COMPUTE_TRACE
 #define HFX_COMPUTE_TRACE 0
 #endif
+#ifndef HFX_REVERSED_Z
+#define HFX_REVERSED_Z 0
+#endif
 #if HFX_COMPUTE_TRACE && (HFX_DEFERRED_SHADOWS || !HFX_TRACES)
 #error "HFX_COMPUTE_TRACE walks the view rays in a compute pass: not with HFX_DEFERRED_SHADOWS, only for a tracer"
 #endif
@@ -83,8 +88,13 @@
 // is never less than the fragment's own (clamped to it against rounding, and for parallax
 // mapping's offset-limited point). A GPU then keeps its early and hierarchical depth tests
 // against what is already drawn, where a plain gl_FragDepth write turns them off. The renderer
-// draws with GL_LESS, which needs a depth range whose near lies below its far.
+// draws with GL_LESS, which needs a depth range whose near lies below its far; a reversed-Z view
+// (HFX_REVERSED_Z) with GL_GREATER, its traced depth never greater.
+#if HFX_REVERSED_Z
+layout(depth_less) out float gl_FragDepth;
+#else
 layout(depth_greater) out float gl_FragDepth;
+#endif
 #endif
 
 #include "bindings.glsl"
@@ -391,8 +401,14 @@ void main() {
     // (Normal mapping keeps the polygon's depth and with it early depth testing.)
     const vec4 clip = u_viewProj * vec4(displacedWorld, 1.0);
     const float ndcDepth = clip.z / clip.w;
+#if HFX_REVERSED_Z
+    // GL's [0, 1] clip depth (GL_ZERO_TO_ONE), nearer greater.
+    const float hitDepth = gl_DepthRange.diff * ndcDepth + gl_DepthRange.near;
+    gl_FragDepth = min(hitDepth, gl_FragCoord.z);
+#else
     const float hitDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
     gl_FragDepth = max(hitDepth, gl_FragCoord.z);
+#endif
 #endif
 #if HFX_SHADOW_CASTER
     return; // the map holds the traced depth; nothing to shade

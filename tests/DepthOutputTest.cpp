@@ -5,11 +5,16 @@
 #include "support/References.h"
 #include "support/Fixtures.h"
 
+#include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
+#include "hfx/effects/PlanetRings.h"
+#include "hfx/effects/ShadowMap.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
 
 namespace hfx::test {
 namespace {
@@ -147,6 +152,173 @@ TEST_F(DepthOutput, NoTechniqueWritesADepthInFrontOfThePolygon) {
             EXPECT_GT(behind, covered / 2) << covered << " pixels covered, " << uncovered << " not drawn";
         }
     }
+}
+
+/// The distance along the view of a window depth, by the camera's convention.
+double eyeDepth(float depth, const Camera& camera) {
+    const double n = camera.nearPlane, f = camera.farPlane;
+    if (camera.reversedZ) return n * f / (double(depth) * (f - n) + n); // clip depth = window depth, near at 1
+    const double ndc = 2.0 * depth - 1.0;
+    return 2.0 * n * f / (f + n - ndc * (f - n));
+}
+
+/// Reversed Z for the scope: GL's [0, 1] clip depth, as an engine that uses it sets it.
+struct ZeroToOneClipDepth {
+    ZeroToOneClipDepth() { glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE); }
+    ~ZeroToOneClipDepth() { glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE); }
+};
+
+// An engine with a reversed-Z depth buffer (near at 1, GL_ZERO_TO_ONE, GL_GREATER, cleared to 0)
+// gets the frame GL's default depth gives: the same sky behind, the relief's traced depth clipping
+// a quad crossing it at the same pixels, the same shadows from a shadow map drawn under that state
+// (its pass draws with GL's default), every depth the same distance from the eye and every walk as
+// long, for POM and for hier walking in the draw and in a compute pass.
+TEST_F(DepthOutput, AReversedZViewDrawsTheFrameGlsDefaultDepthDraws) {
+    constexpr int field = 64, W = 200, H = 150;
+    constexpr float depthScale = 0.15f, planeSize = 2.0f, quadHeight = 0.5f;
+    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
+    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
+    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    const Mesh plane(makePlane({.size = planeSize}));
+    const glm::mat4 quadModel = glm::translate(glm::mat4(1.0f), glm::vec3(0.2f, -(1.0f - quadHeight) * depthScale * planeSize, 0.0f)) *
+                                glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f};
+    // Two depth ranges: a usual one, and one under twice its near plane, where a clip depth of the
+    // other convention's near plane (-1) lies beyond the far one, so that only the convention's own
+    // planes give the beam start's rays their direction (else hier walks from the top: the same
+    // hits in more fetches, which the trace output counts).
+    Camera camera = cameraAtAngle(55, 4.0f, float(W) / float(H));
+    ShadowMap map(512);
+    DirectionalLight light{.direction = {0.5f, 0.8f, 0.3f}};
+    map.fit(light.direction, {0.0f, 0.0f, 0.0f}, 1.6f);
+    light.shadowMap = &map;
+    RenderTarget target(W, H, true);
+    SurfaceRenderer renderer;
+    const glm::vec4 background{0.2f, 0.3f, 0.4f, 1.0f};
+    DirectionalLight unshadowed = light;
+    unshadowed.shadowMap = nullptr;
+    auto frame = [&](const DrawOptions& options, bool reversed, std::vector<float>& depth,
+                     const DirectionalLight& lit, std::vector<glm::vec4>* trace = nullptr) {
+        Camera c = camera;
+        c.reversedZ = reversed;
+        {
+            const ShadowMap::Scope casting(map);
+            renderer.drawShadow(plane, glm::mat4(1.0f), textures, material, map, options);
+            renderer.drawFlatShadow(plane, quadModel, map);
+        }
+        target.bind();
+        target.clear(background, {}, reversed ? 0.0f : 1.0f);
+        renderer.drawSky(c, lit, WaterLook{});        DrawOptions o = options;
+        o.traceOutput = trace != nullptr;
+        renderer.draw(plane, glm::mat4(1.0f), textures, material, c, lit, o);
+        if (trace) *trace = target.readTrace();
+        renderer.drawFlat(plane, quadModel, c, {1.0f, 0.0f, 0.0f, 1.0f}, &lit);
+        depth = target.readDepth();
+        return target.readColor();
+    };
+    const std::pair<const char*, DrawOptions> drawn[] = {
+        {"pom", {.technique = Technique::ParallaxOcclusion}},
+        {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
+        {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
+    for (const glm::vec2 range : {glm::vec2(0.5f, 20.0f), glm::vec2(3.0f, 5.8f)})
+    for (const auto& [name, options] : drawn) {
+        SCOPED_TRACE(name);
+        SCOPED_TRACE(testing::Message() << "near " << range.x << ", far " << range.y);
+        camera.nearPlane = range.x;
+        camera.farPlane = range.y;
+        std::vector<float> standardDepth, reversedDepth, unusedDepth;
+        std::vector<glm::vec4> standardTrace, reversedTrace;
+        const Image standard = frame(options, false, standardDepth, light, &standardTrace);
+        const Image noShadowMap = frame(options, false, unusedDepth, unshadowed);
+        Image reversed;
+        {
+            const ZeroToOneClipDepth zeroToOne;
+            reversed = frame(options, true, reversedDepth, light, &reversedTrace);
+        }
+        Camera reversedCamera = camera;
+        reversedCamera.reversedZ = true;
+        size_t covered = 0, red = 0, shadowed = 0, differ = 0, walkedApart = 0;
+        double worstDepth = 0.0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const size_t i = size_t(y) * W + x; // readDepth's order: bottom row first
+                const int row = H - 1 - y;          // readColor's: top row first
+                const bool drawnStandard = standardDepth[i] < 1.0f, drawnReversed = reversedDepth[i] > 0.0f;
+                EXPECT_EQ(drawnStandard, drawnReversed) << "pixel " << x << ", " << y;
+                float diff = 0.0f;
+                for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(standard.at(x, row, c) - reversed.at(x, row, c)));
+                differ += diff > 2.0f / 255.0f;
+                if (!drawnStandard || !drawnReversed) continue;
+                ++covered;
+                walkedApart += std::floor(standardTrace[i].w) != std::floor(reversedTrace[i].w); // the fetches made
+                red += standard.at(x, row, 0) > 0.5f && standard.at(x, row, 1) < 0.1f;
+                shadowed += standard.at(x, row, 1) < noShadowMap.at(x, row, 1) - 0.1f; // the quad's shadow
+                const double a = eyeDepth(standardDepth[i], camera), b = eyeDepth(reversedDepth[i], reversedCamera);
+                worstDepth = std::max(worstDepth, std::abs(a - b) / a);
+            }
+        // Not vacuous: the quad shows through the relief and hides in it, and shadows fall.
+        ASSERT_GT(covered, size_t(W * H / 4));
+        EXPECT_GT(red, covered / 50);
+        EXPECT_LT(red, covered / 2);
+        EXPECT_GT(shadowed, covered / 200);
+        // Where the quad and the relief cross, their depths' roundings may decide a pixel apart.
+        EXPECT_LT(differ, covered / 500) << covered << " pixels covered";
+        EXPECT_LT(worstDepth, 1e-3) << "the relative difference of the distances along the view";
+        EXPECT_EQ(walkedApart, 0u) << "pixels whose walk made another number of fetches";
+        if (differ >= covered / 500) {
+            writeImage(outputPath(std::string("reversed_z_") + name + "_standard.png"), standard);
+            writeImage(outputPath(std::string("reversed_z_") + name + "_reversed.png"), reversed);
+        }
+    }
+}
+
+// A view whose depth convention is not the GL state's would be drawn wrong without a word (its
+// traced depths written for the other convention, its depth test facing the wrong way, half the
+// scene clipped): every draw refuses it by name before it changes anything.
+TEST_F(DepthOutput, AViewThatIsNotGlsDepthConventionIsRefusedByName) {
+    constexpr int field = 32;
+    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}});
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = 0.1f});
+    textures.uploadTexels(sobelReference(heights, field, 0.1f).data());
+    const Mesh plane(makePlane({}));
+    const SurfaceMaterial material{.depthScale = 0.1f};
+    RenderTarget target(64, 64);
+    target.bind();
+    target.clear({0.25f, 0.5f, 0.75f, 1.0f});
+    const Image before = target.readColor();
+    SurfaceRenderer renderer;
+    PlanetRings rings;
+    const Camera standard = cameraAtAngle(40, 3.0f, 1.0f);
+    Camera reversed = standard;
+    reversed.reversedZ = true;
+    const DirectionalLight light;
+    auto refusals = [&](const Camera& camera) {
+        std::vector<std::string> messages;
+        messages.push_back(messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light); }));
+        messages.push_back(messageOf([&] { renderer.drawFlat(plane, glm::mat4(1.0f), camera, glm::vec4(1.0f)); }));
+        messages.push_back(messageOf([&] { rings.draw(glm::mat4(1.0f), camera, light); }));
+        return messages;
+    };
+    for (const std::string& m : refusals(reversed))
+        EXPECT_NE(m.find("reversed-Z (Camera::reversedZ), but the clip depth mode is GL_NEGATIVE_ONE_TO_ONE"),
+                  std::string::npos) << m;
+    {
+        const ZeroToOneClipDepth zeroToOne;
+        for (const std::string& m : refusals(standard))
+            EXPECT_NE(m.find("the clip depth mode is GL_ZERO_TO_ONE"), std::string::npos) << m;
+        glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+        for (const std::string& m : refusals(reversed))
+            EXPECT_NE(m.find("the clip origin is GL_UPPER_LEFT"), std::string::npos) << m;
+    }
+    glDepthRange(1.0, 0.0);
+    for (const std::string& m : refusals(standard))
+        EXPECT_NE(m.find("the depth range must have its near below its far (glDepthRange), got 1 and 0"),
+                  std::string::npos) << m;
+    glDepthRange(0.0, 1.0);
+    EXPECT_EQ(target.readColor().pixels, before.pixels) << "a refused draw left pixels behind";
+    // The state put back, both conventions draw.
+    EXPECT_EQ(refusals(standard), std::vector<std::string>(3, "(no error)"));
 }
 
 } // namespace

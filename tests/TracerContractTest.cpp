@@ -86,6 +86,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_traceStamp", offsetof(SurfaceUniforms, traceStamp)},
         {"u_traceOrigin", offsetof(SurfaceUniforms, traceOrigin)},
         {"u_traceHeight", offsetof(SurfaceUniforms, traceHeight)},
+        {"u_reversedZ", offsetof(SurfaceUniforms, reversedZ)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},

@@ -42,6 +42,31 @@ inline void checkModel(const glm::mat4& model) {
                         columns()));
 }
 
+/// Throws hfx::Error unless GL's clip control and depth range are the ones the view's depth
+/// convention draws with: GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE for GL's default depth and
+/// GL_ZERO_TO_ONE for a reversed-Z camera (Camera::reversedZ), a depth range whose near lies below
+/// its far. Any other is the caller's convention that this draw would get wrong: its traced
+/// depths would be written for the other, and its depth test would face the wrong way.
+inline void checkClipControl(bool reversedZ) {
+    GLint origin = GL_LOWER_LEFT, depthMode = GL_NEGATIVE_ONE_TO_ONE;
+    glGetIntegerv(GL_CLIP_ORIGIN, &origin);
+    glGetIntegerv(GL_CLIP_DEPTH_MODE, &depthMode);
+    GLfloat range[2] = {0.0f, 1.0f};
+    glGetFloatv(GL_DEPTH_RANGE, range);
+    if (origin != GL_LOWER_LEFT)
+        throw Error("the clip origin is GL_UPPER_LEFT (glClipControl); HFX draws with GL_LOWER_LEFT, whose window "
+                    "y runs up as its texture coordinates and gl_FragCoord do");
+    if (reversedZ && depthMode != GL_ZERO_TO_ONE)
+        throw Error("the camera is reversed-Z (Camera::reversedZ), but the clip depth mode is GL_NEGATIVE_ONE_TO_ONE: "
+                    "set glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) for it");
+    if (!reversedZ && depthMode != GL_NEGATIVE_ONE_TO_ONE)
+        throw Error("the clip depth mode is GL_ZERO_TO_ONE (glClipControl), which HFX draws with for a reversed-Z "
+                    "camera only: set Camera::reversedZ, or GL_NEGATIVE_ONE_TO_ONE for GL's default depth");
+    if (!(range[0] < range[1]))
+        throw Error(str("the depth range must have its near below its far (glDepthRange), got ", range[0], " and ",
+                        range[1], "; a reversed-Z camera reverses its projection (Camera::reversedZ) instead"));
+}
+
 /// Fills a surface block's transforms: the mesh's model matrix, the view-projection it is seen
 /// with, and the normals' matrix.
 inline void setTransform(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj) {

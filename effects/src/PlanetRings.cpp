@@ -158,6 +158,7 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     camera.validate();
     light.validate();
     checkModel(model);
+    checkClipControl(camera.reversedZ);
     GlStateGuard guard;
     GLboolean depthWrites = GL_TRUE;
     glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
@@ -194,7 +195,7 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     glBindTextureUnit(HFX_UNIT_RING_BEHIND, behind_.id());
     program_.set("u_viewportOrigin", glm::ivec2(viewport[0], viewport[1]));
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(camera.reversedZ ? GL_GREATER : GL_LESS);
     glDepthMask(GL_FALSE); // the rings hide behind the planet, and hide nothing drawn later
     program_.use();
     {

@@ -58,11 +58,18 @@ void ShadowMap::begin() {
     glGetIntegerv(GL_VIEWPORT, savedViewport_);
     savedScissor_ = glIsEnabled(GL_SCISSOR_TEST);
     glGetBooleanv(GL_DEPTH_WRITEMASK, &savedDepthMask_);
+    glGetIntegerv(GL_CLIP_ORIGIN, &savedClipOrigin_);
+    glGetIntegerv(GL_CLIP_DEPTH_MODE, &savedClipDepth_);
+    glGetDoublev(GL_DEPTH_RANGE, savedDepthRange_);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, size_, size_);
     // The clear and the casters write the whole map, whatever scissor or depth mask the caller left.
     glDisable(GL_SCISSOR_TEST);
     glDepthMask(GL_TRUE);
+    // The map's depth is GL's default, [-1, 1] clip depth onto [0, 1] (the light's projection and
+    // the receivers' lookups), under a caller's reversed-Z state too.
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glDepthRange(0.0, 1.0);
     const float one = 1.0f;
     glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &one);
     begun_ = true;
@@ -75,6 +82,8 @@ void ShadowMap::end() {
     glViewport(savedViewport_[0], savedViewport_[1], savedViewport_[2], savedViewport_[3]);
     (savedScissor_ ? glEnable : glDisable)(GL_SCISSOR_TEST);
     glDepthMask(savedDepthMask_);
+    glClipControl(GLenum(savedClipOrigin_), GLenum(savedClipDepth_));
+    glDepthRange(savedDepthRange_[0], savedDepthRange_[1]);
     begun_ = false;
 }
 

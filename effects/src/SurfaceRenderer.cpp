@@ -202,7 +202,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_DEFERRED_SHADOWS", v.deferredShadows ? "1" : "0"},
                                                    {"HFX_COMPUTE_TRACE", std::to_string(v.computeTrace)},
                                                    {"HFX_TRACE_LIGHTS", v.traceLights ? "1" : "0"},
-                                                   {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"}};
+                                                   {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"},
+                                                   {"HFX_REVERSED_Z", v.reversedZ && !v.caster ? "1" : "0"}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
         it = programs_.emplace(key, std::move(p)).first;
@@ -313,6 +314,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     camera.validate();
     light.validate();
     checkModel(model);
+    // A shadow map's caster draws with the map's depth (ShadowMap::begin sets GL's default).
+    const bool reversedZ = caster == nullptr && camera.reversedZ;
+    checkClipControl(reversedZ);
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
@@ -339,7 +343,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .shadowSamples = material.shadowSamples,
                       .clipToPatch = material.clipToPatch ? 1 : 0,
                       .varianceFloor = varianceFloor(textures.config().format),
-                      .pixelBudget = material.pixelBudget};
+                      .pixelBudget = material.pixelBudget,
+                      .reversedZ = reversedZ ? 1 : 0};
     u.setField({textures.config().width, textures.config().height}, edges);
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
@@ -372,7 +377,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .beamStart = frame.beamStart && !frame.computeTrace,
                                  .deferredShadows = frame.deferredShadows,
                                  .computeTrace = frame.computeTrace ? 2 : 0,
-                                 .pyramidAtlas = frame.atlas};
+                                 .pyramidAtlas = frame.atlas,
+                                 .reversedZ = reversedZ};
     const ShaderProgram& p = program(options, variant);
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
@@ -409,7 +415,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     }
     bindUniforms(u, model, viewProj);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(reversedZ ? GL_GREATER : GL_LESS);
     // The mesh's winding as the model leaves it (a mirroring model turns it): the compute pass's
     // draws tell front faces by it, and the back faces a closed mesh hides are culled.
     glFrontFace(glm::determinant(glm::mat3(model)) < 0.0f ? GL_CW : GL_CCW);
@@ -466,7 +472,10 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     }
     if (!empty_) empty_ = GlVertexArray::create();
     GlStateGuard guard;
-    SurfaceUniforms u{.cameraPos = camera.position, .lightDir = glm::normalize(light.direction), .lightColor = light.color};
+    SurfaceUniforms u{.cameraPos = camera.position,
+                      .lightDir = glm::normalize(light.direction),
+                      .lightColor = light.color,
+                      .reversedZ = camera.reversedZ ? 1 : 0};
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
     updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(look));
     glBindTextureUnit(HFX_UNIT_ENVIRONMENT, look.environment);
@@ -481,17 +490,19 @@ void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const C
                                const glm::vec4& color, const DirectionalLight* light) {
     camera.validate();
     if (light) light->validate();
-    drawFlatSeenBy(mesh, model, camera.viewProjection(), camera.position, color, light);
+    drawFlatSeenBy(mesh, model, camera.viewProjection(), camera.position, camera.reversedZ, color, light);
 }
 
 void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map) {
     // Depth only (the map has no colour): the eye's position feeds nothing that is written.
-    drawFlatSeenBy(mesh, model, map.viewProj(), map.towardsLight(), glm::vec4(1.0f), nullptr);
+    drawFlatSeenBy(mesh, model, map.viewProj(), map.towardsLight(), false, glm::vec4(1.0f), nullptr);
 }
 
 void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj,
-                                     glm::vec3 eye, const glm::vec4& color, const DirectionalLight* light) {
+                                     glm::vec3 eye, bool reversedZ, const glm::vec4& color,
+                                     const DirectionalLight* light) {
     checkModel(model);
+    checkClipControl(reversedZ);
     const bool receives = light && light->shadowMap;
     ShaderProgram& flat = flat_[receives ? 1 : 0];
     if (!flat.id())
@@ -508,7 +519,7 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
     flat.set("u_color", color);
     flat.set("u_flatLit", light ? 1 : 0);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(reversedZ ? GL_GREATER : GL_LESS);
     flat.use();
     mesh.draw();
 }

@@ -47,6 +47,7 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     uint u_traceStamp;        // this draw's mark on the slots its pixels wrote
     ivec2 u_traceOrigin;      // the viewport's origin, x0 and y0
     int u_traceHeight;        // the viewport's height
+    int u_reversedZ;          // 1: the view's depth is reversed (near at 1, [0, 1] clip depth)
 };
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's

@@ -37,8 +37,10 @@ layout(location = 0) out vec4 o_start;
 // cell space (uv * size - 0.5) at the polygon (xy) and at the bottom of the relief (zw). False
 // where it does not come down onto the plane from the side the normal faces.
 bool hfx_block_ray(vec2 ndc, mat3 textureFromWorld, vec3 normal, out vec4 cells) {
-    const vec4 nearH = u_beamInverseViewProj * vec4(ndc, -1.0, 1.0);
-    const vec4 farH = u_beamInverseViewProj * vec4(ndc, 1.0, 1.0);
+    // The near and far planes' depths in clip space: -1 and 1, or 1 and 0 reversed (u_reversedZ).
+    const vec2 planes = u_reversedZ != 0 ? vec2(1.0, 0.0) : vec2(-1.0, 1.0);
+    const vec4 nearH = u_beamInverseViewProj * vec4(ndc, planes.x, 1.0);
+    const vec4 farH = u_beamInverseViewProj * vec4(ndc, planes.y, 1.0);
     const vec3 near = nearH.xyz / nearH.w;
     const vec3 along = farH.xyz / farH.w - near;
     const float across = dot(along, normal);

@@ -23,6 +23,7 @@ void main() {
     const vec4 a = hfx_deferredRays[HFX_DEFERRED_VEC4S * i];
     v_color = hfx_deferredRays[HFX_DEFERRED_VEC4S * i + 3];
     v_depth = a.z;
-    gl_Position = vec4((a.xy - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0, 0.0, 1.0);
+    // (At a clip depth inside either convention's range: the fragment writes the stored depth.)
+    gl_Position = vec4((a.xy - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0, 0.5, 1.0);
     gl_PointSize = 1.0;
 }

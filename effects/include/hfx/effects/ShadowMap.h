@@ -30,9 +30,11 @@ public:
     void fit(glm::vec3 towardsLight, glm::vec3 centre, float radius);
 
     /// Binds the map's framebuffer for drawing, sets its viewport, turns the scissor test off and
-    /// depth writes on (the casters fill the whole map whatever the caller left) and clears the
-    /// depth; end() puts back the draw and read framebuffers, the viewport, the scissor test and
-    /// the depth mask that were set. begin() twice or end() without begin() throws hfx::Error.
+    /// depth writes on (the casters fill the whole map whatever the caller left), sets GL's
+    /// default clip control and depth range (the map's depth, whatever a reversed-Z caller uses)
+    /// and clears the depth; end() puts back the draw and read framebuffers, the viewport, the
+    /// scissor test, the depth mask, the clip control and the depth range that were set. begin()
+    /// twice or end() without begin() throws hfx::Error.
     void begin();
     void end();
 
@@ -82,6 +84,8 @@ private:
     float radius_ = 1.0f;
     GLint savedDraw_ = 0, savedRead_ = 0, savedViewport_[4] = {0, 0, 0, 0};
     GLboolean savedScissor_ = GL_FALSE, savedDepthMask_ = GL_TRUE;
+    GLint savedClipOrigin_ = GL_LOWER_LEFT, savedClipDepth_ = GL_NEGATIVE_ONE_TO_ONE;
+    GLdouble savedDepthRange_[2] = {0.0, 1.0};
     bool begun_ = false;
 };
 

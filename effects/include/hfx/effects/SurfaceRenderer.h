@@ -286,6 +286,9 @@ struct SurfaceVariant {
     /// HFX_PYRAMID_ATLAS: the bounds read are in PyramidLayout::Atlas (llvmpipe's workaround,
     /// GlWorkarounds::pyramidAtlas), not mip chains
     bool pyramidAtlas = false;
+    /// HFX_REVERSED_Z: the camera's depth is reversed (Camera::reversedZ): the traced depth is
+    /// written for GL's [0, 1] clip depth, never nearer (greater) than the polygon's
+    bool reversedZ = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 
@@ -336,8 +339,9 @@ private:
     void drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                      const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
                      const DrawOptions& options, const ShadowMap* caster);
+    /// reversedZ: the view's depth convention (Camera::reversedZ; a shadow map's is GL's default).
     void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, glm::vec3 eye,
-                        const glm::vec4& color, const DirectionalLight* light);
+                        bool reversedZ, const glm::vec4& color, const DirectionalLight* light);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
     ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image

@@ -69,7 +69,10 @@ struct SurfaceUniforms {
     std::uint32_t traceStamp = 0;
     glm::ivec2 traceOrigin{0};
     int traceHeight = 0;
-    int tracePadding = 0; ///< the block's size a multiple of 16 bytes, as std140 rounds it
+    /// 1 where the view's depth is reversed (Camera::reversedZ: the near plane at depth 1, GL's
+    /// [0, 1] clip depth), for the beam start's rays; the draw's own depth writes follow
+    /// HFX_REVERSED_Z. (It also rounds the block's size to a multiple of 16 bytes, as std140 does.)
+    int reversedZ = 0;
 
     /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
     /// two where the pyramid is read), its edges wrapped or clamped.
