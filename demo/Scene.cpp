@@ -53,6 +53,21 @@ std::string Scene::texelShadowsLabel() const {
     return traced_.texelStride > 1 ? str("on, stride ", traced_.texelStride) : "on";
 }
 
+void Scene::drawInto(const RenderTarget& target, const glm::vec4& background) {
+    const bool reversed = camera_.reversedZ;
+    target.clear(background, {}, reversed ? 0.0f : 1.0f);
+    struct ClipDepth { // GL_ZERO_TO_ONE while a reversed-Z camera draws, also when it throws
+        bool set;
+        explicit ClipDepth(bool s) : set(s) {
+            if (set) glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        }
+        ~ClipDepth() {
+            if (set) glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        }
+    } clip(reversed);
+    draw();
+}
+
 void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light) {
     const std::vector<SurfaceLayer> layers = effect().layers();
     renderer.draw(mesh(), model(), layers, effect().material(), camera_, light, drawOptions());
@@ -120,12 +135,15 @@ bool isSceneName(std::string_view name) {
 }
 
 std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const SceneOptions& options) {
-    if (name == "water") return makeWaterScene(cl, options);
-    if (name == "decals") return makeDecalScene(cl, options);
-    if (name == "planet") return makePlanetScene(cl, options);
-    if (name == "maps") return makeMapsScene(cl, options);
-    if (name == "noise") return makeNoiseScene(cl, options);
-    throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
+    std::unique_ptr<Scene> scene = name == "water"    ? makeWaterScene(cl, options)
+                                   : name == "decals" ? makeDecalScene(cl, options)
+                                   : name == "planet" ? makePlanetScene(cl, options)
+                                   : name == "maps"   ? makeMapsScene(cl, options)
+                                   : name == "noise"  ? makeNoiseScene(cl, options)
+                                                      : nullptr;
+    if (!scene) throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
+    scene->camera().reversedZ = options.reversedZ;
+    return scene;
 }
 
 } // namespace hfx::demo

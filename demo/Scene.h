@@ -6,6 +6,7 @@
 #include "hfx/compute/ClContext.h"
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
 #include "hfx/effects/Effect.h"
 #include "hfx/effects/Impacts.h"
 #include "hfx/effects/SurfaceRenderer.h"
@@ -41,6 +42,9 @@ struct SceneOptions {
     /// Where hier walks a convex mesh's rays (DrawOptions::tracePass): the device's by default,
     /// in the draw or in a compute pass between a rays draw and the shading draw.
     TracePass tracePass = TracePass::Auto;
+    /// The cameras' depth reversed (Camera::reversedZ), drawn under GL_ZERO_TO_ONE (Scene::drawInto):
+    /// how an engine with a reversed depth buffer draws HFX.
+    bool reversedZ = false;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -93,6 +97,10 @@ public:
     void endUpdate() { effect().endUpdate(); }
     /// Draws into the bound framebuffer with material() and technique.
     virtual void draw() = 0;
+    /// Clears the target for the camera (colour, and depth to its convention's far plane) and
+    /// draws the scene under the clip control the camera's depth convention needs (a reversed-Z
+    /// camera's GL_ZERO_TO_ONE, GL's default put back after).
+    void drawInto(const RenderTarget& target, const glm::vec4& background);
     virtual Effect& effect() = 0;
     virtual const char* name() const = 0;
     /// What the scene does before each field step (decals: this frame's shots).

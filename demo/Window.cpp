@@ -190,9 +190,8 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         // next one starts once this frame's draw is issued.
         if (frame > 0) scene.endUpdate();
         target.bind();
-        target.clear(options_.background);
         const double drawStart = nowMs();
-        scene.draw();
+        scene.drawInto(target, options_.background);
         scene.beginUpdate(std::max(dt, 1e-4));
         glFinish();
         drawMs = nowMs() - drawStart; // the draw, with the next field's compute beside it

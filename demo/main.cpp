@@ -127,8 +127,7 @@ int runHeadless(const Options& o, Scene& scene) {
         // field is computed while this one draws (begin after the draw, end before the next).
         if (frame > 0) scene.endUpdate();
         target.bind();
-        target.clear(background(o.scene));
-        scene.draw();
+        scene.drawInto(target, background(o.scene));
         if (frame + 1 < frames) scene.beginUpdate(o.dt);
         const Image image = target.readColor();
         if (!outDir.empty()) {
@@ -295,6 +294,10 @@ int main(int argc, char** argv) {
                  "decals, noise, maps, water: hier walks every view ray on the flat surface from the top, without the "
                  "beam prepass that starts each 8x8-pixel block's rays where they may first meet the relief (the "
                  "same image, more steps)");
+    app.add_flag("--reversed-z", s.reversedZ,
+                 "water, decals, planet, noise, maps: draw with a reversed depth buffer, as many engines do (the near "
+                 "plane at depth 1 under glClipControl's GL_ZERO_TO_ONE, GL_GREATER, cleared to 0: Camera::reversedZ; "
+                 "the same image)");
     app.add_flag("--defer-shadow-walks", s.deferShadowWalks,
                  "decals, noise, maps: the light walks hier's texel shadows leave (where a hard shadow's edge "
                  "crosses the samples around a pixel) are done by a pass after the draw, one to a lane, instead of "

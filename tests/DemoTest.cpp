@@ -336,6 +336,25 @@ TEST(Demo, TheTracePassDrawsTheScenesAsTheDrawDoes) {
     }
 }
 
+TEST(Demo, AReversedZRunDrawsTheScenesFrames) {
+    // --reversed-z: every user's scene drawn as an engine with a reversed depth buffer draws it
+    // (GL_ZERO_TO_ONE, GL_GREATER, cleared to 0), the water's sky and its POM, the wall's hier
+    // and its shadow map, the planet's sphere and its rings: the frames of GL's default depth
+    // (measured: at most 1 level apart, on the water). A frame one field step later differs by
+    // far more, so the comparison can tell frames apart.
+    for (const std::string scene : {"water", "decals", "planet"}) {
+        const std::string flags = scene == "planet" ? " --rings 1" : "";
+        const Image standard = flatSceneFrame(scene, "depth_standard", flags),
+                    reversed = flatSceneFrame(scene, "depth_reversed", flags + " --reversed-z");
+        const FrameDifference d = frameDifference(standard, reversed);
+        EXPECT_LE(d.mean, 0.05) << scene;
+        EXPECT_EQ(d.far, 0.0) << scene;
+        const std::string dir = outputPath("demo_depth_standard_" + scene);
+        const FrameDifference step = frameDifference(readImage(dir + "/" + scene + "_0000.png"), standard);
+        EXPECT_GT(step.mean, 20.0 * std::max(d.mean, 0.01)) << scene;
+    }
+}
+
 TEST(Demo, AutoSaysWhichTracePassItTimedFasterWhereNoWorkaroundDecides) {
     // --trace-pass auto where no workaround decides (trace-in-draw off: a GPU's case): the trial
     // times both passes on the first 8 frames and the log gives its choice and both medians; with
@@ -648,7 +667,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
                                "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format",
-                               "--texel-shadows", "--no-texel-shadows", "--trace-pass", "--gl", "--cl-device", "water", "decals", "planet",
+                               "--texel-shadows", "--no-texel-shadows", "--trace-pass", "--reversed-z", "--gl", "--cl-device", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }
