@@ -28,5 +28,5 @@ void main() {
     const float diffuse = max(dot(normal, lightDir), 0.0);
     const float lit = diffuse > 0.0 ? hfx_shadow_map(v_worldPos, normal) : 0.0;
     const vec3 color = u_color.rgb * (u_ambient + lit * diffuse * u_lightColor);
-    o_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), u_color.a);
+    o_color = vec4(hfx_output(color), u_color.a);
 }

@@ -1,7 +1,7 @@
 #version 450 core
 // A planet's rings (hfx::PlanetRings), drawn on an annulus in their plane after the planet, over
 // it and the sky: composed in linear light over a copy of what the frame held behind them
-// (s_behind, display values), so a thin ring adds its own light to the planet or the sky behind
+// (s_behind: display values, or linear ones where the colours are written linear), so a thin ring adds its own light to the planet or the sky behind
 // and dims them by the share it covers, as light does, not as display values would blend.
 //
 // Each radius is a slab of particles of normal optical depth tau (shade/rings.glsl's profile).
@@ -39,6 +39,7 @@ void main() {
     const float scattered = hfx_ring_scattered(tau, mu, mu0, viewSide * lightSide > 0.0);
     const float sun = hfx_planet_sunlit(q, toLight);
     const vec3 color = profile.rgb * (u_lightColor * sun * scattered + u_ambient * cover);
-    const vec3 behind = pow(texelFetch(s_behind, ivec2(gl_FragCoord.xy) - u_viewportOrigin, 0).rgb, vec3(2.2));
-    o_color = vec4(pow(clamp(behind * (1.0 - cover) + color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    const vec3 stored = texelFetch(s_behind, ivec2(gl_FragCoord.xy) - u_viewportOrigin, 0).rgb;
+    const vec3 behind = u_linearOutput != 0 ? stored : pow(stored, vec3(2.2));
+    o_color = vec4(hfx_output(behind * (1.0 - cover) + color), 1.0);
 }

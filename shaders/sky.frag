@@ -15,5 +15,5 @@ void main() {
     // hair from the eye).
     const vec4 far = u_inverseViewProj * vec4(v_ndc, u_reversedZ != 0 ? 0.0 : 1.0, 1.0);
     const vec3 dir = normalize(far.xyz / far.w - u_cameraPos);
-    o_color = vec4(pow(clamp(hfx_sky(dir), 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    o_color = vec4(hfx_output(hfx_sky(dir)), 1.0);
 }

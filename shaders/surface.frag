@@ -560,7 +560,7 @@ void main() {
 #else
     const vec3 color = hfx_shade(point);
 #endif
-    o_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    o_color = vec4(hfx_output(color), 1.0);
 #if HFX_TRACE_OUTPUT
     // w: the fetch count in its integer part, the light (0..1) in half of its fraction.
     o_trace = vec4(uv, depthFraction, g_fetches + 0.5 * clamp(lit, 0.0, 0.998));

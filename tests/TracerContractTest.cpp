@@ -80,6 +80,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_shadowBias", offsetof(SurfaceUniforms, shadowBias)},
         {"u_shadowOffset", offsetof(SurfaceUniforms, shadowOffset)},
         {"u_shadowTexel", offsetof(SurfaceUniforms, shadowTexel)},
+        {"u_linearOutput", offsetof(SurfaceUniforms, linearOutput)},
         {"u_shadowLight", offsetof(SurfaceUniforms, shadowLight)},
         {"u_texelSize", offsetof(SurfaceUniforms, texelSize)},
         {"u_traceWidth", offsetof(SurfaceUniforms, traceWidth)},

@@ -9,6 +9,7 @@
 #include "hfx/core/Finite.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlObject.h"
+#include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
 
 #include <glm/mat3x3.hpp>
@@ -65,6 +66,36 @@ inline void checkClipControl(bool reversedZ) {
     if (!(range[0] < range[1]))
         throw Error(str("the depth range must have its near below its far (glDepthRange), got ", range[0], " and ",
                         range[1], "; a reversed-Z camera reverses its projection (Camera::reversedZ) instead"));
+}
+
+/// The bound draw framebuffer's first draw buffer: float, or sRGB with GL encoding what is written
+/// (GL_FRAMEBUFFER_SRGB enabled). Neither where there is nothing to draw into (GL_NONE, no buffer).
+struct ColorTarget {
+    bool isFloat = false, encodesSrgb = false;
+};
+inline ColorTarget boundColorTarget() {
+    GLint framebuffer = 0, buffer = GL_NONE;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    glGetIntegerv(GL_DRAW_BUFFER0, &buffer);
+    if (buffer == GL_NONE) return {};
+    GLenum attachment = GLenum(buffer);
+    if (framebuffer == 0 && buffer == GL_BACK) attachment = GL_BACK_LEFT; // the default framebuffer's names
+    if (framebuffer == 0 && buffer == GL_FRONT) attachment = GL_FRONT_LEFT;
+    const GLuint id = GLuint(framebuffer);
+    GLint object = GL_NONE, type = GL_NONE, encoding = GL_LINEAR;
+    glGetNamedFramebufferAttachmentParameteriv(id, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &object);
+    if (object == GL_NONE) return {}; // (asking its type would be an error)
+    glGetNamedFramebufferAttachmentParameteriv(id, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+    glGetNamedFramebufferAttachmentParameteriv(id, attachment, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
+    return {.isFloat = type == GL_FLOAT, .encodesSrgb = encoding == GL_SRGB && glIsEnabled(GL_FRAMEBUFFER_SRGB)};
+}
+
+/// Whether a draw into the bound draw framebuffer writes linear colours (ColorOutput): as asked,
+/// or for Auto, where its colour buffer is a float one or an sRGB one that GL encodes.
+inline bool writesLinear(ColorOutput output) {
+    if (output != ColorOutput::Auto) return output == ColorOutput::Linear;
+    const ColorTarget target = boundColorTarget();
+    return target.isFloat || target.encodesSrgb;
 }
 
 /// Fills a surface block's transforms: the mesh's model matrix, the view-projection it is seen

@@ -174,11 +174,16 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
                     "of it, which GL takes only from a single-sampled one (resolve it first and draw the rings into "
                     "the resolved target)");
     // What the frame holds behind the rings, which they are composed over in linear light.
-    if (viewport[2] > behindWidth_ || viewport[3] > behindHeight_ || !behind_) {
+    // Copied as the frame holds it: display values, which the shader decodes; linear ones, or an
+    // sRGB target's, which its fetch decodes (a copy reads an sRGB buffer's stored values).
+    const bool linear = writesLinear(colorOutput_);
+    const GLenum format = !linear ? GL_RGBA8 : boundColorTarget().encodesSrgb ? GL_SRGB8_ALPHA8 : GL_RGBA16F;
+    if (viewport[2] > behindWidth_ || viewport[3] > behindHeight_ || !behind_ || format != behindFormat_) {
         behindWidth_ = std::max(viewport[2], behindWidth_);
         behindHeight_ = std::max(viewport[3], behindHeight_);
+        behindFormat_ = format;
         behind_ = GlTexture::create();
-        HFX_GL_CHECK(glTextureStorage2D(behind_.id(), 1, GL_RGBA8, behindWidth_, behindHeight_));
+        HFX_GL_CHECK(glTextureStorage2D(behind_.id(), 1, format, behindWidth_, behindHeight_));
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(drawFramebuffer));
     HFX_GL_CHECK(glCopyTextureSubImage2D(behind_.id(), 0, 0, 0, viewport[0], viewport[1], viewport[2], viewport[3]));
@@ -187,7 +192,8 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     SurfaceUniforms u{.cameraPos = camera.position,
                       .lightDir = glm::normalize(light.direction),
                       .lightColor = light.color,
-                      .ambient = light.ambient};
+                      .ambient = light.ambient,
+                      .linearOutput = linear ? 1 : 0};
     setTransform(u, model, camera.viewProjection());
     updateBlock(surfaceBlock_, HFX_BLOCK_SURFACE, u);
     updateBlock(planetBlock_, HFX_BLOCK_PLANET, planetUniforms(look(), model));

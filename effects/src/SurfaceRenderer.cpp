@@ -345,6 +345,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .varianceFloor = varianceFloor(textures.config().format),
                       .pixelBudget = material.pixelBudget,
                       .reversedZ = reversedZ ? 1 : 0};
+    u.linearOutput = caster == nullptr && writesLinear(colorOutput_) ? 1 : 0;
     u.setField({textures.config().width, textures.config().height}, edges);
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
@@ -476,6 +477,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
                       .lightDir = glm::normalize(light.direction),
                       .lightColor = light.color,
                       .reversedZ = camera.reversedZ ? 1 : 0};
+    u.linearOutput = writesLinear(colorOutput_) ? 1 : 0;
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
     updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(look));
     glBindTextureUnit(HFX_UNIT_ENVIRONMENT, look.environment);
@@ -509,6 +511,7 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
         flat = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("flat.frag"), {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
     GlStateGuard guard;
     SurfaceUniforms u{.cameraPos = eye};
+    u.linearOutput = writesLinear(colorOutput_) ? 1 : 0; // (a shadow map's pass writes no colour)
     if (light) {
         u.lightDir = glm::normalize(light->direction);
         u.lightColor = light->color;

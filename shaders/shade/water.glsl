@@ -148,7 +148,9 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float distance = length(u_cameraPos - p.position);
     color = mix(color, hfx_haze(p.position - u_cameraPos), distance / (distance + u_hazeDistance));
     // Highlights roll off above a knee instead of clipping: the sun's path on the water keeps
-    // its glitter where a clamp turned it into one white sheet.
+    // its glitter where a clamp turned it into one white sheet. Not where the colours are written
+    // linear (hfx::ColorOutput): that is the engine's tone mapping, which wants the glint's light.
+    if (u_linearOutput != 0) return color;
     const float knee = 0.75;
     const vec3 over = max(color - knee, 0.0);
     return min(color, knee) + (1.0 - knee) * (1.0 - exp(-over / (1.0 - knee)));

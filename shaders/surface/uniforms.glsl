@@ -38,6 +38,7 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     float u_shadowBias;       // depth bias, in the map's window depth
     float u_shadowOffset;     // normal offset of the lookup, world units
     float u_shadowTexel;      // 1 / the map's size
+    int u_linearOutput;       // 1: colours written linear, unclamped (hfx::ColorOutput); 0: gamma 2.2
     // The texel shadows' light (hfx::ShadowLight; read where HFX_TEXEL_SHADOWS is 1): texcoords
     // per unit climbed, penumbra, slack
     vec4 u_shadowLight;
@@ -49,6 +50,13 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     int u_traceHeight;        // the viewport's height
     int u_reversedZ;          // 1: the view's depth is reversed (near at 1, [0, 1] clip depth)
 };
+
+// The colour a pass writes, from linear radiance (hfx::ColorOutput): clamped to [0, 1] and encoded
+// with gamma 2.2 for a plain 8-bit target; linear and unclamped (up to a half float's largest)
+// for a float target, or an sRGB one that encodes it itself.
+vec3 hfx_output(vec3 linearColor) {
+    return u_linearOutput != 0 ? clamp(linearColor, 0.0, 65504.0) : pow(clamp(linearColor, 0.0, 1.0), vec3(1.0 / 2.2));
+}
 
 // Rings of waves from impacts on the water (HFX_RINGS: the water shading), in the mesh's
 // texcoords; mirrored by hfx::RingUniforms. They are not tiled with the layers.

@@ -28,5 +28,5 @@ void main() {
     ray.samples = 0;
     ray.sharpness = u_shadowSharpness;
     const vec3 color = c.yzw + (1.0 - hfx_shadow(ray) * a.w) * d.xyz;
-    hfx_deferredRays[at + 3] = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    hfx_deferredRays[at + 3] = vec4(hfx_output(color), 1.0);
 }

@@ -55,11 +55,17 @@ public:
     /// What the planet's draw needs for the rings' shadow on it (SurfaceMaterial::planet).
     PlanetLook look() const;
     /// Draws the rings of the planet drawn with `model`, seen by `camera`, lit by `light`, into the
-    /// bound framebuffer over what it holds: it copies the viewport's colour first (a GL_RGBA8
-    /// copy: draw the rings into a framebuffer of display values) and composes them over it in
-    /// linear light; depth tested, no depth written. Throws hfx::Error for a multisampled
-    /// framebuffer (GL copies from none). Restores the GL state it changes.
+    /// bound framebuffer over what it holds: it copies the viewport's colour first (display
+    /// values into GL_RGBA8; where the colours are written linear (ColorOutput), a float
+    /// target's into GL_RGBA16F, an sRGB one's into GL_SRGB8_ALPHA8) and composes them over it in
+    /// linear light; depth tested, no depth
+    /// written. Throws hfx::Error for a multisampled framebuffer (GL copies from none). Restores
+    /// the GL state it changes.
     void draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light);
+    /// How the rings' colours are encoded (ColorOutput: Auto by default, as SurfaceRenderer's):
+    /// the planet's draw and theirs must agree.
+    void setColorOutput(ColorOutput output) { colorOutput_ = output; }
+    ColorOutput colorOutput() const { return colorOutput_; }
     const PlanetRingsConfig& config() const { return config_; }
     GLuint profile() const { return profile_.id(); }
 
@@ -71,6 +77,8 @@ private:
     GlBuffer surfaceBlock_, planetBlock_;
     GlTexture behind_; ///< the copy of the frame behind the rings
     int behindWidth_ = 0, behindHeight_ = 0;
+    GLenum behindFormat_ = GL_RGBA8; ///< as the frame holds the colours (draw())
+    ColorOutput colorOutput_ = ColorOutput::Auto;
 };
 
 } // namespace hfx

@@ -210,6 +210,18 @@ struct SurfaceLayer {
 };
 inline constexpr int kMaxSurfaceLayers = 4;
 
+/// How the colours a draw writes are encoded (SurfaceRenderer::setColorOutput, PlanetRings').
+enum class ColorOutput {
+    /// By the bound draw framebuffer's colour buffer at each draw: Linear for a float one, or for
+    /// an sRGB one with GL_FRAMEBUFFER_SRGB enabled (GL encodes what is written); else Display.
+    Auto,
+    /// Clamped to [0, 1] and encoded with gamma 2.2: display values for a plain 8-bit target.
+    Display,
+    /// Linear radiance, unclamped (up to 65504, a half float's largest): for an engine's HDR
+    /// target, its exposure and tone mapping (the sun's glint on the water reaches 10 and more).
+    Linear,
+};
+
 struct DrawOptions {
     Technique technique = Technique::ParallaxOcclusion;
     bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
@@ -325,6 +337,11 @@ public:
                     const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options = {});
     void drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map);
 
+    /// How every draw's colours are encoded (ColorOutput; Auto by default). A flat mesh's unlit
+    /// colour is written as given.
+    void setColorOutput(ColorOutput output) { colorOutput_ = output; }
+    ColorOutput colorOutput() const { return colorOutput_; }
+
     /// Builds a shader variant now (start-up) instead of on its first draw, and returns it.
     const ShaderProgram& program(const DrawOptions& options, const SurfaceVariant& variant = {});
     /// The exact tracer's unit: its last decision (TracerFrame: the texel shadows' stride, the
@@ -349,6 +366,7 @@ private:
     RingShine ringShine_; ///< a planet's rings' light on it
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
     ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' bounds
+    ColorOutput colorOutput_ = ColorOutput::Auto;
 };
 
 } // namespace hfx

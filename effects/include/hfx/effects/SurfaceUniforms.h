@@ -57,7 +57,9 @@ struct SurfaceUniforms {
     float shadowBias = 0.0f;        ///< depth bias, in the map's window depth
     float shadowOffset = 0.0f;      ///< normal offset of the lookup, world units (about 1.5 map texels)
     float shadowTexel = 0.0f;       ///< 1 / the map's size (the filter's tap spacing)
-    int padding = 0;                ///< std140 aligns the vec4 below to 16 bytes
+    /// 1: colours written linear and unclamped (a float or sRGB target: hfx::ColorOutput); 0:
+    /// clamped and gamma-encoded. (std140 aligns the vec4 below to 16 bytes after it.)
+    int linearOutput = 0;
     /// The texel shadows' light (ShadowLight: uvPerClimb, penumbra, slack; read where
     /// HFX_TEXEL_SHADOWS is 1).
     glm::vec4 shadowLight{0.0f};
