@@ -8,6 +8,7 @@
 #include "hfx/core/Camera.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -133,6 +134,50 @@ TEST(Camera, AReversedZProjectionPutsTheNearPlaneAtOneAndTheFarAtZero) {
         EXPECT_LT(glm::length(r0.direction - r1.direction), 1e-6) << pixel.x << ", " << pixel.y;
         EXPECT_EQ(r0.origin, r1.origin);
     }
+}
+
+TEST(Camera, AnEnginesMatricesMakeTheSameCamera) {
+    // Camera::fromMatrices: an engine's view and projection give back the camera they came from,
+    // in either depth convention; the near plane's reach is the lens's (near * the corner's secant).
+    for (const bool reversed : {false, true}) {
+        Camera c = Camera::orbit({0.3f, 0.0f, -0.2f}, 3.0f, 0.4f, 0.5f);
+        c.aspect = float(kWidth) / float(kHeight);
+        c.reversedZ = reversed;
+        const Camera engine = Camera::fromMatrices(c.view(), c.projection(), reversed);
+        EXPECT_NO_THROW(engine.validate());
+        for (int col = 0; col < 4; ++col) {
+            EXPECT_LT(glm::length(engine.view()[col] - c.view()[col]), 1e-5f) << col;
+            EXPECT_EQ(engine.projection()[col], c.projection()[col]) << col;
+        }
+        const Ray a = c.rayThroughPixel(10.5, 170.5, kWidth, kHeight), b = engine.rayThroughPixel(10.5, 170.5, kWidth, kHeight);
+        EXPECT_LT(glm::length(a.direction - b.direction), 1e-5);
+        const double t = std::tan(c.fovY / 2.0);
+        EXPECT_NEAR(engine.nearPlaneReach(), c.nearPlane * std::sqrt(1.0 + t * t * (1.0 + c.aspect * c.aspect)), 1e-6);
+        EXPECT_NEAR(c.nearPlaneReach(), engine.nearPlaneReach(), 1e-7);
+    }
+}
+
+TEST(Camera, ACustomProjectionThatIsNotAPerspectiveOneIsRefusedByName) {
+    const Camera usual = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.0f, 0.4f, 0.5f);
+    auto refusal = [&](const glm::mat4& projection, bool reversed) {
+        Camera c = usual;
+        c.customProjection = projection;
+        c.reversedZ = reversed;
+        return messageOf([&] { c.validate(); });
+    };
+    const glm::mat4 offAxis = glm::frustum(-0.01f, 0.03f, -0.01f, 0.012f, 0.02f, 50.0f);
+    EXPECT_EQ(refusal(offAxis, false), "(no error)");
+    EXPECT_EQ(refusal(glm::frustumRH_ZO(-0.01f, 0.03f, -0.01f, 0.012f, 50.0f, 0.02f), true), "(no error)");
+    EXPECT_NE(refusal(glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 10.0f), false).find("an orthographic view has no eye point"),
+              std::string::npos);
+    glm::mat4 nan = offAxis;
+    nan[2][0] = std::nanf("");
+    EXPECT_NE(refusal(nan, false).find("Camera.customProjection must be finite"), std::string::npos);
+    glm::mat4 flat = offAxis;
+    flat[0][0] = 0.0f;
+    EXPECT_NE(refusal(flat, false).find("has no inverse"), std::string::npos);
+    EXPECT_NE(refusal(offAxis, true).find("maps depth GL's default way (near at the smaller depth), but Camera.reversedZ is true"),
+              std::string::npos);
 }
 
 TEST(Camera, ABadFieldIsRefusedByNameAndTheUsualViewsPass) {

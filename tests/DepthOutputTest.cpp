@@ -273,6 +273,63 @@ TEST_F(DepthOutput, AReversedZViewDrawsTheFrameGlsDefaultDepthDraws) {
     }
 }
 
+// An engine's own projection (Camera::customProjection): an off-axis frustum, a VR eye's or a tile
+// of a wider view, draws exactly its part of the frame the symmetric lens draws over the whole
+// view, each technique's relief, its self-shadows and its depth, hier in the draw and in a compute
+// pass; so does the same camera made from the engine's matrices (Camera::fromMatrices).
+TEST_F(DepthOutput, AnOffAxisFrustumDrawsItsPartOfTheWideFrame) {
+    constexpr int field = 64, W = 160, H = 120; // the right half of a 2W x H view
+    constexpr float depthScale = 0.12f;
+    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
+    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
+    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.6f, 0.5f, 0.4f}};
+    Camera wide = Camera::orbit({-0.6f, 0.0f, 0.0f}, 2.6f, 0.2f, 0.8f);
+    wide.aspect = 2.0f * W / H;
+    wide.nearPlane = 0.1f;
+    wide.farPlane = 20.0f;
+    const float top = wide.nearPlane * std::tan(0.5f * wide.fovY), right = top * wide.aspect;
+    Camera half = wide;
+    half.customProjection = glm::frustum(0.0f, right, -top, top, wide.nearPlane, wide.farPlane);
+    const Camera engine = Camera::fromMatrices(wide.view(), *half.customProjection);
+    RenderTarget wideTarget(2 * W, H), halfTarget(W, H);
+    SurfaceRenderer renderer;
+    auto draw = [&](const RenderTarget& target, const Camera& camera, const DrawOptions& options, std::vector<float>& depth) {
+        target.bind();
+        target.clear({0.2f, 0.3f, 0.4f, 1.0f});
+        renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light, options);
+        depth = target.readDepth();
+        return target.readColor();
+    };
+    const std::pair<const char*, DrawOptions> drawn[] = {
+        {"pom", {.technique = Technique::ParallaxOcclusion}},
+        {"hier in the draw", {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::Off, .tracePass = TracePass::InDraw}},
+        {"hier in a compute pass", {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::Off, .tracePass = TracePass::Compute}}};
+    for (const auto& [name, options] : drawn)
+        for (const Camera* camera : {static_cast<const Camera*>(&half), &engine}) {
+            SCOPED_TRACE(testing::Message() << name << (camera == &engine ? ", from the engine's matrices" : ""));
+            std::vector<float> wideDepth, halfDepth;
+            const Image whole = draw(wideTarget, wide, options, wideDepth), part = draw(halfTarget, *camera, options, halfDepth);
+            size_t covered = 0, apart = 0;
+            float worstDepth = 0.0f;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    float diff = 0.0f;
+                    for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(part.at(x, y, c) - whole.at(W + x, y, c)));
+                    apart += diff > 2.0f / 255.0f;
+                    const float a = halfDepth[size_t(y) * W + x], b = wideDepth[size_t(y) * 2 * W + W + x];
+                    covered += a < 1.0f;
+                    worstDepth = std::max(worstDepth, std::abs(a - b));
+                }
+            ASSERT_GT(covered, size_t(W * H / 3));
+            EXPECT_LE(apart, covered / 1000) << covered << " pixels covered";
+            EXPECT_LT(worstDepth, 1e-5f) << "in window depth";
+        }
+}
+
 // A view whose depth convention is not the GL state's would be drawn wrong without a word (its
 // traced depths written for the other convention, its depth test facing the wrong way, half the
 // scene clipped): every draw refuses it by name before it changes anything.

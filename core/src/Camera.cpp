@@ -6,7 +6,9 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -27,14 +29,29 @@ void Camera::validate() const {
     if (!(aspect > 0.0f) || !std::isfinite(aspect)) throw Error(str("Camera.aspect must be positive, got ", aspect));
     if (!(nearPlane > 0.0f && nearPlane < farPlane) || !std::isfinite(farPlane))
         throw Error(str("Camera needs 0 < nearPlane < farPlane, both finite, got ", nearPlane, " and ", farPlane));
+    if (!customProjection) return;
+    const glm::mat4& p = *customProjection;
+    if (!isFinite(p)) throw Error("Camera.customProjection must be finite");
+    const glm::vec4 lastRow(p[0][3], p[1][3], p[2][3], p[3][3]);
+    if (glm::length(lastRow - glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)) > 1e-6f)
+        throw Error(str("Camera.customProjection must be a perspective projection, its last row (0, 0, -1, 0) (w the "
+                        "distance in front of the eye), got ", text(lastRow),
+                        lastRow.w != 0.0f ? ": an orthographic view has no eye point for the relief's parallax" : ""));
+    if (!(std::abs(glm::determinant(glm::dmat4(p))) > 0.0)) throw Error("Camera.customProjection has no inverse");
+    // Along the view axis the clip depth is -p22 + p32 / distance: it grows with the distance
+    // where p32 < 0 (GL's default), shrinks where p32 > 0 (reversed).
+    if ((p[3][2] > 0.0f) != reversedZ)
+        throw Error(str("Camera.customProjection maps depth ", p[3][2] > 0.0f ? "reversed (near at the larger depth)" : "GL's default way (near at the smaller depth)",
+                        ", but Camera.reversedZ is ", reversedZ ? "true" : "false"));
 }
 
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
 glm::mat4 Camera::projection() const {
     // Reversed Z: [0, 1] clip depth with the planes swapped, near at 1 and far at 0.
-    const glm::mat4 p = reversedZ ? glm::perspectiveRH_ZO(fovY, aspect, farPlane, nearPlane)
-                                  : glm::perspective(fovY, aspect, nearPlane, farPlane);
+    const glm::mat4 p = customProjection ? *customProjection
+                        : reversedZ      ? glm::perspectiveRH_ZO(fovY, aspect, farPlane, nearPlane)
+                                         : glm::perspective(fovY, aspect, nearPlane, farPlane);
     if (jitter == glm::vec2(0.0f)) return p;
     // x' = x + jitter.x * w in clip space: the image moves by jitter in NDC.
     return glm::translate(glm::mat4(1.0f), glm::vec3(jitter, 0.0f)) * p;
@@ -48,6 +65,28 @@ Ray Camera::rayThroughPixel(double x, double y, int width, int height) const {
     nearPoint /= nearPoint.w;
     farPoint /= farPoint.w;
     return {glm::dvec3(position), glm::normalize(glm::dvec3(farPoint - nearPoint))};
+}
+
+float Camera::nearPlaneReach() const {
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(projection()));
+    double reach = 0.0;
+    for (const double x : {-1.0, 1.0})
+        for (const double y : {-1.0, 1.0}) {
+            const glm::dvec4 corner = inverse * glm::dvec4(x, y, reversedZ ? 1.0 : -1.0, 1.0);
+            reach = std::max(reach, glm::length(glm::dvec3(corner) / corner.w));
+        }
+    return float(reach);
+}
+
+Camera Camera::fromMatrices(const glm::mat4& view, const glm::mat4& projection, bool reversedZ) {
+    const glm::mat4 world = glm::inverse(view);
+    Camera c;
+    c.position = glm::vec3(world[3]);
+    c.target = c.position - glm::vec3(world[2]); // the eye looks down its -z
+    c.up = glm::vec3(world[1]);
+    c.reversedZ = reversedZ;
+    c.customProjection = projection;
+    return c;
 }
 
 Camera Camera::orbit(glm::vec3 target, float distance, float azimuth, float elevation) {

@@ -301,9 +301,7 @@ bool backFacesHidden(const Mesh& mesh, const glm::mat4& model, const Camera& cam
     const glm::vec3 centre(model * glm::vec4(glm::vec3(b), 1.0f));
     const glm::mat3 m(model);
     const float scale = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
-    const float t = std::tan(0.5f * camera.fovY);
-    const float reach = camera.nearPlane * std::sqrt(1.0f + t * t * (1.0f + camera.aspect * camera.aspect));
-    return glm::length(camera.position - centre) > b.w * scale + reach;
+    return glm::length(camera.position - centre) > b.w * scale + camera.nearPlaneReach();
 }
 } // namespace
 

@@ -7,6 +7,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <optional>
 #include <span>
 
 namespace hfx {
@@ -35,10 +36,17 @@ struct Camera {
     /// cleared to 0; a float depth buffer then keeps its precision into the distance. The
     /// renderers draw a camera only under its own clip control and refuse the other by name.
     bool reversedZ = false;
+    /// An engine's own projection in place of fovY, aspect, nearPlane and farPlane (jitter still
+    /// moves it): an off-axis one (a VR eye's), an oblique near plane (a planar reflection's). It
+    /// must be a perspective projection in GL's clip space, w the distance in front of the eye
+    /// (glm::frustum, glm::perspective and their _ZO forms), mapping depth the way reversedZ says.
+    std::optional<glm::mat4> customProjection;
 
     /// Throws hfx::Error naming the field: a position, target, up or jitter not finite, the
     /// position on the target (no view direction), an up along the view direction (no roll),
-    /// fovY outside (0, pi), an aspect not positive, or not 0 < nearPlane < farPlane, all finite.
+    /// fovY outside (0, pi), an aspect not positive, or not 0 < nearPlane < farPlane, all finite;
+    /// a custom projection not finite, not invertible, not a perspective one (an orthographic
+    /// one: the relief's parallax needs an eye point) or mapping depth against reversedZ.
     /// What the renderers call before they draw: any of these makes the view matrix a NaN.
     void validate() const;
 
@@ -48,6 +56,14 @@ struct Camera {
     /// The ray through a point of the image, in pixels from the bottom-left corner
     /// (x + 0.5, y + 0.5 is a pixel's centre), in double precision for reference tracers.
     Ray rayThroughPixel(double x, double y, int width, int height) const;
+
+    /// How far from the eye the near plane reaches where it cuts the view (its farthest corner):
+    /// a closed mesh farther than that from the eye shows no back face through the cut.
+    float nearPlaneReach() const;
+
+    /// A camera from an engine's view and projection matrices: the position, target and up from
+    /// the view's inverse (a rigid view: no scale), the projection as customProjection.
+    static Camera fromMatrices(const glm::mat4& view, const glm::mat4& projection, bool reversedZ = false);
 
     /// Places the camera at `distance` from `target`, `elevation` radians above the XZ plane
     /// and `azimuth` radians around +Y.
