@@ -21,13 +21,24 @@ namespace {
 
 class DepthOutput : public GlTest {};
 
+/// The relief the tests here draw: two sines on a wrapped field, its normals for the depth, grey.
+struct SineRelief {
+    SineRelief(int field, float depthScale)
+        : heights(sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}})),
+          textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale}) {
+        textures.uploadTexels(sobelReference(heights, field, depthScale).data());
+        textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    }
+    std::vector<float> heights;
+    SurfaceTextures textures;
+};
+
 TEST_F(DepthOutput, QuadIsClippedAtTheDisplacedSurface) {
     constexpr int field = 64, image = 160;
     constexpr float depthScale = 0.15f, planeSize = 2.0f;
-    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
-    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
-    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
-    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    const SineRelief relief(field, depthScale);
+    const std::vector<float>& heights = relief.heights;
+    const SurfaceTextures& textures = relief.textures;
     const Mesh plane(makePlane({.size = planeSize}));
     PlaneView view{.planeSize = planeSize, .camera = cameraAtAngle(40, 8.0f, 1.0f)};
 
@@ -89,10 +100,8 @@ TEST_F(DepthOutput, QuadIsClippedAtTheDisplacedSurface) {
 TEST_F(DepthOutput, NoTechniqueWritesADepthInFrontOfThePolygon) {
     constexpr int field = 64, W = 240, H = 180;
     constexpr float depthScale = 0.12f;
-    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
-    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
-    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
-    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    const SineRelief relief(field, depthScale);
+    const SurfaceTextures& textures = relief.textures;
     const Mesh plane(makePlane({.size = 2.0f}));
     const Mesh sphere(makeSphere({}));
     Camera wide = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.7f, 0.5f, 0.3f);
@@ -176,10 +185,8 @@ struct ZeroToOneClipDepth {
 TEST_F(DepthOutput, AReversedZViewDrawsTheFrameGlsDefaultDepthDraws) {
     constexpr int field = 64, W = 200, H = 150;
     constexpr float depthScale = 0.15f, planeSize = 2.0f, quadHeight = 0.5f;
-    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
-    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
-    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
-    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    const SineRelief relief(field, depthScale);
+    const SurfaceTextures& textures = relief.textures;
     const Mesh plane(makePlane({.size = planeSize}));
     const glm::mat4 quadModel = glm::translate(glm::mat4(1.0f), glm::vec3(0.2f, -(1.0f - quadHeight) * depthScale * planeSize, 0.0f)) *
                                 glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
@@ -280,10 +287,8 @@ TEST_F(DepthOutput, AReversedZViewDrawsTheFrameGlsDefaultDepthDraws) {
 TEST_F(DepthOutput, AnOffAxisFrustumDrawsItsPartOfTheWideFrame) {
     constexpr int field = 64, W = 160, H = 120; // the right half of a 2W x H view
     constexpr float depthScale = 0.12f;
-    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
-    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
-    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
-    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    const SineRelief relief(field, depthScale);
+    const SurfaceTextures& textures = relief.textures;
     const Mesh plane(makePlane({.size = 2.0f}));
     const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f};
     const DirectionalLight light{.direction = {0.6f, 0.5f, 0.4f}};
