@@ -132,16 +132,19 @@ TEST(Camera, AReversedZProjectionPutsTheNearPlaneAtOneAndTheFarAtZero) {
         const Ray r0 = standard.rayThroughPixel(pixel.x, pixel.y, kWidth, kHeight);
         const Ray r1 = reversed.rayThroughPixel(pixel.x, pixel.y, kWidth, kHeight);
         EXPECT_LT(glm::length(r0.direction - r1.direction), 1e-6) << pixel.x << ", " << pixel.y;
-        EXPECT_EQ(r0.origin, r1.origin);
     }
 }
 
 TEST(Camera, AnEnginesMatricesMakeTheSameCamera) {
     // Camera::fromMatrices: an engine's view and projection give back the camera they came from,
     // in either depth convention; the near plane's reach is the lens's (near * the corner's secant).
+    // The lens is not Camera's default, so a projection taken from the fields would show.
     for (const bool reversed : {false, true}) {
         Camera c = Camera::orbit({0.3f, 0.0f, -0.2f}, 3.0f, 0.4f, 0.5f);
-        c.aspect = float(kWidth) / float(kHeight);
+        c.fovY = 1.1f;
+        c.aspect = 1.5f;
+        c.nearPlane = 0.05f;
+        c.farPlane = 30.0f;
         c.reversedZ = reversed;
         const Camera engine = Camera::fromMatrices(c.view(), c.projection(), reversed);
         EXPECT_NO_THROW(engine.validate());
