@@ -203,6 +203,7 @@ int run(const Options& o) {
     std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\nhfx: technique: %s%s\n", cl.programReport().c_str(),
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
                  o.technique == "auto" ? " (auto: the scene's default)" : "");
+    if (scene->camera().reversedZ) std::fprintf(stderr, "hfx: depth: reversed Z (near at 1, GL_ZERO_TO_ONE, GL_GREATER)\n");
     if (gl->headless()) return runHeadless(o, *scene);
     WindowLoop loop({.width = o.width,
                      .height = o.height,

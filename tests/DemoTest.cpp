@@ -341,11 +341,15 @@ TEST(Demo, AReversedZRunDrawsTheScenesFrames) {
     // (GL_ZERO_TO_ONE, GL_GREATER, cleared to 0), the water's sky and its POM, the wall's hier
     // and its shadow map, the planet's sphere and its rings: the frames of GL's default depth
     // (measured: at most 1 level apart, on the water). A frame one field step later differs by
-    // far more, so the comparison can tell frames apart.
+    // far more, so the comparison can tell frames apart; the log says the camera was reversed (a
+    // reversed camera drawn without GL_ZERO_TO_ONE set would be refused).
     for (const std::string scene : {"water", "decals", "planet"}) {
         const std::string flags = scene == "planet" ? " --rings 1" : "";
-        const Image standard = flatSceneFrame(scene, "depth_standard", flags),
-                    reversed = flatSceneFrame(scene, "depth_reversed", flags + " --reversed-z");
+        std::string standardLog, reversedLog;
+        const Image standard = flatSceneFrame(scene, "depth_standard", flags, 128, &standardLog),
+                    reversed = flatSceneFrame(scene, "depth_reversed", flags + " --reversed-z", 128, &reversedLog);
+        EXPECT_NE(reversedLog.find("hfx: depth: reversed Z"), std::string::npos) << reversedLog;
+        EXPECT_EQ(standardLog.find("hfx: depth: reversed Z"), std::string::npos) << standardLog;
         const FrameDifference d = frameDifference(standard, reversed);
         EXPECT_LE(d.mean, 0.05) << scene;
         EXPECT_EQ(d.far, 0.0) << scene;
