@@ -58,9 +58,8 @@ public:
     /// bound framebuffer over what it holds: it copies the viewport's colour first (display
     /// values into GL_RGBA8; where the colours are written linear (ColorOutput), a float
     /// target's into GL_RGBA16F, an sRGB one's into GL_SRGB8_ALPHA8) and composes them over it in
-    /// linear light; depth tested, no depth
-    /// written. Throws hfx::Error for a multisampled framebuffer (GL copies from none). Restores
-    /// the GL state it changes.
+    /// linear light; depth tested, no depth written. Throws hfx::Error for a multisampled
+    /// framebuffer (GL copies from none). Restores the GL state it changes.
     void draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light);
     /// How the rings' colours are encoded (ColorOutput: Auto by default, as SurfaceRenderer's):
     /// the planet's draw and theirs must agree.
