@@ -14,7 +14,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 
 namespace hfx::test {
 namespace {
@@ -333,6 +335,161 @@ TEST_F(DepthOutput, AnOffAxisFrustumDrawsItsPartOfTheWideFrame) {
             EXPECT_LE(apart, covered / 1000) << covered << " pixels covered";
             EXPECT_LT(worstDepth, 1e-5f) << "in window depth";
         }
+}
+
+/// An engine's multisampled colour and depth target (MSAA), resolved into a RenderTarget's colour.
+struct MultisampledTarget {
+    MultisampledTarget(int w, int h, int samples)
+        : width(w), height(h), fbo(GlFramebuffer::create()), colour(GlRenderbuffer::create()),
+          depth(GlRenderbuffer::create()) {
+        glNamedRenderbufferStorageMultisample(colour.id(), samples, GL_RGBA8, width, height);
+        glNamedRenderbufferStorageMultisample(depth.id(), samples, GL_DEPTH_COMPONENT32F, width, height);
+        glNamedFramebufferRenderbuffer(fbo.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour.id());
+        glNamedFramebufferRenderbuffer(fbo.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id());
+    }
+    void bind(const glm::vec4& background) const {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glViewport(0, 0, width, height);
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, &background.x);
+        const float far = 1.0f;
+        glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
+    }
+    Image resolved(const RenderTarget& into) const {
+        glBlitNamedFramebuffer(fbo.id(), into.framebuffer(), 0, 0, width, height, 0, 0, width, height,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        return into.readColor();
+    }
+    int width, height;
+    GlFramebuffer fbo;
+    GlRenderbuffer colour, depth;
+};
+
+// An engine's multisampled target (MSAA): a fragment shades once for the samples its polygon
+// covers and writes one traced depth for all of them. Every technique then draws the
+// single-sampled frame wherever a pixel's samples all show one thing (the sky, the relief, a quad
+// crossing it, a nearer plane over it), and only the pixels on an edge between two of them are
+// blended. The exact tracer walks in the draw there (its compute pass needs one fragment a pixel),
+// and its deferred light walks write only the samples their own draw wrote: their frame is the
+// one whose draw walks those rays itself.
+TEST_F(DepthOutput, AMultisampledTargetDrawsTheSingleSampledFrameButAtItsEdges) {
+    constexpr int field = 64, W = 200, H = 150, samples = 4;
+    constexpr float depthScale = 0.12f, planeSize = 2.0f, quadHeight = 0.5f;
+    const SineRelief relief(field, depthScale);
+    const SurfaceTextures& textures = relief.textures;
+    SineRelief green(field, depthScale);
+    green.textures.setAlbedo(Image{1, 1, 3, {0.2f, 0.6f, 0.2f}});
+    const Mesh plane(makePlane({.size = planeSize})), cover(makePlane({.size = 0.6f}));
+    const glm::mat4 quadModel = glm::translate(glm::mat4(1.0f), glm::vec3(0.2f, -(1.0f - quadHeight) * depthScale * planeSize, 0.0f)) *
+                                glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+    const glm::mat4 nearer = glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f, 0.35f, 0.3f));
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.2f, 0.3f, 1.0f);
+    camera.aspect = float(W) / float(H);
+    const glm::vec4 background{0.2f, 0.3f, 0.4f, 1.0f};
+    RenderTarget single(W, H), resolve(W, H);
+    MultisampledTarget msaa(W, H, samples);
+    GLint got = 0;
+    glGetNamedRenderbufferParameteriv(msaa.colour.id(), GL_RENDERBUFFER_SAMPLES, &got);
+    ASSERT_GE(got, samples) << "the context has no " << samples << "x multisampling";
+    ASSERT_EQ(glCheckNamedFramebufferStatus(msaa.fbo.id(), GL_DRAW_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    SurfaceRenderer renderer;
+    auto scene = [&](const DrawOptions& options) {
+        renderer.drawSky(camera, light, WaterLook{});
+        renderer.draw(cover, nearer, green.textures, material, camera, light, {.technique = Technique::NormalMapping});
+        renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light, options);
+        renderer.drawFlat(plane, quadModel, camera, {1.0f, 0.0f, 0.0f, 1.0f}, &light);
+    };
+    // Shaded once a fragment, or once a sample (an engine's sample-rate shading: each sample
+    // writes its own traced depth, and appends its own light walk).
+    bool perSample = false;
+    auto multisampled = [&](const DrawOptions& options) {
+        msaa.bind(background);
+        if (perSample) glEnable(GL_SAMPLE_SHADING), glMinSampleShading(1.0f);
+        scene(options);
+        glDisable(GL_SAMPLE_SHADING);
+        return msaa.resolved(resolve);
+    };
+    // What a pixel of the single-sampled frame shows: 0 the sky, 1 the relief (grey), 2 the quad
+    // (red), 3 the nearer plane (green); -1 for a pixel by an edge between two of them.
+    auto shows = [&](const Image& frame, const std::vector<float>& depth, int x, int y) {
+        if (depth[size_t(y) * W + x] >= 1.0f) return 0;
+        const int row = H - 1 - y;
+        const float r = frame.at(x, row, 0), g = frame.at(x, row, 1), b = frame.at(x, row, 2);
+        return r > g + 0.1f && r > b + 0.1f ? 2 : g > r + 0.1f ? 3 : 1;
+    };
+    auto inside = [&](const Image& frame, const std::vector<float>& depth, int x, int y) {
+        const int what = shows(frame, depth, x, y);
+        for (int v = std::max(y - 1, 0); v <= std::min(y + 1, H - 1); ++v)
+            for (int u = std::max(x - 1, 0); u <= std::min(x + 1, W - 1); ++u)
+                if (shows(frame, depth, u, v) != what) return -1;
+        return what;
+    };
+    auto apart = [](const Image& a, const Image& b, int x, int y) {
+        float diff = 0.0f;
+        for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+        return diff > 2.0f / 255.0f;
+    };
+    const std::pair<const char*, DrawOptions> drawn[] = {
+        {"pom", {.technique = Technique::ParallaxOcclusion}},
+        {"hier", {.technique = Technique::Hierarchical}},
+        {"hier, its compute pass asked", {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::Off, .tracePass = TracePass::Compute}},
+        {"hier, its texel shadows' light walks deferred", {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On, .deferShadowWalks = true}}};
+    int fragmentWalks = 0;
+    for (const bool sampleRate : {false, true}) {
+        perSample = sampleRate;
+        const char* shading = sampleRate ? "per sample" : "per fragment";
+        SCOPED_TRACE(shading);
+        for (const auto& [name, options] : drawn) {
+            SCOPED_TRACE(name);
+            single.bind();
+            single.clear(background);
+            scene(options);
+            const Image one = single.readColor();
+            const std::vector<float> depth = single.readDepth();
+            const Image many = multisampled(options);
+            std::array<size_t, 4> interior{};
+            size_t edges = 0, blended = 0, interiorApart = 0;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    const int what = inside(one, depth, x, y);
+                    const bool differ = apart(one, many, x, H - 1 - y);
+                    if (what < 0) ++edges, blended += differ;
+                    else ++interior[size_t(what)], interiorApart += differ;
+                }
+            const size_t total = size_t(W) * H - edges;
+            std::printf("[msaa] %s, %s: %zu of %zu pixels inside apart; %zu of %zu by an edge blended\n", shading, name, interiorApart, total,
+                        blended, edges);
+            // Not vacuous: each thing shows, and the target is multisampled (its edges are blended).
+            for (size_t what = 0; what < interior.size(); ++what) EXPECT_GT(interior[what], size_t(W * H / 100)) << "shows " << what;
+            EXPECT_GT(blended, edges / 4) << "no edge antialiased";
+            EXPECT_LE(interiorApart, total / 1000);
+            if (interiorApart > total / 1000) {
+                writeImage(outputPath(std::string("msaa_") + shading + "_" + name + "_single.png"), one);
+                writeImage(outputPath(std::string("msaa_") + shading + "_" + name + "_resolved.png"), many);
+            }
+        }
+        // The compute pass asked: a multisampled draw walks in the draw, and the deferred walks are
+        // taken and write the frame the draw that walks them itself gives, edges included.
+        (void)multisampled(drawn[2].second);
+        EXPECT_FALSE(renderer.tracer().last().computeTrace);
+        const Image deferred = multisampled(drawn[3].second);
+        EXPECT_TRUE(renderer.tracer().last().deferredShadows);
+        const int walks = renderer.tracer().deferredWalks();
+        DrawOptions walked = drawn[3].second;
+        walked.deferShadowWalks = false;
+        const Image inDraw = multisampled(walked);
+        size_t deferredApart = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) deferredApart += apart(deferred, inDraw, x, y);
+        std::printf("[msaa] %s, deferred light walks: %d rays; %zu pixels apart from the walks in the draw\n", shading, walks, deferredApart);
+        EXPECT_GT(walks, 100) << "too few rays deferred to tell";
+        if (sampleRate) {
+            EXPECT_GT(walks, 2 * fragmentWalks) << "shaded once a fragment still";
+        }
+        fragmentWalks = walks;
+        EXPECT_LE(deferredApart, size_t(W * H / 10000));
+    }
 }
 
 // A view whose depth convention is not the GL state's would be drawn wrong without a word (its

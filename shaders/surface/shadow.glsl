@@ -25,7 +25,9 @@ float hfx_surface_shadow(HfxShadowRay ray, float fade, out int slot) {
             slot = int(at);
             if (at % uint(HFX_DEFERRED_GROUP) == 0u) atomicAdd(hfx_deferredGroups, 1u); // a group begun
             const int i = HFX_DEFERRED_VEC4S * slot;
-            hfx_deferredRays[i] = vec4(gl_FragCoord.xy, gl_FragDepth, fade);
+            // The pixel's centre: under sample-rate shading gl_FragCoord may be the sample's, and a
+            // point drawn there would straddle two pixels. (The depth test keeps its samples.)
+            hfx_deferredRays[i] = vec4(floor(gl_FragCoord.xy) + 0.5, gl_FragDepth, fade);
             hfx_deferredRays[i + 1] = vec4(ray.uv, ray.h0, ray.span.x);
             hfx_deferredRays[i + 2].x = ray.span.y;
             return known;
