@@ -160,6 +160,36 @@ TEST(Camera, AnEnginesMatricesMakeTheSameCamera) {
     }
 }
 
+TEST(Camera, AMirrorsViewMakesAMirroredCameraWithItsEyeAndRays) {
+    // An engine's planar reflection: its view times a reflection about the water's plane (y = 0.2),
+    // a determinant of -1. fromMatrices keeps the matrix (the image flipped left to right, where a
+    // look-at lens would draw the unmirrored one) and the eye it gives, the camera's reflected
+    // through the plane; each pixel's ray is the camera's reflected.
+    const Camera c = Camera::orbit({0.3f, 0.0f, -0.2f}, 3.0f, 0.4f, 0.5f);
+    const glm::mat4 reflect = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.2f, 0.0f)) *
+                              glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, -1.0f, 1.0f)) *
+                              glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.2f, 0.0f));
+    const Camera mirror = Camera::fromMatrices(c.view() * reflect, c.projection());
+    EXPECT_NO_THROW(mirror.validate());
+    EXPECT_TRUE(mirror.mirrored);
+    EXPECT_FALSE(Camera::fromMatrices(c.view(), c.projection()).mirrored);
+    for (int col = 0; col < 4; ++col) EXPECT_LT(glm::length(mirror.view()[col] - (c.view() * reflect)[col]), 1e-5f) << col;
+    EXPECT_LT(glm::length(mirror.position - glm::vec3(c.position.x, 0.4f - c.position.y, c.position.z)), 1e-5f);
+    for (const glm::dvec2 pixel : {glm::dvec2(10.5, 170.5), glm::dvec2(200.5, 20.5)}) {
+        const Ray a = c.rayThroughPixel(pixel.x, pixel.y, kWidth, kHeight),
+                  b = mirror.rayThroughPixel(pixel.x, pixel.y, kWidth, kHeight);
+        EXPECT_LT(glm::length(glm::dvec3(a.direction.x, -a.direction.y, a.direction.z) - b.direction), 1e-5);
+    }
+    // A view that scales, shears or projects has no eye that draws what it draws: refused by name.
+    for (const glm::mat4& bad : {c.view() * glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)),
+                                 c.view() * glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0.5f, 1, 0, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, 0, 0, 1)),
+                                 c.projection() * c.view()})
+        EXPECT_NE(messageOf([&] { (void)Camera::fromMatrices(bad, c.projection()); }).find("the view must be rigid"), std::string::npos);
+    glm::mat4 nan = c.view();
+    nan[3][0] = std::nanf("");
+    EXPECT_NE(messageOf([&] { (void)Camera::fromMatrices(nan, c.projection()); }).find("the view must be finite"), std::string::npos);
+}
+
 TEST(Camera, ACustomProjectionThatIsNotAPerspectiveOneIsRefusedByName) {
     const Camera usual = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.0f, 0.4f, 0.5f);
     auto refusal = [&](const glm::mat4& projection, bool reversed) {

@@ -337,6 +337,67 @@ TEST_F(DepthOutput, AnOffAxisFrustumDrawsItsPartOfTheWideFrame) {
         }
 }
 
+// A mirror's view (an engine's planar reflection: its view times a reflection, Camera::mirrored)
+// draws the frame flipped left to right: each pixel shows what the unmirrored view shows at its
+// mirror image, the sky, a plane's relief and a sphere's (a closed mesh whose back faces are culled:
+// a mirror turns the winding of its front faces), with the same depth, for POM and for hier walking
+// in the draw and in a compute pass (whose rays draw keeps the front faces' fragments).
+TEST_F(DepthOutput, AMirrorsViewDrawsTheFrameFlippedLeftToRight) {
+    constexpr int field = 64, W = 200, H = 150;
+    const SineRelief relief(field, 0.12f);
+    const Mesh plane(makePlane({.size = 2.0f})), sphere(makeSphere({.radius = 0.4f}));
+    const glm::mat4 sphereModel = glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.5f, -0.2f));
+    const DirectionalLight light{.direction = {0.6f, 0.5f, 0.4f}};
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.0f, 0.5f, 0.6f);
+    camera.aspect = float(W) / float(H);
+    const Camera mirror = Camera::fromMatrices(glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)) * camera.view(),
+                                               camera.projection());
+    ASSERT_TRUE(mirror.mirrored);
+    RenderTarget target(W, H);
+    SurfaceRenderer renderer;
+    auto draw = [&](const Camera& c, const DrawOptions& options, std::vector<float>& depth) {
+        target.bind();
+        target.clear();
+        renderer.drawSky(c, light, WaterLook{});
+        renderer.draw(plane, glm::mat4(1.0f), relief.textures, {.depthScale = 0.12f, .lodThreshold = 100.0f}, c, light, options);
+        renderer.draw(sphere, sphereModel, relief.textures, {.depthScale = 0.02f, .lodThreshold = 100.0f}, c, light, options);
+        depth = target.readDepth();
+        return target.readColor();
+    };
+    const std::pair<const char*, DrawOptions> drawn[] = {
+        {"pom", {.technique = Technique::ParallaxOcclusion}},
+        {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
+        {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
+    for (const auto& [name, options] : drawn) {
+        SCOPED_TRACE(name);
+        std::vector<float> depth, mirroredDepth;
+        const Image seen = draw(camera, options, depth), mirrored = draw(mirror, options, mirroredDepth);
+        if (options.tracePass == TracePass::Compute) {
+            EXPECT_TRUE(renderer.tracer().last().computeTrace);
+        }
+        size_t covered = 0, apart = 0;
+        float worstDepth = 0.0f;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const int flipped = W - 1 - x;
+                float diff = 0.0f;
+                for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(mirrored.at(x, y, c) - seen.at(flipped, y, c)));
+                apart += diff > 2.0f / 255.0f;
+                const float a = mirroredDepth[size_t(y) * W + x], b = depth[size_t(y) * W + flipped];
+                covered += b < 1.0f;
+                worstDepth = std::max(worstDepth, std::abs(a - b));
+            }
+        std::printf("[mirror] %s: %zu of %zu pixels apart, depths within %g\n", name, apart, size_t(W) * H, worstDepth);
+        ASSERT_GT(covered, size_t(W * H / 3));
+        EXPECT_LE(apart, covered / 1000) << covered << " pixels covered";
+        EXPECT_LT(worstDepth, 1e-5f) << "in window depth";
+        if (apart > covered / 1000) {
+            writeImage(outputPath(std::string("mirror_") + name + "_seen.png"), seen);
+            writeImage(outputPath(std::string("mirror_") + name + "_mirrored.png"), mirrored);
+        }
+    }
+}
+
 /// An engine's multisampled colour and depth target (MSAA), resolved into a RenderTarget's colour.
 struct MultisampledTarget {
     MultisampledTarget(int w, int h, int samples)

@@ -45,7 +45,15 @@ void Camera::validate() const {
                         ", but Camera.reversedZ is ", reversedZ ? "true" : "false"));
 }
 
-glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
+namespace {
+/// The eye's x axis flipped: a mirror's view is lookAt's followed by it.
+glm::mat4 flipEyeX(const glm::mat4& view) { return glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)) * view; }
+} // namespace
+
+glm::mat4 Camera::view() const {
+    const glm::mat4 v = glm::lookAt(position, target, up);
+    return mirrored ? flipEyeX(v) : v;
+}
 
 glm::mat4 Camera::projection() const {
     // Reversed Z: [0, 1] clip depth with the planes swapped, near at 1 and far at 0.
@@ -79,8 +87,21 @@ float Camera::nearPlaneReach() const {
 }
 
 Camera Camera::fromMatrices(const glm::mat4& view, const glm::mat4& projection, bool reversedZ) {
-    const glm::mat4 world = glm::inverse(view);
+    if (!isFinite(view)) throw Error("Camera::fromMatrices: the view must be finite");
+    // Rigid: orthonormal columns of its 3x3 part, and no projective row.
+    const glm::dmat3 r{glm::dmat4(view)};
+    const glm::dmat3 gram = glm::transpose(r) * r;
+    double off = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) off = std::max(off, std::abs(gram[i][j] - (i == j ? 1.0 : 0.0)));
+    const glm::vec4 lastRow(view[0][3], view[1][3], view[2][3], view[3][3]);
+    if (off > 1e-4 || lastRow != glm::vec4(0.0f, 0.0f, 0.0f, 1.0f))
+        throw Error(str("Camera::fromMatrices: the view must be rigid (a rotation or a reflection, and a translation: "
+                        "no scale, shear or projection), got axes of lengths ", glm::length(r[0]), ", ",
+                        glm::length(r[1]), ", ", glm::length(r[2]), " and a last row ", text(lastRow)));
     Camera c;
+    c.mirrored = glm::determinant(r) < 0.0;
+    const glm::mat4 world = glm::inverse(c.mirrored ? flipEyeX(view) : view);
     c.position = glm::vec3(world[3]);
     c.target = c.position - glm::vec3(world[2]); // the eye looks down its -z
     c.up = glm::vec3(world[1]);

@@ -415,9 +415,11 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     bindUniforms(u, model, viewProj);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(reversedZ ? GL_GREATER : GL_LESS);
-    // The mesh's winding as the model leaves it (a mirroring model turns it): the compute pass's
-    // draws tell front faces by it, and the back faces a closed mesh hides are culled.
-    glFrontFace(glm::determinant(glm::mat3(model)) < 0.0f ? GL_CW : GL_CCW);
+    // The mesh's winding as the model and the view leave it (a mirroring model turns it, and so
+    // does a mirror's view: Camera::mirrored): the compute pass's draws tell front faces by it,
+    // and the back faces a closed mesh hides are culled.
+    const bool mirroredView = caster == nullptr && camera.mirrored;
+    glFrontFace((glm::determinant(glm::mat3(model)) < 0.0f) != mirroredView ? GL_CW : GL_CCW);
     if (backFacesHidden(mesh, model, camera, caster != nullptr)) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);

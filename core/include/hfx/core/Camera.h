@@ -41,6 +41,11 @@ struct Camera {
     /// must be a perspective projection in GL's clip space, w the distance in front of the eye
     /// (glm::frustum, glm::perspective and their _ZO forms), mapping depth the way reversedZ says.
     std::optional<glm::mat4> customProjection;
+    /// A mirror's view: the image flipped left to right, view() lookAt's followed by a flip of the
+    /// eye's x axis. An engine's planar reflection renders with its view times a reflection about
+    /// the mirror's plane (a determinant of -1); fromMatrices sets this for such a view, and the
+    /// renderers turn the front faces' winding with it.
+    bool mirrored = false;
 
     /// Throws hfx::Error naming the field: a position, target, up or jitter not finite, the
     /// position on the target (no view direction), an up along the view direction (no roll),
@@ -62,7 +67,10 @@ struct Camera {
     float nearPlaneReach() const;
 
     /// A camera from an engine's view and projection matrices: the position, target and up from
-    /// the view's inverse (a rigid view: no scale), the projection as customProjection.
+    /// the view's inverse, mirrored where the view reflects (a planar reflection's), the
+    /// projection as customProjection. Throws hfx::Error for a view that is not rigid (a rotation
+    /// or a reflection, and a translation: no scale, shear or projection) or not finite, where the
+    /// eye it gives would not be the one the view draws.
     static Camera fromMatrices(const glm::mat4& view, const glm::mat4& projection, bool reversedZ = false);
 
     /// Places the camera at `distance` from `target`, `elevation` radians above the XZ plane
