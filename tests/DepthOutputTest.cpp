@@ -398,6 +398,113 @@ TEST_F(DepthOutput, AMirrorsViewDrawsTheFrameFlippedLeftToRight) {
     }
 }
 
+/// `projection` with its near plane moved onto `plane` (view space, (n, d): n . p + d = 0; kept
+/// where positive, the eye on the other side), the far plane tilted to keep the view's volume:
+/// Lengyel's oblique near-plane clipping, as an engine's planar reflection clips at the water.
+glm::mat4 obliqueNearPlane(glm::mat4 projection, const glm::vec4& plane) {
+    const glm::vec4 corner((std::copysign(1.0f, plane.x) + projection[2][0]) / projection[0][0],
+                           (std::copysign(1.0f, plane.y) + projection[2][1]) / projection[1][1], -1.0f,
+                           (1.0f + projection[2][2]) / projection[3][2]);
+    const glm::vec4 c = plane * (2.0f / glm::dot(plane, corner));
+    projection[0][2] = c.x;
+    projection[1][2] = c.y;
+    projection[2][2] = c.z + 1.0f;
+    projection[3][2] = c.w;
+    return projection;
+}
+
+// An engine's planar reflection: the wall standing in the water seen in it, drawn with the
+// camera's view times the reflection about the water (y = 0) and a projection whose near plane is
+// the water (obliqueNearPlane), so that what lies under it is clipped. Each pixel whose relief lies
+// above the water shows what the same mirror's view shows with the plain projection, its hit at the
+// same point; each pixel whose relief lies under it shows the sky behind, as does every pixel of
+// the sky (its directions unprojected through the tilted far plane); for POM and for hier walking
+// in the draw and in a compute pass, the beam start's rays begun on the tilted near plane.
+TEST_F(DepthOutput, APlanarReflectionsObliqueNearPlaneClipsTheReliefAtTheWater) {
+    constexpr int field = 64, W = 200, H = 150;
+    constexpr float depthScale = 0.12f;
+    const SineRelief relief(field, depthScale);
+    const Mesh wall(makePlane({.size = 2.0f}));
+    // Upright, facing +z, from y = -0.7 to 1.3: it stands in the water.
+    const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.3f, 0.0f)) *
+                            glm::rotate(glm::mat4(1.0f), 1.5707963f, glm::vec3(1.0f, 0.0f, 0.0f));
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.5f, 0.7f, 0.5f}};
+    Camera camera = Camera::orbit({0.0f, 0.2f, 0.0f}, 3.0f, 0.4f, 0.25f);
+    camera.aspect = float(W) / float(H);
+    const glm::mat4 mirrorView = camera.view() * glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, -1.0f, 1.0f));
+    const glm::vec4 water = glm::transpose(glm::inverse(mirrorView)) * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
+    const Camera plain = Camera::fromMatrices(mirrorView, camera.projection());
+    const Camera clipped = Camera::fromMatrices(mirrorView, obliqueNearPlane(camera.projection(), water));
+    ASSERT_LT(plain.position.y, 0.0f) << "the mirror's eye lies under the water";
+    RenderTarget target(W, H, true);
+    SurfaceRenderer renderer;
+    auto draw = [&](const Camera& c, const DrawOptions* options, std::vector<float>& depth, std::vector<glm::vec4>& trace) {
+        target.bind();
+        target.clear();
+        renderer.drawSky(c, light, WaterLook{});
+        if (options) {
+            DrawOptions o = *options;
+            o.traceOutput = true;
+            renderer.draw(wall, model, relief.textures, material, c, light, o);
+        }
+        depth = target.readDepth();
+        trace = target.readTrace();
+        return target.readColor();
+    };
+    std::vector<float> skyDepth;
+    std::vector<glm::vec4> skyTrace;
+    const Image sky = draw(plain, nullptr, skyDepth, skyTrace);
+    auto worldAt = [&](const Camera& c, int x, int y, float depth) {
+        const glm::dvec4 p = glm::inverse(glm::dmat4(c.viewProjection())) *
+                             glm::dvec4((x + 0.5) / W * 2.0 - 1.0, (y + 0.5) / H * 2.0 - 1.0, 2.0 * depth - 1.0, 1.0);
+        return glm::dvec3(p) / p.w;
+    };
+    const std::pair<const char*, DrawOptions> drawn[] = {
+        {"pom", {.technique = Technique::ParallaxOcclusion}},
+        {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
+        {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
+    for (const auto& [name, options] : drawn) {
+        SCOPED_TRACE(name);
+        std::vector<float> plainDepth, clippedDepth;
+        std::vector<glm::vec4> plainTrace, clippedTrace;
+        const Image whole = draw(plain, &options, plainDepth, plainTrace), cut = draw(clipped, &options, clippedDepth, clippedTrace);
+        size_t above = 0, under = 0, skyward = 0, apart = 0, walkedApart = 0;
+        double worstHit = 0.0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const int row = H - 1 - y;
+                const size_t i = size_t(y) * W + x;
+                // 0.25 above or under: a hit lies up to the relief's depth (0.24) from its polygon.
+                const double height = plainDepth[i] < 1.0f ? worldAt(plain, x, y, plainDepth[i]).y : 1e9;
+                const bool isSky = plainDepth[i] >= 1.0f, kept = !isSky && height > 0.25, gone = !isSky && height < -0.25;
+                if (!isSky && !kept && !gone) continue;
+                const Image& expected = kept ? whole : sky;
+                float diff = 0.0f;
+                for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(cut.at(x, row, c) - expected.at(x, row, c)));
+                apart += diff > 2.0f / 255.0f;
+                (kept ? above : gone ? under : skyward)++;
+                if (kept) walkedApart += std::floor(plainTrace[i].w) != std::floor(clippedTrace[i].w); // the fetches made
+                if (kept && clippedDepth[i] < 1.0f)
+                    worstHit = std::max(worstHit, glm::length(worldAt(clipped, x, y, clippedDepth[i]) -
+                                                              worldAt(plain, x, y, plainDepth[i])));
+            }
+        std::printf("[reflection] %s: %zu pixels above the water, %zu under, %zu of the sky; %zu apart; hits within %g; %zu walks of "
+                    "another length\n",
+                    name, above, under, skyward, apart, worstHit, walkedApart);
+        ASSERT_GT(above, size_t(W * H / 10));
+        ASSERT_GT(under, size_t(W * H / 20));
+        ASSERT_GT(skyward, size_t(W * H / 10));
+        EXPECT_LE(apart, (above + under + skyward) / 1000);
+        EXPECT_LT(worstHit, 1e-3) << "world units (the wall is 2 across)";
+        EXPECT_LE(walkedApart, above / 1000) << "pixels whose walk made another number of fetches";
+        if (apart > (above + under + skyward) / 1000) {
+            writeImage(outputPath(std::string("reflection_") + name + "_plain.png"), whole);
+            writeImage(outputPath(std::string("reflection_") + name + "_clipped.png"), cut);
+        }
+    }
+}
+
 /// An engine's multisampled colour and depth target (MSAA), resolved into a RenderTarget's colour.
 struct MultisampledTarget {
     MultisampledTarget(int w, int h, int samples)

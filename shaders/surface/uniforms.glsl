@@ -66,3 +66,12 @@ layout(std140, binding = HFX_BLOCK_RINGS) uniform HfxRings {
     vec4 u_ringWave[HFX_MAX_RINGS];  // wavenumber (radians per texcoord), amplitude (h units), foam, 0
     int u_ringCount;
 };
+
+// A direction along a pixel's ray, from two of its points unprojected, turned away from the eye
+// where they came out of order: through an oblique near plane (a planar reflection's clip at the
+// water) the far plane tilts, lies behind the eye for some rays (past infinity), and the far
+// point less the near one then points back. u_viewProj's clip w grows away from the eye (an
+// orthographic view's is constant, and its points come in order).
+vec3 hfx_away_from_eye(vec3 along) {
+    return dot(vec3(u_viewProj[0][3], u_viewProj[1][3], u_viewProj[2][3]), along) < 0.0 ? -along : along;
+}

@@ -42,7 +42,7 @@ bool hfx_block_ray(vec2 ndc, mat3 textureFromWorld, vec3 normal, out vec4 cells)
     const vec4 nearH = u_beamInverseViewProj * vec4(ndc, planes.x, 1.0);
     const vec4 farH = u_beamInverseViewProj * vec4(ndc, planes.y, 1.0);
     const vec3 near = nearH.xyz / nearH.w;
-    const vec3 along = farH.xyz / farH.w - near;
+    const vec3 along = hfx_away_from_eye(farH.xyz / farH.w - near); // (an oblique near plane's far one can lie behind the eye)
     const float across = dot(along, normal);
     cells = vec4(0.0);
     if (!(across < 0.0)) return false;
