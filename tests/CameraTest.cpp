@@ -3,6 +3,7 @@
 // centre ray meets the polygon, for quads crossing the near plane and the image's edges, in either
 // depth convention; the reversed-Z projection; and the camera's own check of its fields.
 
+#include "support/Fields.h"
 #include "support/Fixtures.h"
 
 #include "hfx/core/Camera.h"
@@ -188,6 +189,29 @@ TEST(Camera, AMirrorsViewMakesAMirroredCameraWithItsEyeAndRays) {
     glm::mat4 nan = c.view();
     nan[3][0] = std::nanf("");
     EXPECT_NE(messageOf([&] { (void)Camera::fromMatrices(nan, c.projection()); }).find("the view must be finite"), std::string::npos);
+}
+
+TEST(Camera, AnObliqueNearPlaneKeepsEveryPixelsRay) {
+    // A planar reflection's projection, its near plane on the water (obliqueNearPlane): the far
+    // plane tilts behind the eye for some rays, yet every pixel's ray is the plain projection's.
+    const Camera c = Camera::orbit({0.0f, 0.2f, 0.0f}, 3.0f, 0.4f, 0.25f);
+    const glm::mat4 mirrorView = c.view() * glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, -1.0f, 1.0f));
+    const glm::vec4 water = glm::transpose(glm::inverse(mirrorView)) * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
+    const Camera plain = Camera::fromMatrices(mirrorView, c.projection());
+    const Camera clipped = Camera::fromMatrices(mirrorView, obliqueNearPlane(c.projection(), water));
+    EXPECT_NO_THROW(clipped.validate());
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(clipped.viewProjection()));
+    int behind = 0;
+    double worst = 0.0;
+    for (int y = 0; y < kHeight; y += 8)
+        for (int x = 0; x < kWidth; x += 8) {
+            const double px = x + 0.5, py = y + 0.5;
+            behind += (inverse * glm::dvec4(2.0 * px / kWidth - 1.0, 2.0 * py / kHeight - 1.0, 1.0, 1.0)).w < 0.0;
+            const Ray a = plain.rayThroughPixel(px, py, kWidth, kHeight), b = clipped.rayThroughPixel(px, py, kWidth, kHeight);
+            worst = std::max(worst, glm::length(a.direction - b.direction));
+        }
+    EXPECT_GT(behind, 0) << "no far point behind the eye: the case is not tried";
+    EXPECT_LT(worst, 1e-5);
 }
 
 TEST(Camera, ACustomProjectionThatIsNotAPerspectiveOneIsRefusedByName) {

@@ -398,21 +398,6 @@ TEST_F(DepthOutput, AMirrorsViewDrawsTheFrameFlippedLeftToRight) {
     }
 }
 
-/// `projection` with its near plane moved onto `plane` (view space, (n, d): n . p + d = 0; kept
-/// where positive, the eye on the other side), the far plane tilted to keep the view's volume:
-/// Lengyel's oblique near-plane clipping, as an engine's planar reflection clips at the water.
-glm::mat4 obliqueNearPlane(glm::mat4 projection, const glm::vec4& plane) {
-    const glm::vec4 corner((std::copysign(1.0f, plane.x) + projection[2][0]) / projection[0][0],
-                           (std::copysign(1.0f, plane.y) + projection[2][1]) / projection[1][1], -1.0f,
-                           (1.0f + projection[2][2]) / projection[3][2]);
-    const glm::vec4 c = plane * (2.0f / glm::dot(plane, corner));
-    projection[0][2] = c.x;
-    projection[1][2] = c.y;
-    projection[2][2] = c.z + 1.0f;
-    projection[3][2] = c.w;
-    return projection;
-}
-
 // An engine's planar reflection: the wall standing in the water seen in it, drawn with the
 // camera's view times the reflection about the water (y = 0) and a projection whose near plane is
 // the water (obliqueNearPlane), so that what lies under it is clipped. Each pixel whose relief lies

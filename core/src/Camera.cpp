@@ -66,13 +66,18 @@ glm::mat4 Camera::projection() const {
 }
 
 Ray Camera::rayThroughPixel(double x, double y, int width, int height) const {
-    const glm::dmat4 inverse = glm::inverse(glm::dmat4(projection()) * glm::dmat4(view()));
+    const glm::dmat4 viewProj = glm::dmat4(projection()) * glm::dmat4(view());
+    const glm::dmat4 inverse = glm::inverse(viewProj);
     const double ndcX = 2.0 * x / width - 1.0, ndcY = 2.0 * y / height - 1.0;
     glm::dvec4 nearPoint = inverse * glm::dvec4(ndcX, ndcY, reversedZ ? 1.0 : -1.0, 1.0);
     glm::dvec4 farPoint = inverse * glm::dvec4(ndcX, ndcY, reversedZ ? 0.0 : 1.0, 1.0);
     nearPoint /= nearPoint.w;
     farPoint /= farPoint.w;
-    return {glm::dvec3(position), glm::normalize(glm::dvec3(farPoint - nearPoint))};
+    // Away from the eye, where clip w grows: an oblique near plane's tilted far plane lies behind
+    // the eye for some rays (past infinity), and the far point less the near one points back.
+    glm::dvec3 along(farPoint - nearPoint);
+    if (glm::dot(glm::dvec3(viewProj[0][3], viewProj[1][3], viewProj[2][3]), along) < 0.0) along = -along;
+    return {glm::dvec3(position), glm::normalize(along)};
 }
 
 float Camera::nearPlaneReach() const {

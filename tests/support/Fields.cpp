@@ -41,6 +41,18 @@ Camera cameraAtAngle(double angleDegrees, float distance, float aspect) {
     return accuracyCamera(angleDegrees, distance, aspect);
 }
 
+glm::mat4 obliqueNearPlane(glm::mat4 projection, const glm::vec4& plane) {
+    const glm::vec4 corner((std::copysign(1.0f, plane.x) + projection[2][0]) / projection[0][0],
+                           (std::copysign(1.0f, plane.y) + projection[2][1]) / projection[1][1], -1.0f,
+                           (1.0f + projection[2][2]) / projection[3][2]);
+    const glm::vec4 c = plane * (2.0f / glm::dot(plane, corner));
+    projection[0][2] = c.x;
+    projection[1][2] = c.y;
+    projection[2][2] = c.z + 1.0f;
+    projection[3][2] = c.w;
+    return projection;
+}
+
 ErrorStats statistics(std::vector<double> errors) {
     ErrorStats s;
     s.count = errors.size();

@@ -4,6 +4,7 @@
 #include "hfx/core/Camera.h"
 #include "hfx/core/HeightFieldTracer.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
 #include <vector>
@@ -30,6 +31,11 @@ struct PlaneView {
 
 /// A camera looking at the plane's centre from `angleDegrees` off its normal.
 Camera cameraAtAngle(double angleDegrees, float distance, float aspect);
+
+/// `projection` with its near plane moved onto `plane` (view space, (n, d): n . p + d = 0; kept
+/// where positive, the eye on the other side), the far plane tilted to keep the view's volume:
+/// Lengyel's oblique near-plane clipping, as an engine's planar reflection clips at the water.
+glm::mat4 obliqueNearPlane(glm::mat4 projection, const glm::vec4& plane);
 
 struct ErrorStats {
     double mean = 0, p95 = 0, max = 0;
