@@ -6,8 +6,15 @@
 #include "surface/uniforms.glsl"
 #include "shade/sky.glsl"
 
+#ifndef HFX_MOTION_OUTPUT
+#define HFX_MOTION_OUTPUT 0
+#endif
+
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
+#if HFX_MOTION_OUTPUT
+layout(location = HFX_MOTION_OUTPUT) out vec2 o_motion; // hfx::SurfaceRenderer::setMotionOutput
+#endif
 uniform mat4 u_inverseViewProj;
 
 void main() {
@@ -16,4 +23,7 @@ void main() {
     const vec4 far = u_inverseViewProj * vec4(v_ndc, u_reversedZ != 0 ? 0.0 : 1.0, 1.0);
     const vec3 dir = normalize(hfx_away_from_eye(far.xyz / far.w - u_cameraPos));
     o_color = vec4(hfx_output(hfx_sky(dir)), 1.0);
+#if HFX_MOTION_OUTPUT
+    o_motion = hfx_motion(vec4(dir, 0.0)); // a direction: the sky moves as the view turns
+#endif
 }

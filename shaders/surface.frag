@@ -46,6 +46,8 @@
 //                     output 1: the height fetches counted in the integer part, the self-shadow
 //                     light factor (0 = shadowed) as twice the fraction; and to output 2 the
 //                     texcoords the ray entered at, as the rasteriser interpolated them
+//   HFX_MOTION_OUTPUT 1 to 7: the output (draw buffer) the traced point's screen motion since the
+//                     previous frame goes to (hfx::SurfaceRenderer::setMotionOutput); 0 none
 // Switches are defines (hfx::SurfaceVariant), not uniforms: llvmpipe runs both sides of a branch,
 // even one on a uniform, so a feature switched off by a uniform still costs its fetches.
 //
@@ -61,6 +63,9 @@
 #endif
 #ifndef HFX_TRACE_OUTPUT
 #define HFX_TRACE_OUTPUT 0
+#endif
+#ifndef HFX_MOTION_OUTPUT
+#define HFX_MOTION_OUTPUT 0
 #endif
 #ifndef HFX_SHADOW_CASTER
 #define HFX_SHADOW_CASTER 0
@@ -128,6 +133,9 @@ layout(location = 0) out vec4 o_color;
 #if HFX_TRACE_OUTPUT
 layout(location = 1) out vec4 o_trace;
 layout(location = 2) out vec2 o_entry;
+#endif
+#if HFX_MOTION_OUTPUT
+layout(location = HFX_MOTION_OUTPUT) out vec2 o_motion;
 #endif
 
 layout(binding = HFX_UNIT_ALBEDO) uniform sampler2D s_albedo;
@@ -561,6 +569,10 @@ void main() {
     const vec3 color = hfx_shade(point);
 #endif
     o_color = vec4(hfx_output(color), 1.0);
+#if HFX_MOTION_OUTPUT
+    // The traced point's, carried by the mesh (the relief's parallax moves it against the polygon).
+    o_motion = hfx_motion(vec4(displacedWorld, 1.0));
+#endif
 #if HFX_TRACE_OUTPUT
     // w: the fetch count in its integer part, the light (0..1) in half of its fraction.
     o_trace = vec4(uv, depthFraction, g_fetches + 0.5 * clamp(lit, 0.0, 0.998));

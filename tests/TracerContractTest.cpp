@@ -41,11 +41,12 @@ GLint offsetOf(GLuint program, const char* name) {
 
 TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
     SurfaceRenderer renderer;
-    // Water shading with the hierarchical tracer, bounded searches on two layers and a shadow map
-    // received: the variant that reads every member.
+    // Water shading with the hierarchical tracer, bounded searches on two layers, a shadow map
+    // received and the motion written: the variant that reads every member.
     const GLuint p = renderer
                          .program({.technique = Technique::Hierarchical},
-                                  {.shading = Shading::Water, .layers = 2, .boundedSearch = true, .shadowMap = true})
+                                  {.shading = Shading::Water, .layers = 2, .boundedSearch = true, .shadowMap = true,
+                                   .motionOutput = 3})
                          .id();
     const std::pair<const char*, size_t> surface[] = {
         {"u_model", offsetof(SurfaceUniforms, model)},
@@ -88,6 +89,8 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_traceOrigin", offsetof(SurfaceUniforms, traceOrigin)},
         {"u_traceHeight", offsetof(SurfaceUniforms, traceHeight)},
         {"u_reversedZ", offsetof(SurfaceUniforms, reversedZ)},
+        {"u_previousFromWorld", offsetof(SurfaceUniforms, previousFromWorld)},
+        {"u_jitter", offsetof(SurfaceUniforms, jitter)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},

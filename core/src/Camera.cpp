@@ -29,6 +29,8 @@ void Camera::validate() const {
     if (!(aspect > 0.0f) || !std::isfinite(aspect)) throw Error(str("Camera.aspect must be positive, got ", aspect));
     if (!(nearPlane > 0.0f && nearPlane < farPlane) || !std::isfinite(farPlane))
         throw Error(str("Camera needs 0 < nearPlane < farPlane, both finite, got ", nearPlane, " and ", farPlane));
+    if (previousViewProjection && !isFinite(*previousViewProjection))
+        throw Error("Camera.previousViewProjection must be finite");
     if (!customProjection) return;
     const glm::mat4& p = *customProjection;
     if (!isFinite(p)) throw Error("Camera.customProjection must be finite");
@@ -63,6 +65,12 @@ glm::mat4 Camera::projection() const {
     if (jitter == glm::vec2(0.0f)) return p;
     // x' = x + jitter.x * w in clip space: the image moves by jitter in NDC.
     return glm::translate(glm::mat4(1.0f), glm::vec3(jitter, 0.0f)) * p;
+}
+
+glm::mat4 Camera::unjitteredViewProjection() const {
+    Camera still = *this;
+    still.jitter = glm::vec2(0.0f);
+    return still.viewProjection();
 }
 
 Ray Camera::rayThroughPixel(double x, double y, int width, int height) const {

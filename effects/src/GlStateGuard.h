@@ -211,6 +211,33 @@ private:
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
 };
 
+/// GL 4.5 promises at least 8 draw buffers; the masks of the first 8 are saved and set (without
+/// asking the context its count).
+inline constexpr GLuint kDrawBuffers = 8;
+
+/// For its scope a draw into the caller's framebuffer writes only the draw buffers it has
+/// outputs for (`written`: a bit per buffer, buffer 0's always set): GL leaves a buffer with no
+/// fragment output undefined, and llvmpipe writes output 0's colour there, over an engine's
+/// other targets (its normals, its motion: MotionOutputTest). The caller's own masks are kept
+/// on the buffers written, and put back on the others when it ends.
+class DrawBuffersWritten {
+public:
+    explicit DrawBuffersWritten(unsigned written) {
+        for (GLuint i = 1; i < kDrawBuffers; ++i) {
+            glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
+            if (!(written >> i & 1u)) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        }
+    }
+    ~DrawBuffersWritten() {
+        for (GLuint i = 1; i < kDrawBuffers; ++i) glColorMaski(i, masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
+    }
+    DrawBuffersWritten(const DrawBuffersWritten&) = delete;
+    DrawBuffersWritten& operator=(const DrawBuffersWritten&) = delete;
+
+private:
+    GLboolean masks_[kDrawBuffers][4] = {};
+};
+
 /// For its scope a draw writes no colour to any draw buffer and no depth (ExactTracer's rays draw,
 /// whose fragments only store their rays); puts back the caller's masks when it ends.
 class NoFramebufferWrites {
@@ -229,9 +256,8 @@ public:
     NoFramebufferWrites& operator=(const NoFramebufferWrites&) = delete;
 
 private:
-    // GL 4.5 promises at least 8 draw buffers, and HFX draws into buffer 0 only: the first 8
-    // masks are saved (glColorMask set every buffer's), without asking the context its count.
-    static constexpr GLuint kBuffers = 8;
+    // (glColorMask sets every buffer's mask: the first kDrawBuffers are saved.)
+    static constexpr GLuint kBuffers = kDrawBuffers;
     GLboolean masks_[kBuffers][4] = {}, depth_ = GL_TRUE;
 };
 

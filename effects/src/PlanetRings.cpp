@@ -185,10 +185,18 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
         behind_ = GlTexture::create();
         HFX_GL_CHECK(glTextureStorage2D(behind_.id(), 1, format, behindWidth_, behindHeight_));
     }
+    // From colour buffer 0, whatever the framebuffer's read buffer is (an engine's may name its
+    // normals or its motion): the copy reads the read buffer.
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(drawFramebuffer));
+    GLint readBuffer = GL_NONE, drawBuffer = GL_NONE;
+    glGetIntegerv(GL_READ_BUFFER, &readBuffer);
+    glGetIntegerv(GL_DRAW_BUFFER0, &drawBuffer);
+    if (readBuffer != drawBuffer) glReadBuffer(GLenum(drawBuffer));
     HFX_GL_CHECK(glCopyTextureSubImage2D(behind_.id(), 0, 0, 0, viewport[0], viewport[1], viewport[2], viewport[3]));
+    if (readBuffer != drawBuffer) glReadBuffer(GLenum(readBuffer));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer));
 
+    const DrawBuffersWritten written(1u); // (no motion: blended over what is behind)
     SurfaceUniforms u{.cameraPos = camera.position,
                       .lightDir = glm::normalize(light.direction),
                       .lightColor = light.color,

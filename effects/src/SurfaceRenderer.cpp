@@ -180,6 +180,14 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
     v.deferredShadows = v.deferredShadows && v.texelShadows && !options.traceOutput;
     v.traceLights = v.traceLights && v.computeTrace == 1 && v.selfShadows; // only the rays draw stores them
+    if (v.caster || v.computeTrace == 1) v.motionOutput = 0; // a shadow map's pass, the rays draw: no colour
+    if (v.motionOutput < 0 || v.motionOutput >= int(kDrawBuffers))
+        throw Error(str("SurfaceVariant.motionOutput must be a draw buffer, 1 to ", kDrawBuffers - 1, ", or 0 for none, got ",
+                        v.motionOutput));
+    if (v.motionOutput != 0 && options.traceOutput && !v.caster && v.motionOutput <= 2)
+        throw Error(str("the motion output's draw buffer ", v.motionOutput,
+                        " is one the trace output writes (DrawOptions::traceOutput: 1 and 2): set another "
+                        "(SurfaceRenderer::setMotionOutput)"));
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -203,13 +211,38 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_COMPUTE_TRACE", std::to_string(v.computeTrace)},
                                                    {"HFX_TRACE_LIGHTS", v.traceLights ? "1" : "0"},
                                                    {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"},
-                                                   {"HFX_REVERSED_Z", v.reversedZ && !v.caster ? "1" : "0"}};
+                                                   {"HFX_REVERSED_Z", v.reversedZ && !v.caster ? "1" : "0"},
+                                                   {"HFX_MOTION_OUTPUT", std::to_string(v.motionOutput)}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
         it = programs_.emplace(key, std::move(p)).first;
     }
     return it->second;
 }
+
+void SurfaceRenderer::setMotionOutput(int drawBuffer) {
+    if (drawBuffer < 0 || drawBuffer >= int(kDrawBuffers))
+        throw Error(str("SurfaceRenderer::setMotionOutput: the draw buffer must be 1 to ", kDrawBuffers - 1,
+                        " (colour buffer 0 is the colour's), or 0 for none, got ", drawBuffer));
+    motionOutput_ = drawBuffer;
+}
+
+namespace {
+/// The motion's uniforms: this frame's world to the previous frame's clip space (the camera's
+/// previous view-projection, or its own without jitter; the mesh carried from `model` back to
+/// `previousModel`), and the jitter to leave out.
+void setMotion(SurfaceUniforms& u, const Camera& camera, const glm::mat4& model, const std::optional<glm::mat4>& previousModel) {
+    const glm::mat4 previous = camera.previousViewProjection ? *camera.previousViewProjection : camera.unjitteredViewProjection();
+    u.previousFromWorld = previousModel ? previous * *previousModel * glm::inverse(model) : previous;
+    u.jitter = camera.jitter;
+}
+
+/// The draw buffers a draw writes: colour buffer 0, the motion's where it is written, the trace
+/// output's (1 and 2) where asked.
+unsigned buffersWritten(int motionOutput, bool traceOutput) {
+    return 1u | (motionOutput > 0 ? 1u << motionOutput : 0u) | (traceOutput ? 6u : 0u);
+}
+} // namespace
 
 void SurfaceRenderer::bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj) {
     setTransform(u, model, viewProj);
@@ -312,6 +345,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     camera.validate();
     light.validate();
     checkModel(model);
+    if (options.previousModel && !isFinite(*options.previousModel))
+        throw Error(str("DrawOptions.previousModel must be finite, got the columns ", text((*options.previousModel)[0]), ", ",
+                        text((*options.previousModel)[1]), ", ", text((*options.previousModel)[2]), ", ",
+                        text((*options.previousModel)[3])));
     // A shadow map's caster draws with the map's depth (ShadowMap::begin sets GL's default).
     const bool reversedZ = caster == nullptr && camera.reversedZ;
     checkClipControl(reversedZ);
@@ -344,6 +381,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .pixelBudget = material.pixelBudget,
                       .reversedZ = reversedZ ? 1 : 0};
     u.linearOutput = caster == nullptr && writesLinear(colorOutput_) ? 1 : 0;
+    const int motion = caster ? 0 : motionOutput_;
+    if (motion) setMotion(u, camera, model, options.previousModel);
     u.setField({textures.config().width, textures.config().height}, edges);
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
@@ -377,8 +416,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .deferredShadows = frame.deferredShadows,
                                  .computeTrace = frame.computeTrace ? 2 : 0,
                                  .pyramidAtlas = frame.atlas,
-                                 .reversedZ = reversedZ};
+                                 .reversedZ = reversedZ,
+                                 .motionOutput = motion};
     const ShaderProgram& p = program(options, variant);
+    const DrawBuffersWritten written(buffersWritten(motion, options.traceOutput && !caster));
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
@@ -467,9 +508,11 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     light.validate();
     if (look.environment != 0 && !glIsTexture(look.environment))
         throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
-    ShaderProgram& sky = sky_[look.environment != 0 ? 1 : 0];
+    ShaderProgram& sky = sky_[{look.environment != 0, motionOutput_}];
     if (!sky.id()) {
-        sky = ShaderProgram(surfaceStage("sky.vert"), surfaceStage("sky.frag"), {{"HFX_ENVIRONMENT", look.environment != 0 ? "1" : "0"}});
+        sky = ShaderProgram(surfaceStage("sky.vert"), surfaceStage("sky.frag"),
+                            {{"HFX_ENVIRONMENT", look.environment != 0 ? "1" : "0"},
+                             {"HFX_MOTION_OUTPUT", std::to_string(motionOutput_)}});
     }
     if (!empty_) empty_ = GlVertexArray::create();
     GlStateGuard guard;
@@ -478,6 +521,8 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
                       .lightColor = light.color,
                       .reversedZ = camera.reversedZ ? 1 : 0};
     u.linearOutput = writesLinear(colorOutput_) ? 1 : 0;
+    if (motionOutput_) setMotion(u, camera, glm::mat4(1.0f), std::nullopt);
+    const DrawBuffersWritten written(buffersWritten(motionOutput_, false));
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
     updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(look));
     glBindTextureUnit(HFX_UNIT_ENVIRONMENT, look.environment);
@@ -510,6 +555,7 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
     if (!flat.id())
         flat = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("flat.frag"), {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
     GlStateGuard guard;
+    const DrawBuffersWritten written(1u); // (no motion: an engine draws its own meshes)
     SurfaceUniforms u{.cameraPos = eye};
     u.linearOutput = writesLinear(colorOutput_) ? 1 : 0; // (a shadow map's pass writes no colour)
     if (light) {

@@ -49,6 +49,9 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     ivec2 u_traceOrigin;      // the viewport's origin, x0 and y0
     int u_traceHeight;        // the viewport's height
     int u_reversedZ;          // 1: the view's depth is reversed (near at 1, [0, 1] clip depth)
+    // The screen motion (hfx::SurfaceRenderer::setMotionOutput, HFX_MOTION_OUTPUT):
+    mat4 u_previousFromWorld; // this frame's world to the previous frame's clip space
+    vec2 u_jitter;            // the jitter u_viewProj holds (NDC), left out of the motion
 };
 
 // The colour a pass writes, from linear radiance (hfx::ColorOutput): clamped to [0, 1] and encoded
@@ -74,4 +77,12 @@ layout(std140, binding = HFX_BLOCK_RINGS) uniform HfxRings {
 // orthographic view's is constant, and its points come in order).
 vec3 hfx_away_from_eye(vec3 along) {
     return dot(vec3(u_viewProj[0][3], u_viewProj[1][3], u_viewProj[2][3]), along) < 0.0 ? -along : along;
+}
+
+// A point's screen motion since the previous frame (hfx::SurfaceRenderer::setMotionOutput), in the
+// viewport's uv units (1 across it), now less then, without the jitter; `world` a point (w = 1)
+// or, for the sky, a direction (w = 0).
+vec2 hfx_motion(vec4 world) {
+    const vec4 now = u_viewProj * world, then = u_previousFromWorld * world;
+    return 0.5 * ((now.xy / now.w - u_jitter) - then.xy / then.w);
 }

@@ -363,6 +363,9 @@ void ExactTracer::walkDeferred(const TracerFrame& frame) {
     deferredPixels_.set("u_viewport", glm::vec4(viewport[0], viewport[1], viewport[2], viewport[3]));
     // Where the draw's depth still stands (it tested GL_LESS and wrote it): nothing nearer
     // drawn over the pixel since, not a fragment of the draw that another covered.
+    // Colour buffer 0 only: the draw wrote the pixels' motion (setMotionOutput), and a point
+    // without that output would leave it undefined.
+    const DrawBuffersWritten written(1u);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);

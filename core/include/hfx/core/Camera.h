@@ -46,18 +46,27 @@ struct Camera {
     /// the mirror's plane (a determinant of -1); fromMatrices sets this for such a view, and the
     /// renderers turn the front faces' winding with it.
     bool mirrored = false;
+    /// The previous frame's view-projection without its jitter, for the screen motion the draws
+    /// write (SurfaceRenderer::setMotionOutput, for an engine's temporal anti-aliasing or motion
+    /// blur). Empty: this frame's, so that only a mesh's own motion shows
+    /// (DrawOptions::previousModel). A jitter the engine puts in customProjection rather than in
+    /// `jitter` shows in the motion.
+    std::optional<glm::mat4> previousViewProjection;
 
     /// Throws hfx::Error naming the field: a position, target, up or jitter not finite, the
     /// position on the target (no view direction), an up along the view direction (no roll),
     /// fovY outside (0, pi), an aspect not positive, or not 0 < nearPlane < farPlane, all finite;
     /// a custom projection not finite, not invertible, not a perspective one (an orthographic
-    /// one: the relief's parallax needs an eye point) or mapping depth against reversedZ.
+    /// one: the relief's parallax needs an eye point) or mapping depth against reversedZ; a
+    /// previousViewProjection not finite.
     /// What the renderers call before they draw: any of these makes the view matrix a NaN.
     void validate() const;
 
     glm::mat4 view() const;
     glm::mat4 projection() const;
     glm::mat4 viewProjection() const { return projection() * view(); }
+    /// viewProjection() without the jitter: what previousViewProjection holds of the frame before.
+    glm::mat4 unjitteredViewProjection() const;
     /// The ray through a point of the image, in pixels from the bottom-left corner
     /// (x + 0.5, y + 0.5 is a pixel's centre), in double precision for reference tracers.
     Ray rayThroughPixel(double x, double y, int width, int height) const;

@@ -224,7 +224,7 @@ enum class ColorOutput {
 
 struct DrawOptions {
     Technique technique = Technique::ParallaxOcclusion;
-    bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to colour attachment 1
+    bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to draw buffer 1, the entry's uv to 2
     /// The exact tracer's beam start: before a hier draw of a flat patch (a camera's or
     /// drawShadow's; Mesh::flatPatch, one layer, no silhouette fade) a prepass walks one ray per
     /// block of kBeamBlock x kBeamBlock pixels against the pyramid's maxima widened to cover the
@@ -261,6 +261,10 @@ struct DrawOptions {
     /// How the exact tracer holds the height bounds it builds (Auto: the device's; tests and
     /// benches pick one side).
     PyramidLayout boundsLayout = PyramidLayout::Auto;
+    /// The mesh's model matrix at the previous frame, for the screen motion the draw writes
+    /// (SurfaceRenderer::setMotionOutput): a traced point moves as the mesh carries it. Empty:
+    /// this frame's (the mesh stood still).
+    std::optional<glm::mat4> previousModel;
 };
 
 /// The side of the beam start's blocks, in pixels (DrawOptions::beamStart).
@@ -301,6 +305,9 @@ struct SurfaceVariant {
     /// HFX_REVERSED_Z: the camera's depth is reversed (Camera::reversedZ): the traced depth is
     /// written for GL's [0, 1] clip depth, never nearer (greater) than the polygon's
     bool reversedZ = false;
+    /// HFX_MOTION_OUTPUT: the draw buffer the screen motion is written to
+    /// (SurfaceRenderer::setMotionOutput); 0: none
+    int motionOutput = 0;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 
@@ -342,6 +349,18 @@ public:
     void setColorOutput(ColorOutput output) { colorOutput_ = output; }
     ColorOutput colorOutput() const { return colorOutput_; }
 
+    /// Where every camera's surface draw and the sky write each pixel's screen motion since the
+    /// previous frame, for an engine's temporal anti-aliasing or motion blur: draw buffer
+    /// `drawBuffer` (1 to 7) of the bound framebuffer (a two-channel float target: RG16F or
+    /// RG32F), as (x, y) in the viewport's uv units (1 across it), now less then, without the
+    /// camera's jitter. A surface's pixel moves as its traced point does (the relief's, not the
+    /// polygon's: Camera::previousViewProjection, DrawOptions::previousModel); the sky's as its
+    /// direction. 0 (the default): none. Throws hfx::Error for a buffer outside 0 to 7.
+    /// Whatever is set, a draw writes no draw buffer but colour buffer 0, this one and a trace
+    /// output asked for: an engine's other targets keep what they hold.
+    void setMotionOutput(int drawBuffer);
+    int motionOutput() const { return motionOutput_; }
+
     /// Builds a shader variant now (start-up) instead of on its first draw, and returns it.
     const ShaderProgram& program(const DrawOptions& options, const SurfaceVariant& variant = {});
     /// The exact tracer's unit: its last decision (TracerFrame: the texel shadows' stride, the
@@ -361,12 +380,14 @@ private:
                         bool reversedZ, const glm::vec4& color, const DirectionalLight* light);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
-    ShaderProgram flat_[2], sky_[2]; ///< flat: [1] receives a shadow map; sky: [1] an environment image
+    ShaderProgram flat_[2]; ///< [1] receives a shadow map
+    std::map<std::pair<bool, int>, ShaderProgram> sky_; ///< by an environment image, the motion's draw buffer
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_, planetBlock_;
     RingShine ringShine_; ///< a planet's rings' light on it
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
     ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' bounds
     ColorOutput colorOutput_ = ColorOutput::Auto;
+    int motionOutput_ = 0;
 };
 
 } // namespace hfx

@@ -75,6 +75,12 @@ struct SurfaceUniforms {
     /// [0, 1] clip depth), for the beam start's rays; the draw's own depth writes follow
     /// HFX_REVERSED_Z. (It also rounds the block's size to a multiple of 16 bytes, as std140 does.)
     int reversedZ = 0;
+    /// The screen motion a draw writes (SurfaceRenderer::setMotionOutput, HFX_MOTION_OUTPUT): the
+    /// world of this frame to the previous frame's clip space (its view-projection, the mesh's
+    /// previous model times this one's inverse), and the jitter this frame's u_viewProj holds.
+    glm::mat4 previousFromWorld{1.0f};
+    glm::vec2 jitter{0.0f};
+    float padding[2] = {0.0f, 0.0f}; ///< the block's size, a multiple of 16 bytes
 
     /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
     /// two where the pyramid is read), its edges wrapped or clamped.
@@ -148,7 +154,9 @@ static_assert(offsetof(SurfaceUniforms, shadowLight) == 480);
 static_assert(offsetof(SurfaceUniforms, texelSize) == 496);
 static_assert(offsetof(SurfaceUniforms, traceWidth) == 504);
 static_assert(offsetof(SurfaceUniforms, traceOrigin) == 512);
-static_assert(sizeof(SurfaceUniforms) == 528);
+static_assert(offsetof(SurfaceUniforms, previousFromWorld) == 528);
+static_assert(offsetof(SurfaceUniforms, jitter) == 592);
+static_assert(sizeof(SurfaceUniforms) == 608);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, translucency) == 72);

@@ -1,0 +1,242 @@
+// The screen motion an engine's temporal anti-aliasing or motion blur reads
+// (SurfaceRenderer::setMotionOutput), and its other targets that a draw must leave alone.
+
+#include "support/Fields.h"
+#include "support/References.h"
+#include "support/Fixtures.h"
+
+#include "hfx/core/Gl.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/effects/PlanetRings.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace hfx::test {
+namespace {
+
+class MotionOutput : public GlTest {};
+
+/// An engine's framebuffer: colour (RGBA8) in draw buffer 0, another target it keeps (RGBA32F, a
+/// G-buffer's normals, say) in 1, the motion (RG32F) in 2, a float depth.
+struct EngineTarget {
+    static constexpr glm::vec4 kKept{7.0f, -3.0f, 0.25f, 42.0f};
+    EngineTarget(int w, int h)
+        : width(w), height(h), fbo(GlFramebuffer::create()), colour(GlTexture::create()), kept(GlTexture::create()),
+          motion(GlTexture::create()), depth(GlTexture::create()) {
+        glTextureStorage2D(colour.id(), 1, GL_RGBA8, w, h);
+        glTextureStorage2D(kept.id(), 1, GL_RGBA32F, w, h);
+        glTextureStorage2D(motion.id(), 1, GL_RG32F, w, h);
+        glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, w, h);
+        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, colour.id(), 0);
+        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT1, kept.id(), 0);
+        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT2, motion.id(), 0);
+        glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        glNamedFramebufferDrawBuffers(fbo.id(), 3, buffers);
+    }
+    void bind() const {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glViewport(0, 0, width, height);
+        const float black[4] = {0, 0, 0, 1}, none[4] = {1e9f, 1e9f, 0, 0}, far = 1.0f;
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, black);
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 1, &kKept.x);
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 2, none);
+        glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
+    }
+    template <typename T> std::vector<T> read(const GlTexture& t, GLenum format, GLenum type) const {
+        std::vector<T> out(size_t(width) * height);
+        glGetTextureImage(t.id(), 0, format, type, GLsizei(out.size() * sizeof(T)), out.data());
+        return out; // bottom row first
+    }
+    size_t keptChanged() const {
+        size_t changed = 0;
+        for (const glm::vec4& v : read<glm::vec4>(kept, GL_RGBA, GL_FLOAT)) changed += v != kKept;
+        return changed;
+    }
+    int width, height;
+    GlFramebuffer fbo;
+    GlTexture colour, kept, motion, depth;
+};
+
+/// A point's motion as the renderer defines it: its viewport uv now (without the jitter) less then.
+glm::dvec2 motionOf(const glm::dvec4& now, const glm::dvec4& then, glm::dvec2 jitter) {
+    return 0.5 * ((glm::dvec2(now) / now.w - jitter) - glm::dvec2(then) / then.w);
+}
+
+// Each pixel's motion is its traced point's, reprojected by the previous frame's camera and
+// carried back by its mesh's previous model: the relief's hit, not its polygon's (which moves
+// otherwise: the parallax the relief shows), the sky's direction, a moving sphere's points; with
+// the camera's jitter left out; for every technique, hier walking in the draw, in a compute pass,
+// and with its light walks deferred to a pass of points after the draw. The engine's other target
+// keeps what it held through every draw.
+TEST_F(MotionOutput, EachPixelMovesAsItsTracedPointDoes) {
+    constexpr int field = 64, W = 160, H = 120;
+    constexpr float depthScale = 0.15f;
+    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
+    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
+    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+    const Mesh plane(makePlane({.size = 2.0f})), sphere(makeSphere({.radius = 0.35f}));
+    const glm::vec3 sphereNow(0.45f, 0.45f, -0.3f), sphereThen(0.40f, 0.42f, -0.3f);
+    const glm::mat4 sphereModel = glm::translate(glm::mat4(1.0f), sphereNow),
+                    spherePrevious = glm::translate(glm::mat4(1.0f), sphereThen);
+    const DirectionalLight light{.direction = {0.6f, 0.5f, 0.4f}};
+    Camera previous = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.8f, 0.50f, 0.70f);
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.7f, 0.53f, 0.68f);
+    previous.aspect = camera.aspect = float(W) / float(H);
+    camera.jitter = glm::vec2(0.37f, -0.21f) * 2.0f / glm::vec2(W, H);
+    camera.previousViewProjection = previous.viewProjection();
+    EngineTarget target(W, H);
+    SurfaceRenderer renderer;
+    renderer.setMotionOutput(2);
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(camera.viewProjection()));
+    const glm::dmat4 then = glm::dmat4(*camera.previousViewProjection);
+    const glm::dvec2 jitter(camera.jitter);
+    const std::pair<const char*, DrawOptions> drawn[] = {
+        {"normal mapping", {.technique = Technique::NormalMapping}},
+        {"pom", {.technique = Technique::ParallaxOcclusion}},
+        {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
+        {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}},
+        {"hier, light walks deferred", {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On,
+                                        .deferShadowWalks = true, .tracePass = TracePass::InDraw}}};
+    for (const auto& [name, options] : drawn) {
+        SCOPED_TRACE(name);
+        target.bind();
+        renderer.drawSky(camera, light, WaterLook{});
+        renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = depthScale, .lodThreshold = 100.0f}, camera, light,
+                      options);
+        DrawOptions moving = options;
+        moving.previousModel = spherePrevious;
+        renderer.draw(sphere, sphereModel, textures, {.depthScale = 0.02f, .lodThreshold = 100.0f}, camera, light, moving);
+        if (options.deferShadowWalks) {
+            EXPECT_GT(renderer.tracer().deferredWalks(), 0);
+        }
+        const auto depth = target.read<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT);
+        const auto motion = target.read<glm::vec2>(target.motion, GL_RG, GL_FLOAT);
+        // The sphere's pixels: where it alone writes the same depth. (Its traced points can lie
+        // away from it: at its rim a walk in the entry's tangent plane goes on past the sphere.)
+        target.bind();
+        renderer.draw(sphere, sphereModel, textures, {.depthScale = 0.02f, .lodThreshold = 100.0f}, camera, light, moving);
+        const auto sphereDepth = target.read<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT);
+        size_t sky = 0, relief = 0, moved = 0, parallax = 0, off = 0;
+        double worst = 0.0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const size_t i = size_t(y) * W + x;
+                const glm::dvec2 ndc((x + 0.5) / W * 2.0 - 1.0, (y + 0.5) / H * 2.0 - 1.0);
+                glm::dvec2 expected;
+                if (depth[i] >= 1.0f) { // the sky: the pixel's direction
+                    const glm::dvec4 far = inverse * glm::dvec4(ndc, 1.0, 1.0);
+                    const glm::dvec3 dir = glm::dvec3(far) / far.w - glm::dvec3(camera.position);
+                    expected = motionOf(glm::dvec4(ndc, 0.0, 1.0), then * glm::dvec4(dir, 0.0), jitter);
+                    ++sky;
+                } else {
+                    glm::dvec4 p = inverse * glm::dvec4(ndc, 2.0 * depth[i] - 1.0, 1.0);
+                    p /= p.w;
+                    const bool onSphere = sphereDepth[i] == depth[i];
+                    const glm::dvec4 carried = onSphere ? p + glm::dvec4(glm::dvec3(sphereThen - sphereNow), 0.0) : p;
+                    expected = motionOf(glm::dvec4(ndc, 0.0, 1.0), then * carried, jitter);
+                    if (onSphere) ++moved;
+                    else {
+                        ++relief;
+                        // The polygon's point on this pixel's ray (the plane y = 0): its motion.
+                        const glm::dvec3 eye(camera.position), along = glm::dvec3(p) - eye;
+                        const glm::dvec3 polygon = eye + along * (-eye.y / along.y);
+                        const glm::dvec2 flat = motionOf(glm::dvec4(ndc, 0.0, 1.0), then * glm::dvec4(polygon, 1.0), jitter);
+                        parallax += glm::length((flat - expected) * glm::dvec2(W, H)) > 0.25;
+                    }
+                }
+                const double error = glm::length((glm::dvec2(motion[i]) - expected) * glm::dvec2(W, H)); // pixels
+                worst = std::max(worst, error);
+                off += error > 0.01;
+            }
+        std::printf("[motion] %s: %zu sky, %zu relief (%zu moved by its parallax), %zu sphere pixels; %zu off by more than "
+                    "0.01 pixels, %.4f at most\n",
+                    name, sky, relief, parallax, moved, off, worst);
+        // Not vacuous: sky, relief and sphere show, and the relief's parallax moves its pixels
+        // otherwise than the polygon's (except normal mapping's, which draws the polygon).
+        ASSERT_GT(sky, size_t(W * H / 10));
+        ASSERT_GT(relief, size_t(W * H / 5));
+        ASSERT_GT(moved, size_t(W * H / 50));
+        if (options.technique != Technique::NormalMapping) {
+            EXPECT_GT(parallax, relief / 4);
+        }
+        EXPECT_EQ(off, 0u) << "pixels whose motion is off by more than 0.01 pixels (measured: 2e-4 at most)";
+        EXPECT_EQ(target.keptChanged(), 0u) << "the engine's other target was written";
+    }
+}
+
+// A flat mesh's draw and the rings write colour buffer 0 alone, and the rings compose over it
+// whatever the framebuffer's read buffer names.
+TEST_F(MotionOutput, FlatMeshesAndRingsLeaveTheOtherTargetsAlone) {
+    constexpr int W = 96, H = 72;
+    EngineTarget target(W, H);
+    SurfaceRenderer renderer;
+    renderer.setMotionOutput(2);
+    PlanetRings rings;
+    const Mesh planet(makeSphere({}));
+    const Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.0f, 0.3f, 0.35f);
+    const DirectionalLight light{.direction = {0.5f, 0.4f, 0.6f}};
+    auto frame = [&](GLenum readBuffer) {
+        target.bind();
+        glNamedFramebufferReadBuffer(target.fbo.id(), readBuffer);
+        renderer.drawFlat(planet, glm::mat4(1.0f), camera, {0.8f, 0.5f, 0.3f, 1.0f}, &light);
+        rings.draw(glm::mat4(1.0f), camera, light);
+        GLint read = GL_NONE; // (the framebuffer is bound for reading too)
+        glGetIntegerv(GL_READ_BUFFER, &read);
+        EXPECT_EQ(GLenum(read), readBuffer) << "the read buffer was not put back";
+        return target.read<glm::u8vec4>(target.colour, GL_RGBA, GL_UNSIGNED_BYTE);
+    };
+    const auto usual = frame(GL_COLOR_ATTACHMENT0);
+    EXPECT_EQ(target.keptChanged(), 0u);
+    const auto motion = target.read<glm::vec2>(target.motion, GL_RG, GL_FLOAT);
+    size_t written = 0;
+    for (const glm::vec2& m : motion) written += m != glm::vec2(1e9f, 1e9f);
+    EXPECT_EQ(written, 0u) << "a flat mesh or the rings wrote motion";
+    // Over the planet and the rings' pixels: not vacuous.
+    size_t lit = 0;
+    for (const glm::u8vec4& c : usual) lit += c.r > 0 || c.g > 0 || c.b > 0;
+    ASSERT_GT(lit, size_t(W * H / 10));
+    const auto readingKept = frame(GL_COLOR_ATTACHMENT1);
+    EXPECT_EQ(readingKept, usual) << "the rings composed over the read buffer's target";
+    EXPECT_EQ(target.keptChanged(), 0u);
+}
+
+TEST_F(MotionOutput, ABadMotionSetupIsRefusedByName) {
+    SurfaceRenderer renderer;
+    for (const int bad : {-1, 8})
+        EXPECT_NE(messageOf([&] { renderer.setMotionOutput(bad); }).find("the draw buffer must be 1 to 7"), std::string::npos);
+    EXPECT_EQ(renderer.motionOutput(), 0);
+    constexpr int field = 32;
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = 0.1f});
+    textures.uploadTexels(sobelReference(sumOfSines(field, {{0.3, 2, 1, 0.0}}), field, 0.1f).data());
+    const Mesh plane(makePlane({}));
+    EngineTarget target(64, 48);
+    target.bind();
+    Camera camera = cameraAtAngle(40, 3.0f, 4.0f / 3.0f);
+    renderer.setMotionOutput(1);
+    EXPECT_NE(messageOf([&] {
+                  renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = 0.1f}, camera, {}, {.traceOutput = true});
+              }).find("the motion output's draw buffer 1 is one the trace output writes"),
+              std::string::npos);
+    glm::mat4 nan(1.0f);
+    nan[3][1] = std::nanf("");
+    EXPECT_NE(messageOf([&] {
+                  renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = 0.1f}, camera, {}, {.previousModel = nan});
+              }).find("DrawOptions.previousModel must be finite"),
+              std::string::npos);
+    camera.previousViewProjection = nan;
+    EXPECT_NE(messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = 0.1f}, camera, {}); })
+                  .find("Camera.previousViewProjection must be finite"),
+              std::string::npos);
+    // Refused before anything was drawn.
+    const auto motion = target.read<glm::vec2>(target.motion, GL_RG, GL_FLOAT);
+    for (const glm::vec2& m : motion) ASSERT_EQ(m, glm::vec2(1e9f, 1e9f));
+}
+
+} // namespace
+} // namespace hfx::test
