@@ -74,9 +74,10 @@ step gl-tests-tracer "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="$t
 step gl-tests-rest "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="-$tracer"
 # A subset of gl-tests-rest, for a run that times the compute pass: its walks against the draw's
 # (hits, shadows, colours; a caster's depths), the depth output under an engine's conventions
-# (reversed Z, MSAA, mirrors, oblique near planes) and the screen motion (6 s on llvmpipe).
+# (reversed Z, MSAA, mirrors, oblique near planes), the screen motion and the deferred outputs
+# (7 s on llvmpipe).
 step gl-tests-compute-pass "${run[@]}" hfx-tests-gl --gtest_brief=1 \
-    --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*'
+    --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*:DeferredOutputs.*'
 step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
 # The same draws with llvmpipe's pyramid layout (GlWorkarounds::pyramidAtlas) on this GPU: what
 # the mip chain and the gather are worth here.

@@ -48,6 +48,8 @@
 //                     texcoords the ray entered at, as the rasteriser interpolated them
 //   HFX_MOTION_OUTPUT 1 to 7: the output (draw buffer) the traced point's screen motion since the
 //                     previous frame goes to (hfx::SurfaceRenderer::setMotionOutput); 0 none
+//   HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT 1 to 7: the outputs a deferred
+//                     engine's lighting reads (hfx::SurfaceOutputs); 0 none
 // Switches are defines (hfx::SurfaceVariant), not uniforms: llvmpipe runs both sides of a branch,
 // even one on a uniform, so a feature switched off by a uniform still costs its fetches.
 //
@@ -66,6 +68,15 @@
 #endif
 #ifndef HFX_MOTION_OUTPUT
 #define HFX_MOTION_OUTPUT 0
+#endif
+#ifndef HFX_NORMAL_OUTPUT
+#define HFX_NORMAL_OUTPUT 0
+#endif
+#ifndef HFX_ALBEDO_OUTPUT
+#define HFX_ALBEDO_OUTPUT 0
+#endif
+#ifndef HFX_MATERIAL_OUTPUT
+#define HFX_MATERIAL_OUTPUT 0
 #endif
 #ifndef HFX_SHADOW_CASTER
 #define HFX_SHADOW_CASTER 0
@@ -136,6 +147,15 @@ layout(location = 2) out vec2 o_entry;
 #endif
 #if HFX_MOTION_OUTPUT
 layout(location = HFX_MOTION_OUTPUT) out vec2 o_motion;
+#endif
+#if HFX_NORMAL_OUTPUT
+layout(location = HFX_NORMAL_OUTPUT) out vec4 o_normal;
+#endif
+#if HFX_ALBEDO_OUTPUT
+layout(location = HFX_ALBEDO_OUTPUT) out vec4 o_albedo;
+#endif
+#if HFX_MATERIAL_OUTPUT
+layout(location = HFX_MATERIAL_OUTPUT) out vec4 o_material;
 #endif
 
 layout(binding = HFX_UNIT_ALBEDO) uniform sampler2D s_albedo;
@@ -572,6 +592,16 @@ void main() {
 #if HFX_MOTION_OUTPUT
     // The traced point's, carried by the mesh (the relief's parallax moves it against the polygon).
     o_motion = hfx_motion(vec4(displacedWorld, 1.0));
+#endif
+    // What a deferred engine's lighting reads of the traced point (hfx::SurfaceOutputs).
+#if HFX_NORMAL_OUTPUT
+    o_normal = vec4(point.normal, point.slopeVariance);
+#endif
+#if HFX_ALBEDO_OUTPUT
+    o_albedo = vec4(point.albedo, point.foam.x); // (layer 0's alpha: the foam where an effect writes it)
+#endif
+#if HFX_MATERIAL_OUTPUT
+    o_material = vec4(point.roughness, point.occlusion, selfLit, height);
 #endif
 #if HFX_TRACE_OUTPUT
     // w: the fetch count in its integer part, the light (0..1) in half of its fraction.

@@ -42,11 +42,12 @@ GLint offsetOf(GLuint program, const char* name) {
 TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
     SurfaceRenderer renderer;
     // Water shading with the hierarchical tracer, bounded searches on two layers, a shadow map
-    // received and the motion written: the variant that reads every member.
+    // received and the motion and a deferred engine's outputs written: the variant that reads
+    // every member.
     const GLuint p = renderer
                          .program({.technique = Technique::Hierarchical},
                                   {.shading = Shading::Water, .layers = 2, .boundedSearch = true, .shadowMap = true,
-                                   .motionOutput = 3})
+                                   .motionOutput = 3, .outputs = {.normal = 4, .albedo = 5, .material = 6}})
                          .id();
     const std::pair<const char*, size_t> surface[] = {
         {"u_model", offsetof(SurfaceUniforms, model)},

@@ -218,7 +218,7 @@ inline constexpr GLuint kDrawBuffers = 8;
 /// For its scope a draw into the caller's framebuffer writes only the draw buffers it has
 /// outputs for (`written`: a bit per buffer, buffer 0's always set): GL leaves a buffer with no
 /// fragment output undefined, and llvmpipe writes output 0's colour there, over an engine's
-/// other targets (its normals, its motion: MotionOutputTest). The caller's own masks are kept
+/// other targets (its normals, its motion: EngineOutputsTest). The caller's own masks are kept
 /// on the buffers written, and put back on the others when it ends.
 class DrawBuffersWritten {
 public:

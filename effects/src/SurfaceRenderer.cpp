@@ -167,6 +167,31 @@ void requireTextureUnits() {
 }
 } // namespace
 
+namespace {
+/// Throws hfx::Error naming `what` (a setter's output) unless `drawBuffer` is one a draw can write
+/// besides the colour's: 1 to 7, or 0 for none.
+void checkDrawBuffer(const char* what, int drawBuffer) {
+    if (drawBuffer < 0 || drawBuffer >= int(kDrawBuffers))
+        throw Error(str(what, ": the draw buffer must be 1 to ", kDrawBuffers - 1,
+                        " (colour buffer 0 is the colour's), or 0 for none, got ", drawBuffer));
+}
+
+/// The extra outputs' draw buffers, named: the motion's and the surface outputs'.
+std::array<std::pair<const char*, int>, 4> extraOutputs(int motion, const SurfaceOutputs& o) {
+    return {{{"the motion", motion}, {"the normal", o.normal}, {"the albedo", o.albedo}, {"the material", o.material}}};
+}
+
+/// Throws hfx::Error where two of the extra outputs name one draw buffer.
+void checkDistinct(const char* what, int motion, const SurfaceOutputs& o) {
+    const auto named = extraOutputs(motion, o);
+    for (size_t i = 0; i < named.size(); ++i)
+        for (size_t j = i + 1; j < named.size(); ++j)
+            if (named[i].second != 0 && named[i].second == named[j].second)
+                throw Error(str(what, ": ", named[i].first, " and ", named[j].first, " would both go to draw buffer ",
+                                named[i].second));
+}
+} // namespace
+
 const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const SurfaceVariant& variant) {
     SurfaceVariant v = variant;
     if (v.layers < 1 || v.layers > kMaxSurfaceLayers)
@@ -180,14 +205,18 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
     v.deferredShadows = v.deferredShadows && v.texelShadows && !options.traceOutput;
     v.traceLights = v.traceLights && v.computeTrace == 1 && v.selfShadows; // only the rays draw stores them
-    if (v.caster || v.computeTrace == 1) v.motionOutput = 0; // a shadow map's pass, the rays draw: no colour
-    if (v.motionOutput < 0 || v.motionOutput >= int(kDrawBuffers))
-        throw Error(str("SurfaceVariant.motionOutput must be a draw buffer, 1 to ", kDrawBuffers - 1, ", or 0 for none, got ",
-                        v.motionOutput));
-    if (v.motionOutput != 0 && options.traceOutput && !v.caster && v.motionOutput <= 2)
-        throw Error(str("the motion output's draw buffer ", v.motionOutput,
-                        " is one the trace output writes (DrawOptions::traceOutput: 1 and 2): set another "
-                        "(SurfaceRenderer::setMotionOutput)"));
+    if (v.caster || v.computeTrace == 1) { // a shadow map's pass, the rays draw: no colour
+        v.motionOutput = 0;
+        v.outputs = {};
+    }
+    for (const auto& [name, buffer] : extraOutputs(v.motionOutput, v.outputs)) {
+        checkDrawBuffer(str("SurfaceVariant, ", name).c_str(), buffer);
+        if (buffer != 0 && options.traceOutput && buffer <= 2)
+            throw Error(str(name, " output's draw buffer ", buffer,
+                            " is one the trace output writes (DrawOptions::traceOutput: 1 and 2): set another "
+                            "(SurfaceRenderer::setMotionOutput, setSurfaceOutputs)"));
+    }
+    checkDistinct("SurfaceVariant", v.motionOutput, v.outputs);
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
@@ -212,7 +241,10 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_TRACE_LIGHTS", v.traceLights ? "1" : "0"},
                                                    {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"},
                                                    {"HFX_REVERSED_Z", v.reversedZ && !v.caster ? "1" : "0"},
-                                                   {"HFX_MOTION_OUTPUT", std::to_string(v.motionOutput)}};
+                                                   {"HFX_MOTION_OUTPUT", std::to_string(v.motionOutput)},
+                                                   {"HFX_NORMAL_OUTPUT", std::to_string(v.outputs.normal)},
+                                                   {"HFX_ALBEDO_OUTPUT", std::to_string(v.outputs.albedo)},
+                                                   {"HFX_MATERIAL_OUTPUT", std::to_string(v.outputs.material)}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
         it = programs_.emplace(key, std::move(p)).first;
@@ -220,11 +252,18 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     return it->second;
 }
 
+
 void SurfaceRenderer::setMotionOutput(int drawBuffer) {
-    if (drawBuffer < 0 || drawBuffer >= int(kDrawBuffers))
-        throw Error(str("SurfaceRenderer::setMotionOutput: the draw buffer must be 1 to ", kDrawBuffers - 1,
-                        " (colour buffer 0 is the colour's), or 0 for none, got ", drawBuffer));
+    checkDrawBuffer("SurfaceRenderer::setMotionOutput", drawBuffer);
+    checkDistinct("SurfaceRenderer::setMotionOutput", drawBuffer, outputs_);
     motionOutput_ = drawBuffer;
+}
+
+void SurfaceRenderer::setSurfaceOutputs(const SurfaceOutputs& outputs) {
+    for (const auto& [name, buffer] : extraOutputs(0, outputs))
+        if (buffer != 0) checkDrawBuffer(str("SurfaceRenderer::setSurfaceOutputs, ", name).c_str(), buffer);
+    checkDistinct("SurfaceRenderer::setSurfaceOutputs", motionOutput_, outputs);
+    outputs_ = outputs;
 }
 
 namespace {
@@ -237,10 +276,13 @@ void setMotion(SurfaceUniforms& u, const Camera& camera, const glm::mat4& model,
     u.jitter = camera.jitter;
 }
 
-/// The draw buffers a draw writes: colour buffer 0, the motion's where it is written, the trace
-/// output's (1 and 2) where asked.
-unsigned buffersWritten(int motionOutput, bool traceOutput) {
-    return 1u | (motionOutput > 0 ? 1u << motionOutput : 0u) | (traceOutput ? 6u : 0u);
+/// The draw buffers a draw writes: colour buffer 0, the motion's and the surface outputs' where
+/// they are written, the trace output's (1 and 2) where asked.
+unsigned buffersWritten(int motionOutput, const SurfaceOutputs& outputs, bool traceOutput) {
+    unsigned written = 1u | (traceOutput ? 6u : 0u);
+    for (const auto& [name, buffer] : extraOutputs(motionOutput, outputs))
+        if (buffer > 0) written |= 1u << buffer;
+    return written;
 }
 } // namespace
 
@@ -383,6 +425,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     u.linearOutput = caster == nullptr && writesLinear(colorOutput_) ? 1 : 0;
     const int motion = caster ? 0 : motionOutput_;
     if (motion) setMotion(u, camera, model, options.previousModel);
+    const SurfaceOutputs outputs = caster ? SurfaceOutputs{} : outputs_;
     u.setField({textures.config().width, textures.config().height}, edges);
     // Layer i is read at texcoords * scale_i, so its slopes per mesh texcoord are scale_i times
     // its own, and its texels per pixel scale_i * size_i / size_0 times those of layer 0's
@@ -398,7 +441,11 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     }
     const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
     // The exact tracer's data and passes, and the bounds of a bounded search, as it decides.
-    const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, options,
+    // The deferred light walks rewrite the colour alone: where the material output holds the
+    // self-shadow, they stay in the draw.
+    DrawOptions tracing = options;
+    tracing.deferShadowWalks = options.deferShadowWalks && outputs.material == 0;
+    const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, tracing,
                                                 caster != nullptr, u);
     const SurfaceVariant variant{.shading = material.shading,
                                  .layers = int(layers.size()),
@@ -417,9 +464,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .computeTrace = frame.computeTrace ? 2 : 0,
                                  .pyramidAtlas = frame.atlas,
                                  .reversedZ = reversedZ,
-                                 .motionOutput = motion};
+                                 .motionOutput = motion,
+                                 .outputs = outputs};
     const ShaderProgram& p = program(options, variant);
-    const DrawBuffersWritten written(buffersWritten(motion, options.traceOutput && !caster));
+    const DrawBuffersWritten written(buffersWritten(motion, outputs, options.traceOutput && !caster));
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
@@ -522,7 +570,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
                       .reversedZ = camera.reversedZ ? 1 : 0};
     u.linearOutput = writesLinear(colorOutput_) ? 1 : 0;
     if (motionOutput_) setMotion(u, camera, glm::mat4(1.0f), std::nullopt);
-    const DrawBuffersWritten written(buffersWritten(motionOutput_, false));
+    const DrawBuffersWritten written(buffersWritten(motionOutput_, {}, false));
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
     updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(look));
     glBindTextureUnit(HFX_UNIT_ENVIRONMENT, look.environment);

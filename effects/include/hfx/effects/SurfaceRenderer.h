@@ -222,6 +222,23 @@ enum class ColorOutput {
     Linear,
 };
 
+/// The draw buffers a deferred engine's lighting reads from a surface draw
+/// (SurfaceRenderer::setSurfaceOutputs): each 1 to 7, 0 for none. Written for every pixel of a
+/// camera's surface draw, at the traced point, beside its forward-shaded colour in buffer 0; the
+/// sky, flat meshes and the rings write none of them.
+struct SurfaceOutputs {
+    /// The relief's world-space unit normal (xyz), and the variance of the slopes the pixel covers
+    /// (w: Toksvig's, for the engine's specular anti-aliasing). A float or signed target.
+    int normal = 0;
+    /// The albedo, linear (rgb), and its alpha (a: an effect's foam coverage where it writes one).
+    int albedo = 0;
+    /// The shading channels: roughness (r), ambient occlusion (g, 1 open), the relief's
+    /// self-shadow from the draw's light (b, 1 lit: hier's walked, POM's soft; the light's shadow
+    /// map not in it), and the height (a, 1 at the polygon).
+    int material = 0;
+    auto operator<=>(const SurfaceOutputs&) const = default;
+};
+
 struct DrawOptions {
     Technique technique = Technique::ParallaxOcclusion;
     bool traceOutput = false; ///< write (u, v, depth fraction, fetches) to draw buffer 1, the entry's uv to 2
@@ -308,6 +325,9 @@ struct SurfaceVariant {
     /// HFX_MOTION_OUTPUT: the draw buffer the screen motion is written to
     /// (SurfaceRenderer::setMotionOutput); 0: none
     int motionOutput = 0;
+    /// HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT: the draw buffers a deferred
+    /// engine reads (SurfaceRenderer::setSurfaceOutputs)
+    SurfaceOutputs outputs;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 
@@ -356,10 +376,21 @@ public:
     /// camera's jitter. A surface's pixel moves as its traced point does (the relief's, not the
     /// polygon's: Camera::previousViewProjection, DrawOptions::previousModel); the sky's as its
     /// direction. 0 (the default): none. Throws hfx::Error for a buffer outside 0 to 7.
-    /// Whatever is set, a draw writes no draw buffer but colour buffer 0, this one and a trace
-    /// output asked for: an engine's other targets keep what they hold.
+    /// Whatever is set, a draw writes no draw buffer but colour buffer 0, this one, the surface
+    /// outputs (setSurfaceOutputs) and a trace output asked for: an engine's other targets keep
+    /// what they hold. Throws hfx::Error for a buffer outside 0 to 7, or one the surface outputs
+    /// name.
     void setMotionOutput(int drawBuffer);
     int motionOutput() const { return motionOutput_; }
+
+    /// Where every camera's surface draw writes what a deferred engine's lighting reads of the
+    /// traced point (SurfaceOutputs: its normal, albedo and shading channels, the relief's
+    /// self-shadow among them), so that the engine's own lights shade the relief; buffer 0 still
+    /// gets HFX's forward shading. Where the material is set, the exact tracer's light walks stay
+    /// in the draw (DrawOptions::deferShadowWalks rewrites colours only). Throws hfx::Error for a
+    /// buffer outside 0 to 7 or one named twice (the motion's among them).
+    void setSurfaceOutputs(const SurfaceOutputs& outputs);
+    const SurfaceOutputs& surfaceOutputs() const { return outputs_; }
 
     /// Builds a shader variant now (start-up) instead of on its first draw, and returns it.
     const ShaderProgram& program(const DrawOptions& options, const SurfaceVariant& variant = {});
@@ -388,6 +419,7 @@ private:
     ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' bounds
     ColorOutput colorOutput_ = ColorOutput::Auto;
     int motionOutput_ = 0;
+    SurfaceOutputs outputs_;
 };
 
 } // namespace hfx

@@ -1,5 +1,7 @@
-// The screen motion an engine's temporal anti-aliasing or motion blur reads
-// (SurfaceRenderer::setMotionOutput), and its other targets that a draw must leave alone.
+// What an engine reads of a draw besides its colour: the screen motion its temporal anti-aliasing
+// or motion blur reads (SurfaceRenderer::setMotionOutput), the traced point's normal, albedo and
+// shading channels its deferred lighting reads (setSurfaceOutputs), and its other targets, which a
+// draw must leave alone.
 
 #include "support/Fields.h"
 #include "support/References.h"
@@ -19,6 +21,7 @@ namespace hfx::test {
 namespace {
 
 class MotionOutput : public GlTest {};
+class DeferredOutputs : public GlTest {};
 
 /// An engine's framebuffer: colour (RGBA8) in draw buffer 0, another target it keeps (RGBA32F, a
 /// G-buffer's normals, say) in 1, the motion (RG32F) in 2, a float depth.
@@ -236,6 +239,175 @@ TEST_F(MotionOutput, ABadMotionSetupIsRefusedByName) {
     // Refused before anything was drawn.
     const auto motion = target.read<glm::vec2>(target.motion, GL_RG, GL_FLOAT);
     for (const glm::vec2& m : motion) ASSERT_EQ(m, glm::vec2(1e9f, 1e9f));
+}
+
+/// The field's texels bilinearly filtered at uv as GL does (texel centres at (i + 0.5) / size,
+/// wrapped), `texel(x, y)` giving each.
+template <typename T, typename Texel>
+T bilinear(glm::dvec2 uv, int size, Texel&& texel) {
+    const glm::dvec2 s = uv * double(size) - 0.5, f = s - glm::floor(s);
+    const glm::ivec2 i(glm::floor(s));
+    auto at = [&](int dx, int dy) { return texel(((i.x + dx) % size + size) % size, ((i.y + dy) % size + size) % size); };
+    return T((1 - f.x) * (1 - f.y)) * at(0, 0) + T(f.x * (1 - f.y)) * at(1, 0) + T((1 - f.x) * f.y) * at(0, 1) +
+           T(f.x * f.y) * at(1, 1);
+}
+
+// A deferred engine lights the relief itself from what the draw writes of the traced point
+// (SurfaceOutputs): the relief's normal there (the stored normals filtered at the hit, turned
+// into the world), its albedo, its shading channels (filtered at the hit, not at the polygon) and
+// the self-shadow the draw's light casts there, the one the draw's own shading used; HFX's forward
+// colour in buffer 0 is their Lambert shading. For POM and for hier walking in the draw and in a
+// compute pass.
+TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsAndShadow) {
+    constexpr int field = 64, W = 160, H = 120;
+    constexpr float depthScale = 0.15f;
+    const auto heights = sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
+    const std::vector<float> texels = sobelReference(heights, field, depthScale);
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
+    textures.uploadTexels(texels.data());
+    textures.setAlbedo(Image{1, 1, 3, {0.6f, 0.4f, 0.2f}});
+    // Roughness along u, occlusion along v: what a channel reads tells where it was read.
+    std::vector<unsigned char> channels(size_t(field) * field * 4);
+    for (int y = 0; y < field; ++y)
+        for (int x = 0; x < field; ++x) {
+            unsigned char* c = &channels[(size_t(y) * field + x) * 4];
+            c[0] = static_cast<unsigned char>(x * 4), c[1] = static_cast<unsigned char>(255 - y * 2), c[2] = 0, c[3] = 255;
+        }
+    textures.uploadChannels(channels.data());
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f, .specularStrength = 0.0f};
+    const DirectionalLight light{.direction = {0.7f, 0.35f, 0.3f}};
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.4f, 0.8f);
+    camera.aspect = float(W) / float(H);
+    // Colour, the trace output (1, 2: the hit's uv, its depth fraction and light; the entry's uv),
+    // then the normal, albedo and channels (3, 4, 5).
+    GlFramebuffer fbo = GlFramebuffer::create();
+    std::vector<GlTexture> attachments;
+    const GLenum formats[] = {GL_RGBA8, GL_RGBA32F, GL_RG32F, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F};
+    std::vector<GLenum> buffers;
+    for (GLenum i = 0; i < 6; ++i) {
+        attachments.push_back(GlTexture::create());
+        glTextureStorage2D(attachments.back().id(), 1, formats[i], W, H);
+        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0 + i, attachments.back().id(), 0);
+        buffers.push_back(GL_COLOR_ATTACHMENT0 + i);
+    }
+    GlTexture depth = GlTexture::create();
+    glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, W, H);
+    glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+    glNamedFramebufferDrawBuffers(fbo.id(), GLsizei(buffers.size()), buffers.data());
+    ASSERT_EQ(glCheckNamedFramebufferStatus(fbo.id(), GL_DRAW_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    auto read = [&](int i) {
+        std::vector<glm::vec4> out(size_t(W) * H);
+        glGetTextureImage(attachments[size_t(i)].id(), 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+        return out;
+    };
+    SurfaceRenderer renderer;
+    renderer.setSurfaceOutputs({.normal = 3, .albedo = 4, .material = 5});
+    const glm::dvec3 l = glm::normalize(glm::dvec3(light.direction));
+    const std::pair<const char*, DrawOptions> drawn[] = {
+        {"pom", {.technique = Technique::ParallaxOcclusion, .traceOutput = true}},
+        {"hier in the draw", {.technique = Technique::Hierarchical, .traceOutput = true, .tracePass = TracePass::InDraw}},
+        {"hier in a compute pass", {.technique = Technique::Hierarchical, .traceOutput = true, .tracePass = TracePass::Compute}}};
+    for (const auto& [name, options] : drawn) {
+        SCOPED_TRACE(name);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glViewport(0, 0, W, H);
+        const float zero[4] = {0, 0, 0, 0}, far = 1.0f;
+        for (int i = 0; i < 6; ++i) glClearNamedFramebufferfv(fbo.id(), GL_COLOR, i, zero);
+        glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
+        renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light, options);
+        const auto colour = read(0), trace = read(1), entry = read(2), normal = read(3), albedo = read(4), channel = read(5);
+        size_t relief = 0, shadowed = 0, apartFromEntry = 0, normalOff = 0, channelOff = 0, shadowOff = 0, colourOff = 0,
+               albedoOff = 0;
+        double worstNormal = 0.0, worstChannel = 0.0, worstColour = 0.0;
+        for (size_t i = 0; i < colour.size(); ++i) {
+            if (!(trace[i].z > 0.0f) && trace[i] == glm::vec4(0.0f)) continue; // the background
+            ++relief;
+            const glm::dvec2 uv(trace[i]), at(entry[i]);
+            // The stored normal filtered at the hit; the plane's frame: T = +x, B = -z, N = +y.
+            const glm::dvec3 n = glm::normalize(bilinear<glm::dvec3>(uv, field, [&](int x, int y) {
+                const float* t = &texels[(size_t(y) * field + x) * 4];
+                return glm::dvec3(t[0], t[1], t[2]);
+            }));
+            const glm::dvec3 world = glm::normalize(glm::dvec3(n.x, n.z, -n.y));
+            const double angle = std::acos(std::clamp(glm::dot(world, glm::normalize(glm::dvec3(normal[i]))), -1.0, 1.0));
+            worstNormal = std::max(worstNormal, angle);
+            normalOff += angle > 5e-3;
+            auto channelsAt = [&](glm::dvec2 p) {
+                return bilinear<glm::dvec2>(p, field, [&](int x, int y) {
+                    const unsigned char* c = &channels[(size_t(y) * field + x) * 4];
+                    return glm::dvec2(c[0], c[1]) / 255.0;
+                });
+            };
+            const glm::dvec2 expected = channelsAt(uv);
+            const double off = glm::length(expected - glm::dvec2(channel[i]));
+            worstChannel = std::max(worstChannel, off);
+            channelOff += off > 1.5 / 255.0; // (GL's filter weights: 8 bits on llvmpipe)
+            apartFromEntry += glm::length(channelsAt(at) - expected) > 0.02;
+            albedoOff += glm::length(glm::dvec4(albedo[i]) - glm::dvec4(0.6, 0.4, 0.2, 1.0)) > 1e-5;
+            // The self-shadow the draw shaded with (the trace output's light, in half its fraction).
+            const double lit = 2.0 * (trace[i].w - std::floor(trace[i].w));
+            shadowOff += std::abs(lit - channel[i].z) > 2.5e-3;
+            shadowed += channel[i].z < 0.9f;
+            // The forward colour: Lambert of these (no specular), encoded for the 8-bit target.
+            const glm::dvec3 a(albedo[i]), lin = a * glm::dvec3(light.ambient) * double(channel[i].y) +
+                                                 double(channel[i].z) * glm::dvec3(light.color) * a *
+                                                     std::max(glm::dot(glm::normalize(glm::dvec3(normal[i])), l), 0.0);
+            for (int c = 0; c < 3; ++c) {
+                const double diff = std::abs(std::pow(std::clamp(lin[c], 0.0, 1.0), 1.0 / 2.2) - colour[i][c]);
+                worstColour = std::max(worstColour, diff);
+                colourOff += diff > 1.5 / 255.0;
+            }
+        }
+        std::printf("[surface outputs] %s: %zu relief pixels, %zu shadowed, %zu whose channels at the entry differ; "
+                    "normals within %.2g rad, channels within %.2g, colour within %.2g\n",
+                    name, relief, shadowed, apartFromEntry, worstNormal, worstChannel, worstColour);
+        ASSERT_GT(relief, size_t(W * H / 3));
+        EXPECT_GT(shadowed, relief / 20);
+        EXPECT_GT(apartFromEntry, relief / 4) << "the channels read at the polygon would pass as well";
+        EXPECT_EQ(normalOff, 0u);
+        EXPECT_EQ(channelOff, 0u);
+        EXPECT_EQ(albedoOff, 0u);
+        EXPECT_EQ(shadowOff, 0u);
+        EXPECT_EQ(colourOff, 0u);
+    }
+    // Deferred light walks would rewrite the colour and leave the self-shadow written: they stay
+    // in the draw where the material is written.
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light,
+                  {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On, .deferShadowWalks = true,
+                   .tracePass = TracePass::InDraw});
+    EXPECT_NE(renderer.tracer().last().texelShadows, nullptr);
+    EXPECT_FALSE(renderer.tracer().last().deferredShadows);
+}
+
+TEST_F(DeferredOutputs, ABadLayoutIsRefusedByName) {
+    SurfaceRenderer renderer;
+    EXPECT_NE(messageOf([&] { renderer.setSurfaceOutputs({.normal = 8}); }).find("the normal: the draw buffer must be 1 to 7"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { renderer.setSurfaceOutputs({.normal = 3, .material = 3}); })
+                  .find("the normal and the material would both go to draw buffer 3"),
+              std::string::npos);
+    renderer.setMotionOutput(2);
+    EXPECT_NE(messageOf([&] { renderer.setSurfaceOutputs({.albedo = 2}); }).find("the motion and the albedo would both go to draw buffer 2"),
+              std::string::npos);
+    EXPECT_EQ(renderer.surfaceOutputs(), hfx::SurfaceOutputs{}) << "a refused layout was kept";
+    renderer.setSurfaceOutputs({.normal = 3});
+    EXPECT_NE(messageOf([&] { renderer.setMotionOutput(3); }).find("the motion and the normal would both go to draw buffer 3"),
+              std::string::npos);
+    EXPECT_EQ(renderer.motionOutput(), 2);
+    renderer.setMotionOutput(0);
+    renderer.setSurfaceOutputs({.normal = 1});
+    constexpr int field = 32;
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = 0.1f});
+    textures.uploadTexels(sobelReference(sumOfSines(field, {{0.3, 2, 1, 0.0}}), field, 0.1f).data());
+    EngineTarget target(64, 48);
+    target.bind();
+    EXPECT_NE(messageOf([&] {
+                  renderer.draw(Mesh(makePlane({})), glm::mat4(1.0f), textures, {.depthScale = 0.1f}, cameraAtAngle(40, 3.0f, 1.0f),
+                                {}, {.traceOutput = true});
+              }).find("the normal output's draw buffer 1 is one the trace output writes"),
+              std::string::npos);
 }
 
 } // namespace
