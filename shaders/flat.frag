@@ -23,7 +23,7 @@ void main() {
     }
     // Two-sided: the side facing the eye.
     vec3 normal = normalize(v_normal);
-    if (dot(normal, u_cameraPos - v_worldPos) < 0.0) normal = -normal;
+    if (dot(normal, hfx_to_eye(v_worldPos)) < 0.0) normal = -normal;
     const vec3 lightDir = normalize(u_lightDir);
     const float diffuse = max(dot(normal, lightDir), 0.0);
     const float lit = diffuse > 0.0 ? hfx_shadow_map(v_worldPos, normal) : 0.0;

@@ -29,7 +29,7 @@ void main() {
     const vec3 q = v_worldPos;
     const float s = hfx_ring_coordinate(length(q - u_planetCentre));
     if (s < 0.0 || s > 1.0) discard; // the annulus's polygon reaches past its circles
-    const vec3 toEye = normalize(u_cameraPos - q), toLight = normalize(u_lightDir);
+    const vec3 toEye = normalize(hfx_to_eye(q)), toLight = normalize(u_lightDir);
     const float viewSide = dot(toEye, u_ringAxis), lightSide = dot(toLight, u_ringAxis);
     const float mu = max(abs(viewSide), 1e-3), mu0 = max(abs(lightSide), 1e-3);
     // Filtered over the pixel's footprint (the mip chain): ringlets finer than a pixel average.

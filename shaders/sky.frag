@@ -21,7 +21,7 @@ void main() {
     // The far plane's clip depth: 1, or 0 for a reversed-Z camera (whose 1 is the near plane, a
     // hair from the eye). An oblique near plane's tilted far plane can lie behind the eye.
     const vec4 far = u_inverseViewProj * vec4(v_ndc, u_reversedZ != 0 ? 0.0 : 1.0, 1.0);
-    const vec3 dir = normalize(hfx_away_from_eye(far.xyz / far.w - u_cameraPos));
+    const vec3 dir = normalize(hfx_away_from_eye(-hfx_to_eye(far.xyz / far.w)));
     o_color = vec4(hfx_output(hfx_sky(dir)), 1.0);
 #if HFX_MOTION_OUTPUT
     o_motion = hfx_motion(vec4(dir, 0.0)); // a direction: the sky moves as the view turns

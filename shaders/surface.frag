@@ -263,7 +263,7 @@ void main() {
 #if HFX_SHADOW_CASTER
     const vec3 toEye = u_lightDir; // the light is the eye, infinitely far
 #else
-    const vec3 toEye = u_cameraPos - v_worldPos;
+    const vec3 toEye = hfx_to_eye(v_worldPos);
 #endif
     const float cosView = clamp(dot(entryNormal, normalize(toEye)), 0.0, 1.0);
     // A degenerate frame (a sphere's poles, where dP/du vanishes) has no texture space: there the
@@ -549,7 +549,7 @@ void main() {
     point.position = displacedWorld;
     point.texcoord = uv;
     point.footprint = footprint;
-    point.viewDir = normalize(u_cameraPos - displacedWorld);
+    point.viewDir = normalize(hfx_to_eye(displacedWorld));
     point.lightDir = lightDir;
     point.height = height;
     point.lit = lit;

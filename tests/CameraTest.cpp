@@ -214,7 +214,26 @@ TEST(Camera, AnObliqueNearPlaneKeepsEveryPixelsRay) {
     EXPECT_LT(worst, 1e-5);
 }
 
-TEST(Camera, ACustomProjectionThatIsNotAPerspectiveOneIsRefusedByName) {
+TEST(Camera, AnOrthographicCamerasRaysRunAlongItsAxisFromTheNearPlane) {
+    // glm::ortho through an engine's matrices: every pixel's ray has the view axis's direction
+    // and starts on the near plane, where the pixel lies across it.
+    const Camera lens = Camera::orbit({0.2f, 0.0f, -0.1f}, 4.0f, 0.4f, 0.7f);
+    const Camera c = Camera::fromMatrices(lens.view(), glm::ortho(-2.0f, 2.0f, -1.5f, 1.5f, 0.5f, 20.0f));
+    EXPECT_NO_THROW(c.validate());
+    EXPECT_TRUE(c.orthographic());
+    EXPECT_FALSE(lens.orthographic());
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(lens.target - lens.position));
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(lens.up))), up = glm::cross(right, forward);
+    for (const glm::dvec2 pixel : {glm::dvec2(0.5, 0.5), glm::dvec2(100.5, 70.25), glm::dvec2(kWidth - 0.5, kHeight - 0.5)}) {
+        const Ray r = c.rayThroughPixel(pixel.x, pixel.y, kWidth, kHeight);
+        EXPECT_LT(glm::length(r.direction - forward), 1e-6);
+        const glm::dvec2 ndc = 2.0 * pixel / glm::dvec2(kWidth, kHeight) - 1.0;
+        const glm::dvec3 expected = glm::dvec3(lens.position) + 0.5 * forward + 2.0 * ndc.x * right + 1.5 * ndc.y * up;
+        EXPECT_LT(glm::length(r.origin - expected), 1e-5) << pixel.x << ", " << pixel.y;
+    }
+}
+
+TEST(Camera, ACustomProjectionThatIsNeitherPerspectiveNorOrthographicIsRefusedByName) {
     const Camera usual = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.0f, 0.4f, 0.5f);
     auto refusal = [&](const glm::mat4& projection, bool reversed) {
         Camera c = usual;
@@ -225,8 +244,13 @@ TEST(Camera, ACustomProjectionThatIsNotAPerspectiveOneIsRefusedByName) {
     const glm::mat4 offAxis = glm::frustum(-0.01f, 0.03f, -0.01f, 0.012f, 0.02f, 50.0f);
     EXPECT_EQ(refusal(offAxis, false), "(no error)");
     EXPECT_EQ(refusal(glm::frustumRH_ZO(-0.01f, 0.03f, -0.01f, 0.012f, 50.0f, 0.02f), true), "(no error)");
-    EXPECT_NE(refusal(glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 10.0f), false).find("an orthographic view has no eye point"),
+    EXPECT_EQ(refusal(glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 10.0f), false), "(no error)");
+    EXPECT_EQ(refusal(glm::orthoRH_ZO(-1.0f, 1.0f, -1.0f, 1.0f, 10.0f, 0.1f), true), "(no error)");
+    EXPECT_NE(refusal(glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 10.0f), true).find("but Camera.reversedZ is true"),
               std::string::npos);
+    glm::mat4 skewed = offAxis; // a last row of neither kind
+    skewed[0][3] = 0.1f;
+    EXPECT_NE(refusal(skewed, false).find("must be a perspective projection, its last row (0, 0, -1, 0)"), std::string::npos);
     glm::mat4 nan = offAxis;
     nan[2][0] = std::nanf("");
     EXPECT_NE(refusal(nan, false).find("Camera.customProjection must be finite"), std::string::npos);

@@ -6,11 +6,13 @@
 #include "support/Fixtures.h"
 
 #include "hfx/core/Gl.h"
+#include "hfx/core/HeightFieldTracer.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/PlanetRings.h"
 #include "hfx/effects/ShadowMap.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/AccuracyProbe.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -488,6 +490,95 @@ TEST_F(DepthOutput, APlanarReflectionsObliqueNearPlaneClipsTheReliefAtTheWater) 
             writeImage(outputPath(std::string("reflection_") + name + "_clipped.png"), cut);
         }
     }
+}
+
+// An orthographic camera (an editor's or a top-down game's view, Camera::customProjection from
+// glm::ortho): every pixel's ray runs along the view axis, so hier's walk finds, at every pixel,
+// the exact hit of that parallel ray on the bilinear relief (HeightFieldTracer), and writes its
+// depth, in the draw and in a compute pass; the sky behind is the one colour of the one view
+// direction. Rays from the camera's position through the same pixels would hit elsewhere.
+TEST_F(DepthOutput, AnOrthographicViewTracesEachPixelsParallelRayToItsExactHit) {
+    constexpr int field = 64, W = 160, H = 120;
+    constexpr float depthScale = 0.15f, planeSize = 2.0f;
+    const SineRelief relief(field, depthScale);
+    const Mesh plane(makePlane({.size = planeSize}));
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.6f, 0.5f, 0.4f}};
+    const Camera lens = cameraAtAngle(62, 1.6f, float(W) / float(H));
+    const float halfHeight = 0.9f, halfWidth = halfHeight * float(W) / float(H);
+    const Camera camera = Camera::fromMatrices(lens.view(), glm::ortho(-halfWidth, halfWidth, -halfHeight, halfHeight, 0.2f, 10.0f));
+    ASSERT_TRUE(camera.orthographic());
+    const HeightFieldTracer exact(relief.heights, field, field, EdgeMode::Wrap);
+    RenderTarget target(W, H, true);
+    SurfaceRenderer renderer;
+    const glm::dmat4 viewProj(camera.viewProjection());
+    for (const TracePass pass : {TracePass::InDraw, TracePass::Compute}) {
+        SCOPED_TRACE(pass == TracePass::Compute ? "in a compute pass" : "in the draw");
+        target.bind();
+        target.clear({0, 0, 0, 1}, {0, 0, 0, 0});
+        renderer.drawSky(camera, light, WaterLook{});
+        renderer.draw(plane, glm::mat4(1.0f), relief.textures, material, camera, light,
+                      {.technique = Technique::Hierarchical, .traceOutput = true, .tracePass = pass});
+        EXPECT_EQ(renderer.tracer().last().computeTrace, pass == TracePass::Compute);
+        const std::vector<glm::vec4> trace = target.readTrace();
+        const std::vector<float> depth = target.readDepth();
+        const Image colour = target.readColor();
+        size_t traced = 0, off = 0, depthOff = 0, elsewhere = 0, skyApart = 0, sky = 0;
+        double worst = 0.0, worstDepth = 0.0;
+        glm::vec3 skyColour(-1.0f);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const size_t i = size_t(y) * W + x;
+                glm::dvec2 uv0;
+                glm::dvec3 toEye;
+                if (!planePixelRay(camera, planeSize, x, y, W, H, uv0, toEye)) {
+                    if (depth[i] < 1.0f) continue; // (the plane's rim)
+                    const glm::vec3 c(colour.at(x, H - 1 - y, 0), colour.at(x, H - 1 - y, 1), colour.at(x, H - 1 - y, 2));
+                    if (skyColour.x < 0.0f) skyColour = c;
+                    skyApart += glm::length(c - skyColour) > 1.5f / 255.0f;
+                    ++sky;
+                    continue;
+                }
+                const auto hit = exact.traceView(uv0, toEye, depthScale);
+                if (!hit || !(trace[i].z > 0.0f)) continue;
+                ++traced;
+                const double error = glm::length(glm::dvec2(trace[i]) - hit->uv) * field; // texels
+                worst = std::max(worst, error);
+                off += error > 0.01;
+                // The hit's point in the world (makePlane: u along +x, v along -z) and its depth.
+                const glm::dvec3 p((hit->uv.x - 0.5) * planeSize, -(1.0 - hit->height) * depthScale * planeSize,
+                                   (0.5 - hit->uv.y) * planeSize);
+                const glm::dvec4 clip = viewProj * glm::dvec4(p, 1.0);
+                const double windowDepth = 0.5 * clip.z / clip.w + 0.5;
+                worstDepth = std::max(worstDepth, std::abs(windowDepth - depth[i]));
+                depthOff += std::abs(windowDepth - depth[i]) > 1e-5;
+                // The same pixel's ray from the camera's position: a perspective relief's hit.
+                const glm::dvec3 from = glm::dvec3(camera.position) - glm::dvec3((uv0.x - 0.5) * planeSize, 0.0, (0.5 - uv0.y) * planeSize);
+                const auto perspective = exact.traceView(uv0, glm::dvec3(from.x, -from.z, from.y) / double(planeSize), depthScale);
+                elsewhere += perspective && glm::length(perspective->uv - hit->uv) * field > 0.5;
+            }
+        std::printf("[orthographic] %zu traced pixels, %zu off the exact hit by more than 0.01 texels (%.2g at most); depths "
+                    "within %.2g; %zu would hit elsewhere from the camera's position; %zu sky pixels, %zu apart\n",
+                    traced, off, worst, worstDepth, elsewhere, sky, skyApart);
+        ASSERT_GT(traced, size_t(W * H / 3));
+        ASSERT_GT(sky, size_t(W * H / 20));
+        EXPECT_GT(elsewhere, traced / 2);
+        EXPECT_LE(off, traced / 1000);
+        EXPECT_EQ(depthOff, 0u);
+        EXPECT_EQ(skyApart, 0u);
+    }
+    // Looking at the horizon, where the sky's colour changes fastest with the direction: one colour.
+    const Camera level = Camera::fromMatrices(glm::lookAt(glm::vec3(0.0f, 0.5f, 3.0f), glm::vec3(0.0f, 0.45f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)),
+                                              glm::ortho(-halfWidth, halfWidth, -halfHeight, halfHeight, 0.2f, 10.0f));
+    target.bind();
+    target.clear();
+    renderer.drawSky(level, light, WaterLook{});
+    const Image sky = target.readColor();
+    float spread = 0.0f;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int c = 0; c < 3; ++c) spread = std::max(spread, std::abs(sky.at(x, y, c) - sky.at(0, 0, c)));
+    EXPECT_LE(spread, 1.5f / 255.0f) << "the sky of one view direction";
 }
 
 /// An engine's multisampled colour and depth target (MSAA), resolved into a RenderTarget's colour.

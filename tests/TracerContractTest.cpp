@@ -92,6 +92,8 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_reversedZ", offsetof(SurfaceUniforms, reversedZ)},
         {"u_previousFromWorld", offsetof(SurfaceUniforms, previousFromWorld)},
         {"u_jitter", offsetof(SurfaceUniforms, jitter)},
+        {"u_towardsEye", offsetof(SurfaceUniforms, towardsEye)},
+        {"u_orthographic", offsetof(SurfaceUniforms, orthographic)},
         {"u_deepColor", offsetof(WaterUniforms, deepColor)},
         {"u_fresnelF0", offsetof(WaterUniforms, fresnelF0)},
         {"u_shallowColor", offsetof(WaterUniforms, shallowColor)},

@@ -35,15 +35,17 @@ void Camera::validate() const {
     const glm::mat4& p = *customProjection;
     if (!isFinite(p)) throw Error("Camera.customProjection must be finite");
     const glm::vec4 lastRow(p[0][3], p[1][3], p[2][3], p[3][3]);
-    if (glm::length(lastRow - glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)) > 1e-6f)
+    const bool ortho = orthographic();
+    if (!ortho && glm::length(lastRow - glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)) > 1e-6f)
         throw Error(str("Camera.customProjection must be a perspective projection, its last row (0, 0, -1, 0) (w the "
-                        "distance in front of the eye), got ", text(lastRow),
-                        lastRow.w != 0.0f ? ": an orthographic view has no eye point for the relief's parallax" : ""));
+                        "distance in front of the eye), or an orthographic one, (0, 0, 0, 1); got ", text(lastRow)));
     if (!(std::abs(glm::determinant(glm::dmat4(p))) > 0.0)) throw Error("Camera.customProjection has no inverse");
-    // Along the view axis the clip depth is -p22 + p32 / distance: it grows with the distance
-    // where p32 < 0 (GL's default), shrinks where p32 > 0 (reversed).
-    if ((p[3][2] > 0.0f) != reversedZ)
-        throw Error(str("Camera.customProjection maps depth ", p[3][2] > 0.0f ? "reversed (near at the larger depth)" : "GL's default way (near at the smaller depth)",
+    // Along the view axis (z = -distance) the clip depth is -p22 + p32 / distance for a
+    // perspective: it grows with the distance where p32 < 0 (GL's default), shrinks where p32 > 0
+    // (reversed); for an orthographic one it is -p22 distance + p32: it grows where p22 < 0.
+    const bool reversed = ortho ? p[2][2] > 0.0f : p[3][2] > 0.0f;
+    if (reversed != reversedZ)
+        throw Error(str("Camera.customProjection maps depth ", reversed ? "reversed (near at the larger depth)" : "GL's default way (near at the smaller depth)",
                         ", but Camera.reversedZ is ", reversedZ ? "true" : "false"));
 }
 
@@ -51,6 +53,12 @@ namespace {
 /// The eye's x axis flipped: a mirror's view is lookAt's followed by it.
 glm::mat4 flipEyeX(const glm::mat4& view) { return glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)) * view; }
 } // namespace
+
+bool Camera::orthographic() const {
+    if (!customProjection) return false;
+    const glm::mat4& p = *customProjection;
+    return glm::length(glm::vec4(p[0][3], p[1][3], p[2][3], p[3][3]) - glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)) <= 1e-6f;
+}
 
 glm::mat4 Camera::view() const {
     const glm::mat4 v = glm::lookAt(position, target, up);
@@ -85,7 +93,7 @@ Ray Camera::rayThroughPixel(double x, double y, int width, int height) const {
     // the eye for some rays (past infinity), and the far point less the near one points back.
     glm::dvec3 along(farPoint - nearPoint);
     if (glm::dot(glm::dvec3(viewProj[0][3], viewProj[1][3], viewProj[2][3]), along) < 0.0) along = -along;
-    return {glm::dvec3(position), glm::normalize(along)};
+    return {orthographic() ? glm::dvec3(nearPoint) : glm::dvec3(position), glm::normalize(along)};
 }
 
 float Camera::nearPlaneReach() const {

@@ -106,6 +106,14 @@ inline void setTransform(SurfaceUniforms& u, const glm::mat4& model, const glm::
     u.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))));
 }
 
+/// A camera's eye in a surface block: its position, and for an orthographic camera the one
+/// direction towards it (hfx_to_eye).
+inline void setEye(SurfaceUniforms& u, const Camera& camera) {
+    u.cameraPos = camera.position;
+    u.orthographic = camera.orthographic() ? 1 : 0;
+    u.towardsEye = u.orthographic ? -glm::vec3(camera.rayThroughPixel(1.0, 1.0, 2, 2).direction) : glm::vec3(0.0f);
+}
+
 /// Saves what a surface draw or pass changes and puts it back, so the caller's state survives.
 class GlStateGuard {
 public:

@@ -197,11 +197,11 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer));
 
     const DrawBuffersWritten written(1u); // (no motion: blended over what is behind)
-    SurfaceUniforms u{.cameraPos = camera.position,
-                      .lightDir = glm::normalize(light.direction),
+    SurfaceUniforms u{.lightDir = glm::normalize(light.direction),
                       .lightColor = light.color,
                       .ambient = light.ambient,
                       .linearOutput = linear ? 1 : 0};
+    setEye(u, camera);
     setTransform(u, model, camera.viewProjection());
     updateBlock(surfaceBlock_, HFX_BLOCK_SURFACE, u);
     updateBlock(planetBlock_, HFX_BLOCK_PLANET, planetUniforms(look(), model));

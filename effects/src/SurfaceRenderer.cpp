@@ -366,9 +366,10 @@ void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
 }
 
 /// Whether a closed mesh (MeshData::closed) drawn with `model` shows its viewer front faces only:
-/// a shadow map's light (from outside everything it holds), or a camera whose eye lies outside the
+/// a shadow map's light (from outside everything it holds), a camera whose eye lies outside the
 /// mesh's bounds by more than its near plane reaches (a near plane that cut the mesh would show
-/// back faces through the cut).
+/// back faces through the cut; an orthographic camera's near plane reaches as far from its
+/// position, and lies as wholly within that distance).
 bool backFacesHidden(const Mesh& mesh, const glm::mat4& model, const Camera& camera, bool caster) {
     if (!mesh.closed()) return false;
     if (caster) return true;
@@ -423,6 +424,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .pixelBudget = material.pixelBudget,
                       .reversedZ = reversedZ ? 1 : 0};
     u.linearOutput = caster == nullptr && writesLinear(colorOutput_) ? 1 : 0;
+    if (!caster) setEye(u, camera); // (a caster's view rays are the light's: HFX_SHADOW_CASTER)
     const int motion = caster ? 0 : motionOutput_;
     if (motion) setMotion(u, camera, model, options.previousModel);
     const SurfaceOutputs outputs = caster ? SurfaceOutputs{} : outputs_;
@@ -569,6 +571,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
                       .lightColor = light.color,
                       .reversedZ = camera.reversedZ ? 1 : 0};
     u.linearOutput = writesLinear(colorOutput_) ? 1 : 0;
+    setEye(u, camera);
     if (motionOutput_) setMotion(u, camera, glm::mat4(1.0f), std::nullopt);
     const DrawBuffersWritten written(buffersWritten(motionOutput_, {}, false));
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
@@ -585,16 +588,16 @@ void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const C
                                const glm::vec4& color, const DirectionalLight* light) {
     camera.validate();
     if (light) light->validate();
-    drawFlatSeenBy(mesh, model, camera.viewProjection(), camera.position, camera.reversedZ, color, light);
+    drawFlatSeenBy(mesh, model, camera.viewProjection(), &camera, camera.reversedZ, color, light);
 }
 
 void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map) {
     // Depth only (the map has no colour): the eye's position feeds nothing that is written.
-    drawFlatSeenBy(mesh, model, map.viewProj(), map.towardsLight(), false, glm::vec4(1.0f), nullptr);
+    drawFlatSeenBy(mesh, model, map.viewProj(), nullptr, false, glm::vec4(1.0f), nullptr);
 }
 
 void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj,
-                                     glm::vec3 eye, bool reversedZ, const glm::vec4& color,
+                                     const Camera* camera, bool reversedZ, const glm::vec4& color,
                                      const DirectionalLight* light) {
     checkModel(model);
     checkClipControl(reversedZ);
@@ -604,7 +607,8 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
         flat = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("flat.frag"), {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
     GlStateGuard guard;
     const DrawBuffersWritten written(1u); // (no motion: an engine draws its own meshes)
-    SurfaceUniforms u{.cameraPos = eye};
+    SurfaceUniforms u;
+    if (camera) setEye(u, *camera);
     u.linearOutput = writesLinear(colorOutput_) ? 1 : 0; // (a shadow map's pass writes no colour)
     if (light) {
         u.lightDir = glm::normalize(light->direction);

@@ -145,8 +145,10 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const vec3 foamLit = u_foamColor * (1.0 + 0.3 * (lace.x - HFX_LACE_MEAN)) *
                          (u_ambient + p.lit * max(dot(p.normal, p.lightDir), 0.0) * u_lightColor);
     color = mix(color, foamLit, foam);
-    const float distance = length(u_cameraPos - p.position);
-    color = mix(color, hfx_haze(p.position - u_cameraPos), distance / (distance + u_hazeDistance));
+    // (An orthographic view's distance: along its axis, from the camera's position.)
+    const float distance = u_orthographic != 0 ? max(dot(u_cameraPos - p.position, u_towardsEye), 0.0)
+                                               : length(u_cameraPos - p.position);
+    color = mix(color, hfx_haze(-hfx_to_eye(p.position)), distance / (distance + u_hazeDistance));
     // Highlights roll off above a knee instead of clipping: the sun's path on the water keeps
     // its glitter where a clamp turned it into one white sheet. Not where the colours are written
     // linear (hfx::ColorOutput): that is the engine's tone mapping, which wants the glint's light.

@@ -52,7 +52,15 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     // The screen motion (hfx::SurfaceRenderer::setMotionOutput, HFX_MOTION_OUTPUT):
     mat4 u_previousFromWorld; // this frame's world to the previous frame's clip space
     vec2 u_jitter;            // the jitter u_viewProj holds (NDC), left out of the motion
+    vec3 u_towardsEye;        // an orthographic camera's direction towards the eye (u_orthographic)
+    int u_orthographic;       // 1: every view ray runs along -u_towardsEye; 0: from u_cameraPos
 };
+
+// Towards the eye from the point p (not unit length): to the camera's position, or an
+// orthographic camera's one direction (hfx::Camera::orthographic: parallel rays).
+vec3 hfx_to_eye(vec3 p) {
+    return u_orthographic != 0 ? u_towardsEye : u_cameraPos - p;
+}
 
 // The colour a pass writes, from linear radiance (hfx::ColorOutput): clamped to [0, 1] and encoded
 // with gamma 2.2 for a plain 8-bit target; linear and unclamped (up to a half float's largest)

@@ -37,9 +37,11 @@ struct Camera {
     /// renderers draw a camera only under its own clip control and refuse the other by name.
     bool reversedZ = false;
     /// An engine's own projection in place of fovY, aspect, nearPlane and farPlane (jitter still
-    /// moves it): an off-axis one (a VR eye's), an oblique near plane (a planar reflection's). It
-    /// must be a perspective projection in GL's clip space, w the distance in front of the eye
-    /// (glm::frustum, glm::perspective and their _ZO forms), mapping depth the way reversedZ says.
+    /// moves it): an off-axis one (a VR eye's), an oblique near plane (a planar reflection's), an
+    /// orthographic one (an editor's or a top-down game's view: parallel rays, all along the view
+    /// axis). It must be a perspective projection in GL's clip space, w the distance in front of
+    /// the eye (glm::frustum, glm::perspective and their _ZO forms), or an orthographic one, w 1
+    /// (glm::ortho and its _ZO form), mapping depth the way reversedZ says.
     std::optional<glm::mat4> customProjection;
     /// A mirror's view: the image flipped left to right, view() lookAt's followed by a flip of the
     /// eye's x axis. An engine's planar reflection renders with its view times a reflection about
@@ -56,11 +58,14 @@ struct Camera {
     /// Throws hfx::Error naming the field: a position, target, up or jitter not finite, the
     /// position on the target (no view direction), an up along the view direction (no roll),
     /// fovY outside (0, pi), an aspect not positive, or not 0 < nearPlane < farPlane, all finite;
-    /// a custom projection not finite, not invertible, not a perspective one (an orthographic
-    /// one: the relief's parallax needs an eye point) or mapping depth against reversedZ; a
-    /// previousViewProjection not finite.
+    /// a custom projection not finite, not invertible, neither a perspective nor an orthographic
+    /// one, or mapping depth against reversedZ; a previousViewProjection not finite.
     /// What the renderers call before they draw: any of these makes the view matrix a NaN.
     void validate() const;
+
+    /// A custom orthographic projection's camera: every pixel's ray runs along the view axis,
+    /// from the near plane (rayThroughPixel), and the relief's parallax is the same everywhere.
+    bool orthographic() const;
 
     glm::mat4 view() const;
     glm::mat4 projection() const;
@@ -68,7 +73,8 @@ struct Camera {
     /// viewProjection() without the jitter: what previousViewProjection holds of the frame before.
     glm::mat4 unjitteredViewProjection() const;
     /// The ray through a point of the image, in pixels from the bottom-left corner
-    /// (x + 0.5, y + 0.5 is a pixel's centre), in double precision for reference tracers.
+    /// (x + 0.5, y + 0.5 is a pixel's centre), in double precision for reference tracers: from
+    /// the eye, or for an orthographic camera from the point on the near plane.
     Ray rayThroughPixel(double x, double y, int width, int height) const;
 
     /// How far from the eye the near plane reaches where it cuts the view (its farthest corner):

@@ -406,8 +406,9 @@ private:
     void drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                      const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
                      const DrawOptions& options, const ShadowMap* caster);
+    /// camera: the eye the colour is shaded for (none for a shadow map, which gets no colour);
     /// reversedZ: the view's depth convention (Camera::reversedZ; a shadow map's is GL's default).
-    void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, glm::vec3 eye,
+    void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, const Camera* camera,
                         bool reversedZ, const glm::vec4& color, const DirectionalLight* light);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;

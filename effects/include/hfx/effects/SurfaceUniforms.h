@@ -80,7 +80,12 @@ struct SurfaceUniforms {
     /// previous model times this one's inverse), and the jitter this frame's u_viewProj holds.
     glm::mat4 previousFromWorld{1.0f};
     glm::vec2 jitter{0.0f};
-    float padding[2] = {0.0f, 0.0f}; ///< the block's size, a multiple of 16 bytes
+    float padding[2] = {0.0f, 0.0f}; ///< (std140 aligns the vec3 below to 16 bytes)
+    /// An orthographic camera's (Camera::orthographic): 1, and the unit direction towards the
+    /// eye, the same for every point (hfx_to_eye); 0: the eye is cameraPos.
+    glm::vec3 towardsEye{0.0f};
+    int orthographic = 0;
+
 
     /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
     /// two where the pyramid is read), its edges wrapped or clamped.
@@ -156,7 +161,9 @@ static_assert(offsetof(SurfaceUniforms, traceWidth) == 504);
 static_assert(offsetof(SurfaceUniforms, traceOrigin) == 512);
 static_assert(offsetof(SurfaceUniforms, previousFromWorld) == 528);
 static_assert(offsetof(SurfaceUniforms, jitter) == 592);
-static_assert(sizeof(SurfaceUniforms) == 608);
+static_assert(offsetof(SurfaceUniforms, towardsEye) == 608);
+static_assert(offsetof(SurfaceUniforms, orthographic) == 620);
+static_assert(sizeof(SurfaceUniforms) == 624);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, translucency) == 72);
