@@ -173,6 +173,40 @@ TEST_F(MotionOutput, EachPixelMovesAsItsTracedPointDoes) {
     }
 }
 
+// A camera cut (the previous frame looked the other way): a point at or behind the previous eye
+// was on no screen, and its motion is 0, not a division by its depth there (an infinity or a NaN
+// in the engine's history at w = 0, a point thrown across the screen behind it).
+TEST_F(MotionOutput, APointThePreviousFrameDidNotSeeHasNoMotion) {
+    constexpr int field = 32, W = 96, H = 72;
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = 0.1f});
+    textures.uploadTexels(sobelReference(sumOfSines(field, {{0.3, 2, 1, 0.0}}), field, 0.1f).data());
+    const Mesh plane(makePlane({.size = 2.0f}));
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.5f, 0.3f, 0.6f);
+    camera.aspect = float(W) / float(H);
+    Camera away = camera;
+    away.target = 2.0f * camera.position - camera.target; // from the same place, the other way
+    camera.previousViewProjection = away.viewProjection();
+    EngineTarget target(W, H);
+    SurfaceRenderer renderer;
+    renderer.setMotionOutput(2);
+    target.bind();
+    renderer.drawSky(camera, DirectionalLight{}, WaterLook{});
+    renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = 0.1f}, camera, DirectionalLight{},
+                  {.technique = Technique::Hierarchical});
+    const auto depth = target.read<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT);
+    const auto motion = target.read<glm::vec2>(target.motion, GL_RG, GL_FLOAT);
+    size_t relief = 0, moved = 0, notFinite = 0;
+    for (size_t i = 0; i < motion.size(); ++i) {
+        notFinite += !std::isfinite(motion[i].x) || !std::isfinite(motion[i].y);
+        if (depth[i] >= 1.0f) continue;
+        ++relief;
+        moved += motion[i] != glm::vec2(0.0f);
+    }
+    ASSERT_GT(relief, size_t(W * H / 4));
+    EXPECT_EQ(notFinite, 0u);
+    EXPECT_EQ(moved, 0u) << "of " << relief << " relief pixels, all behind the previous eye";
+}
+
 // A flat mesh's draw and the rings write colour buffer 0 alone, and the rings compose over it
 // whatever the framebuffer's read buffer names.
 TEST_F(MotionOutput, FlatMeshesAndRingsLeaveTheOtherTargetsAlone) {

@@ -165,9 +165,7 @@ void requireTextureUnits() {
                         "context has ", units, " in a fragment stage (GL_MAX_TEXTURE_IMAGE_UNITS) and ", combined,
                         " in all (GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)"));
 }
-} // namespace
 
-namespace {
 /// Throws hfx::Error naming `what` (a setter's output) unless `drawBuffer` is one a draw can write
 /// besides the colour's: 1 to 7, or 0 for none.
 void checkDrawBuffer(const char* what, int drawBuffer) {
@@ -251,7 +249,6 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     }
     return it->second;
 }
-
 
 void SurfaceRenderer::setMotionOutput(int drawBuffer) {
     checkDrawBuffer("SurfaceRenderer::setMotionOutput", drawBuffer);

@@ -89,8 +89,9 @@ vec3 hfx_away_from_eye(vec3 along) {
 
 // A point's screen motion since the previous frame (hfx::SurfaceRenderer::setMotionOutput), in the
 // viewport's uv units (1 across it), now less then, without the jitter; `world` a point (w = 1)
-// or, for the sky, a direction (w = 0).
+// or, for the sky, a direction (w = 0). A point at or behind the previous frame's eye was nowhere
+// on its screen: 0, not an infinity or a NaN in the engine's history.
 vec2 hfx_motion(vec4 world) {
     const vec4 now = u_viewProj * world, then = u_previousFromWorld * world;
-    return 0.5 * ((now.xy / now.w - u_jitter) - then.xy / then.w);
+    return then.w > 0.0 ? 0.5 * ((now.xy / now.w - u_jitter) - then.xy / then.w) : vec2(0.0);
 }

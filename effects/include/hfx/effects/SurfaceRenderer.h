@@ -375,7 +375,7 @@ public:
     /// RG32F), as (x, y) in the viewport's uv units (1 across it), now less then, without the
     /// camera's jitter. A surface's pixel moves as its traced point does (the relief's, not the
     /// polygon's: Camera::previousViewProjection, DrawOptions::previousModel); the sky's as its
-    /// direction. 0 (the default): none. Throws hfx::Error for a buffer outside 0 to 7.
+    /// direction; a point behind the previous frame's eye, 0. 0 (the default): none.
     /// Whatever is set, a draw writes no draw buffer but colour buffer 0, this one, the surface
     /// outputs (setSurfaceOutputs) and a trace output asked for: an engine's other targets keep
     /// what they hold. Throws hfx::Error for a buffer outside 0 to 7, or one the surface outputs

@@ -86,7 +86,6 @@ struct SurfaceUniforms {
     glm::vec3 towardsEye{0.0f};
     int orthographic = 0;
 
-
     /// The field the heights' accessors index (surface/heights.glsl): `size` texels (powers of
     /// two where the pyramid is read), its edges wrapped or clamped.
     constexpr void setField(glm::ivec2 size, EdgeMode edges) {
