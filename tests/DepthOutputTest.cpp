@@ -25,6 +25,13 @@ namespace {
 
 class DepthOutput : public GlTest {};
 
+/// The draws the engine-convention tests compare: POM, and hier walking in the draw and in a
+/// compute pass.
+const std::pair<const char*, DrawOptions> kPomAndHier[] = {
+    {"pom", {.technique = Technique::ParallaxOcclusion}},
+    {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
+    {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
+
 /// The relief the tests here draw: two sines on a wrapped field, its normals for the depth, grey.
 struct SineRelief {
     SineRelief(int field, float depthScale)
@@ -220,7 +227,8 @@ TEST_F(DepthOutput, AReversedZViewDrawsTheFrameGlsDefaultDepthDraws) {
         }
         target.bind();
         target.clear(background, {}, reversed ? 0.0f : 1.0f);
-        renderer.drawSky(c, lit, WaterLook{});        DrawOptions o = options;
+        renderer.drawSky(c, lit, WaterLook{});
+        DrawOptions o = options;
         o.traceOutput = trace != nullptr;
         renderer.draw(plane, glm::mat4(1.0f), textures, material, c, lit, o);
         if (trace) *trace = target.readTrace();
@@ -228,10 +236,7 @@ TEST_F(DepthOutput, AReversedZViewDrawsTheFrameGlsDefaultDepthDraws) {
         depth = target.readDepth();
         return target.readColor();
     };
-    const std::pair<const char*, DrawOptions> drawn[] = {
-        {"pom", {.technique = Technique::ParallaxOcclusion}},
-        {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
-        {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
+    const auto& drawn = kPomAndHier;
     for (const glm::vec2 range : {glm::vec2(0.5f, 20.0f), glm::vec2(3.0f, 5.8f)})
     for (const auto& [name, options] : drawn) {
         SCOPED_TRACE(name);
@@ -366,10 +371,7 @@ TEST_F(DepthOutput, AMirrorsViewDrawsTheFrameFlippedLeftToRight) {
         depth = target.readDepth();
         return target.readColor();
     };
-    const std::pair<const char*, DrawOptions> drawn[] = {
-        {"pom", {.technique = Technique::ParallaxOcclusion}},
-        {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
-        {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
+    const auto& drawn = kPomAndHier;
     for (const auto& [name, options] : drawn) {
         SCOPED_TRACE(name);
         std::vector<float> depth, mirroredDepth;
@@ -447,10 +449,7 @@ TEST_F(DepthOutput, APlanarReflectionsObliqueNearPlaneClipsTheReliefAtTheWater) 
                              glm::dvec4((x + 0.5) / W * 2.0 - 1.0, (y + 0.5) / H * 2.0 - 1.0, 2.0 * depth - 1.0, 1.0);
         return glm::dvec3(p) / p.w;
     };
-    const std::pair<const char*, DrawOptions> drawn[] = {
-        {"pom", {.technique = Technique::ParallaxOcclusion}},
-        {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
-        {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
+    const auto& drawn = kPomAndHier;
     for (const auto& [name, options] : drawn) {
         SCOPED_TRACE(name);
         std::vector<float> plainDepth, clippedDepth;
