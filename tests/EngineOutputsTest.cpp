@@ -273,6 +273,27 @@ TEST_F(MotionOutput, ABadMotionSetupIsRefusedByName) {
     // Refused before anything was drawn.
     const auto motion = target.read<glm::vec2>(target.motion, GL_RG, GL_FLOAT);
     for (const glm::vec2& m : motion) ASSERT_EQ(m, glm::vec2(1e9f, 1e9f));
+    // A target that cannot hold a negative motion (RGBA8: it would clamp to 0) is refused by name,
+    // by the surface draw and the sky's.
+    camera.previousViewProjection.reset();
+    GlTexture unorm = GlTexture::create();
+    glTextureStorage2D(unorm.id(), 1, GL_RGBA8, 64, 48);
+    glNamedFramebufferTexture(target.fbo.id(), GL_COLOR_ATTACHMENT1, unorm.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(target.fbo.id(), 2, buffers);
+    for (const std::string& m :
+         {messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = 0.1f}, camera, {}); }),
+          messageOf([&] { renderer.drawSky(camera, {}, WaterLook{}); })})
+        EXPECT_NE(m.find("the motion (SurfaceRenderer::setMotionOutput) goes to draw buffer 1 of the bound framebuffer, "
+                         "whose target is unsigned normalized"),
+                  std::string::npos)
+            << m;
+    std::vector<glm::u8vec4> written(64 * 48);
+    glGetTextureImage(unorm.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(written.size() * 4), written.data());
+    for (const glm::u8vec4& w : written) ASSERT_EQ(w, glm::u8vec4(0)) << "a refused draw wrote";
+    // Into a float target the same draws go.
+    glNamedFramebufferTexture(target.fbo.id(), GL_COLOR_ATTACHMENT1, target.kept.id(), 0);
+    EXPECT_EQ(messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = 0.1f}, camera, {}); }), "(no error)");
 }
 
 /// The field's texels bilinearly filtered at uv as GL does (texel centres at (i + 0.5) / size,
@@ -441,6 +462,18 @@ TEST_F(DeferredOutputs, ABadLayoutIsRefusedByName) {
                   renderer.draw(Mesh(makePlane({})), glm::mat4(1.0f), textures, {.depthScale = 0.1f}, cameraAtAngle(40, 3.0f, 1.0f),
                                 {}, {.traceOutput = true});
               }).find("the normal output's draw buffer 1 is one the trace output writes"),
+              std::string::npos);
+    // The normal into a target that clamps its negative components (RGBA8): refused by name.
+    renderer.setSurfaceOutputs({.normal = 3});
+    GlTexture unorm = GlTexture::create();
+    glTextureStorage2D(unorm.id(), 1, GL_RGBA8, 64, 48);
+    glNamedFramebufferTexture(target.fbo.id(), GL_COLOR_ATTACHMENT3, unorm.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(target.fbo.id(), 4, buffers);
+    EXPECT_NE(messageOf([&] {
+                  renderer.draw(Mesh(makePlane({})), glm::mat4(1.0f), textures, {.depthScale = 0.1f}, cameraAtAngle(40, 3.0f, 1.0f), {});
+              }).find("the normal (SurfaceRenderer::setSurfaceOutputs) goes to draw buffer 3 of the bound framebuffer, whose "
+                      "target is unsigned normalized"),
               std::string::npos);
 }
 

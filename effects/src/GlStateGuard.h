@@ -68,15 +68,18 @@ inline void checkClipControl(bool reversedZ) {
                         range[1], "; a reversed-Z camera reverses its projection (Camera::reversedZ) instead"));
 }
 
-/// The bound draw framebuffer's first draw buffer: float, or sRGB with GL encoding what is written
-/// (GL_FRAMEBUFFER_SRGB enabled). Neither where there is nothing to draw into (GL_NONE, no buffer).
+/// A draw buffer of the bound draw framebuffer (the first by default): float, or sRGB with GL
+/// encoding what is written (GL_FRAMEBUFFER_SRGB enabled), and its components' type
+/// (GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE). None where there is nothing to draw into (GL_NONE,
+/// no buffer).
 struct ColorTarget {
     bool isFloat = false, encodesSrgb = false;
+    GLint componentType = GL_NONE;
 };
-inline ColorTarget boundColorTarget() {
+inline ColorTarget boundColorTarget(GLuint drawBuffer = 0) {
     GLint framebuffer = 0, buffer = GL_NONE;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-    glGetIntegerv(GL_DRAW_BUFFER0, &buffer);
+    glGetIntegerv(GLenum(GL_DRAW_BUFFER0 + drawBuffer), &buffer);
     if (buffer == GL_NONE) return {};
     GLenum attachment = GLenum(buffer);
     if (framebuffer == 0 && buffer == GL_BACK) attachment = GL_BACK_LEFT; // the default framebuffer's names
@@ -87,7 +90,23 @@ inline ColorTarget boundColorTarget() {
     if (object == GL_NONE) return {}; // (asking its type would be an error)
     glGetNamedFramebufferAttachmentParameteriv(id, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
     glGetNamedFramebufferAttachmentParameteriv(id, attachment, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &encoding);
-    return {.isFloat = type == GL_FLOAT, .encodesSrgb = encoding == GL_SRGB && glIsEnabled(GL_FRAMEBUFFER_SRGB)};
+    return {.isFloat = type == GL_FLOAT,
+            .encodesSrgb = encoding == GL_SRGB && glIsEnabled(GL_FRAMEBUFFER_SRGB),
+            .componentType = type};
+}
+
+/// Throws hfx::Error where draw buffer `drawBuffer` of the bound framebuffer, which `what` (the
+/// motion, the normal) goes to, cannot hold negative values: an unsigned normalized target would
+/// clamp them to 0, an integer one takes no float. A float or signed normalized target holds
+/// them; with nothing there (GL_NONE) nothing is written.
+inline void checkSignedTarget(int drawBuffer, const char* what) {
+    if (drawBuffer <= 0) return;
+    const GLint type = boundColorTarget(GLuint(drawBuffer)).componentType;
+    if (type == GL_NONE || type == GL_FLOAT || type == GL_SIGNED_NORMALIZED) return;
+    throw Error(str(what, " goes to draw buffer ", drawBuffer, " of the bound framebuffer, whose target is ",
+                    type == GL_UNSIGNED_NORMALIZED ? "unsigned normalized: its negative values would clamp to 0"
+                                                   : "an integer one: it takes no float values",
+                    "; attach a float (RG16F, RGBA16F) or signed normalized one there"));
 }
 
 /// Whether a draw into the bound draw framebuffer writes linear colours (ColorOutput): as asked,

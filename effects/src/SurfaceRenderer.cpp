@@ -392,6 +392,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     // A shadow map's caster draws with the map's depth (ShadowMap::begin sets GL's default).
     const bool reversedZ = caster == nullptr && camera.reversedZ;
     checkClipControl(reversedZ);
+    if (!caster) {
+        checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
+        checkSignedTarget(outputs_.normal, "the normal (SurfaceRenderer::setSurfaceOutputs)");
+    }
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
@@ -555,6 +559,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     light.validate();
     if (look.environment != 0 && !glIsTexture(look.environment))
         throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
+    checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
     ShaderProgram& sky = sky_[{look.environment != 0, motionOutput_}];
     if (!sky.id()) {
         sky = ShaderProgram(surfaceStage("sky.vert"), surfaceStage("sky.frag"),

@@ -228,7 +228,8 @@ enum class ColorOutput {
 /// sky, flat meshes and the rings write none of them.
 struct SurfaceOutputs {
     /// The relief's world-space unit normal (xyz), and the variance of the slopes the pixel covers
-    /// (w: Toksvig's, for the engine's specular anti-aliasing). A float or signed target.
+    /// (w: Toksvig's, for the engine's specular anti-aliasing). A float or signed normalized
+    /// target (a draw refuses another by name).
     int normal = 0;
     /// The albedo, linear (rgb), and its alpha (a: an effect's foam coverage where it writes one).
     int albedo = 0;
@@ -371,8 +372,9 @@ public:
 
     /// Where every camera's surface draw and the sky write each pixel's screen motion since the
     /// previous frame, for an engine's temporal anti-aliasing or motion blur: draw buffer
-    /// `drawBuffer` (1 to 7) of the bound framebuffer (a two-channel float target: RG16F or
-    /// RG32F), as (x, y) in the viewport's uv units (1 across it), now less then, without the
+    /// `drawBuffer` (1 to 7) of the bound framebuffer (a two-channel float target, RG16F or
+    /// RG32F, or a signed normalized one: a draw refuses an unsigned normalized or integer one by
+    /// name, which could not hold a negative motion), as (x, y) in the viewport's uv units (1 across it), now less then, without the
     /// camera's jitter. A surface's pixel moves as its traced point does (the relief's, not the
     /// polygon's: Camera::previousViewProjection, DrawOptions::previousModel); the sky's as its
     /// direction; a point behind the previous frame's eye, 0. 0 (the default): none.
