@@ -4,6 +4,8 @@
 #include "hfx/core/Gl.h"
 #include "hfx/tools/ImageFiles.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cstdio>
@@ -54,6 +56,11 @@ std::string Scene::texelShadowsLabel() const {
 }
 
 void Scene::drawInto(const RenderTarget& target, const glm::vec4& background) {
+    if (orthographic) { // the lens's frame at the target, parallel (the camera may have moved)
+        const float h = glm::length(camera_.target - camera_.position) * std::tan(0.5f * camera_.fovY),
+                    w = h * camera_.aspect, n = camera_.nearPlane, f = camera_.farPlane;
+        camera_.customProjection = camera_.reversedZ ? glm::orthoRH_ZO(-w, w, -h, h, f, n) : glm::ortho(-w, w, -h, h, n, f);
+    }
     const bool reversed = camera_.reversedZ;
     target.clear(background, {}, reversed ? 0.0f : 1.0f);
     struct ClipDepth { // GL_ZERO_TO_ONE while a reversed-Z camera draws, also when it throws
@@ -143,6 +150,7 @@ std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const S
                                                       : nullptr;
     if (!scene) throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
     scene->camera().reversedZ = options.reversedZ;
+    scene->orthographic = options.orthographic;
     return scene;
 }
 

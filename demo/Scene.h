@@ -45,6 +45,10 @@ struct SceneOptions {
     /// The cameras' depth reversed (Camera::reversedZ), drawn under GL_ZERO_TO_ONE (Scene::drawInto):
     /// how an engine with a reversed depth buffer draws HFX.
     bool reversedZ = false;
+    /// The cameras orthographic (Camera::customProjection from glm::ortho, set at each drawInto to
+    /// frame at the camera's target what its lens frames there): an editor's or a top-down game's
+    /// view, every pixel's ray parallel.
+    bool orthographic = false;
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
@@ -99,7 +103,8 @@ public:
     virtual void draw() = 0;
     /// Clears the target for the camera (colour, and depth to its convention's far plane) and
     /// draws the scene under the clip control the camera's depth convention needs (a reversed-Z
-    /// camera's GL_ZERO_TO_ONE, GL's default put back after).
+    /// camera's GL_ZERO_TO_ONE, GL's default put back after); an orthographic scene's camera gets
+    /// its projection for where it is now.
     void drawInto(const RenderTarget& target, const glm::vec4& background);
     virtual Effect& effect() = 0;
     virtual const char* name() const = 0;
@@ -117,6 +122,8 @@ public:
     virtual void finish() {}
 
     Camera& camera() { return camera_; }
+    /// SceneOptions::orthographic: drawInto gives the camera an orthographic projection.
+    bool orthographic = false;
     Technique technique = Technique::ParallaxOcclusion;
     bool wireframe = false; ///< overlay the base mesh's triangles
     /// The mesh and model matrix drawn (for the wireframe overlay and for picking).

@@ -204,6 +204,8 @@ int run(const Options& o) {
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
                  o.technique == "auto" ? " (auto: the scene's default)" : "");
     if (scene->camera().reversedZ) std::fprintf(stderr, "hfx: depth: reversed Z (near at 1, GL_ZERO_TO_ONE, GL_GREATER)\n");
+    if (scene->orthographic)
+        std::fprintf(stderr, "hfx: projection: orthographic (glm::ortho, the lens's frame at its target: parallel rays)\n");
     if (gl->headless()) return runHeadless(o, *scene);
     WindowLoop loop({.width = o.width,
                      .height = o.height,
@@ -299,6 +301,10 @@ int main(int argc, char** argv) {
                  "water, decals, planet, noise, maps: draw with a reversed depth buffer, as many engines do (the near "
                  "plane at depth 1 under glClipControl's GL_ZERO_TO_ONE, GL_GREATER, cleared to 0: Camera::reversedZ; "
                  "the same image)");
+    app.add_flag("--orthographic", s.orthographic,
+                 "water, decals, planet, noise, maps: draw with an orthographic projection framing at the camera's "
+                 "target what its lens frames there, as an editor's or a top-down game's view does (every pixel's "
+                 "ray parallel: Camera::customProjection from glm::ortho)");
     app.add_flag("--defer-shadow-walks", s.deferShadowWalks,
                  "decals, noise, maps: the light walks hier's texel shadows leave (where a hard shadow's edge "
                  "crosses the samples around a pixel) are done by a pass after the draw, one to a lane, instead of "

@@ -359,6 +359,43 @@ TEST(Demo, AReversedZRunDrawsTheScenesFrames) {
     }
 }
 
+TEST(Demo, AnOrthographicRunDrawsEachScenesParallelView) {
+    // --orthographic: every user's scene drawn with parallel rays (glm::ortho framing the lens's
+    // view at its target). The decal wall, a rectangle seen at an angle, is then as wide on every
+    // row of the frame (its edges parallel), where the lens's perspective narrows it towards its
+    // far edge; the sea and the planet draw other frames than the lens's; the log says so.
+    for (const std::string scene : {"decals", "planet", "water"}) {
+        std::string log;
+        const Image lens = flatSceneFrame(scene, "projection_lens", ""),
+                    parallel = flatSceneFrame(scene, "projection_ortho", " --orthographic", 128, &log);
+        EXPECT_NE(log.find("hfx: projection: orthographic"), std::string::npos) << log;
+        EXPECT_GT(frameDifference(lens, parallel).mean, 5.0) << scene << ": the projection made no difference";
+        if (scene != "decals") continue;
+        // The wall's width on each row: its pixels apart from the sky's (the top-left corner's).
+        auto widths = [](const Image& frame) {
+            std::vector<int> out;
+            for (int y = 0; y < frame.height; ++y) {
+                int wall = 0;
+                for (int x = 0; x < frame.width; ++x) {
+                    float d = 0.0f;
+                    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(frame.at(x, y, c) - frame.at(0, 0, c)));
+                    wall += d > 8.0f / 255.0f;
+                }
+                out.push_back(wall);
+            }
+            return out;
+        };
+        const std::vector<int> a = widths(parallel), b = widths(lens);
+        const auto [aMin, aMax] = std::minmax_element(a.begin(), a.end());
+        const auto [bMin, bMax] = std::minmax_element(b.begin(), b.end());
+        std::printf("[orthographic] the wall is %d to %d pixels wide by row; through the lens %d to %d\n", *aMin, *aMax,
+                    *bMin, *bMax);
+        EXPECT_GT(*aMin, parallel.width / 5) << "no wall";
+        EXPECT_LE(*aMax - *aMin, 1) << "the wall's edges are not parallel";
+        EXPECT_GT(*bMax - *bMin, 10) << "the lens's view would pass as well";
+    }
+}
+
 TEST(Demo, AutoSaysWhichTracePassItTimedFasterWhereNoWorkaroundDecides) {
     // --trace-pass auto where no workaround decides (trace-in-draw off: a GPU's case): the trial
     // times both passes on the first 8 frames and the log gives its choice and both medians; with
