@@ -75,7 +75,7 @@ step gl-tests-rest "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="-$tr
 # A subset of gl-tests-rest, for a run that times the compute pass: its walks against the draw's
 # (hits, shadows, colours; a caster's depths), the depth output under an engine's conventions
 # (reversed Z, MSAA, mirrors, oblique near planes), the screen motion and the deferred outputs
-# (7 s on llvmpipe).
+# (4 s from the bundle on llvmpipe, 2 cores).
 step gl-tests-compute-pass "${run[@]}" hfx-tests-gl --gtest_brief=1 \
     --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*:DeferredOutputs.*'
 step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"

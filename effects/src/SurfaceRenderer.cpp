@@ -386,9 +386,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     light.validate();
     checkModel(model);
     if (options.previousModel && !isFinite(*options.previousModel))
-        throw Error(str("DrawOptions.previousModel must be finite, got the columns ", text((*options.previousModel)[0]), ", ",
-                        text((*options.previousModel)[1]), ", ", text((*options.previousModel)[2]), ", ",
-                        text((*options.previousModel)[3])));
+        throw Error(str("DrawOptions.previousModel must be finite, got the columns ", columnsText(*options.previousModel)));
     // A shadow map's caster draws with the map's depth (ShadowMap::begin sets GL's default).
     const bool reversedZ = caster == nullptr && camera.reversedZ;
     checkClipControl(reversedZ);
@@ -403,7 +401,6 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
     SurfaceUniforms u{.patchBounds = material.patchBounds,
-                      .cameraPos = camera.position,
                       .depthScale = material.depthScale,
                       .lightDir = glm::normalize(light.direction),
                       .normalScale = material.depthScale / textures.config().normalDepth,
@@ -425,7 +422,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .pixelBudget = material.pixelBudget,
                       .reversedZ = reversedZ ? 1 : 0};
     u.linearOutput = caster == nullptr && writesLinear(colorOutput_) ? 1 : 0;
-    if (!caster) setEye(u, camera); // (a caster's view rays are the light's: HFX_SHADOW_CASTER)
+    setEye(u, camera); // (a caster's, Camera{}, goes unread: its view rays are the light's, HFX_SHADOW_CASTER)
     const int motion = caster ? 0 : motionOutput_;
     if (motion) setMotion(u, camera, model, options.previousModel);
     const SurfaceOutputs outputs = caster ? SurfaceOutputs{} : outputs_;
@@ -568,8 +565,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     }
     if (!empty_) empty_ = GlVertexArray::create();
     GlStateGuard guard;
-    SurfaceUniforms u{.cameraPos = camera.position,
-                      .lightDir = glm::normalize(light.direction),
+    SurfaceUniforms u{.lightDir = glm::normalize(light.direction),
                       .lightColor = light.color,
                       .reversedZ = camera.reversedZ ? 1 : 0};
     u.linearOutput = writesLinear(colorOutput_) ? 1 : 0;
