@@ -22,8 +22,8 @@
 //                     renderer picks it while WaterLook::ringCount > 0)
 //   HFX_BOUNDED_SEARCH 1 when the searches are bounded by the layers' pyramids (surface/heights.glsl)
 //   HFX_SHADOW_MAP    1 when the light's shadow map is received (surface/shadowmap.glsl)
-//   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap): the view ray is the light's
-//                     (u_lightDir reversed), u_viewProj the light's; only the traced depth is
+//   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap's, or an engine's): the view
+//                     is the light's (its eye's rays, u_viewProj), only the traced depth is
 //                     written, nothing is shaded
 //   HFX_BEAM_START    1 when the exact tracer's rays start where its beam prepass
 //                     (trace/hier/beam.frag) found for their block of HFX_BEAM_BLOCK pixels
@@ -260,11 +260,7 @@ void main() {
     // The polygon's frame, for the view ray (after the walk: geometricNormal, worldFromTexture).
     const vec3 entryNormal = normalize(v_normal);
     const mat3 entryFrame = hfx_world_from_texture(entryNormal, v_tangent, v_bitangent);
-#if HFX_SHADOW_CASTER
-    const vec3 toEye = u_lightDir; // the light is the eye, infinitely far
-#else
-    const vec3 toEye = hfx_to_eye(v_worldPos);
-#endif
+    const vec3 toEye = hfx_to_eye(v_worldPos); // (a caster's eye: its light's)
     const float cosView = clamp(dot(entryNormal, normalize(toEye)), 0.0, 1.0);
     // A degenerate frame (a sphere's poles, where dP/du vanishes) has no texture space: there the
     // surface is normal mapped. Silhouettes of curved meshes fade the relief out.

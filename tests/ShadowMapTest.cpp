@@ -10,6 +10,8 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "hfx/core/GlObject.h"
+#include "hfx/core/HeightFieldTracer.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/ShadowMap.h"
@@ -17,6 +19,7 @@
 #include "hfx/tools/AccuracyProbe.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -199,6 +202,183 @@ TEST_F(ShadowMaps, ACastersWalksInAComputePassWriteTheDepthsTheDrawWrites) {
             EXPECT_GT(relief, walked.size() / 8) << "too little cast to tell";
             EXPECT_LE(differ, relief / 2000);
         }
+}
+
+/// An engine's own shadow atlas: a 32-bit float depth texture and an RGBA8 colour attachment (a
+/// map of moments, a debug view), lights drawn into tiles of it through viewports.
+struct EngineShadowAtlas {
+    static constexpr glm::vec4 kColour{0.25f, 0.5f, 0.75f, 1.0f};
+    EngineShadowAtlas(int w, int h)
+        : width(w), height(h), fbo(GlFramebuffer::create()), depth(GlTexture::create()), colour(GlTexture::create()) {
+        glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
+        glTextureStorage2D(colour.id(), 1, GL_RGBA8, width, height);
+        glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, colour.id(), 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, &kColour.x);
+    }
+    /// Binds the atlas with the tile (x0, 0, size, size) as the viewport, the clip control of the
+    /// light's depth convention, and the tile's depth cleared to its far plane.
+    void beginTile(int x0, int size, bool reversedZ) const {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glViewport(x0, 0, size, size);
+        glClipControl(GL_LOWER_LEFT, reversedZ ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(x0, 0, size, size);
+        glClearDepthf(reversedZ ? 0.0f : 1.0f);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glClearDepthf(1.0f);
+        glDisable(GL_SCISSOR_TEST);
+    }
+    static void endTile() { glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE); }
+    std::vector<float> depths() const {
+        std::vector<float> d(size_t(width) * height);
+        glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(d.size() * sizeof(float)), d.data());
+        return d;
+    }
+    std::vector<glm::u8vec4> colours() const {
+        std::vector<glm::u8vec4> c(size_t(width) * height);
+        glGetTextureImage(colour.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(c.size() * 4), c.data());
+        return c;
+    }
+    int width, height;
+    GlFramebuffer fbo;
+    GlTexture depth, colour;
+};
+
+// An engine's own shadow maps (a spot light's perspective view in one tile of its atlas, a sun's
+// cascade, orthographic and reversed-Z, in the next): each texel holds the depth of the first
+// thing its light ray meets, the traced relief's or a board's above it, as the CPU finds it
+// (HeightFieldTracer's exact hit along the texel's ray, the board's plane), in the light's depth
+// convention; the engine's colour attachment keeps its colour. A caster tracing the light's
+// direction for every texel (a ShadowMap's parallel rays) puts the spot light's relief elsewhere;
+// one writing its polygon's depth is off on most texels.
+TEST_F(ShadowMaps, AnEnginesOwnMapsHoldTheTracedReliefAlongEachLightsRays) {
+    constexpr int kSines = 64, kTile = 160;
+    constexpr float depthScale = 0.15f, boardY = 0.3f;
+    const std::vector<float> heights = sumOfSines(kSines, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}});
+    const AccuracyProbe probe(cl(), heights, kSines, depthScale);
+    const HeightFieldTracer exact(heights, kSines, kSines, EdgeMode::Wrap);
+    const Mesh plane(makePlane({.size = kPlane}));
+    const Mesh board(makePlane({.size = 0.5f}));
+    const glm::mat4 boardModel = glm::translate(glm::mat4(1.0f), {-0.3f, boardY, 0.2f});
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f};
+    const glm::vec3 sunward = glm::normalize(glm::vec3(-0.5f, 0.8f, 0.3f)), centre(0.2f, 0.0f, -0.1f);
+    const struct {
+        const char* name;
+        Camera view;
+    } lights[] = {
+        {"spot light", Camera::fromMatrices(glm::lookAt(glm::vec3(0.9f, 1.4f, 0.7f), glm::vec3(0.0f), glm::vec3(0, 1, 0)),
+                                            glm::perspective(glm::radians(70.0f), 1.0f, 0.3f, 6.0f))},
+        {"sun's cascade, reversed Z",
+         Camera::fromMatrices(glm::lookAt(centre + 3.0f * sunward, centre, glm::vec3(0, 1, 0)),
+                              glm::orthoRH_ZO(-0.8f, 0.8f, -0.8f, 0.8f, 5.0f, 1.0f), true)}};
+    EngineShadowAtlas atlas(2 * kTile, kTile);
+    for (const TracePass pass : {TracePass::InDraw, TracePass::Compute}) {
+        SurfaceRenderer renderer;
+        for (int tile = 0; tile < 2; ++tile) {
+            const Camera& light = lights[tile].view;
+            atlas.beginTile(tile * kTile, kTile, light.reversedZ);
+            renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, light,
+                                {.technique = Technique::Hierarchical, .tracePass = pass});
+            EXPECT_EQ(renderer.tracer().lastCaster().computeTrace, pass == TracePass::Compute);
+            renderer.drawFlatShadow(board, boardModel, light);
+            EngineShadowAtlas::endTile();
+        }
+        const std::vector<float> depth = atlas.depths();
+        for (int tile = 0; tile < 2; ++tile) {
+            const Camera& light = lights[tile].view;
+            const std::string what = str(lights[tile].name, pass == TracePass::Compute ? ", a compute pass" : ", the draw");
+            SCOPED_TRACE(what);
+            const glm::dmat4 viewProj(light.viewProjection());
+            const auto windowDepth = [&](const glm::dvec3& p) {
+                const glm::dvec4 clip = viewProj * glm::dvec4(p, 1.0);
+                return light.reversedZ ? clip.z / clip.w : 0.5 * clip.z / clip.w + 0.5;
+            };
+            size_t relief = 0, boards = 0, off = 0, polygonOff = 0;
+            double worst = 0.0;
+            for (int y = 0; y < kTile; ++y)
+                for (int x = 0; x < kTile; ++x) {
+                    const Ray ray = light.rayThroughPixel(x + 0.5, y + 0.5, kTile, kTile);
+                    // The board's plane, over its square; then the relief under the plane's polygon.
+                    const double tBoard = (boardY - ray.origin.y) / ray.direction.y;
+                    const glm::dvec3 b = ray.origin + tBoard * ray.direction;
+                    const bool onBoard = tBoard > 0.0 && std::abs(b.x + 0.3) < 0.25 && std::abs(b.z - 0.2) < 0.25;
+                    glm::dvec2 uv0;
+                    glm::dvec3 toLight;
+                    const bool onPlane = planePixelRay(light, kPlane, x, y, kTile, kTile, uv0, toLight);
+                    const auto hit = onPlane ? exact.traceView(uv0, toLight, depthScale) : std::nullopt;
+                    if (!onBoard && !hit) continue;
+                    // (A texel whose centre lies within a thousandth of the board's edge is the
+                    // rasteriser's rounding.)
+                    if (std::abs(std::abs(b.x + 0.3) - 0.25) < 1e-3 || std::abs(std::abs(b.z - 0.2) - 0.25) < 1e-3) continue;
+                    const glm::dvec3 p = onBoard ? b
+                                                 : glm::dvec3((hit->uv.x - 0.5) * kPlane,
+                                                              -(1.0 - hit->height) * depthScale * kPlane,
+                                                              (0.5 - hit->uv.y) * kPlane);
+                    const double expected = windowDepth(p);
+                    const double error = std::abs(expected - depth[size_t(y) * atlas.width + tile * kTile + x]);
+                    (onBoard ? boards : relief) += 1;
+                    worst = std::max(worst, error);
+                    off += error > 1e-5;
+                    if (!onBoard) {
+                        const glm::dvec3 polygon((uv0.x - 0.5) * kPlane, 0.0, (0.5 - uv0.y) * kPlane);
+                        polygonOff += std::abs(windowDepth(polygon) - expected) > 1e-5;
+                    }
+                }
+            std::printf("[engine's shadow map] %s: %zu relief and %zu board texels, %zu off the exact depth by more "
+                        "than 1e-5 (%.2g at most); the polygon's depth would be off on %zu\n",
+                        what.c_str(), relief, boards, off, worst, polygonOff);
+            EXPECT_GT(relief, size_t(kTile * kTile / 3));
+            EXPECT_GT(boards, size_t(kTile * kTile / 50));
+            EXPECT_GT(polygonOff, relief * 9 / 10);
+            EXPECT_LE(off, (relief + boards) / 500);
+        }
+    }
+    size_t recoloured = 0;
+    for (const glm::u8vec4& c : atlas.colours())
+        recoloured += c != glm::u8vec4(glm::round(EngineShadowAtlas::kColour * 255.0f));
+    EXPECT_EQ(recoloured, 0u) << "the casters wrote the engine's colour attachment";
+}
+
+TEST_F(ShadowMaps, CastersOutsideAMapsPassOrUnderAnotherDepthConventionAreRefusedByName) {
+    AccuracyProbe probe(cl(), sumOfSines(64, {{0.4, 2, 1, 0.0}}), 64, kDepthScale);
+    const Mesh plane(makePlane({.size = kPlane}));
+    const SurfaceMaterial material{.depthScale = kDepthScale};
+    SurfaceRenderer renderer;
+    ShadowMap map(64);
+    const auto cast = [&] { renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map); };
+    const auto flat = [&] { renderer.drawFlatShadow(plane, glm::mat4(1.0f), map); };
+    EXPECT_NE(messageOf(cast).find("no light's view yet (ShadowMap::fit)"), std::string::npos);
+    map.fit(light().direction, {0.0f, 0.0f, 0.0f}, 1.6f);
+    EXPECT_NE(messageOf(cast).find("the shadow map is not begun"), std::string::npos);
+    EXPECT_NE(messageOf(flat).find("drawFlatShadow: the shadow map is not begun"), std::string::npos);
+    {
+        const auto casting = map.scope();
+        cast();
+        flat();
+    }
+    // An engine's reversed-Z light view drawn under GL's default clip depth, and the other way.
+    RenderTarget target(32, 32);
+    target.bind();
+    const Camera reversed = Camera::fromMatrices(glm::lookAt(glm::vec3(0, 3, 0), glm::vec3(0), glm::vec3(0, 0, 1)),
+                                                 glm::orthoRH_ZO(-1.5f, 1.5f, -1.5f, 1.5f, 5.0f, 1.0f), true);
+    EXPECT_NE(messageOf([&] { renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, reversed); })
+                  .find("the camera is reversed-Z"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { renderer.drawFlatShadow(plane, glm::mat4(1.0f), reversed); }).find("the camera is reversed-Z"),
+              std::string::npos);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    EXPECT_NE(messageOf([&] { renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map.lightView()); })
+                  .find("GL_ZERO_TO_ONE"),
+              std::string::npos);
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    // A light view that is no camera: its projection not invertible.
+    Camera broken = reversed;
+    broken.customProjection = glm::mat4(0.0f);
+    EXPECT_NE(messageOf([&] { renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, broken); })
+                  .find("projection"),
+              std::string::npos);
 }
 
 TEST_F(ShadowMaps, BadFitsAndSizesAreRefusedByName) {

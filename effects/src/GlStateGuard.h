@@ -246,25 +246,26 @@ private:
 inline constexpr GLuint kDrawBuffers = 8;
 
 /// For its scope a draw into the caller's framebuffer writes only the draw buffers it has
-/// outputs for (`written`: a bit per buffer, buffer 0's always set): GL leaves a buffer with no
+/// outputs for (`written`: a bit per buffer; 0, none: a shadow caster's): GL leaves a buffer with no
 /// fragment output undefined, and llvmpipe writes output 0's colour there, over an engine's
 /// other targets (its normals, its motion: EngineOutputsTest). The caller's own masks are kept
 /// on the buffers written, and put back on the others when it ends.
 class DrawBuffersWritten {
 public:
-    explicit DrawBuffersWritten(unsigned written) {
-        for (GLuint i = 1; i < kDrawBuffers; ++i) {
+    explicit DrawBuffersWritten(unsigned written) : first_(written & 1u) {
+        for (GLuint i = first_; i < kDrawBuffers; ++i) {
             glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
             if (!(written >> i & 1u)) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         }
     }
     ~DrawBuffersWritten() {
-        for (GLuint i = 1; i < kDrawBuffers; ++i) glColorMaski(i, masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
+        for (GLuint i = first_; i < kDrawBuffers; ++i) glColorMaski(i, masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
     }
     DrawBuffersWritten(const DrawBuffersWritten&) = delete;
     DrawBuffersWritten& operator=(const DrawBuffersWritten&) = delete;
 
 private:
+    GLuint first_; ///< buffer 0 is masked only where the draw writes no colour at all
     GLboolean masks_[kDrawBuffers][4] = {};
 };
 

@@ -49,6 +49,8 @@ void ShadowMap::fit(glm::vec3 towardsLight, glm::vec3 centre, float radius) {
     const glm::mat4 view = glm::lookAt(centre + towardsLight_ * (2.0f * radius), centre, up);
     const glm::mat4 projection = glm::ortho(-radius, radius, -radius, radius, 0.0f, 4.0f * radius);
     viewProj_ = projection * view;
+    lightView_ = Camera::fromMatrices(view, projection);
+    fitted_ = true;
 }
 
 void ShadowMap::begin() {

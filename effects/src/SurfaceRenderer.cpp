@@ -238,7 +238,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_COMPUTE_TRACE", std::to_string(v.computeTrace)},
                                                    {"HFX_TRACE_LIGHTS", v.traceLights ? "1" : "0"},
                                                    {"HFX_PYRAMID_ATLAS", v.pyramidAtlas ? "1" : "0"},
-                                                   {"HFX_REVERSED_Z", v.reversedZ && !v.caster ? "1" : "0"},
+                                                   {"HFX_REVERSED_Z", v.reversedZ ? "1" : "0"},
                                                    {"HFX_MOTION_OUTPUT", std::to_string(v.motionOutput)},
                                                    {"HFX_NORMAL_OUTPUT", std::to_string(v.outputs.normal)},
                                                    {"HFX_ALBEDO_OUTPUT", std::to_string(v.outputs.albedo)},
@@ -338,7 +338,7 @@ void validateLayers(std::span<const SurfaceLayer> layers, const TechniqueInfo& t
 void SurfaceRenderer::draw(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                            const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
                            const DrawOptions& options) {
-    drawSurface(mesh, model, layers, material, camera, light, options, nullptr);
+    drawSurface(mesh, model, layers, material, camera, light, options, Viewer::Camera);
 }
 
 void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
@@ -347,11 +347,43 @@ void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, const
     drawShadow(mesh, model, std::span(&layer, 1), material, map, options);
 }
 
+namespace {
+/// A ShadowMap's casters are drawn between its begin() and end() (into its framebuffer), after a
+/// fit() (its light's view).
+void checkCasting(const ShadowMap& map, const char* call) {
+    if (!map.fitted())
+        throw Error(str("SurfaceRenderer::", call, ": the shadow map has no light's view yet (ShadowMap::fit)"));
+    if (!map.begun())
+        throw Error(str("SurfaceRenderer::", call, ": the shadow map is not begun; draw its casters between "
+                        "ShadowMap::begin() and end() (or in its scope()), which bind its framebuffer"));
+}
+
+/// The light a caster's draw is given: towards the eye of its view (a caster walks no light ray,
+/// and shades nothing; the direction only has to be valid).
+DirectionalLight casterLight(const Camera& lightView) {
+    DirectionalLight light;
+    light.direction = glm::vec3(-lightView.rayThroughPixel(1.0, 1.0, 2, 2).direction);
+    return light;
+}
+} // namespace
+
 void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                                  const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options) {
-    DirectionalLight light;
-    light.direction = map.towardsLight();
-    drawSurface(mesh, model, layers, material, Camera{}, light, options, &map);
+    checkCasting(map, "drawShadow");
+    drawSurface(mesh, model, layers, material, map.lightView(), casterLight(map.lightView()), options,
+                Viewer::LightAroundAll);
+}
+
+void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
+                                 const SurfaceMaterial& material, const Camera& lightView, const DrawOptions& options) {
+    const SurfaceLayer layer{.textures = &textures};
+    drawShadow(mesh, model, std::span(&layer, 1), material, lightView, options);
+}
+
+void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+                                 const SurfaceMaterial& material, const Camera& lightView, const DrawOptions& options) {
+    lightView.validate();
+    drawSurface(mesh, model, layers, material, lightView, casterLight(lightView), options, Viewer::Light);
 }
 
 namespace {
@@ -363,13 +395,13 @@ void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
 }
 
 /// Whether a closed mesh (MeshData::closed) drawn with `model` shows its viewer front faces only:
-/// a shadow map's light (from outside everything it holds), a camera whose eye lies outside the
-/// mesh's bounds by more than its near plane reaches (a near plane that cut the mesh would show
-/// back faces through the cut; an orthographic camera's near plane reaches as far from its
-/// position, and lies as wholly within that distance).
-bool backFacesHidden(const Mesh& mesh, const glm::mat4& model, const Camera& camera, bool caster) {
+/// a shadow map's light (from outside everything it holds: `aroundAll`), a camera's or a light's
+/// view whose eye lies outside the mesh's bounds by more than its near plane reaches (a near plane
+/// that cut the mesh would show back faces through the cut; an orthographic view's near plane
+/// reaches as far from its position, and lies as wholly within that distance).
+bool backFacesHidden(const Mesh& mesh, const glm::mat4& model, const Camera& camera, bool aroundAll) {
     if (!mesh.closed()) return false;
-    if (caster) return true;
+    if (aroundAll) return true;
     const glm::vec4 b = mesh.bounds();
     const glm::vec3 centre(model * glm::vec4(glm::vec3(b), 1.0f));
     const glm::mat3 m(model);
@@ -380,15 +412,17 @@ bool backFacesHidden(const Mesh& mesh, const glm::mat4& model, const Camera& cam
 
 void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                                   const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
-                                  const DrawOptions& options, const ShadowMap* caster) {
+                                  const DrawOptions& options, Viewer viewer) {
+    const bool caster = viewer != Viewer::Camera;
     material.validate();
     camera.validate();
     light.validate();
     checkModel(model);
     if (options.previousModel && !isFinite(*options.previousModel))
         throw Error(str("DrawOptions.previousModel must be finite, got the columns ", columnsText(*options.previousModel)));
-    // A shadow map's caster draws with the map's depth (ShadowMap::begin sets GL's default).
-    const bool reversedZ = caster == nullptr && camera.reversedZ;
+    // A caster draws with its light view's depth (a ShadowMap's is GL's default: ShadowMap::begin
+    // sets it).
+    const bool reversedZ = camera.reversedZ;
     checkClipControl(reversedZ);
     if (!caster) {
         checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
@@ -421,8 +455,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .varianceFloor = varianceFloor(textures.config().format),
                       .pixelBudget = material.pixelBudget,
                       .reversedZ = reversedZ ? 1 : 0};
-    u.linearOutput = caster == nullptr && writesLinear(colorOutput_) ? 1 : 0;
-    setEye(u, camera); // (a caster's, Camera{}, goes unread: its view rays are the light's, HFX_SHADOW_CASTER)
+    u.linearOutput = !caster && writesLinear(colorOutput_) ? 1 : 0;
+    setEye(u, camera); // (a caster's: its light view's, whose rays it traces)
     const int motion = caster ? 0 : motionOutput_;
     if (motion) setMotion(u, camera, model, options.previousModel);
     const SurfaceOutputs outputs = caster ? SurfaceOutputs{} : outputs_;
@@ -439,14 +473,13 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         u.layerLevel[int(i)] = std::log2(l.texcoordScale * float(l.textures->config().width) / base);
         if (!l.traced) u.untracedHeight += l.weight * l.restHeight;
     }
-    const glm::mat4 viewProj = caster ? caster->viewProj() : camera.viewProjection();
+    const glm::mat4 viewProj = camera.viewProjection();
     // The exact tracer's data and passes, and the bounds of a bounded search, as it decides.
     // The deferred light walks rewrite the colour alone: where the material output holds the
     // self-shadow, they stay in the draw.
     DrawOptions tracing = options;
     tracing.deferShadowWalks = options.deferShadowWalks && outputs.material == 0;
-    const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, tracing,
-                                                caster != nullptr, u);
+    const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, tracing, caster, u);
     const SurfaceVariant variant{.shading = material.shading,
                                  .layers = int(layers.size()),
                                  .traced = traced,
@@ -455,7 +488,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .shadowMap = light.shadowMap != nullptr,
                                  .rings = material.water.ringCount > 0,
                                  .environment = material.water.environment != 0,
-                                 .caster = caster != nullptr,
+                                 .caster = caster,
                                  // (With the walks in the compute pass, neither draw reads the
                                  // texel shadows or the beam start: the pass does.)
                                  .texelShadows = frame.texelShadows != nullptr && !frame.computeTrace,
@@ -467,7 +500,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .motionOutput = motion,
                                  .outputs = outputs};
     const ShaderProgram& p = program(options, variant);
-    const DrawBuffersWritten written(buffersWritten(motion, outputs, options.traceOutput && !caster));
+    // (A caster writes no colour buffer: an engine's shadow map may have a colour attachment.)
+    const DrawBuffersWritten written(caster ? 0u : buffersWritten(motion, outputs, options.traceOutput));
     if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
@@ -507,9 +541,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     // The mesh's winding as the model and the view leave it (a mirroring model turns it, and so
     // does a mirror's view: Camera::mirrored): the compute pass's draws tell front faces by it,
     // and the back faces a closed mesh hides are culled.
-    const bool mirroredView = caster == nullptr && camera.mirrored;
+    const bool mirroredView = camera.mirrored;
     glFrontFace((glm::determinant(glm::mat3(model)) < 0.0f) != mirroredView ? GL_CW : GL_CCW);
-    if (backFacesHidden(mesh, model, camera, caster != nullptr)) {
+    if (backFacesHidden(mesh, model, camera, viewer == Viewer::LightAroundAll)) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
     }
@@ -590,8 +624,14 @@ void SurfaceRenderer::drawFlat(const Mesh& mesh, const glm::mat4& model, const C
 }
 
 void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map) {
-    // Depth only (the map has no colour): the eye's position feeds nothing that is written.
-    drawFlatSeenBy(mesh, model, map.viewProj(), nullptr, false, glm::vec4(1.0f), nullptr);
+    checkCasting(map, "drawFlatShadow");
+    drawFlatShadow(mesh, model, map.lightView());
+}
+
+void SurfaceRenderer::drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const Camera& lightView) {
+    lightView.validate();
+    // Depth only: the eye's position feeds nothing that is written.
+    drawFlatSeenBy(mesh, model, lightView.viewProjection(), nullptr, lightView.reversedZ, glm::vec4(1.0f), nullptr);
 }
 
 void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj,
@@ -604,10 +644,12 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
     if (!flat.id())
         flat = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("flat.frag"), {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
     GlStateGuard guard;
-    const DrawBuffersWritten written(1u); // (no motion: an engine draws its own meshes)
+    // (No motion: an engine draws its own meshes. A caster writes no colour: an engine's shadow
+    // map may have a colour attachment.)
+    const DrawBuffersWritten written(camera ? 1u : 0u);
     SurfaceUniforms u;
     if (camera) setEye(u, *camera);
-    u.linearOutput = writesLinear(colorOutput_) ? 1 : 0; // (a shadow map's pass writes no colour)
+    u.linearOutput = writesLinear(colorOutput_) ? 1 : 0;
     if (light) {
         u.lightDir = glm::normalize(light->direction);
         u.lightColor = light->color;

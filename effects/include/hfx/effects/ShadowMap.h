@@ -7,7 +7,8 @@
 // Receivers read it through DirectionalLight::shadowMap: the light is multiplied by the map's
 // visibility (3x3 taps of hardware 2x2 comparison), with a depth bias and a normal offset of
 // about a map texel so a surface does not shadow itself through the map's rounding (the
-// relief's own self-shadow is its tracer's, exact).
+// relief's own self-shadow is its tracer's, exact). An engine with shadow maps of its own draws
+// the same casters into them (SurfaceRenderer::drawShadow with the light's view as a Camera).
 //
 // Owns its framebuffer and depth texture. Thread: the thread whose GL context is current.
 
@@ -55,10 +56,15 @@ public:
     [[nodiscard]] Scope scope() { return Scope(*this); }
 
     bool begun() const { return begun_; }
+    /// Whether fit() has placed the light's view (casters drawn before it are refused).
+    bool fitted() const { return fitted_; }
     int size() const { return size_; }
     GLuint texture() const { return depth_.id(); }
     /// World to the light's clip space (orthographic: window depth is linear in distance).
     const glm::mat4& viewProj() const { return viewProj_; }
+    /// The light's view as an orthographic camera (GL's default depth): what the casters are
+    /// drawn with.
+    const Camera& lightView() const { return lightView_; }
     /// Unit vector towards the light (what the casters' tracers trace along, reversed).
     glm::vec3 towardsLight() const { return towardsLight_; }
     /// World units per map texel.
@@ -80,13 +86,14 @@ private:
     GlFramebuffer fbo_;
     GlTexture depth_;
     glm::mat4 viewProj_{1.0f};
+    Camera lightView_;
     glm::vec3 towardsLight_{0.0f, 1.0f, 0.0f};
     float radius_ = 1.0f;
     GLint savedDraw_ = 0, savedRead_ = 0, savedViewport_[4] = {0, 0, 0, 0};
     GLboolean savedScissor_ = GL_FALSE, savedDepthMask_ = GL_TRUE;
     GLint savedClipOrigin_ = GL_LOWER_LEFT, savedClipDepth_ = GL_NEGATIVE_ONE_TO_ONE;
     GLdouble savedDepthRange_[2] = {0.0, 1.0};
-    bool begun_ = false;
+    bool begun_ = false, fitted_ = false;
 };
 
 } // namespace hfx

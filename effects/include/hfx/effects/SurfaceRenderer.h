@@ -356,14 +356,28 @@ public:
     void drawFlat(const Mesh& mesh, const glm::mat4& model, const Camera& camera,
                   const glm::vec4& color, const DirectionalLight* light = nullptr);
 
-    /// Shadow casters, drawn into `map` between its begin() and end(): a surface writes the depth
-    /// its technique traces along the light's rays (the relief, not the polygon; shaders/
-    /// surface.frag, HFX_SHADOW_CASTER), a flat mesh its own.
+    /// Shadow casters, drawn into `map` between its begin() and end() (throws hfx::Error before
+    /// its fit() or outside its pass): a surface writes the depth its technique traces along the
+    /// light's rays (the relief, not the polygon; shaders/surface.frag, HFX_SHADOW_CASTER), a flat
+    /// mesh its own.
     void drawShadow(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                     const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options = {});
     void drawShadow(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
                     const SurfaceMaterial& material, const ShadowMap& map, const DrawOptions& options = {});
     void drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const ShadowMap& map);
+    /// The same casters drawn into a shadow map of the engine's own (a cascade of its sun's, a
+    /// spot light's, a tile of its shadow atlas): the caller binds its framebuffer, viewport, clip
+    /// control and clear, and `lightView` is the light's view as a camera
+    /// (Camera::fromMatrices(lightView, lightProjection[, reversedZ]): orthographic for a
+    /// directional light, perspective for a spot light). A surface writes the depth its tracer
+    /// finds along the light's rays, as into a ShadowMap, under the depth convention the camera
+    /// says; no colour buffer is written (a colour attachment keeps what it holds). A draw throws
+    /// hfx::Error where the clip control is not the camera's (checked as for a camera's draw).
+    void drawShadow(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
+                    const SurfaceMaterial& material, const Camera& lightView, const DrawOptions& options = {});
+    void drawShadow(const Mesh& mesh, const glm::mat4& model, const SurfaceTextures& textures,
+                    const SurfaceMaterial& material, const Camera& lightView, const DrawOptions& options = {});
+    void drawFlatShadow(const Mesh& mesh, const glm::mat4& model, const Camera& lightView);
 
     /// How every draw's colours are encoded (ColorOutput; Auto by default). A flat mesh's unlit
     /// colour is written as given.
@@ -403,11 +417,15 @@ public:
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).
     void bindUniforms(SurfaceUniforms& u, const glm::mat4& model, const glm::mat4& viewProj);
-    /// A surface draw: the uniforms of the layers and material, seen by viewProj from the camera
-    /// (or, casting, from the light), then the mesh.
+    /// Who sees a surface draw: a camera, which gets a colour, or a light (a shadow caster's
+    /// draw: depth only), whose view has everything it holds in front of its near plane (a
+    /// ShadowMap's, fitted around them) or may not (an engine's own).
+    enum class Viewer { Camera, LightAroundAll, Light };
+    /// A surface draw: the uniforms of the layers and material, seen by `camera` (or, casting,
+    /// the light's view), then the mesh.
     void drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                      const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
-                     const DrawOptions& options, const ShadowMap* caster);
+                     const DrawOptions& options, Viewer viewer);
     /// camera: the eye the colour is shaded for (none for a shadow map, which gets no colour);
     /// reversedZ: the view's depth convention (Camera::reversedZ; a shadow map's is GL's default).
     void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, const Camera* camera,
