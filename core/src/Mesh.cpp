@@ -298,11 +298,18 @@ std::optional<FlatPatch> flatPatchOf(const MeshData& data) {
                      .corners = {at(lo.x, lo.y), at(hi.x, lo.y), at(hi.x, hi.y), at(lo.x, hi.y)}};
 }
 
+namespace {
+/// `data` once MeshData::validate and its claims (closed, convex) hold: what a mesh is made of.
+const MeshData& checkedMesh(const MeshData& data) {
+    checkMeshClaims(data);
+    return data;
+}
+} // namespace
+
 Mesh::Mesh(const MeshData& data)
     : vertices_(GlBuffer::create()), indices_(GlBuffer::create()),
       vao_(GlVertexArray::create()), indexCount_(static_cast<GLsizei>(data.indices.size())),
-      patch_(flatPatchOf(data)), convex_(data.convex || patch_.has_value()), closed_(data.closed) {
-    checkMeshClaims(data); // (MeshData::validate first)
+      patch_(flatPatchOf(checkedMesh(data))), convex_(data.convex || patch_.has_value()), closed_(data.closed) {
     // The bounds: the box's centre, and the farthest vertex from it.
     const auto [lo, hi] = positionBox(data);
     const glm::dvec3 centre = 0.5 * (lo + hi);
