@@ -46,9 +46,9 @@ void main() {
 }
 )";
 
-/// Composed after the module's surface/uniforms.glsl and surface/shadowmap.glsl: the light and
-/// the shadow map come in the surface block (u_lightDir, u_shadowViewProj...), received by
-/// hfx_shadow_map as every surface and flat mesh receives it.
+/// Composed after the module's surface/uniforms.glsl and surface/shadowmap.glsl: the light comes
+/// in the surface block (u_lightDir) and the shadow map in the shadows' block (HfxShadows),
+/// received by hfx_shadow_map as every surface and flat mesh receives it.
 const char* kFragment = R"(#version 450 core
 in vec3 v_normal;
 in vec3 v_world;
@@ -143,14 +143,14 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
     std::vector<std::vector<GlTime>> pomMs(oceans.size()), plainMs(oceans.size());
     std::vector<GlTime> meshMs, meshShadowedMs;
     GpuTimer timer;
-    // The mesh's surface blocks, unshadowed and receiving the map, made once: the light and the
-    // receiver's lookup as the renderer's own draws get them.
-    GlBuffer meshBlocks[2] = {GlBuffer::create(), GlBuffer::create()};
-    for (int shadowed = 0; shadowed < 2; ++shadowed) {
-        SurfaceUniforms u{.lightDir = glm::normalize(light.direction)};
-        map.fillReceiver(u);
-        glNamedBufferStorage(meshBlocks[shadowed].id(), sizeof u, &u, 0);
-    }
+    // The mesh's surface and shadow blocks, made once: the light and the receiver's lookup as
+    // the renderer's own draws get them.
+    const GlBuffer meshBlock = GlBuffer::create(), shadowBlock = GlBuffer::create();
+    const SurfaceUniforms u{.lightDir = glm::normalize(light.direction)};
+    glNamedBufferStorage(meshBlock.id(), sizeof u, &u, 0);
+    bool arrayTexture = false;
+    const ShadowUniforms shadows = shadowUniforms(map.receiver(), arrayTexture);
+    glNamedBufferStorage(shadowBlock.id(), sizeof shadows, &shadows, 0);
     const auto drawMesh = [&](bool shadowed) {
         glEnable(GL_DEPTH_TEST);
         glBindVertexArray(vao.id());
@@ -163,7 +163,8 @@ int runBenchMesh(const DeviceOptions& deviceOptions, int width, int height, int 
             glBindTextureUnit(HFX_UNIT_SHADOW_MAP, map.texture());
         }
         target.clear();
-        glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, meshBlocks[shadowed ? 1 : 0].id());
+        glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SURFACE, meshBlock.id());
+        glBindBufferBase(GL_UNIFORM_BUFFER, HFX_BLOCK_SHADOWS, shadowBlock.id());
         const ShaderProgram& meshProgram = meshPrograms[shadowed ? 1 : 0];
         meshProgram.set("u_meshViewProj", camera.viewProjection());
         meshProgram.set("u_albedo", glm::vec3(0.05f, 0.22f, 0.30f));

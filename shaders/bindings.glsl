@@ -20,7 +20,7 @@
 #define HFX_UNIT_ALBEDO2 8
 #define HFX_UNIT_ALBEDO3 9
 #define HFX_UNIT_CHANNELS 10      // layer 0's shading channels (roughness, ambient occlusion)
-#define HFX_UNIT_SHADOW_MAP 11    // the light's shadow map (hfx::ShadowMap)
+#define HFX_UNIT_SHADOW_MAP 11    // the light's shadow maps (hfx::ShadowMap's, or an engine's: hfx::ShadowCascades)
 #define HFX_UNIT_PYRAMID1 12      // layers 1-3's bounds pyramids, as mip chains (bounded searches): an array
 #define HFX_UNIT_PYRAMID2 13
 #define HFX_UNIT_PYRAMID3 14
@@ -51,6 +51,7 @@
 #define HFX_BLOCK_WATER 1         // HfxWater: the water's look
 #define HFX_BLOCK_RINGS 2         // HfxRings: hfx::RingUniforms (the water's impact rings)
 #define HFX_BLOCK_PLANET 3        // HfxPlanet: hfx::PlanetUniforms (a planet's rings and their shadows)
+#define HFX_BLOCK_SHADOWS 4       // HfxShadows: hfx::ShadowUniforms (the light's shadow maps a draw receives)
 
 // The exact tracer's beam start: its prepass walks one ray per block of this many pixels on
 // each axis (ExactTracer, trace/hier/beam.frag) and the draw reads the block's depth.

@@ -14,6 +14,7 @@
 #include "hfx/core/HeightFieldTracer.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
+#include "hfx/effects/ShadowCascades.h"
 #include "hfx/effects/ShadowMap.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/tools/AccuracyProbe.h"
@@ -339,6 +340,181 @@ TEST_F(ShadowMaps, AnEnginesOwnMapsHoldTheTracedReliefAlongEachLightsRays) {
     for (const glm::u8vec4& c : atlas.colours())
         recoloured += c != glm::u8vec4(glm::round(EngineShadowAtlas::kColour * 255.0f));
     EXPECT_EQ(recoloured, 0u) << "the casters wrote the engine's colour attachment";
+}
+
+/// An engine's cascade of a directional light: an orthographic view of the sphere (centre,
+/// radius) from `towards`, its near plane pulled `reach` towards the light (the casters outside
+/// the sphere that shade it), with the depth convention asked for.
+Camera cascadeView(glm::vec3 towards, glm::vec3 centre, float radius, float reach, bool reversedZ) {
+    const glm::mat4 view = glm::lookAt(centre + towards * (radius + reach), centre, glm::vec3(0.0f, 0.0f, 1.0f));
+    const float depth = 2.0f * radius + reach;
+    const glm::mat4 projection = reversedZ ? glm::orthoRH_ZO(-radius, radius, -radius, radius, depth, 0.0f)
+                                           : glm::ortho(-radius, radius, -radius, radius, 0.0f, depth);
+    return Camera::fromMatrices(view, projection, reversedZ);
+}
+
+/// An engine's depth texture for its cascades: an atlas (GL_TEXTURE_2D, `tiles` side by side) or
+/// an array (one layer each).
+struct EngineCascadeTexture {
+    EngineCascadeTexture(bool isArray, int count, int edge) : array(isArray), tiles(count), size(edge), fbo(GlFramebuffer::create()) {
+        glCreateTextures(array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D, 1, &texture);
+        if (array)
+            glTextureStorage3D(texture, 1, GL_DEPTH_COMPONENT32F, size, size, tiles);
+        else
+            glTextureStorage2D(texture, 1, GL_DEPTH_COMPONENT32F, size * tiles, size);
+        glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
+        glNamedFramebufferReadBuffer(fbo.id(), GL_NONE);
+    }
+    ~EngineCascadeTexture() { glDeleteTextures(1, &texture); }
+    EngineCascadeTexture(const EngineCascadeTexture&) = delete;
+    EngineCascadeTexture& operator=(const EngineCascadeTexture&) = delete;
+    /// Binds cascade i's tile or layer for its casters, cleared to its far plane.
+    void begin(int i, bool reversedZ) const {
+        if (array)
+            glNamedFramebufferTextureLayer(fbo.id(), GL_DEPTH_ATTACHMENT, texture, 0, i);
+        else
+            glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, texture, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        const int x0 = array ? 0 : i * size;
+        glViewport(x0, 0, size, size);
+        glClipControl(GL_LOWER_LEFT, reversedZ ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(x0, 0, size, size);
+        glClearDepthf(reversedZ ? 0.0f : 1.0f);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glClearDepthf(1.0f);
+        glDisable(GL_SCISSOR_TEST);
+    }
+    ShadowCascade cascade(int i, const Camera& view) const {
+        return {.viewProj = view.viewProjection(),
+                .tile = array ? glm::vec4(0.0f, 0.0f, 1.0f, 1.0f) : glm::vec4(float(i) / float(tiles), 0.0f, 1.0f / float(tiles), 1.0f),
+                .layer = array ? i : 0};
+    }
+    bool array;
+    int tiles, size;
+    GLuint texture = 0;
+    GlFramebuffer fbo;
+};
+
+// The relief receiving an engine's own cascades of the sun (DirectionalLight::cascades), as it
+// receives a ShadowMap: a board above a floor the full depth down shades the floor up to where
+// the light meets it (x = 0.5, not the polygon's 0.3), in an atlas of two tiles with reversed Z
+// and in an array of two layers with GL's default. The finer cascade holds only the floor around
+// the edge, the coarser everything; the finer is read wherever it holds a point (left empty, the
+// shadow it holds goes), and its tile is where it lies in the texture.
+TEST_F(ShadowMaps, AnEnginesCascadesShadowTheReliefAsAShadowMapDoes) {
+    AccuracyProbe probe(cl(), std::vector<float>(size_t(kField) * kField, 0.0f), kField, kDepthScale);
+    const Mesh plane(makePlane({.size = kPlane}));
+    const Mesh board(makePlane({.size = 1.0f}));
+    const glm::mat4 boardModel = glm::translate(glm::mat4(1.0f), {-0.5f, 0.3f, 0.0f});
+    const SurfaceMaterial material{.depthScale = kDepthScale, .lodThreshold = 100.0f};
+    const DirectionalLight sun = light();
+    constexpr int kCascade = 1024;
+    for (const bool array : {false, true}) {
+        const bool reversedZ = !array;
+        const Camera views[2] = {cascadeView(sun.direction, {0.45f, -0.1f, 0.0f}, 0.45f, 1.5f, reversedZ),
+                                 cascadeView(sun.direction, {0.0f, 0.0f, 0.0f}, 1.6f, 0.0f, reversedZ)};
+        for (const bool fineEmpty : {false, true}) {
+            const std::string what = str(array ? "an array" : "an atlas, reversed Z", fineEmpty ? ", the finer cascade empty" : "");
+            SCOPED_TRACE(what);
+            SurfaceRenderer renderer;
+            const EngineCascadeTexture maps(array, 2, kCascade);
+            ShadowCascade cascades[2];
+            for (int i = 0; i < 2; ++i) {
+                maps.begin(i, reversedZ);
+                if (!(fineEmpty && i == 0)) {
+                    renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, views[i],
+                                        {.technique = Technique::Hierarchical});
+                    renderer.drawFlatShadow(board, boardModel, views[i]);
+                }
+                cascades[i] = maps.cascade(i, views[i]);
+            }
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            const ShadowCascades engine{.texture = maps.texture, .reversedZ = reversedZ, .cascades = cascades};
+            DirectionalLight received = sun;
+            received.cascades = &engine;
+            RenderTarget target(kImage, kImage);
+            target.bind();
+            target.clear();
+            // The engine's own sampler and array texture on the unit: what the draw puts back.
+            const GlSampler engineSampler = GlSampler::create();
+            glBindSampler(HFX_UNIT_SHADOW_MAP, engineSampler.id());
+            GLuint engineArray = 0;
+            glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &engineArray);
+            glTextureStorage3D(engineArray, 1, GL_RGBA8, 1, 1, 1);
+            glBindTextureUnit(HFX_UNIT_SHADOW_MAP, engineArray);
+            renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, camera(), received,
+                          {.technique = Technique::Hierarchical});
+            GLint sampler = 0, arrayBound = -1;
+            glActiveTexture(GL_TEXTURE0 + HFX_UNIT_SHADOW_MAP);
+            glGetIntegerv(GL_SAMPLER_BINDING, &sampler);
+            glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &arrayBound);
+            glActiveTexture(GL_TEXTURE0);
+            glBindSampler(HFX_UNIT_SHADOW_MAP, 0);
+            glBindTextureUnit(HFX_UNIT_SHADOW_MAP, 0);
+            glDeleteTextures(1, &engineArray);
+            EXPECT_EQ(GLuint(sampler), engineSampler.id());
+            EXPECT_EQ(GLuint(arrayBound), engineArray);
+            // The coarser cascade's texel and two pixels' worth of world.
+            const double margin = 2.0 * (2.0 * 1.6 / kCascade) + 0.025;
+            const auto floor = profile(target, camera(), kFloor, 0.02, 0.98);
+            const int wrong = misplaced(floor, 0.3 - kFloor, margin, what.c_str());
+            if (fineEmpty)
+                EXPECT_GT(wrong, 100) << "the finer cascade is read where it holds the point";
+            else
+                EXPECT_EQ(wrong, 0);
+        }
+    }
+}
+
+TEST_F(ShadowMaps, ABadCascadeIsRefusedByNameBeforeAnythingIsDrawn) {
+    AccuracyProbe probe(cl(), sumOfSines(64, {{0.4, 2, 1, 0.0}}), 64, kDepthScale);
+    const Mesh plane(makePlane({.size = kPlane}));
+    const SurfaceMaterial material{.depthScale = kDepthScale};
+    SurfaceRenderer renderer;
+    const EngineCascadeTexture maps(false, 2, 64);
+    GlTexture colour = GlTexture::create();
+    glTextureStorage2D(colour.id(), 1, GL_RGBA8, 64, 64);
+    const Camera view = cascadeView(light().direction, {0.0f, 0.0f, 0.0f}, 1.6f, 0.0f, false);
+    const ShadowCascade good = maps.cascade(0, view);
+    RenderTarget target(32, 32);
+    target.bind();
+    const auto refusal = [&](const ShadowCascades& cascades, const ShadowMap* map = nullptr) {
+        target.clear({0.0f, 0.0f, 1.0f, 1.0f});
+        DirectionalLight sun = light();
+        sun.cascades = &cascades;
+        sun.shadowMap = map;
+        const std::string message = messageOf([&] {
+            renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, accuracyCamera(0.0, 4.0f), sun);
+        });
+        const Image image = target.readColor();
+        EXPECT_EQ(image.at(16, 16, 2), 1.0f) << "drawn before the refusal: " << message;
+        return message;
+    };
+    const auto with = [&](auto change) {
+        ShadowCascade c = good;
+        change(c);
+        return c;
+    };
+    const ShadowCascade five[5] = {good, good, good, good, good};
+    const ShadowCascade perspective = with([](ShadowCascade& c) { c.viewProj = glm::perspective(1.0f, 1.0f, 0.1f, 10.0f); });
+    const ShadowCascade notFinite = with([](ShadowCascade& c) { c.viewProj[1][1] = std::nanf(""); });
+    const ShadowCascade outside = with([](ShadowCascade& c) { c.tile = {0.75f, 0.0f, 0.5f, 1.0f}; });
+    const ShadowCascade layered = with([](ShadowCascade& c) { c.layer = 1; });
+    EXPECT_NE(refusal({.texture = maps.texture}).find("1 to 4 cascades, got 0"), std::string::npos);
+    EXPECT_NE(refusal({.texture = maps.texture, .cascades = five}).find("1 to 4 cascades, got 5"), std::string::npos);
+    EXPECT_NE(refusal({.texture = 0, .cascades = std::span(&good, 1)}).find("texture 0 is not a GL texture"), std::string::npos);
+    EXPECT_NE(refusal({.texture = colour.id(), .cascades = std::span(&good, 1)}).find("must hold depth"), std::string::npos);
+    EXPECT_NE(refusal({.texture = maps.texture, .cascades = std::span(&perspective, 1)}).find("orthographic"), std::string::npos);
+    EXPECT_NE(refusal({.texture = maps.texture, .cascades = std::span(&notFinite, 1)}).find("cascade 0's viewProj is not finite"),
+              std::string::npos);
+    EXPECT_NE(refusal({.texture = maps.texture, .cascades = std::span(&outside, 1)}).find("tile must lie in the texture"),
+              std::string::npos);
+    EXPECT_NE(refusal({.texture = maps.texture, .cascades = std::span(&layered, 1)}).find("layer 1 is outside"), std::string::npos);
+    ShadowMap map(64);
+    map.fit(light().direction, {0.0f, 0.0f, 0.0f}, 1.6f);
+    EXPECT_NE(refusal({.texture = maps.texture, .cascades = std::span(&good, 1)}, &map).find("its shadowMap or its cascades, not both"),
+              std::string::npos);
 }
 
 TEST_F(ShadowMaps, CastersOutsideAMapsPassOrUnderAnotherDepthConventionAreRefusedByName) {

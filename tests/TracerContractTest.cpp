@@ -46,7 +46,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
     // every member.
     const GLuint p = renderer
                          .program({.technique = Technique::Hierarchical},
-                                  {.shading = Shading::Water, .layers = 2, .boundedSearch = true, .shadowMap = true,
+                                  {.shading = Shading::Water, .layers = 2, .boundedSearch = true, .shadowMap = 1,
                                    .motionOutput = 3, .outputs = {.normal = 4, .albedo = 5, .material = 6}})
                          .id();
     const std::pair<const char*, size_t> surface[] = {
@@ -78,10 +78,12 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_layerWeight", offsetof(SurfaceUniforms, layerWeight)},
         {"u_layerSlope", offsetof(SurfaceUniforms, layerSlope)},
         {"u_layerLevel", offsetof(SurfaceUniforms, layerLevel)},
-        {"u_shadowViewProj", offsetof(SurfaceUniforms, shadowViewProj)},
-        {"u_shadowBias", offsetof(SurfaceUniforms, shadowBias)},
-        {"u_shadowOffset", offsetof(SurfaceUniforms, shadowOffset)},
-        {"u_shadowTexel", offsetof(SurfaceUniforms, shadowTexel)},
+        {"u_shadowViewProj", offsetof(ShadowUniforms, viewProj)},
+        {"u_shadowTile", offsetof(ShadowUniforms, tile)},
+        {"u_shadowLookup", offsetof(ShadowUniforms, lookup)},
+        {"u_shadowTexel", offsetof(ShadowUniforms, texel)},
+        {"u_shadowCount", offsetof(ShadowUniforms, count)},
+        {"u_shadowReversedZ", offsetof(ShadowUniforms, reversedZ)},
         {"u_linearOutput", offsetof(SurfaceUniforms, linearOutput)},
         {"u_shadowLight", offsetof(SurfaceUniforms, shadowLight)},
         {"u_texelSize", offsetof(SurfaceUniforms, texelSize)},
@@ -116,7 +118,8 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_spindriftFrom", offsetof(WaterUniforms, spindriftFrom)},
     };
     for (const auto& [name, offset] : surface) EXPECT_EQ(offsetOf(p, name), GLint(offset)) << name;
-    for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)}}) {
+    for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)},
+                                      std::pair{"HfxShadows", sizeof(ShadowUniforms)}}) {
         const GLuint index = glGetUniformBlockIndex(p, block);
         ASSERT_NE(index, GL_INVALID_INDEX) << block;
         GLint dataSize = 0;

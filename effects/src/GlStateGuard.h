@@ -161,6 +161,10 @@ public:
             glActiveTexture(GL_TEXTURE0 + unit);
             glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
         }
+        // The shadow maps' unit may get an array texture and a sampler (an engine's cascades).
+        glActiveTexture(GL_TEXTURE0 + HFX_UNIT_SHADOW_MAP);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &shadowArray_);
+        glGetIntegerv(GL_SAMPLER_BINDING, &shadowSampler_);
         for (GLuint unit = 0; unit < kImages; ++unit) {
             Image& i = images_[unit];
             glGetIntegeri_v(GL_IMAGE_BINDING_NAME, unit, &i.name);
@@ -198,6 +202,9 @@ public:
         glUseProgram(program_ != 0 && glIsProgram(GLuint(program_)) ? GLuint(program_) : 0);
         glBindVertexArray(static_cast<GLuint>(vao_));
         for (int unit = 0; unit < kUnits; ++unit) glBindTextureUnit(unit, static_cast<GLuint>(textures_[unit]));
+        // (After the unit's 2D binding: binding 0 there unbinds every target of the unit.)
+        if (shadowArray_ != 0) glBindTextureUnit(HFX_UNIT_SHADOW_MAP, GLuint(shadowArray_));
+        glBindSampler(HFX_UNIT_SHADOW_MAP, GLuint(shadowSampler_));
         glActiveTexture(static_cast<GLenum>(activeTexture_));
         for (GLuint unit = 0; unit < kImages; ++unit) {
             const Image& i = images_[unit];
@@ -236,8 +243,9 @@ private:
         GLint name, level, layered, layer, access, format;
     };
     Image images_[kImages];
-    static constexpr GLuint kBlocks = HFX_BLOCK_PLANET + 1; // surface, water, water rings, planet
+    static constexpr GLuint kBlocks = HFX_BLOCK_SHADOWS + 1; // surface, water, water rings, planet, shadows
     GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
+    GLint shadowArray_ = 0, shadowSampler_ = 0;
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
 };
 

@@ -50,6 +50,7 @@ void ShadowMap::fit(glm::vec3 towardsLight, glm::vec3 centre, float radius) {
     const glm::mat4 projection = glm::ortho(-radius, radius, -radius, radius, 0.0f, 4.0f * radius);
     viewProj_ = projection * view;
     lightView_ = Camera::fromMatrices(view, projection);
+    cascade_.viewProj = viewProj_;
     fitted_ = true;
 }
 
@@ -87,13 +88,6 @@ void ShadowMap::end() {
     glClipControl(GLenum(savedClipOrigin_), GLenum(savedClipDepth_));
     glDepthRange(savedDepthRange_[0], savedDepthRange_[1]);
     begun_ = false;
-}
-
-void ShadowMap::fillReceiver(SurfaceUniforms& u) const {
-    u.shadowViewProj = viewProj_;
-    u.shadowOffset = normalOffset();
-    u.shadowBias = depthBias();
-    u.shadowTexel = 1.0f / float(size_);
 }
 
 } // namespace hfx

@@ -103,6 +103,8 @@ void DirectionalLight::validate() const {
     for (const auto& [name, value] : {std::pair("color", color), std::pair("ambient", ambient)})
         if (!isFinite(value) || glm::any(glm::lessThan(value, glm::vec3(0.0f))))
             throw Error(str("DirectionalLight.", name, " must be finite and not negative, got ", text(value)));
+    if (shadowMap && cascades)
+        throw Error("DirectionalLight: a light's shadows come from its shadowMap or its cascades, not both");
 }
 
 void PlanetLook::validate() const {
@@ -197,7 +199,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     if (v.traced <= 0 || v.traced > v.layers) v.traced = v.layers;
     v.rings = v.rings && v.shading == Shading::Water;
     v.environment = v.environment && v.shading == Shading::Water;
-    v.shadowMap = v.shadowMap && !v.caster; // a caster writes depth only
+    if (v.caster || v.shadowMap < 0 || v.shadowMap > 2) v.shadowMap = 0; // a caster writes depth only
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
@@ -231,7 +233,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_RINGS", v.rings ? "1" : "0"},
                                                    {"HFX_ENVIRONMENT", v.environment ? "1" : "0"},
                                                    {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
-                                                   {"HFX_SHADOW_MAP", v.shadowMap ? "1" : "0"},
+                                                   {"HFX_SHADOW_MAP", std::to_string(v.shadowMap)},
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
                                                    {"HFX_BEAM_START", v.beamStart ? "1" : "0"},
                                                    {"HFX_DEFERRED_SHADOWS", v.deferredShadows ? "1" : "0"},
@@ -386,13 +388,30 @@ void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, std::
     drawSurface(mesh, model, layers, material, lightView, casterLight(lightView), options, Viewer::Light);
 }
 
-namespace {
-/// The receiving side of a light's shadow map: its transform, filter and biases.
-void receiveShadows(SurfaceUniforms& u, const DirectionalLight& light) {
-    if (!light.shadowMap) return;
-    light.shadowMap->fillReceiver(u);
-    glBindTextureUnit(HFX_UNIT_SHADOW_MAP, light.shadowMap->texture());
+int SurfaceRenderer::receiveShadows(const DirectionalLight& light) {
+    if (!light.shadowMap && !light.cascades) return 0;
+    const ShadowCascades shadows = light.shadowMap ? light.shadowMap->receiver() : *light.cascades;
+    bool array = false;
+    const ShadowUniforms u = shadowUniforms(shadows, array);
+    updateBlock(shadowBlock_, HFX_BLOCK_SHADOWS, u);
+    GlSampler& sampler = shadowSamplers_[shadows.reversedZ ? 1 : 0];
+    if (!sampler) {
+        // Hardware comparison with bilinear weights: each tap is a 2x2 percentage-closer filter;
+        // lit where the point's depth is no farther from the light than the map's.
+        sampler = GlSampler::create();
+        glSamplerParameteri(sampler.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glSamplerParameteri(sampler.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(sampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glSamplerParameteri(sampler.id(), GL_TEXTURE_COMPARE_FUNC, shadows.reversedZ ? GL_GEQUAL : GL_LEQUAL);
+    }
+    glBindTextureUnit(HFX_UNIT_SHADOW_MAP, shadows.texture);
+    glBindSampler(HFX_UNIT_SHADOW_MAP, sampler.id());
+    return array ? 2 : 1;
 }
+
+namespace {
 
 /// Whether a closed mesh (MeshData::closed) drawn with `model` shows its viewer front faces only:
 /// a shadow map's light (from outside everything it holds: `aroundAll`), a camera's or a light's
@@ -480,12 +499,13 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     DrawOptions tracing = options;
     tracing.deferShadowWalks = options.deferShadowWalks && outputs.material == 0;
     const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, tracing, caster, u);
+    const int received = caster ? 0 : receiveShadows(light);
     const SurfaceVariant variant{.shading = material.shading,
                                  .layers = int(layers.size()),
                                  .traced = traced,
                                  .selfShadows = material.shadows,
                                  .boundedSearch = frame.boundedSearch,
-                                 .shadowMap = light.shadowMap != nullptr,
+                                 .shadowMap = received,
                                  .rings = material.water.ringCount > 0,
                                  .environment = material.water.environment != 0,
                                  .caster = caster,
@@ -502,7 +522,6 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const ShaderProgram& p = program(options, variant);
     // (A caster writes no colour buffer: an engine's shadow map may have a colour attachment.)
     const DrawBuffersWritten written(caster ? 0u : buffersWritten(motion, outputs, options.traceOutput));
-    if (!caster) receiveShadows(u, light);
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
         updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(w));
@@ -639,11 +658,12 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
                                      const DirectionalLight* light) {
     checkModel(model);
     checkClipControl(reversedZ);
-    const bool receives = light && light->shadowMap;
-    ShaderProgram& flat = flat_[receives ? 1 : 0];
-    if (!flat.id())
-        flat = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("flat.frag"), {{"HFX_SHADOW_MAP", receives ? "1" : "0"}});
     GlStateGuard guard;
+    const int received = light ? receiveShadows(*light) : 0;
+    ShaderProgram& flat = flat_[received];
+    if (!flat.id())
+        flat = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("flat.frag"),
+                             {{"HFX_SHADOW_MAP", std::to_string(received)}});
     // (No motion: an engine draws its own meshes. A caster writes no colour: an engine's shadow
     // map may have a colour attachment.)
     const DrawBuffersWritten written(camera ? 1u : 0u);
@@ -654,7 +674,6 @@ void SurfaceRenderer::drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, c
         u.lightDir = glm::normalize(light->direction);
         u.lightColor = light->color;
         u.ambient = light->ambient;
-        receiveShadows(u, *light);
     }
     bindUniforms(u, model, viewProj);
     flat.set("u_color", color);

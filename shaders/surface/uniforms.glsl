@@ -33,11 +33,6 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     vec4 u_layerWeight;       // its share of the height: h = sum weight * h_layer
     vec4 u_layerSlope;        // depthScale * weight * scale / the layer's normal depth: its slopes' share
     vec4 u_layerLevel;        // its mip level minus layer 0's read unscaled: log2(scale * size / size0)
-    // Receiving a shadow map (hfx::ShadowMap, s_shadowMap on unit 11; read where HFX_SHADOW_MAP is 1):
-    mat4 u_shadowViewProj;    // world to the light's clip space
-    float u_shadowBias;       // depth bias, in the map's window depth
-    float u_shadowOffset;     // normal offset of the lookup, world units
-    float u_shadowTexel;      // 1 / the map's size
     int u_linearOutput;       // 1: colours written linear, unclamped (hfx::ColorOutput); 0: gamma 2.2
     // The texel shadows' light (hfx::ShadowLight; read where HFX_TEXEL_SHADOWS is 1): texcoords
     // per unit climbed, penumbra, slack

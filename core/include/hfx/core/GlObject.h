@@ -75,6 +75,10 @@ struct Query {
     static GLuint create() { GLuint id = 0; glGenQueries(1, &id); return id; }
     static void destroy(GLuint id) { glDeleteQueries(1, &id); }
 };
+struct Sampler {
+    static GLuint create() { GLuint id = 0; glCreateSamplers(1, &id); return id; }
+    static void destroy(GLuint id) { glDeleteSamplers(1, &id); }
+};
 } // namespace gltraits
 
 using GlBuffer = GlObject<gltraits::Buffer>;
@@ -84,5 +88,6 @@ using GlRenderbuffer = GlObject<gltraits::Renderbuffer>;
 using GlTexture = GlObject<gltraits::Texture2D>;
 using GlProgram = GlObject<gltraits::Program>;
 using GlQuery = GlObject<gltraits::Query>;
+using GlSampler = GlObject<gltraits::Sampler>;
 
 } // namespace hfx

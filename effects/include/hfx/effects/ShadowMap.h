@@ -8,13 +8,14 @@
 // visibility (3x3 taps of hardware 2x2 comparison), with a depth bias and a normal offset of
 // about a map texel so a surface does not shadow itself through the map's rounding (the
 // relief's own self-shadow is its tracer's, exact). An engine with shadow maps of its own draws
-// the same casters into them (SurfaceRenderer::drawShadow with the light's view as a Camera).
+// the same casters into them (SurfaceRenderer::drawShadow with the light's view as a Camera), and
+// the surfaces receive those through DirectionalLight::cascades (ShadowCascades.h) instead.
 //
 // Owns its framebuffer and depth texture. Thread: the thread whose GL context is current.
 
 #include "hfx/core/Camera.h"
 #include "hfx/core/GlObject.h"
-#include "hfx/effects/SurfaceUniforms.h"
+#include "hfx/effects/ShadowCascades.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -76,10 +77,10 @@ public:
     /// does not shadow itself through the map's rounding (surface/shadowmap.glsl).
     float normalOffset() const { return 1.5f * texelWorld(); }
     float depthBias() const { return normalOffset() * depthPerWorld(); }
-    /// Fills the receiver's fields of a surface block (shadowViewProj, the offset, the bias and
-    /// the filter's tap spacing), as every receiver of this map reads them; the caller binds
-    /// texture() on unit 11 and draws with HFX_SHADOW_MAP.
-    void fillReceiver(SurfaceUniforms& u) const;
+    /// The map as its receivers read it: one cascade over the whole texture, GL's default depth
+    /// (shadowUniforms() makes the receiving block; the lookup's offset and bias come out as
+    /// normalOffset() and depthBias()). Valid while the map lives.
+    ShadowCascades receiver() const { return {.texture = depth_.id(), .cascades = std::span(&cascade_, 1)}; }
 
 private:
     int size_;
@@ -87,6 +88,7 @@ private:
     GlTexture depth_;
     glm::mat4 viewProj_{1.0f};
     Camera lightView_;
+    ShadowCascade cascade_;
     glm::vec3 towardsLight_{0.0f, 1.0f, 0.0f};
     float radius_ = 1.0f;
     GLint savedDraw_ = 0, savedRead_ = 0, savedViewport_[4] = {0, 0, 0, 0};

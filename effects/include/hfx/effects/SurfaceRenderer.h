@@ -20,6 +20,7 @@
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/RingShine.h"
+#include "hfx/effects/ShadowCascades.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "hfx/effects/Technique.h"
 #include "hfx/effects/tracer/ExactTracer.h"
@@ -177,8 +178,11 @@ struct DirectionalLight {
     /// Optional: the light's shadow map (drawn this frame by the caller); surfaces and lit flat
     /// meshes drawn under this light receive its shadows. The caller keeps it alive.
     const ShadowMap* shadowMap = nullptr;
+    /// Optional, in place of shadowMap: the light's shadow maps of an engine's own (its cascades,
+    /// drawn this frame), received the same way. The caller keeps them alive.
+    const ShadowCascades* cascades = nullptr;
     /// Throws hfx::Error naming the field: a direction not finite or zero (it is normalised for
-    /// the shaders), a colour or ambient not finite or negative.
+    /// the shaders), a colour or ambient not finite or negative, both shadowMap and cascades set.
     void validate() const;
 };
 
@@ -298,7 +302,9 @@ struct SurfaceVariant {
     int traced = 0;             ///< HFX_TRACED_LAYERS (0: all the layers)
     bool selfShadows = true;    ///< HFX_SELF_SHADOW where the technique has them: SurfaceMaterial::shadows
     bool boundedSearch = false; ///< HFX_BOUNDED_SEARCH: SurfaceMaterial::boundedSearch, every traced layer can carry bounds
-    bool shadowMap = false;     ///< HFX_SHADOW_MAP: the light has a ShadowMap
+    /// HFX_SHADOW_MAP: the light's shadow maps are received, from a 2D texture (1: a ShadowMap, or
+    /// ShadowCascades in an atlas) or a 2D array (2); 0: none
+    int shadowMap = 0;
     bool rings = false;         ///< HFX_RINGS: water with impact rings (WaterLook::ringCount > 0)
     bool environment = false;   ///< HFX_ENVIRONMENT: water reflecting an image (WaterLook::environment)
     bool caster = false;        ///< HFX_SHADOW_CASTER: drawing into a shadow map
@@ -426,15 +432,21 @@ private:
     void drawSurface(const Mesh& mesh, const glm::mat4& model, std::span<const SurfaceLayer> layers,
                      const SurfaceMaterial& material, const Camera& camera, const DirectionalLight& light,
                      const DrawOptions& options, Viewer viewer);
+    /// Binds the light's shadow maps (a ShadowMap's, an engine's cascades) for a draw that
+    /// receives them, and returns the HFX_SHADOW_MAP variant (0: none).
+    int receiveShadows(const DirectionalLight& light);
     /// camera: the eye the colour is shaded for (none for a shadow map, which gets no colour);
     /// reversedZ: the view's depth convention (Camera::reversedZ; a shadow map's is GL's default).
     void drawFlatSeenBy(const Mesh& mesh, const glm::mat4& model, const glm::mat4& viewProj, const Camera* camera,
                         bool reversedZ, const glm::vec4& color, const DirectionalLight* light);
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
-    ShaderProgram flat_[2]; ///< [1] receives a shadow map
+    ShaderProgram flat_[3]; ///< by the shadow maps received (SurfaceVariant::shadowMap)
     std::map<std::pair<bool, int>, ShaderProgram> sky_; ///< by an environment image, the motion's draw buffer
-    GlBuffer surfaceBlock_, waterBlock_, ringBlock_, planetBlock_;
+    GlBuffer surfaceBlock_, waterBlock_, ringBlock_, planetBlock_, shadowBlock_;
+    /// The comparison samplers the received shadow maps are read through, by the maps' depth
+    /// convention ([1]: reversed), whatever the engine's textures' own state.
+    GlSampler shadowSamplers_[2];
     RingShine ringShine_; ///< a planet's rings' light on it
     GlVertexArray empty_; ///< the sky's full-screen triangle has no vertex data
     ExactTracer tracer_; ///< the exact tracer's data and passes, and the bounded searches' bounds

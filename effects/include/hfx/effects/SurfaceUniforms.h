@@ -1,7 +1,8 @@
 #pragma once
 // The C++ mirrors of the surface shaders' std140 uniform blocks: HfxSurface
 // (shaders/surface/uniforms.glsl, binding 0), HfxWater (shaders/shade/sky.glsl, binding 1),
-// HfxRings (binding 2) and HfxPlanet (shaders/shade/rings.glsl, binding 3). SurfaceRenderer fills
+// HfxRings (binding 2), HfxPlanet (shaders/shade/rings.glsl, binding 3) and HfxShadows
+// (shaders/surface/shadowmap.glsl, binding 4). SurfaceRenderer fills
 // them once per draw into uniform buffers; the layout is checked at compile time here (std140: a
 // vec3 takes 16 bytes unless a scalar follows it) and against the driver's own offsets by a test.
 //
@@ -52,17 +53,12 @@ struct SurfaceUniforms {
     glm::vec4 layerWeight{1.0f, 0.0f, 0.0f, 0.0f};
     glm::vec4 layerSlope{0.0f};
     glm::vec4 layerLevel{0.0f};
-    // Receiving a shadow map (ShadowMap; sampler unit 11; the HFX_SHADOW_MAP variant reads them):
-    glm::mat4 shadowViewProj{1.0f}; ///< world to the light's clip space
-    float shadowBias = 0.0f;        ///< depth bias, in the map's window depth
-    float shadowOffset = 0.0f;      ///< normal offset of the lookup, world units (about 1.5 map texels)
-    float shadowTexel = 0.0f;       ///< 1 / the map's size (the filter's tap spacing)
     /// 1: colours written linear and unclamped (a float or sRGB target: hfx::ColorOutput); 0:
-    /// clamped and gamma-encoded. (std140 aligns the vec4 below to 16 bytes after it.)
+    /// clamped and gamma-encoded.
     int linearOutput = 0;
     /// The texel shadows' light (ShadowLight: uvPerClimb, penumbra, slack; read where
-    /// HFX_TEXEL_SHADOWS is 1).
-    glm::vec4 shadowLight{0.0f};
+    /// HFX_TEXEL_SHADOWS is 1). (std140 aligns a vec4 to 16 bytes.)
+    alignas(16) glm::vec4 shadowLight{0.0f};
     /// 1 / the field's size (setField): where the exact tracer gathers a level-0 cell's samples.
     glm::vec2 texelSize{1.0f};
     /// The exact tracer's walks in a compute pass (ExactTracer, HFX_COMPUTE_TRACE): the viewport's
@@ -141,6 +137,21 @@ struct PlanetUniforms {
     float ringShine = 0.0f; ///< 1: the rings light the planet (RingShine's table)
 };
 
+/// HfxShadows (shaders/surface/shadowmap.glsl, binding 4): the shadow maps of a draw's light
+/// (ShadowCascades, or a ShadowMap as one cascade), read where HFX_SHADOW_MAP is 1 or 2.
+inline constexpr int kMaxShadowCascades = 4;
+struct ShadowUniforms {
+    glm::mat4 viewProj[kMaxShadowCascades]{}; ///< world to each cascade's clip space
+    glm::vec4 tile[kMaxShadowCascades]{};     ///< its viewport in the texture: x, y, width, height in [0, 1]
+    /// Per cascade: the lookup's normal offset (world units, 1.5 of its texels), its depth bias
+    /// (window depth, the offset's), its layer of an array texture, and the filter's reach in its
+    /// tile (1.5 texels over the tile's width).
+    glm::vec4 lookup[kMaxShadowCascades]{};
+    glm::vec2 texel{0.0f}; ///< 1 / the texture's size (the filter's tap spacing)
+    int count = 0;         ///< cascades, finest first; 0: the light is whole
+    int reversedZ = 0;     ///< 1: the maps' depth is reversed (near at 1, compared greater)
+};
+
 // std140 offsets of the GLSL blocks, member by member where alignment could slip.
 static_assert(offsetof(SurfaceUniforms, patchBounds) == 192);
 static_assert(offsetof(SurfaceUniforms, depthScale) == 220);
@@ -152,17 +163,21 @@ static_assert(offsetof(SurfaceUniforms, fieldLast) == 312);
 static_assert(offsetof(SurfaceUniforms, wrapMask) == 320);
 static_assert(offsetof(SurfaceUniforms, pixelBudget) == 332);
 static_assert(offsetof(SurfaceUniforms, layerScale) == 336);
-static_assert(offsetof(SurfaceUniforms, shadowViewProj) == 400);
-static_assert(offsetof(SurfaceUniforms, shadowBias) == 464);
-static_assert(offsetof(SurfaceUniforms, shadowLight) == 480);
-static_assert(offsetof(SurfaceUniforms, texelSize) == 496);
-static_assert(offsetof(SurfaceUniforms, traceWidth) == 504);
-static_assert(offsetof(SurfaceUniforms, traceOrigin) == 512);
-static_assert(offsetof(SurfaceUniforms, previousFromWorld) == 528);
-static_assert(offsetof(SurfaceUniforms, jitter) == 592);
-static_assert(offsetof(SurfaceUniforms, towardsEye) == 608);
-static_assert(offsetof(SurfaceUniforms, orthographic) == 620);
-static_assert(sizeof(SurfaceUniforms) == 624);
+static_assert(offsetof(SurfaceUniforms, linearOutput) == 400);
+static_assert(offsetof(SurfaceUniforms, shadowLight) == 416);
+static_assert(offsetof(SurfaceUniforms, texelSize) == 432);
+static_assert(offsetof(SurfaceUniforms, traceWidth) == 440);
+static_assert(offsetof(SurfaceUniforms, traceOrigin) == 448);
+static_assert(offsetof(SurfaceUniforms, previousFromWorld) == 464);
+static_assert(offsetof(SurfaceUniforms, jitter) == 528);
+static_assert(offsetof(SurfaceUniforms, towardsEye) == 544);
+static_assert(offsetof(SurfaceUniforms, orthographic) == 556);
+static_assert(sizeof(SurfaceUniforms) == 560);
+static_assert(offsetof(ShadowUniforms, tile) == 256);
+static_assert(offsetof(ShadowUniforms, lookup) == 320);
+static_assert(offsetof(ShadowUniforms, texel) == 384);
+static_assert(offsetof(ShadowUniforms, reversedZ) == 396);
+static_assert(sizeof(ShadowUniforms) == 400);
 static_assert(offsetof(WaterUniforms, hazeDistance) == 60);
 static_assert(offsetof(WaterUniforms, foam) == 64);
 static_assert(offsetof(WaterUniforms, translucency) == 72);
