@@ -205,6 +205,19 @@ TEST_F(ShadowMaps, ACastersWalksInAComputePassWriteTheDepthsTheDrawWrites) {
         }
 }
 
+/// As an engine begins a light's tile (x0, 0, size, size) of the bound framebuffer: its viewport,
+/// the clip control of the light's depth convention, its depth cleared to the far plane.
+void beginLightTile(int x0, int size, bool reversedZ) {
+    glViewport(x0, 0, size, size);
+    glClipControl(GL_LOWER_LEFT, reversedZ ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(x0, 0, size, size);
+    glClearDepthf(reversedZ ? 0.0f : 1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glClearDepthf(1.0f);
+    glDisable(GL_SCISSOR_TEST);
+}
+
 /// An engine's own shadow atlas: a 32-bit float depth texture and an RGBA8 colour attachment (a
 /// map of moments, a debug view), lights drawn into tiles of it through viewports.
 struct EngineShadowAtlas {
@@ -218,18 +231,10 @@ struct EngineShadowAtlas {
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
         glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, &kColour.x);
     }
-    /// Binds the atlas with the tile (x0, 0, size, size) as the viewport, the clip control of the
-    /// light's depth convention, and the tile's depth cleared to its far plane.
+    /// Binds the atlas with the tile (x0, 0, size, size) for a light's casters (beginLightTile).
     void beginTile(int x0, int size, bool reversedZ) const {
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-        glViewport(x0, 0, size, size);
-        glClipControl(GL_LOWER_LEFT, reversedZ ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(x0, 0, size, size);
-        glClearDepthf(reversedZ ? 0.0f : 1.0f);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        glClearDepthf(1.0f);
-        glDisable(GL_SCISSOR_TEST);
+        beginLightTile(x0, size, reversedZ);
     }
     static void endTile() { glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE); }
     std::vector<float> depths() const {
@@ -375,15 +380,7 @@ struct EngineCascadeTexture {
         else
             glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, texture, 0);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-        const int x0 = array ? 0 : i * size;
-        glViewport(x0, 0, size, size);
-        glClipControl(GL_LOWER_LEFT, reversedZ ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(x0, 0, size, size);
-        glClearDepthf(reversedZ ? 0.0f : 1.0f);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        glClearDepthf(1.0f);
-        glDisable(GL_SCISSOR_TEST);
+        beginLightTile(array ? 0 : i * size, size, reversedZ);
     }
     ShadowCascade cascade(int i, const Camera& view) const {
         return {.viewProj = view.viewProjection(),
