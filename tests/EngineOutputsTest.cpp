@@ -243,6 +243,108 @@ TEST_F(MotionOutput, FlatMeshesAndRingsLeaveTheOtherTargetsAlone) {
     EXPECT_EQ(target.keptChanged(), 0u);
 }
 
+// The rings' motion pass (PlanetRings::setMotionOutput): where they cover at least half of what
+// lies behind (the dense rings), a pixel moves as its ring point does, reprojected by the previous
+// frame's camera and carried back by the planet's previous model; through a gap or a faint ring
+// it keeps the sky's motion behind. The colour is the frame drawn without the pass.
+TEST_F(MotionOutput, TheRingsMoveTheirPixelsWhereTheyCoverMostOfThem) {
+    constexpr int W = 160, H = 120;
+    const PlanetRingsConfig config{.texels = 256};
+    PlanetRings rings(config);
+    SurfaceRenderer renderer;
+    renderer.setMotionOutput(2);
+    const DirectionalLight light{.direction = {0.5f, 0.4f, 0.6f}};
+    const glm::vec3 centreNow(0.1f, 0.0f, 0.0f), centreThen(0.07f, 0.02f, 0.0f);
+    const glm::mat4 model = glm::translate(glm::mat4(1.0f), centreNow), previousModel = glm::translate(glm::mat4(1.0f), centreThen);
+    Camera previous = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.3f, 0.40f, 0.55f);
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.2f, 0.43f, 0.52f);
+    previous.aspect = camera.aspect = float(W) / float(H);
+    camera.jitter = glm::vec2(-0.31f, 0.17f) * 2.0f / glm::vec2(W, H);
+    camera.previousViewProjection = previous.viewProjection();
+    EngineTarget target(W, H);
+    const auto frame = [&](int motionOutput) {
+        rings.setMotionOutput(motionOutput);
+        target.bind();
+        renderer.drawSky(camera, light, WaterLook{});
+        rings.draw(model, camera, light, previousModel);
+        return target.read<glm::u8vec4>(target.colour, GL_RGBA, GL_UNSIGNED_BYTE);
+    };
+    const auto plain = frame(0);
+    const auto withMotion = frame(2);
+    EXPECT_EQ(withMotion, plain) << "the motion pass changed the colour";
+    EXPECT_EQ(target.keptChanged(), 0u);
+    const auto motion = target.read<glm::vec2>(target.motion, GL_RG, GL_FLOAT);
+    // Each radius's cover, seen at cosine mu, over the profile's texels that its pixel's footprint
+    // reaches (the draw reads the profile filtered over it: `footprint` texels across, the next
+    // mip level's texels twice that, and the bilinear neighbours; past either edge the border,
+    // no ring).
+    const std::vector<glm::vec4> profile = ringProfile(config);
+    const auto coverRange = [&](double s, double footprint, double mu) {
+        const int centre = int(std::floor(s * config.texels)), reach = int(std::ceil(2.0 * std::max(footprint, 1.0))) + 2;
+        glm::dvec2 range(1.0, 0.0);
+        for (int k = centre - reach; k <= centre + reach; ++k) {
+            const double opacity = k >= 0 && k < config.texels ? double(profile[size_t(k)].a) : 0.0;
+            const double tau = -std::log(std::max(1.0 - opacity, 1e-6));
+            const double cover = 1.0 - std::exp(-tau / mu);
+            range = {std::min(range.x, cover), std::max(range.y, cover)};
+        }
+        return range;
+    };
+    const glm::dmat4 then(*camera.previousViewProjection);
+    const glm::dvec2 jitter(camera.jitter);
+    const glm::dvec3 centre(centreNow);
+    size_t ring = 0, through = 0, off = 0, still = 0;
+    double worst = 0.0;
+    // The ring coordinate of the plane's point on the ray through (px, py).
+    const auto ringAt = [&](double px, double py) {
+        const Ray ray = camera.rayThroughPixel(px, py, W, H);
+        const glm::dvec3 q = ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction;
+        return (glm::length(q - centre) - config.inner) / (config.outer - config.inner);
+    };
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const Ray ray = camera.rayThroughPixel(x + 0.5, y + 0.5, W, H);
+            const glm::dvec2 ndc((x + 0.5) / W * 2.0 - 1.0, (y + 0.5) / H * 2.0 - 1.0);
+            const double t = -ray.origin.y / ray.direction.y;
+            const glm::dvec3 q = ray.origin + t * ray.direction;
+            const double s = ringAt(x + 0.5, y + 0.5);
+            const double footprint = config.texels * std::max({std::abs(ringAt(x + 1.5, y + 0.5) - s), std::abs(ringAt(x - 0.5, y + 0.5) - s),
+                                                               std::abs(ringAt(x + 0.5, y + 1.5) - s), std::abs(ringAt(x + 0.5, y - 0.5) - s)});
+            const glm::dvec2 cover = t > 0.0 && s >= 0.0 && s <= 1.0 ? coverRange(s, footprint, std::abs(ray.direction.y)) : glm::dvec2(0.0);
+            const bool covered = cover.x > 0.55, clear = cover.y < 0.45;
+            if (!covered && !clear) continue; // (near half: the filtered profile decides)
+            glm::dvec2 expected;
+            if (covered) {
+                // The ring point, carried back with the planet.
+                const glm::dvec4 carried(q + glm::dvec3(centreThen - centreNow), 1.0);
+                expected = motionOf(glm::dvec4(ndc, 0.0, 1.0), then * carried, jitter);
+                ++ring;
+                // Not vacuous: the sky behind moves otherwise.
+                still += glm::length((motionOf(glm::dvec4(ndc, 0.0, 1.0), then * glm::dvec4(ray.direction, 0.0), jitter) -
+                                      expected) * glm::dvec2(W, H)) < 0.25;
+            } else {
+                expected = motionOf(glm::dvec4(ndc, 0.0, 1.0), then * glm::dvec4(ray.direction, 0.0), jitter);
+                ++through;
+            }
+            const double error = glm::length((glm::dvec2(motion[size_t(y) * W + x]) - expected) * glm::dvec2(W, H));
+            worst = std::max(worst, error);
+            off += error > 0.01;
+        }
+    std::printf("[rings' motion] %zu pixels the rings cover, %zu through a gap or the sky; %zu off by more than 0.01 "
+                "pixels (%.4f at most); %zu ring pixels would move as the sky does\n",
+                ring, through, off, worst, still);
+    ASSERT_GT(ring, size_t(W * H / 20));
+    ASSERT_GT(through, size_t(W * H / 4));
+    EXPECT_LT(still, ring / 10);
+    EXPECT_EQ(off, 0u);
+    EXPECT_NE(messageOf([&] { rings.setMotionOutput(8); }).find("PlanetRings::setMotionOutput: the draw buffer must be 1 to 7"),
+              std::string::npos);
+    glm::mat4 nan(1.0f);
+    nan[3][0] = std::nanf("");
+    EXPECT_NE(messageOf([&] { rings.draw(model, camera, light, nan); }).find("the previous model must be finite"),
+              std::string::npos);
+}
+
 TEST_F(MotionOutput, ABadMotionSetupIsRefusedByName) {
     SurfaceRenderer renderer;
     for (const int bad : {-1, 8})

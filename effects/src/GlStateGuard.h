@@ -112,6 +112,28 @@ inline void checkSignedTarget(int drawBuffer, const char* what) {
                     "; attach a float (RG16F, RGBA16F) or signed normalized one there"));
 }
 
+/// GL 4.5 promises at least 8 draw buffers; the masks of the first 8 are saved and set (without
+/// asking the context its count).
+inline constexpr GLuint kDrawBuffers = 8;
+
+/// Throws hfx::Error naming `what` (a setter's output) unless `drawBuffer` is one a draw can write
+/// besides the colour's: 1 to 7, or 0 for none.
+inline void checkDrawBuffer(const char* what, int drawBuffer) {
+    if (drawBuffer < 0 || drawBuffer >= int(kDrawBuffers))
+        throw Error(str(what, ": the draw buffer must be 1 to ", kDrawBuffers - 1,
+                        " (colour buffer 0 is the colour's), or 0 for none, got ", drawBuffer));
+}
+
+/// The motion's uniforms: this frame's world to the previous frame's clip space (the camera's
+/// previous view-projection, or its own without jitter; the mesh carried from `model` back to
+/// `previousModel`), and the jitter to leave out.
+inline void setMotion(SurfaceUniforms& u, const Camera& camera, const glm::mat4& model,
+                      const std::optional<glm::mat4>& previousModel) {
+    const glm::mat4 previous = camera.previousViewProjection ? *camera.previousViewProjection : camera.unjitteredViewProjection();
+    u.previousFromWorld = previousModel ? previous * *previousModel * glm::inverse(model) : previous;
+    u.jitter = camera.jitter;
+}
+
 /// Whether a draw into the bound draw framebuffer writes linear colours (ColorOutput): as asked,
 /// or for Auto, where its colour buffer is a float one or an sRGB one that GL encodes.
 inline bool writesLinear(ColorOutput output) {
@@ -248,10 +270,6 @@ private:
     GLint shadowArray_ = 0, shadowSampler_ = 0;
     GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
 };
-
-/// GL 4.5 promises at least 8 draw buffers; the masks of the first 8 are saved and set (without
-/// asking the context its count).
-inline constexpr GLuint kDrawBuffers = 8;
 
 /// For its scope a draw into the caller's framebuffer writes only the draw buffers it has
 /// outputs for (`written`: a bit per buffer; 0, none: a shadow caster's): GL leaves a buffer with no

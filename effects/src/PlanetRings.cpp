@@ -154,11 +154,20 @@ PlanetLook PlanetRings::look() const {
             .ringProfile = profile_.id()};
 }
 
-void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light) {
+void PlanetRings::setMotionOutput(int drawBuffer) {
+    checkDrawBuffer("PlanetRings::setMotionOutput", drawBuffer);
+    motionOutput_ = drawBuffer;
+}
+
+void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light,
+                       const std::optional<glm::mat4>& previousModel) {
     camera.validate();
     light.validate();
     checkModel(model);
+    if (previousModel && !isFinite(*previousModel))
+        throw Error(str("PlanetRings::draw: the previous model must be finite, got the columns ", columnsText(*previousModel)));
     checkClipControl(camera.reversedZ);
+    checkSignedTarget(motionOutput_, "the rings' motion (PlanetRings::setMotionOutput)");
     GlStateGuard guard;
     GLboolean depthWrites = GL_TRUE;
     glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
@@ -196,13 +205,13 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     if (readBuffer != drawBuffer) glReadBuffer(GLenum(readBuffer));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer));
 
-    const DrawBuffersWritten written(1u); // (no motion: blended over what is behind)
     SurfaceUniforms u{.lightDir = glm::normalize(light.direction),
                       .lightColor = light.color,
                       .ambient = light.ambient,
                       .linearOutput = linear ? 1 : 0};
     setEye(u, camera);
     setTransform(u, model, camera.viewProjection());
+    if (motionOutput_) setMotion(u, camera, model, previousModel);
     updateBlock(surfaceBlock_, HFX_BLOCK_SURFACE, u);
     updateBlock(planetBlock_, HFX_BLOCK_PLANET, planetUniforms(look(), model));
     glBindTextureUnit(HFX_UNIT_RING_PROFILE, profile_.id());
@@ -211,9 +220,23 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(camera.reversedZ ? GL_GREATER : GL_LESS);
     glDepthMask(GL_FALSE); // the rings hide behind the planet, and hide nothing drawn later
-    program_.use();
     {
+        const DrawBuffersWritten colourOnly(1u);
+        program_.use();
         const GpuScope scope("rings");
+        annulus_.draw();
+    }
+    if (motionOutput_) {
+        // The motion where the rings cover most of the pixel, and nothing else: colour buffer 0
+        // masked with the rest.
+        if (motionProgramOutput_ != motionOutput_) {
+            motionProgram_ = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("rings.frag"),
+                                           {{"HFX_MOTION_OUTPUT", std::to_string(motionOutput_)}});
+            motionProgramOutput_ = motionOutput_;
+        }
+        const DrawBuffersWritten motionOnly(1u << motionOutput_);
+        motionProgram_.use();
+        const GpuScope scope("rings' motion");
         annulus_.draw();
     }
     glDepthMask(depthWrites);

@@ -168,14 +168,6 @@ void requireTextureUnits() {
                         " in all (GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS)"));
 }
 
-/// Throws hfx::Error naming `what` (a setter's output) unless `drawBuffer` is one a draw can write
-/// besides the colour's: 1 to 7, or 0 for none.
-void checkDrawBuffer(const char* what, int drawBuffer) {
-    if (drawBuffer < 0 || drawBuffer >= int(kDrawBuffers))
-        throw Error(str(what, ": the draw buffer must be 1 to ", kDrawBuffers - 1,
-                        " (colour buffer 0 is the colour's), or 0 for none, got ", drawBuffer));
-}
-
 /// The extra outputs' draw buffers, named: the motion's and the surface outputs'.
 std::array<std::pair<const char*, int>, 4> extraOutputs(int motion, const SurfaceOutputs& o) {
     return {{{"the motion", motion}, {"the normal", o.normal}, {"the albedo", o.albedo}, {"the material", o.material}}};
@@ -266,15 +258,6 @@ void SurfaceRenderer::setSurfaceOutputs(const SurfaceOutputs& outputs) {
 }
 
 namespace {
-/// The motion's uniforms: this frame's world to the previous frame's clip space (the camera's
-/// previous view-projection, or its own without jitter; the mesh carried from `model` back to
-/// `previousModel`), and the jitter to leave out.
-void setMotion(SurfaceUniforms& u, const Camera& camera, const glm::mat4& model, const std::optional<glm::mat4>& previousModel) {
-    const glm::mat4 previous = camera.previousViewProjection ? *camera.previousViewProjection : camera.unjitteredViewProjection();
-    u.previousFromWorld = previousModel ? previous * *previousModel * glm::inverse(model) : previous;
-    u.jitter = camera.jitter;
-}
-
 /// The draw buffers a draw writes: colour buffer 0, the motion's and the surface outputs' where
 /// they are written, the trace output's (1 and 2) where asked.
 unsigned buffersWritten(int motionOutput, const SurfaceOutputs& outputs, bool traceOutput) {

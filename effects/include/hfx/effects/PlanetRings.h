@@ -23,6 +23,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace hfx {
@@ -59,8 +60,18 @@ public:
     /// values into GL_RGBA8; where the colours are written linear (ColorOutput), a float
     /// target's into GL_RGBA16F, an sRGB one's into GL_SRGB8_ALPHA8) and composes them over it in
     /// linear light; depth tested, no depth written. Throws hfx::Error for a multisampled
-    /// framebuffer (GL copies from none). Restores the GL state it changes.
-    void draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light);
+    /// framebuffer (GL copies from none). Restores the GL state it changes. `previousModel`: the
+    /// planet's model at the previous frame, for the motion (setMotionOutput; empty: this one's).
+    void draw(const glm::mat4& model, const Camera& camera, const DirectionalLight& light,
+              const std::optional<glm::mat4>& previousModel = std::nullopt);
+    /// Where the rings write their screen motion for an engine's temporal anti-aliasing or motion
+    /// blur, as SurfaceRenderer::setMotionOutput says (the same draw buffer, 1 to 7, of a float or
+    /// signed normalized target; 0, the default: none): a second pass of the annulus writes it
+    /// where the rings cover at least half of what lies behind them (the ring point's motion:
+    /// Camera::previousViewProjection, `previousModel`); through their gaps and thin rings the
+    /// pixel keeps the motion of what shows through. Throws hfx::Error for a buffer outside 0 to 7.
+    void setMotionOutput(int drawBuffer);
+    int motionOutput() const { return motionOutput_; }
     /// How the rings' colours are encoded (ColorOutput: Auto by default, as SurfaceRenderer's):
     /// the planet's draw and theirs must agree.
     void setColorOutput(ColorOutput output) { colorOutput_ = output; }
@@ -73,6 +84,8 @@ private:
     GlTexture profile_;
     Mesh annulus_;
     ShaderProgram program_;
+    ShaderProgram motionProgram_; ///< the motion pass's (HFX_MOTION_OUTPUT), for motionOutput_
+    int motionOutput_ = 0, motionProgramOutput_ = 0;
     GlBuffer surfaceBlock_, planetBlock_;
     GlTexture behind_; ///< the copy of the frame behind the rings
     int behindWidth_ = 0, behindHeight_ = 0;
