@@ -395,7 +395,6 @@ int SurfaceRenderer::receiveShadows(const DirectionalLight& light) {
 }
 
 namespace {
-
 /// Whether a closed mesh (MeshData::closed) drawn with `model` shows its viewer front faces only:
 /// a shadow map's light (from outside everything it holds: `aroundAll`), a camera's or a light's
 /// view whose eye lies outside the mesh's bounds by more than its near plane reaches (a near plane
@@ -481,8 +480,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     // self-shadow, they stay in the draw.
     DrawOptions tracing = options;
     tracing.deferShadowWalks = options.deferShadowWalks && outputs.material == 0;
-    const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, tracing, caster, u);
+    // The light's shadow maps first: a bad one is refused before the tracer's passes run.
     const int received = caster ? 0 : receiveShadows(light);
+    const TracerFrame frame = tracer_.prepare(layers, mesh, model, viewProj, light, material, tracing, caster, u);
     const SurfaceVariant variant{.shading = material.shading,
                                  .layers = int(layers.size()),
                                  .traced = traced,
