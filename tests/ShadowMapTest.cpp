@@ -509,6 +509,14 @@ TEST_F(ShadowMaps, ABadCascadeIsRefusedByNameBeforeAnythingIsDrawn) {
               std::string::npos);
     EXPECT_NE(refusal({.texture = maps.texture, .cascades = std::span(&layered, 1)}).find("layer 1 is outside"), std::string::npos);
     ShadowMap map(64);
+    DirectionalLight unfitted = light();
+    unfitted.shadowMap = &map;
+    target.clear({0.0f, 0.0f, 1.0f, 1.0f});
+    EXPECT_NE(messageOf([&] {
+                  renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, accuracyCamera(0.0, 4.0f), unfitted);
+              }).find("DirectionalLight.shadowMap has no light's view yet"),
+              std::string::npos);
+    EXPECT_EQ(target.readColor().at(16, 16, 2), 1.0f) << "drawn under a map that was never fitted";
     map.fit(light().direction, {0.0f, 0.0f, 0.0f}, 1.6f);
     EXPECT_NE(refusal({.texture = maps.texture, .cascades = std::span(&good, 1)}, &map).find("its shadowMap or its cascades, not both"),
               std::string::npos);

@@ -373,6 +373,8 @@ void SurfaceRenderer::drawShadow(const Mesh& mesh, const glm::mat4& model, std::
 
 int SurfaceRenderer::receiveShadows(const DirectionalLight& light) {
     if (!light.shadowMap && !light.cascades) return 0;
+    if (light.shadowMap && !light.shadowMap->fitted())
+        throw Error("DirectionalLight.shadowMap has no light's view yet (ShadowMap::fit): nothing was cast into it");
     const ShadowCascades shadows = light.shadowMap ? light.shadowMap->receiver() : *light.cascades;
     bool array = false;
     const ShadowUniforms u = shadowUniforms(shadows, array);

@@ -176,7 +176,8 @@ struct DirectionalLight {
     glm::vec3 color{1.0f, 0.97f, 0.9f};
     glm::vec3 ambient{0.18f, 0.2f, 0.24f};
     /// Optional: the light's shadow map (drawn this frame by the caller); surfaces and lit flat
-    /// meshes drawn under this light receive its shadows. The caller keeps it alive.
+    /// meshes drawn under this light receive its shadows (a map never fitted is refused by name).
+    /// The caller keeps it alive.
     const ShadowMap* shadowMap = nullptr;
     /// Optional, in place of shadowMap: the light's shadow maps of an engine's own (its cascades,
     /// drawn this frame), received the same way. The caller keeps them alive.
