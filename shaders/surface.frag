@@ -21,7 +21,8 @@
 //   HFX_RINGS         1 for water with impact rings (HfxRings) in height, slope and foam (the
 //                     renderer picks it while WaterLook::ringCount > 0)
 //   HFX_BOUNDED_SEARCH 1 when the searches are bounded by the layers' pyramids (surface/heights.glsl)
-//   HFX_SHADOW_MAP    1 when the light's shadow map is received (surface/shadowmap.glsl)
+//   HFX_SHADOW_MAP    1 or 2 when the light's shadow maps are received, from a 2D or a 2D array
+//                     texture (surface/shadowmap.glsl)
 //   HFX_SHADOW_CASTER 1 = draw into a shadow map (hfx::ShadowMap's, or an engine's): the view
 //                     is the light's (its eye's rays, u_viewProj), only the traced depth is
 //                     written, nothing is shaded

@@ -201,17 +201,18 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
         v.motionOutput = 0;
         v.outputs = {};
     }
-    for (const auto& [name, buffer] : extraOutputs(v.motionOutput, v.outputs)) {
-        checkDrawBuffer(str("SurfaceVariant, ", name).c_str(), buffer);
-        if (buffer != 0 && options.traceOutput && buffer <= 2)
-            throw Error(str(name, " output's draw buffer ", buffer,
-                            " is one the trace output writes (DrawOptions::traceOutput: 1 and 2): set another "
-                            "(SurfaceRenderer::setMotionOutput, setSurfaceOutputs)"));
-    }
-    checkDistinct("SurfaceVariant", v.motionOutput, v.outputs);
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);
     if (it == programs_.end()) {
+        // The outputs' draw buffers, checked once a variant (the key holds all they depend on).
+        for (const auto& [name, buffer] : extraOutputs(v.motionOutput, v.outputs)) {
+            checkDrawBuffer(str("SurfaceVariant, ", name).c_str(), buffer);
+            if (buffer != 0 && options.traceOutput && buffer <= 2)
+                throw Error(str(name, " output's draw buffer ", buffer,
+                                " is one the trace output writes (DrawOptions::traceOutput: 1 and 2): set another "
+                                "(SurfaceRenderer::setMotionOutput, setSurfaceOutputs)"));
+        }
+        checkDistinct("SurfaceVariant", v.motionOutput, v.outputs);
         requireTextureUnits();
         // surface.frag's parts with the technique's tracer and the shading model in their slots;
         // the table says the defines.
@@ -344,10 +345,11 @@ void checkCasting(const ShadowMap& map, const char* call) {
 }
 
 /// The light a caster's draw is given: towards the eye of its view (a caster walks no light ray,
-/// and shades nothing; the direction only has to be valid).
+/// and shades nothing; the direction only has to be valid, and a valid camera's eye is off its
+/// target).
 DirectionalLight casterLight(const Camera& lightView) {
     DirectionalLight light;
-    light.direction = glm::vec3(-lightView.rayThroughPixel(1.0, 1.0, 2, 2).direction);
+    light.direction = lightView.position - lightView.target;
     return light;
 }
 } // namespace
