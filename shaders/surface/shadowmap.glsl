@@ -34,32 +34,37 @@ float hfx_shadow_map(vec3 world, vec3 normal) {
 #if !HFX_SHADOW_MAP
     return 1.0;
 #else
+    // The cascade first, then its taps once: a warp whose lanes read different cascades filters
+    // once, not once a cascade.
+    const bool reversed = u_shadowReversedZ != 0;
+    vec3 lookup = vec3(-1.0); // the chosen cascade's texture coordinates and reference depth
+    float layer = 0.0;
     for (int i = 0; i < u_shadowCount; ++i) {
-        const vec4 lookup = u_shadowLookup[i];
-        const vec4 clip = u_shadowViewProj[i] * vec4(world + normal * lookup.x, 1.0);
+        const vec4 c = u_shadowLookup[i];
+        const vec4 clip = u_shadowViewProj[i] * vec4(world + normal * c.x, 1.0);
         const vec3 ndc = clip.xyz / clip.w;
         const vec2 inTile = ndc.xy * 0.5 + 0.5;
         // Window depth (GL's default: [-1, 1] onto [0, 1]; reversed: [0, 1] as it is), moved
         // towards the light by the bias. Beyond the far plane nothing casts.
-        const bool reversed = u_shadowReversedZ != 0;
         const float depth = reversed ? ndc.z : ndc.z * 0.5 + 0.5;
-        if (any(lessThan(inTile, vec2(lookup.w))) || any(greaterThan(inTile, vec2(1.0 - lookup.w))) ||
-            (reversed ? depth <= 0.0 : depth >= 1.0))
-            continue;
-        const vec2 uv = u_shadowTile[i].xy + inTile * u_shadowTile[i].zw;
-        const float ref = reversed ? depth + lookup.y : depth - lookup.y;
-        float sum = 0.0;
-        for (int y = -1; y <= 1; ++y)
-            for (int x = -1; x <= 1; ++x) {
-                const vec2 tap = uv + vec2(x, y) * u_shadowTexel;
-#if HFX_SHADOW_MAP == 2
-                sum += texture(s_shadowMap, vec4(tap, lookup.z, ref));
-#else
-                sum += texture(s_shadowMap, vec3(tap, ref));
-#endif
-            }
-        return sum / 9.0;
+        if (all(greaterThanEqual(inTile, vec2(c.w))) && all(lessThanEqual(inTile, vec2(1.0 - c.w))) &&
+            (reversed ? depth > 0.0 : depth < 1.0)) {
+            lookup = vec3(u_shadowTile[i].xy + inTile * u_shadowTile[i].zw, reversed ? depth + c.y : depth - c.y);
+            layer = c.z;
+            break;
+        }
     }
-    return 1.0;
+    if (lookup.x < 0.0) return 1.0; // in no cascade: nothing casts there
+    float sum = 0.0;
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x) {
+            const vec2 tap = lookup.xy + vec2(x, y) * u_shadowTexel;
+#if HFX_SHADOW_MAP == 2
+            sum += texture(s_shadowMap, vec4(tap, layer, lookup.z));
+#else
+            sum += texture(s_shadowMap, vec3(tap, lookup.z));
+#endif
+        }
+    return sum / 9.0;
 #endif
 }
