@@ -362,17 +362,17 @@ Camera cascadeView(glm::vec3 towards, glm::vec3 centre, float radius, float reac
 /// an array (one layer each).
 struct EngineCascadeTexture {
     EngineCascadeTexture(bool isArray, int count, int edge) : array(isArray), tiles(count), size(edge), fbo(GlFramebuffer::create()) {
-        glCreateTextures(array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D, 1, &texture);
-        if (array)
-            glTextureStorage3D(texture, 1, GL_DEPTH_COMPONENT32F, size, size, tiles);
-        else
-            glTextureStorage2D(texture, 1, GL_DEPTH_COMPONENT32F, size * tiles, size);
+        if (array) {
+            layers = GlTextureArray::create();
+            glTextureStorage3D(layers.id(), 1, GL_DEPTH_COMPONENT32F, size, size, tiles);
+        } else {
+            atlas = GlTexture::create();
+            glTextureStorage2D(atlas.id(), 1, GL_DEPTH_COMPONENT32F, size * tiles, size);
+        }
+        texture = array ? layers.id() : atlas.id();
         glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
         glNamedFramebufferReadBuffer(fbo.id(), GL_NONE);
     }
-    ~EngineCascadeTexture() { glDeleteTextures(1, &texture); }
-    EngineCascadeTexture(const EngineCascadeTexture&) = delete;
-    EngineCascadeTexture& operator=(const EngineCascadeTexture&) = delete;
     /// Binds cascade i's tile or layer for its casters, cleared to its far plane.
     void begin(int i, bool reversedZ) const {
         if (array)
@@ -389,7 +389,9 @@ struct EngineCascadeTexture {
     }
     bool array;
     int tiles, size;
-    GLuint texture = 0;
+    GlTexture atlas;
+    GlTextureArray layers;
+    GLuint texture = 0; ///< the one of the two in use
     GlFramebuffer fbo;
 };
 
@@ -436,10 +438,9 @@ TEST_F(ShadowMaps, AnEnginesCascadesShadowTheReliefAsAShadowMapDoes) {
             // The engine's own sampler and array texture on the unit: what the draw puts back.
             const GlSampler engineSampler = GlSampler::create();
             glBindSampler(HFX_UNIT_SHADOW_MAP, engineSampler.id());
-            GLuint engineArray = 0;
-            glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &engineArray);
-            glTextureStorage3D(engineArray, 1, GL_RGBA8, 1, 1, 1);
-            glBindTextureUnit(HFX_UNIT_SHADOW_MAP, engineArray);
+            const GlTextureArray engineArray = GlTextureArray::create();
+            glTextureStorage3D(engineArray.id(), 1, GL_RGBA8, 1, 1, 1);
+            glBindTextureUnit(HFX_UNIT_SHADOW_MAP, engineArray.id());
             renderer.draw(plane, glm::mat4(1.0f), probe.textures(), material, camera(), received,
                           {.technique = Technique::Hierarchical});
             GLint sampler = 0, arrayBound = -1;
@@ -449,9 +450,8 @@ TEST_F(ShadowMaps, AnEnginesCascadesShadowTheReliefAsAShadowMapDoes) {
             glActiveTexture(GL_TEXTURE0);
             glBindSampler(HFX_UNIT_SHADOW_MAP, 0);
             glBindTextureUnit(HFX_UNIT_SHADOW_MAP, 0);
-            glDeleteTextures(1, &engineArray);
             EXPECT_EQ(GLuint(sampler), engineSampler.id());
-            EXPECT_EQ(GLuint(arrayBound), engineArray);
+            EXPECT_EQ(GLuint(arrayBound), engineArray.id());
             // The coarser cascade's texel and two pixels' worth of world.
             const double margin = 2.0 * (2.0 * 1.6 / kCascade) + 0.025;
             const auto floor = profile(target, camera(), kFloor, 0.02, 0.98);

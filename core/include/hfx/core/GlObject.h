@@ -67,6 +67,10 @@ struct Texture2D {
     static GLuint create() { GLuint id = 0; glCreateTextures(GL_TEXTURE_2D, 1, &id); return id; }
     static void destroy(GLuint id) { glDeleteTextures(1, &id); }
 };
+struct Texture2DArray {
+    static GLuint create() { GLuint id = 0; glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id); return id; }
+    static void destroy(GLuint id) { glDeleteTextures(1, &id); }
+};
 struct Program {
     static GLuint create() { return glCreateProgram(); }
     static void destroy(GLuint id) { glDeleteProgram(id); }
@@ -86,6 +90,7 @@ using GlVertexArray = GlObject<gltraits::VertexArray>;
 using GlFramebuffer = GlObject<gltraits::Framebuffer>;
 using GlRenderbuffer = GlObject<gltraits::Renderbuffer>;
 using GlTexture = GlObject<gltraits::Texture2D>;
+using GlTextureArray = GlObject<gltraits::Texture2DArray>;
 using GlProgram = GlObject<gltraits::Program>;
 using GlQuery = GlObject<gltraits::Query>;
 using GlSampler = GlObject<gltraits::Sampler>;
