@@ -101,5 +101,6 @@ vec3 hfx_ring_shine(vec3 n, vec3 l) {
     const float sinLatitude = dot(n, u_ringAxis);
     const vec3 across = n - sinLatitude * u_ringAxis, sun = l - dot(l, u_ringAxis) * u_ringAxis;
     const float c = dot(across, sun) * inversesqrt(max(dot(across, across) * dot(sun, sun), 1e-20));
-    return texture(s_ringShine, vec2(acos(clamp(c, -1.0, 1.0)) / HFX_RING_PI, 0.5 + 0.5 * sinLatitude)).rgb;
+    // (Level 0 by name: a shading may run where the flow has parted, a triplanar projection's.)
+    return textureLod(s_ringShine, vec2(acos(clamp(c, -1.0, 1.0)) / HFX_RING_PI, 0.5 + 0.5 * sinLatitude), 0.0).rgb;
 }

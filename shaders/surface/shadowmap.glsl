@@ -55,14 +55,16 @@ float hfx_shadow_map(vec3 world, vec3 normal) {
         }
     }
     if (lookup.x < 0.0) return 1.0; // in no cascade: nothing casts there
+    // Level 0 by name: the taps run where the flow has parted (a lane in no cascade has returned;
+    // a triplanar mapping's projections branch), where implicit derivatives are undefined.
     float sum = 0.0;
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x) {
             const vec2 tap = lookup.xy + vec2(x, y) * u_shadowTexel;
 #if HFX_SHADOW_MAP == 2
-            sum += texture(s_shadowMap, vec4(tap, layer, lookup.z));
+            sum += textureGrad(s_shadowMap, vec4(tap, layer, lookup.z), vec2(0.0), vec2(0.0));
 #else
-            sum += texture(s_shadowMap, vec3(tap, lookup.z));
+            sum += textureLod(s_shadowMap, vec3(tap, lookup.z), 0.0);
 #endif
         }
     return sum / 9.0;
