@@ -51,6 +51,9 @@
 //                     previous frame goes to (hfx::SurfaceRenderer::setMotionOutput); 0 none
 //   HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT 1 to 7: the outputs a deferred
 //                     engine's lighting reads (hfx::SurfaceOutputs); 0 none
+//   HFX_TRIPLANAR     1: the texcoords and frame come from the mesh's own position projected
+//                     along each of its axes, each projection with a weight traced and shaded,
+//                     the results blended (hfx::TriplanarMapping); 0: the mesh's texcoords
 // Switches are defines (hfx::SurfaceVariant), not uniforms: llvmpipe runs both sides of a branch,
 // even one on a uniform, so a feature switched off by a uniform still costs its fetches.
 //
@@ -93,6 +96,12 @@
 #endif
 #ifndef HFX_REVERSED_Z
 #define HFX_REVERSED_Z 0
+#endif
+#ifndef HFX_TRIPLANAR
+#define HFX_TRIPLANAR 0
+#endif
+#if HFX_TRIPLANAR && (HFX_COMPUTE_TRACE || HFX_TEXEL_SHADOWS || HFX_BEAM_START || HFX_LAYERS > 1)
+#error "HFX_TRIPLANAR traces each projection in the draw: not with the compute pass, the texel shadows, the beam start or layers"
 #endif
 #if HFX_COMPUTE_TRACE && (HFX_DEFERRED_SHADOWS || !HFX_TRACES)
 #error "HFX_COMPUTE_TRACE walks the view rays in a compute pass: not with HFX_DEFERRED_SHADOWS, only for a tracer"
@@ -140,6 +149,10 @@ in vec3 v_normal;
 in vec3 v_tangent;
 in vec3 v_bitangent;
 in vec2 v_texcoord;
+#if HFX_TRIPLANAR
+in vec3 v_objectPos;    // the mesh's own position
+in vec3 v_objectNormal; // and normal
+#endif
 
 layout(location = 0) out vec4 o_color;
 #if HFX_TRACE_OUTPUT
@@ -252,21 +265,80 @@ vec2 hfx_parallax(vec3 viewTS, float depthScale) {
     return viewTS.z > 0.0 ? viewTS.xy / viewTS.z * depthScale : vec2(0.0);
 }
 
-void main() {
-#if HFX_COMPUTE_TRACE == 1
-    // A back face stores nothing (trace/hier/trace.glsl): its pixel's front face does, if any.
-    // (gl_FrontFacing is its primitive's: a 2x2 quad leaves together.)
-    if (!gl_FrontFacing) return;
+// The texture frame a pixel is traced and shaded in: the mesh's (its texcoords and tangent frame),
+// or one projection of a triplanar mapping.
+struct HfxFrame {
+    vec2 uv0;                // the texcoords at the polygon
+    vec2 dx, dy;             // their derivatives across the screen, per pixel
+    vec3 tangent, bitangent; // dP/du, dP/dv, world space
+};
+
+#if HFX_TRIPLANAR
+// Triplanar mapping (hfx::TriplanarMapping). Projection `axis` makes the texcoords from the mesh's
+// own position along the two other axes, u_triplanarScale per unit: x (y, z), y (x, -z), z (x, y),
+// u negated on a face turned to the axis's negative side, so that T x B points out of every face
+// and none reads its texture mirrored (+y's is makePlane's). Its frame, dP/du and dP/dv: the
+// directions along the surface (n . t = 0) that move the projected point by one texcoord. A weight
+// is 0 where |n_axis| is under the dead zone, so no frame divides by less than it.
+const float HFX_TRIPLANAR_DEAD_ZONE = 0.3;
+HfxFrame hfx_projected_frame(int axis, vec3 n, vec3 dpdx, vec3 dpdy) {
+    const float side = n[axis] < 0.0 ? -1.0 : 1.0;
+    const vec3 ea = vec3(equal(ivec3(axis), ivec3(0, 1, 2)));
+    const vec3 eu = axis == 0 ? vec3(0.0, side, 0.0) : vec3(side, 0.0, 0.0);
+    const vec3 ev = axis == 0 ? vec3(0.0, 0.0, 1.0) : axis == 1 ? vec3(0.0, 0.0, -1.0) : vec3(0.0, 1.0, 0.0);
+    HfxFrame f;
+    f.uv0 = u_triplanarScale * vec2(dot(eu, v_objectPos), dot(ev, v_objectPos));
+    f.dx = u_triplanarScale * vec2(dot(eu, dpdx), dot(ev, dpdx));
+    f.dy = u_triplanarScale * vec2(dot(eu, dpdy), dot(ev, dpdy));
+    const mat3 model = mat3(u_model);
+    f.tangent = model * (eu - dot(n, eu) / n[axis] * ea) / u_triplanarScale;
+    f.bitangent = model * (ev - dot(n, ev) / n[axis] * ea) / u_triplanarScale;
+    return f;
+}
 #endif
+
+#if HFX_TRACES
+// The depth a traced point writes, so geometry crossing the relief is clipped at the relief.
+// (Normal mapping keeps the polygon's depth and with it early depth testing.)
+float hfx_depth_of(vec3 position) {
+    const vec4 clip = u_viewProj * vec4(position, 1.0);
+    const float ndcDepth = clip.z / clip.w;
+#if HFX_REVERSED_Z
+    // GL's [0, 1] clip depth (GL_ZERO_TO_ONE), nearer greater.
+    const float hitDepth = gl_DepthRange.diff * ndcDepth + gl_DepthRange.near;
+    return min(hitDepth, gl_FragCoord.z);
+#else
+    const float hitDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
+    return max(hitDepth, gl_FragCoord.z);
+#endif
+}
+#endif
+
+// What a pixel's trace and shading in one frame give its outputs (main writes them; the depth
+// hfx_surface writes, but for a triplanar mapping's blend).
+struct HfxShaded {
+    vec3 color;    // linear radiance
+    vec3 position; // the traced point, world space (its depth, its motion)
+    vec4 normal;   // the shading normal, the slopes' variance (hfx::SurfaceOutputs)
+    vec4 albedo;   // the albedo, layer 0's alpha (the foam where an effect writes it)
+    vec4 material; // roughness, ambient occlusion, the self-shadow's light, the height
+    vec4 trace;    // the hit's texcoords, its depth fraction, the light (HFX_TRACE_OUTPUT)
+    vec2 entry;    // the texcoords the ray entered at
+};
+
+// The pixel traced and shaded in frame `f`. Called in uniform control flow, but for a triplanar
+// mapping's projections, whose branches take no derivatives (below).
+HfxShaded hfx_surface(HfxFrame f) {
+    HfxShaded s = HfxShaded(vec3(0.0), vec3(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec2(0.0));
     // The polygon's frame, for the view ray (after the walk: geometricNormal, worldFromTexture).
     const vec3 entryNormal = normalize(v_normal);
-    const mat3 entryFrame = hfx_world_from_texture(entryNormal, v_tangent, v_bitangent);
+    const mat3 entryFrame = hfx_world_from_texture(entryNormal, f.tangent, f.bitangent);
     const vec3 toEye = hfx_to_eye(v_worldPos); // (a caster's eye: its light's)
     const float cosView = clamp(dot(entryNormal, normalize(toEye)), 0.0, 1.0);
     // A degenerate frame (a sphere's poles, where dP/du vanishes) has no texture space: there the
     // surface is normal mapped. Silhouettes of curved meshes fade the relief out.
-    const bool frameOk = length(v_tangent) > 1e-3 * length(v_bitangent) &&
-                         length(v_bitangent) > 1e-3 * length(v_tangent);
+    const bool frameOk = length(f.tangent) > 1e-3 * length(f.bitangent) &&
+                         length(f.bitangent) > 1e-3 * length(f.tangent);
     const float depthScale =
         frameOk ? u_depthScale * (u_silhouetteFade > 0.0 ? smoothstep(0.0, u_silhouetteFade, cosView) : 1.0)
                 : 0.0;
@@ -281,8 +353,7 @@ void main() {
 #endif
 #endif
 
-    const vec2 uv0 = v_texcoord;
-    const vec2 dx = dFdx(uv0), dy = dFdy(uv0);
+    const vec2 uv0 = f.uv0, dx = f.dx, dy = f.dy;
     const vec2 texels = vec2(hfx_size());
     const vec2 dxTexels = dx * texels, dyTexels = dy * texels;
     const float mipLevel = 0.5 * log2(max(max(dot(dxTexels, dxTexels), dot(dyTexels, dyTexels)), 1e-12));
@@ -363,7 +434,7 @@ void main() {
 #endif
 #if HFX_COMPUTE_TRACE == 1
     hfx_traceInfo[slot] = traceInfo;
-    return; // the walks pass takes it from here
+    return s; // the walks pass takes it from here
 #elif HFX_COMPUTE_TRACE == 2
     // A helper lane past the mesh's edge has no slot. The hits' spread below (the shading's level)
     // needs its hit: its own ray at the depth of a quad neighbour that has one, across, else
@@ -387,7 +458,7 @@ void main() {
     }
 #endif
 
-#if HFX_TRACES && defined(HFX_FRAME_AFTER_TRACE)
+#if HFX_TRACES && defined(HFX_FRAME_AFTER_TRACE) && !HFX_TRIPLANAR
     // After a tracer that asks for it (hier's walk), the polygon's frame and position are
     // interpolated again (interpolateAtOffset at offset 0: the pixel centre's values, a few
     // instructions) instead of kept through the walk. A GPU's compiler then holds fewer vector
@@ -401,12 +472,17 @@ void main() {
     const vec3 bitangent = interpolateAtOffset(v_bitangent, vec2(0.0));
     const mat3 worldFromTexture = hfx_world_from_texture(geometricNormal, tangent, bitangent);
 #else
-    const vec3 position = v_worldPos, geometricNormal = entryNormal, tangent = v_tangent, bitangent = v_bitangent;
+    const vec3 position = v_worldPos, geometricNormal = entryNormal, tangent = f.tangent, bitangent = f.bitangent;
     const mat3 worldFromTexture = entryFrame;
 #endif
 
-    // The traced hits' spread to the next pixel (derivatives: here, in uniform control flow).
+    // The traced hits' spread to the next pixel (derivatives: here, in uniform control flow; a
+    // triplanar projection's branch takes none, and the entry's spread stands for its hits').
+#if HFX_TRIPLANAR
+    const vec2 hitDx = dx, hitDy = dy;
+#else
     const vec2 hitDx = dFdx(uv), hitDy = dFdy(uv);
+#endif
     const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels);
     const float footprint = max(length(hitDx), length(hitDy));
 
@@ -421,22 +497,12 @@ void main() {
 
     const vec3 displacedTS = vec3(uv - uv0, -depthFraction * depthScale);
     const vec3 displacedWorld = position + worldFromTexture * displacedTS;
-#if HFX_TRACES
-    // Depth of the displaced point, so geometry crossing the relief is clipped at the relief.
-    // (Normal mapping keeps the polygon's depth and with it early depth testing.)
-    const vec4 clip = u_viewProj * vec4(displacedWorld, 1.0);
-    const float ndcDepth = clip.z / clip.w;
-#if HFX_REVERSED_Z
-    // GL's [0, 1] clip depth (GL_ZERO_TO_ONE), nearer greater.
-    const float hitDepth = gl_DepthRange.diff * ndcDepth + gl_DepthRange.near;
-    gl_FragDepth = min(hitDepth, gl_FragCoord.z);
-#else
-    const float hitDepth = 0.5 * (gl_DepthRange.diff * ndcDepth + gl_DepthRange.near + gl_DepthRange.far);
-    gl_FragDepth = max(hitDepth, gl_FragCoord.z);
-#endif
+    s.position = displacedWorld;
+#if HFX_TRACES && !HFX_TRIPLANAR
+    gl_FragDepth = hfx_depth_of(displacedWorld); // (here: a deferred light walk records it)
 #endif
 #if HFX_SHADOW_CASTER
-    return; // the map holds the traced depth; nothing to shade
+    return s; // the map holds the traced depth; nothing to shade
 #endif
 
 #if HFX_LAYERS == 1
@@ -585,24 +651,78 @@ void main() {
 #else
     const vec3 color = hfx_shade(point);
 #endif
-    o_color = vec4(hfx_output(color), 1.0);
+    s.color = color;
+    // What a deferred engine's lighting reads of the traced point.
+    s.normal = vec4(point.normal, point.slopeVariance);
+    s.albedo = vec4(point.albedo, point.foam.x);
+    s.material = vec4(point.roughness, point.occlusion, selfLit, height);
+    s.trace = vec4(uv, depthFraction, lit);
+    s.entry = uv0;
+    return s;
+}
+
+void main() {
+#if HFX_COMPUTE_TRACE == 1
+    // A back face stores nothing (trace/hier/trace.glsl): its pixel's front face does, if any.
+    // (gl_FrontFacing is its primitive's: a 2x2 quad leaves together.)
+    if (!gl_FrontFacing) return;
+#endif
+#if HFX_TRIPLANAR
+    // Each projection with a weight traces and shades the pixel in its own frame, and the results
+    // blend by weight: the colour, the traced point (its depth and motion), what a deferred
+    // engine reads; the trace output is the heaviest one's. The weights, from the mesh's own
+    // normal: |n| less the dead zone, to the power u_triplanarSharpness, summing to 1 (the
+    // largest component of a unit normal, at least 0.577, always has one).
+    const vec3 n = length(v_objectNormal) > 1e-6 ? normalize(v_objectNormal) : vec3(0.0, 1.0, 0.0);
+    const vec3 dpdx = dFdx(v_objectPos), dpdy = dFdy(v_objectPos);
+    vec3 weights = pow(max(abs(n) - HFX_TRIPLANAR_DEAD_ZONE, 0.0), vec3(u_triplanarSharpness));
+    weights /= weights.x + weights.y + weights.z;
+    const int heaviest = weights.x >= weights.y && weights.x >= weights.z ? 0 : weights.y >= weights.z ? 1 : 2;
+    HfxShaded s = HfxShaded(vec3(0.0), vec3(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec2(0.0));
+    for (int axis = 0; axis < 3; ++axis) {
+        const float w = weights[axis];
+        if (!(w > 0.0)) continue;
+        const HfxShaded a = hfx_surface(hfx_projected_frame(axis, n, dpdx, dpdy));
+        s.color += w * a.color;
+        s.position += w * a.position;
+        s.normal += w * a.normal;
+        s.albedo += w * a.albedo;
+        s.material += w * a.material;
+        if (axis == heaviest) {
+            s.trace = a.trace;
+            s.entry = a.entry;
+        }
+    }
+    s.normal.xyz = normalize(s.normal.xyz);
+#else
+    const HfxShaded s = hfx_surface(HfxFrame(v_texcoord, dFdx(v_texcoord), dFdy(v_texcoord), v_tangent, v_bitangent));
+#endif
+#if HFX_COMPUTE_TRACE == 1
+    return; // the rays draw stored its ray
+#endif
+#if HFX_TRACES && HFX_TRIPLANAR
+    gl_FragDepth = hfx_depth_of(s.position); // (the blended point's)
+#endif
+#if HFX_SHADOW_CASTER
+    return; // the map holds the traced depth; nothing to shade
+#endif
+    o_color = vec4(hfx_output(s.color), 1.0);
 #if HFX_MOTION_OUTPUT
     // The traced point's, carried by the mesh (the relief's parallax moves it against the polygon).
-    o_motion = hfx_motion(vec4(displacedWorld, 1.0));
+    o_motion = hfx_motion(vec4(s.position, 1.0));
 #endif
-    // What a deferred engine's lighting reads of the traced point (hfx::SurfaceOutputs).
 #if HFX_NORMAL_OUTPUT
-    o_normal = vec4(point.normal, point.slopeVariance);
+    o_normal = s.normal;
 #endif
 #if HFX_ALBEDO_OUTPUT
-    o_albedo = vec4(point.albedo, point.foam.x); // (layer 0's alpha: the foam where an effect writes it)
+    o_albedo = s.albedo;
 #endif
 #if HFX_MATERIAL_OUTPUT
-    o_material = vec4(point.roughness, point.occlusion, selfLit, height);
+    o_material = s.material;
 #endif
 #if HFX_TRACE_OUTPUT
     // w: the fetch count in its integer part, the light (0..1) in half of its fraction.
-    o_trace = vec4(uv, depthFraction, g_fetches + 0.5 * clamp(lit, 0.0, 0.998));
-    o_entry = v_texcoord;
+    o_trace = vec4(s.trace.xyz, g_fetches + 0.5 * clamp(s.trace.w, 0.0, 0.998));
+    o_entry = s.entry;
 #endif
 }

@@ -2,6 +2,10 @@
 // Passes the world-space position and the unnormalised tangent frame (dP/du, dP/dv) so the
 // fragment stage can express the view and light rays in texture units, per pixel.
 
+#ifndef HFX_TRIPLANAR
+#define HFX_TRIPLANAR 0
+#endif
+
 #include "bindings.glsl"
 #include "surface/uniforms.glsl"
 
@@ -16,6 +20,10 @@ out vec3 v_normal;
 out vec3 v_tangent;
 out vec3 v_bitangent;
 out vec2 v_texcoord;
+#if HFX_TRIPLANAR
+out vec3 v_objectPos;    // a triplanar mapping's projections read the mesh's own position
+out vec3 v_objectNormal; // and normal (surface.frag)
+#endif
 
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
@@ -24,5 +32,9 @@ void main() {
     v_tangent = mat3(u_model) * a_tangent;
     v_bitangent = mat3(u_model) * a_bitangent;
     v_texcoord = a_texcoord;
+#if HFX_TRIPLANAR
+    v_objectPos = a_position;
+    v_objectNormal = a_normal;
+#endif
     gl_Position = u_viewProj * world;
 }

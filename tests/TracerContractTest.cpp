@@ -140,6 +140,10 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
     GLint dataSize = 0;
     glGetActiveUniformBlockiv(planet, index, GL_UNIFORM_BLOCK_DATA_SIZE, &dataSize);
     EXPECT_EQ(dataSize, GLint(sizeof(PlanetUniforms)));
+    // A triplanar mapping's members, in its variant (the others read none).
+    const GLuint triplanar = renderer.program({.technique = Technique::Hierarchical}, {.triplanar = true}).id();
+    EXPECT_EQ(offsetOf(triplanar, "u_triplanarScale"), GLint(offsetof(SurfaceUniforms, triplanarScale)));
+    EXPECT_EQ(offsetOf(triplanar, "u_triplanarSharpness"), GLint(offsetof(SurfaceUniforms, triplanarSharpness)));
 }
 
 /// Every harness program starts with this: 64 invocations per group.

@@ -95,6 +95,13 @@ void SurfaceMaterial::validate() const {
             throw Error(str("WaterLook.environment ", water.environment, " is not a GL texture"));
     }
     if (shading == Shading::Planet) planet.validate();
+    if (!(triplanar.scale >= 0.0f) || !std::isfinite(triplanar.scale))
+        throw Error(str("SurfaceMaterial.triplanar.scale must be >= 0 (texcoords per unit; 0 = off), got ", triplanar.scale));
+    if (!(triplanar.sharpness >= 1.0f && triplanar.sharpness <= 64.0f))
+        throw Error(str("SurfaceMaterial.triplanar.sharpness must be in [1, 64], got ", triplanar.sharpness));
+    if (triplanar.scale > 0.0f && clipToPatch)
+        throw Error("SurfaceMaterial.clipToPatch cannot be set with triplanar.scale > 0: the patch's bounds are in the "
+                    "mesh's texcoords, which a triplanar mapping does not read");
 }
 
 void DirectionalLight::validate() const {
@@ -195,6 +202,11 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
+    if (v.triplanar) { // (each projection is walked in the draw)
+        if (v.layers != 1) throw Error(str("SurfaceVariant.triplanar takes one layer, got ", v.layers));
+        v.texelShadows = v.beamStart = false;
+        v.computeTrace = 0;
+    }
     v.deferredShadows = v.deferredShadows && v.texelShadows && !options.traceOutput;
     v.traceLights = v.traceLights && v.computeTrace == 1 && v.selfShadows; // only the rays draw stores them
     if (v.caster || v.computeTrace == 1) { // a shadow map's pass, the rays draw: no colour
@@ -237,7 +249,8 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_MOTION_OUTPUT", std::to_string(v.motionOutput)},
                                                    {"HFX_NORMAL_OUTPUT", std::to_string(v.outputs.normal)},
                                                    {"HFX_ALBEDO_OUTPUT", std::to_string(v.outputs.albedo)},
-                                                   {"HFX_MATERIAL_OUTPUT", std::to_string(v.outputs.material)}};
+                                                   {"HFX_MATERIAL_OUTPUT", std::to_string(v.outputs.material)},
+                                                   {"HFX_TRIPLANAR", v.triplanar ? "1" : "0"}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
         it = programs_.emplace(key, std::move(p)).first;
@@ -436,6 +449,13 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
+    const bool triplanar = material.triplanar.scale > 0.0f;
+    if (triplanar && layers.size() != 1)
+        throw Error(str("SurfaceMaterial.triplanar draws a surface of one layer, got ", layers.size(),
+                        " (layers tile the mesh's texcoords)"));
+    if (triplanar && textures.config().edges != EdgeMode::Wrap)
+        throw Error(str("SurfaceMaterial.triplanar needs a surface that wraps both ways (its projections tile it), got "
+                        "edges ", edgeModeName(textures.config().edges)));
     const int traced = int(std::count_if(layers.begin(), layers.end(), [](const SurfaceLayer& l) { return l.traced; }));
     GlStateGuard guard;
     const EdgeMode edges = textures.config().edges;
@@ -460,6 +480,10 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                       .varianceFloor = varianceFloor(textures.config().format),
                       .pixelBudget = material.pixelBudget,
                       .reversedZ = reversedZ ? 1 : 0};
+    if (triplanar) {
+        u.triplanarScale = material.triplanar.scale;
+        u.triplanarSharpness = material.triplanar.sharpness;
+    }
     u.linearOutput = !caster && writesLinear(colorOutput_) ? 1 : 0;
     setEye(u, camera); // (a caster's: its light view's, whose rays it traces)
     const int motion = caster ? 0 : motionOutput_;
@@ -505,7 +529,8 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .pyramidAtlas = frame.atlas,
                                  .reversedZ = reversedZ,
                                  .motionOutput = motion,
-                                 .outputs = outputs};
+                                 .outputs = outputs,
+                                 .triplanar = triplanar};
     const ShaderProgram& p = program(options, variant);
     // (A caster writes no colour buffer: an engine's shadow map may have a colour attachment.)
     const DrawBuffersWritten written(caster ? 0u : buffersWritten(motion, outputs, options.traceOutput));

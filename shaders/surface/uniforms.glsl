@@ -47,6 +47,9 @@ layout(std140, binding = HFX_BLOCK_SURFACE) uniform HfxSurface {
     // The screen motion (hfx::SurfaceRenderer::setMotionOutput, HFX_MOTION_OUTPUT):
     mat4 u_previousFromWorld; // this frame's world to the previous frame's clip space
     vec2 u_jitter;            // the jitter u_viewProj holds (NDC), left out of the motion
+    // A triplanar mapping (hfx::TriplanarMapping, HFX_TRIPLANAR):
+    float u_triplanarScale;     // texcoords per unit of the mesh's own space
+    float u_triplanarSharpness; // the blend weights' power
     vec3 u_towardsEye;        // an orthographic camera's direction towards the eye (u_orthographic)
     int u_orthographic;       // 1: every view ray runs along -u_towardsEye; 0: from u_cameraPos
 };

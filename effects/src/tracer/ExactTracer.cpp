@@ -17,7 +17,7 @@ namespace hfx {
 
 std::optional<ShadowLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
                                           const SurfaceMaterial& material) {
-    if (!mesh.patch()) return std::nullopt;
+    if (!mesh.patch() || material.triplanar.scale > 0.0f) return std::nullopt;
     const FlatPatch& p = *mesh.patch();
     const glm::dmat4 m(model);
     const glm::dvec3 tangent(m * glm::dvec4(glm::dvec3(p.tangent), 0.0));
@@ -71,8 +71,10 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     // side are timed for it).
     const bool inDrawOnly = options.tracePass == TracePass::InDraw ||
                             (options.tracePass == TracePass::Auto && workarounds().traceInDraw);
+    // (A triplanar mapping's projections are walked in the draw.)
+    const bool triplanar = material.triplanar.scale > 0.0f;
     bool computable = false;
-    if (!inDrawOnly && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
+    if (!inDrawOnly && !triplanar && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
         !glIsEnabled(GL_STENCIL_TEST)) {
         GLint samples = 0;
         glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
@@ -116,7 +118,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth.
     frame.beamStart = options.beamStart && layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
-                      material.depthScale > 0.0f;
+                      material.depthScale > 0.0f && !triplanar;
     if (frame.beamStart) { // the prepass reads the surface, the pyramid bound above and the block
         glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
         const GpuScope scope("beam");

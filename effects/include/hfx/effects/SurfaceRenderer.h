@@ -122,6 +122,27 @@ struct PlanetLook {
 /// world space.
 PlanetUniforms planetUniforms(const PlanetLook& look, const glm::mat4& model);
 
+/// Triplanar mapping (SurfaceMaterial::triplanar): the texcoords from the mesh's own position
+/// instead of its texcoords, for meshes whose texcoords do not suit a tiled relief or that have
+/// none (rocks, cliffs, props; a sphere without its poles' pinch). Each of the mesh's three axes
+/// projects the position onto the other two, x onto (y, z), y onto (x, -z) (makePlane's
+/// texcoords, up to a whole number of repeats), z onto (x, y), u turned on the faces towards an
+/// axis's negative side so that none reads the texture mirrored. The projections whose weight
+/// is not 0 each trace and shade the pixel in their own frame (dP/du and dP/dv along the surface
+/// as the projection runs), and the colours, traced points (depth, motion) and deferred outputs
+/// blend by weight: max(|n_axis| - 0.3, 0)^sharpness of the mesh's own unit normal, normalised.
+/// A face within 17 degrees of an axis (its normal's other components under 0.3) takes that
+/// projection alone and costs what the mesh's texcoords would; where two or three blend, the pixel
+/// costs two or three traces, and its traced point (its depth) is their points' weighted mean. The
+/// texture must tile (wrap both ways). The exact tracer walks in the draw (no compute pass, texel
+/// shadows or beam start: those follow a flat patch's texcoords). Picking (pickSurface) reads the
+/// mesh's texcoords.
+struct TriplanarMapping {
+    float scale = 0.0f;     ///< texcoords (texture repeats) per unit of the mesh's own space; 0: off
+    float sharpness = 4.0f; ///< the weights' power, 1 to 64: the higher, the narrower the blends
+    bool operator==(const TriplanarMapping&) const = default;
+};
+
 struct SurfaceMaterial {
     float depthScale = 0.05f;    ///< texture units between h = 1 and h = 0
     int minSamples = 8;          ///< linear-search steps seen head-on
@@ -156,6 +177,9 @@ struct SurfaceMaterial {
     /// whose range along them is small against its depth (the ocean's cascades: OceanEffect sets
     /// it); on a single map with large texels the four fetches cost what they save.
     bool boundedSearch = false;
+    /// The texcoords from the mesh's position projected along its axes (TriplanarMapping; off by
+    /// default): with one layer, and not with clipToPatch.
+    TriplanarMapping triplanar;
     void validate() const; ///< throws hfx::Error naming the field and its value
     bool operator==(const SurfaceMaterial&) const = default;
 };
@@ -336,6 +360,9 @@ struct SurfaceVariant {
     /// HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT: the draw buffers a deferred
     /// engine reads (SurfaceRenderer::setSurfaceOutputs)
     SurfaceOutputs outputs;
+    /// HFX_TRIPLANAR: SurfaceMaterial::triplanar is on (not with the compute pass, texel shadows,
+    /// beam start or layers)
+    bool triplanar = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };
 

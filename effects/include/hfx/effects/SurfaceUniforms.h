@@ -76,7 +76,10 @@ struct SurfaceUniforms {
     /// previous model times this one's inverse), and the jitter this frame's u_viewProj holds.
     glm::mat4 previousFromWorld{1.0f};
     glm::vec2 jitter{0.0f};
-    float padding[2] = {0.0f, 0.0f}; ///< (std140 aligns the vec3 below to 16 bytes)
+    /// A triplanar mapping's (SurfaceMaterial::triplanar, HFX_TRIPLANAR): texcoords per unit of
+    /// the mesh's own space, and the blend weights' power.
+    float triplanarScale = 1.0f;
+    float triplanarSharpness = 1.0f;
     /// An orthographic camera's (Camera::orthographic): 1, and the unit direction towards the
     /// eye, the same for every point (hfx_to_eye); 0: the eye is cameraPos.
     glm::vec3 towardsEye{0.0f};
@@ -170,6 +173,8 @@ static_assert(offsetof(SurfaceUniforms, traceWidth) == 440);
 static_assert(offsetof(SurfaceUniforms, traceOrigin) == 448);
 static_assert(offsetof(SurfaceUniforms, previousFromWorld) == 464);
 static_assert(offsetof(SurfaceUniforms, jitter) == 528);
+static_assert(offsetof(SurfaceUniforms, triplanarScale) == 536);
+static_assert(offsetof(SurfaceUniforms, triplanarSharpness) == 540);
 static_assert(offsetof(SurfaceUniforms, towardsEye) == 544);
 static_assert(offsetof(SurfaceUniforms, orthographic) == 556);
 static_assert(sizeof(SurfaceUniforms) == 560);

@@ -63,8 +63,9 @@ enum class TexelShadowChoice {
 };
 
 /// The light as the exact tracer's shadow rays see it on a flat mesh (Mesh::patch) drawn with
-/// `model`: flatSurfaceLight of its frame. Empty for a mesh that is no flat patch or where no
-/// shadow ray is traced. What the renderer's texel shadows are drawn for.
+/// `model`: flatSurfaceLight of its frame. Empty for a mesh that is no flat patch, drawn with a
+/// triplanar mapping (its frames are not the patch's), or where no shadow ray is traced. What the
+/// renderer's texel shadows are drawn for.
 std::optional<ShadowLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
                                           const SurfaceMaterial& material);
 
