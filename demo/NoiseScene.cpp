@@ -1,6 +1,8 @@
 // The noise user: any NoiseField configuration as a lit, animated POM surface on a plane that
 // repeats it twice each way (so a tiling noise shows its seams, or that it has none), for an
-// artist to tune in the panel and export with --export-maps.
+// artist to tune in the panel and export with --export-maps. With --triplanar, the relief covers a
+// rounded box instead, its texcoords projected along the box's axes (SurfaceMaterial::triplanar):
+// a mesh with no texcoords fit for it, as a rock or a prop.
 
 #include "Scene.h"
 
@@ -10,6 +12,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace hfx::demo {
 namespace {
@@ -17,14 +20,37 @@ namespace {
 /// The plane the surface repeats on, twice each way.
 constexpr PlaneConfig kPlane{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};
 
+/// A box with rounded edges, 2.4 across: the superellipsoid |x|^4 + |y|^4 + |z|^4 = r^4 on a
+/// sphere's grid, its normals the surface's. Its texcoords and tangents stay the sphere's (a
+/// triplanar mapping reads neither).
+MeshData roundedBox() {
+    constexpr float r = 1.2f;
+    MeshData mesh = makeSphere({.radius = 1.0f, .segments = 96, .rings = 64});
+    for (Vertex& v : mesh.vertices) {
+        const glm::vec3 d = v.normal, d4 = d * d * d * d;
+        const glm::vec3 p = d * (r / std::pow(d4.x + d4.y + d4.z, 0.25f));
+        v.position = p;
+        v.normal = glm::normalize(p * p * p);
+    }
+    mesh.convex = false; // (the grid's diagonals on its flattish sides need not bound a convex solid)
+    return mesh;
+}
+
 class NoiseScene final : public Scene {
 public:
     NoiseScene(ClContext& cl, const SceneOptions& o)
-        : surface_(cl, config(o)), plane_(makePlane(kPlane)) {
+        : surface_(cl, config(o)), plane_(o.triplanar > 0.0f ? roundedBox() : makePlane(kPlane)) {
+        if (o.triplanar > 0.0f) {
+            SurfaceMaterial m = surface_.material();
+            m.triplanar = {.scale = o.triplanar};
+            m.silhouetteFade = 0.3f; // the box's rim keeps its outline
+            surface_.setMaterial(m);
+        }
         applyOptions(o);
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.0f, 0.6f, 0.6f);
         camera_.aspect = o.aspect();
-        light_.direction = {-0.9f, 0.5f, -0.35f};
+        // Grazing across the plane; over the box's shoulder, so that two of its sides are lit.
+        light_.direction = o.triplanar > 0.0f ? glm::vec3(0.8f, 0.55f, 0.25f) : glm::vec3(-0.9f, 0.5f, -0.35f);
     }
 
     void draw() override { drawSurface(renderer_, light_); }

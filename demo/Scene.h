@@ -81,6 +81,9 @@ struct SceneOptions {
     std::string noiseKind = "perlin", fractal = "fbm", tiling = "wrap";
     int octaves = 5;
     float frequency = 6.0f, lacunarity = 2.0f, gain = 0.5f, warp = 0.0f, noiseSpeed = 0.3f;
+    /// noise: > 0 draws the relief on a rounded box with a triplanar mapping (TriplanarMapping::scale,
+    /// texcoords per unit) instead of the plane's texcoords
+    float triplanar = 0.0f;
 };
 
 class Scene {

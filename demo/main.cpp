@@ -383,6 +383,10 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(0.0, 8.0))->capture_default_str();
     app.add_option("--noise-speed", s.noiseSpeed, "noise: animation speed (time units per second)")
         ->check(kFinite)->check(CLI::Range(0.0, 10.0))->capture_default_str();
+    app.add_option("--triplanar", s.triplanar,
+                   "noise: draw the relief on a rounded box, its texcoords projected along the box's axes (a triplanar "
+                   "mapping), this many repeats per unit (0: the plane)")
+        ->check(kFinite)->check(CLI::Range(0.0, 64.0))->capture_default_str();
     app.add_option("--save-damage", s.saveDamage, "decals: after the last frame, write the damage log (impacts, clock) to this file");
     app.add_option("--load-damage", s.loadDamage,
                    "decals: start from a saved damage log (drawn exactly as saved; no automatic volley)");

@@ -3,8 +3,8 @@
 # default grazing cameras, after enough frames for the field to develop (the seas' foam with 20 s
 # of wind behind it, --foam-history; the decal volley: 196 bullets and 5 explosions with their
 # scorch; the planet's storms). Writes
-# docs/gallery/{water,decals,planet,noise}.jpg, the planet close up (planet-closeup.jpg) and with
-# rings (planet-rings.jpg), the sea
+# docs/gallery/{water,decals,planet,noise}.jpg, the noise on a rounded box (noise-triplanar.jpg),
+# the planet close up (planet-closeup.jpg) and with rings (planet-rings.jpg), the sea
 # calm (Beaufort 3) and rough (Beaufort 7), a Beaufort 4 / 7 / 10 strip, the far field seen 5 degrees down (water-horizon.jpg),
 # the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
 # (water.mp4, needs ffmpeg).
@@ -39,6 +39,7 @@ render decals 50
 printf 'explosion 1 760 560 3\nclick 1 420 600\nclick 1 440 610\n' > "$work/water-shots.txt"
 render water 31 --foam-history 20 --shots "$work/water-shots.txt" && mv docs/gallery/water.jpg docs/gallery/water-explosion.jpg
 render water 30 --foam-history 20
+render noise 2 --noise-kind psrd --fractal ridged --warp 0.6 --triplanar 0.8 && mv docs/gallery/noise.jpg docs/gallery/noise-triplanar.jpg
 render noise 2 --noise-kind psrd --fractal ridged --warp 0.6
 # The planet as a GPU draws it (4 detail texels per gas cell) after its minute of spin-up, and a close-up after 12 s more of its
 # gas (the festoons and filaments of its advected detail).
