@@ -32,18 +32,6 @@ const std::pair<const char*, DrawOptions> kPomAndHier[] = {
     {"hier in the draw", {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw}},
     {"hier in a compute pass", {.technique = Technique::Hierarchical, .tracePass = TracePass::Compute}}};
 
-/// The relief the tests here draw: two sines on a wrapped field, its normals for the depth, grey.
-struct SineRelief {
-    SineRelief(int field, float depthScale)
-        : heights(sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}})),
-          textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale}) {
-        textures.uploadTexels(sobelReference(heights, field, depthScale).data());
-        textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
-    }
-    std::vector<float> heights;
-    SurfaceTextures textures;
-};
-
 TEST_F(DepthOutput, QuadIsClippedAtTheDisplacedSurface) {
     constexpr int field = 64, image = 160;
     constexpr float depthScale = 0.15f, planeSize = 2.0f;

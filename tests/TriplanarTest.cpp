@@ -62,18 +62,8 @@ MeshData square(glm::dvec3 n, glm::dvec3 a, const std::function<Projection(glm::
     return mesh;
 }
 
-/// The relief the tests draw: two sines on a wrapped field, grey.
-struct Relief {
-    static constexpr int field = 64;
-    explicit Relief(float depthScale)
-        : heights(sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}})),
-          textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale}) {
-        textures.uploadTexels(sobelReference(heights, field, depthScale).data());
-        textures.setAlbedo(Image{1, 1, 3, {0.6f, 0.6f, 0.6f}});
-    }
-    std::vector<float> heights;
-    SurfaceTextures textures;
-};
+/// The relief the tests draw (SineRelief), field² texels.
+constexpr int kField = 64;
 
 /// A camera `degrees` off the world normal `normal` of a face through `centre`, 3 units away.
 Camera cameraOnto(glm::vec3 centre, glm::vec3 normal, double degrees, float aspect) {
@@ -93,8 +83,8 @@ Camera cameraOnto(glm::vec3 centre, glm::vec3 normal, double degrees, float aspe
 TEST_F(Triplanar, EachFaceAlongAnAxisTracesTheReliefItsProjectionMakes) {
     constexpr int W = 160, H = 120;
     constexpr float depthScale = 0.12f, scale = 1.5f;
-    const Relief relief(depthScale);
-    const HeightFieldTracer exact(relief.heights, Relief::field, Relief::field, EdgeMode::Wrap);
+    const SineRelief relief(kField, depthScale);
+    const HeightFieldTracer exact(relief.heights, kField, kField, EdgeMode::Wrap);
     // A model that turns, scales and moves the mesh: the projections stay the mesh's own.
     const glm::mat4 model = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), {0.3f, -0.2f, 0.1f}), 0.5f,
                                                    glm::normalize(glm::vec3(1, 2, 3))),
@@ -143,7 +133,7 @@ TEST_F(Triplanar, EachFaceAlongAnAxisTracesTheReliefItsProjectionMakes) {
                     const size_t i = size_t(y) * W + x;
                     if (!hit || !(trace[i].z > 0.0f)) continue;
                     ++traced;
-                    const double error = glm::length(glm::dvec2(trace[i]) - hit->uv) * Relief::field; // texels
+                    const double error = glm::length(glm::dvec2(trace[i]) - hit->uv) * kField; // texels
                     worst = std::max(worst, error);
                     off += error > 0.01;
                     const glm::dvec3 point = entry + worldFromTexture * glm::dvec3(hit->uv - uv0, -(1.0 - hit->height) * depthScale);
@@ -168,7 +158,7 @@ TEST_F(Triplanar, EachFaceAlongAnAxisTracesTheReliefItsProjectionMakes) {
 TEST_F(Triplanar, AFaceBetweenTwoAxesBlendsTheirProjectionsByWeight) {
     constexpr int W = 160, H = 120;
     constexpr float depthScale = 0.1f, scale = 1.25f;
-    const Relief relief(depthScale);
+    const SineRelief relief(kField, depthScale);
     const glm::dvec3 n = glm::normalize(glm::dvec3(1, 1, 0));
     const glm::dvec3 a(0, 0, 1);
     const SurfaceMaterial planar{.depthScale = depthScale, .lodThreshold = 100.0f};
@@ -231,7 +221,7 @@ TEST_F(Triplanar, AFaceBetweenTwoAxesBlendsTheirProjectionsByWeight) {
 TEST_F(Triplanar, ACasterWritesTheDepthItsProjectionTraces) {
     constexpr int size = 128;
     constexpr float depthScale = 0.12f;
-    const Relief relief(depthScale);
+    const SineRelief relief(kField, depthScale);
     const Mesh plane(makePlane({.size = 2.0f, .texcoordScale = 2.0f, .subdivisions = 4}));
     // The same square, whose own texcoords the mapping must not read.
     const Mesh face(square({0, 1, 0}, {1, 0, 0}, [](glm::dvec3) { return projection(2, {0, 0, 1}); }, 0.7));
@@ -271,7 +261,7 @@ TEST_F(Triplanar, ACasterWritesTheDepthItsProjectionTraces) {
 
 TEST_F(Triplanar, BadMappingsAreRefusedByNameAndDrawNothing) {
     constexpr float depthScale = 0.1f;
-    const Relief relief(depthScale);
+    const SineRelief relief(kField, depthScale);
     SurfaceTextures clamped({.width = 16, .height = 16, .mipmaps = false, .edges = EdgeMode::Clamp});
     const Mesh plane(makePlane({}));
     const Camera camera = cameraOnto({0, 0, 0}, {0, 1, 0}, 30.0, 1.0f);

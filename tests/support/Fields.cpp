@@ -1,5 +1,8 @@
 #include "support/Fields.h"
 
+#include "support/References.h"
+
+#include "hfx/core/Image.h"
 #include "hfx/tools/AccuracyProbe.h"
 
 #include <algorithm>
@@ -7,6 +10,13 @@
 #include <numbers>
 
 namespace hfx::test {
+
+SineRelief::SineRelief(int field, float depthScale)
+    : heights(sumOfSines(field, {{0.3, 2, 1, 0.0}, {0.15, -1, 2, 0.7}})),
+      textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale}) {
+    textures.uploadTexels(sobelReference(heights, field, depthScale).data());
+    textures.setAlbedo(Image{1, 1, 3, {0.5f, 0.5f, 0.5f}});
+}
 
 std::vector<float> sumOfSines(int size, const std::vector<SineTerm>& terms) {
     std::vector<float> h(size_t(size) * size);

@@ -3,6 +3,7 @@
 
 #include "hfx/core/Camera.h"
 #include "hfx/core/HeightFieldTracer.h"
+#include "hfx/core/SurfaceTextures.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
@@ -16,6 +17,14 @@ struct SineTerm {
     double amplitude, m, n, phase;
 };
 std::vector<float> sumOfSines(int size, const std::vector<SineTerm>& terms);
+
+/// The relief many render tests draw: two sines on a wrapped field of field² texels (no mip maps),
+/// its Sobel normals for the depth, grey. Needs a GL context.
+struct SineRelief {
+    SineRelief(int field, float depthScale);
+    std::vector<float> heights;
+    SurfaceTextures textures;
+};
 
 /// A field with sharp-edged features: raised square blocks on a floor (mortar at h = 0).
 std::vector<float> blocks(int size, int blocksPerEdge);
