@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <numbers>
 
 namespace hfx::test {
 namespace {
@@ -68,7 +69,7 @@ constexpr int kField = 64;
 /// A camera `degrees` off the world normal `normal` of a face through `centre`, 3 units away.
 Camera cameraOnto(glm::vec3 centre, glm::vec3 normal, double degrees, float aspect) {
     const glm::vec3 side = glm::normalize(glm::cross(normal, std::abs(normal.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
-    const float r = float(degrees * M_PI / 180.0);
+    const float r = float(degrees * std::numbers::pi / 180.0);
     Camera camera;
     camera.position = centre + 3.0f * (std::cos(r) * normal + std::sin(r) * side);
     camera.target = centre;
