@@ -56,6 +56,10 @@ for scene in water decals planet; do
         --width 320 --height 180 --field 128 --out build-asan/frames --no-progress > /dev/null
     echo "sanitize: $scene demo clean"
 done
+# The noise on a rounded box through the triplanar mapping, leaks checked.
+./build-asan/demo/hfx-demo noise --triplanar 0.8 --gl osmesa --headless --frames 3 --width 320 --height 180 --field 128 \
+    --out build-asan/frames --no-progress > /dev/null
+echo "sanitize: noise demo on the triplanar box clean"
 ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ./build-asan/demo/hfx-demo decals --gl egl --trace-pass compute --headless \
     --frames 3 --width 320 --height 180 --field 128 --out build-asan/frames --no-progress > /dev/null
 echo "sanitize: decals demo with the compute pass clean"
