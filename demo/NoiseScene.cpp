@@ -39,8 +39,8 @@ MeshData roundedBox() {
 class NoiseScene final : public Scene {
 public:
     NoiseScene(ClContext& cl, const SceneOptions& o)
-        : surface_(cl, config(o)), plane_(o.triplanar > 0.0f ? roundedBox() : makePlane(kPlane)) {
-        if (o.triplanar > 0.0f) {
+        : surface_(cl, config(o)), mesh_(o.triplanar > 0.0f ? roundedBox() : makePlane(kPlane)), triplanar_(o.triplanar > 0.0f) {
+        if (triplanar_) {
             SurfaceMaterial m = surface_.material();
             m.triplanar = {.scale = o.triplanar};
             m.silhouetteFade = 0.3f; // the box's rim keeps its outline
@@ -50,13 +50,13 @@ public:
         camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 4.0f, 0.6f, 0.6f);
         camera_.aspect = o.aspect();
         // Grazing across the plane; over the box's shoulder, so that two of its sides are lit.
-        light_.direction = o.triplanar > 0.0f ? glm::vec3(0.8f, 0.55f, 0.25f) : glm::vec3(-0.9f, 0.5f, -0.35f);
+        light_.direction = triplanar_ ? glm::vec3(0.8f, 0.55f, 0.25f) : glm::vec3(-0.9f, 0.5f, -0.35f);
     }
 
     void draw() override { drawSurface(renderer_, light_); }
     Effect& effect() override { return surface_; }
     const char* name() const override { return "noise"; }
-    const Mesh& mesh() const override { return plane_; }
+    const Mesh& mesh() const override { return mesh_; }
 
     void panel() override {
         NoiseConfig n = surface_.noise().config();
@@ -79,6 +79,10 @@ public:
         n.fractal = Fractal(fractal);
         n.edges = tiling == 0 ? EdgeMode::Wrap : tiling == 1 ? EdgeMode::WrapU : EdgeMode::Clamp;
         n.frequency = std::round(n.frequency); // a tiling noise needs whole cells
+        if (triplanar_ && n.edges != EdgeMode::Wrap) {
+            message_ = "the box's triplanar mapping tiles the noise: it must wrap both ways";
+            return; // the surface stays as it was
+        }
         try {
             surface_.setNoise(n);
             message_.clear();
@@ -107,7 +111,8 @@ private:
     }
 
     NoiseSurfaceEffect surface_;
-    Mesh plane_;
+    Mesh mesh_; ///< the plane, or the rounded box of --triplanar
+    bool triplanar_;
     DirectionalLight light_;
     SurfaceRenderer renderer_;
     std::string message_;
