@@ -419,6 +419,16 @@ int main(int argc, char** argv) {
     }
     try {
         if (isSceneName(o.scene)) refuseOtherScenesOptions(app, o.scene);
+        // The triplanar box's hier walks in the draw: what follows a flat patch's texcoords is
+        // refused by name rather than left undone.
+        if (s.triplanar > 0.0f)
+            for (const std::string& asked : o.hierOptions)
+                if (asked == "--texel-shadows" || asked == "--defer-shadow-walks" ||
+                    (asked == "--trace-pass" && o.tracePass == "compute"))
+                    throw Error(str(asked, asked == "--trace-pass" ? " compute" : "",
+                                    " is for the plane: --triplanar's box walks hier in the draw (the texel shadows, the "
+                                    "deferred walks and the compute pass follow a flat patch's or a convex mesh's "
+                                    "texcoords)"));
         return run(o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "hfx-demo: error: %s\n", e.what());

@@ -679,7 +679,12 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
           std::pair{"planet --texel-shadows", "--texel-shadows is for the decals, noise and maps scenes"},
           std::pair{"noise --no-shadows --texel-shadows", "--no-shadows excludes --texel-shadows"},
           std::pair{"decals --no-texel-shadows --defer-shadow-walks", "excludes --defer-shadow-walks"},
-          std::pair{"water --window-shot shot.png", "--window-shot saves what a window shows, and this run is headless"}}) {
+          std::pair{"water --window-shot shot.png", "--window-shot saves what a window shows, and this run is headless"},
+          std::pair{"water --triplanar 1", "--triplanar is for the noise scene: the water scene"},
+          std::pair{"noise --triplanar 1 --trace-pass compute", "--trace-pass compute is for the plane: --triplanar's box"},
+          std::pair{"noise --triplanar 1 --texel-shadows", "--texel-shadows is for the plane"},
+          std::pair{"noise --triplanar 1 --tiling clamp --noise-kind simplex --field 64",
+                    "SurfaceMaterial.triplanar needs a surface that wraps both ways"}}) {
         const Result other = runDemo(std::string(args) + " --headless");
         EXPECT_NE(other.exitCode, 0) << args;
         EXPECT_NE(other.output.find(message), std::string::npos) << args << "\n" << other.output;
