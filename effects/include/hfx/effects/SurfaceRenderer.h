@@ -132,8 +132,8 @@ PlanetUniforms planetUniforms(const PlanetLook& look, const glm::mat4& model);
 /// as the projection runs), and the colours, traced points (depth, motion) and deferred outputs
 /// blend by weight: max(|n_axis| - 0.3, 0)^sharpness of the mesh's own unit normal, normalised.
 /// A face within 17 degrees of an axis (its normal's other components under 0.3) takes that
-/// projection alone and costs what the mesh's texcoords would; where two or three blend, the pixel
-/// costs two or three traces, and its traced point (its depth) is their points' weighted mean. The
+/// projection alone, one trace; where two or three blend, the pixel costs two or three, and its
+/// traced point (its depth) is their points' weighted mean. The
 /// texture must tile (wrap both ways). The exact tracer walks in the draw (no compute pass, texel
 /// shadows or beam start: those follow a flat patch's texcoords). Picking (pickSurface) reads the
 /// mesh's texcoords.
