@@ -12,10 +12,10 @@
 # with llvmpipe's pyramid layout) and 3840x2160, the frame bench (water, decals, planet, the
 # transfer table) at both sizes, the decal wall and the planet at 1280x720 again with hier walking
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
-# column gives its medians of both passes), and the ringed planet at 1280x720. A step that runs out
-# of time is cut and says so; the rest go on. HFX_GPU_STEPS may name fewer steps (say
-# "gl-tests-tracer bench-tracers-720p"): the budget is then
-# shared among those. Nothing here installs anything: the bundle carries what the binaries need
+# column gives its medians of both passes), the ringed planet and the noise on the triplanar box at
+# 1280x720. A step that runs out of time is cut and says so; the rest go on. HFX_GPU_STEPS may name
+# fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is then shared among those.
+# Nothing here installs anything: the bundle carries what the binaries need
 # but the GL and OpenCL drivers, and glvnd's libraries where a bare GPU image lacks them (EGL then
 # finds no device: unpack Debian's libegl1 libglvnd0 libopengl0 libgl1 libglx0 into / first, as
 # docs/BENCHMARKS.md's NVIDIA section says).
@@ -30,7 +30,7 @@ run=(bash "$bundle/run.sh")
 # Each step's share of the budget, in percent of all steps; HFX_GPU_STEPS selects.
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10
                    [gl-tests-compute-pass]=4 [bench-tracers-720p]=12 [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
-                   [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8)
+                   [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8 [bench-triplanar-720p]=6)
 # By default every step but gl-tests-compute-pass, which gl-tests-rest holds.
 selected=${HFX_GPU_STEPS:-$(printf '%s\n' "${!shares[@]}" | grep -vx gl-tests-compute-pass | tr '\n' ' ')}
 total=0
@@ -89,4 +89,8 @@ step bench-720p-in-draw "${run[@]}" hfx-demo bench --bench-only decals,planet --
 step bench-4k "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160
 # The ringed planet seen whole (its rings' draw, their shadow and ring shine in the planet's draw).
 step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1 --camera-distance 5 --width 1280 --height 720
+# The noise on a rounded box through the triplanar mapping: what its loop over a pixel's projections
+# costs a warp (its POM / NM beside the plane's in bench-720p's tables; on llvmpipe 1.6-1.9x the
+# box's own texcoords, docs/BENCHMARKS.md).
+step bench-triplanar-720p "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 --height 720
 echo "== done in $(($(date +%s) - start))s of ${budget}s" | tee -a "$out/summary.txt"
