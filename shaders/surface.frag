@@ -325,11 +325,12 @@ struct HfxShaded {
     vec4 trace;    // the hit's texcoords, its depth fraction, the light (HFX_TRACE_OUTPUT)
     vec2 entry;    // the texcoords the ray entered at
 };
+const HfxShaded HFX_UNSHADED = HfxShaded(vec3(0.0), vec3(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec2(0.0));
 
 // The pixel traced and shaded in frame `f`. Called in uniform control flow, but for a triplanar
 // mapping's projections, whose branches take no derivatives (below).
 HfxShaded hfx_surface(HfxFrame f) {
-    HfxShaded s = HfxShaded(vec3(0.0), vec3(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec2(0.0));
+    HfxShaded s = HFX_UNSHADED;
     // The polygon's frame, for the view ray (after the walk: geometricNormal, worldFromTexture).
     const vec3 entryNormal = normalize(v_normal);
     const mat3 entryFrame = hfx_world_from_texture(entryNormal, f.tangent, f.bitangent);
@@ -678,7 +679,7 @@ void main() {
     vec3 weights = pow(max(abs(n) - HFX_TRIPLANAR_DEAD_ZONE, 0.0), vec3(u_triplanarSharpness));
     weights /= weights.x + weights.y + weights.z;
     const int heaviest = weights.x >= weights.y && weights.x >= weights.z ? 0 : weights.y >= weights.z ? 1 : 2;
-    HfxShaded s = HfxShaded(vec3(0.0), vec3(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec2(0.0));
+    HfxShaded s = HFX_UNSHADED;
     // A loop over the projections left, as many trips as the lane has projections: a warp (or
     // llvmpipe's row of lanes, which runs every branch's body for all of them) takes as many as
     // its lane with the most, where a loop over the three axes with a branch on each weight ran

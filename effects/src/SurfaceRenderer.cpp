@@ -99,7 +99,7 @@ void SurfaceMaterial::validate() const {
         throw Error(str("SurfaceMaterial.triplanar.scale must be >= 0 (texcoords per unit; 0 = off), got ", triplanar.scale));
     if (!(triplanar.sharpness >= 1.0f && triplanar.sharpness <= 64.0f))
         throw Error(str("SurfaceMaterial.triplanar.sharpness must be in [1, 64], got ", triplanar.sharpness));
-    if (triplanar.scale > 0.0f && clipToPatch)
+    if (triplanar.on() && clipToPatch)
         throw Error("SurfaceMaterial.clipToPatch cannot be set with triplanar.scale > 0: the patch's bounds are in the "
                     "mesh's texcoords, which a triplanar mapping does not read");
 }
@@ -449,7 +449,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
     const SurfaceTextures& textures = *layers[0].textures;
-    const bool triplanar = material.triplanar.scale > 0.0f;
+    const bool triplanar = material.triplanar.on();
     if (triplanar && layers.size() != 1)
         throw Error(str("SurfaceMaterial.triplanar draws a surface of one layer, got ", layers.size(),
                         " (layers tile the mesh's texcoords)"));

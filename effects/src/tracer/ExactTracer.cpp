@@ -17,7 +17,7 @@ namespace hfx {
 
 std::optional<ShadowLight> flatPatchLight(const Mesh& mesh, const glm::mat4& model, const DirectionalLight& light,
                                           const SurfaceMaterial& material) {
-    if (!mesh.patch() || material.triplanar.scale > 0.0f) return std::nullopt;
+    if (!mesh.patch() || material.triplanar.on()) return std::nullopt;
     const FlatPatch& p = *mesh.patch();
     const glm::dmat4 m(model);
     const glm::dvec3 tangent(m * glm::dvec4(glm::dvec3(p.tangent), 0.0));
@@ -72,7 +72,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     const bool inDrawOnly = options.tracePass == TracePass::InDraw ||
                             (options.tracePass == TracePass::Auto && workarounds().traceInDraw);
     // (A triplanar mapping's projections are walked in the draw.)
-    const bool triplanar = material.triplanar.scale > 0.0f;
+    const bool triplanar = material.triplanar.on();
     bool computable = false;
     if (!inDrawOnly && !triplanar && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
         !glIsEnabled(GL_STENCIL_TEST)) {

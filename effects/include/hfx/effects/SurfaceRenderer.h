@@ -140,6 +140,7 @@ PlanetUniforms planetUniforms(const PlanetLook& look, const glm::mat4& model);
 struct TriplanarMapping {
     float scale = 0.0f;     ///< texcoords (texture repeats) per unit of the mesh's own space; 0: off
     float sharpness = 4.0f; ///< the weights' power, 1 to 64: the higher, the narrower the blends
+    bool on() const { return scale > 0.0f; }
     bool operator==(const TriplanarMapping&) const = default;
 };
 
