@@ -76,6 +76,7 @@ struct SceneOptions {
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals, water, planet: shot list file (decals headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image
+    float clouds = -1.0f;              ///< water: the share of the sky under cloud (-1: 0.4, none with an environment)
     std::string saveDamage, loadDamage; ///< decals: damage log written after the last frame, read at start
     // noise: the NoiseField shown (NoiseConfig's fields)
     std::string noiseKind = "perlin", fractal = "fbm", tiling = "wrap";

@@ -19,6 +19,8 @@ namespace hfx::demo {
 namespace {
 
 constexpr float kSeaMeters = 8000.0f;
+/// The clouds' layer over the sea, and how much faster than the wind at 10 m it moves.
+constexpr float kCloudHeightMeters = 1500.0f, kWindAloft = 2.0f;
 
 /// The sea state the options describe: a Beaufort force, or a wind speed; fetch, spectrum,
 /// spreading, depth and swell as given.
@@ -86,6 +88,10 @@ public:
         SurfaceMaterial m = effect().material();
         m.water.environment = environment_.id();
         m.water.hazeDistance = 2500.0f; // metres
+        // Cumulus about a kilometre across at 1.5 km (an environment image is the whole sky: a
+        // cover asked for with one is refused by name).
+        m.water.cloudCover = o.clouds >= 0.0f ? o.clouds : o.environment.empty() ? 0.4f : 0.0f;
+        m.water.cloudScale = kCloudHeightMeters / 1000.0f;
         effect().setMaterial(m);
         applyOptions(o);
         // Seven metres above the water, looking down (8 degrees unless told) towards the low sun.
@@ -97,6 +103,16 @@ public:
         light_.direction = {-0.35f, 0.22f, -1.0f};
         light_.color = {1.0f, 0.9f, 0.75f};
         light_.ambient = {0.35f, 0.42f, 0.5f};
+    }
+
+    /// The clouds drift downwind, with the wind aloft (the texcoords' v runs along -z on the plane).
+    void prepare(double dt) override {
+        ImpactScene::prepare(dt); // this frame's shots
+        SurfaceMaterial m = effect().material();
+        if (!(m.water.cloudCover > 0.0f)) return;
+        const float speed = kWindAloft * wind_ / kCloudHeightMeters; // cloud heights per second
+        m.water.cloudDrift -= float(dt) * speed * glm::vec2(std::cos(windDir_), -std::sin(windDir_));
+        effect().setMaterial(m);
     }
 
     void draw() override {
@@ -128,6 +144,9 @@ public:
         changed |= ImGui::SliderFloat("wind speed (m/s)", &wind_, 0.5f, 40.0f);
         changed |= ImGui::SliderAngle("wind direction", &windDir_, -180.0f, 180.0f);
         if (changed) ocean_->setWind(wind_, windDir_); // the sea's new depth is in the ocean's material
+        SurfaceMaterial m = effect().material();
+        if (m.water.environment == 0 && ImGui::SliderFloat("clouds", &m.water.cloudCover, 0.0f, 1.0f))
+            effect().setMaterial(m);
         const OceanField& sea = ocean_->ocean();
         double variance = 0.0;
         for (int i = 0; i < sea.cascadeCount(); ++i) variance += double(sea.cascade(i).sigma) * sea.cascade(i).sigma;

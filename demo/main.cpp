@@ -333,6 +333,10 @@ int main(int argc, char** argv) {
     app.add_option("--wind-dir", s.windDirection, "water: wind direction in radians")
         ->check(kFinite)->check(CLI::Range(-10.0, 10.0))->capture_default_str();
     app.add_option("--environment", s.environment, "water: equirectangular sky image to reflect");
+    app.add_option("--clouds", s.clouds,
+                   "water: the share of the sky under cloud, 0 to 1 (default 0.4; none with --environment, which is the "
+                   "whole sky)")
+        ->check(kFinite)->check(CLI::Range(0.0, 1.0));
     app.add_option("--beaufort", s.beaufort, "water: Beaufort force 0-12, sets the wind speed (overrides --wind-speed)")
         ->check(CLI::Range(0, 12));
     app.add_option("--fetch", s.fetchKm, "water: fetch of the wind sea in km")->check(kFinite)->check(CLI::Range(1.0, 100000.0))->capture_default_str();

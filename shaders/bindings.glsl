@@ -57,4 +57,10 @@
 // each axis (ExactTracer, trace/hier/beam.frag) and the draw reads the block's depth.
 #define HFX_BEAM_BLOCK 8
 
+// The water sky's clouds (shade/sky.glsl, hfx::cloudSample): the octaves of their value noise,
+// and the variance of one octave at a random point (measured over 2^22 points), which sets how
+// far an edge softens where the octaves finer than a pixel fade to their mean.
+#define HFX_CLOUD_OCTAVES 6
+#define HFX_CLOUD_OCTAVE_VARIANCE 0.04607
+
 #endif

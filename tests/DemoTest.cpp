@@ -653,7 +653,7 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
                              "water --dt 0", "water --field 100", "decals --shots /no/such/shots.txt",
                              "decals --normal-map n.png",  /* a normal map without a height map */ "water --environment /no/such/sky.exr",
                              "planet --field 4", "water --height 9", "noise --texel-shadows --no-texel-shadows",
-                             "decals --trace-pass sideways"}) {
+                             "decals --trace-pass sideways", "water --clouds 1.5"}) {
         const Result r = runDemo(std::string(args) + " --headless");
         EXPECT_NE(r.exitCode, 0) << args;
         EXPECT_FALSE(r.output.empty()) << args << " printed nothing";
@@ -681,6 +681,7 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
           std::pair{"decals --no-texel-shadows --defer-shadow-walks", "excludes --defer-shadow-walks"},
           std::pair{"water --window-shot shot.png", "--window-shot saves what a window shows, and this run is headless"},
           std::pair{"water --triplanar 1", "--triplanar is for the noise scene: the water scene"},
+          std::pair{"decals --clouds 0.5", "--clouds is for the water scene: the decals scene"},
           std::pair{"noise --triplanar 1 --trace-pass compute", "--trace-pass compute is for the plane: --triplanar's box"},
           std::pair{"noise --triplanar 1 --texel-shadows", "--texel-shadows is for the plane"},
           std::pair{"noise --triplanar 1 --tiling clamp --noise-kind simplex --field 64",

@@ -116,6 +116,10 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_streakCells", offsetof(WaterUniforms, streakCells)},
         {"u_windDirectionFrom", offsetof(WaterUniforms, windDirectionFrom)},
         {"u_spindriftFrom", offsetof(WaterUniforms, spindriftFrom)},
+        {"u_cloudCover", offsetof(WaterUniforms, cloudCover)},
+        {"u_cloudDrift", offsetof(WaterUniforms, cloudDrift)},
+        {"u_cloudScale", offsetof(WaterUniforms, cloudScale)},
+        {"u_cloudThreshold", offsetof(WaterUniforms, cloudThreshold)},
     };
     for (const auto& [name, offset] : surface) EXPECT_EQ(offsetOf(p, name), GLint(offset)) << name;
     for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)},

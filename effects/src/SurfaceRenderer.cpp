@@ -5,6 +5,7 @@
 #include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/effects/ShadowMap.h"
+#include "hfx/effects/Sky.h"
 
 #include "GlStateGuard.h"
 
@@ -49,7 +50,11 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .spindrift = w.spindrift,
             .streakCells = w.streakCells,
             .windDirectionFrom = w.windDirectionFrom,
-            .spindriftFrom = w.spindriftFrom};
+            .spindriftFrom = w.spindriftFrom,
+            .cloudCover = w.cloudCover,
+            .cloudDrift = w.cloudDrift,
+            .cloudScale = w.cloudScale,
+            .cloudThreshold = cloudThreshold(w.cloudCover)};
 }
 
 /// The slope variance a format's rounding alone shows in its mip-0 normals (Toksvig must not
@@ -91,8 +96,7 @@ void SurfaceMaterial::validate() const {
             throw Error(str("WaterLook.translucency must be in [0, 10], got ", water.translucency));
         if (!(water.hazeDistance > 0.0f))
             throw Error(str("WaterLook.hazeDistance must be positive, got ", water.hazeDistance));
-        if (water.environment != 0 && !glIsTexture(water.environment))
-            throw Error(str("WaterLook.environment ", water.environment, " is not a GL texture"));
+        water.validateSky();
     }
     if (shading == Shading::Planet) planet.validate();
     if (!(triplanar.scale >= 0.0f) || !std::isfinite(triplanar.scale))
@@ -102,6 +106,19 @@ void SurfaceMaterial::validate() const {
     if (triplanar.on() && clipToPatch)
         throw Error("SurfaceMaterial.clipToPatch cannot be set with triplanar.scale > 0: the patch's bounds are in the "
                     "mesh's texcoords, which a triplanar mapping does not read");
+}
+
+void WaterLook::validateSky() const {
+    if (environment != 0 && !glIsTexture(environment))
+        throw Error(str("WaterLook.environment ", environment, " is not a GL texture"));
+    if (!(cloudCover >= 0.0f && cloudCover <= 1.0f))
+        throw Error(str("WaterLook.cloudCover must be in [0, 1] (the share of the sky under cloud), got ", cloudCover));
+    if (!(cloudScale > 0.0f && cloudScale <= 64.0f))
+        throw Error(str("WaterLook.cloudScale must be in (0, 64] clouds per cloud height, got ", cloudScale));
+    if (!isFinite(cloudDrift)) throw Error(str("WaterLook.cloudDrift must be finite, got ", text(cloudDrift)));
+    if (cloudCover > 0.0f && environment != 0)
+        throw Error(str("WaterLook.cloudCover ", cloudCover, " draws clouds in the procedural sky, but the look has an "
+                        "environment image (", environment, "), which is the whole sky: set one or the other"));
 }
 
 void DirectionalLight::validate() const {
@@ -619,8 +636,7 @@ std::optional<ShadowLight> flatSurfaceLight(const SurfaceFrame& frame, const Dir
 void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& light, const WaterLook& look) {
     camera.validate();
     light.validate();
-    if (look.environment != 0 && !glIsTexture(look.environment))
-        throw Error(str("WaterLook.environment ", look.environment, " is not a GL texture"));
+    look.validateSky();
     checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
     ShaderProgram& sky = sky_[{look.environment != 0, motionOutput_}];
     if (!sky.id()) {

@@ -2,9 +2,11 @@
 // the HfxWater block (mirrored by hfx::WaterUniforms): an equirectangular environment image
 // (HFX_ENVIRONMENT, a define of the program: on a CPU rasteriser a branch on a uniform runs both
 // sides, and each water pixel asks for the sky twice), or a gradient from the horizon's colour up
-// to the zenith's with the sun's glow around the light.
+// to the zenith's with the sun's glow around the light, and clouds (u_cloudCover > 0).
 // Below the horizon the horizon's colour continues: what distant water fades into, so the sea
 // meets the sky without a seam.
+// effects/src/Sky.cpp computes the procedural sky on the CPU with the same float operations
+// (hfx::skyColor): change both together.
 
 layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     vec3 u_deepColor;     // troughs: light travels far in the water
@@ -27,27 +29,117 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     float u_streakCells;   // wind streaks' lattice cells per texcoord across the wind
     vec2 u_windDirectionFrom; // a wind change: the last wind's streaks fading out, their direction
     float u_spindriftFrom;    // ... and their strength now (0: none)
-    float u_waterPadding0;
-    vec2 u_waterPadding1;
+    float u_cloudCover;       // the share of the sky overhead under cloud (0: no clouds)
+    vec2 u_cloudDrift;        // how far the cloud layer has moved, cloud heights along world x, z
+    float u_cloudScale;       // clouds (the noise's first cells) per cloud height
+    float u_cloudThreshold;   // where the noise is clouded: its (1 - cover) quantile
+    vec2 u_waterPadding;
 };
 layout(binding = HFX_UNIT_ENVIRONMENT) uniform sampler2D s_environment;
 
-vec3 hfx_sky(vec3 dir) {
+// A value in [0, 1) for an integer cell: pcg2d (Jarzynski and Olano 2020), integer arithmetic, so
+// every device gets the same bits (a hash of float products turned on their last bit near a
+// whole number, and a cell's value with it).
+float hfx_cell_value(vec2 cell) {
+    uvec2 v = uvec2(ivec2(cell)) * 1664525u + 1013904223u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    return float(v.x >> 8u) * (1.0 / 16777216.0);
+}
+
+// A value noise: the cells' values at the corners, blended by smoothstep weights.
+float hfx_value_noise(vec2 q) {
+    const vec2 cell = floor(q), f = q - cell, s = f * f * (3.0 - 2.0 * f);
+    const float a = hfx_cell_value(cell), b = hfx_cell_value(cell + vec2(1, 0));
+    const float c = hfx_cell_value(cell + vec2(0, 1)), d = hfx_cell_value(cell + vec2(1, 1));
+    const float ab = a + (b - a) * s.x, cd = c + (d - c) * s.x;
+    return ab + (cd - ab) * s.y;
+}
+
+// The clouds in direction `dir` (y > 0), seen over `spread` radians (a sky pixel's width, a
+// reflection's widened by the water's roughness): (density, thickness). The layer lies at one
+// cloud height over the eye; a value noise over it of HFX_CLOUD_OCTAVES octaves is clouded above
+// u_cloudThreshold. The pixel covers a patch of the layer spread / y across (its distance 1 / y)
+// and spread / y^2 along the view (foreshortened by y again). An octave keeps the share of its
+// variance a box that size leaves it, 1 / sqrt((1 + (L_along / wavelength)^2) (1 + (L_across /
+// wavelength)^2)), about its mean, and the variance it no longer shows widens the edge's ramp as
+// a Gaussian of it would (a smoothstep's variance is a fifth of its half-width's square): far
+// off and in rough water a pixel shows about the share of it under cloud, not an aliased sample
+// of it. An octave that keeps under 2% of its deviation is not read.
+vec2 hfx_clouds(vec3 dir, float spread) {
+    const float y = max(dir.y, 0.01);
+    vec2 p = (dir.xz / y + u_cloudDrift) * u_cloudScale;
+    const float across = spread / y, along = across / y;
+    float wavelength = 1.0 / u_cloudScale, amplitude = 0.5, sum = 0.0, value = 0.0, lost = 0.0;
+    for (int i = 0; i < HFX_CLOUD_OCTAVES; ++i) {
+        const float a = along / wavelength, b = across / wavelength;
+        const float kept = inversesqrt((1.0 + a * a) * (1.0 + b * b)); // of the variance
+        float keep = sqrt(kept);                                        // of the deviation
+        keep *= smoothstep(0.02, 0.1, keep);
+        const float n = keep > 0.0 ? hfx_value_noise(p + 17.0 * float(i)) : 0.5;
+        value += amplitude * (0.5 + keep * (n - 0.5));
+        lost += amplitude * amplitude * (1.0 - keep * keep);
+        sum += amplitude;
+        // Turned by atan(3/4) and doubled: the next octave's grid lies across this one's.
+        p = vec2(1.6 * p.x - 1.2 * p.y, 1.2 * p.x + 1.6 * p.y);
+        amplitude *= 0.5;
+        wavelength *= 0.5;
+    }
+    value /= sum;
+    const float lostVariance = HFX_CLOUD_OCTAVE_VARIANCE * lost / (sum * sum);
+    const float width = sqrt(0.04 * 0.04 + 5.0 * lostVariance);
+    const float density = smoothstep(u_cloudThreshold - width, u_cloudThreshold + width, value);
+    const float thickness = clamp((value - u_cloudThreshold) / (0.2 + width), 0.0, 1.0);
+    // Far off, the layer fades into the horizon's haze.
+    return vec2(density * (1.0 - exp(-8.0 * dir.y)), thickness);
+}
+
+// The sky without clouds: most of the change happens near the horizon, as in a clear sky.
+vec3 hfx_clear_sky(vec3 dir) {
+    const float up = clamp(dir.y, 0.0, 1.0);
+    const vec3 base = u_skyHorizon + (u_skyZenith - u_skyHorizon) * pow(up, 0.4);
+    const float sun = max(dot(normalize(dir), normalize(u_lightDir)), 0.0);
+    return base + u_sunGlow * u_lightColor * (0.5 * pow(sun, 48.0) + 0.12 * pow(sun, 6.0));
+}
+
+// A cloud's colour: the sky's light from around it and the sun's from above (both dimmed where
+// it is thick: its underside is in its own shade), and at its thin edges towards the sun the
+// light it scatters forwards (the silver lining).
+vec3 hfx_cloud_color(vec3 dir, float thickness) {
+    const vec3 l = normalize(u_lightDir);
+    const float sun = max(dot(normalize(dir), l), 0.0);
+    const vec3 ambient = u_skyHorizon + (u_skyZenith - u_skyHorizon) * 0.3;
+    const vec3 lit = (0.7 + 0.3 * (1.0 - thickness)) * (0.5 * ambient + (0.55 + 0.45 * clamp(l.y, 0.0, 1.0)) * u_lightColor);
+    const vec3 silver = u_sunGlow * u_lightColor * (1.0 - thickness) * (1.5 * pow(sun, 16.0) + 0.3 * pow(sun, 4.0));
+    return lit + silver;
+}
+
+// The sky in direction `dir`, seen over `spread` radians (what the clouds are filtered over).
+vec3 hfx_sky(vec3 dir, float spread) {
 #if HFX_ENVIRONMENT
     const float pi = 3.14159265;
     const vec2 uv = vec2(atan(dir.z, dir.x) / (2.0 * pi) + 0.5, acos(clamp(dir.y, -1.0, 1.0)) / pi);
     return textureLod(s_environment, vec2(uv.x, 1.0 - uv.y), 0.0).rgb;
 #else
-    // Most of the change happens near the horizon, as in a clear sky.
-    const float up = clamp(dir.y, 0.0, 1.0);
-    const vec3 base = mix(u_skyHorizon, u_skyZenith, pow(up, 0.4));
-    const float sun = max(dot(normalize(dir), normalize(u_lightDir)), 0.0);
-    return base + u_sunGlow * u_lightColor * (0.5 * pow(sun, 48.0) + 0.12 * pow(sun, 6.0));
+    const vec3 clear = hfx_clear_sky(dir);
+    if (!(u_cloudCover > 0.0) || !(dir.y > 0.0)) return clear;
+    const vec2 cloud = hfx_clouds(dir, spread);
+    return clear + (hfx_cloud_color(dir, cloud.y) - clear) * cloud.x;
 #endif
 }
 
-/// The haze at a distance: the sky at the horizon in the direction of the point.
+/// The haze at a distance: the sky at the horizon in the direction of the point (where the clouds
+/// have faded into it).
 vec3 hfx_haze(vec3 toPoint) {
     const vec3 level = vec3(toPoint.x, 0.0, toPoint.z);
-    return hfx_sky(dot(level, level) > 0.0 ? normalize(level) : vec3(1.0, 0.0, 0.0));
+    const vec3 dir = dot(level, level) > 0.0 ? normalize(level) : vec3(1.0, 0.0, 0.0);
+#if HFX_ENVIRONMENT
+    return hfx_sky(dir, 0.0);
+#else
+    return hfx_clear_sky(dir);
+#endif
 }

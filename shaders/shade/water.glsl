@@ -139,7 +139,10 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     const float variance = p.slopeVariance + foam * u_foamRoughness;
     const float power = u_glintPower / (1.0 + 4.0 * u_glintPower * variance);
     const float glint = u_glintStrength * (power + 2.0) / (u_glintPower + 2.0) * pow(max(dot(reflected, p.lightDir), 0.0), power);
-    vec3 color = mix(body, hfx_sky(reflected), fresnel) + p.lit * glint * u_lightColor;
+    // The reflected sky over the directions the pixel's normals send it to: twice their spread
+    // (the slopes' deviation), or a pixel's width (about 2 mrad) where they hardly spread.
+    const float skySpread = 2.0 * sqrt(p.slopeVariance) + 0.002;
+    vec3 color = mix(body, hfx_sky(reflected, skySpread), fresnel) + p.lit * glint * u_lightColor;
     // Foam: a rough white layer, lit like snow, that hides the water under it; its bubbles shade
     // dense foam a little where they show, about its mean brightness (no flat white sheet).
     const vec3 foamLit = u_foamColor * (1.0 + 0.3 * (lace.x - HFX_LACE_MEAN)) *

@@ -1,0 +1,116 @@
+#include "hfx/effects/Sky.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+// Mirrors shaders/shade/sky.glsl operation for operation, in float: change both together
+// (tests/SkyTest.cpp holds the shader to this file).
+
+namespace hfx {
+namespace {
+
+float smoothstep(float e0, float e1, float x) {
+    const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+/// hfx_cell_value: pcg2d, in integers (the same bits as any device's).
+float cellValue(glm::vec2 cell) {
+    std::uint32_t x = std::uint32_t(std::int32_t(cell.x)) * 1664525u + 1013904223u;
+    std::uint32_t y = std::uint32_t(std::int32_t(cell.y)) * 1664525u + 1013904223u;
+    x += y * 1664525u;
+    y += x * 1664525u;
+    x ^= x >> 16u;
+    y ^= y >> 16u;
+    x += y * 1664525u;
+    y += x * 1664525u;
+    x ^= x >> 16u;
+    return float(x >> 8u) * (1.0f / 16777216.0f);
+}
+
+/// hfx_value_noise
+float valueNoise(glm::vec2 q) {
+    const glm::vec2 cell = glm::floor(q), f = q - cell, s = f * f * (3.0f - 2.0f * f);
+    const float a = cellValue(cell), b = cellValue(cell + glm::vec2(1, 0));
+    const float c = cellValue(cell + glm::vec2(0, 1)), d = cellValue(cell + glm::vec2(1, 1));
+    const float ab = a + (b - a) * s.x, cd = c + (d - c) * s.x;
+    return ab + (cd - ab) * s.y;
+}
+
+// The quantiles of the clouds' noise (the octaves' sum over their amplitudes' sum), every 5% from
+// 0 to 100%, measured over 2^22 random points of it (this file's noise, points in [-1000, 1000]^2).
+constexpr std::array<float, 21> kQuantiles{0.0357f, 0.2932f, 0.3340f, 0.3634f, 0.3877f, 0.4093f, 0.4290f,
+                                           0.4477f, 0.4656f, 0.4829f, 0.5001f, 0.5172f, 0.5346f, 0.5524f,
+                                           0.5711f, 0.5908f, 0.6123f, 0.6365f, 0.6660f, 0.7068f, 0.9359f};
+
+} // namespace
+
+float cloudThreshold(float cover) {
+    const float c = std::clamp(cover, 0.0f, 1.0f);
+    // The sky is clouded where the noise is above its (1 - cover) quantile.
+    const float at = (1.0f - c) * float(kQuantiles.size() - 1);
+    const int i = std::min(int(at), int(kQuantiles.size()) - 2);
+    return kQuantiles[size_t(i)] + (kQuantiles[size_t(i) + 1] - kQuantiles[size_t(i)]) * (at - float(i));
+}
+
+CloudSample cloudSample(const WaterLook& look, glm::vec3 dir, float spread) {
+    if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return {};
+    // The layer's point in cloud heights (the layer at height 1 over the eye), and the patch of
+    // it the spread covers: spread / y across (its distance 1 / y), foreshortened by y again along.
+    const float y = std::max(dir.y, 0.01f);
+    glm::vec2 p = (glm::vec2(dir.x, dir.z) / y + look.cloudDrift) * look.cloudScale;
+    const float across = spread / y, along = across / y;
+    float wavelength = 1.0f / look.cloudScale, amplitude = 0.5f, sum = 0.0f, value = 0.0f, lost = 0.0f;
+    for (int i = 0; i < HFX_CLOUD_OCTAVES; ++i) {
+        const float a = along / wavelength, b = across / wavelength;
+        const float kept = 1.0f / std::sqrt((1.0f + a * a) * (1.0f + b * b)); // of the variance
+        float keep = std::sqrt(kept);                                          // of the deviation
+        keep *= smoothstep(0.02f, 0.1f, keep);
+        const float n = keep > 0.0f ? valueNoise(p + 17.0f * float(i)) : 0.5f;
+        value += amplitude * (0.5f + keep * (n - 0.5f));
+        lost += amplitude * amplitude * (1.0f - keep * keep);
+        sum += amplitude;
+        // Turned by atan(3/4) and doubled: the next octave's grid lies across this one's.
+        p = glm::vec2(1.6f * p.x - 1.2f * p.y, 1.2f * p.x + 1.6f * p.y);
+        amplitude *= 0.5f;
+        wavelength *= 0.5f;
+    }
+    value /= sum;
+    const float lostVariance = float(HFX_CLOUD_OCTAVE_VARIANCE) * lost / (sum * sum);
+    // The edge: a ramp 0.04 either side of the threshold, widened as a Gaussian of the lost
+    // octaves' variance would widen it (a smoothstep's variance is a fifth of its half-width's
+    // square).
+    const float threshold = cloudThreshold(look.cloudCover);
+    const float width = std::sqrt(0.04f * 0.04f + 5.0f * lostVariance);
+    const float density = smoothstep(threshold - width, threshold + width, value);
+    const float thickness = std::clamp((value - threshold) / (0.2f + width), 0.0f, 1.0f);
+    // Far off, the layer fades into the horizon's haze.
+    return {density * (1.0f - std::exp(-8.0f * dir.y)), thickness};
+}
+
+glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::vec3 dir, float spread) {
+    // hfx_clear_sky: most of the change happens near the horizon, as in a clear sky.
+    const glm::vec3 lightDir = glm::normalize(light.direction);
+    const float up = std::clamp(dir.y, 0.0f, 1.0f);
+    const glm::vec3 base = look.skyHorizon + (look.skyZenith - look.skyHorizon) * std::pow(up, 0.4f);
+    const float sun = std::max(glm::dot(glm::normalize(dir), lightDir), 0.0f);
+    const glm::vec3 clear =
+        base + look.sunGlow * light.color * (0.5f * std::pow(sun, 48.0f) + 0.12f * std::pow(sun, 6.0f));
+    const CloudSample cloud = cloudSample(look, dir, spread);
+    if (!(cloud.density > 0.0f)) return clear;
+    // hfx_cloud_color
+    const float elevation = std::clamp(lightDir.y, 0.0f, 1.0f);
+    const glm::vec3 ambient = look.skyHorizon + (look.skyZenith - look.skyHorizon) * 0.3f;
+    const glm::vec3 lit = (0.7f + 0.3f * (1.0f - cloud.thickness)) *
+                          (0.5f * ambient + (0.55f + 0.45f * elevation) * light.color);
+    const glm::vec3 silver = look.sunGlow * light.color * (1.0f - cloud.thickness) *
+                             (1.5f * std::pow(sun, 16.0f) + 0.3f * std::pow(sun, 4.0f));
+    return clear + (lit + silver - clear) * cloud.density;
+}
+
+} // namespace hfx

@@ -1,0 +1,298 @@
+// The water sky's clouds (WaterLook::cloudCover; shaders/shade/sky.glsl, hfx::skyColor). The CPU
+// model covers the share of the sky the look asks for, moves with its drift and filters what a
+// pixel cannot show; the sky pass draws the CPU's sky, the water mirrors it, and bad looks are
+// refused by name.
+
+#include "support/Fields.h"
+#include "support/Fixtures.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/Sky.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+namespace hfx::test {
+namespace {
+
+class Sky : public GlTest {};
+
+/// A direction whose point on the cloud layer (one cloud height over the eye) is `p`.
+glm::vec3 towards(glm::vec2 p) { return glm::normalize(glm::vec3(p.x, 1.0f, p.y)); }
+
+TEST(SkyModel, CloudsCoverTheShareOfTheSkyOverheadTheLookAsks) {
+    // Overhead (y > 0.8) every octave shows (a tight spread): the share of directions under a
+    // cloud's middle (density > 0.5) is the cover, at and between the quantile table's entries.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+    for (const float cover : {0.1f, 0.25f, 0.4f, 0.5f, 0.73f, 0.9f}) {
+        WaterLook look;
+        look.cloudCover = cover;
+        look.cloudScale = 1.5f;
+        int clouded = 0, n = 0;
+        for (; n < 200000; ++n) {
+            // Skies far apart on the layer (a view overhead holds a few clouds), y > 0.8 in each.
+            look.cloudDrift = {500.0f * uniform(random), 500.0f * uniform(random)};
+            const glm::vec2 p(0.75f * uniform(random), 0.75f * uniform(random));
+            clouded += cloudSample(look, towards(p), 1e-4f).density > 0.5f;
+        }
+        std::printf("cover %.2f: %.4f of the sky overhead clouded\n", double(cover), double(clouded) / n);
+        EXPECT_NEAR(double(clouded) / n, cover, 0.02) << "cover " << cover;
+    }
+    WaterLook look;
+    look.cloudCover = 0.0f;
+    EXPECT_EQ(cloudSample(look, towards({0.1f, 0.2f}), 1e-4f).density, 0.0f) << "no cover, no clouds";
+    look.cloudCover = 1.0f;
+    EXPECT_GT(cloudSample(look, towards({0.1f, 0.2f}), 1e-4f).density, 0.5f) << "full cover is overcast";
+    EXPECT_EQ(cloudSample(look, glm::normalize(glm::vec3(0.3f, -0.2f, 0.5f)), 1e-4f).density, 0.0f)
+        << "clouds below the horizon";
+}
+
+TEST(SkyModel, TheLayerMovesByItsDriftInCloudHeights) {
+    // A layer at one cloud height: a drift d (in cloud heights) shows at direction towards(p) the
+    // clouds the undrifted layer showed at towards(p + d).
+    WaterLook still, moved;
+    still.cloudCover = moved.cloudCover = 0.5f;
+    moved.cloudDrift = {0.37f, -0.21f};
+    double worst = 0.0, spread = 0.0;
+    for (int i = 0; i < 400; ++i) {
+        const glm::vec2 p(-0.6f + 0.003f * float(i), 0.2f + 0.001f * float(i));
+        const float a = cloudSample(moved, towards(p), 1e-4f).density;
+        const float b = cloudSample(still, towards(p + moved.cloudDrift), 1e-4f).density;
+        worst = std::max(worst, double(std::abs(a - b)));
+        spread = std::max(spread, double(std::abs(a - cloudSample(still, towards(p), 1e-4f).density)));
+    }
+    // (Only the fade towards the horizon differs, 1 - exp(-8 y) at the two directions' heights.)
+    EXPECT_LT(worst, 0.03) << "the drift is not a shift of the layer in cloud heights";
+    EXPECT_GT(spread, 0.5) << "the drift did not move the clouds";
+}
+
+TEST(SkyModel, CloudsNearTheHorizonShowWhatAPixelCoversRatherThanAliasing) {
+    // 2 and 5 degrees over the horizon a pixel (2 mrad square) spans more of the layer than the
+    // finer octaves' cells. What it should show is the mean of the clouds over it (16 x 16 sharp
+    // samples across it): filtered over its width the clouds come nearer that than one sharp
+    // sample at its middle (a spread of 0, what an unfiltered noise draws, aliased: the next
+    // pixel another cell). Over 600 pixels along the horizon at each elevation.
+    WaterLook look;
+    look.cloudCover = 0.5f;
+    const float pixel = 0.002f;
+    auto dirAt = [](float azimuth, float e) {
+        return glm::vec3(std::cos(e) * std::sin(azimuth), std::sin(e), -std::cos(e) * std::cos(azimuth));
+    };
+    for (const float elevation : {0.04f, 0.08f}) {
+        double filtered = 0.0, sampled = 0.0, shown = 0.0;
+        const int n = 600, sub = 16;
+        for (int i = 0; i < n; ++i) {
+            const float azimuth = 3.0f * pixel * float(i);
+            double mean = 0.0;
+            for (int a = 0; a < sub; ++a)
+                for (int b = 0; b < sub; ++b)
+                    mean += cloudSample(look, dirAt(azimuth + pixel * ((a + 0.5f) / sub - 0.5f), elevation + pixel * ((b + 0.5f) / sub - 0.5f)), 0.0f).density;
+            mean /= sub * sub;
+            filtered += std::abs(cloudSample(look, dirAt(azimuth, elevation), pixel).density - mean);
+            sampled += std::abs(cloudSample(look, dirAt(azimuth, elevation), 0.0f).density - mean);
+            shown += mean > 0.1;
+        }
+        std::printf("%.2f rad up: mean error against the pixel's mean cloud %.4f filtered, %.4f sampled; %.0f of %d "
+                    "pixels clouded\n",
+                    double(elevation), filtered / n, sampled / n, shown, n);
+        EXPECT_LT(filtered / n, 0.8 * sampled / n) << "the finer octaves alias " << elevation << " rad up";
+        EXPECT_GT(shown, 0.1 * n) << "too few clouds to test " << elevation << " rad up";
+    }
+}
+
+/// What an 8-bit target holds of a linear colour: hfx_output's gamma 2.2.
+glm::vec3 display(glm::vec3 c) {
+    return glm::pow(glm::clamp(c, 0.0f, 1.0f), glm::vec3(1.0f / 2.2f));
+}
+
+/// Pixel (x, y from the top) of `image`.
+glm::vec3 pixelOf(const Image& image, int x, int y) {
+    return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
+}
+
+/// The largest channel difference.
+float apart(glm::vec3 a, glm::vec3 b) {
+    const glm::vec3 d = glm::abs(a - b);
+    return std::max({d.x, d.y, d.z});
+}
+
+constexpr int kW = 192, kH = 128;
+
+/// A camera 10 units up looking 40 degrees over the horizon, the sun low behind its left.
+Camera skyCamera() {
+    Camera camera;
+    camera.position = {0.0f, 10.0f, 0.0f};
+    camera.target = {0.0f, 10.0f + std::tan(0.7f), -1.0f};
+    camera.fovY = 1.2f;
+    camera.aspect = float(kW) / kH;
+    return camera;
+}
+
+const DirectionalLight kSun{.direction = {-0.35f, 0.45f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}};
+
+TEST_F(Sky, TheSkyPassDrawsTheCpuSkyItsCloudsIncluded) {
+    RenderTarget target(kW, kH);
+    SurfaceRenderer renderer;
+    const Camera camera = skyCamera();
+    WaterLook look;
+    look.cloudCover = 0.45f;
+    look.cloudScale = 2.0f;
+    look.cloudDrift = {1.3f, 0.4f};
+    auto draw = [&](const WaterLook& l) {
+        target.bind();
+        target.clear();
+        renderer.drawSky(camera, kSun, l);
+        return target.readColor();
+    };
+    const Image cloudy = draw(look);
+    WaterLook clear = look;
+    clear.cloudCover = 0.0f;
+    const Image plain = draw(clear);
+    // Each pixel's direction, and its width as the shader takes it: the larger step to its
+    // neighbours.
+    auto dirAt = [&](double x, double y) {
+        return glm::vec3(camera.rayThroughPixel(x + 0.5, kH - 1 - y + 0.5, kW, kH).direction);
+    };
+    int off = 0, clouded = 0, changed = 0;
+    float worst = 0.0f;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const glm::vec3 dir = dirAt(x, y);
+            const float spread = std::max(glm::length(dirAt(x + 1, y) - dir), glm::length(dirAt(x, y + 1) - dir));
+            const glm::vec3 expected = display(skyColor(look, kSun, dir, spread));
+            const float e = apart(pixelOf(cloudy, x, y), expected);
+            worst = std::max(worst, e);
+            off += e > 2.5f / 255.0f;
+            clouded += cloudSample(look, dir, spread).density > 0.5f;
+            changed += apart(pixelOf(cloudy, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
+            EXPECT_LE(apart(pixelOf(plain, x, y), display(skyColor(clear, kSun, dir, spread))), 1.5f / 255.0f);
+        }
+    std::printf("%d of %d pixels clouded, %d changed by the clouds; %d off the CPU's sky by over 2.5/255 (at most "
+                "%.1f/255)\n",
+                clouded, kW * kH, changed, off, double(worst) * 255.0);
+    EXPECT_GT(clouded, kW * kH / 5) << "too few clouds to test";
+    EXPECT_GT(changed, kW * kH / 5) << "the clouds do not show";
+    EXPECT_LE(off, kW * kH / 200) << "the sky pass is not the CPU's sky";
+    EXPECT_LT(worst, 12.0f / 255.0f);
+}
+
+TEST_F(Sky, AStillWaterMirrorsTheClouds) {
+    // A mirror: water reflecting all of the sky (Fresnel 1), flat (the material's depth 0), no
+    // glint or haze. Each pixel is the sky in its reflected direction, seen over the water's
+    // floor of spread (2 mrad; its normals do not spread) and rolled off above the water's knee.
+    RenderTarget target(kW, kH);
+    SurfaceRenderer renderer;
+    const SineRelief relief(64, 0.05f);
+    const Mesh plane(makePlane({.size = 40.0f}));
+    Camera camera;
+    camera.position = {0.0f, 6.0f, 6.0f};
+    camera.target = {0.0f, 0.0f, -4.0f};
+    camera.fovY = 1.0f;
+    camera.aspect = float(kW) / kH;
+    camera.farPlane = 100.0f;
+    SurfaceMaterial material;
+    material.shading = Shading::Water;
+    material.depthScale = 0.0f;
+    material.water.fresnelF0 = 1.0f;
+    material.water.glintStrength = 0.0f;
+    material.water.hazeDistance = 1e9f;
+    material.water.cloudCover = 0.5f;
+    material.water.cloudScale = 3.0f;
+    auto draw = [&](const SurfaceMaterial& m) {
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), relief.textures, m, camera, kSun);
+        return target.readColor();
+    };
+    const Image mirrored = draw(material);
+    SurfaceMaterial clear = material;
+    clear.water.cloudCover = 0.0f;
+    const Image plain = draw(clear);
+    auto knee = [](glm::vec3 c) { // shade/water.glsl's roll-off of display colours
+        const glm::vec3 over = glm::max(c - 0.75f, 0.0f);
+        return glm::min(c, 0.75f) + 0.25f * (1.0f - glm::exp(-over / 0.25f));
+    };
+    int water = 0, off = 0, clouded = 0, changed = 0;
+    float worst = 0.0f;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const Ray ray = camera.rayThroughPixel(x + 0.5, kH - 1 - y + 0.5, kW, kH);
+            if (!(ray.direction.y < -0.05)) continue; // the plane's far edge and the sky
+            const double t = -ray.origin.y / ray.direction.y;
+            const glm::dvec3 hit = ray.origin + t * ray.direction;
+            if (std::abs(hit.x) > 19.0 || std::abs(hit.z) > 19.0) continue;
+            ++water;
+            const glm::vec3 reflected(glm::vec3(ray.direction.x, -ray.direction.y, ray.direction.z));
+            const glm::vec3 expected = display(knee(skyColor(material.water, kSun, reflected, 0.002f)));
+            const float e = apart(pixelOf(mirrored, x, y), expected);
+            worst = std::max(worst, e);
+            off += e > 2.5f / 255.0f;
+            clouded += cloudSample(material.water, reflected, 0.002f).density > 0.5f;
+            changed += apart(pixelOf(mirrored, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
+        }
+    std::printf("%d water pixels, %d reflecting a cloud, %d changed by the clouds; %d off the CPU's mirrored sky by "
+                "over 2.5/255 (at most %.1f/255)\n",
+                water, clouded, changed, off, double(worst) * 255.0);
+    ASSERT_GT(water, kW * kH / 2);
+    EXPECT_GT(clouded, water / 5) << "too few clouds to test";
+    EXPECT_GT(changed, water / 5) << "the water does not reflect the clouds";
+    EXPECT_LE(off, water / 200) << "the water does not mirror the CPU's sky";
+    EXPECT_LT(worst, 12.0f / 255.0f);
+}
+
+TEST_F(Sky, BadCloudsAreRefusedByNameAndDrawNothing) {
+    RenderTarget target(kW, kH);
+    SurfaceRenderer renderer;
+    const Camera camera = skyCamera();
+    target.bind();
+    target.clear();
+    renderer.drawSky(camera, kSun, WaterLook{});
+    const Image before = target.readColor();
+    GlTexture image = GlTexture::create();
+    glTextureStorage2D(image.id(), 1, GL_RGB32F, 8, 4);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    struct Case {
+        const char* what;
+        WaterLook look;
+        const char* named;
+    };
+    auto with = [](auto change) {
+        WaterLook look;
+        look.cloudCover = 0.4f;
+        change(look);
+        return look;
+    };
+    const Case cases[] = {
+        {"a cover over 1", with([](WaterLook& l) { l.cloudCover = 1.5f; }), "WaterLook.cloudCover"},
+        {"a negative cover", with([](WaterLook& l) { l.cloudCover = -0.1f; }), "WaterLook.cloudCover"},
+        {"a cover that is not a number", with([&](WaterLook& l) { l.cloudCover = nan; }), "WaterLook.cloudCover"},
+        {"a scale of 0", with([](WaterLook& l) { l.cloudScale = 0.0f; }), "WaterLook.cloudScale"},
+        {"a scale over 64", with([](WaterLook& l) { l.cloudScale = 100.0f; }), "WaterLook.cloudScale"},
+        {"a drift not finite", with([&](WaterLook& l) { l.cloudDrift.y = nan; }), "WaterLook.cloudDrift"},
+        {"clouds with an environment image", with([&](WaterLook& l) { l.environment = image.id(); }), "environment image"},
+    };
+    SurfaceMaterial material;
+    material.shading = Shading::Water;
+    const SineRelief relief(64, 0.05f);
+    const Mesh plane(makePlane({.size = 40.0f}));
+    for (const Case& c : cases) {
+        const std::string sky = messageOf([&] { renderer.drawSky(camera, kSun, c.look); });
+        EXPECT_NE(sky.find(c.named), std::string::npos) << c.what << ": " << sky;
+        material.water = c.look;
+        const std::string draw = messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), relief.textures, material, camera, kSun); });
+        EXPECT_NE(draw.find(c.named), std::string::npos) << c.what << ": " << draw;
+        EXPECT_EQ(target.readColor().pixels, before.pixels) << c.what << " drew";
+    }
+}
+
+} // namespace
+} // namespace hfx::test
