@@ -38,7 +38,8 @@
 //                     and shades nothing; 2 = the shading draw, which reads the hit and its shadow
 //   HFX_TRACE_LIGHTS  1: the rays draw stores each pixel's light ray too (the light is not one for
 //                     the draw: a curved mesh, a silhouette fade)
-//   HFX_ENVIRONMENT   1 for water reflecting an equirectangular image (WaterLook::environment)
+//   HFX_SKY           the sky the water reflects (hfx::SkyKind, shade/sky.glsl): 0 a gradient, 1 with
+//                     clouds (WaterLook::cloudCover), 2 an equirectangular image (WaterLook::environment)
 //   HFX_REVERSED_Z    1 for a reversed-Z camera (hfx::Camera::reversedZ): the traced depth is
 //                     written for GL's [0, 1] clip depth, drawn with GL_GREATER
 //   HFX_PYRAMID_ATLAS 1 on llvmpipe: the pyramids in one image each (surface/heights.glsl,

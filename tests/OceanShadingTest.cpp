@@ -198,7 +198,7 @@ TEST_F(OceanShading, ImpactRingsShowWhileTheyLiveAndTheCalmSeaDrawsAsBefore) {
 }
 
 TEST_F(OceanShading, AnEnvironmentImageIsTheSkyTheWaterReflectsAndTheSkyPassDraws) {
-    // WaterLook::environment picks the program variant that reads the image (HFX_ENVIRONMENT) in
+    // WaterLook::environment picks the program variant that reads the image (HFX_SKY 2) in
     // place of the procedural sky, for the sky pass and for the water's reflection and haze.
     SmallSea sea(cl());
     const DirectionalLight light{.direction = {-0.35f, 0.5f, -1.0f}};

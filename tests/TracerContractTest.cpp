@@ -116,7 +116,6 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_streakCells", offsetof(WaterUniforms, streakCells)},
         {"u_windDirectionFrom", offsetof(WaterUniforms, windDirectionFrom)},
         {"u_spindriftFrom", offsetof(WaterUniforms, spindriftFrom)},
-        {"u_cloudCover", offsetof(WaterUniforms, cloudCover)},
         {"u_cloudDrift", offsetof(WaterUniforms, cloudDrift)},
         {"u_cloudScale", offsetof(WaterUniforms, cloudScale)},
         {"u_cloudThreshold", offsetof(WaterUniforms, cloudThreshold)},

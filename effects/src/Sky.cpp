@@ -65,22 +65,24 @@ CloudSample cloudSample(const WaterLook& look, glm::vec3 dir, float spread) {
     const float y = std::max(dir.y, 0.01f);
     glm::vec2 p = (glm::vec2(dir.x, dir.z) / y + look.cloudDrift) * look.cloudScale;
     const float across = spread / y, along = across / y;
-    float wavelength = 1.0f / look.cloudScale, amplitude = 0.5f, sum = 0.0f, value = 0.0f, lost = 0.0f;
+    // The octaves' amplitudes 1/2, 1/4, ...: their sum and the sum of their squares.
+    const float sum = 1.0f - std::exp2(-float(HFX_CLOUD_OCTAVES));
+    const float squares = (1.0f - std::exp2(-2.0f * float(HFX_CLOUD_OCTAVES))) / 3.0f;
+    float wavelength = 1.0f / look.cloudScale, amplitude = 0.5f, value = 0.5f * sum, kept = 0.0f;
     for (int i = 0; i < HFX_CLOUD_OCTAVES; ++i) {
         const float a = along / wavelength, b = across / wavelength;
-        const float kept = 1.0f / std::sqrt((1.0f + a * a) * (1.0f + b * b)); // of the variance
-        float keep = std::sqrt(kept);                                          // of the deviation
+        float keep = std::sqrt(1.0f / std::sqrt((1.0f + a * a) * (1.0f + b * b))); // of the deviation
         keep *= smoothstep(0.02f, 0.1f, keep);
-        const float n = keep > 0.0f ? valueNoise(p + 17.0f * float(i)) : 0.5f;
-        value += amplitude * (0.5f + keep * (n - 0.5f));
-        lost += amplitude * amplitude * (1.0f - keep * keep);
-        sum += amplitude;
+        if (!(keep > 0.0f)) break; // the finer octaves keep less still
+        value += amplitude * keep * (valueNoise(p + 17.0f * float(i)) - 0.5f);
+        kept += amplitude * amplitude * keep * keep;
         // Turned by atan(3/4) and doubled: the next octave's grid lies across this one's.
         p = glm::vec2(1.6f * p.x - 1.2f * p.y, 1.2f * p.x + 1.6f * p.y);
         amplitude *= 0.5f;
         wavelength *= 0.5f;
     }
     value /= sum;
+    const float lost = std::max(squares - kept, 0.0f);
     const float lostVariance = float(HFX_CLOUD_OCTAVE_VARIANCE) * lost / (sum * sum);
     // The edge: a ramp 0.04 either side of the threshold, widened as a Gaussian of the lost
     // octaves' variance would widen it (a smoothstep's variance is a fifth of its half-width's

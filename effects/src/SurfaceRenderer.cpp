@@ -51,7 +51,6 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .streakCells = w.streakCells,
             .windDirectionFrom = w.windDirectionFrom,
             .spindriftFrom = w.spindriftFrom,
-            .cloudCover = w.cloudCover,
             .cloudDrift = w.cloudDrift,
             .cloudScale = w.cloudScale,
             .cloudThreshold = cloudThreshold(w.cloudCover)};
@@ -106,6 +105,10 @@ void SurfaceMaterial::validate() const {
     if (triplanar.on() && clipToPatch)
         throw Error("SurfaceMaterial.clipToPatch cannot be set with triplanar.scale > 0: the patch's bounds are in the "
                     "mesh's texcoords, which a triplanar mapping does not read");
+}
+
+SkyKind WaterLook::sky() const {
+    return environment != 0 ? SkyKind::Environment : cloudCover > 0.0f ? SkyKind::Clouds : SkyKind::Gradient;
 }
 
 void WaterLook::validateSky() const {
@@ -214,7 +217,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
         throw Error(str("SurfaceVariant.layers must be 1 to ", kMaxSurfaceLayers, ", got ", v.layers));
     if (v.traced <= 0 || v.traced > v.layers) v.traced = v.layers;
     v.rings = v.rings && v.shading == Shading::Water;
-    v.environment = v.environment && v.shading == Shading::Water;
+    if (v.shading != Shading::Water) v.sky = SkyKind::Gradient;
     if (v.caster || v.shadowMap < 0 || v.shadowMap > 2) v.shadowMap = 0; // a caster writes depth only
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
@@ -253,7 +256,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_LAYERS", std::to_string(v.layers)},
                                                    {"HFX_TRACED_LAYERS", std::to_string(v.traced)},
                                                    {"HFX_RINGS", v.rings ? "1" : "0"},
-                                                   {"HFX_ENVIRONMENT", v.environment ? "1" : "0"},
+                                                   {"HFX_SKY", std::to_string(int(v.sky))},
                                                    {"HFX_BOUNDED_SEARCH", v.boundedSearch ? "1" : "0"},
                                                    {"HFX_SHADOW_MAP", std::to_string(v.shadowMap)},
                                                    {"HFX_TEXEL_SHADOWS", v.texelShadows ? "1" : "0"},
@@ -535,7 +538,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .boundedSearch = frame.boundedSearch,
                                  .shadowMap = received,
                                  .rings = material.water.ringCount > 0,
-                                 .environment = material.water.environment != 0,
+                                 .sky = material.water.sky(),
                                  .caster = caster,
                                  // (With the walks in the compute pass, neither draw reads the
                                  // texel shadows or the beam start: the pass does.)
@@ -638,10 +641,10 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     light.validate();
     look.validateSky();
     checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
-    ShaderProgram& sky = sky_[{look.environment != 0, motionOutput_}];
+    ShaderProgram& sky = sky_[{look.sky(), motionOutput_}];
     if (!sky.id()) {
         sky = ShaderProgram(surfaceStage("sky.vert"), surfaceStage("sky.frag"),
-                            {{"HFX_ENVIRONMENT", look.environment != 0 ? "1" : "0"},
+                            {{"HFX_SKY", std::to_string(int(look.sky()))},
                              {"HFX_MOTION_OUTPUT", std::to_string(motionOutput_)}});
     }
     if (!empty_) empty_ = GlVertexArray::create();

@@ -1,8 +1,8 @@
 // The sky the water reflects and the sky pass draws (SurfaceRenderer::drawSky), from the look in
-// the HfxWater block (mirrored by hfx::WaterUniforms): an equirectangular environment image
-// (HFX_ENVIRONMENT, a define of the program: on a CPU rasteriser a branch on a uniform runs both
-// sides, and each water pixel asks for the sky twice), or a gradient from the horizon's colour up
-// to the zenith's with the sun's glow around the light, and clouds (u_cloudCover > 0).
+// the HfxWater block (mirrored by hfx::WaterUniforms), as HFX_SKY says (hfx::SkyKind, a define of
+// the program: on a CPU rasteriser a branch on a uniform runs both sides, and each water pixel
+// asks for the sky twice): 0, a gradient from the horizon's colour up to the zenith's with the
+// sun's glow around the light; 1, the same with clouds; 2, an equirectangular environment image.
 // Below the horizon the horizon's colour continues: what distant water fades into, so the sea
 // meets the sky without a seam.
 // effects/src/Sky.cpp computes the procedural sky on the CPU with the same float operations
@@ -29,13 +29,16 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     float u_streakCells;   // wind streaks' lattice cells per texcoord across the wind
     vec2 u_windDirectionFrom; // a wind change: the last wind's streaks fading out, their direction
     float u_spindriftFrom;    // ... and their strength now (0: none)
-    float u_cloudCover;       // the share of the sky overhead under cloud (0: no clouds)
+    float u_waterPadding0;
     vec2 u_cloudDrift;        // how far the cloud layer has moved, cloud heights along world x, z
     float u_cloudScale;       // clouds (the noise's first cells) per cloud height
     float u_cloudThreshold;   // where the noise is clouded: its (1 - cover) quantile
-    vec2 u_waterPadding;
+    vec2 u_waterPadding1;
 };
 layout(binding = HFX_UNIT_ENVIRONMENT) uniform sampler2D s_environment;
+#ifndef HFX_SKY
+#define HFX_SKY 0
+#endif
 
 // A value in [0, 1) for an integer cell: pcg2d (Jarzynski and Olano 2020), integer arithmetic, so
 // every device gets the same bits (a hash of float products turned on their last bit near a
@@ -74,22 +77,25 @@ vec2 hfx_clouds(vec3 dir, float spread) {
     const float y = max(dir.y, 0.01);
     vec2 p = (dir.xz / y + u_cloudDrift) * u_cloudScale;
     const float across = spread / y, along = across / y;
-    float wavelength = 1.0 / u_cloudScale, amplitude = 0.5, sum = 0.0, value = 0.0, lost = 0.0;
+    // The octaves' amplitudes 1/2, 1/4, ...: their sum and the sum of their squares.
+    const float sum = 1.0 - exp2(-float(HFX_CLOUD_OCTAVES)), squares = (1.0 - exp2(-2.0 * float(HFX_CLOUD_OCTAVES))) / 3.0;
+    float wavelength = 1.0 / u_cloudScale, amplitude = 0.5, value = 0.5 * sum, kept = 0.0;
     for (int i = 0; i < HFX_CLOUD_OCTAVES; ++i) {
         const float a = along / wavelength, b = across / wavelength;
-        const float kept = inversesqrt((1.0 + a * a) * (1.0 + b * b)); // of the variance
-        float keep = sqrt(kept);                                        // of the deviation
+        float keep = sqrt(inversesqrt((1.0 + a * a) * (1.0 + b * b))); // of the deviation
         keep *= smoothstep(0.02, 0.1, keep);
-        const float n = keep > 0.0 ? hfx_value_noise(p + 17.0 * float(i)) : 0.5;
-        value += amplitude * (0.5 + keep * (n - 0.5));
-        lost += amplitude * amplitude * (1.0 - keep * keep);
-        sum += amplitude;
+        // The finer octaves keep less still: none is read past the first that keeps nothing
+        // (where the sky or the water's roughness spreads a pixel wide, most of them).
+        if (!(keep > 0.0)) break;
+        value += amplitude * keep * (hfx_value_noise(p + 17.0 * float(i)) - 0.5);
+        kept += amplitude * amplitude * keep * keep;
         // Turned by atan(3/4) and doubled: the next octave's grid lies across this one's.
         p = vec2(1.6 * p.x - 1.2 * p.y, 1.2 * p.x + 1.6 * p.y);
         amplitude *= 0.5;
         wavelength *= 0.5;
     }
     value /= sum;
+    const float lost = max(squares - kept, 0.0);
     const float lostVariance = HFX_CLOUD_OCTAVE_VARIANCE * lost / (sum * sum);
     const float width = sqrt(0.04 * 0.04 + 5.0 * lostVariance);
     const float density = smoothstep(u_cloudThreshold - width, u_cloudThreshold + width, value);
@@ -120,15 +126,17 @@ vec3 hfx_cloud_color(vec3 dir, float thickness) {
 
 // The sky in direction `dir`, seen over `spread` radians (what the clouds are filtered over).
 vec3 hfx_sky(vec3 dir, float spread) {
-#if HFX_ENVIRONMENT
+#if HFX_SKY == 2
     const float pi = 3.14159265;
     const vec2 uv = vec2(atan(dir.z, dir.x) / (2.0 * pi) + 0.5, acos(clamp(dir.y, -1.0, 1.0)) / pi);
     return textureLod(s_environment, vec2(uv.x, 1.0 - uv.y), 0.0).rgb;
-#else
+#elif HFX_SKY == 1
     const vec3 clear = hfx_clear_sky(dir);
-    if (!(u_cloudCover > 0.0) || !(dir.y > 0.0)) return clear;
+    if (!(dir.y > 0.0)) return clear;
     const vec2 cloud = hfx_clouds(dir, spread);
     return clear + (hfx_cloud_color(dir, cloud.y) - clear) * cloud.x;
+#else
+    return hfx_clear_sky(dir);
 #endif
 }
 
@@ -137,7 +145,7 @@ vec3 hfx_sky(vec3 dir, float spread) {
 vec3 hfx_haze(vec3 toPoint) {
     const vec3 level = vec3(toPoint.x, 0.0, toPoint.z);
     const vec3 dir = dot(level, level) > 0.0 ? normalize(level) : vec3(1.0, 0.0, 0.0);
-#if HFX_ENVIRONMENT
+#if HFX_SKY == 2
     return hfx_sky(dir, 0.0);
 #else
     return hfx_clear_sky(dir);

@@ -38,6 +38,15 @@
 
 namespace hfx {
 
+/// The sky a water look draws and reflects (WaterLook::sky(); HFX_SKY, a define of the program:
+/// on a CPU rasteriser a branch on a uniform runs both sides, and the clouds' noise would cost
+/// every water pixel where there are none).
+enum class SkyKind {
+    Gradient = 0,    ///< skyZenith to skyHorizon with the sun's glow
+    Clouds = 1,      ///< the same with clouds (cloudCover > 0)
+    Environment = 2, ///< an equirectangular image (environment)
+};
+
 /// The water look (Shading::Water). Colours are linear RGB.
 /// One ring of waves on the water, in the mesh's texcoords: h += amplitude exp(-(x/width)^2)
 /// cos(wavenumber x) with x = r - radius, r the distance from the centre; foam on its crest.
@@ -107,6 +116,9 @@ struct WaterLook {
     /// to the traced height, the slopes and the foam: not tiled with the sea's patches.
     std::array<WaterRing, kMaxWaterRings> rings{};
     int ringCount = 0;
+    /// Which sky the look draws: its environment image, else the gradient with clouds where
+    /// cloudCover > 0, else the gradient alone.
+    SkyKind sky() const;
     /// Throws hfx::Error naming the field, for what the sky reads: an environment that is not a
     /// GL texture, a cloudCover outside [0, 1], a cloudScale outside (0, 64], a cloudDrift not
     /// finite, clouds with an environment image. (SurfaceMaterial::validate checks the rest.)
@@ -347,7 +359,8 @@ struct SurfaceVariant {
     /// ShadowCascades in an atlas) or a 2D array (2); 0: none
     int shadowMap = 0;
     bool rings = false;         ///< HFX_RINGS: water with impact rings (WaterLook::ringCount > 0)
-    bool environment = false;   ///< HFX_ENVIRONMENT: water reflecting an image (WaterLook::environment)
+    /// HFX_SKY: the sky the water reflects (and the sky pass draws), WaterLook::sky()
+    SkyKind sky = SkyKind::Gradient;
     bool caster = false;        ///< HFX_SHADOW_CASTER: drawing into a shadow map
     /// HFX_TEXEL_SHADOWS: hier's self-shadows with the texel shadows (ExactTracer,
     /// DrawOptions::texelShadows): a ray of their light walks only where the hard shadow changes
@@ -486,7 +499,7 @@ private:
 
     std::map<std::tuple<Technique, bool, SurfaceVariant>, ShaderProgram> programs_;
     ShaderProgram flat_[3]; ///< by the shadow maps received (SurfaceVariant::shadowMap)
-    std::map<std::pair<bool, int>, ShaderProgram> sky_; ///< by an environment image, the motion's draw buffer
+    std::map<std::pair<SkyKind, int>, ShaderProgram> sky_; ///< by the sky's kind, the motion's draw buffer
     GlBuffer surfaceBlock_, waterBlock_, ringBlock_, planetBlock_, shadowBlock_;
     /// The comparison samplers the received shadow maps are read through, by the maps' depth
     /// convention ([1]: reversed), whatever the engine's textures' own state.

@@ -115,11 +115,11 @@ struct WaterUniforms {
     float streakCells = 0.0f;
     glm::vec2 windDirectionFrom{1.0f, 0.0f};
     float spindriftFrom = 0.0f;
-    float cloudCover = 0.0f;      ///< WaterLook::cloudCover (0: no clouds)
-    glm::vec2 cloudDrift{0.0f};
+    float padding0 = 0.0f;
+    glm::vec2 cloudDrift{0.0f};   ///< WaterLook::cloudDrift (the clouds: HFX_SKY 1)
     float cloudScale = 1.0f;
-    float cloudThreshold = 1.0f;  ///< hfx::cloudThreshold(cloudCover): where the noise is clouded
-    float padding[2] = {0.0f, 0.0f}; ///< the block's size, a multiple of 16 bytes
+    float cloudThreshold = 1.0f;  ///< hfx::cloudThreshold(WaterLook::cloudCover): where the noise is clouded
+    float padding1[2] = {0.0f, 0.0f}; ///< the block's size, a multiple of 16 bytes
 };
 
 /// HfxRings (shaders/surface/uniforms.glsl, binding 2): the water's impact rings.
@@ -195,7 +195,6 @@ static_assert(offsetof(WaterUniforms, foamDrift) == 96);
 static_assert(offsetof(WaterUniforms, spindrift) == 112);
 static_assert(offsetof(WaterUniforms, windDirectionFrom) == 120);
 static_assert(offsetof(WaterUniforms, spindriftFrom) == 128);
-static_assert(offsetof(WaterUniforms, cloudCover) == 132);
 static_assert(offsetof(WaterUniforms, cloudDrift) == 136);
 static_assert(offsetof(WaterUniforms, cloudThreshold) == 148);
 static_assert(sizeof(WaterUniforms) == 160);
