@@ -3,8 +3,9 @@
 // transfer to GL, draw with POM, POM without shadows, normal mapping and the scene's own technique
 // where that is not POM (hier: what the decal, planet and noise scenes ship with), interleaved
 // frame by frame so a noisy neighbour hits them alike), frames per second, the ratios issue 7 asks
-// for, the process's peak resident memory and whether the flat scenes drew texel shadows. Then the
-// scaling of the water frame with field size and output resolution.
+// for, the process's peak resident memory and whether the flat scenes drew texel shadows; for the
+// water's clouds, its POM and NM draws under a clear sky, the same frames. Then the scaling of the
+// water frame with field size and output resolution.
 
 #include "Scene.h"
 
@@ -41,6 +42,9 @@ struct Budget {
     // (timer queries): the uploads and each draw whole (its shadow map, bounds, texel shadows
     // and beam start included), with the own technique's beam start, bounds and texel shadows apart.
     double kernels, glUpload, gpuPom, gpuUnshadowed, gpuNm, gpuOwn, ownBeam, ownBounds, ownTexels;
+    /// A water look with clouds: its POM and NM draws without them (WaterLook::cloudCover 0), the
+    /// same frames; 0 where the look has none.
+    double gpuPomClear = 0.0, gpuNmClear = 0.0;
     double compute() const { return field + normals + extra; }
     double frame() const { return compute() + upload + pom; }
     /// The transfer: its CPU wall clock (map or read, copies, GL's upload calls) or the GL
@@ -60,16 +64,18 @@ double gpuMedian(const GpuTimer& timer, const char* pass) {
 
 /// `frames` frames after kWarmupFrames warm-up frames, each: an update (staged: every stage
 /// waited for and timed), then the scene drawn with POM, POM without shadows, normal mapping and
-/// its own technique, interleaved frame by frame so a noisy neighbour hits them alike.
+/// its own technique (and, for a water look with clouds, POM and normal mapping under a clear
+/// sky), interleaved frame by frame so a noisy neighbour hits them alike.
 Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
     std::vector<double> field, normals, extra, upload, pom, unshadowed, nm, own, kernels;
     const SurfaceMaterial material = scene.effect().material();
     const Technique ownTechnique = scene.technique;
     // One timer per kind of work, so that each one's passes ("draw", "beam", ...) stay its own.
-    GpuTimer updateTimer, pomTimer, unshadowedTimer, nmTimer, ownTimer;
+    GpuTimer updateTimer, pomTimer, unshadowedTimer, nmTimer, ownTimer, pomClearTimer, nmClearTimer;
+    const bool clouds = material.shading == Shading::Water && material.water.sky() == SkyKind::Clouds;
     for (int frame = -kWarmupFrames; frame < frames; ++frame) {
         if (frame == 0)
-            for (GpuTimer* t : {&updateTimer, &pomTimer, &unshadowedTimer, &nmTimer, &ownTimer}) {
+            for (GpuTimer* t : {&updateTimer, &pomTimer, &unshadowedTimer, &nmTimer, &ownTimer, &pomClearTimer, &nmClearTimer}) {
                 t->finish();
                 t->clearSamples();
             }
@@ -85,10 +91,11 @@ Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
         double k = 0.0;
         for (const auto& [name, ms] : cl.takeKernelTimes()) k += ms;
         const StageTimes s = scene.effect().lastTimes();
-        auto draw = [&](GpuTimer& timer, Technique t, bool shadows) {
+        auto draw = [&](GpuTimer& timer, Technique t, bool shadows, bool clear = false) {
             scene.technique = t;
             SurfaceMaterial m = material;
             m.shadows = shadows;
+            if (clear) m.water.cloudCover = 0.0f;
             scene.effect().setMaterial(m);
             GpuTimer::Activation on(timer);
             timer.beginFrame();
@@ -103,6 +110,10 @@ Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
         const double q = draw(unshadowedTimer, Technique::ParallaxOcclusion, false);
         const double n = draw(nmTimer, Technique::NormalMapping, true);
         const double o = ownTechnique == Technique::ParallaxOcclusion ? 0.0 : draw(ownTimer, ownTechnique, true);
+        if (clouds) {
+            draw(pomClearTimer, Technique::ParallaxOcclusion, true, true);
+            draw(nmClearTimer, Technique::NormalMapping, true, true);
+        }
         scene.effect().setMaterial(material);
         scene.technique = ownTechnique;
         if (frame < 0) continue;
@@ -116,7 +127,8 @@ Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
         own.push_back(o);
         kernels.push_back(k);
     }
-    for (GpuTimer* t : {&updateTimer, &pomTimer, &unshadowedTimer, &nmTimer, &ownTimer}) t->finish();
+    for (GpuTimer* t : {&updateTimer, &pomTimer, &unshadowedTimer, &nmTimer, &ownTimer, &pomClearTimer, &nmClearTimer})
+        t->finish();
     return {.field = median(field),
             .normals = median(normals),
             .extra = median(extra),
@@ -133,7 +145,9 @@ Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
             .gpuOwn = gpuMedian(ownTimer, "whole"),
             .ownBeam = gpuMedian(ownTimer, "beam"),
             .ownBounds = gpuMedian(ownTimer, "bounds"),
-            .ownTexels = gpuMedian(ownTimer, "texel shadows")};
+            .ownTexels = gpuMedian(ownTimer, "texel shadows"),
+            .gpuPomClear = gpuMedian(pomClearTimer, "whole"),
+            .gpuNmClear = gpuMedian(nmClearTimer, "whole")};
 }
 
 /// Wall time per frame of update + POM draw, run one after the other and overlapped (the next
@@ -180,7 +194,7 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                 "| scene | field | kernels | GL upload | transfer (wall) | POM draw | POM no shadows | "
                 "NM draw | own technique draw (beam, bounds, texel shadows) | frame | POM/NM | compute+transfer share |\n"
                 "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-    std::string wallRows;
+    std::string wallRows, skyRows;
     RenderTarget target(width, height);
     target.bind();
     for (const char* name : {"water", "decals", "planet", "noise"})
@@ -225,6 +239,12 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                           b.nm, b.frame(), 1000.0 / b.frame(), b.pom / b.nm, 100.0 * (b.compute() + b.upload) / b.frame(),
                           overlapped, sequential, peakResidentMiB(), ownWall, texels, pass.empty() ? "-" : pass.c_str());
             wallRows += row;
+            if (b.gpuPomClear > 0.0) {
+                std::snprintf(row, sizeof row, "| %s | %dx%d | %.2f | %.2f | %.2fx | %.2f | %.2f | %.2fx |\n", name,
+                              config.width, config.height, b.gpuPom, b.gpuPomClear, b.gpuPom / b.gpuPomClear, b.gpuNm,
+                              b.gpuNmClear, b.gpuNm / b.gpuNmClear);
+                skyRows += row;
+            }
         }
     if (!wallRows.empty())
         std::printf("\nCPU wall clock, ms, each stage waited for (glFinish, clFinish) on its own, the same frames:\n\n"
@@ -232,6 +252,12 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                     "frame | fps | POM/NM | compute+upload share | overlapped frame | peak RSS MiB | own technique draw | "
                     "texel shadows | hier walked in |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n%s",
                     wallRows.c_str());
+    if (!skyRows.empty())
+        std::printf("\nThe water's clouds (WaterLook::cloudCover): device time of the draws above (the sky pass and the\n"
+                    "sea, which reflects them) against the same draws under a clear sky, the same frames:\n\n"
+                    "| scene | field | POM draw | POM, clear sky | ratio | NM draw | NM, clear sky | ratio |\n"
+                    "|---|---|---|---|---|---|---|---|\n%s",
+                    skyRows.c_str());
 
     if (wanted("transfer")) {
         std::printf("\nTransfer of the water field by surface format and path (POM with shadows): the transfer's CPU wall\n"

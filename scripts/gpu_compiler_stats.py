@@ -15,8 +15,10 @@ could batch. It is one compiler for one architecture (RDNA2 by default), not NVI
 
     python3 scripts/gpu_compiler_stats.py [--family navi21] [--shaders DIR] [VARIANT ...]
 
-A variant is a technique and defines, "hier" or "hier:HFX_TEXEL_SHADOWS=1,HFX_BEAM_START=1";
-without any, POM, hier and hier with texel shadows and the beam start, as bench-tracers draws them.
+A variant is a technique and defines, "hier" or "hier:HFX_TEXEL_SHADOWS=1,HFX_BEAM_START=1", with
+the shading model after a slash where it is not lit ("pom/water:HFX_LAYERS=4,HFX_TRACED_LAYERS=3",
+the ocean's); without any, POM, hier and hier with texel shadows and the beam start, as
+bench-tracers draws them.
 A compute shader of the shaders folder and its defines, "trace/hier/deferred.comp:HFX_LAYERS=1",
 is built into a compute pipeline, and its statistics are the compute shader's.
 Needs glslang-tools, spirv-tools, Mesa's Vulkan drivers and the Vulkan loader (apt-get install
@@ -189,15 +191,15 @@ def build_pipeline(vert, frag):
     vk.vkCreateGraphicsPipelines(device, None, 1, [pipeline], None)
 
 
-def stats(shaders, family, tracer, defines):
+def stats(shaders, family, tracer, defines, shading="lit"):
     """The fragment shader's statistics (name -> number) of one variant; a compute shader's
     where `tracer` names a .comp file."""
     work = tempfile.mkdtemp(prefix="hfx-gpu-stats-")
     if tracer.endswith(".comp"):
         files, shader = [spirv(compose(shaders, "comp", None, defines, path=tracer), "comp", work)], "Compute Shader"
     else:
-        files = [spirv(compose(shaders, "vert", tracer, defines), "vert", work),
-                 spirv(compose(shaders, "frag", tracer, defines), "frag", work)]
+        files = [spirv(compose(shaders, "vert", tracer, defines, shading), "vert", work),
+                 spirv(compose(shaders, "frag", tracer, defines, shading), "frag", work)]
         shader = "Pixel Shader"
     env = dict(os.environ, RADV_FORCE_FAMILY=family, RADV_DEBUG="shaderstats,nocache", VK_ICD_FILENAMES=ICD,
                XDG_RUNTIME_DIR=os.environ.get("XDG_RUNTIME_DIR", work))
@@ -229,9 +231,10 @@ def main():
     print("| variant | " + " | ".join(STATS) + " |")
     print("|---" * (len(STATS) + 1) + "|")
     for variant in args.variants:
-        tracer, _, rest = variant.partition(":")
+        program, _, rest = variant.partition(":")
+        tracer, _, shading = program.partition("/")
         defines = dict(d.split("=", 1) for d in rest.split(",") if d)
-        s = stats(args.shaders, args.family, tracer, defines)
+        s = stats(args.shaders, args.family, tracer, defines, shading or "lit")
         print(f"| {variant} | " + " | ".join(f"{s.get(k, float('nan')):.0f}" for k in STATS) + " |")
 
 
