@@ -62,5 +62,7 @@
 // far an edge softens where the octaves finer than a pixel fade to their mean.
 #define HFX_CLOUD_OCTAVES 6
 #define HFX_CLOUD_OCTAVE_VARIANCE 0.04607
+// The sun's angular radius (the Sun's from the Earth), radians: the clouds' shadows' penumbra.
+#define HFX_SUN_RADIUS 0.00465
 
 #endif

@@ -39,7 +39,8 @@
 //   HFX_TRACE_LIGHTS  1: the rays draw stores each pixel's light ray too (the light is not one for
 //                     the draw: a curved mesh, a silhouette fade)
 //   HFX_SKY           the sky the water reflects (hfx::SkyKind, shade/sky.glsl): 0 a gradient, 1 with
-//                     clouds (WaterLook::cloudCover), 2 an equirectangular image (WaterLook::environment)
+//                     clouds (WaterLook::cloudCover) and their shadows, 2 an equirectangular image
+//                     (WaterLook::environment); 0 where nothing is shaded (a caster, the rays draw)
 //   HFX_REVERSED_Z    1 for a reversed-Z camera (hfx::Camera::reversedZ): the traced depth is
 //                     written for GL's [0, 1] clip depth, drawn with GL_GREATER
 //   HFX_PYRAMID_ATLAS 1 on llvmpipe: the pyramids in one image each (surface/heights.glsl,
@@ -664,6 +665,11 @@ HfxShaded hfx_surface(HfxFrame f) {
 }
 
 void main() {
+#if HFX_SKY == 1
+    // The clouds' shadow on the water, at the polygon's point and over its pixel there: the
+    // relief's depth is nothing beside the clouds' height (shade/sky.glsl's g_cloudSunlight).
+    g_cloudSunlight = hfx_cloud_sunlight(v_worldPos, max(length(dFdx(v_worldPos)), length(dFdy(v_worldPos))));
+#endif
 #if HFX_COMPUTE_TRACE == 1
     // A back face stores nothing (trace/hier/trace.glsl): its pixel's front face does, if any.
     // (gl_FrontFacing is its primitive's: a 2x2 quad leaves together.)

@@ -1,7 +1,7 @@
 // The water sky's clouds (WaterLook::cloudCover; shaders/shade/sky.glsl, hfx::skyColor). The CPU
 // model covers the share of the sky the look asks for, moves with its drift and filters what a
-// pixel cannot show; the sky pass draws the CPU's sky, the water mirrors it, and bad looks are
-// refused by name.
+// pixel cannot show; the sky pass draws the CPU's sky, the water mirrors it and lies in the
+// clouds' shadows where the CPU says, and bad looks are refused by name.
 
 #include "support/Fields.h"
 #include "support/Fixtures.h"
@@ -25,7 +25,10 @@ namespace {
 
 class Sky : public GlTest {};
 
-/// A direction whose point on the cloud layer (one cloud height over the eye) is `p`.
+/// The eye of the model's tests: at the world's origin, under the layer's height.
+constexpr glm::vec3 kEye{0.0f};
+
+/// A direction whose point on the cloud layer (one cloud height over the eye at the origin) is `p`.
 glm::vec3 towards(glm::vec2 p) { return glm::normalize(glm::vec3(p.x, 1.0f, p.y)); }
 
 TEST(SkyModel, CloudsCoverTheShareOfTheSkyOverheadTheLookAsks) {
@@ -42,17 +45,17 @@ TEST(SkyModel, CloudsCoverTheShareOfTheSkyOverheadTheLookAsks) {
             // Skies far apart on the layer (a view overhead holds a few clouds), y > 0.8 in each.
             look.cloudDrift = {500.0f * uniform(random), 500.0f * uniform(random)};
             const glm::vec2 p(0.75f * uniform(random), 0.75f * uniform(random));
-            clouded += cloudSample(look, towards(p), 1e-4f).density > 0.5f;
+            clouded += cloudSample(look, kEye, towards(p), 1e-4f).density > 0.5f;
         }
         std::printf("cover %.2f: %.4f of the sky overhead clouded\n", double(cover), double(clouded) / n);
         EXPECT_NEAR(double(clouded) / n, cover, 0.02) << "cover " << cover;
     }
     WaterLook look;
     look.cloudCover = 0.0f;
-    EXPECT_EQ(cloudSample(look, towards({0.1f, 0.2f}), 1e-4f).density, 0.0f) << "no cover, no clouds";
+    EXPECT_EQ(cloudSample(look, kEye, towards({0.1f, 0.2f}), 1e-4f).density, 0.0f) << "no cover, no clouds";
     look.cloudCover = 1.0f;
-    EXPECT_GT(cloudSample(look, towards({0.1f, 0.2f}), 1e-4f).density, 0.5f) << "full cover is overcast";
-    EXPECT_EQ(cloudSample(look, glm::normalize(glm::vec3(0.3f, -0.2f, 0.5f)), 1e-4f).density, 0.0f)
+    EXPECT_GT(cloudSample(look, kEye, towards({0.1f, 0.2f}), 1e-4f).density, 0.5f) << "full cover is overcast";
+    EXPECT_EQ(cloudSample(look, kEye, glm::normalize(glm::vec3(0.3f, -0.2f, 0.5f)), 1e-4f).density, 0.0f)
         << "clouds below the horizon";
 }
 
@@ -65,10 +68,10 @@ TEST(SkyModel, TheLayerMovesByItsDriftInCloudHeights) {
     double worst = 0.0, spread = 0.0;
     for (int i = 0; i < 400; ++i) {
         const glm::vec2 p(-0.6f + 0.003f * float(i), 0.2f + 0.001f * float(i));
-        const float a = cloudSample(moved, towards(p), 1e-4f).density;
-        const float b = cloudSample(still, towards(p + moved.cloudDrift), 1e-4f).density;
+        const float a = cloudSample(moved, kEye, towards(p), 1e-4f).density;
+        const float b = cloudSample(still, kEye, towards(p + moved.cloudDrift), 1e-4f).density;
         worst = std::max(worst, double(std::abs(a - b)));
-        spread = std::max(spread, double(std::abs(a - cloudSample(still, towards(p), 1e-4f).density)));
+        spread = std::max(spread, double(std::abs(a - cloudSample(still, kEye, towards(p), 1e-4f).density)));
     }
     // (Only the fade towards the horizon differs, 1 - exp(-8 y) at the two directions' heights.)
     EXPECT_LT(worst, 0.03) << "the drift is not a shift of the layer in cloud heights";
@@ -95,10 +98,10 @@ TEST(SkyModel, CloudsNearTheHorizonShowWhatAPixelCoversRatherThanAliasing) {
             double mean = 0.0;
             for (int a = 0; a < sub; ++a)
                 for (int b = 0; b < sub; ++b)
-                    mean += cloudSample(look, dirAt(azimuth + pixel * ((a + 0.5f) / sub - 0.5f), elevation + pixel * ((b + 0.5f) / sub - 0.5f)), 0.0f).density;
+                    mean += cloudSample(look, kEye, dirAt(azimuth + pixel * ((a + 0.5f) / sub - 0.5f), elevation + pixel * ((b + 0.5f) / sub - 0.5f)), 0.0f).density;
             mean /= sub * sub;
-            filtered += std::abs(cloudSample(look, dirAt(azimuth, elevation), pixel).density - mean);
-            sampled += std::abs(cloudSample(look, dirAt(azimuth, elevation), 0.0f).density - mean);
+            filtered += std::abs(cloudSample(look, kEye, dirAt(azimuth, elevation), pixel).density - mean);
+            sampled += std::abs(cloudSample(look, kEye, dirAt(azimuth, elevation), 0.0f).density - mean);
             shown += mean > 0.1;
         }
         std::printf("%.2f rad up: mean error against the pixel's mean cloud %.4f filtered, %.4f sampled; %.0f of %d "
@@ -168,13 +171,13 @@ TEST_F(Sky, TheSkyPassDrawsTheCpuSkyItsCloudsIncluded) {
         for (int x = 0; x < kW; ++x) {
             const glm::vec3 dir = dirAt(x, y);
             const float spread = std::max(glm::length(dirAt(x + 1, y) - dir), glm::length(dirAt(x, y + 1) - dir));
-            const glm::vec3 expected = display(skyColor(look, kSun, dir, spread));
+            const glm::vec3 expected = display(skyColor(look, kSun, camera.position, dir, spread));
             const float e = apart(pixelOf(cloudy, x, y), expected);
             worst = std::max(worst, e);
             off += e > 2.5f / 255.0f;
-            clouded += cloudSample(look, dir, spread).density > 0.5f;
+            clouded += cloudSample(look, camera.position, dir, spread).density > 0.5f;
             changed += apart(pixelOf(cloudy, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
-            EXPECT_LE(apart(pixelOf(plain, x, y), display(skyColor(clear, kSun, dir, spread))), 1.5f / 255.0f);
+            EXPECT_LE(apart(pixelOf(plain, x, y), display(skyColor(clear, kSun, camera.position, dir, spread))), 1.5f / 255.0f);
         }
     std::printf("%d of %d pixels clouded, %d changed by the clouds; %d off the CPU's sky by over 2.5/255 (at most "
                 "%.1f/255)\n",
@@ -232,11 +235,11 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
             if (std::abs(hit.x) > 19.0 || std::abs(hit.z) > 19.0) continue;
             ++water;
             const glm::vec3 reflected(glm::vec3(ray.direction.x, -ray.direction.y, ray.direction.z));
-            const glm::vec3 expected = display(knee(skyColor(material.water, kSun, reflected, 0.002f)));
+            const glm::vec3 expected = display(knee(skyColor(material.water, kSun, camera.position, reflected, 0.002f)));
             const float e = apart(pixelOf(mirrored, x, y), expected);
             worst = std::max(worst, e);
             off += e > 2.5f / 255.0f;
-            clouded += cloudSample(material.water, reflected, 0.002f).density > 0.5f;
+            clouded += cloudSample(material.water, camera.position, reflected, 0.002f).density > 0.5f;
             changed += apart(pixelOf(mirrored, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
         }
     std::printf("%d water pixels, %d reflecting a cloud, %d changed by the clouds; %d off the CPU's mirrored sky by "
@@ -247,6 +250,74 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
     EXPECT_GT(changed, water / 5) << "the water does not reflect the clouds";
     EXPECT_LE(off, water / 200) << "the water does not mirror the CPU's sky";
     EXPECT_LT(worst, 12.0f / 255.0f);
+}
+
+TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
+    // Water seen from straight above, lit by the sun alone (no ambient light), reflecting nothing
+    // (Fresnel 0 head-on, no glint, no haze): each pixel is its body colour times the sun's light,
+    // so the pixel with clouds over the pixel under a clear sky is the sunlight the clouds let
+    // through there, hfx::cloudSunlight at its point (the layer 20 units up: shadows of about 13).
+    const int n = 160;
+    RenderTarget target(n, n);
+    SurfaceRenderer renderer;
+    const SineRelief relief(64, 0.05f);
+    const Mesh plane(makePlane({.size = 40.0f}));
+    Camera camera;
+    camera.position = {0.0f, 30.0f, 0.0f};
+    camera.target = {0.0f, 0.0f, 0.0f};
+    camera.up = {0.0f, 0.0f, -1.0f};
+    camera.fovY = 1.0f;
+    camera.aspect = 1.0f;
+    camera.farPlane = 100.0f;
+    const DirectionalLight sun{.direction = {0.3f, 1.0f, 0.2f}, .color = glm::vec3(4.0f), .ambient = glm::vec3(0.0f)};
+    SurfaceMaterial material;
+    material.shading = Shading::Water;
+    material.depthScale = 0.0f;
+    material.water.fresnelF0 = 0.0f;
+    material.water.glintStrength = 0.0f;
+    material.water.translucency = 0.0f;
+    material.water.hazeDistance = 1e9f;
+    material.water.cloudCover = 0.6f;
+    material.water.cloudHeight = 20.0f;
+    material.water.cloudDrift = {0.4f, -0.3f};
+    auto draw = [&](const SurfaceMaterial& m) {
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), relief.textures, m, camera, sun);
+        return target.readColor();
+    };
+    const Image clouded = draw(material);
+    SurfaceMaterial clear = material;
+    clear.water.cloudCover = 0.0f;
+    const Image plain = draw(clear);
+    auto hit = [&](double x, double y) { // the plane's point seen through pixel (x, y from the top)
+        const Ray ray = camera.rayThroughPixel(x + 0.5, n - 1 - y + 0.5, n, n);
+        return glm::vec3(ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction);
+    };
+    int checked = 0, off = 0, shaded = 0, sunny = 0;
+    double worst = 0.0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const float bright = std::pow(pixelOf(plain, x, y).z, 2.2f); // blue: the water's brightest
+            if (bright < 0.05f) continue;
+            ++checked;
+            const glm::vec3 p = hit(x, y);
+            const float footprint = std::max(glm::length(hit(x + 1, y) - p), glm::length(hit(x, y + 1) - p));
+            const float expected = cloudSunlight(material.water, sun, p, footprint);
+            const double e = std::abs(std::pow(pixelOf(clouded, x, y).z, 2.2f) / bright - expected);
+            worst = std::max(worst, e);
+            off += e > 0.04;
+            shaded += expected < 0.7f;
+            sunny += expected > 0.95f;
+        }
+    std::printf("%d pixels checked: %d in a cloud's shadow, %d in full sun; %d off the CPU's sunlight by over 0.04 "
+                "(at most %.3f)\n",
+                checked, shaded, sunny, off, worst);
+    ASSERT_GT(checked, n * n / 2);
+    EXPECT_GT(shaded, checked / 6) << "too few shadows to test";
+    EXPECT_GT(sunny, checked / 6) << "too little sun to test";
+    EXPECT_LE(off, checked / 100) << "the water's sunlight is not the CPU's under the clouds";
+    EXPECT_LT(worst, 0.1);
 }
 
 TEST_F(Sky, BadCloudsAreRefusedByNameAndDrawNothing) {
@@ -278,6 +349,9 @@ TEST_F(Sky, BadCloudsAreRefusedByNameAndDrawNothing) {
         {"a scale of 0", with([](WaterLook& l) { l.cloudScale = 0.0f; }), "WaterLook.cloudScale"},
         {"a scale over 64", with([](WaterLook& l) { l.cloudScale = 100.0f; }), "WaterLook.cloudScale"},
         {"a drift not finite", with([&](WaterLook& l) { l.cloudDrift.y = nan; }), "WaterLook.cloudDrift"},
+        {"a height of 0", with([](WaterLook& l) { l.cloudHeight = 0.0f; }), "WaterLook.cloudHeight"},
+        {"a height not finite", with([](WaterLook& l) { l.cloudHeight = std::numeric_limits<float>::infinity(); }),
+         "WaterLook.cloudHeight"},
         {"clouds with an environment image", with([&](WaterLook& l) { l.environment = image.id(); }), "environment image"},
     };
     SurfaceMaterial material;

@@ -116,6 +116,7 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_streakCells", offsetof(WaterUniforms, streakCells)},
         {"u_windDirectionFrom", offsetof(WaterUniforms, windDirectionFrom)},
         {"u_spindriftFrom", offsetof(WaterUniforms, spindriftFrom)},
+        {"u_cloudHeight", offsetof(WaterUniforms, cloudHeight)},
         {"u_cloudDrift", offsetof(WaterUniforms, cloudDrift)},
         {"u_cloudScale", offsetof(WaterUniforms, cloudScale)},
         {"u_cloudThreshold", offsetof(WaterUniforms, cloudThreshold)},

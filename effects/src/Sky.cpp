@@ -58,13 +58,12 @@ float cloudThreshold(float cover) {
     return kQuantiles[size_t(i)] + (kQuantiles[size_t(i) + 1] - kQuantiles[size_t(i)]) * (at - float(i));
 }
 
-CloudSample cloudSample(const WaterLook& look, glm::vec3 dir, float spread) {
-    if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return {};
-    // The layer's point in cloud heights (the layer at height 1 over the eye), and the patch of
-    // it the spread covers: spread / y across (its distance 1 / y), foreshortened by y again along.
-    const float y = std::max(dir.y, 0.01f);
-    glm::vec2 p = (glm::vec2(dir.x, dir.z) / y + look.cloudDrift) * look.cloudScale;
-    const float across = spread / y, along = across / y;
+namespace {
+
+/// hfx_cloud_cover: the clouds over the layer's point `p` (cloud heights, before the drift), seen
+/// over a patch `across` by `along` of it.
+CloudSample cover(const WaterLook& look, glm::vec2 p, float across, float along) {
+    p = (p + look.cloudDrift) * look.cloudScale;
     // The octaves' amplitudes 1/2, 1/4, ...: their sum and the sum of their squares.
     const float sum = 1.0f - std::exp2(-float(HFX_CLOUD_OCTAVES));
     const float squares = (1.0f - std::exp2(-2.0f * float(HFX_CLOUD_OCTAVES))) / 3.0f;
@@ -72,7 +71,7 @@ CloudSample cloudSample(const WaterLook& look, glm::vec3 dir, float spread) {
     for (int i = 0; i < HFX_CLOUD_OCTAVES; ++i) {
         const float a = along / wavelength, b = across / wavelength;
         float keep = std::sqrt(1.0f / std::sqrt((1.0f + a * a) * (1.0f + b * b))); // of the deviation
-        keep *= smoothstep(0.02f, 0.1f, keep);
+        keep *= smoothstep(0.15f, 0.35f, keep);
         if (!(keep > 0.0f)) break; // the finer octaves keep less still
         value += amplitude * keep * (valueNoise(p + 17.0f * float(i)) - 0.5f);
         kept += amplitude * amplitude * keep * keep;
@@ -89,13 +88,37 @@ CloudSample cloudSample(const WaterLook& look, glm::vec3 dir, float spread) {
     // square).
     const float threshold = cloudThreshold(look.cloudCover);
     const float width = std::sqrt(0.04f * 0.04f + 5.0f * lostVariance);
-    const float density = smoothstep(threshold - width, threshold + width, value);
-    const float thickness = std::clamp((value - threshold) / (0.2f + width), 0.0f, 1.0f);
-    // Far off, the layer fades into the horizon's haze.
-    return {density * (1.0f - std::exp(-8.0f * dir.y)), thickness};
+    return {smoothstep(threshold - width, threshold + width, value),
+            std::clamp((value - threshold) / (0.2f + width), 0.0f, 1.0f)};
 }
 
-glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::vec3 dir, float spread) {
+} // namespace
+
+CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float spread) {
+    if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return {};
+    // hfx_clouds: where the direction meets the layer, in cloud heights, and the patch of it the
+    // spread covers there: spread / y across, foreshortened by y again along the view.
+    const float y = std::max(dir.y, 0.01f);
+    const glm::vec2 p = glm::vec2(eye.x, eye.z) / look.cloudHeight +
+                        glm::vec2(dir.x, dir.z) / y * (1.0f - eye.y / look.cloudHeight);
+    const CloudSample c = cover(look, p, spread / y, spread / (y * y));
+    // Far off, the layer fades into the horizon's haze.
+    return {c.density * (1.0f - std::exp(-8.0f * dir.y)), c.thickness};
+}
+
+float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::vec3 position, float footprint) {
+    const glm::vec3 l = glm::normalize(light.direction);
+    if (!(look.cloudCover > 0.0f) || !(l.y > 0.0f)) return 1.0f;
+    // hfx_cloud_sunlight: where the sun's ray from the point meets the layer, over the pixel's
+    // patch or the sun's penumbra there.
+    const float y = std::max(l.y, 0.01f), reach = (1.0f - position.y / look.cloudHeight) / y;
+    const float size = footprint / look.cloudHeight, penumbra = 2.0f * float(HFX_SUN_RADIUS) * reach;
+    const glm::vec2 p = glm::vec2(position.x, position.z) / look.cloudHeight + glm::vec2(l.x, l.z) * reach;
+    const CloudSample c = cover(look, p, std::max(size, penumbra), std::max(size, penumbra / y));
+    return 1.0f - c.density * (0.7f + 0.25f * c.thickness);
+}
+
+glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::vec3 eye, glm::vec3 dir, float spread) {
     // hfx_clear_sky: most of the change happens near the horizon, as in a clear sky.
     const glm::vec3 lightDir = glm::normalize(light.direction);
     const float up = std::clamp(dir.y, 0.0f, 1.0f);
@@ -103,7 +126,7 @@ glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::ve
     const float sun = std::max(glm::dot(glm::normalize(dir), lightDir), 0.0f);
     const glm::vec3 clear =
         base + look.sunGlow * light.color * (0.5f * std::pow(sun, 48.0f) + 0.12f * std::pow(sun, 6.0f));
-    const CloudSample cloud = cloudSample(look, dir, spread);
+    const CloudSample cloud = cloudSample(look, eye, dir, spread);
     if (!(cloud.density > 0.0f)) return clear;
     // hfx_cloud_color
     const float elevation = std::clamp(lightDir.y, 0.0f, 1.0f);

@@ -51,6 +51,7 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .streakCells = w.streakCells,
             .windDirectionFrom = w.windDirectionFrom,
             .spindriftFrom = w.spindriftFrom,
+            .cloudHeight = w.cloudHeight,
             .cloudDrift = w.cloudDrift,
             .cloudScale = w.cloudScale,
             .cloudThreshold = cloudThreshold(w.cloudCover)};
@@ -118,6 +119,8 @@ void WaterLook::validateSky() const {
         throw Error(str("WaterLook.cloudCover must be in [0, 1] (the share of the sky under cloud), got ", cloudCover));
     if (!(cloudScale > 0.0f && cloudScale <= 64.0f))
         throw Error(str("WaterLook.cloudScale must be in (0, 64] clouds per cloud height, got ", cloudScale));
+    if (!(cloudHeight > 0.0f) || !std::isfinite(cloudHeight))
+        throw Error(str("WaterLook.cloudHeight must be positive and finite (world units over y = 0), got ", cloudHeight));
     if (!isFinite(cloudDrift)) throw Error(str("WaterLook.cloudDrift must be finite, got ", text(cloudDrift)));
     if (cloudCover > 0.0f && environment != 0)
         throw Error(str("WaterLook.cloudCover ", cloudCover, " draws clouds in the procedural sky, but the look has an "
@@ -232,6 +235,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     if (v.caster || v.computeTrace == 1) { // a shadow map's pass, the rays draw: no colour
         v.motionOutput = 0;
         v.outputs = {};
+        v.sky = SkyKind::Gradient;
     }
     const auto key = std::make_tuple(options.technique, options.traceOutput && !v.caster, v);
     auto it = programs_.find(key);

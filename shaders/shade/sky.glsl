@@ -29,7 +29,7 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     float u_streakCells;   // wind streaks' lattice cells per texcoord across the wind
     vec2 u_windDirectionFrom; // a wind change: the last wind's streaks fading out, their direction
     float u_spindriftFrom;    // ... and their strength now (0: none)
-    float u_waterPadding0;
+    float u_cloudHeight;      // the clouds' layer over the world's y = 0 (world units)
     vec2 u_cloudDrift;        // how far the cloud layer has moved, cloud heights along world x, z
     float u_cloudScale;       // clouds (the noise's first cells) per cloud height
     float u_cloudThreshold;   // where the noise is clouded: its (1 - cover) quantile
@@ -63,27 +63,23 @@ float hfx_value_noise(vec2 q) {
     return ab + (cd - ab) * s.y;
 }
 
-// The clouds in direction `dir` (y > 0), seen over `spread` radians (a sky pixel's width, a
-// reflection's widened by the water's roughness): (density, thickness). The layer lies at one
-// cloud height over the eye; a value noise over it of HFX_CLOUD_OCTAVES octaves is clouded above
-// u_cloudThreshold. The pixel covers a patch of the layer spread / y across (its distance 1 / y)
-// and spread / y^2 along the view (foreshortened by y again). An octave keeps the share of its
-// variance a box that size leaves it, 1 / sqrt((1 + (L_along / wavelength)^2) (1 + (L_across /
-// wavelength)^2)), about its mean, and the variance it no longer shows widens the edge's ramp as
-// a Gaussian of it would (a smoothstep's variance is a fifth of its half-width's square): far
-// off and in rough water a pixel shows about the share of it under cloud, not an aliased sample
-// of it. An octave that keeps under 2% of its deviation is not read.
-vec2 hfx_clouds(vec3 dir, float spread) {
-    const float y = max(dir.y, 0.01);
-    vec2 p = (dir.xz / y + u_cloudDrift) * u_cloudScale;
-    const float across = spread / y, along = across / y;
+// The clouds over the layer's point `p` (in cloud heights: world x and z over u_cloudHeight, the
+// layer's drift added), seen over a patch of it `across` by `along` (cloud heights):
+// (density, thickness). A value noise of HFX_CLOUD_OCTAVES octaves is clouded above
+// u_cloudThreshold. An octave keeps the share of its variance a box that size leaves it,
+// 1 / sqrt((1 + (along / wavelength)^2) (1 + (across / wavelength)^2)), about its mean, and the
+// variance it no longer shows widens the edge's ramp as a Gaussian of it would (a smoothstep's
+// variance is a fifth of its half-width's square): far off, in rough water and in a wide pixel's
+// shadow a pixel shows about the share of it under cloud, not an aliased sample of it.
+vec2 hfx_cloud_cover(vec2 p, float across, float along) {
+    p = (p + u_cloudDrift) * u_cloudScale;
     // The octaves' amplitudes 1/2, 1/4, ...: their sum and the sum of their squares.
     const float sum = 1.0 - exp2(-float(HFX_CLOUD_OCTAVES)), squares = (1.0 - exp2(-2.0 * float(HFX_CLOUD_OCTAVES))) / 3.0;
     float wavelength = 1.0 / u_cloudScale, amplitude = 0.5, value = 0.5 * sum, kept = 0.0;
     for (int i = 0; i < HFX_CLOUD_OCTAVES; ++i) {
         const float a = along / wavelength, b = across / wavelength;
         float keep = sqrt(inversesqrt((1.0 + a * a) * (1.0 + b * b))); // of the deviation
-        keep *= smoothstep(0.02, 0.1, keep);
+        keep *= smoothstep(0.15, 0.35, keep);
         // The finer octaves keep less still: none is read past the first that keeps nothing
         // (where the sky or the water's roughness spreads a pixel wide, most of them).
         if (!(keep > 0.0)) break;
@@ -99,9 +95,36 @@ vec2 hfx_clouds(vec3 dir, float spread) {
     const float lostVariance = HFX_CLOUD_OCTAVE_VARIANCE * lost / (sum * sum);
     const float width = sqrt(0.04 * 0.04 + 5.0 * lostVariance);
     const float density = smoothstep(u_cloudThreshold - width, u_cloudThreshold + width, value);
-    const float thickness = clamp((value - u_cloudThreshold) / (0.2 + width), 0.0, 1.0);
+    return vec2(density, clamp((value - u_cloudThreshold) / (0.2 + width), 0.0, 1.0));
+}
+
+// The clouds in direction `dir` (y > 0) from the eye, seen over `spread` radians (a sky pixel's
+// width, a reflection's widened by the water's roughness): (density, thickness). The layer lies
+// u_cloudHeight over the world's y = 0 (the water's level); the direction meets it (height - eye)
+// / y away, so the pixel covers a patch of it spread / y across and spread / y^2 along the view
+// (foreshortened by y again), in cloud heights (the eye's height over the layer's neglected).
+vec2 hfx_clouds(vec3 dir, float spread) {
+    const float y = max(dir.y, 0.01);
+    const vec2 c = hfx_cloud_cover(u_cameraPos.xz / u_cloudHeight + dir.xz / y * (1.0 - u_cameraPos.y / u_cloudHeight),
+                                   spread / y, spread / (y * y));
     // Far off, the layer fades into the horizon's haze.
-    return vec2(density * (1.0 - exp(-8.0 * dir.y)), thickness);
+    return vec2(c.x * (1.0 - exp(-8.0 * dir.y)), c.y);
+}
+
+// The share of the sun's direct light the clouds let through to the world point `position`,
+// whose pixel spans `footprint` world units there: the sun's ray from it meets the layer `reach`
+// cloud heights away where the clouds cover it, over the pixel's patch of the sea (a horizontal
+// patch falls on one as wide) or the sun's disc seen from the point, 2 HFX_SUN_RADIUS reach
+// across and that over y along the sun's way (the penumbra), whichever is wider. A cloud passes
+// 0.3 of the light at its edge, 0.05 in its thick middle.
+float hfx_cloud_sunlight(vec3 position, float footprint) {
+    const vec3 l = normalize(u_lightDir);
+    if (!(l.y > 0.0)) return 1.0; // a sun under the horizon lights nothing through the layer
+    const float y = max(l.y, 0.01), reach = (1.0 - position.y / u_cloudHeight) / y;
+    const float size = footprint / u_cloudHeight, penumbra = 2.0 * HFX_SUN_RADIUS * reach;
+    const vec2 c = hfx_cloud_cover(position.xz / u_cloudHeight + l.xz * reach, max(size, penumbra),
+                                   max(size, penumbra / y));
+    return 1.0 - c.x * (0.7 + 0.25 * c.y);
 }
 
 // The sky without clouds: most of the change happens near the horizon, as in a clear sky.
@@ -123,6 +146,12 @@ vec3 hfx_cloud_color(vec3 dir, float thickness) {
     const vec3 silver = u_sunGlow * u_lightColor * (1.0 - thickness) * (1.5 * pow(sun, 16.0) + 0.3 * pow(sun, 4.0));
     return lit + silver;
 }
+
+// The sun's light the clouds let through to the pixel's point (hfx_cloud_sunlight), which the
+// water's shading multiplies its direct light by: surface.frag's main finds it first, while
+// little else is live (in the shading, among the traced point's values, the noise's loop took the
+// ocean's program on RDNA2 from 64 registers to 80: 16 waves a SIMD to 12).
+float g_cloudSunlight = 1.0;
 
 // The sky in direction `dir`, seen over `spread` radians (what the clouds are filtered over).
 vec3 hfx_sky(vec3 dir, float spread) {

@@ -101,6 +101,11 @@ float hfx_spindrift(vec2 uv, float footprint) {
 }
 
 vec3 hfx_shade(HfxSurfacePoint p) {
+#if HFX_SKY == 1
+    // The clouds' shadows: the sun's light they let through, here (the sky's light is left;
+    // surface.frag's main found it).
+    p.lit *= g_cloudSunlight;
+#endif
     const vec3 body = mix(u_deepColor, u_shallowColor, p.height * p.height) * (u_ambient + p.lit * p.diffuse * u_lightColor) +
                       hfx_crest_glow(p) * u_shallowColor * u_lightColor;
     vec3 reflected = reflect(-p.viewDir, p.normal);

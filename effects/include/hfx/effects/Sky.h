@@ -1,9 +1,10 @@
 #pragma once
 // The procedural sky of a water look (shaders/shade/sky.glsl) on the CPU, with the same float
-// operations as the shader: its colour in a direction, and how much of it its clouds cover
-// there (WaterLook::cloudCover). For an engine that matches its fog, its ambient light or its
+// operations as the shader: its colour in a direction, how much of it its clouds cover there
+// (WaterLook::cloudCover), and how much of the sun's light they let through to a point. For an engine that matches its fog, its ambient light or its
 // own sky to the one the water reflects, for gameplay that asks whether a point of the sky is
-// overcast, and for the tests that hold the shader to it.
+// overcast or a point of the sea in a cloud's shadow, and for the tests that hold the shaders to
+// it.
 //
 // Thread: any (no GL).
 
@@ -14,32 +15,40 @@
 
 namespace hfx {
 
-/// The clouds are a value noise over a layer at one height: HFX_CLOUD_OCTAVES octaves, each
-/// twice the last's frequency at half its amplitude and turned against it so that no grid lines
-/// up, the first with WaterLook::cloudScale cells per cloud height, moved by
-/// WaterLook::cloudDrift. What the clouds cover in direction `dir` (unit, y up), seen by a pixel whose directions
-/// spread over `spread` radians (a sky pixel's width; a reflection's, widened by the water's
-/// roughness): `density` 0 (clear) to 1 (the cloud hides the sky), and `thickness`, how far
-/// into the cloud the point lies (0 at its edge, 1 in its middle), which darkens its underside.
-/// Each octave keeps about the share of its variance that a box the size of the pixel's patch of
-/// the layer leaves it (spread / y across, spread / y^2 along the view), and what the octaves no
-/// longer show softens the edge instead: about the share of the pixel under cloud, not an
-/// aliased sample. 0 below the horizon and where the look has no clouds.
+/// The clouds are a value noise over a layer WaterLook::cloudHeight over the world's y = 0:
+/// HFX_CLOUD_OCTAVES octaves, each twice the last's frequency at half its amplitude and turned
+/// against it so that no grid lines up, the first with WaterLook::cloudScale cells per cloud
+/// height, moved by WaterLook::cloudDrift. What the clouds cover in direction `dir` (unit, y up)
+/// from the eye at `eye` (world), seen by a pixel whose directions spread over `spread` radians
+/// (a sky pixel's width; a reflection's, widened by the water's roughness): `density` 0 (clear)
+/// to 1 (the cloud hides the sky), and `thickness`, how far into the cloud the point lies (0 at
+/// its edge, 1 in its middle), which darkens its underside. Each octave keeps about the share of
+/// its variance that a box the size of the pixel's patch of the layer leaves it (spread / y
+/// across, spread / y^2 along the view), and what the octaves no longer show softens the edge
+/// instead: about the share of the pixel under cloud, not an aliased sample. 0 below the horizon
+/// and where the look has no clouds.
 struct CloudSample {
     float density = 0.0f;
     float thickness = 0.0f;
 };
-CloudSample cloudSample(const WaterLook& look, glm::vec3 dir, float spread);
+CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float spread);
+
+/// The share of `light`'s direct light that the clouds let through to the world point
+/// `position`, a pixel there spanning `footprint` world units (what the water's shading
+/// multiplies the sun's light by): 1 where the sun's ray from it meets no cloud, 0.3 at a cloud's
+/// edge down to 0.05 in its thick middle, over the pixel's patch or the penumbra of the sun's disc
+/// (HFX_SUN_RADIUS), whichever is wider; 1 without clouds or with the sun under the horizon.
+float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::vec3 position, float footprint);
 
 /// The value of the clouds' noise above which the sky is clouded, for `cover` (0 to 1): its
 /// quantile, so that `cover` of the sky overhead lies under a cloud's middle (density > 0.5).
 /// Read from a table of the noise's distribution (measured over 2^22 points, interpolated).
 float cloudThreshold(float cover);
 
-/// The sky's colour (linear RGB) in direction `dir` under `light`: the look's gradient, the
-/// sun's glow and, where the look has them, its clouds seen over `spread` radians. The
-/// environment image of a look that has one is not read: what it returns is the procedural
+/// The sky's colour (linear RGB) in direction `dir` from `eye` under `light`: the look's
+/// gradient, the sun's glow and, where the look has them, its clouds seen over `spread` radians.
+/// The environment image of a look that has one is not read: what it returns is the procedural
 /// sky's.
-glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::vec3 dir, float spread);
+glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::vec3 eye, glm::vec3 dir, float spread);
 
 } // namespace hfx

@@ -101,16 +101,19 @@ struct WaterLook {
     glm::vec2 windDirectionFrom{1.0f, 0.0f};
     /// Optional equirectangular sky (a GL texture the caller owns; 0 = procedural sky).
     unsigned environment = 0;
-    /// Clouds in the procedural sky (shade/sky.glsl; hfx::skyColor and hfx::cloudSample give the
-    /// same on the CPU): a layer of them at one height, lit by the sun (greyer where thick, a
-    /// silver edge towards the sun), drawn by drawSky and reflected by the water, faded into the
-    /// haze towards the horizon. `cloudCover` is the share of the sky overhead under a cloud's
-    /// middle, 0 (none, the default) to 1; `cloudScale` the clouds per cloud height (larger:
-    /// smaller clouds; about one per 1,000 m at 1,500 m is 1.5); `cloudDrift` how far the layer has
-    /// moved, in cloud heights along world x and z (the caller moves it: the wind aloft over the
-    /// clouds' height, per second). Not with an environment image, which is the whole sky.
+    /// Clouds in the procedural sky (shade/sky.glsl; hfx::skyColor, hfx::cloudSample and
+    /// hfx::cloudSunlight give the same on the CPU): a layer of them `cloudHeight` world units over
+    /// the world's y = 0 (the water's level; metres for the ocean), lit by the sun (greyer where
+    /// thick, a silver edge towards the sun), drawn by drawSky, reflected by the water and faded
+    /// into the haze towards the horizon, their shadows dimming the sun's light on the water.
+    /// `cloudCover` is the share of the sky overhead under a cloud's middle, 0 (none, the default)
+    /// to 1; `cloudScale` the clouds per cloud height (larger: smaller clouds; about one per
+    /// 1,000 m at 1,500 m is 1.5); `cloudDrift` how far the layer has moved, in cloud heights
+    /// along world x and z (the caller moves it: the wind aloft over the clouds' height, per
+    /// second). Not with an environment image, which is the whole sky.
     float cloudCover = 0.0f;
     float cloudScale = 1.5f;
+    float cloudHeight = 1500.0f;
     glm::vec2 cloudDrift{0.0f};
     /// Rings of waves spreading from impacts (OceanEffect::disturb fills them each frame), added
     /// to the traced height, the slopes and the foam: not tiled with the sea's patches.
@@ -120,8 +123,8 @@ struct WaterLook {
     /// cloudCover > 0, else the gradient alone.
     SkyKind sky() const;
     /// Throws hfx::Error naming the field, for what the sky reads: an environment that is not a
-    /// GL texture, a cloudCover outside [0, 1], a cloudScale outside (0, 64], a cloudDrift not
-    /// finite, clouds with an environment image. (SurfaceMaterial::validate checks the rest.)
+    /// GL texture, a cloudCover outside [0, 1], a cloudScale outside (0, 64], a cloudHeight not
+    /// positive and finite, a cloudDrift not finite, clouds with an environment image. (SurfaceMaterial::validate checks the rest.)
     void validateSky() const;
     bool operator==(const WaterLook&) const = default;
 };

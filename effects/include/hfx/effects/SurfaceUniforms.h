@@ -115,8 +115,8 @@ struct WaterUniforms {
     float streakCells = 0.0f;
     glm::vec2 windDirectionFrom{1.0f, 0.0f};
     float spindriftFrom = 0.0f;
-    float padding0 = 0.0f;
-    glm::vec2 cloudDrift{0.0f};   ///< WaterLook::cloudDrift (the clouds: HFX_SKY 1)
+    float cloudHeight = 1.0f;     ///< WaterLook::cloudHeight (the clouds: HFX_SKY 1)
+    glm::vec2 cloudDrift{0.0f};   ///< WaterLook::cloudDrift
     float cloudScale = 1.0f;
     float cloudThreshold = 1.0f;  ///< hfx::cloudThreshold(WaterLook::cloudCover): where the noise is clouded
     float padding1[2] = {0.0f, 0.0f}; ///< the block's size, a multiple of 16 bytes
@@ -195,6 +195,7 @@ static_assert(offsetof(WaterUniforms, foamDrift) == 96);
 static_assert(offsetof(WaterUniforms, spindrift) == 112);
 static_assert(offsetof(WaterUniforms, windDirectionFrom) == 120);
 static_assert(offsetof(WaterUniforms, spindriftFrom) == 128);
+static_assert(offsetof(WaterUniforms, cloudHeight) == 132);
 static_assert(offsetof(WaterUniforms, cloudDrift) == 136);
 static_assert(offsetof(WaterUniforms, cloudThreshold) == 148);
 static_assert(sizeof(WaterUniforms) == 160);
