@@ -188,43 +188,56 @@ TEST_F(Sky, TheSkyPassDrawsTheCpuSkyItsCloudsIncluded) {
     EXPECT_LT(worst, 12.0f / 255.0f);
 }
 
+/// A flat water plane 40 units across at y = 0 (the material's depth 0: its normals straight up)
+/// showing only what a test asks of it (no glint, no haze), drawn with its look's clouds and under
+/// a clear sky.
+struct FlatWater {
+    FlatWater(int width, int height) : target(width, height) {
+        material.shading = Shading::Water;
+        material.depthScale = 0.0f;
+        material.water.glintStrength = 0.0f;
+        material.water.hazeDistance = 1e9f;
+    }
+    /// (with the clouds, under a clear sky)
+    std::pair<Image, Image> draw(const Camera& camera, const DirectionalLight& light) {
+        auto one = [&](const SurfaceMaterial& m) {
+            target.bind();
+            target.clear();
+            renderer.draw(plane, glm::mat4(1.0f), relief.textures, m, camera, light);
+            return target.readColor();
+        };
+        SurfaceMaterial clear = material;
+        clear.water.cloudCover = 0.0f;
+        return {one(material), one(clear)};
+    }
+    SurfaceMaterial material;
+    RenderTarget target;
+    SurfaceRenderer renderer;
+    SineRelief relief{64, 0.05f};
+    Mesh plane{makePlane({.size = 40.0f})};
+};
+
 TEST_F(Sky, AStillWaterMirrorsTheClouds) {
     // A mirror: water reflecting all of the sky (Fresnel 1), flat (the material's depth 0), no
     // glint or haze. Each pixel is the sky in its reflected direction, seen over the water's
     // floor of spread (2 mrad; its normals do not spread) and rolled off above the water's knee.
-    RenderTarget target(kW, kH);
-    SurfaceRenderer renderer;
-    const SineRelief relief(64, 0.05f);
-    const Mesh plane(makePlane({.size = 40.0f}));
+    FlatWater water(kW, kH);
     Camera camera;
     camera.position = {0.0f, 6.0f, 6.0f};
     camera.target = {0.0f, 0.0f, -4.0f};
     camera.fovY = 1.0f;
     camera.aspect = float(kW) / kH;
     camera.farPlane = 100.0f;
-    SurfaceMaterial material;
-    material.shading = Shading::Water;
-    material.depthScale = 0.0f;
+    SurfaceMaterial& material = water.material;
     material.water.fresnelF0 = 1.0f;
-    material.water.glintStrength = 0.0f;
-    material.water.hazeDistance = 1e9f;
     material.water.cloudCover = 0.5f;
     material.water.cloudScale = 3.0f;
-    auto draw = [&](const SurfaceMaterial& m) {
-        target.bind();
-        target.clear();
-        renderer.draw(plane, glm::mat4(1.0f), relief.textures, m, camera, kSun);
-        return target.readColor();
-    };
-    const Image mirrored = draw(material);
-    SurfaceMaterial clear = material;
-    clear.water.cloudCover = 0.0f;
-    const Image plain = draw(clear);
+    const auto [mirrored, plain] = water.draw(camera, kSun);
     auto knee = [](glm::vec3 c) { // shade/water.glsl's roll-off of display colours
         const glm::vec3 over = glm::max(c - 0.75f, 0.0f);
         return glm::min(c, 0.75f) + 0.25f * (1.0f - glm::exp(-over / 0.25f));
     };
-    int water = 0, off = 0, clouded = 0, changed = 0;
+    int pixels = 0, off = 0, clouded = 0, changed = 0;
     float worst = 0.0f;
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
@@ -233,7 +246,7 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
             const double t = -ray.origin.y / ray.direction.y;
             const glm::dvec3 hit = ray.origin + t * ray.direction;
             if (std::abs(hit.x) > 19.0 || std::abs(hit.z) > 19.0) continue;
-            ++water;
+            ++pixels;
             const glm::vec3 reflected(glm::vec3(ray.direction.x, -ray.direction.y, ray.direction.z));
             const glm::vec3 expected = display(knee(skyColor(material.water, kSun, camera.position, reflected, 0.002f)));
             const float e = apart(pixelOf(mirrored, x, y), expected);
@@ -244,11 +257,11 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
         }
     std::printf("%d water pixels, %d reflecting a cloud, %d changed by the clouds; %d off the CPU's mirrored sky by "
                 "over 2.5/255 (at most %.1f/255)\n",
-                water, clouded, changed, off, double(worst) * 255.0);
-    ASSERT_GT(water, kW * kH / 2);
-    EXPECT_GT(clouded, water / 5) << "too few clouds to test";
-    EXPECT_GT(changed, water / 5) << "the water does not reflect the clouds";
-    EXPECT_LE(off, water / 200) << "the water does not mirror the CPU's sky";
+                pixels, clouded, changed, off, double(worst) * 255.0);
+    ASSERT_GT(pixels, kW * kH / 2);
+    EXPECT_GT(clouded, pixels / 5) << "too few clouds to test";
+    EXPECT_GT(changed, pixels / 5) << "the water does not reflect the clouds";
+    EXPECT_LE(off, pixels / 200) << "the water does not mirror the CPU's sky";
     EXPECT_LT(worst, 12.0f / 255.0f);
 }
 
@@ -258,10 +271,7 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     // so the pixel with clouds over the pixel under a clear sky is the sunlight the clouds let
     // through there, hfx::cloudSunlight at its point (the layer 20 units up: shadows of about 13).
     const int n = 160;
-    RenderTarget target(n, n);
-    SurfaceRenderer renderer;
-    const SineRelief relief(64, 0.05f);
-    const Mesh plane(makePlane({.size = 40.0f}));
+    FlatWater water(n, n);
     Camera camera;
     camera.position = {0.0f, 30.0f, 0.0f};
     camera.target = {0.0f, 0.0f, 0.0f};
@@ -270,26 +280,13 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     camera.aspect = 1.0f;
     camera.farPlane = 100.0f;
     const DirectionalLight sun{.direction = {0.3f, 1.0f, 0.2f}, .color = glm::vec3(4.0f), .ambient = glm::vec3(0.0f)};
-    SurfaceMaterial material;
-    material.shading = Shading::Water;
-    material.depthScale = 0.0f;
+    SurfaceMaterial& material = water.material;
     material.water.fresnelF0 = 0.0f;
-    material.water.glintStrength = 0.0f;
     material.water.translucency = 0.0f;
-    material.water.hazeDistance = 1e9f;
     material.water.cloudCover = 0.6f;
     material.water.cloudHeight = 20.0f;
     material.water.cloudDrift = {0.4f, -0.3f};
-    auto draw = [&](const SurfaceMaterial& m) {
-        target.bind();
-        target.clear();
-        renderer.draw(plane, glm::mat4(1.0f), relief.textures, m, camera, sun);
-        return target.readColor();
-    };
-    const Image clouded = draw(material);
-    SurfaceMaterial clear = material;
-    clear.water.cloudCover = 0.0f;
-    const Image plain = draw(clear);
+    const auto [clouded, plain] = water.draw(camera, sun);
     auto hit = [&](double x, double y) { // the plane's point seen through pixel (x, y from the top)
         const Ray ray = camera.rayThroughPixel(x + 0.5, n - 1 - y + 0.5, n, n);
         return glm::vec3(ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction);
