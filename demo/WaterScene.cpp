@@ -91,6 +91,7 @@ public:
         // Cumulus about a kilometre across at 1.5 km (an environment image is the whole sky: a
         // cover asked for with one is refused by name).
         m.water.cloudCover = o.clouds >= 0.0f ? o.clouds : o.environment.empty() ? 0.4f : 0.0f;
+        m.water.cloudHeight = kCloudHeightMeters;
         m.water.cloudScale = kCloudHeightMeters / 1000.0f;
         effect().setMaterial(m);
         applyOptions(o);

@@ -1,7 +1,6 @@
 #include "hfx/effects/Sky.h"
 
 #include <glm/geometric.hpp>
-#include <glm/vec4.hpp>
 
 #include <algorithm>
 #include <array>

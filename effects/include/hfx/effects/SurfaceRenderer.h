@@ -124,7 +124,8 @@ struct WaterLook {
     SkyKind sky() const;
     /// Throws hfx::Error naming the field, for what the sky reads: an environment that is not a
     /// GL texture, a cloudCover outside [0, 1], a cloudScale outside (0, 64], a cloudHeight not
-    /// positive and finite, a cloudDrift not finite, clouds with an environment image. (SurfaceMaterial::validate checks the rest.)
+    /// positive and finite, a cloudDrift not finite, clouds with an environment image
+    /// (SurfaceMaterial::validate checks the rest).
     void validateSky() const;
     bool operator==(const WaterLook&) const = default;
 };
