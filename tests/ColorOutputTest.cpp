@@ -2,6 +2,7 @@
 // plain 8-bit target; linear radiance, unclamped, into an engine's float target or an sRGB one
 // that GL encodes. The same frame either way: the linear one encodes to the display one.
 
+#include "support/Fields.h"
 #include "support/Fixtures.h"
 
 #include "hfx/core/Gl.h"
@@ -59,11 +60,6 @@ struct Target {
     GlFramebuffer fbo;
 };
 
-float gamma(float linear) { return std::pow(std::clamp(linear, 0.0f, 1.0f), 1.0f / 2.2f); }
-float rolledOff(float linear) {
-    const float knee = 0.75f;
-    return std::min(linear, knee) + (1.0f - knee) * (1.0f - std::exp(-std::max(linear - knee, 0.0f) / (1.0f - knee)));
-}
 float srgbDecode(float e) { return e <= 0.04045f ? e / 12.92f : std::pow((e + 0.055f) / 1.055f, 2.4f); }
 
 /// A sea under a low sun seen against it (its glint far above 1 in linear light), its sky behind,
@@ -109,7 +105,7 @@ TEST_F(ColorOutputTest, AFloatTargetGetsLinearUnclampedColoursThatEncodeToTheDis
             above += l[i][c] > 1.0f;
             // The water's display values roll its highlights off above a knee (shade/water.glsl),
             // which linear output leaves to the engine's tone mapping.
-            const float e = std::min(std::abs(gamma(l[i][c]) - d[i][c]), std::abs(gamma(rolledOff(l[i][c])) - d[i][c]));
+            const float e = std::min(std::abs(displayValue(l[i][c]) - d[i][c]), std::abs(displayValue(waterRollOff(l[i][c])) - d[i][c]));
             worst = std::max(worst, e);
             apart += e > 1.5f / 255.0f; // a byte's rounding, and the rings' copy of an 8-bit frame
         }

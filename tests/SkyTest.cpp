@@ -112,11 +112,6 @@ TEST(SkyModel, CloudsNearTheHorizonShowWhatAPixelCoversRatherThanAliasing) {
     }
 }
 
-/// What an 8-bit target holds of a linear colour: hfx_output's gamma 2.2.
-glm::vec3 display(glm::vec3 c) {
-    return glm::pow(glm::clamp(c, 0.0f, 1.0f), glm::vec3(1.0f / 2.2f));
-}
-
 /// Pixel (x, y from the top) of `image`.
 glm::vec3 pixelOf(const Image& image, int x, int y) {
     return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
@@ -171,13 +166,13 @@ TEST_F(Sky, TheSkyPassDrawsTheCpuSkyItsCloudsIncluded) {
         for (int x = 0; x < kW; ++x) {
             const glm::vec3 dir = dirAt(x, y);
             const float spread = std::max(glm::length(dirAt(x + 1, y) - dir), glm::length(dirAt(x, y + 1) - dir));
-            const glm::vec3 expected = display(skyColor(look, kSun, camera.position, dir, spread));
+            const glm::vec3 expected = displayValue(skyColor(look, kSun, camera.position, dir, spread));
             const float e = apart(pixelOf(cloudy, x, y), expected);
             worst = std::max(worst, e);
             off += e > 2.5f / 255.0f;
             clouded += cloudSample(look, camera.position, dir, spread).density > 0.5f;
             changed += apart(pixelOf(cloudy, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
-            EXPECT_LE(apart(pixelOf(plain, x, y), display(skyColor(clear, kSun, camera.position, dir, spread))), 1.5f / 255.0f);
+            EXPECT_LE(apart(pixelOf(plain, x, y), displayValue(skyColor(clear, kSun, camera.position, dir, spread))), 1.5f / 255.0f);
         }
     std::printf("%d of %d pixels clouded, %d changed by the clouds; %d off the CPU's sky by over 2.5/255 (at most "
                 "%.1f/255)\n",
@@ -233,10 +228,6 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
     material.water.cloudCover = 0.5f;
     material.water.cloudScale = 3.0f;
     const auto [mirrored, plain] = water.draw(camera, kSun);
-    auto knee = [](glm::vec3 c) { // shade/water.glsl's roll-off of display colours
-        const glm::vec3 over = glm::max(c - 0.75f, 0.0f);
-        return glm::min(c, 0.75f) + 0.25f * (1.0f - glm::exp(-over / 0.25f));
-    };
     int pixels = 0, off = 0, clouded = 0, changed = 0;
     float worst = 0.0f;
     for (int y = 0; y < kH; ++y)
@@ -248,7 +239,7 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
             if (std::abs(hit.x) > 19.0 || std::abs(hit.z) > 19.0) continue;
             ++pixels;
             const glm::vec3 reflected(glm::vec3(ray.direction.x, -ray.direction.y, ray.direction.z));
-            const glm::vec3 expected = display(knee(skyColor(material.water, kSun, camera.position, reflected, 0.002f)));
+            const glm::vec3 expected = displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, reflected, 0.002f)));
             const float e = apart(pixelOf(mirrored, x, y), expected);
             worst = std::max(worst, e);
             off += e > 2.5f / 255.0f;

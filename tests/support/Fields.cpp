@@ -76,4 +76,17 @@ ErrorStats statistics(std::vector<double> errors) {
     return s;
 }
 
+float displayValue(float linear) { return std::pow(std::clamp(linear, 0.0f, 1.0f), 1.0f / 2.2f); }
+glm::vec3 displayValue(glm::vec3 linear) {
+    return {displayValue(linear.x), displayValue(linear.y), displayValue(linear.z)};
+}
+
+float waterRollOff(float linear) {
+    const float knee = 0.75f;
+    return std::min(linear, knee) + (1.0f - knee) * (1.0f - std::exp(-std::max(linear - knee, 0.0f) / (1.0f - knee)));
+}
+glm::vec3 waterRollOff(glm::vec3 linear) {
+    return {waterRollOff(linear.x), waterRollOff(linear.y), waterRollOff(linear.z)};
+}
+
 } // namespace hfx::test

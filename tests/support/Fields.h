@@ -46,6 +46,14 @@ Camera cameraAtAngle(double angleDegrees, float distance, float aspect);
 /// Lengyel's oblique near-plane clipping, as an engine's planar reflection clips at the water.
 glm::mat4 obliqueNearPlane(glm::mat4 projection, const glm::vec4& plane);
 
+/// What an 8-bit target holds of a linear colour (hfx_output's display values): clamped to [0, 1],
+/// gamma 2.2.
+float displayValue(float linear);
+glm::vec3 displayValue(glm::vec3 linear);
+/// The water's roll-off of its display colours above a knee at 0.75 (shade/water.glsl).
+float waterRollOff(float linear);
+glm::vec3 waterRollOff(glm::vec3 linear);
+
 struct ErrorStats {
     double mean = 0, p95 = 0, max = 0;
     size_t count = 0;
