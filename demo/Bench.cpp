@@ -43,8 +43,9 @@ struct Budget {
     // and beam start included), with the own technique's beam start, bounds and texel shadows apart.
     double kernels, glUpload, gpuPom, gpuUnshadowed, gpuNm, gpuOwn, ownBeam, ownBounds, ownTexels;
     /// A water look with clouds: its POM and NM draws without them (WaterLook::cloudCover 0), the
-    /// same frames; 0 where the look has none.
-    double gpuPomClear = 0.0, gpuNmClear = 0.0;
+    /// same frames, and the sky pass of the POM draws with and without them; 0 where the look has
+    /// none.
+    double gpuPomClear = 0.0, gpuNmClear = 0.0, gpuSky = 0.0, gpuSkyClear = 0.0;
     double compute() const { return field + normals + extra; }
     double frame() const { return compute() + upload + pom; }
     /// The transfer: its CPU wall clock (map or read, copies, GL's upload calls) or the GL
@@ -147,7 +148,9 @@ Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
             .ownBounds = gpuMedian(ownTimer, "bounds"),
             .ownTexels = gpuMedian(ownTimer, "texel shadows"),
             .gpuPomClear = gpuMedian(pomClearTimer, "whole"),
-            .gpuNmClear = gpuMedian(nmClearTimer, "whole")};
+            .gpuNmClear = gpuMedian(nmClearTimer, "whole"),
+            .gpuSky = clouds ? gpuMedian(pomTimer, "sky") : 0.0,
+            .gpuSkyClear = gpuMedian(pomClearTimer, "sky")};
 }
 
 /// Wall time per frame of update + POM draw, run one after the other and overlapped (the next
@@ -240,9 +243,10 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                           overlapped, sequential, peakResidentMiB(), ownWall, texels, pass.empty() ? "-" : pass.c_str());
             wallRows += row;
             if (b.gpuPomClear > 0.0) {
-                std::snprintf(row, sizeof row, "| %s | %dx%d | %.2f | %.2f | %.2fx | %.2f | %.2f | %.2fx |\n", name,
+                std::snprintf(row, sizeof row,
+                              "| %s | %dx%d | %.2f | %.2f | %.2fx | %.2f | %.2f | %.2fx | %.2f | %.2f | %.2fx |\n", name,
                               config.width, config.height, b.gpuPom, b.gpuPomClear, b.gpuPom / b.gpuPomClear, b.gpuNm,
-                              b.gpuNmClear, b.gpuNm / b.gpuNmClear);
+                              b.gpuNmClear, b.gpuNm / b.gpuNmClear, b.gpuSky, b.gpuSkyClear, b.gpuSky / b.gpuSkyClear);
                 skyRows += row;
             }
         }
@@ -254,9 +258,10 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                     wallRows.c_str());
     if (!skyRows.empty())
         std::printf("\nThe water's clouds (WaterLook::cloudCover): device time of the draws above (the sky pass and the\n"
-                    "sea, which reflects them) against the same draws under a clear sky, the same frames:\n\n"
-                    "| scene | field | POM draw | POM, clear sky | ratio | NM draw | NM, clear sky | ratio |\n"
-                    "|---|---|---|---|---|---|---|---|\n%s",
+                    "sea, which reflects them and lies in their shadows) against the same draws under a clear sky, the\n"
+                    "same frames, and the POM draws' sky pass alone:\n\n"
+                    "| scene | field | POM draw | POM, clear sky | ratio | NM draw | NM, clear sky | ratio | sky pass | "
+                    "sky pass, clear | ratio |\n|---|---|---|---|---|---|---|---|---|---|---|\n%s",
                     skyRows.c_str());
 
     if (wanted("transfer")) {

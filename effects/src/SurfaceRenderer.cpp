@@ -667,6 +667,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     glDisable(GL_DEPTH_TEST);
     sky.use();
     glBindVertexArray(empty_.id());
+    const GpuScope scope("sky");
     HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
 }
 

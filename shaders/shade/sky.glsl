@@ -101,8 +101,9 @@ vec2 hfx_cloud_cover(vec2 p, float across, float along) {
 // The clouds in direction `dir` (y > 0) from the eye, seen over `spread` radians (a sky pixel's
 // width, a reflection's widened by the water's roughness): (density, thickness). The layer lies
 // u_cloudHeight over the world's y = 0 (the water's level); the direction meets it (height - eye)
-// / y away, so the pixel covers a patch of it spread / y across and spread / y^2 along the view
-// (foreshortened by y again), in cloud heights (the eye's height over the layer's neglected).
+// / y away, so the pixel covers a patch of it about spread / y across and spread / y^2 along the
+// view (foreshortened by y again), in cloud heights (the patch's size leaves out the eye's height,
+// a few metres beside the layer's 1,500).
 vec2 hfx_clouds(vec3 dir, float spread) {
     const float y = max(dir.y, 0.01);
     const vec2 c = hfx_cloud_cover(u_cameraPos.xz / u_cloudHeight + dir.xz / y * (1.0 - u_cameraPos.y / u_cloudHeight),
