@@ -161,9 +161,17 @@ std::vector<float> DecalWallEffect::readHeights() {
     return heights;
 }
 
+HeightFieldTracer DecalWallEffect::heightTracer() {
+    return HeightFieldTracer(readHeights(), decals_.width(), decals_.height(), decals_.edges());
+}
+
 std::optional<SurfacePick> DecalWallEffect::pick(const Ray& ray, const SurfaceFrame& frame) {
-    const HeightFieldTracer tracer(readHeights(), decals_.width(), decals_.height(), decals_.edges());
-    return pickSurface(ray, frame, tracer, material().depthScale);
+    return pickSurface(ray, frame, heightTracer(), material().depthScale);
+}
+
+std::optional<MeshPick> DecalWallEffect::pick(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
+                                              const SurfaceMaterial& material) {
+    return pickMesh(ray, mesh, model, heightTracer(), material);
 }
 
 } // namespace hfx

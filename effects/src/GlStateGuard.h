@@ -11,6 +11,7 @@
 #include "hfx/core/GlObject.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
+#include "ModelMatrix.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -29,21 +30,6 @@ void updateBlock(GlBuffer& buffer, GLuint binding, const Block& data) {
     }
     HFX_GL_CHECK(glNamedBufferSubData(buffer.id(), 0, sizeof(Block), &data));
     glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer.id());
-}
-
-/// A matrix's columns, for an error that names its value.
-inline std::string columnsText(const glm::mat4& m) {
-    return str(text(m[0]), ", ", text(m[1]), ", ", text(m[2]), ", ", text(m[3]));
-}
-
-/// Throws hfx::Error unless the model matrix is finite and its linear part invertible (the
-/// normals are turned by its inverse: a scale of 0 would make them NaN). What each draw checks
-/// first, with the camera and the light, before it changes anything.
-inline void checkModel(const glm::mat4& model) {
-    if (!isFinite(model)) throw Error(str("the model matrix must be finite, got the columns ", columnsText(model)));
-    if (!isFinite(glm::inverse(glm::mat3(model))))
-        throw Error(str("the model matrix scales some axis to 0 (no inverse to turn the normals by), got the columns ",
-                        columnsText(model)));
 }
 
 /// Throws hfx::Error unless GL's clip control and depth range are the ones the view's depth

@@ -6,12 +6,15 @@
 #include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/OceanEffect.h"
 
+#include "ModelMatrix.h"
+
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 namespace hfx {
@@ -50,10 +53,19 @@ double wrap01(double x) {
 WallImpacts::WallImpacts(DecalWallEffect& wall, const SurfaceFrame& frame, glm::dvec4 uvBounds)
     : wall_(wall), frame_(frame), bounds_(uvBounds) {}
 
+WallImpacts::WallImpacts(DecalWallEffect& wall, MeshData mesh, const glm::mat4& model)
+    : wall_(wall), mesh_(std::move(mesh)), model_(model) {
+    mesh_->validate();
+    checkModel(model, "WallImpacts: ");
+}
+
 std::optional<ImpactHit> WallImpacts::hit(const Ray& ray) {
-    const HeightFieldTracer tracer(wall_.readHeights(), wall_.decals().width(), wall_.decals().height(),
-                                   wall_.decals().edges());
-    const auto pick = pickSurface(ray, frame_, tracer, wall_.material().depthScale, bounds_);
+    if (mesh_) {
+        const auto pick = wall_.pick(ray, *mesh_, model_, wall_.material());
+        if (!pick) return std::nullopt;
+        return ImpactHit{pick->world, pick->uv, pick->normal, glm::length(pick->world - ray.origin)};
+    }
+    const auto pick = pickSurface(ray, frame_, wall_.heightTracer(), wall_.material().depthScale, bounds_);
     if (!pick) return std::nullopt;
     return ImpactHit{pick->world, pick->uv, frame_.normal, glm::length(pick->world - ray.origin)};
 }

@@ -74,8 +74,14 @@ public:
     /// The texcoords a world ray meets on the displaced wall drawn on `frame`, using the heights
     /// of the last update (read back once per call).
     std::optional<SurfacePick> pick(const Ray& ray, const SurfaceFrame& frame);
+    /// ... on the wall drawn on any `mesh` (a pillar, a barrel, a triplanar rock) with `model`
+    /// and `material` (pickMesh): shoot(pick->uv) stamps where the ray met the relief.
+    std::optional<MeshPick> pick(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
+                                 const SurfaceMaterial& material);
     /// The combined heights of the last update, row 0 at v = 0 (for picking and export).
     std::vector<float> readHeights();
+    /// Those heights' exact tracer, for pickSurface and pickMesh (read back once per call).
+    HeightFieldTracer heightTracer();
 
 private:
     /// The wall's maps (the caller's, or the procedural bricks), made before anything on a device.

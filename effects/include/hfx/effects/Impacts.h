@@ -6,7 +6,7 @@
 // logged (DecalWallEffect, DamageLog), the ocean rings with waves and foam
 // (OceanEffect::disturb), the gas giant spins up a storm (GasPlanetEffect::addStorm).
 //
-//   WallImpacts wall(decalWall, SurfaceFrame::ofPlane(plane, model));
+//   WallImpacts wall(decalWall, SurfaceFrame::ofPlane(plane, model)); // or (decalWall, meshData, model)
 //   OceanImpacts sea(ocean, SurfaceFrame::ofPlane(seaPlane));
 //   ImpactReceiver* targets[] = {&wall, &sea};
 //   if (auto hit = routeImpact({.origin = gun, .direction = aim}, targets)) ... // who took it, where
@@ -16,8 +16,10 @@
 #include "hfx/compute/DamageLog.h"
 #include "hfx/compute/OceanQuery.h"
 #include "hfx/core/Camera.h"
+#include "hfx/core/Mesh.h"
 #include "hfx/effects/Picking.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -67,19 +69,26 @@ struct RoutedImpact {
 /// none. Throws hfx::Error (and nothing receives it) on a bad impact.
 std::optional<RoutedImpact> routeImpact(const Impact& impact, std::span<ImpactReceiver* const> receivers);
 
-/// A decal wall drawn on a plane: a bullet hole or an explosion at the picked texel, logged.
+/// A decal wall drawn on a plane or on any mesh: a bullet hole or an explosion at the picked
+/// texel, logged.
 class WallImpacts final : public ImpactReceiver {
 public:
     /// uvBounds: the patch's texcoords (hits outside are misses).
     WallImpacts(DecalWallEffect& wall, const SurfaceFrame& frame, glm::dvec4 uvBounds = {-1e30, -1e30, 1e30, 1e30});
+    /// Drawn on `mesh` (kept: a copy) with `model` and the wall's material as it is at each hit
+    /// (pickMesh: curved, faded at its silhouette, triplanar mapped). Throws hfx::Error naming
+    /// a bad mesh (MeshData::validate) or a model matrix not finite or without an inverse.
+    WallImpacts(DecalWallEffect& wall, MeshData mesh, const glm::mat4& model);
     const char* name() const override { return "wall"; }
     std::optional<ImpactHit> hit(const Ray& ray) override;
     void receive(const Impact& impact, const ImpactHit& hit) override;
 
 private:
     DecalWallEffect& wall_;
-    SurfaceFrame frame_;
-    glm::dvec4 bounds_;
+    SurfaceFrame frame_{};
+    glm::dvec4 bounds_{0.0};
+    std::optional<MeshData> mesh_; ///< drawn on a mesh, not on frame_
+    glm::mat4 model_{1.0f};
 };
 
 /// The ocean drawn on a plane whose texcoords count its largest patch: a ring of waves there.

@@ -166,8 +166,8 @@ PlanetUniforms planetUniforms(const PlanetLook& look, const glm::mat4& model);
 /// projection alone, one trace; where two or three blend, the pixel costs two or three, and its
 /// traced point (its depth) is their points' weighted mean. The
 /// texture must tile (wrap both ways). The exact tracer walks in the draw (no compute pass, texel
-/// shadows or beam start: those follow a flat patch's texcoords). Picking (pickSurface) reads the
-/// mesh's texcoords.
+/// shadows or beam start: those follow a flat patch's texcoords). pickMesh picks in the heaviest
+/// projection's frame.
 struct TriplanarMapping {
     float scale = 0.0f;     ///< texcoords (texture repeats) per unit of the mesh's own space; 0: off
     float sharpness = 4.0f; ///< the weights' power, 1 to 64: the higher, the narrower the blends

@@ -1,0 +1,221 @@
+// Picking on meshes (pickMesh): a ray through a pixel's centre picks the texcoords that pixel's
+// trace output holds and the depth it wrote, on the decal wall's bricks drawn on a sphere (curved,
+// with a silhouette fade) and under a triplanar mapping; a shot at the pick lands there; on a
+// plane it is pickSurface on the plane's frame; bad input is refused by name.
+
+#include "support/Fields.h"
+#include "support/Fixtures.h"
+
+#include "hfx/core/Error.h"
+#include "hfx/core/Gl.h"
+#include "hfx/core/HeightFieldTracer.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
+#include "hfx/effects/DecalWallEffect.h"
+#include "hfx/effects/Impacts.h"
+#include "hfx/effects/Picking.h"
+#include "hfx/effects/SurfaceRenderer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+namespace hfx::test {
+namespace {
+
+class Picking : public DeviceTest {};
+
+/// What a drawn frame's pixels say against pickMesh through their centres.
+struct Agreement {
+    size_t covered = 0;    // pixels the mesh drew
+    size_t missed = 0;     // ... that the CPU's ray picked nothing on
+    size_t off = 0;        // ... whose pick lies more than 0.01 texels from the trace output's hit
+    size_t depthOff = 0;   // ... whose pick's window depth is more than 1e-5 from the pixel's
+    double worst = 0.0;    // texels
+    std::vector<int> projections = std::vector<int>(4, 0); // picks per projection (-1, 0, 1, 2)
+};
+
+/// Draws `mesh` under `model` and compares every covered pixel's trace output with `pick` of the
+/// ray through its centre (`checkDepth`: and the depth it wrote with the pick's point's).
+Agreement compare(const Mesh& mesh, const glm::mat4& model, const std::vector<SurfaceLayer>& layers,
+                  const SurfaceMaterial& material, const Camera& camera, int W, int H, int texels, bool checkDepth,
+                  const std::function<std::optional<MeshPick>(const Ray&)>& pick) {
+    RenderTarget target(W, H, true);
+    target.bind();
+    target.clear();
+    SurfaceRenderer renderer;
+    renderer.draw(mesh, model, layers, material, camera, DirectionalLight{.direction = {0.4f, 0.8f, 0.45f}},
+                  {.technique = Technique::Hierarchical, .traceOutput = true});
+    const std::vector<glm::vec4> trace = target.readTrace();
+    const std::vector<float> depth = target.readDepth();
+    const glm::dmat4 viewProj(camera.viewProjection());
+    Agreement a;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const size_t i = size_t(y) * W + x;
+            if (!(depth[i] < 1.0f)) continue;
+            ++a.covered;
+            const std::optional<MeshPick> p = pick(camera.rayThroughPixel(x + 0.5, y + 0.5, W, H));
+            if (!p) {
+                ++a.missed;
+                continue;
+            }
+            ++a.projections[size_t(p->projection + 1)];
+            const double error = glm::length(p->uv - glm::dvec2(trace[i])) * texels;
+            a.worst = std::max(a.worst, error);
+            a.off += error > 0.01;
+            const glm::dvec4 clip = viewProj * glm::dvec4(p->world, 1.0);
+            a.depthOff += checkDepth && std::abs(0.5 * clip.z / clip.w + 0.5 - depth[i]) > 1e-5;
+        }
+    return a;
+}
+
+TEST(PickMesh, OnAPlaneItIsPickSurfaceOnThePlanesFrame) {
+    // A subdivided plane, turned, moved and mirrored or not: every triangle has the plane's frame,
+    // so the mesh's pick is the frame's, to rounding; from behind, both pick nothing.
+    const PlaneConfig plane{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 3};
+    const MeshData mesh = makePlane(plane);
+    const HeightFieldTracer heights(sumOfSines(64, {{0.3, 2, 1, 0.0}, {0.15, -3, 5, 1.0}}), 64, 64, EdgeMode::Wrap);
+    const SurfaceMaterial material{.depthScale = 0.06f};
+    const glm::mat4 turned = glm::rotate(glm::translate(glm::mat4(1.0f), {0.3f, 0.5f, -0.2f}), 1.1f, glm::vec3(1, 0.2f, 0));
+    for (const glm::mat4& model : {turned, glm::scale(turned, {-1.0f, 1.0f, 1.0f})}) {
+        const SurfaceFrame frame = SurfaceFrame::ofPlane(plane, model);
+        const glm::dvec3 centre(model * glm::vec4(0, 0, 0, 1));
+        size_t picked = 0;
+        for (int j = -6; j <= 6; ++j)
+            for (int i = -6; i <= 6; ++i) {
+                // Rays from in front of the plane and from behind it, at up to 70 degrees.
+                for (const double side : {1.0, -1.0}) {
+                    const glm::dvec3 aim = centre + 0.28 * i * frame.tangent / glm::length(frame.tangent) +
+                                           0.28 * j * frame.bitangent / glm::length(frame.bitangent);
+                    const glm::dvec3 eye = aim + side * 1.5 * frame.normal + 0.3 * (i + j) * frame.tangent;
+                    const Ray ray{eye, glm::normalize(aim - eye)};
+                    const auto a = pickMesh(ray, mesh, model, heights, material);
+                    const auto b = pickSurface(ray, frame, heights, material.depthScale, {0.0, 0.0, 2.0, 2.0});
+                    ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << i << "," << j << " from side " << side;
+                    if (!a) continue;
+                    ++picked;
+                    EXPECT_LT(glm::length(a->uv - b->uv), 1e-9);
+                    EXPECT_LT(glm::length(a->world - b->world), 1e-9);
+                    EXPECT_EQ(a->projection, -1);
+                }
+            }
+        EXPECT_GT(picked, 100u);
+    }
+}
+
+TEST(PickMesh, BadInputIsRefusedByName) {
+    const MeshData sphere = makeSphere({});
+    const HeightFieldTracer heights(std::vector<float>(64, 0.5f), 8, 8, EdgeMode::Wrap);
+    const Ray ray{{0, 0, 3}, {0, 0, -1}};
+    const SurfaceMaterial material;
+    EXPECT_TRUE(pickMesh(ray, sphere, glm::mat4(1.0f), heights, material));
+    EXPECT_EQ(messageOf([&] { pickMesh({{0, 0, 3}, {0, 0, 0}}, sphere, glm::mat4(1.0f), heights, material); }),
+              "pickMesh: the ray must be finite and have a direction, got origin (0, 0, 3) and direction (0, 0, 0)");
+    glm::mat4 flat(1.0f);
+    flat[1][1] = 0.0f;
+    EXPECT_NE(messageOf([&] { pickMesh(ray, sphere, flat, heights, material); })
+                  .find("pickMesh: the model matrix scales some axis to 0"),
+              std::string::npos);
+    glm::mat4 broken(1.0f);
+    broken[3][0] = std::nanf("");
+    EXPECT_NE(messageOf([&] { pickMesh(ray, sphere, broken, heights, material); }).find("pickMesh: the model matrix must be finite, got the columns (1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (nan, 0, 0, 1)"), std::string::npos);
+    MeshData torn = sphere;
+    torn.indices[5] = uint32_t(torn.vertices.size());
+    EXPECT_NE(messageOf([&] { pickMesh(ray, torn, glm::mat4(1.0f), heights, material); }).find("index"), std::string::npos);
+    EXPECT_EQ(messageOf([&] { pickMesh(ray, sphere, glm::mat4(1.0f), heights, SurfaceMaterial{.depthScale = -1.0f}); }),
+              "SurfaceMaterial.depthScale must be in [0, 1], got -1");
+    // From inside the closed sphere every face the ray meets first is a back face: nothing.
+    EXPECT_FALSE(pickMesh({{0, 0, 0}, {0.3, 0.2, -1}}, sphere, glm::mat4(1.0f), heights, material));
+}
+
+TEST_F(Picking, ABrickWallOnASpherePicksWhatItsPixelsTraceAndAShotLandsThere) {
+    // The decal wall's bricks on a turned, stretched sphere, its relief fading at the silhouette,
+    // and the same mirrored (its winding turned): each pixel's trace output (hier, exact) is the
+    // pick through its centre, and so is its depth.
+    constexpr int W = 256, H = 192;
+    DecalWallEffect wall(cl(), {.bricks = {.size = 128}});
+    const MeshData data = makeSphere({});
+    const Mesh sphere(data);
+    const glm::mat4 model = glm::scale(glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1, 2, 0.5f))),
+                                       glm::vec3(1.2f, 1.0f, 1.1f));
+    SurfaceMaterial material = wall.material();
+    material.depthScale = 0.02f;
+    material.lodThreshold = 100.0f;
+    material.silhouetteFade = 0.25f;
+    wall.setMaterial(material);
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.2f, 0.5f, 0.35f);
+    camera.aspect = float(W) / float(H);
+    const HeightFieldTracer heights = wall.heightTracer();
+    for (const glm::mat4& m : {model, glm::scale(model, {-1.0f, 1.0f, 1.0f})}) {
+        const bool mirrored = glm::determinant(glm::mat3(m)) < 0.0f;
+        const Agreement a = compare(sphere, m, wall.layers(), material, camera, W, H, 128, true,
+                                    [&](const Ray& ray) { return pickMesh(ray, data, m, heights, material); });
+        std::printf("[bricks on a sphere%s] %zu pixels, %zu picked nothing, %zu off the trace by more than 0.01 "
+                    "texels (%.2g at most), %zu depths off by more than 1e-5\n",
+                    mirrored ? ", mirrored" : "", a.covered, a.missed, a.off, a.worst, a.depthOff);
+        ASSERT_GT(a.covered, size_t(W * H / 5));
+        EXPECT_LE(a.missed, a.covered / 1000);
+        EXPECT_LE(a.off, a.covered / 200);
+        EXPECT_LE(a.depthOff, a.covered / 200);
+    }
+
+    // A bullet along the middle pixel's ray, routed to the wall on the sphere (WallImpacts on the
+    // mesh): it takes the wall's pick there, and the crater's deepest texel is there, within a
+    // texel.
+    const Ray middle = camera.rayThroughPixel(W / 2 + 0.5, H / 2 + 0.5, W, H);
+    const auto picked = wall.pick(middle, data, model, wall.material());
+    ASSERT_TRUE(picked);
+    WallImpacts onSphere(wall, data, model);
+    ImpactReceiver* receivers[] = {&onSphere};
+    const auto routed = routeImpact({.origin = middle.origin, .direction = middle.direction}, receivers);
+    ASSERT_TRUE(routed);
+    EXPECT_LT(glm::length(routed->hit.uv - picked->uv), 1e-12);
+    EXPECT_LT(glm::length(routed->hit.normal - picked->normal), 1e-12);
+    EXPECT_NEAR(glm::dot(picked->normal, -middle.direction), 1.0, 0.3) << "the sphere's normal faces the eye";
+    wall.update(1.0 / 30.0);
+    const std::vector<float> after = wall.readHeights();
+    const int deepest = int(std::min_element(after.begin(), after.end()) - after.begin());
+    const glm::dvec2 landed((deepest % 128 + 0.5) / 128, (deepest / 128 + 0.5) / 128);
+    const glm::dvec2 aimed = picked->uv - glm::floor(picked->uv);
+    EXPECT_LT(glm::length(landed - aimed) * 128, 1.0) << "stamp landed at " << landed.x << "," << landed.y
+                                                      << ", aimed at " << aimed.x << "," << aimed.y;
+    // A receiver on a bad mesh or model is refused when made, by name.
+    MeshData torn = data;
+    torn.indices[2] = uint32_t(torn.vertices.size());
+    EXPECT_NE(messageOf([&] { WallImpacts(wall, torn, model); }).find("index"), std::string::npos);
+    EXPECT_NE(messageOf([&] { WallImpacts(wall, data, glm::mat4(0.0f)); }).find("WallImpacts: the model matrix scales"),
+              std::string::npos);
+}
+
+TEST_F(Picking, ATriplanarSpherePicksItsHeaviestProjection) {
+    // The same under a triplanar mapping: a pixel's trace output is its heaviest projection's
+    // trace (the depth it writes is the projections' blend, not checked here), and so is the pick.
+    constexpr int W = 256, H = 192, kField = 64;
+    const SineRelief relief(kField, 0.04f);
+    const MeshData data = makeSphere({});
+    const Mesh sphere(data);
+    const glm::mat4 model = glm::rotate(glm::mat4(1.0f), 0.4f, glm::normalize(glm::vec3(0.3f, 1, 0.2f)));
+    const SurfaceMaterial material{.depthScale = 0.04f, .lodThreshold = 100.0f, .silhouetteFade = 0.25f,
+                                   .triplanar = {.scale = 1.5f, .sharpness = 2.0f}};
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.0f, 0.8f, 0.5f);
+    camera.aspect = float(W) / float(H);
+    const HeightFieldTracer heights(relief.heights, kField, kField, EdgeMode::Wrap);
+    const Agreement a = compare(sphere, model, {{&relief.textures}}, material, camera, W, H, kField, false,
+                                [&](const Ray& ray) { return pickMesh(ray, data, model, heights, material); });
+    std::printf("[triplanar sphere] %zu pixels, %zu picked nothing, %zu off the trace by more than 0.01 texels "
+                "(%.2g at most); picks along x, y, z: %d, %d, %d\n",
+                a.covered, a.missed, a.off, a.worst, a.projections[1], a.projections[2], a.projections[3]);
+    ASSERT_GT(a.covered, size_t(W * H / 5));
+    EXPECT_LE(a.missed, a.covered / 1000);
+    EXPECT_LE(a.off, a.covered / 200);
+    EXPECT_EQ(a.projections[0], 0) << "a triplanar pick reported the mesh's texcoords";
+    for (int axis = 1; axis <= 3; ++axis) EXPECT_GT(a.projections[size_t(axis)], int(a.covered / 20)) << "xyz"[axis - 1];
+}
+
+} // namespace
+} // namespace hfx::test
