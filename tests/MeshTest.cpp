@@ -73,6 +73,45 @@ TEST(Sphere, TangentsAreTexcoordDerivativesAndFaceOutwards) {
     EXPECT_THROW(makeSphere({.radius = 0.0f}), Error);
 }
 
+TEST(Cylinder, TangentsAreTexcoordDerivativesFacingOutwardsAndItIsConvexNotClosed) {
+    const CylinderConfig config{.radius = 0.6f, .height = 3.0f, .segments = 48, .texcoordScale = {2.0f, 1.5f}};
+    const MeshData cylinder = makeCylinder(config);
+    const int row = config.segments + 1;
+    ASSERT_EQ(cylinder.vertices.size(), size_t(2 * row));
+    ASSERT_EQ(cylinder.indices.size(), size_t(6 * config.segments));
+    for (int i = 0; i < config.segments; ++i) {
+        const Vertex& a = cylinder.vertices[i];
+        const Vertex& b = cylinder.vertices[i + 1];
+        const Vertex& c = cylinder.vertices[row + i];
+        ASSERT_NEAR(glm::length(glm::vec2(a.position.x, a.position.z)), 0.6f, 1e-6f);
+        ASSERT_FLOAT_EQ(a.position.y, -1.5f);
+        ASSERT_FLOAT_EQ(c.position.y, 1.5f);
+        // The texcoords' derivatives: a chord around against the two ends' tangents (O(h^2)),
+        // exactly along the height.
+        const glm::vec3 du = (b.position - a.position) / (b.texcoord.x - a.texcoord.x);
+        ASSERT_LT(glm::length(du - 0.5f * (a.tangent + b.tangent)), 2e-3f * glm::length(a.tangent));
+        ASSERT_LT(glm::length((c.position - a.position) / (c.texcoord.y - a.texcoord.y) - a.bitangent), 1e-5f);
+        ASSERT_GT(glm::dot(glm::normalize(glm::cross(a.tangent, a.bitangent)), a.normal), 0.9999f) << i;
+        ASSERT_NEAR(glm::dot(a.normal, glm::vec3(a.position.x, 0.0f, a.position.z)) / 0.6f, 1.0f, 1e-5f);
+        const glm::vec3 p0 = cylinder.vertices[cylinder.indices[6 * i]].position;
+        const glm::vec3 p1 = cylinder.vertices[cylinder.indices[6 * i + 1]].position;
+        const glm::vec3 p2 = cylinder.vertices[cylinder.indices[6 * i + 2]].position;
+        ASSERT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), glm::vec3(p0.x, 0.0f, p0.z)), 0.0f) << "winding at " << i;
+    }
+    EXPECT_FLOAT_EQ(cylinder.vertices[config.segments].texcoord.x, 2.0f);
+    EXPECT_FLOAT_EQ(cylinder.vertices[row].texcoord.y, 1.5f);
+    EXPECT_TRUE(cylinder.convex);
+    EXPECT_FALSE(cylinder.closed);
+    EXPECT_TRUE(isConvex(cylinder));
+    EXPECT_NO_THROW(checkMeshClaims(cylinder));
+    EXPECT_FALSE(isFlatPatch(cylinder));
+    EXPECT_EQ(test::messageOf([] { makeCylinder({.segments = 2}); }), "CylinderConfig needs 3..4096 segments, got 2");
+    EXPECT_EQ(test::messageOf([] { makeCylinder({.height = 0.0f}); }),
+              "CylinderConfig.radius and height must be positive, got 0.5 and 0");
+    EXPECT_EQ(test::messageOf([] { makeCylinder({.texcoordScale = {1.0f, -1.0f}}); }),
+              "CylinderConfig.texcoordScale must be positive, got 1, -1");
+}
+
 TEST(FlatPatch, PlanesAreOneFlatPatchAndSpheresAndBentOrMislabelledPlanesAreNot) {
     EXPECT_TRUE(isFlatPatch(makePlane({})));
     EXPECT_TRUE(isFlatPatch(makePlane({.size = 40.0f, .texcoordScale = 7.0f, .subdivisions = 16})));

@@ -62,6 +62,15 @@ void SphereConfig::validate() const {
                         " and ", rings));
 }
 
+void CylinderConfig::validate() const {
+    if (!(radius > 0.0f) || !std::isfinite(radius) || !(height > 0.0f) || !std::isfinite(height))
+        throw Error(str("CylinderConfig.radius and height must be positive, got ", radius, " and ", height));
+    if (segments < 3 || segments > 4096) throw Error(str("CylinderConfig needs 3..4096 segments, got ", segments));
+    if (!(texcoordScale.x > 0.0f) || !(texcoordScale.y > 0.0f) || !std::isfinite(texcoordScale.x) ||
+        !std::isfinite(texcoordScale.y))
+        throw Error(str("CylinderConfig.texcoordScale must be positive, got ", texcoordScale.x, ", ", texcoordScale.y));
+}
+
 void MeshData::validate() const {
     if (vertices.empty() || indices.empty() || indices.size() % 3 != 0)
         throw Error(str("mesh needs triangles, got ", vertices.size(), " vertices and ", indices.size(), " indices"));
@@ -114,6 +123,32 @@ MeshData makeSphere(const SphereConfig& config) {
     // points are on the outer side of none (the pole's triangles are degenerate, of no area).
     mesh.convex = true;
     mesh.closed = true;
+    return mesh;
+}
+
+MeshData makeCylinder(const CylinderConfig& config) {
+    config.validate();
+    MeshData mesh;
+    const double pi = 3.14159265358979323846;
+    const double r = config.radius, h = config.height;
+    for (int j = 0; j <= 1; ++j)
+        for (int i = 0; i <= config.segments; ++i) {
+            const double u = double(i) / config.segments, lon = 2.0 * pi * u;
+            const double co = std::cos(lon), so = std::sin(lon);
+            Vertex vertex;
+            vertex.normal = glm::vec3(glm::dvec3(co, 0.0, -so));
+            vertex.position = glm::vec3(glm::dvec3(r * co, (j - 0.5) * h, -r * so));
+            vertex.tangent = glm::vec3(glm::dvec3(-so, 0.0, -co) * (2.0 * pi * r / config.texcoordScale.x));
+            vertex.bitangent = glm::vec3(0.0, h / config.texcoordScale.y, 0.0);
+            vertex.texcoord = {float(u * config.texcoordScale.x), float(j * config.texcoordScale.y)};
+            mesh.vertices.push_back(vertex);
+        }
+    const int row = config.segments + 1;
+    for (int i = 0; i < config.segments; ++i) {
+        const uint32_t a = uint32_t(i), b = a + 1, c = a + row, d = c + 1;
+        mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+    }
+    mesh.convex = true;
     return mesh;
 }
 

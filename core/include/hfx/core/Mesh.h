@@ -75,6 +75,20 @@ struct SphereConfig {
 /// T = dP/du, B = dP/dv exactly, so T x B points outwards; at the poles T vanishes.
 MeshData makeSphere(const SphereConfig& config = {});
 
+struct CylinderConfig {
+    float radius = 0.5f;
+    float height = 2.0f;                   ///< along +Y, centred on the origin
+    int segments = 64;                     ///< quads around (u)
+    glm::vec2 texcoordScale{1.0f, 1.0f};   ///< texcoords run 0..x around and 0..y from bottom to top
+    void validate() const;
+};
+
+/// The side of a cylinder about the Y axis (a pillar, a pipe; open, no caps): u grows around it
+/// as a longitude would on makeSphere (the seam's vertices doubled), v from bottom to top. T =
+/// dP/du, B = dP/dv exactly, so T x B points outwards. Convex (its faces are a prism's sides),
+/// not closed.
+MeshData makeCylinder(const CylinderConfig& config = {});
+
 /// True where every vertex lies on or behind the plane of every triangle (within 1e-5 of the
 /// mesh's extent) and the triangles face outwards (the normal side): what MeshData::convex
 /// declares. O(triangles x vertices): a check for tests, not for every mesh made.
