@@ -1,7 +1,8 @@
 // The decal-damage user: a brick wall (or the user's maps) seen at a grazing angle, shot at by
 // clicks (picked on the displaced surface), a key's explosions, or a replayed shot list. A flat
 // shelf stands half sunk into the wall, so the depth output's clipping by the damage shows, and
-// a shadow map of the traced relief lets the shelf and the bricks shadow each other.
+// a shadow map of the traced relief lets the shelf and the bricks shadow each other. With
+// --pillar the bricks and their damage cover a column instead (a cylinder, picked by pickMesh).
 
 #include "Scene.h"
 
@@ -22,12 +23,15 @@ namespace hfx::demo {
 namespace {
 
 constexpr PlaneConfig kWall{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};
+/// --pillar's column: the wall's bricks at about the wall's size, twice around (a whole number:
+/// the seam meets itself) and 1.7 times up its 3.2 units.
+const CylinderConfig kPillar{.radius = 0.6f, .height = 3.2f, .segments = 96, .texcoordScale = {2.0f, 1.7f}};
 
 class DecalScene final : public Scene {
 public:
     DecalScene(ClContext& cl, const SceneOptions& o)
-        : wall_(cl, config(o)), plane_(makePlane(kWall)),
-          post_(makePlane({.size = 0.5f, .texcoordScale = 1.0f, .subdivisions = 1})), random_(o.seed),
+        : wall_(cl, config(o)), pillar_(o.pillar), shape_(o.pillar ? makeCylinder(kPillar) : makePlane(kWall)),
+          mesh_(shape_), post_(makePlane({.size = 0.5f, .texcoordScale = 1.0f, .subdivisions = 1})), random_(o.seed),
           width_(o.width), height_(o.height), saveDamage_(o.saveDamage) {
         applyOptions(o);
         if (!o.shots.empty()) {
@@ -39,8 +43,10 @@ public:
             autoFire = false;
             std::printf("loaded %d impacts from %s\n", wall_.damage().size(), o.loadDamage.c_str());
         }
-        // The wall stands in the XY plane facing +Z; the camera looks along it from the side.
-        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 3.4f, 1.15f, 0.15f);
+        // The wall stands in the XY plane facing +Z; the camera looks along it from the side. The
+        // pillar stands up the Y axis, seen from a little above its middle.
+        camera_ = pillar_ ? Camera::orbit({0.0f, 0.0f, 0.0f}, 3.4f, 0.6f, 0.2f)
+                          : Camera::orbit({0.0f, 0.0f, 0.0f}, 3.4f, 1.15f, 0.15f);
         camera_.aspect = o.aspect();
         light_.direction = {-0.8f, 0.55f, 0.45f};
         light_.ambient = {0.22f, 0.22f, 0.25f};
@@ -66,18 +72,18 @@ public:
         {
             const auto casting = shadowMap_.scope();
             renderer_.drawShadow(mesh(), model(), effect().layers(), effect().material(), shadowMap_, drawOptions());
-            renderer_.drawFlatShadow(post_, post, shadowMap_);
+            if (!pillar_) renderer_.drawFlatShadow(post_, post, shadowMap_);
         }
         DirectionalLight light = light_;
         light.shadowMap = &shadowMap_;
         drawSurface(renderer_, light);
-        renderer_.drawFlat(post_, post, camera_, {0.75f, 0.72f, 0.2f, 1.0f}, &light);
+        if (!pillar_) renderer_.drawFlat(post_, post, camera_, {0.75f, 0.72f, 0.2f, 1.0f}, &light);
     }
     Effect& effect() override { return wall_; }
     const char* name() const override { return "decals"; }
-    const Mesh& mesh() const override { return plane_; }
+    const Mesh& mesh() const override { return mesh_; }
     glm::mat4 model() const override {
-        return glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+        return pillar_ ? glm::mat4(1.0f) : glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
     }
 
     void click(double x, double y, int width, int height) override {
@@ -121,11 +127,15 @@ private:
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
         c.surface = o.surfaceOptions();
+        // The column's relief fades out where the view grazes its sides (no bricks smeared along
+        // its outline).
+        if (o.pillar) c.material.silhouetteFade = 0.2f;
         return c;
     }
 
     std::optional<SurfacePick> pick(double x, double y, int width, int height) {
         const Ray ray = camera_.rayThroughPixel(x, height - y, width, height);
+        if (pillar_) return wall_.pick(ray, shape_, model(), wall_.material());
         return wall_.pick(ray, SurfaceFrame::ofPlane(kWall, model()));
     }
 
@@ -151,7 +161,9 @@ private:
     void record(const Shot& shot) { std::printf("shot: %s\n", formatShot(shot).c_str()); }
 
     DecalWallEffect wall_;
-    Mesh plane_, post_;
+    bool pillar_;
+    MeshData shape_; ///< the wall's plane, or --pillar's column (picked by its triangles)
+    Mesh mesh_, post_;
     DirectionalLight light_;
     SurfaceRenderer renderer_;
     ShadowMap shadowMap_{1024};

@@ -78,6 +78,7 @@ struct SceneOptions {
     std::string environment;           ///< water: equirectangular sky image
     float clouds = -1.0f;              ///< water: the share of the sky under cloud (-1: 0.4, none with an environment)
     std::string saveDamage, loadDamage; ///< decals: damage log written after the last frame, read at start
+    bool pillar = false;               ///< decals: the bricks on a column (a cylinder) instead of the wall
     // noise: the NoiseField shown (NoiseConfig's fields)
     std::string noiseKind = "perlin", fractal = "fbm", tiling = "wrap";
     int octaves = 5;

@@ -391,6 +391,9 @@ int main(int argc, char** argv) {
                    "noise: draw the relief on a rounded box, its texcoords projected along the box's axes (a triplanar "
                    "mapping), this many repeats per unit (0: the plane)")
         ->check(kFinite)->check(CLI::Range(0.0, 64.0))->capture_default_str();
+    app.add_flag("--pillar", s.pillar,
+                 "decals: the bricks and their damage on a column (a cylinder) instead of the wall, clicks picked on "
+                 "its relief (pickMesh)");
     app.add_option("--save-damage", s.saveDamage, "decals: after the last frame, write the damage log (impacts, clock) to this file");
     app.add_option("--load-damage", s.loadDamage,
                    "decals: start from a saved damage log (drawn exactly as saved; no automatic volley)");
@@ -433,6 +436,13 @@ int main(int argc, char** argv) {
                                     " is for the plane: --triplanar's box walks hier in the draw (the texel shadows, the "
                                     "deferred walks and the compute pass follow a flat patch's or a convex mesh's "
                                     "texcoords)"));
+        // The pillar is no flat patch either: the texel shadows and the deferred walks follow a
+        // flat patch's light, and would be left undone without a word.
+        if (s.pillar)
+            for (const std::string& asked : o.hierOptions)
+                if (asked == "--texel-shadows" || asked == "--defer-shadow-walks")
+                    throw Error(str(asked, " is for the wall: --pillar's column is no flat patch (the texel shadows and "
+                                           "the deferred walks follow a flat patch's light)"));
         return run(o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "hfx-demo: error: %s\n", e.what());

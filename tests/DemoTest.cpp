@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 namespace hfx::test {
 namespace {
@@ -222,6 +223,37 @@ TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
                                " --shots " + outside);
     EXPECT_NE(off.exitCode, 0);
     EXPECT_NE(off.output.find("outside the 320x180 image"), std::string::npos) << off.output;
+}
+
+TEST(Demo, ThePillarTakesAClickWhereItsReliefIs) {
+    // decals --pillar: the bricks on a column, a click picked on its relief (pickMesh) and
+    // stamped there: around the clicked pixel the frame darkens (a hole, soot), and a run
+    // without the click draws the same column.
+    const std::string shots = outputPath("demo_pillar_shots.txt"), none = outputPath("demo_pillar_none.txt");
+    std::ofstream(shots) << "click 1 170 95\n";
+    std::ofstream(none) << "# nothing\n";
+    const std::string shot = outputPath("demo_pillar_shot"), clean = outputPath("demo_pillar_clean"),
+                      wall = outputPath("demo_pillar_wall");
+    const std::string args = "decals --headless --frames 3 --width 320 --height 180 --field 128 --out ";
+    for (const auto& [dir, list, pillar] : {std::tuple{shot, shots, " --pillar"}, std::tuple{clean, none, " --pillar"},
+                                           std::tuple{wall, none, ""}}) {
+        const Result r = runDemo(args + dir + " --shots " + list + pillar);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    const Image a = readImage(shot + "/decals_0002.png"), b = readImage(clean + "/decals_0002.png");
+    EXPECT_NE(readBytes(clean + "/decals_0002.png"), readBytes(wall + "/decals_0002.png")) << "no column was drawn";
+    // The pixel that darkened most is the click's, within 2 pixels, and it darkened visibly.
+    int darkest = 0;
+    double most = 0.0;
+    for (int i = 0; i < a.width * a.height; ++i) {
+        double d = 0.0;
+        for (int c = 0; c < 3; ++c) d += b.at(i % a.width, i / a.width, c) - a.at(i % a.width, i / a.width, c);
+        if (d > most) most = d, darkest = i;
+    }
+    std::printf("[pillar] the click at (170, 95) darkened (%d, %d) most, by %.3f\n", darkest % a.width,
+                darkest / a.width, most / 3.0);
+    EXPECT_LE(std::hypot(darkest % a.width - 170.0, darkest / a.width - 95.0), 2.0);
+    EXPECT_GT(most / 3.0, 0.1);
 }
 
 // Save and load: a run that loads the damage log another run saved draws, on its first frame,
@@ -684,6 +716,9 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
           std::pair{"decals --clouds 0.5", "--clouds is for the water scene: the decals scene"},
           std::pair{"noise --triplanar 1 --trace-pass compute", "--trace-pass compute is for the plane: --triplanar's box"},
           std::pair{"noise --triplanar 1 --texel-shadows", "--texel-shadows is for the plane"},
+          std::pair{"decals --pillar --texel-shadows", "--texel-shadows is for the wall: --pillar's column"},
+          std::pair{"decals --pillar --defer-shadow-walks", "--defer-shadow-walks is for the wall: --pillar's column"},
+          std::pair{"noise --pillar", "--pillar is for the decals scene: the noise scene"},
           std::pair{"noise --triplanar 1 --tiling clamp --noise-kind simplex --field 64",
                     "SurfaceMaterial.triplanar needs a surface that wraps both ways"}}) {
         const Result other = runDemo(std::string(args) + " --headless");
