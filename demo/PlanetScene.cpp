@@ -18,11 +18,14 @@
 namespace hfx::demo {
 namespace {
 
+/// The planet's sphere, drawn and picked (PlanetImpacts) alike.
+constexpr SphereConfig kSphere{.radius = 1.0f, .segments = 128, .rings = 64};
+
 class PlanetScene final : public ImpactScene {
 public:
     PlanetScene(ClContext& cl, const SceneOptions& o)
-        : ImpactScene(o), planet_(cl, config(o)), sphere_(makeSphere({.radius = 1.0f, .segments = 128, .rings = 64})),
-          impacts_(planet_) {
+        : ImpactScene(o), planet_(cl, config(o)), sphere_(makeSphere(kSphere)),
+          impacts_(planet_, makeSphere(kSphere)) {
         applyOptions(o);
         if (o.spinUp > 0.0f) { // a minute of a 512x256 gas takes seconds on a CPU device: say why the start waits
             const auto start = std::chrono::steady_clock::now();

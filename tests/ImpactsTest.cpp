@@ -37,7 +37,7 @@ TEST_F(Impacts, EachImpactChangesOnlyTheSurfaceItHitsAtThePickedTexel) {
 
     WallImpacts wallTarget(wall, SurfaceFrame::ofPlane(wallPlane, wallModel), {0.0, 0.0, 1.0, 1.0});
     OceanImpacts seaTarget(ocean, SurfaceFrame::ofPlane(seaPlane, seaModel));
-    PlanetImpacts planetTarget(planet, planetCentre, 1.0);
+    PlanetImpacts planetTarget(planet, makeSphere({}), glm::translate(glm::mat4(1.0f), glm::vec3(planetCentre)));
     ImpactReceiver* targets[] = {&wallTarget, &seaTarget, &planetTarget};
     auto state = [&] { return std::tuple{wall.damage().size(), ocean.ringCount(), planet.gas().pendingSplats().size()}; };
     ASSERT_EQ(state(), std::tuple(0, 0, size_t(0)));

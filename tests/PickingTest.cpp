@@ -12,6 +12,7 @@
 #include "hfx/core/Mesh.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/DecalWallEffect.h"
+#include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/Impacts.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceRenderer.h"
@@ -215,6 +216,59 @@ TEST_F(Picking, ATriplanarSpherePicksItsHeaviestProjection) {
     EXPECT_LE(a.off, a.covered / 200);
     EXPECT_EQ(a.projections[0], 0) << "a triplanar pick reported the mesh's texcoords";
     for (int axis = 1; axis <= 3; ++axis) EXPECT_GT(a.projections[size_t(axis)], int(a.covered / 20)) << "xyz"[axis - 1];
+}
+
+TEST_F(Picking, AnImpactOnThePlanetLandsOnTheTexelItsPixelShows) {
+    // PlanetImpacts picks the gas giant as drawn: fired along a pixel's ray, an impact's hit is
+    // that pixel's trace output (its surface is the gas's detail, 4 texels a cell here, faded at
+    // the silhouette), wherever the planet stands and however far it has turned.
+    constexpr int W = 192, H = 128;
+    GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .initialBands = 4.0f}, .stormsPerSecond = 0.0f});
+    planet.update(3.0);
+    const MeshData data = makeSphere({});
+    const Mesh sphere(data);
+    const glm::mat4 placement = glm::scale(glm::translate(glm::mat4(1.0f), {2.0f, 0.5f, -1.0f}), glm::vec3(1.5f));
+    PlanetImpacts target(planet, data, placement);
+    SurfaceMaterial material = planet.material();
+    material.lodThreshold = 100.0f;
+    planet.setMaterial(material);
+    Camera camera = Camera::orbit({2.0f, 0.5f, -1.0f}, 4.5f, 0.7f, 0.3f);
+    camera.aspect = float(W) / float(H);
+    RenderTarget frame(W, H, true);
+    frame.bind();
+    frame.clear();
+    SurfaceRenderer renderer;
+    renderer.draw(sphere, placement * planet.modelMatrix(), planet.layers(), material, camera,
+                  DirectionalLight{.direction = {0.9f, 0.2f, 0.3f}}, {.technique = Technique::Hierarchical, .traceOutput = true});
+    const std::vector<glm::vec4> trace = frame.readTrace();
+    const std::vector<float> depth = frame.readDepth();
+    const int texels = planet.surfaceWidth();
+    ASSERT_GT(texels, 64) << "no detail: the test wants a surface finer than the gas";
+    size_t covered = 0, missed = 0, off = 0;
+    double worst = 0.0;
+    for (int y = 2; y < H; y += 5)
+        for (int x = 2; x < W; x += 5) {
+            const size_t i = size_t(y) * W + x;
+            if (!(depth[i] < 1.0f)) continue;
+            ++covered;
+            const auto hit = target.hit(camera.rayThroughPixel(x + 0.5, y + 0.5, W, H));
+            if (!hit) {
+                ++missed;
+                continue;
+            }
+            glm::dvec2 d = hit->uv - glm::dvec2(trace[i]);
+            d.x -= std::round(d.x); // the hit's longitude is wrapped into [0, 1)
+            const double error = glm::length(d * glm::dvec2(texels, planet.surfaceHeight()));
+            worst = std::max(worst, error);
+            off += error > 0.01;
+        }
+    std::printf("[planet impacts] %zu pixels, %zu missed, %zu off the trace by more than 0.01 texels (%.2g at most)\n",
+                covered, missed, off, worst);
+    ASSERT_GT(covered, 150u);
+    EXPECT_EQ(missed, 0u);
+    EXPECT_LE(off, covered / 100);
+    EXPECT_NE(messageOf([&] { PlanetImpacts(planet, data, glm::mat4(0.0f)); }).find("PlanetImpacts: the model matrix"),
+              std::string::npos);
 }
 
 } // namespace

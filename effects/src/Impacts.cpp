@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <utility>
 #include <vector>
 
@@ -146,70 +145,22 @@ void OceanImpacts::receive(const Impact& impact, const ImpactHit& hit) {
 
 // --- the planet
 
-PlanetImpacts::PlanetImpacts(GasPlanetEffect& planet, glm::dvec3 centre, double radius)
-    : planet_(planet), centre_(centre), radius_(radius) {
-    if (!(radius > 0.0) || !std::isfinite(radius))
-        throw Error(str("PlanetImpacts: radius must be positive and finite, got ", radius));
+PlanetImpacts::PlanetImpacts(GasPlanetEffect& planet, MeshData sphere, const glm::mat4& placement)
+    : planet_(planet), sphere_(std::move(sphere)), placement_(placement) {
+    sphere_.validate();
+    checkModel(placement, "PlanetImpacts: ");
 }
 
 std::optional<ImpactHit> PlanetImpacts::hit(const Ray& ray) {
-    // Into the planet's own frame (makeSphere's, radius 1).
-    const glm::dmat3 spin(glm::dmat4(planet_.modelMatrix()));
-    const glm::dmat3 unspin = glm::transpose(spin);
-    const glm::dvec3 o = unspin * ((ray.origin - centre_) / radius_), d = unspin * ray.direction; // |d| = 1
-    const double b = glm::dot(o, d), c = glm::dot(o, o) - 1.0, disc = b * b - c;
-    if (disc < 0.0) return std::nullopt;
-    const double enter = -b - std::sqrt(disc), leave = -b + std::sqrt(disc);
-    if (leave < 0.0) return std::nullopt;
-    const double pi = std::numbers::pi;
-    auto uvOf = [&](const glm::dvec3& p) {
-        const glm::dvec3 n = glm::normalize(p);
-        const double lat = std::asin(std::clamp(n.y, -1.0, 1.0)), lon = std::atan2(-n.z, n.x);
-        return glm::dvec2(wrap01(lon / (2.0 * pi)), std::clamp(lat / pi + 0.5, 0.0, 1.0));
-    };
-    const GasConfig& gas = planet_.gas().config();
-    const std::vector<float> heights = planet_.readHeights();
-    auto height = [&](glm::dvec2 uv) { // bilinear, texel centres at (i + 0.5) / W, u wraps
-        const int W = gas.width, H = gas.height;
-        const double x = uv.x * W - 0.5, y = std::clamp(uv.y * H - 0.5, 0.0, double(H - 1));
-        const int i = int(std::floor(x)), j = std::min(int(std::floor(y)), H - 2);
-        const double ax = x - i, ay = y - j;
-        auto at = [&](int a, int bRow) { return double(heights[size_t(bRow) * W + size_t(((a % W) + W) % W)]); };
-        return (1 - ay) * ((1 - ax) * at(i, j) + ax * at(i + 1, j)) + ay * ((1 - ax) * at(i, j + 1) + ax * at(i + 1, j + 1));
-    };
-    // The relief's depth (radii) where the path enters, as the shader scales it: depthScale
-    // texture units of sqrt(|dP/du| |dP/dv|) = sqrt(2 pi cos(lat) pi), faded at the silhouette.
-    const SurfaceMaterial& m = planet_.material();
-    const glm::dvec3 p0 = o + std::max(enter, 0.0) * d;
-    const double cosLat = std::sqrt(std::max(0.0, 1.0 - glm::normalize(p0).y * glm::normalize(p0).y));
-    const double cosView = std::clamp(-glm::dot(glm::normalize(p0), d), 0.0, 1.0);
-    const double fade = m.silhouetteFade > 0.0f
-                            ? [&] { const double t = std::clamp(cosView / m.silhouetteFade, 0.0, 1.0); return t * t * (3 - 2 * t); }()
-                            : 1.0;
-    const double depth = double(m.depthScale) * std::sqrt(2.0 * pi * cosLat * pi) * fade;
-    // March from the shell to where the path leaves the relief, then bisect: the first point whose
-    // radius is at or below the surface's, 1 - (1 - h) depth.
-    auto below = [&](double t) {
-        const glm::dvec3 p = o + t * d;
-        return glm::length(p) <= 1.0 - (1.0 - height(uvOf(p))) * depth;
-    };
-    const double start = std::max(enter, 0.0);
-    const double b2 = glm::dot(o, d), c2 = glm::dot(o, o) - (1.0 - depth) * (1.0 - depth), disc2 = b2 * b2 - c2;
-    const double end = disc2 >= 0.0 ? -b2 - std::sqrt(disc2) : leave; // the inner sphere, or out again
-    constexpr int steps = 512;
-    double found = -1.0;
-    for (int i = 0; i <= steps; ++i) {
-        const double t = start + (end - start) * i / steps;
-        if (!below(t)) continue;
-        double lo = i > 0 ? start + (end - start) * (i - 1) / steps : start, hi = t;
-        for (int k = 0; k < 40; ++k) (below(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
-        found = hi;
-        break;
-    }
-    if (found < 0.0) found = std::max(end, start); // a grazing path: its deepest point
-    const glm::dvec3 p = o + found * d;
-    const glm::dvec3 world = centre_ + radius_ * (spin * p);
-    return ImpactHit{world, uvOf(p), glm::normalize(spin * p), found * radius_};
+    // The surface's heights (the gas's, or its detail's, surfaceWidth() x surfaceHeight()), wrapping
+    // at the date line and clamped at the poles.
+    const HeightFieldTracer heights(planet_.readHeights(), planet_.surfaceWidth(), planet_.surfaceHeight(),
+                                    EdgeMode::WrapU);
+    const auto pick = pickMesh(ray, sphere_, placement_ * planet_.modelMatrix(), heights, planet_.material());
+    if (!pick) return std::nullopt;
+    // A storm's place on the gas: longitude wrapped into [0, 1), latitude within the poles.
+    const glm::dvec2 uv(wrap01(pick->uv.x), std::clamp(pick->uv.y, 0.0, 1.0));
+    return ImpactHit{pick->world, uv, pick->normal, glm::length(pick->world - ray.origin)};
 }
 
 void PlanetImpacts::receive(const Impact& impact, const ImpactHit& hit) {

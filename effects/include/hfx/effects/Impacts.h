@@ -107,19 +107,21 @@ private:
     std::unique_ptr<OceanQuery> query_;
 };
 
-/// The gas giant drawn on makeSphere() of `radius` at `centre`, turned by its modelMatrix(): a
-/// storm at the texel the path meets (the shell, then the relief below it along the ray).
+/// The gas giant drawn on `sphere` (makeSphere's by default; pass the one you draw) with
+/// `placement` times its own spin (GasPlanetEffect::modelMatrix()): a storm at the point the path
+/// meets, picked on the relief as drawn (pickMesh with the planet's material and its surface's
+/// heights). Throws hfx::Error naming a bad mesh or placement.
 class PlanetImpacts final : public ImpactReceiver {
 public:
-    PlanetImpacts(GasPlanetEffect& planet, glm::dvec3 centre = glm::dvec3(0.0), double radius = 1.0);
+    PlanetImpacts(GasPlanetEffect& planet, MeshData sphere = makeSphere({}), const glm::mat4& placement = glm::mat4(1.0f));
     const char* name() const override { return "planet"; }
     std::optional<ImpactHit> hit(const Ray& ray) override;
     void receive(const Impact& impact, const ImpactHit& hit) override;
 
 private:
     GasPlanetEffect& planet_;
-    glm::dvec3 centre_;
-    double radius_;
+    MeshData sphere_;
+    glm::mat4 placement_;
 };
 
 } // namespace hfx
