@@ -306,6 +306,30 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     EXPECT_GT(sunny, checked / 6) << "too little sun to test";
     EXPECT_LE(off, checked / 100) << "the water's sunlight is not the CPU's under the clouds";
     EXPECT_LT(worst, 0.1);
+
+    // A deferred engine lights the water itself: the material output's light share (b) is the
+    // same sunlight (the flat water casts no self-shadow), in float, as precisely as the hash.
+    RenderTarget deferred(n, n, true);
+    deferred.bind();
+    deferred.clear();
+    water.renderer.setSurfaceOutputs({.material = 1});
+    water.renderer.draw(water.plane, glm::mat4(1.0f), water.relief.textures, material, camera, sun);
+    water.renderer.setSurfaceOutputs({});
+    const std::vector<glm::vec4> channels = deferred.readTrace(); // (draw buffer 1, bottom row first)
+    int lightOff = 0;
+    double worstLight = 0.0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const glm::vec3 p = hit(x, y);
+            const float footprint = std::max(glm::length(hit(x + 1, y) - p), glm::length(hit(x, y + 1) - p));
+            const double e = std::abs(channels[size_t(n - 1 - y) * n + x].z - cloudSunlight(material.water, sun, p, footprint));
+            worstLight = std::max(worstLight, e);
+            lightOff += e > 0.01;
+        }
+    std::printf("the material output's light: %d of %d pixels off the CPU's sunlight by over 0.01 (at most %.3f)\n",
+                lightOff, n * n, worstLight);
+    EXPECT_LE(lightOff, n * n / 200);
+    EXPECT_LT(worstLight, 0.1);
 }
 
 TEST_F(Sky, BadCloudsAreRefusedByNameAndDrawNothing) {

@@ -294,9 +294,10 @@ struct SurfaceOutputs {
     int normal = 0;
     /// The albedo, linear (rgb), and its alpha (a: an effect's foam coverage where it writes one).
     int albedo = 0;
-    /// The shading channels: roughness (r), ambient occlusion (g, 1 open), the relief's
-    /// self-shadow from the draw's light (b, 1 lit: hier's walked, POM's soft; the light's shadow
-    /// map not in it), and the height (a, 1 at the polygon).
+    /// The shading channels: roughness (r), ambient occlusion (g, 1 open), the share of the
+    /// draw's light that reaches the point (b, 1 lit): the relief's self-shadow (hier's walked,
+    /// POM's soft) times, on water under clouds, the clouds' shadow (WaterLook::cloudCover); the
+    /// light's shadow map not in it. And the height (a, 1 at the polygon).
     int material = 0;
     auto operator<=>(const SurfaceOutputs&) const = default;
 };
