@@ -19,6 +19,7 @@
 #include "hfx/compute/WaveField.h"
 #include "hfx/compute/shared/NoiseMath.h"
 #include "hfx/core/Random.h"
+#include "hfx/effects/GasPlanetEffect.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
@@ -267,6 +268,21 @@ void BM_Gas(benchmark::State& state) {
                                                             : std::function<void()>());
 }
 
+/// The planet's gas step (GasPlanetConfig's gas: 512x256, 30 pressure sweeps, jets, confinement,
+/// the dye's relaxation) at 30 steps a second, its advection semi-Lagrangian (0) or MacCormack's
+/// (1, the planet's default): what the sharper edges cost a frame.
+void BM_PlanetGas(benchmark::State& state) {
+    GasConfig config = GasPlanetConfig{}.gas;
+    config.maccormack = state.range(0) != 0;
+    GasField gas(cl(), config);
+    for (int s = 0; s < 10; ++s) gas.step(1.0 / 30.0); // the jets under way
+    cl().queue().finish();
+    for (auto _ : state) {
+        gas.step(1.0 / 30.0);
+        cl().queue().finish();
+    }
+}
+
 /// The ocean step at {size, cascades, choppiness 0/1}: spectrum, one batched inverse FFT per
 /// cascade (h alone, or h, Dx, Dy), the Lagrangian pass (J, foam, the packed grid) and the
 /// Eulerian resample (Newton steps with choppiness, a copy without).
@@ -377,6 +393,7 @@ BENCHMARK(BM_Pick)->DenseRange(0, 3)->ArgNames({"mesh"})->Unit(benchmark::kMicro
 BENCHMARK(BM_InverseFft)->Arg(256)->Arg(512)->Arg(1024)->ArgNames({"size"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanetGas)->Arg(0)->Arg(1)->ArgNames({"maccormack"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 
 } // namespace
