@@ -49,7 +49,8 @@ struct GasPlanetConfig {
     float stormShear = 0.35f;
     /// Simulated seconds per second, 1 to 10^4; a frame's time is split into substeps of at most
     /// maxSubstep seconds, at most maxSubsteps of them (beyond, the substeps lengthen: the
-    /// semi-Lagrangian advection and the speed limit, gas.maxSpeed, keep them stable).
+    /// advection, whose MacCormack estimate is clamped to the values it came from, and the
+    /// speed limit, gas.maxSpeed, keep them stable).
     float timeScale = 1.0f;
     float maxSubstep = 0.5f;
     int maxSubsteps = 8;
