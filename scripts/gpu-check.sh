@@ -74,11 +74,11 @@ step gl-tests-tracer "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="$t
 step gl-tests-rest "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="-$tracer"
 # A subset of gl-tests-rest, for a run that times the compute pass: its walks against the draw's
 # (hits, shadows, colours; a caster's depths), the depth output under an engine's conventions
-# (reversed Z, MSAA, mirrors, oblique near planes), the screen motion, the deferred outputs, the triplanar mapping
-# and the water sky's clouds against their CPU model (its integer hash: the same bits on any device)
-# (6 s on llvmpipe, 2 cores: 47 tests).
+# (reversed Z, MSAA, mirrors, oblique near planes), the screen motion, the deferred outputs, the triplanar mapping,
+# the water sky's clouds against their CPU model (its integer hash: the same bits on any device) and
+# the CPU's picks on meshes against the GPU's trace output (19 s on llvmpipe, 2 cores: 52 tests).
 step gl-tests-compute-pass "${run[@]}" hfx-tests-gl --gtest_brief=1 \
-    --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*:DeferredOutputs.*:Triplanar.*:Sky.*:SkyModel.*'
+    --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*:DeferredOutputs.*:Triplanar.*:Sky.*:SkyModel.*:Picking.*:PickMesh.*'
 step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
 # The same draws with llvmpipe's pyramid layout (GlWorkarounds::pyramidAtlas) on this GPU: what
 # the mip chain and the gather are worth here.
