@@ -71,8 +71,8 @@ struct MeshPick : SurfacePick {
 /// level of detail (lodThreshold: the relief at any distance) and a nearer part of the mesh
 /// passing in front of the traced point. The heights are those of the drawn surface, row 0 at
 /// v = 0 (DecalWallEffect::heightTracer, a SurfaceMaps' heights). O(triangles): 0.19 ms for
-/// makeSphere's 9,216 on the 2-core development machine, 170x pickSurface's trace alone and
-/// 1.2x for a plane's 2 triangles (hfx-bench-kernels --benchmark_filter=Pick).
+/// makeSphere's 9,216 on one thread of an Intel Xeon (Skylake-AVX512), 170x pickSurface's trace
+/// alone, and 1.2x it for a plane's 2 triangles (hfx-bench-kernels --benchmark_filter=Pick).
 ///
 /// Throws hfx::Error naming the problem: a ray not finite or of no direction, a model matrix
 /// not finite or without an inverse, a bad mesh (MeshData::validate) or material
