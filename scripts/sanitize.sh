@@ -60,6 +60,11 @@ done
 ./build-asan/demo/hfx-demo noise --triplanar 0.8 --gl osmesa --headless --frames 3 --width 320 --height 180 --field 128 \
     --out build-asan/frames --no-progress > /dev/null
 echo "sanitize: noise demo on the triplanar box clean"
+# The decal wall on a column, a replayed click picked on its curved relief (pickMesh), leaks checked.
+printf 'click 1 170 95\nexplosion 2 0.5 0.5 3\n' > build-asan/pillar-shots.txt
+./build-asan/demo/hfx-demo decals --pillar --shots build-asan/pillar-shots.txt --gl osmesa --headless --frames 3 \
+    --width 320 --height 180 --field 128 --out build-asan/frames --no-progress > /dev/null
+echo "sanitize: decals demo on the pillar clean"
 ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ./build-asan/demo/hfx-demo decals --gl egl --trace-pass compute --headless \
     --frames 3 --width 320 --height 180 --field 128 --out build-asan/frames --no-progress > /dev/null
 echo "sanitize: decals demo with the compute pass clean"
