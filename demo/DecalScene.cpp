@@ -22,10 +22,12 @@
 namespace hfx::demo {
 namespace {
 
-constexpr PlaneConfig kWall{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};
-/// --pillar's column: the wall's bricks at about the wall's size, twice around (a whole number:
-/// the seam meets itself) and 1.7 times up its 3.2 units.
-const CylinderConfig kPillar{.radius = 0.6f, .height = 3.2f, .segments = 96, .texcoordScale = {2.0f, 1.7f}};
+/// The wall: the map once across its 4 units, so that a shot's damage shows once (the map tiles:
+/// texcoords running 0..2 showed each crater four times).
+constexpr PlaneConfig kWall{.size = 4.0f, .texcoordScale = 1.0f, .subdivisions = 1};
+/// --pillar's column: the map once around (its 3.8 units) and 0.8 of it up its 3.2 units, its
+/// bricks the wall's.
+const CylinderConfig kPillar{.radius = 0.6f, .height = 3.2f, .segments = 96, .texcoordScale = {1.0f, 0.8f}};
 
 class DecalScene final : public Scene {
 public:
@@ -126,6 +128,20 @@ private:
                             "') needs a --height-map to go with it"));
         if (o.fieldSize > 0) c.bricks.size = o.fieldSize;
         c.bricks.seed = o.seed;
+        // The map spans the whole wall: twice the courses and bricks a course (where the map has
+        // the texels for them: a small one keeps larger bricks), the stone grain twice as fine,
+        // the impacts half as wide and the relief half as deep in its texture units (a texcoord
+        // is 4 world units), so that bricks, holes and depth keep their size.
+        BrickWallConfig twice = c.bricks;
+        twice.rows *= 2;
+        twice.bricksPerRow *= 2;
+        if (twice.rows <= twice.size / 8 && twice.size % twice.rows == 0 && twice.size % (2 * twice.bricksPerRow) == 0)
+            c.bricks = twice;
+        c.grainNoise.frequency *= 2.0f;
+        c.damage.look.bullet.radius *= 0.5f;
+        c.damage.look.explosion.radius *= 0.5f;
+        c.damage.mergeRadius *= 0.5f;
+        c.material.depthScale *= 0.5f;
         c.surface = o.surfaceOptions();
         // The column's relief fades out where the view grazes its sides (no bricks smeared along
         // its outline).
@@ -154,8 +170,8 @@ private:
 
     /// A seeded burst: a few bullets every frame and an explosion every twelfth.
     void volley() {
-        for (int i = 0; i < 4; ++i) wall_.shoot(random_.uniform(0.1, 1.9), random_.uniform(0.1, 1.9));
-        if (frame_ % 12 == 1) wall_.explode(random_.uniform(0.2, 1.8), random_.uniform(0.2, 1.8), random_.nextBits() & 0xffff);
+        for (int i = 0; i < 4; ++i) wall_.shoot(random_.uniform(0.05, 0.95), random_.uniform(0.05, 0.95));
+        if (frame_ % 12 == 1) wall_.explode(random_.uniform(0.1, 0.9), random_.uniform(0.1, 0.9), random_.nextBits() & 0xffff);
     }
 
     void record(const Shot& shot) { std::printf("shot: %s\n", formatShot(shot).c_str()); }

@@ -225,6 +225,40 @@ TEST(Demo, ShotListDrivesTheDecalsAndBadListsNameTheLine) {
     EXPECT_NE(off.output.find("outside the 320x180 image"), std::string::npos) << off.output;
 }
 
+TEST(Demo, AnExplosionShowsOnceOnTheWall) {
+    // The decal map spans the wall once: an explosion's crater and scorch change one patch of the
+    // frame. (When the wall's texcoords ran 0..2 over the tiling map, each crater showed four
+    // times, on patches a quarter of the frame apart.)
+    const std::string shots = outputPath("demo_once_shots.txt"), none = outputPath("demo_once_none.txt");
+    std::ofstream(shots) << "explosion 1 0.3 0.6 5\n";
+    std::ofstream(none) << "# nothing\n";
+    const std::string hit = outputPath("demo_once_hit"), clean = outputPath("demo_once_clean");
+    const std::string args = "decals --headless --frames 3 --width 320 --height 180 --field 128 --out ";
+    ASSERT_EQ(runDemo(args + hit + " --shots " + shots).exitCode, 0);
+    ASSERT_EQ(runDemo(args + clean + " --shots " + none).exitCode, 0);
+    const Image a = readImage(hit + "/decals_0002.png"), b = readImage(clean + "/decals_0002.png");
+    int changed = 0, far = 0;
+    double cx = 0.0, cy = 0.0;
+    std::vector<std::pair<int, int>> where;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            double d = 0.0;
+            for (int c = 0; c < 3; ++c) d += std::abs(a.at(x, y, c) - b.at(x, y, c));
+            if (d < 0.1) continue;
+            ++changed;
+            cx += x;
+            cy += y;
+            where.emplace_back(x, y);
+        }
+    ASSERT_GT(changed, 20) << "the explosion left no mark";
+    cx /= changed;
+    cy /= changed;
+    for (const auto& [x, y] : where) far += std::hypot(x - cx, y - cy) > 30.0;
+    std::printf("[once] %d pixels changed, %d of them more than 30 pixels from their centre (%.0f, %.0f)\n", changed, far,
+                cx, cy);
+    EXPECT_LE(far, changed / 50);
+}
+
 TEST(Demo, ThePillarTakesAClickWhereItsReliefIs) {
     // decals --pillar: the bricks on a column, a click picked on its relief (pickMesh) and
     // stamped there: around the clicked pixel the frame darkens (a hole, soot), and a run

@@ -50,8 +50,10 @@ BrickWallMaps makeBrickWall(const BrickWallConfig& config) {
     maps.heights.resize(size_t(n) * n);
     maps.albedo = Image{n, n, 3, std::vector<float>(size_t(n) * n * 3)};
     const double brickW = double(n) / config.bricksPerRow, brickH = double(n) / config.rows;
-    const double mortar = std::max(1.5, n / 170.0); // half-width of a joint, texels
-    const double bevel = std::max(2.0, n / 110.0);
+    // A joint's half-width and the bevel, texels: shares of a course, so a map of more courses
+    // keeps the bricks' proportions (8 courses: n / 170 and n / 110).
+    const double mortar = std::max(1.5, brickH / 21.25);
+    const double bevel = std::max(2.0, brickH / 13.75);
     // Noise with a whole number of lattice cells across the map, so it tiles with the bricks.
     auto noise = [n](std::uint64_t seed, double px, double py, int cells) {
         return valueNoise(seed, px * cells / n, py * cells / n, cells);
