@@ -151,6 +151,70 @@ TEST(DamageLog, ASavedLogReadsBackBitForBit) {
     EXPECT_NE(messageOf([&] { DamageLog::load(path, {.budget = 10}); }).find("budget of 10"), std::string::npos);
 }
 
+TEST(DamageLog, AClientAddingTheServersImpactsLateWithTheirTimesHoldsTheSameDamage) {
+    // A server logs impacts as they come (merges and evictions among them); a client receives
+    // each with its time, late, and adds it at that time: its impacts and stamps are the
+    // server's, to the bit, at any clock after. Added at its own clock instead (add()), they heal
+    // from the wrong time and the stamps differ.
+    const DamageLogConfig config{.budget = 64, .mergeRadius = 0.03f};
+    DamageLog server(config), client(config), careless(config);
+    SplitMix64 random(21);
+    struct Sent {
+        ImpactEvent impact;
+        double time;
+    };
+    std::vector<Sent> sent;
+    for (int i = 0; i < 300; ++i) {
+        const ImpactEvent e{.u = float(random.next()), .v = float(random.next()), .radius = float(random.uniform(0.005, 0.03)),
+                            .kind = i % 9 == 0 ? ImpactKind::Explosion : ImpactKind::Bullet, .seed = random.nextBits()};
+        server.add(e);
+        sent.push_back({e, server.now()});
+        server.advance(random.uniform(0.0, 0.5));
+        // The client hears of them in bursts, a little later, and keeps its clock with the server's.
+        if (i % 10 == 9) {
+            client.advance(server.now() - client.now());
+            careless.advance(server.now() - careless.now());
+            for (const Sent& s : sent) {
+                client.addAt(s.impact, s.time);
+                careless.add(s.impact);
+            }
+            sent.clear();
+        }
+    }
+    ASSERT_GT(server.merged(), 0u);
+    ASSERT_GT(server.evicted(), 0u);
+    ASSERT_EQ(client.now(), server.now());
+    const auto same = [](const std::vector<ImpactEvent>& a, const std::vector<ImpactEvent>& b) {
+        if (a.size() != b.size()) return false;
+        for (size_t i = 0; i < a.size(); ++i)
+            if (std::memcmp(&a[i].u, &b[i].u, sizeof(float) * 6) != 0 || a[i].kind != b[i].kind ||
+                a[i].seed != b[i].seed || a[i].time != b[i].time || a[i].strength != b[i].strength)
+                return false;
+        return true;
+    };
+    EXPECT_TRUE(same(server.events(), client.events()));
+    // (By 200 s every heal curve has reached its end: the careless client catches up there.)
+    for (const double later : {0.0, 30.0, 200.0}) {
+        server.advance(later);
+        client.advance(later);
+        careless.advance(later);
+        const auto sa = server.stamps(), sb = client.stamps(), sc = careless.stamps();
+        ASSERT_EQ(sa.size(), sb.size());
+        EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(BulletHole)), 0) << "after " << later << " s more";
+        if (later < 100.0)
+            EXPECT_TRUE(sa.size() != sc.size() || std::memcmp(sa.data(), sc.data(), sa.size() * sizeof(BulletHole)) != 0)
+                << "the client's own clock gave the server's stamps: the test cannot tell";
+    }
+    // A time after the clock, one before the last impact's, or not a number is refused by name
+    // and changes nothing.
+    const std::vector<ImpactEvent> before = client.events();
+    const ImpactEvent e{.u = 0.5f, .v = 0.5f};
+    EXPECT_NE(messageOf([&] { client.addAt(e, client.now() + 1.0); }).find("at most the log's clock"), std::string::npos);
+    EXPECT_NE(messageOf([&] { client.addAt(e, 0.0); }).find("no earlier than the last impact added"), std::string::npos);
+    EXPECT_NE(messageOf([&] { client.addAt(e, std::nan("")); }).find("DamageLog::addAt: the time nan"), std::string::npos);
+    EXPECT_TRUE(same(before, client.events()));
+}
+
 TEST(DamageLog, BadImpactsAndBadFilesAreRefusedByNameAndChangeNothing) {
     DamageLog log;
     log.add({.u = 0.5f, .v = 0.5f});

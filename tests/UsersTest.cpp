@@ -10,6 +10,7 @@
 #include "hfx/core/Gl.h"
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/core/Mesh.h"
+#include "hfx/core/Random.h"
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/BrickWall.h"
 #include "hfx/effects/DecalWallEffect.h"
@@ -20,6 +21,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 namespace hfx::test {
@@ -158,6 +160,33 @@ TEST_F(Users, PickingMissesOutsideThePatchAndLookingAway) {
                   .find("pickSurface: the surface frame must be finite"),
               std::string::npos);
     EXPECT_THROW(wall.shoot(std::nan(""), 0.5), Error);
+}
+
+TEST_F(Users, AClientWallThatAddsTheServersImpactsAtTheirTimesDrawsTheServersWall) {
+    // A server's wall takes impacts as they come; a client's hears of them a few seconds late and
+    // adds each at its time (impactAt): after the same updates both walls hold the same stamps,
+    // their heal curves read at the same ages (the roughness heals from 5 s), and heights.
+    DecalWallEffect server(cl(), {.bricks = {.size = 64}}), client(cl(), {.bricks = {.size = 64}});
+    SplitMix64 random(5);
+    std::vector<std::pair<ImpactEvent, double>> heard;
+    for (int frame = 0; frame < 12; ++frame) {
+        const ImpactEvent e{.u = float(random.next()), .v = float(random.next()), .radius = 0.05f,
+                            .kind = frame % 4 == 0 ? ImpactKind::Explosion : ImpactKind::Bullet, .seed = random.nextBits()};
+        server.impact(e);
+        heard.emplace_back(e, server.damage().now());
+        if (frame % 3 == 2) { // a burst
+            for (const auto& [impact, time] : heard) client.impactAt(impact, time);
+            heard.clear();
+        }
+        server.update(2.0);
+        client.update(2.0);
+    }
+    const std::vector<BulletHole> a = server.damage().stamps(), b = client.damage().stamps();
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(BulletHole)), 0) << "the heal curves' ages differ";
+    EXPECT_EQ(server.readHeights(), client.readHeights());
+    EXPECT_NE(messageOf([&] { client.impactAt({}, client.damage().now() + 1.0); }).find("DamageLog::addAt"),
+              std::string::npos);
 }
 
 TEST_F(Users, DecalWallRefusesBadMapsAndKeepsNoHalfState) {

@@ -118,9 +118,15 @@ void DamageLog::insert(const ImpactEvent& impact) {
     ++changes_;
 }
 
-bool DamageLog::add(ImpactEvent impact) {
-    impact.time = now_;
+bool DamageLog::add(ImpactEvent impact) { return addAt(impact, now_); }
+
+bool DamageLog::addAt(ImpactEvent impact, double time) {
+    if (!std::isfinite(time) || time > now_ || time < latest_)
+        throw Error(str("DamageLog::addAt: the time ", time, " must be finite, at most the log's clock (now ", now_,
+                        ") and no earlier than the last impact added (", latest_, ")"));
+    impact.time = time;
     validate(impact);
+    latest_ = time;
     ++added_;
     if (config_.mergeRadius > 0.0f) {
         const int cx = std::min(int(impact.u * float(grid_)), grid_ - 1);
@@ -141,7 +147,7 @@ bool DamageLog::add(ImpactEvent impact) {
                     if (live.kind != impact.kind || gu * gu + gv * gv >= r2) continue;
                     live.strength = std::min(live.strength + 1.0f, config_.look.maxStrength);
                     live.radius = std::max(live.radius, impact.radius);
-                    live.time = now_;
+                    live.time = time;
                     ++merged_;
                     ++changes_;
                     return true;
@@ -295,7 +301,10 @@ DamageLog DamageLog::load(const std::string& path, const DamageLogConfig& config
     if (!clock) throw Error(str(path, ": no 'now' line (the log's clock)"));
     if (int(impacts.size()) > config.budget)
         throw Error(str(path, ": ", impacts.size(), " impacts do not fit a budget of ", config.budget));
-    for (const ImpactEvent& e : impacts) log.insert(e);
+    for (const ImpactEvent& e : impacts) {
+        log.insert(e);
+        log.latest_ = std::max(log.latest_, e.time); // (a merge's restarted clock is the latest)
+    }
     return log;
 }
 

@@ -140,6 +140,8 @@ void DecalWallEffect::explode(double u, double v, std::uint64_t seed) {
 
 bool DecalWallEffect::impact(const ImpactEvent& impact) { return log_.add(impact); }
 
+bool DecalWallEffect::impactAt(const ImpactEvent& impact, double time) { return log_.addAt(impact, time); }
+
 void DecalWallEffect::loadDamage(const std::string& path) {
     DamageLog loaded = DamageLog::load(path, config_.damage);
     log_ = std::move(loaded);

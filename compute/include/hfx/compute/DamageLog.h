@@ -14,6 +14,7 @@
 #include "hfx/compute/DecalMap.h"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,13 @@ public:
     /// oldest impact when the budget is full. Throws hfx::Error and changes nothing on a position
     /// outside [0,1), a non-finite normal or a non-positive radius. Returns true when it merged.
     bool add(ImpactEvent impact);
+    /// Adds an impact made at `time` on the log's clock: a peer's, received late (a server's
+    /// impact on a client). As add() at that time: a merge restarts the live impact's clock at
+    /// `time`. `time` must be finite, at most now() and no earlier than the last impact added:
+    /// peers add in one order. A log that adds another's impacts with their times, in its order,
+    /// holds the same impacts and stamps to the bit (network sync of damage). Throws hfx::Error
+    /// naming the time and changes nothing otherwise, or on a bad impact as add() does.
+    bool addAt(ImpactEvent impact, double time);
     /// Moves the clock on (seconds, >= 0 and finite).
     void advance(double seconds);
     double now() const { return now_; }
@@ -130,6 +138,7 @@ private:
     int oldest_ = 0;                 ///< the oldest live slot; the next free one is oldest_ + live_
     int live_ = 0;
     double now_ = 0.0;
+    double latest_ = -std::numeric_limits<double>::infinity(); ///< the time of the impact added last
     std::uint64_t added_ = 0, merged_ = 0, evicted_ = 0, changes_ = 0;
 };
 

@@ -57,6 +57,10 @@ public:
     void explode(double u, double v, std::uint64_t seed);
     /// Any impact (DamageLog::add: merged, or evicting the oldest); true when it merged.
     bool impact(const ImpactEvent& impact);
+    /// A peer's impact made at `time` on the log's clock (DamageLog::addAt: a client adding a
+    /// server's impacts, in its order, draws the server's wall; damage().now() is the clock,
+    /// which update(dt) moves).
+    bool impactAt(const ImpactEvent& impact, double time);
     /// Several impacts, all or none: every one is checked before any is added.
     void impacts(const std::vector<ImpactEvent>& impacts);
     /// Forgets all damage (the next update shows the bare wall).
