@@ -6,7 +6,8 @@
 // per channel (height, scorch, roughness, occlusion). The maps are a function of the live
 // impacts and the clock alone: DecalMap::rebuild() of stamps() every frame, so saving the log
 // (save/load: every value as a hexadecimal float) and replaying it gives the same maps bit for
-// bit, for save games and for clients joining a networked game late.
+// bit, for save games and for clients joining a networked game late; a client that hears of
+// each impact late adds it at its time (addAt) and keeps the server's maps.
 //
 // Positions are texcoords in [0,1) of the damaged map; radii are in map widths.
 // Thread: any (plain CPU data); one thread at a time per log.
