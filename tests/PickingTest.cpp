@@ -130,6 +130,11 @@ TEST(PickMesh, BadInputIsRefusedByName) {
     EXPECT_NE(messageOf([&] { pickMesh(ray, torn, glm::mat4(1.0f), heights, material); }).find("index"), std::string::npos);
     EXPECT_EQ(messageOf([&] { pickMesh(ray, sphere, glm::mat4(1.0f), heights, SurfaceMaterial{.depthScale = -1.0f}); }),
               "SurfaceMaterial.depthScale must be in [0, 1], got -1");
+    // A shading model's look is not the pick's: a water look's environment image, which only
+    // GL could check, is not asked about (the pick runs on any thread, with no GL context).
+    SurfaceMaterial water{.shading = Shading::Water};
+    water.water.environment = 12345;
+    EXPECT_TRUE(pickMesh(ray, sphere, glm::mat4(1.0f), heights, water));
     // From inside the closed sphere every face the ray meets first is a back face: nothing.
     EXPECT_FALSE(pickMesh({{0, 0, 0}, {0.3, 0.2, -1}}, sphere, glm::mat4(1.0f), heights, material));
 }

@@ -117,7 +117,13 @@ std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm
     const glm::dmat4 m(model);
     const glm::dmat3 m3(m);
     mesh.validate();
-    material.validate();
+    {
+        // The fields the pick reads; a shading model's look is not among them (and a water
+        // look's environment check is a GL call, where this runs on any thread).
+        SurfaceMaterial picked = material;
+        picked.shading = Shading::Lit;
+        picked.validate();
+    }
     const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(m3));
     // Counter-clockwise seen from the normal side; a mirroring model turns the winding, and
     // the renderer its front faces with it.

@@ -76,7 +76,7 @@ struct MeshPick : SurfacePick {
 ///
 /// Throws hfx::Error naming the problem: a ray not finite or of no direction, a model matrix
 /// not finite or without an inverse, a bad mesh (MeshData::validate) or material
-/// (SurfaceMaterial::validate).
+/// (SurfaceMaterial::validate, less the shading model's look: no GL call).
 std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
                                  const HeightFieldTracer& heights, const SurfaceMaterial& material);
 
