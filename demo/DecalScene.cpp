@@ -151,8 +151,7 @@ private:
 
     std::optional<SurfacePick> pick(double x, double y, int width, int height) {
         const Ray ray = camera_.rayThroughPixel(x, height - y, width, height);
-        if (pillar_) return wall_.pick(ray, shape_, model(), wall_.material());
-        return wall_.pick(ray, SurfaceFrame::ofPlane(kWall, model()));
+        return wall_.pick(ray, shape_, model(), wall_.material());
     }
 
     void apply(const Shot& shot) {
@@ -178,7 +177,7 @@ private:
 
     DecalWallEffect wall_;
     bool pillar_;
-    MeshData shape_; ///< the wall's plane, or --pillar's column (picked by its triangles)
+    MeshData shape_; ///< the wall's plane, or --pillar's column: drawn, and picked by its triangles
     Mesh mesh_, post_;
     DirectionalLight light_;
     SurfaceRenderer renderer_;
