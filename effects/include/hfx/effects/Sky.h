@@ -1,10 +1,10 @@
 #pragma once
 // The procedural sky of a water look (shaders/shade/sky.glsl) on the CPU, with the same float
 // operations as the shader: its colour in a direction, how much of it its clouds cover there
-// (WaterLook::cloudCover), and how much of the sun's light they let through to a point. For an engine that matches its fog, its ambient light or its
-// own sky to the one the water reflects, for gameplay that asks whether a point of the sky is
-// overcast or a point of the sea in a cloud's shadow, and for the tests that hold the shaders to
-// it.
+// (WaterLook::cloudCover), and how much of the sun's light they let through to a point. For an
+// engine that matches its fog, its ambient light or its own sky to the one the water reflects,
+// for gameplay that asks whether a point of the sky is overcast or a point of the sea in a cloud's
+// shadow, and for the tests that hold the shaders to it.
 //
 // Thread: any (no GL).
 
