@@ -59,6 +59,37 @@ TEST_F(PlanetWeather, ASpinUpIsTheWeatherOfLivingThroughItWhateverTheTimeScale) 
     EXPECT_DOUBLE_EQ(spun.time(), 20.0);
 }
 
+TEST_F(PlanetWeather, ASpunUpPlanetDrawsItsWeatherBeforeAnyUpdate) {
+    // The demo draws its first frame before its first update (an overlapped frame draws what the
+    // last update left): after spinUp the textures must hold the gas spun up, not the bands as
+    // the constructor drew them (what the demo's first planet frame showed before).
+    GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .vorticity = 0.35f, .jetSpeed = 14.0f,
+                                          .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f,
+                                          .initialBands = 4.0f, .bandVariety = 1.0f, .dyeRate = 0.15f},
+                                  .stormsPerSecond = 2.0f});
+    auto drawn = [&] {
+        const int w = planet.surfaceWidth(), h = planet.surfaceHeight();
+        std::vector<float> texels(size_t(w) * h * 4), heights(size_t(w) * h);
+        glGetTextureImage(planet.textures().surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
+                          texels.data());
+        for (size_t i = 0; i < heights.size(); ++i) heights[i] = texels[4 * i + 3];
+        return heights;
+    };
+    auto largestDifference = [](const std::vector<float>& a, const std::vector<float>& b) {
+        float d = 0.0f;
+        for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+        return d;
+    };
+    const std::vector<float> before = drawn();
+    planet.spinUp(30.0);
+    const std::vector<float> after = drawn(), heights = planet.readHeights();
+    ASSERT_EQ(after.size(), heights.size());
+    std::printf("[spin-up] drawn heights: %.3f from the bands as they started, %.2e from readHeights()\n",
+                double(largestDifference(after, before)), double(largestDifference(after, heights)));
+    EXPECT_GT(largestDifference(after, before), 0.05f) << "the textures still hold the bands as they started";
+    EXPECT_LT(largestDifference(after, heights), 1e-6f) << "the textures are not the heights readHeights() gives";
+}
+
 TEST_F(PlanetWeather, ATimeScaleOfTenThousandRunsAThousandStepsWithoutNaN) {
     GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .pressureIterations = 20, .vorticity = 0.35f,
                                           .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,

@@ -215,6 +215,10 @@ void GasPlanetEffect::spinUp(double seconds) {
     // In pieces that advance() splits into whole substeps of maxSubstep (its time scale undone).
     const double piece = double(config_.maxSubstep) * config_.maxSubsteps;
     for (double left = seconds; left > 0.0; left -= piece) advance(std::min(left, piece) / config_.timeScale);
+    // The textures show the weather spun up: a caller that draws before its next update (an
+    // overlapped frame draws what the last update left) would otherwise draw the bands as they
+    // started.
+    if (seconds > 0.0) refresh();
 }
 
 void GasPlanetEffect::enqueueSurface() {

@@ -101,8 +101,9 @@ public:
     /// at texcoords (u in [0,1), v in [0,1)).
     void addStorm(float u, float v, bool clockwise, float strength = 1.0f);
     /// Runs the weather `seconds` simulated seconds ([0, 10^6]) at once, in substeps of
-    /// maxSubstep, storms and all, drawing nothing: a planet that starts with its bands already
-    /// worked by storms and shear (the demo spins up a minute). The next update() draws it.
+    /// maxSubstep, storms and all: a planet that starts with its bands already worked by storms
+    /// and shear (the demo spins up a minute). It ends by refreshing the textures, so what is
+    /// drawn next, before any update, is the weather spun up. Waits for the device.
     void spinUp(double seconds);
     GasField& gas() { return gas_; }
     /// The heights drawn (the gas's, with the cloud tops' detail, surfaceWidth() x
