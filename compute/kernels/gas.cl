@@ -27,11 +27,13 @@ __kernel void maccormack(__global const float* u, __global const float* v, __glo
                  : hfx_gas_maccormack(u, v, src, forward, backward, W, H, i, j, ox, oy, dt, WALLS);
 }
 
-/* A round splat of force (cells/s^2 for dt seconds) and dye at (x, y) cells, Gaussian radius r,
+/* A round splat of force (cells/s^2 for dt seconds) and dye (added, or where target >= 0 moved
+   that share of the way to it) at (x, y) cells, Gaussian radius r,
    over the w x h window of cells from (i0, j0) (GasField::step: 6 radii about the centre, where
    the Gaussian falls below 10^-15 of its peak; x wraps, and y too where there are no walls). */
 __kernel void splat(__global float* u, __global float* v, __global float* dye, int W, int H, float x,
-                    float y, float r, float fx, float fy, float amount, float dt, int i0, int j0, int w, int h) {
+                    float y, float r, float fx, float fy, float amount, float target, float dt, int i0, int j0,
+                    int w, int h) {
     int gi = get_global_id(0), gj = get_global_id(1);
     if (gi >= w || gj >= h) return;
     int i = hfx_gas_wrap(i0 + gi, W), j = j0 + gj;
@@ -44,7 +46,45 @@ __kernel void splat(__global float* u, __global float* v, __global float* dye, i
     float e = exp(-(dx * dx + dy * dy) / (r * r));
     u[k] += dt * fx * exp(-((dx + 0.5f) * (dx + 0.5f) + dy * dy) / (r * r));
     if (!(WALLS && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
-    dye[k] = clamp(dye[k] + amount * e, 0.0f, 1.0f);
+    dye[k] = target >= 0.0f ? dye[k] + (target - dye[k]) * clamp(amount * e, 0.0f, 1.0f)
+                            : clamp(dye[k] + amount * e, 0.0f, 1.0f);
+}
+
+/* A vortex the velocity is held towards (GasField::addVortex) at (x, y) cells, semi-axes a along
+   x and b along y (cells), over the w x h window from (i0, j0): each face moves share *
+   exp(-rho^2) of the way to the drift + the wind of psi = psi0 exp(-rho^2), rho^2 = dx^2/a^2 +
+   dy^2/b^2, which is u = d(psi)/dy = -2 dy / b^2 psi, v = -d(psi)/dx = 2 dx / a^2 psi. */
+__kernel void vortex(__global float* u, __global float* v, int W, int H, float x, float y, float a, float b,
+                     float psi0, float driftX, float driftY, float share, int i0, int j0, int w, int h) {
+    int gi = get_global_id(0), gj = get_global_id(1);
+    if (gi >= w || gj >= h) return;
+    int i = hfx_gas_wrap(i0 + gi, W), j = j0 + gj;
+    if (WALLS ? (j < 0 || j >= H) : 0) return;
+    j = hfx_gas_wrap(j, H);
+    int k = j * W + i;
+    float dx = (float)i - x, dy = (float)j + 0.5f - y; /* the u face */
+    dx -= W * rint(dx / W);
+    if (!WALLS) dy -= H * rint(dy / H);
+    float rho2 = dx * dx / (a * a) + dy * dy / (b * b), psi = psi0 * exp(-rho2);
+    u[k] += (driftX - 2.0f * dy / (b * b) * psi - u[k]) * share * exp(-rho2);
+    if (WALLS && j == 0) return; /* v = 0 on the wall */
+    dx = (float)i + 0.5f - x;      /* the v face */
+    dy = (float)j - y;
+    dx -= W * rint(dx / W);
+    if (!WALLS) dy -= H * rint(dy / H);
+    rho2 = dx * dx / (a * a) + dy * dy / (b * b);
+    psi = psi0 * exp(-rho2);
+    v[k] += (driftY + 2.0f * dx / (a * a) * psi - v[k]) * share * exp(-rho2);
+}
+
+/* The velocity at n points (cells), bilinear from the faces: GasField::velocityAt. */
+__kernel void sample_velocity(__global const float* u, __global const float* v, __global const float* points,
+                              __global float* out, int n, int W, int H) {
+    int i = get_global_id(0);
+    if (i >= n) return;
+    float x = points[2 * i], y = points[2 * i + 1];
+    out[2 * i] = hfx_gas_sample(u, W, H, x, y, 0.0f, 0.5f, WALLS);
+    out[2 * i + 1] = hfx_gas_sample(v, W, H, x, y, 0.5f, 0.0f, WALLS);
 }
 
 /* Zonal jets: u relaxes towards speed * sin(2 pi bands y / H) at `rate` per second, faded

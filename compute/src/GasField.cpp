@@ -52,6 +52,8 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         advect_ = cl::Kernel(program, "advect");
         maccormack_ = cl::Kernel(program, "maccormack");
         splat_ = cl::Kernel(program, "splat");
+        vortex_ = cl::Kernel(program, "vortex");
+        sampleVelocity_ = cl::Kernel(program, "sample_velocity");
         jets_ = cl::Kernel(program, "jets");
         clampSpeed_ = cl::Kernel(program, "clamp_speed");
         curlKernel_ = cl::Kernel(program, "curl");
@@ -94,6 +96,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
                 config.initialBands > 0 ? float(std::clamp(0.5 + band + 0.05 * random.uniform(-1, 1), 0.0, 1.0)) : 0.0f;
         }
     }
+    bands_ = rows;
     clGuard("creating the gas's bands", [&] {
         bandRows_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(float) * rows.size(),
                                rows.data());
@@ -122,7 +125,49 @@ void GasField::addSplat(const GasSplat& s) {
         throw Error(str("gas splat radius must be in (0, 1] widths, got ", s.radius));
     if (!std::isfinite(s.forceX) || !std::isfinite(s.forceY) || !std::isfinite(s.dye))
         throw Error("gas splat force and dye must be finite");
+    if (!(s.dyeTarget < 0.0f || s.dyeTarget <= 1.0f) || (s.dyeTarget >= 0.0f && !(s.dye >= 0.0f && s.dye <= 1.0f)))
+        throw Error(str("gas splat dyeTarget must be < 0 (dye added) or in [0, 1] with a dye share in [0, 1], got ",
+                        s.dyeTarget, " and ", s.dye));
     splats_.push_back(s);
+}
+
+void GasField::addVortex(const GasVortex& vx) {
+    if (!(vx.u >= 0.0f && vx.u < 1.0f && vx.v >= 0.0f && vx.v < 1.0f))
+        throw Error(str("gas vortex at (", vx.u, ", ", vx.v, ") is outside the map: texcoords must lie in [0, 1)"));
+    if (!(vx.radius > 0.0f) || vx.radius > 0.25f)
+        throw Error(str("gas vortex radius must be in (0, 0.25] widths, got ", vx.radius));
+    if (!(vx.aspect >= 1.0f && vx.aspect <= 8.0f))
+        throw Error(str("gas vortex aspect must be in [1, 8], got ", vx.aspect));
+    if (!std::isfinite(vx.speed) || !std::isfinite(vx.driftX) || !std::isfinite(vx.driftY))
+        throw Error(str("gas vortex speed and drift must be finite, got ", vx.speed, ", ", vx.driftX, " and ", vx.driftY));
+    if (!(vx.rate >= 0.0f) || !std::isfinite(vx.rate))
+        throw Error(str("gas vortex rate must be >= 0 per second, got ", vx.rate));
+    vortices_.push_back(vx);
+}
+
+std::vector<glm::vec2> GasField::velocityAt(const std::vector<glm::vec2>& points) {
+    const int W = config_.width, H = config_.height;
+    std::vector<float> cells(2 * points.size()), out(2 * points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+        const glm::vec2 p = points[i];
+        if (!(std::isfinite(p.x) && p.y >= 0.0f && p.y <= 1.0f))
+            throw Error(str("GasField::velocityAt: point ", i, " at (", p.x, ", ", p.y,
+                            ") is off the map: u must be finite and v in [0, 1]"));
+        cells[2 * i] = float((double(p.x) - std::floor(double(p.x))) * W);
+        cells[2 * i + 1] = p.y * float(H);
+    }
+    if (points.empty()) return {};
+    clGuard("GasField::velocityAt", [&] {
+        const cl::Buffer in(cl_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells.size() * sizeof(float),
+                            cells.data());
+        const cl::Buffer result(cl_.context(), CL_MEM_WRITE_ONLY, out.size() * sizeof(float));
+        const int n = int(points.size());
+        run(sampleVelocity_, {arg(u_), arg(v_), arg(in), arg(result), arg(n), arg(W), arg(H)}, cl::NDRange(points.size()));
+        cl_.queue().enqueueReadBuffer(result, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+    });
+    std::vector<glm::vec2> velocities(points.size());
+    for (size_t i = 0; i < points.size(); ++i) velocities[i] = {out[2 * i], out[2 * i + 1]};
+    return velocities;
 }
 
 void GasField::advectField(cl::Buffer& field, float ox, float oy, float dt, bool wallRow) {
@@ -157,13 +202,27 @@ void GasField::step(double dtSeconds) {
             const int w = std::min(W, 2 * reach + 1), h = std::min(H, 2 * reach + 1);
             const int i0 = w == W ? 0 : int(std::floor(x)) - reach, j0 = h == H ? 0 : int(std::floor(y)) - reach;
             run(splat_, {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r), arg(s.forceX),
-                         arg(s.forceY), arg(s.dye), arg(dt), arg(i0), arg(j0), arg(w), arg(h)},
+                         arg(s.forceY), arg(s.dye), arg(s.dyeTarget), arg(dt), arg(i0), arg(j0), arg(w), arg(h)},
                 cl::NDRange(size_t(w), size_t(h)));
         }
         splats_.clear();
         if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f)
             run(jets_, {arg(u_), arg(W), arg(H), arg(config_.jetSpeed), arg(config_.jetBands), arg(config_.jetRate), arg(dt),
                         arg(config_.jetPolar)});
+        for (const GasVortex& vx : vortices_) {
+            // Within 3 of its sizes (the weight and its wind there 10^-4 of their peaks) and the
+            // faces' half cell: a planet holds each of its storms every step.
+            const float x = vx.u * W, y = vx.v * H, a = vx.radius * W, b = a / vx.aspect;
+            const float psi0 = vx.speed * b / 0.85776f; // the fastest wind, sqrt(2) e^-1/2 psi0 / b
+            const float share = float(1.0 - std::exp(-double(vx.rate) * dtSeconds));
+            const int reachX = int(std::ceil(3.0f * a)) + 1, reachY = int(std::ceil(3.0f * b)) + 1;
+            const int w = std::min(W, 2 * reachX + 1), h = std::min(H, 2 * reachY + 1);
+            const int i0 = w == W ? 0 : int(std::floor(x)) - reachX, j0 = h == H ? 0 : int(std::floor(y)) - reachY;
+            run(vortex_, {arg(u_), arg(v_), arg(W), arg(H), arg(x), arg(y), arg(a), arg(b), arg(psi0), arg(vx.driftX),
+                          arg(vx.driftY), arg(share), arg(i0), arg(j0), arg(w), arg(h)},
+                cl::NDRange(size_t(w), size_t(h)));
+        }
+        vortices_.clear();
         if (config_.vorticity > 0.0f) {
             run(curlKernel_, {arg(u_), arg(v_), arg(curl_), arg(W), arg(H)});
             run(confine_, {arg(curl_), arg(u_), arg(v_), arg(W), arg(H), arg(config_.vorticity), arg(dt)});

@@ -1,14 +1,17 @@
 #pragma once
 // A Navier-Stokes gas (Stam's stable fluids; Harris, GPU Gems ch. 38) on a staggered grid:
 // semi-Lagrangian advection (MacCormack optional), implicit viscosity, vorticity confinement,
-// pressure projection by Jacobi iterations, advected dye, splats of force and dye, and zonal
-// jets for banded planets. x is periodic (longitude wraps); y is periodic or bounded by walls.
-// The height field is the dye, so the gas's bands and vortices read as relief.
+// pressure projection by Jacobi iterations, advected dye, splats of force and dye, vortices the
+// gas is held towards, and zonal jets for banded planets. x is periodic (longitude wraps); y is
+// periodic or bounded by walls. The height field is the dye, so the gas's bands and vortices read
+// as relief.
 //
 // Grid units: lengths in cells, velocities in cells per second. See shared/GasMath.h.
 // Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/HeightSource.h"
+
+#include <glm/vec2.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -54,6 +57,24 @@ struct GasSplat {
     float radius = 0.03f;
     float forceX = 0.0f, forceY = 0.0f; ///< cells per second^2, applied over the step
     float dye = 0.0f;                   ///< added at the centre, clamped to [0,1]
+    /// In [0, 1]: the dye moves `dye` (a share in [0, 1]) of the way to this at the centre,
+    /// instead of `dye` being added: a colour fed in without overshooting it. < 0: added.
+    float dyeTarget = -1.0f;
+};
+
+/// A vortex the gas is held towards during the next step: each velocity face moves a share
+/// 1 - exp(-rate dt), weighted by exp(-rho^2), of the way to the drift plus the wind of the
+/// streamfunction psi0 exp(-rho^2), rho^2 = dx^2 / a^2 + dy^2 / b^2, a = radius along u and
+/// b = a / aspect across it. Its streamlines are ellipses, its wind divergence-free; the fastest,
+/// `speed`, blows along u across its minor axis, b / sqrt(2) from the centre (across the major
+/// axis the wind peaks at speed / aspect). Texcoords; radius in widths.
+struct GasVortex {
+    float u = 0.5f, v = 0.5f;
+    float radius = 0.03f;  ///< a, its half-length along u, in widths
+    float aspect = 1.0f;   ///< a / b, in [1, 8]
+    float speed = 0.0f;    ///< cells per second; > 0 turns counter-clockwise (u right, v up)
+    float driftX = 0.0f, driftY = 0.0f; ///< cells per second: the wind it rides
+    float rate = 1.0f;     ///< per second, >= 0
 };
 
 class GasField final : public HeightSource {
@@ -62,8 +83,15 @@ public:
 
     void step(double dt) override;
     void addSplat(const GasSplat& splat); ///< throws hfx::Error for a splat off the map
+    /// Holds the gas towards `vortex` during the next step, after the jets (so a storm keeps its
+    /// wind in a sheared band); throws hfx::Error naming a bad field.
+    void addVortex(const GasVortex& vortex);
     /// The splats queued for the next step, in order.
     const std::vector<GasSplat>& pendingSplats() const { return splats_; }
+    /// The velocity (cells per second) at each of `points` (texcoords, u wrapping, v in [0, 1]),
+    /// bilinear from the faces as the advection reads it; waits for the device. Throws naming
+    /// a point off the map.
+    std::vector<glm::vec2> velocityAt(const std::vector<glm::vec2>& points);
     /// Runs only the pressure projection (tests, and after setting a velocity by hand).
     void project();
 
@@ -84,6 +112,9 @@ public:
     int height() const override { return config_.height; }
     EdgeMode edges() const override { return config_.edges; }
     const GasConfig& config() const { return config_; }
+    /// The dye's bands, one value a row (row 0 at v = 0): what GasConfig::dyeRate relaxes the
+    /// dye towards (0 everywhere without initialBands).
+    const std::vector<float>& bands() const { return bands_; }
 
 private:
     /// Sets the kernel's arguments in order and enqueues it over `range` (default: every cell).
@@ -95,9 +126,11 @@ private:
     ClContext& cl_;
     GasConfig config_;
     std::vector<GasSplat> splats_;
+    std::vector<GasVortex> vortices_;
+    std::vector<float> bands_;
     cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_;
-    cl::Kernel advect_, maccormack_, splat_, jets_, clampSpeed_, curlKernel_, confine_, diffuse_, divergence_,
-        pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_, relaxDye_;
+    cl::Kernel advect_, maccormack_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_, curlKernel_, confine_,
+        diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_, relaxDye_;
 };
 
 } // namespace hfx
