@@ -34,8 +34,13 @@ void GasPlanetConfig::validate() const {
         throw Error(str("GasPlanetConfig.maxSubstep must be in (0, 60] seconds, got ", maxSubstep));
     if (maxSubsteps < 1 || maxSubsteps > 256)
         throw Error(str("GasPlanetConfig.maxSubsteps must be in [1, 256], got ", maxSubsteps));
-    if (!(stormMaintain >= 0.0f && stormMaintain <= 1.0f))
-        throw Error(str("GasPlanetConfig.stormMaintain must be in [0, 1], got ", stormMaintain));
+    if (!(stormWind >= 0.0f && stormWind <= 4.0f))
+        throw Error(str("GasPlanetConfig.stormWind must be in [0, 4] (of gas.jetSpeed), got ", stormWind));
+    if (!(stormAspect >= 1.0f && stormAspect <= 8.0f))
+        throw Error(str("GasPlanetConfig.stormAspect must be in [1, 8], got ", stormAspect));
+    if (!(stormHold >= 0.0f && stormHold <= 100.0f) || !(stormFeed >= 0.0f && stormFeed <= 100.0f))
+        throw Error(str("GasPlanetConfig.stormHold and stormFeed must be in [0, 100] per second, got ", stormHold,
+                        " and ", stormFeed));
     if (!(stormLifeRotations > 0.0f && stormLifeRotations <= 1e4f))
         throw Error(str("GasPlanetConfig.stormLifeRotations must be in (0, 10000], got ", stormLifeRotations));
     if (maxStorms < 1 || maxStorms > 1024)
@@ -138,9 +143,15 @@ void GasPlanetEffect::addStorm(float u, float v, bool clockwise, float strength)
     const float size = std::cbrt(strength);
     const float r = std::min(config_.stormRadius * size, 0.2f), dv = 0.5f * r * float(config_.gas.width) / float(config_.gas.height);
     const float v0 = std::fmin(std::fmax(v, dv + 0.01f), 0.99f - dv);
-    const Storm storm{.u = u, .v = v0, .radius = r, .strength = size, .clockwise = clockwise, .born = time_};
+    // Its colour stands out of its band: white (the pale zones' top) in a dark belt; in a pale
+    // zone the palette's rusty top turning clockwise, a dark brown the other way.
+    const std::vector<float>& bands = gas_.bands();
+    const float band = bands[std::min(size_t(v0 * float(bands.size())), bands.size() - 1)];
+    const float colour = band < 0.55f ? 0.8f : (clockwise ? 1.0f : 0.15f);
+    const Storm storm{.u = u, .v = v0, .radius = r, .strength = size, .clockwise = clockwise, .born = time_,
+                      .colour = colour, .wind = {jetProfile(v0), 0.0f}};
     spin(storm, config_.stormForce * size);
-    gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r, .dye = clockwise ? 1.0f : 0.05f});
+    gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r / config_.stormAspect, .dye = 1.0f, .dyeTarget = colour});
     if (int(storms_.size()) == config_.maxStorms) storms_.erase(storms_.begin());
     storms_.push_back(storm);
 }
@@ -178,6 +189,15 @@ void GasPlanetEffect::advance(double dt) {
     const double simulated = dt * config_.timeScale;
     const int substeps = std::clamp(int(std::ceil(simulated / config_.maxSubstep)), 1, config_.maxSubsteps);
     const double step = simulated / substeps;
+    // Where the gas carries each storm this frame: its wind at the storm's centre now (one small
+    // read a frame, of a queue the last frame has finished). A storm seeded during the frame
+    // rides its band's jet until the next.
+    if (!storms_.empty()) {
+        std::vector<glm::vec2> centres;
+        for (const Storm& st : storms_) centres.emplace_back(float(st.u), float(st.v));
+        const std::vector<glm::vec2> winds = gas_.velocityAt(centres);
+        for (size_t i = 0; i < storms_.size(); ++i) storms_[i].wind = winds[i];
+    }
     for (int s = 0; s < substeps; ++s) {
         time_ += step;
         stormClock_ += step * config_.stormsPerSecond;
@@ -188,21 +208,31 @@ void GasPlanetEffect::advance(double dt) {
             for (int attempt = 0; attempt < 32; ++attempt) {
                 const double v = random_.uniform(0.15, 0.85);
                 if (relativeShear(v) > config_.stormShear) continue;
-                addStorm(u, float(v), random_.next() < 0.5);
+                // Sizes from 0.63x to 1.59x, strengths log-uniform in [1/4, 4].
+                const float strength = float(std::exp(random_.uniform(-1.0, 1.0) * std::log(4.0)));
+                addStorm(u, float(v), random_.next() < 0.5, strength);
                 if (seeded_.size() == 64) seeded_.erase(seeded_.begin());
                 seeded_.emplace_back(u, float(v));
                 break;
             }
         }
-        // The living storms drift with their band and are kept spinning, fading with age.
+        // The living storms ride the wind at their centres, the gas held to their vortices and
+        // their clouds fed their colour, both fading with age.
         const double life = config_.stormLifeRotations * 2.0 * std::numbers::pi / std::max(config_.rotationSpeed, 1e-6f);
         std::erase_if(storms_, [&](const Storm& st) { return time_ - st.born > life; });
         for (Storm& st : storms_) {
-            st.u += double(jetProfile(st.v)) * step / double(config_.gas.width);
+            st.u += double(st.wind.x) * step / double(config_.gas.width);
             st.u -= std::floor(st.u);
             if (st.u >= 1.0) st.u = 0.0;
             const float fade = float(1.0 - (time_ - st.born) / life);
-            spin(st, config_.stormForce * config_.stormMaintain * st.strength * fade);
+            if (config_.stormHold > 0.0f)
+                gas_.addVortex({.u = float(st.u), .v = float(st.v), .radius = st.radius, .aspect = config_.stormAspect,
+                                .speed = (st.clockwise ? -1.0f : 1.0f) * config_.stormWind * config_.gas.jetSpeed,
+                                .driftX = st.wind.x, .rate = config_.stormHold * fade});
+            if (config_.stormFeed > 0.0f)
+                gas_.addSplat({.u = float(st.u), .v = float(st.v), .radius = st.radius / config_.stormAspect,
+                               .dye = float(1.0 - std::exp(-double(config_.stormFeed * fade) * step)),
+                               .dyeTarget = st.colour});
         }
         gas_.step(step);
         if (detail_) detail_->step(step);

@@ -283,6 +283,45 @@ void BM_PlanetGas(benchmark::State& state) {
     }
 }
 
+/// The planet's gas step with its 32 storms' upkeep (storm lengths of GasPlanetConfig's 0.025
+/// widths, spread over the map): two pushing splats a storm, a storm's radius each, as storms were
+/// kept spinning before 2026-11-29 (0), or each held as an oval vortex with its colour fed
+/// (GasField::addVortex and a dye-target splat) and their centres' wind read once a step, as the
+/// planet reads it once a frame (1).
+void BM_PlanetStorms(benchmark::State& state) {
+    const GasPlanetConfig planet;
+    GasConfig config = planet.gas;
+    GasField gas(cl(), config);
+    const bool held = state.range(0) != 0;
+    std::vector<glm::vec2> centres;
+    for (int i = 0; i < 32; ++i) centres.emplace_back(float(i) / 32.0f, 0.2f + 0.6f * float(i % 8) / 8.0f);
+    auto upkeep = [&] {
+        const float a = planet.stormRadius, b = a / planet.stormAspect;
+        if (held) (void)gas.velocityAt(centres);
+        for (const glm::vec2 c : centres) {
+            if (held) {
+                gas.addVortex({.u = c.x, .v = c.y, .radius = a, .aspect = planet.stormAspect, .speed = config.jetSpeed,
+                               .driftX = 5.0f, .rate = planet.stormHold});
+                gas.addSplat({.u = c.x, .v = c.y, .radius = b, .dye = 0.1f, .dyeTarget = 0.8f});
+            } else {
+                const float dv = 0.5f * a * float(config.width) / float(config.height);
+                gas.addSplat({.u = c.x, .v = c.y + dv, .radius = a, .forceX = 18.0f});
+                gas.addSplat({.u = c.x, .v = c.y - dv, .radius = a, .forceX = -18.0f});
+            }
+        }
+    };
+    for (int s = 0; s < 10; ++s) {
+        upkeep();
+        gas.step(1.0 / 30.0);
+    }
+    cl().queue().finish();
+    for (auto _ : state) {
+        upkeep();
+        gas.step(1.0 / 30.0);
+        cl().queue().finish();
+    }
+}
+
 /// The ocean step at {size, cascades, choppiness 0/1}: spectrum, one batched inverse FFT per
 /// cascade (h alone, or h, Dx, Dy), the Lagrangian pass (J, foam, the packed grid) and the
 /// Eulerian resample (Newton steps with choppiness, a copy without).
@@ -394,6 +433,7 @@ BENCHMARK(BM_InverseFft)->Arg(256)->Arg(512)->Arg(1024)->ArgNames({"size"})->Use
 BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetGas)->Arg(0)->Arg(1)->ArgNames({"maccormack"})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanetStorms)->Arg(0)->Arg(1)->ArgNames({"held"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 
 } // namespace

@@ -1,10 +1,11 @@
 #pragma once
 // The gaseous-planet user: the Navier-Stokes gas on a longitude-latitude grid (periodic in u,
 // walls at the poles) drives a sphere's relief (the dye) and its colour (the dye through a
-// ColorRamp, on the device). Zonal jets make the bands; storms, seeded, spin up vortices that
-// the jets shear and vorticity confinement keeps alive. Detail finer than the gas's grid rides on
-// its flow (FlowDetail): the surface is `detail.scale` texels per gas cell. Draw it on makeSphere() with
-// modelMatrix(), which turns the planet slowly about +Y.
+// ColorRamp, on the device). Zonal jets make the bands; storms, seeded, are oval vortices the gas
+// is held towards, carried by its wind, their clouds fed a colour that stands out of their band.
+// Detail finer than the gas's grid rides on its flow (FlowDetail): the surface is `detail.scale`
+// texels per gas cell. Draw it on makeSphere() with modelMatrix(), which turns the planet slowly
+// about +Y.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 
@@ -35,13 +36,21 @@ struct GasPlanetConfig {
                   .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f,
                   .initialBands = 9.0f, .bandVariety = 1.0f, .dyeRate = 0.15f};
     std::vector<ColorStop> palette = gasGiantPalette();
-    float stormsPerSecond = 0.6f;  ///< new storms (vortex pairs of force plus dye)
-    float stormRadius = 0.025f;    ///< in map widths
-    float stormForce = 900.0f;     ///< cells per second^2 over a step
-    /// A storm lives on as a vortex the flow carries along its band, kept spinning by a force
-    /// of stormMaintain * stormForce that fades with its age over stormLifeRotations turns of the
-    /// planet; at most maxStorms at once (the oldest goes).
-    float stormMaintain = 0.02f;
+    float stormsPerSecond = 0.6f;  ///< new storms, their sizes drawn from 0.63x to 1.59x
+    float stormRadius = 0.025f;    ///< a storm's half-length along the bands, in map widths
+    float stormForce = 900.0f;     ///< its birth's push (cells per second^2 over a step)
+    /// A storm lives on as an oval vortex that the gas's wind at its centre carries along its
+    /// band (GasField::velocityAt, once a frame). The gas is held towards the vortex
+    /// (GasField::addVortex): its fastest wind stormWind times gas.jetSpeed, stormAspect times
+    /// longer along the bands than across, held at stormHold per second; its clouds are fed
+    /// towards the storm's colour at stormFeed per second (a share of the way each second),
+    /// which contrasts with its band: white in a dark belt, in a pale zone the palette's rusty
+    /// top (turning clockwise) or a dark brown. The hold and the feed fade with the storm's age
+    /// over stormLifeRotations turns of the planet; at most maxStorms at once (the oldest goes).
+    float stormWind = 1.0f;
+    float stormAspect = 2.0f;
+    float stormHold = 1.0f;
+    float stormFeed = 2.0f;
     float stormLifeRotations = 40.0f;
     int maxStorms = 32;
     /// Storms are seeded only where the jets' shear |dU/dy| is at most this fraction of its
@@ -98,7 +107,7 @@ public:
     explicit GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config = {});
 
     /// A storm now: a vortex of the configured size (times the cube root of `strength`, > 0)
-    /// at texcoords (u in [0,1), v in [0,1)).
+    /// at texcoords (u in [0,1), v in [0,1]), pushed into spin and coloured at once.
     void addStorm(float u, float v, bool clockwise, float strength = 1.0f);
     /// Runs the weather `seconds` simulated seconds ([0, 10^6]) at once, in substeps of
     /// maxSubstep, storms and all: a planet that starts with its bands already worked by storms
@@ -111,6 +120,9 @@ public:
     std::vector<float> readHeights();
     /// The cloud tops' detail: none when its amount, warp and poleCap are 0 (the surface is the gas's).
     const FlowDetail* detail() const { return detail_.get(); }
+    /// The configuration as it runs on this device: the gas at its grid (gridScale applied,
+    /// then 1), the detail's scale chosen.
+    const GasPlanetConfig& config() const { return config_; }
     int surfaceWidth() const { return surface_.config().width; }
     int surfaceHeight() const { return surface_.config().height; }
     const ColorRamp& colors() const { return colors_; }
@@ -122,12 +134,16 @@ public:
     float jetProfile(double v) const;
     /// |dU/dv| of jetProfile relative to its largest over the planet (0 in a band's middle).
     float relativeShear(double v) const;
-    /// A living storm: where it is now (texcoords), its size and spin, its age.
+    /// A living storm: where it is now (texcoords), its size (half-length along u, widths) and
+    /// spin, when it was born, its colour (the dye its clouds are fed towards) and the wind that
+    /// carries it (cells per second: the gas's at its centre at the last frame's start).
     struct Storm {
         double u, v;
         float radius, strength;
         bool clockwise;
         double born;
+        float colour;
+        glm::vec2 wind;
     };
     const std::vector<Storm>& storms() const { return storms_; }
     /// Where the last seeded storms (not impacts) went, oldest first, at most 64.
