@@ -69,15 +69,21 @@ vec2 hfx_foam_lace(vec2 uv, float footprint) {
 // Wind streaks (spindrift, above Beaufort 7): foam drawn out downwind into thin lines, along `w`
 // (unit, texcoords) at `strength`, u_streakCells lattice cells per texcoord across the wind and 12
 // times longer along it, riding with the foam's drift. A line runs where a value noise over that
-// lattice crosses its middle, wavering as the noise does, broken into lengths by the noise's
-// second value; it is 0.12 of a cell wide (12 cm at OceanEffect's 1 m), measured across the wind
-// from the noise's slope, and what of it a pixel `footprint` texcoords wide covers is its share
-// of the pixel (a box filter: far off a faint line, not an aliased one). Returns the streaks'
-// cover, 0..0.8 strength.
+// lattice crosses its middle, wavering as the noise does and meandering across the wind by up to
+// half a cell over 8 cells along it (a second noise), broken into lengths by the first noise's
+// second value and into patches about five cells long by a third: straight unbroken lines read as
+// scratches on the sea near the eye. It is 0.12 of a cell wide (12 cm at OceanEffect's 1 m),
+// measured across the wind from the noise's slope, and what of it a pixel `footprint` texcoords
+// wide covers is its share of the pixel (a box filter: far off a faint line, not an aliased one).
+// Returns the streaks' cover, 0..0.8 strength.
 float hfx_streaks(vec2 uv, float footprint, vec2 w, float strength) {
     if (!(strength > 0.0)) return 0.0;
     const vec2 d = uv - u_foamDrift;
-    const float along = dot(d, w) * u_streakCells, across = dot(d, vec2(-w.y, w.x)) * u_streakCells;
+    const float along = dot(d, w) * u_streakCells;
+    float across = dot(d, vec2(-w.y, w.x)) * u_streakCells;
+    const vec2 mq = vec2(across / 3.0, along / 8.0), mc = floor(mq), mf = mq - mc, ms = mf * mf * (3.0 - 2.0 * mf);
+    across += mix(mix(hfx_hash2(mc + 71.0).x, hfx_hash2(mc + vec2(72, 71)).x, ms.x),
+                  mix(hfx_hash2(mc + vec2(71, 72)).x, hfx_hash2(mc + 72.0).x, ms.x), ms.y) - 0.5;
     const vec2 q = vec2(across, along / 12.0), cell = floor(q), f = q - cell;
     const vec2 s = f * f * (3.0 - 2.0 * f);
     const vec2 a = hfx_hash2(cell), b = hfx_hash2(cell + vec2(1, 0));
@@ -89,7 +95,10 @@ float hfx_streaks(vec2 uv, float footprint, vec2 w, float strength) {
     const float halfWidth = 0.06, pixel = max(u_streakCells * footprint, 1e-4);
     const float covered =
         max(min(dist + 0.5 * pixel, halfWidth) - max(dist - 0.5 * pixel, -halfWidth), 0.0) / pixel;
-    return 0.8 * strength * smoothstep(0.35, 0.65, n.y) * covered;
+    const float g0 = floor(along / 5.0), g = along / 5.0 - g0;
+    const float patches = mix(hfx_hash2(vec2(cell.x, g0) + 33.0).y, hfx_hash2(vec2(cell.x, g0 + 1.0) + 33.0).y,
+                              g * g * (3.0 - 2.0 * g));
+    return 0.8 * strength * smoothstep(0.35, 0.65, n.y) * smoothstep(0.2, 0.6, patches) * covered;
 }
 
 // The wind's streaks (u_spindrift along u_windDirection) and, over a wind change, the last
