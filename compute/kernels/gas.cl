@@ -27,6 +27,25 @@ __kernel void maccormack(__global const float* u, __global const float* v, __glo
                  : hfx_gas_maccormack(u, v, src, forward, backward, W, H, i, j, ox, oy, dt, WALLS);
 }
 
+/* The cell (i, j) a work-item of a w x h window from cell (i0, j0) stands on, x wrapped, and y
+   wrapped too where there are no walls; false off the window or past a wall. */
+inline int hfx_window_cell(int W, int H, int i0, int j0, int w, int h, int* i, int* j) {
+    int gi = get_global_id(0), gj = get_global_id(1);
+    if (gi >= w || gj >= h) return 0;
+    *i = hfx_gas_wrap(i0 + gi, W);
+    *j = j0 + gj;
+    if (WALLS ? (*j < 0 || *j >= H) : 0) return 0;
+    *j = hfx_gas_wrap(*j, H);
+    return 1;
+}
+
+/* An offset (cells) between two points, the shorter way round where the map wraps. */
+inline float2 hfx_window_offset(int W, int H, float dx, float dy) {
+    dx -= W * rint(dx / W);
+    if (!WALLS) dy -= H * rint(dy / H);
+    return (float2)(dx, dy);
+}
+
 /* A round splat of force (cells/s^2 for dt seconds) and dye (added, or where target >= 0 moved
    that share of the way to it) at (x, y) cells, Gaussian radius r,
    over the w x h window of cells from (i0, j0) (GasField::step: 6 radii about the centre, where
@@ -34,15 +53,11 @@ __kernel void maccormack(__global const float* u, __global const float* v, __glo
 __kernel void splat(__global float* u, __global float* v, __global float* dye, int W, int H, float x,
                     float y, float r, float fx, float fy, float amount, float target, float dt, int i0, int j0,
                     int w, int h) {
-    int gi = get_global_id(0), gj = get_global_id(1);
-    if (gi >= w || gj >= h) return;
-    int i = hfx_gas_wrap(i0 + gi, W), j = j0 + gj;
-    if (WALLS ? (j < 0 || j >= H) : 0) return;
-    j = hfx_gas_wrap(j, H);
+    int i, j;
+    if (!hfx_window_cell(W, H, i0, j0, w, h, &i, &j)) return;
     int k = j * W + i;
-    float dx = (float)i + 0.5f - x, dy = (float)j + 0.5f - y;
-    dx -= W * rint(dx / W);
-    if (!WALLS) dy -= H * rint(dy / H);
+    float2 o = hfx_window_offset(W, H, (float)i + 0.5f - x, (float)j + 0.5f - y);
+    float dx = o.x, dy = o.y;
     float e = exp(-(dx * dx + dy * dy) / (r * r));
     u[k] += dt * fx * exp(-((dx + 0.5f) * (dx + 0.5f) + dy * dy) / (r * r));
     if (!(WALLS && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
@@ -56,25 +71,17 @@ __kernel void splat(__global float* u, __global float* v, __global float* dye, i
    dy^2/b^2, which is u = d(psi)/dy = -2 dy / b^2 psi, v = -d(psi)/dx = 2 dx / a^2 psi. */
 __kernel void vortex(__global float* u, __global float* v, int W, int H, float x, float y, float a, float b,
                      float psi0, float driftX, float driftY, float share, int i0, int j0, int w, int h) {
-    int gi = get_global_id(0), gj = get_global_id(1);
-    if (gi >= w || gj >= h) return;
-    int i = hfx_gas_wrap(i0 + gi, W), j = j0 + gj;
-    if (WALLS ? (j < 0 || j >= H) : 0) return;
-    j = hfx_gas_wrap(j, H);
+    int i, j;
+    if (!hfx_window_cell(W, H, i0, j0, w, h, &i, &j)) return;
     int k = j * W + i;
-    float dx = (float)i - x, dy = (float)j + 0.5f - y; /* the u face */
-    dx -= W * rint(dx / W);
-    if (!WALLS) dy -= H * rint(dy / H);
-    float rho2 = dx * dx / (a * a) + dy * dy / (b * b), psi = psi0 * exp(-rho2);
-    u[k] += (driftX - 2.0f * dy / (b * b) * psi - u[k]) * share * exp(-rho2);
+    float2 o = hfx_window_offset(W, H, (float)i - x, (float)j + 0.5f - y); /* the u face */
+    float rho2 = o.x * o.x / (a * a) + o.y * o.y / (b * b), psi = psi0 * exp(-rho2);
+    u[k] += (driftX - 2.0f * o.y / (b * b) * psi - u[k]) * share * exp(-rho2);
     if (WALLS && j == 0) return; /* v = 0 on the wall */
-    dx = (float)i + 0.5f - x;      /* the v face */
-    dy = (float)j - y;
-    dx -= W * rint(dx / W);
-    if (!WALLS) dy -= H * rint(dy / H);
-    rho2 = dx * dx / (a * a) + dy * dy / (b * b);
+    o = hfx_window_offset(W, H, (float)i + 0.5f - x, (float)j - y); /* the v face */
+    rho2 = o.x * o.x / (a * a) + o.y * o.y / (b * b);
     psi = psi0 * exp(-rho2);
-    v[k] += (driftY + 2.0f * dx / (a * a) * psi - v[k]) * share * exp(-rho2);
+    v[k] += (driftY + 2.0f * o.x / (a * a) * psi - v[k]) * share * exp(-rho2);
 }
 
 /* The velocity at n points (cells), bilinear from the faces: GasField::velocityAt. */
