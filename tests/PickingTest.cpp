@@ -1,7 +1,8 @@
 // Picking on meshes (pickMesh): a ray through a pixel's centre picks the texcoords that pixel's
 // trace output holds and the depth it wrote, on the decal wall's bricks drawn on a sphere (curved,
 // with a silhouette fade) and under a triplanar mapping; a shot at the pick lands there; on a
-// plane it is pickSurface on the plane's frame; bad input is refused by name.
+// plane it is pickSurface on the plane's frame; a MeshPicker picks what pickMesh picks, to the
+// bit; bad input is refused by name.
 
 #include "support/Fields.h"
 #include "support/Fixtures.h"
@@ -23,6 +24,8 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <random>
+#include <utility>
 #include <vector>
 
 namespace hfx::test {
@@ -137,6 +140,60 @@ TEST(PickMesh, BadInputIsRefusedByName) {
     EXPECT_TRUE(pickMesh(ray, sphere, glm::mat4(1.0f), heights, water));
     // From inside the closed sphere every face the ray meets first is a back face: nothing.
     EXPECT_FALSE(pickMesh({{0, 0, 0}, {0.3, 0.2, -1}}, sphere, glm::mat4(1.0f), heights, material));
+}
+
+TEST(MeshPicker, PicksWhatPickMeshPicksToTheBit) {
+    // Its hierarchy passes over triangles and crosses the rest as pickMesh does: on a sphere, a
+    // cylinder and a clipped plane, under a turned, scaled and moved model and its mirror, 1,500
+    // rays each from around the mesh (some past it, some from inside) pick the same triangle and
+    // the same texcoords and point to the bit, or nothing both.
+    const HeightFieldTracer heights(sumOfSines(64, {{0.3, 2, 1, 0.0}, {0.15, -3, 5, 1.0}}), 64, 64, EdgeMode::Wrap);
+    SurfaceMaterial clipped{.depthScale = 0.06f, .silhouetteFade = 0.2f};
+    clipped.clipToPatch = true;
+    clipped.patchBounds = {0.1f, 0.0f, 0.9f, 0.8f};
+    const std::vector<std::pair<MeshData, SurfaceMaterial>> meshes{
+        {makeSphere({}), {.depthScale = 0.04f, .silhouetteFade = 0.25f}},
+        {makeCylinder({.radius = 0.6f, .height = 2.0f, .segments = 48}), {.depthScale = 0.05f}},
+        {makePlane({.size = 2.0f, .subdivisions = 4}), clipped}};
+    const glm::mat4 turned =
+        glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), {0.4f, -0.3f, 0.2f}), 0.7f, glm::vec3(0.3f, 1, 0.1f)),
+                   glm::vec3(1.3f, 0.8f, 1.1f));
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (const auto& [mesh, material] : meshes) {
+        const MeshPicker picker(mesh);
+        EXPECT_GT(picker.nodeCount(), mesh.indices.size() / 3 / 4) << "no hierarchy";
+        for (const glm::mat4& model : {glm::mat4(1.0f), turned, glm::scale(turned, {-1.0f, 1.0f, 1.0f})}) {
+            const glm::dvec3 centre(model * glm::vec4(0, 0, 0, 1));
+            size_t picked = 0;
+            for (int k = 0; k < 1500; ++k) {
+                const glm::dvec3 from = centre + (k % 10 == 0 ? 0.2 : 3.0) * glm::dvec3(unit(random), unit(random), unit(random));
+                const glm::dvec3 to = centre + 1.2 * glm::dvec3(unit(random), unit(random), unit(random));
+                const Ray ray{from, glm::normalize(to - from)};
+                const auto a = pickMesh(ray, mesh, model, heights, material);
+                const auto b = picker.pick(ray, model, heights, material);
+                ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << k;
+                if (!a) continue;
+                ++picked;
+                ASSERT_EQ(a->triangle, b->triangle) << "ray " << k;
+                ASSERT_EQ(a->uv, b->uv) << "ray " << k;
+                ASSERT_EQ(a->world, b->world) << "ray " << k;
+            }
+            std::printf("[mesh picker] %zu triangles, %zu nodes: %zu of 1500 rays picked\n", mesh.indices.size() / 3,
+                        picker.nodeCount(), picked);
+            EXPECT_GT(picked, 150u);
+        }
+    }
+    MeshData broken = makeSphere({});
+    broken.indices[5] = 1u << 30;
+    EXPECT_NE(messageOf([&] { MeshPicker{broken}; }).find("index"), std::string::npos);
+    const MeshPicker picker(makeSphere({}));
+    EXPECT_NE(messageOf([&] { picker.pick({{0, 0, 3}, {0, 0, 0}}, glm::mat4(1.0f), heights, {}); })
+                  .find("MeshPicker::pick: the ray must be finite"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { picker.pick({{0, 0, 3}, {0, 0, -1}}, glm::mat4(0.0f), heights, {}); })
+                  .find("MeshPicker::pick: the model matrix"),
+              std::string::npos);
 }
 
 TEST_F(Picking, ABrickWallOnASpherePicksWhatItsPixelsTraceAndAShotLandsThere) {

@@ -53,14 +53,13 @@ WallImpacts::WallImpacts(DecalWallEffect& wall, const SurfaceFrame& frame, glm::
     : wall_(wall), frame_(frame), bounds_(uvBounds) {}
 
 WallImpacts::WallImpacts(DecalWallEffect& wall, MeshData mesh, const glm::mat4& model)
-    : wall_(wall), mesh_(std::move(mesh)), model_(model) {
-    mesh_->validate();
+    : wall_(wall), picker_(std::move(mesh)), model_(model) {
     checkModel(model, "WallImpacts: ");
 }
 
 std::optional<ImpactHit> WallImpacts::hit(const Ray& ray) {
-    if (mesh_) {
-        const auto pick = wall_.pick(ray, *mesh_, model_, wall_.material());
+    if (picker_) {
+        const auto pick = picker_->pick(ray, model_, wall_.heightTracer(), wall_.material());
         if (!pick) return std::nullopt;
         return ImpactHit{pick->world, pick->uv, pick->normal, glm::length(pick->world - ray.origin)};
     }
@@ -146,8 +145,7 @@ void OceanImpacts::receive(const Impact& impact, const ImpactHit& hit) {
 // --- the planet
 
 PlanetImpacts::PlanetImpacts(GasPlanetEffect& planet, MeshData sphere, const glm::mat4& placement)
-    : planet_(planet), sphere_(std::move(sphere)), placement_(placement) {
-    sphere_.validate();
+    : planet_(planet), picker_(std::move(sphere)), placement_(placement) {
     checkModel(placement, "PlanetImpacts: ");
 }
 
@@ -156,7 +154,7 @@ std::optional<ImpactHit> PlanetImpacts::hit(const Ray& ray) {
     // at the date line and clamped at the poles.
     const HeightFieldTracer heights(planet_.readHeights(), planet_.surfaceWidth(), planet_.surfaceHeight(),
                                     EdgeMode::WrapU);
-    const auto pick = pickMesh(ray, sphere_, placement_ * planet_.modelMatrix(), heights, planet_.material());
+    const auto pick = picker_.pick(ray, placement_ * planet_.modelMatrix(), heights, planet_.material());
     if (!pick) return std::nullopt;
     // A storm's place on the gas: longitude wrapped into [0, 1), latitude within the poles.
     const glm::dvec2 uv(wrap01(pick->uv.x), std::clamp(pick->uv.y, 0.0, 1.0));

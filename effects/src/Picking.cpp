@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace hfx {
@@ -108,15 +109,21 @@ int heaviestProjection(glm::dvec3 n, double sharpness) {
 
 } // namespace
 
-std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
-                                 const HeightFieldTracer& heights, const SurfaceMaterial& material) {
+namespace {
+
+// What a mesh pick needs of the model, the ray and the material, checked once.
+struct MeshPickSetup {
+    glm::dmat4 m;
+    glm::dmat3 m3, normalMatrix;
+    double winding; ///< -1 under a mirroring model, which turns the front faces
+    glm::dvec3 dir; ///< the ray's unit direction
+};
+
+MeshPickSetup checkedSetup(const Ray& ray, const glm::mat4& model, const SurfaceMaterial& material, const char* caller) {
     if (!isFinite(ray.origin) || !isFinite(ray.direction) || !(glm::length(ray.direction) > 0.0))
-        throw Error(str("pickMesh: the ray must be finite and have a direction, got origin ", text(ray.origin),
+        throw Error(str(caller, ": the ray must be finite and have a direction, got origin ", text(ray.origin),
                         " and direction ", text(ray.direction)));
-    checkModel(model, "pickMesh: ");
-    const glm::dmat4 m(model);
-    const glm::dmat3 m3(m);
-    mesh.validate();
+    checkModel(model, str(caller, ": ").c_str());
     {
         // The fields the pick reads; a shading model's look is not among them (and a water
         // look's environment check is a GL call, where this runs on any thread).
@@ -124,37 +131,51 @@ std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm
         picked.shading = Shading::Lit;
         picked.validate();
     }
-    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(m3));
+    MeshPickSetup setup;
+    setup.m = glm::dmat4(model);
+    setup.m3 = glm::dmat3(setup.m);
+    setup.normalMatrix = glm::transpose(glm::inverse(setup.m3));
     // Counter-clockwise seen from the normal side; a mirroring model turns the winding, and
     // the renderer its front faces with it.
-    const double winding = glm::determinant(m3) < 0.0 ? -1.0 : 1.0;
-    const glm::dvec3 dir = glm::normalize(ray.direction);
+    setup.winding = glm::determinant(setup.m3) < 0.0 ? -1.0 : 1.0;
+    setup.dir = glm::normalize(ray.direction);
+    return setup;
+}
 
-    // Every triangle the ray crosses, nearest first (Moller-Trumbore in world space), with its
-    // barycentric weights at the crossing and whether it faces the ray.
-    struct Crossing {
-        double t;
-        std::uint32_t triangle;
-        glm::dvec3 weights;
-        bool front;
-    };
-    std::vector<Crossing> crossings;
+// A triangle the ray crosses, with its barycentric weights at the crossing and whether it faces
+// the ray.
+struct Crossing {
+    double t;
+    std::uint32_t triangle;
+    glm::dvec3 weights;
+    bool front;
+};
+
+// Where the ray crosses triangle `k` (Moller-Trumbore in world space), if it does.
+std::optional<Crossing> cross(const MeshPickSetup& setup, const Ray& ray, const MeshData& mesh, std::uint32_t k) {
     const auto& v = mesh.vertices;
-    for (size_t k = 0; k + 2 < mesh.indices.size(); k += 3) {
-        const glm::dvec3 p0(m * glm::dvec4(glm::dvec3(v[mesh.indices[k]].position), 1.0));
-        const glm::dvec3 p1(m * glm::dvec4(glm::dvec3(v[mesh.indices[k + 1]].position), 1.0));
-        const glm::dvec3 p2(m * glm::dvec4(glm::dvec3(v[mesh.indices[k + 2]].position), 1.0));
-        const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0, q = glm::cross(dir, e2);
-        const double det = glm::dot(e1, q);
-        if (!(std::abs(det) > 1e-300)) continue; // the ray runs in its plane, or it has no area
-        const glm::dvec3 s = ray.origin - p0, r = glm::cross(s, e1);
-        const double b1 = glm::dot(s, q) / det, b2 = glm::dot(dir, r) / det, t = glm::dot(e2, r) / det;
-        if (b1 < 0.0 || b2 < 0.0 || b1 + b2 > 1.0 || !(t > 0.0)) continue;
-        const bool front = winding * glm::dot(glm::cross(e1, e2), dir) < 0.0;
-        crossings.push_back({t, std::uint32_t(k / 3), {1.0 - b1 - b2, b1, b2}, front});
-    }
-    std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
+    const glm::dvec3 p0(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k]].position), 1.0));
+    const glm::dvec3 p1(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k + 1]].position), 1.0));
+    const glm::dvec3 p2(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k + 2]].position), 1.0));
+    const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0, q = glm::cross(setup.dir, e2);
+    const double det = glm::dot(e1, q);
+    if (!(std::abs(det) > 1e-300)) return std::nullopt; // the ray runs in its plane, or it has no area
+    const glm::dvec3 s = ray.origin - p0, r = glm::cross(s, e1);
+    const double b1 = glm::dot(s, q) / det, b2 = glm::dot(setup.dir, r) / det, t = glm::dot(e2, r) / det;
+    if (b1 < 0.0 || b2 < 0.0 || b1 + b2 > 1.0 || !(t > 0.0)) return std::nullopt;
+    const bool front = setup.winding * glm::dot(glm::cross(e1, e2), setup.dir) < 0.0;
+    return Crossing{t, k, {1.0 - b1 - b2, b1, b2}, front};
+}
 
+// The pick along the crossings, nearest first (ties in the triangles' order, so that any way of
+// finding them gives the same pick).
+std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPickSetup& setup, const Ray& ray,
+                                  const MeshData& mesh, const HeightFieldTracer& heights,
+                                  const SurfaceMaterial& material) {
+    std::sort(crossings.begin(), crossings.end(),
+              [](const Crossing& a, const Crossing& b) { return a.t < b.t || (a.t == b.t && a.triangle < b.triangle); });
+    const auto& v = mesh.vertices;
+    const glm::dvec3 dir = setup.dir;
     for (const Crossing& c : crossings) {
         if (!c.front) return std::nullopt; // seen from behind: the back face is what shows
         // The vertex stage's outputs at the crossing (perspective-correct interpolation is the
@@ -166,9 +187,9 @@ std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm
             const double w = c.weights[i];
             objectPos += w * glm::dvec3(x.position);
             objectNormal += w * glm::dvec3(x.normal);
-            normal += w * (normalMatrix * glm::dvec3(x.normal));
-            tangent += w * (m3 * glm::dvec3(x.tangent));
-            bitangent += w * (m3 * glm::dvec3(x.bitangent));
+            normal += w * (setup.normalMatrix * glm::dvec3(x.normal));
+            tangent += w * (setup.m3 * glm::dvec3(x.tangent));
+            bitangent += w * (setup.m3 * glm::dvec3(x.bitangent));
             uv0 += w * glm::dvec2(x.texcoord);
         }
         const glm::dvec3 entry = ray.origin + c.t * dir;
@@ -178,8 +199,8 @@ std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm
             projection = heaviestProjection(n, material.triplanar.sharpness);
             const Projected f = projected(projection, n, objectPos, material.triplanar.scale);
             uv0 = f.uv;
-            tangent = m3 * f.tangent;
-            bitangent = m3 * f.bitangent;
+            tangent = setup.m3 * f.tangent;
+            bitangent = setup.m3 * f.bitangent;
         }
         // hfx_surface: a degenerate frame is normal mapped; the relief fades out as the view
         // grazes the entry's normal.
@@ -208,6 +229,116 @@ std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm
         // Its pixel discarded (the ray left the patch): the next triangle along the ray shows.
     }
     return std::nullopt;
+}
+
+} // namespace
+
+std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
+                                 const HeightFieldTracer& heights, const SurfaceMaterial& material) {
+    const MeshPickSetup setup = checkedSetup(ray, model, material, "pickMesh");
+    mesh.validate();
+    // Every triangle the ray crosses.
+    std::vector<Crossing> crossings;
+    for (std::uint32_t k = 0; 3 * size_t(k) + 2 < mesh.indices.size(); ++k)
+        if (const auto c = cross(setup, ray, mesh, k)) crossings.push_back(*c);
+    return pickAlong(crossings, setup, ray, mesh, heights, material);
+}
+
+MeshPicker::MeshPicker(MeshData mesh) : mesh_((mesh.validate(), std::move(mesh))) {
+    // A bounding volume hierarchy over the triangles in object space: each node's box holds its
+    // triangles; a node of more than 4 splits at the median of their centroids along the longest
+    // axis of the centroids' box (O(n log n)).
+    const size_t triangles = mesh_.indices.size() / 3;
+    order_.resize(triangles);
+    std::vector<glm::dvec3> lo(triangles), hi(triangles), centre(triangles);
+    for (size_t k = 0; k < triangles; ++k) {
+        order_[k] = std::uint32_t(k);
+        const glm::dvec3 a(mesh_.vertices[mesh_.indices[3 * k]].position),
+            b(mesh_.vertices[mesh_.indices[3 * k + 1]].position), c(mesh_.vertices[mesh_.indices[3 * k + 2]].position);
+        lo[k] = glm::min(a, glm::min(b, c));
+        hi[k] = glm::max(a, glm::max(b, c));
+        centre[k] = (a + b + c) / 3.0;
+    }
+    // Boxes grow by a millionth of the mesh's size: a triangle the world-space crossing accepts
+    // on its edge is never pruned by the object-space box test's rounding.
+    glm::dvec3 meshLo(1e300), meshHi(-1e300);
+    for (size_t k = 0; k < triangles; ++k) meshLo = glm::min(meshLo, lo[k]), meshHi = glm::max(meshHi, hi[k]);
+    const double pad = 1e-6 * std::max(glm::length(meshHi - meshLo), 1e-30);
+    struct Range {
+        std::uint32_t node, first, count;
+    };
+    nodes_.push_back({});
+    std::vector<Range> pending{{0, 0, std::uint32_t(triangles)}};
+    while (!pending.empty()) {
+        const Range r = pending.back();
+        pending.pop_back();
+        glm::dvec3 boxLo(1e300), boxHi(-1e300), cLo(1e300), cHi(-1e300);
+        for (std::uint32_t i = r.first; i < r.first + r.count; ++i) {
+            const std::uint32_t k = order_[i];
+            boxLo = glm::min(boxLo, lo[k]), boxHi = glm::max(boxHi, hi[k]);
+            cLo = glm::min(cLo, centre[k]), cHi = glm::max(cHi, centre[k]);
+        }
+        Node& node = nodes_[r.node];
+        node.lo = boxLo - pad;
+        node.hi = boxHi + pad;
+        const glm::dvec3 extent = cHi - cLo;
+        if (r.count <= 4 || !(std::max({extent.x, extent.y, extent.z}) > 0.0)) {
+            node.first = r.first;
+            node.count = r.count;
+            continue;
+        }
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        const std::uint32_t half = r.count / 2;
+        std::nth_element(order_.begin() + r.first, order_.begin() + r.first + half, order_.begin() + r.first + r.count,
+                         [&](std::uint32_t a, std::uint32_t b) { return centre[a][axis] < centre[b][axis]; });
+        const std::uint32_t left = std::uint32_t(nodes_.size());
+        nodes_[r.node].first = left; // an inner node: its children are left and left + 1
+        nodes_[r.node].count = 0;
+        nodes_.push_back({});
+        nodes_.push_back({});
+        pending.push_back({left, r.first, half});
+        pending.push_back({left + 1, r.first + half, r.count - half});
+    }
+}
+
+std::optional<MeshPick> MeshPicker::pick(const Ray& ray, const glm::mat4& model, const HeightFieldTracer& heights,
+                                         const SurfaceMaterial& material) const {
+    const MeshPickSetup setup = checkedSetup(ray, model, material, "MeshPicker::pick");
+    // The ray in object space (the model is affine: a point at t along it is the world ray's at t).
+    const glm::dmat4 inverse = glm::inverse(setup.m);
+    const glm::dvec3 o(inverse * glm::dvec4(ray.origin, 1.0)), d(inverse * glm::dvec4(setup.dir, 0.0));
+    const glm::dvec3 invD(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+    auto enters = [&](const Node& n) {
+        // The slabs' test; an axis the ray runs along (invD infinite) leaves its slab's interval
+        // whole when the origin lies in it (0 * inf is NaN, which max and min pass over).
+        double t0 = 0.0, t1 = 1e300;
+        for (int a = 0; a < 3; ++a) {
+            if (d[a] == 0.0) {
+                if (o[a] < n.lo[a] || o[a] > n.hi[a]) return false;
+                continue;
+            }
+            const double ta = (n.lo[a] - o[a]) * invD[a], tb = (n.hi[a] - o[a]) * invD[a];
+            t0 = std::max(t0, std::min(ta, tb));
+            t1 = std::min(t1, std::max(ta, tb));
+        }
+        return t0 <= t1;
+    };
+    std::vector<Crossing> crossings;
+    std::vector<std::uint32_t> stack{0};
+    stack.reserve(64);
+    while (!stack.empty()) {
+        const Node& n = nodes_[stack.back()];
+        stack.pop_back();
+        if (!enters(n)) continue;
+        if (n.count > 0) {
+            for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
+                if (const auto c = cross(setup, ray, mesh_, order_[i])) crossings.push_back(*c);
+        } else {
+            stack.push_back(n.first);
+            stack.push_back(n.first + 1);
+        }
+    }
+    return pickAlong(crossings, setup, ray, mesh_, heights, material);
 }
 
 } // namespace hfx

@@ -75,9 +75,10 @@ class WallImpacts final : public ImpactReceiver {
 public:
     /// uvBounds: the patch's texcoords (hits outside are misses).
     WallImpacts(DecalWallEffect& wall, const SurfaceFrame& frame, glm::dvec4 uvBounds = {-1e30, -1e30, 1e30, 1e30});
-    /// Drawn on `mesh` (kept: a copy) with `model` and the wall's material as it is at each hit
-    /// (pickMesh: curved, faded at its silhouette, triplanar mapped). Throws hfx::Error naming
-    /// a bad mesh (MeshData::validate) or a model matrix not finite or without an inverse.
+    /// Drawn on `mesh` (kept: a copy, with its MeshPicker's hierarchy) with `model` and the
+    /// wall's material as it is at each hit (pickMesh's pick: curved, faded at its silhouette,
+    /// triplanar mapped). Throws hfx::Error naming a bad mesh (MeshData::validate) or a model
+    /// matrix not finite or without an inverse.
     WallImpacts(DecalWallEffect& wall, MeshData mesh, const glm::mat4& model);
     const char* name() const override { return "wall"; }
     std::optional<ImpactHit> hit(const Ray& ray) override;
@@ -87,7 +88,7 @@ private:
     DecalWallEffect& wall_;
     SurfaceFrame frame_{};
     glm::dvec4 bounds_{0.0};
-    std::optional<MeshData> mesh_; ///< drawn on a mesh, not on frame_
+    std::optional<MeshPicker> picker_; ///< drawn on a mesh, not on frame_
     glm::mat4 model_{1.0f};
 };
 
@@ -109,8 +110,8 @@ private:
 
 /// The gas giant drawn on `sphere` (makeSphere's by default; pass the one you draw) with
 /// `placement` times its own spin (GasPlanetEffect::modelMatrix()): a storm at the point the path
-/// meets, picked on the relief as drawn (pickMesh with the planet's material and its surface's
-/// heights). Throws hfx::Error naming a bad mesh or placement.
+/// meets, picked on the relief as drawn (a MeshPicker of the sphere with the planet's material
+/// and its surface's heights). Throws hfx::Error naming a bad mesh or placement.
 class PlanetImpacts final : public ImpactReceiver {
 public:
     PlanetImpacts(GasPlanetEffect& planet, MeshData sphere = makeSphere({}), const glm::mat4& placement = glm::mat4(1.0f));
@@ -120,7 +121,7 @@ public:
 
 private:
     GasPlanetEffect& planet_;
-    MeshData sphere_;
+    MeshPicker picker_;
     glm::mat4 placement_;
 };
 

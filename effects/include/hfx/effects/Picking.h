@@ -3,9 +3,10 @@
 // the height field that POM draws, found exactly by the bilinear ray/height-field intersection
 // (HeightFieldTracer), so a click lands on the texel the user sees, not on the flat polygon: on
 // a flat patch (pickSurface) or on any mesh as SurfaceRenderer draws it (pickMesh: curved, with
-// a silhouette fade, or triplanar mapped).
+// a silhouette fade, or triplanar mapped; MeshPicker: the same through a hierarchy of boxes).
 //
-// Owns nothing. Thread: any; pure CPU work.
+// pickSurface and pickMesh own nothing; a MeshPicker owns its copy of the mesh and its hierarchy.
+// Thread: any; pure CPU work.
 
 #include "hfx/core/Camera.h"
 #include "hfx/core/HeightFieldTracer.h"
@@ -15,6 +16,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 namespace hfx {
 
@@ -70,14 +72,41 @@ struct MeshPick : SurfacePick {
 /// behind or inside) picks nothing, as a ray from below the relief does. Not modelled: the
 /// level of detail (lodThreshold: the relief at any distance) and a nearer part of the mesh
 /// passing in front of the traced point. The heights are those of the drawn surface, row 0 at
-/// v = 0 (DecalWallEffect::heightTracer, a SurfaceMaps' heights). O(triangles): 0.19 ms for
-/// makeSphere's 9,216 on one thread of an Intel Xeon (Skylake-AVX512), 170x pickSurface's trace
-/// alone, and 1.2x it for a plane's 2 triangles (hfx-bench-kernels --benchmark_filter=Pick).
+/// v = 0 (DecalWallEffect::heightTracer, a SurfaceMaps' heights). O(triangles): 0.22 ms for
+/// makeSphere's 9,216 on one thread of an Intel Xeon (Skylake-AVX512), and 1.4x pickSurface's
+/// trace alone for a plane's 2 triangles (hfx-bench-kernels --benchmark_filter=BM_Pick); a
+/// MeshPicker picks the same in 1.55 us on that sphere.
 ///
 /// Throws hfx::Error naming the problem: a ray not finite or of no direction, a model matrix
 /// not finite or without an inverse, a bad mesh (MeshData::validate) or material
 /// (SurfaceMaterial::validate, less the shading model's look: no GL call).
 std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
                                  const HeightFieldTracer& heights, const SurfaceMaterial& material);
+
+/// pickMesh on a mesh picked many times: a bounding volume hierarchy over its triangles (in
+/// object space, built once, O(n log n)) passes over the triangles a ray cannot cross, and the
+/// rest are crossed as pickMesh crosses them, so a pick is pickMesh's to the bit, under any
+/// model matrix (MeshPickerTest). Owns a copy of the mesh. Thread: any, const picks concurrently.
+class MeshPicker {
+public:
+    /// Throws hfx::Error for a bad mesh (MeshData::validate).
+    explicit MeshPicker(MeshData mesh);
+    /// pickMesh(ray, mesh(), model, heights, material); throws as it does (its messages begin
+    /// "MeshPicker::pick").
+    std::optional<MeshPick> pick(const Ray& ray, const glm::mat4& model, const HeightFieldTracer& heights,
+                                 const SurfaceMaterial& material) const;
+    const MeshData& mesh() const { return mesh_; }
+    /// The hierarchy's nodes (a leaf holds at most 4 triangles).
+    size_t nodeCount() const { return nodes_.size(); }
+
+private:
+    struct Node {
+        glm::dvec3 lo{0.0}, hi{0.0};
+        std::uint32_t first = 0, count = 0; ///< a leaf's triangles in order_, or (count 0) its first child
+    };
+    MeshData mesh_;
+    std::vector<Node> nodes_;
+    std::vector<std::uint32_t> order_;
+};
 
 } // namespace hfx
