@@ -86,7 +86,8 @@ std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm
 /// pickMesh on a mesh picked many times: a bounding volume hierarchy over its triangles (in
 /// object space, built once, O(n log n)) passes over the triangles a ray cannot cross, and the
 /// rest are crossed as pickMesh crosses them, so a pick is pickMesh's to the bit, under any
-/// model matrix (MeshPickerTest). Owns a copy of the mesh. Thread: any, const picks concurrently.
+/// model matrix (MeshPicker.PicksWhatPickMeshPicksToTheBit). Owns a copy of the mesh.
+/// Thread: any; const picks may run concurrently.
 class MeshPicker {
 public:
     /// Throws hfx::Error for a bad mesh (MeshData::validate).
