@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <utility>
 
 namespace hfx::test {
 namespace {
@@ -216,6 +217,13 @@ TEST_F(PlanetWeather, AStormKeepsItsColourAndRidesTheWindAtItsCentre) {
     EXPECT_LT(distance, 0.5 * height) << "the storm's vortex is not where the planet says the storm is";
     EXPECT_LT(heldError, 0.15) << "the storm lost its colour";
     EXPECT_GT(looseError, 0.2) << "unfed, the storm kept its colour (the test's premise)";
+    // Bad storm settings are refused by name.
+    const std::pair<const char*, GasPlanetConfig> bad[] = {{"stormWind", {.stormWind = -1.0f}},
+                                                           {"stormAspect", {.stormAspect = 0.5f}},
+                                                           {"stormHold", {.stormHold = NAN}},
+                                                           {"stormFeed", {.stormFeed = 1e3f}}};
+    for (const auto& [field, config] : bad)
+        EXPECT_NE(messageOf([&] { config.validate(); }).find(field), std::string::npos) << field;
 }
 
 /// The planet's zonal wind and a storm's wind after `seconds` of gas, in planet units (map widths
