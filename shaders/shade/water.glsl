@@ -10,9 +10,13 @@
 // eye (the green glow of backlit crests). It grows with the crest's height above the mean sea
 // (the thinner the water between the sun and the eye: h = 0.5 is the mean, 0.75 two sigma of
 // the sea above it) and as the eye looks towards the sun through the wave: against the light's
-// direction bent by the surface's normal, as light is where it leaves the water.
+// direction bent by the surface's normal, as light is where it leaves the water. A smaller wave's
+// steep face above the mean is as thin as a great crest: its slope (the relief's normal turned
+// 5 to 16 degrees from the mesh's) lights it from the mean up to a sigma above it, so the faces
+// of a rough sea glow and not only its tallest crests.
 float hfx_crest_glow(HfxSurfacePoint p) {
-    const float crest = smoothstep(0.55, 0.8, p.height);
+    const float steep = smoothstep(0.003, 0.04, 1.0 - dot(p.normal, p.geometricNormal));
+    const float crest = max(smoothstep(0.55, 0.8, p.height), steep * smoothstep(0.5, 0.6, p.height));
     const float through = pow(clamp(dot(p.viewDir, -normalize(p.lightDir + 0.4 * p.normal)), 0.0, 1.0), 4.0);
     return 4.0 * u_translucency * crest * through;
 }
