@@ -4,6 +4,7 @@
 #include "hfx/core/Random.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -158,12 +159,19 @@ std::vector<glm::vec2> GasField::velocityAt(const std::vector<glm::vec2>& points
     }
     if (points.empty()) return {};
     clGuard("GasField::velocityAt", [&] {
-        const cl::Buffer in(cl_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells.size() * sizeof(float),
-                            cells.data());
-        const cl::Buffer result(cl_.context(), CL_MEM_WRITE_ONLY, out.size() * sizeof(float));
+        // The points' buffers are kept (a planet reads its storms' winds every frame), grown to the
+        // next power of two that holds them.
+        if (points.size() > sampleCapacity_) {
+            sampleCapacity_ = std::bit_ceil(points.size());
+            samplePoints_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, 2 * sampleCapacity_ * sizeof(float));
+            sampleWinds_ = cl::Buffer(cl_.context(), CL_MEM_WRITE_ONLY, 2 * sampleCapacity_ * sizeof(float));
+        }
+        cl::CommandQueue& q = cl_.queue();
+        q.enqueueWriteBuffer(samplePoints_, CL_FALSE, 0, cells.size() * sizeof(float), cells.data());
         const int n = int(points.size());
-        run(sampleVelocity_, {arg(u_), arg(v_), arg(in), arg(result), arg(n), arg(W), arg(H)}, cl::NDRange(points.size()));
-        cl_.queue().enqueueReadBuffer(result, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+        run(sampleVelocity_, {arg(u_), arg(v_), arg(samplePoints_), arg(sampleWinds_), arg(n), arg(W), arg(H)},
+            cl::NDRange(points.size()));
+        q.enqueueReadBuffer(sampleWinds_, CL_TRUE, 0, out.size() * sizeof(float), out.data());
     });
     std::vector<glm::vec2> velocities(points.size());
     for (size_t i = 0; i < points.size(); ++i) velocities[i] = {out[2 * i], out[2 * i + 1]};

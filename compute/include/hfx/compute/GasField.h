@@ -128,6 +128,8 @@ private:
     std::vector<GasSplat> splats_;
     std::vector<GasVortex> vortices_;
     std::vector<float> bands_;
+    cl::Buffer samplePoints_, sampleWinds_; ///< velocityAt's, sampleCapacity_ points each
+    size_t sampleCapacity_ = 0;
     cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_;
     cl::Kernel advect_, maccormack_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_, curlKernel_, confine_,
         diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_, relaxDye_;
