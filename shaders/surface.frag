@@ -658,12 +658,13 @@ HfxShaded hfx_surface(HfxFrame f) {
     // What a deferred engine's lighting reads of the traced point.
     s.normal = vec4(point.normal, point.slopeVariance);
     s.albedo = vec4(point.albedo, point.foam.x);
+    // The light that reaches the point: its self-shadow's share, and on water under clouds the
+    // clouds' (water's main).
+    float reaching = selfLit;
 #if HFX_SKY == 1
-    // The light that reaches the point: its self-shadow's share, and the clouds' (water's main).
-    s.material = vec4(point.roughness, point.occlusion, selfLit * g_cloudSunlight, height);
-#else
-    s.material = vec4(point.roughness, point.occlusion, selfLit, height);
+    reaching *= g_cloudSunlight;
 #endif
+    s.material = vec4(point.roughness, point.occlusion, reaching, height);
     s.trace = vec4(uv, depthFraction, lit);
     s.entry = uv0;
     return s;

@@ -107,10 +107,6 @@ int heaviestProjection(glm::dvec3 n, double sharpness) {
     return w.x >= w.y && w.x >= w.z ? 0 : w.y >= w.z ? 1 : 2;
 }
 
-} // namespace
-
-namespace {
-
 // What a mesh pick needs of the model, the ray and the material, checked once.
 struct MeshPickSetup {
     glm::dmat4 m;
