@@ -31,7 +31,8 @@ std::vector<ColorStop> gasGiantPalette();
 struct GasPlanetConfig {
     /// MacCormack's advection keeps the bands' edges and the storms' curls sharp: semi-Lagrangian
     /// advection blurs an edge twice as wide (Gas.MacCormackKeepsAnAdvectedEdgeSharper), for 1.37x
-    /// the gas step's time on PoCL with 2 cores (BM_PlanetGas in hfx-bench-kernels).
+    /// the gas step's time on PoCL on 2 cores of an Intel Xeon, Skylake-AVX512 (BM_PlanetGas in
+    /// hfx-bench-kernels).
     GasConfig gas{.width = 512, .height = 256, .pressureIterations = 30, .vorticity = 0.35f, .maccormack = true,
                   .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f,
                   .initialBands = 9.0f, .bandVariety = 1.0f, .dyeRate = 0.15f};
