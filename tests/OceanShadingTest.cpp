@@ -303,7 +303,7 @@ TEST_F(OceanShading, WhitecapsCoverTheFrameAsMonahansLawSays) {
     // the foam whitens must be W within a factor of 2.5: the scatter of the photographs about
     // Monahan's fit is a factor of 2 to 3. The field injects foam on W of its area at each
     // instant (OceanTest); what a frame shows is that foam as it lasts, drifts and frays, with
-    // the wind's streaks above Beaufort 7: 1.11x, 1.20x, 1.50x and 1.93x W on llvmpipe (the share
+    // the wind's streaks above Beaufort 7: 1.11x, 1.20x, 1.48x and 1.95x W on llvmpipe (the share
     // grows with the wind as the foam's patches do; Beaufort 10's frame is half white). Before
     // foam showed opaque where it shows (it was dimmed by its coverage): 0.08x, 0.88x, 1.33x W
     // at the first three, so a Beaufort 4 sea had no whitecaps to see.
@@ -392,8 +392,8 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
     // OceanEffect: 0 up to the middle of force 7). Beaufort 9 from above: what the streaks add to
     // the frame changes least along one direction, and that is the wind's (0.6 rad from +u; the
     // frame shows u along x and v along y or its mirror), within 15 degrees; across it changes at
-    // least twice as much (2.2x on llvmpipe since the streaks meander and break into patches; 2.6x
-    // as unbroken lines). At Beaufort 6 there are none: the frame is the same with the streaks
+    // least twice as much (3.1x on llvmpipe as bands of foam; 2.2x as the thin lines that meander
+    // and break into patches, 2.6x as unbroken lines). At Beaufort 6 there are none: the frame is the same with the streaks
     // switched off.
     constexpr float kWind = 0.6f;
     OceanEffect gale(
@@ -453,6 +453,63 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
     SurfaceMaterial forced = fresh.material();
     forced.water.spindrift = 0.0f;
     EXPECT_EQ(calmView.draw(fresh, fresh.material()).pixels, calmView.draw(fresh, forced).pixels);
+}
+
+/// The light a gale's streaks add to four top-down frames from `eye` metres (kSize square each,
+/// 40 m apart across the wind along v), and the lag across the wind (pixels along y: the wind
+/// blows along u, x in the frame) at which that light's correlation with itself falls to half.
+std::pair<double, double> streaksAcrossTheWind(OceanEffect& gale, float eye) {
+    TopDown view(gale, eye);
+    SurfaceMaterial calm = gale.material();
+    calm.water.spindrift = 0.0f;
+    const int n = TopDown::kSize;
+    std::vector<std::vector<double>> frames;
+    double total = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        view.camera.position = {0.0f, eye, 40.0f * float(i)};
+        view.camera.target = {0.0f, 0.0f, 40.0f * float(i) - 0.001f};
+        const Image with = view.draw(gale, gale.material()), without = view.draw(gale, calm);
+        std::vector<double>& added = frames.emplace_back(size_t(n) * n);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                total += added[size_t(y) * n + x] = TopDown::luma(with, x, y) - TopDown::luma(without, x, y);
+    }
+    const double mean = total / double(frames.size() * n * n);
+    auto correlation = [&](int lag) {
+        double sum = 0.0;
+        for (const std::vector<double>& added : frames)
+            for (int y = 0; y + lag < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    sum += (added[size_t(y) * n + x] - mean) * (added[size_t(y + lag) * n + x] - mean);
+        return sum / double(n - lag);
+    };
+    // The first lag whose correlation is under half, and where between it and the lag before the
+    // correlation crossed half (linearly).
+    const double zero = correlation(0);
+    double before = zero, at = correlation(1);
+    int lag = 1;
+    while (lag < n / 2 && at > 0.5 * zero) before = at, at = correlation(++lag);
+    return {mean, double(lag - 1) + (before - 0.5 * zero) / std::max(before - at, 1e-30)};
+}
+
+TEST_F(OceanShading, AGalesStreaksNearTheEyeAreBandsOfFoamNotScratches) {
+    // The streaks were solid lines 12 cm wide drawn over the foam: near the eye, narrower than the
+    // foam's own bubbles and crossing them, they read as scratches on the sea (the gallery's
+    // Beaufort 10). Now a streak is a band of the foam's own structure, 0.6 to 1.8 m wide, denser
+    // in its middle. Beaufort 10 from 24 m (7.5 cm a pixel): the light the streaks add stays
+    // correlated across the wind over at least 15 cm (2 pixels; 2.6 on llvmpipe, the bubbles'
+    // holes cutting it short), where the lines' fell to half within 0.8 pixels.
+    OceanEffect gale(cl(), {.ocean = {.size = 256,
+                                      .cascades = 3,
+                                      .sea = {.wind = {.windSpeed = beaufortWindSpeed(10), .direction = 0.0f}}}});
+    for (int i = 0; i < 25; ++i) gale.update(0.2);
+    ASSERT_GT(gale.material().water.spindrift, 0.99f);
+    const auto [added, lag] = streaksAcrossTheWind(gale, 24.0f);
+    std::printf("[spindrift] Beaufort 10 from 24 m: the streaks add %.4f of luminance, correlated across the wind "
+                "to half over %.1f pixels (%.2f m)\n",
+                added, lag, 0.075 * lag);
+    EXPECT_GT(added, 0.002) << "no streaks to see";
+    EXPECT_GT(lag, 2.0) << "the streaks are hairlines across the wind";
 }
 
 TEST_F(OceanShading, WindStreaksFadeAsAWindChangeBlendsIn) {

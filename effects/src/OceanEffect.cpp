@@ -113,8 +113,8 @@ void OceanEffect::advance(double dt) {
 
 namespace {
 // The wind streaks' lattice across the wind, metres (the noise crosses its middle in about half
-// its cells: a line of foam every 2 m or so).
-constexpr double kStreakMeters = 1.0;
+// its cells: a band of foam every 3 m or so).
+constexpr double kStreakMeters = 3.0;
 } // namespace
 
 void OceanEffect::updateFoamLook(double dt) {

@@ -70,16 +70,26 @@ vec2 hfx_foam_lace(vec2 uv, float footprint) {
     return lace;
 }
 
-// Wind streaks (spindrift, above Beaufort 7): foam drawn out downwind into thin lines, along `w`
+// A wind streak's density across it (1 within `inner` of its middle, falling linearly to 0 at
+// `outer`) integrated from the middle out to x, odd in x: the difference of two is what a pixel's
+// box covers of it.
+float hfx_streak_integral(float x, float inner, float outer) {
+    const float a = abs(x), fall = outer - inner, beyond = max(outer - min(a, outer), 0.0);
+    const float integral = a <= inner ? a : inner + 0.5 * (fall - beyond * beyond / fall);
+    return x < 0.0 ? -integral : integral;
+}
+
+// Wind streaks (spindrift, above Beaufort 7): foam drawn out downwind into long bands, along `w`
 // (unit, texcoords) at `strength`, u_streakCells lattice cells per texcoord across the wind and 12
-// times longer along it, riding with the foam's drift. A line runs where a value noise over that
+// times longer along it, riding with the foam's drift. A band runs where a value noise over that
 // lattice crosses its middle, wavering as the noise does and meandering across the wind by up to
 // half a cell over 8 cells along it (a second noise), broken into lengths by the first noise's
-// second value and into patches about five cells long by a third: straight unbroken lines read as
-// scratches on the sea near the eye. It is 0.12 of a cell wide (12 cm at OceanEffect's 1 m),
-// measured across the wind from the noise's slope, and what of it a pixel `footprint` texcoords
-// wide covers is its share of the pixel (a box filter: far off a faint line, not an aliased one).
-// Returns the streaks' cover, 0..0.8 strength.
+// second value and into patches about five cells long by a third, which also swells and thins
+// it: its density is 1 within a third of its half-width of its middle and falls to 0 at its edge,
+// the half-width 0.1 to 0.3 of a cell (a band 0.6 to 1.8 m wide at OceanEffect's 3 m cells),
+// measured across the wind from the noise's slope. Returns what a pixel `footprint` texcoords wide
+// covers of that density (a box filter: far off a faint line, not an aliased one) times
+// `strength`: the streaks' share of the pixel, which hfx_shade draws as foam.
 float hfx_streaks(vec2 uv, float footprint, vec2 w, float strength) {
     if (!(strength > 0.0)) return 0.0;
     const vec2 d = uv - u_foamDrift;
@@ -96,13 +106,14 @@ float hfx_streaks(vec2 uv, float footprint, vec2 w, float strength) {
     // The noise's change per cell across the wind, and how many cells away its middle is.
     const float slope = abs(mix(b.x - a.x, e.x - c.x, s.y)) * 6.0 * f.x * (1.0 - f.x);
     const float dist = abs(n.x - 0.5) / max(slope, 0.05);
-    const float halfWidth = 0.06, pixel = max(u_streakCells * footprint, 1e-4);
-    const float covered =
-        max(min(dist + 0.5 * pixel, halfWidth) - max(dist - 0.5 * pixel, -halfWidth), 0.0) / pixel;
     const float g0 = floor(along / 5.0), g = along / 5.0 - g0;
-    const float patches = mix(hfx_hash2(vec2(cell.x, g0) + 33.0).y, hfx_hash2(vec2(cell.x, g0 + 1.0) + 33.0).y,
-                              g * g * (3.0 - 2.0 * g));
-    return 0.8 * strength * smoothstep(0.35, 0.65, n.y) * smoothstep(0.2, 0.6, patches) * covered;
+    const vec2 patches = mix(hfx_hash2(vec2(cell.x, g0) + 33.0), hfx_hash2(vec2(cell.x, g0 + 1.0) + 33.0),
+                             g * g * (3.0 - 2.0 * g));
+    const float outer = 0.1 + 0.2 * patches.x, inner = outer / 3.0, pixel = max(u_streakCells * footprint, 1e-4);
+    const float density = (hfx_streak_integral(dist + 0.5 * pixel, inner, outer) -
+                           hfx_streak_integral(dist - 0.5 * pixel, inner, outer)) /
+                          pixel;
+    return strength * density * smoothstep(0.35, 0.65, n.y) * smoothstep(0.2, 0.6, patches.y);
 }
 
 // The wind's streaks (u_spindrift along u_windDirection) and, over a wind change, the last
@@ -110,7 +121,7 @@ float hfx_streaks(vec2 uv, float footprint, vec2 w, float strength) {
 float hfx_spindrift(vec2 uv, float footprint) {
     return min(hfx_streaks(uv, footprint, u_windDirection, u_spindrift) +
                    hfx_streaks(uv, footprint, u_windDirectionFrom, u_spindriftFrom),
-               0.8);
+               1.0);
 }
 
 vec3 hfx_shade(HfxSurfacePoint p) {
@@ -136,13 +147,29 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     // water's white. The layers' foams combine as independent coverages. Where it shows it is
     // white: foam dimmed by its coverage read as a grey veil, and a calm sea's thin whitecaps did
     // not show at all (OceanShading.WhitecapsCoverTheFrameAsMonahansLawSays).
+    // The wind's streaks, in a gale: their share of the pixel (hfx_spindrift).
+    const bool gale = u_spindrift > 0.0 || u_spindriftFrom > 0.0;
+    const float streak = gale ? hfx_spindrift(p.texcoord, p.footprint) : 0.0;
     const vec4 ripple = clamp(0.5 + 3.0 * (p.foamDetail - 0.5), 0.0, 1.0);
     const vec4 coverage = clamp(p.foam, 0.0, 1.0);
+    // The lace where foam shows (else its mean, as if far off: a gale's streaks outside the foam
+    // are the ripple's; drawn there too, the lace took the clouds' program from 64 registers to
+    // 72 on RDNA2).
+    const bool foamed = any(greaterThan(coverage, vec4(0.0)));
+    const vec2 lace = u_foamCells > 0.0 && foamed ? hfx_foam_lace(p.texcoord, p.footprint) : vec2(HFX_LACE_MEAN, 0.0);
+    // Near the eye a streak is aged foam whose coverage is its share, a band of the foam's own
+    // bubbles, denser in its middle and frayed at its edges (drawn solid over the foam, a streak
+    // read as a scratch across its bubbles); far off, where it spans under a few pixels, or
+    // without bubbles, its share.
+    const float streakFar = u_foamCells > 0.0 ? smoothstep(0.1, 0.4, u_streakCells * p.footprint) : 1.0;
+    const float streakShown =
+        streak > 0.0 ? mix(0.85 * smoothstep(1.0 - streak - 0.7 * lace.y, 1.4 - streak + 0.7 * lace.y,
+                                             0.3 * ripple.x + 0.7 * lace.x),
+                           streak, streakFar)
+                     : 0.0;
     vec4 structure = ripple, spread = vec4(0.0), opacity = vec4(1.0), thin = coverage;
-    vec2 lace = vec2(HFX_LACE_MEAN, 0.0); // where it is not drawn
-    if (u_foamCells > 0.0 && any(greaterThan(coverage, vec4(0.0)))) {
+    if (u_foamCells > 0.0 && foamed) {
         const vec4 young = clamp(p.foamYoung / max(coverage, 1.0 / 255.0), 0.0, 1.0);
-        lace = hfx_foam_lace(p.texcoord, p.footprint);
         structure = mix(0.3 * ripple + 0.7 * lace.x, 0.7 * ripple + 0.3 * lace.x, young);
         spread = lace.y * mix(vec4(0.7), vec4(0.3), young);
         opacity = mix(vec4(0.85), vec4(1.0), young);
@@ -150,10 +177,7 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     }
     const vec4 shown = opacity * smoothstep(1.0 - thin - spread, 1.4 - thin + spread, structure);
     const vec4 clear = 1.0 - shown;
-    // The wind's streaks over it, in a gale.
-    const float foam = u_foam != 0 ? max(1.0 - clear.x * clear.y * clear.z * clear.w,
-                                         hfx_spindrift(p.texcoord, p.footprint))
-                                   : 0.0;
+    const float foam = u_foam != 0 ? max(1.0 - clear.x * clear.y * clear.z * clear.w, streakShown) : 0.0;
     const float variance = p.slopeVariance + foam * u_foamRoughness;
     const float power = u_glintPower / (1.0 + 4.0 * u_glintPower * variance);
     const float glint = u_glintStrength * (power + 2.0) / (u_glintPower + 2.0) * pow(max(dot(reflected, p.lightDir), 0.0), power);
