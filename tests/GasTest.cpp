@@ -393,6 +393,69 @@ TEST_F(Gas, AHeldVortexBlowsItsStreamfunctionsWind) {
     EXPECT_NE(messageOf([&] { gas.addVortex({.v = 1.0f}); }).find("outside the map"), std::string::npos);
 }
 
+TEST_F(Gas, AStepsSplatsApplyInTheOrderTheyCameOverEveryCellTheyReach) {
+    // GasField::step applies a step's splats in the order they were added, each over the window
+    // of cells it reaches (6 radii; the map where that is wider), wrapped across u = 0. Twelve
+    // splats in one step, overlapping, a dye target among them so that their order matters, some
+    // across the seam at u = 0, some at the walls, one wider than the map, on a map that is not
+    // a whole number of tiles (72 x 40), in a still gas (whose step then changes only the dye):
+    // the dye is a plain C++ reference's, every splat applied to every cell in turn (no window:
+    // beyond the kernel's 6 radii the Gaussian is under 10^-15), within 10^-5; in the reverse
+    // order it differs by over 0.05.
+    constexpr int W = 72, H = 40;
+    for (const EdgeMode edges : {EdgeMode::WrapU, EdgeMode::Wrap}) {
+        const bool walls = edges == EdgeMode::WrapU;
+        GasField gas(cl(), {.width = W, .height = H, .edges = edges, .pressureIterations = 4, .conserveDye = false});
+        std::vector<float> u(size_t(W) * H, 0.0f), v(u), dye(u);
+        SplitMix64 random(7);
+        for (float& d : dye) d = float(random.next());
+        gas.setState(u, v, dye);
+        std::vector<GasSplat> splats;
+        for (int n = 0; n < 12; ++n) {
+            const bool edge = n % 3 == 0;
+            splats.push_back({.u = edge ? float(random.uniform(0.9, 1.0)) : float(random.next()),
+                              .v = n % 4 == 1 ? float(random.uniform(0.0, 0.06)) : float(random.next()),
+                              .radius = n == 5 ? 0.4f : float(random.uniform(0.02, 0.08)),
+                              .dye = n % 2 == 0 ? float(random.uniform(0.3, 0.9)) : float(random.uniform(-0.5, 0.5)),
+                              .dyeTarget = n % 2 == 0 ? float(random.next()) : -1.0f});
+        }
+        for (const GasSplat& s : splats) gas.addSplat(s);
+        gas.step(0.1);
+        std::vector<float> ru, rv, result;
+        gas.readState(ru, rv, result);
+        auto reference = [&](bool reversed) {
+            std::vector<double> d(dye.begin(), dye.end());
+            for (int m = 0; m < int(splats.size()); ++m) {
+                const GasSplat& s = splats[size_t(reversed ? int(splats.size()) - 1 - m : m)];
+                const double x = double(s.u) * W, y = double(s.v) * H, r = double(s.radius) * W;
+                for (int j = 0; j < H; ++j)
+                    for (int i = 0; i < W; ++i) {
+                        double dx = i + 0.5 - x, dy = j + 0.5 - y;
+                        dx -= W * std::round(dx / W);
+                        if (!walls) dy -= H * std::round(dy / H);
+                        const double e = std::exp(-(dx * dx + dy * dy) / (r * r));
+                        double& c = d[size_t(j) * W + i];
+                        c = s.dyeTarget >= 0.0f ? c + (s.dyeTarget - c) * std::clamp(s.dye * e, 0.0, 1.0)
+                                                : std::clamp(c + s.dye * e, 0.0, 1.0);
+                    }
+            }
+            return d;
+        };
+        const std::vector<double> forward = reference(false), backward = reference(true);
+        double error = 0.0, order = 0.0;
+        for (size_t k = 0; k < result.size(); ++k) {
+            error = std::max(error, std::abs(double(result[k]) - forward[k]));
+            order = std::max(order, std::abs(backward[k] - forward[k]));
+        }
+        std::printf("[splats] %s: largest difference from the reference %.2g, from its reverse order %.3f\n",
+                    walls ? "walls" : "wrapped", error, order);
+        EXPECT_LT(error, 1e-5) << (walls ? "walls" : "wrapped");
+        EXPECT_GT(order, 0.05) << "the splats' order does not matter here: the test cannot tell it";
+        EXPECT_EQ(*std::max_element(ru.begin(), ru.end()), 0.0f) << "the gas moved";
+        EXPECT_EQ(*std::min_element(ru.begin(), ru.end()), 0.0f) << "the gas moved";
+    }
+}
+
 TEST_F(Gas, BadInputIsRefused) {
     EXPECT_THROW(GasField(cl(), {.bandVariety = 1.5f}), Error);
     EXPECT_THROW(GasField(cl(), {.dyeRate = -0.1f}), Error);
