@@ -11,6 +11,7 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "hfx/effects/GlStatePolicy.h"
 #include "hfx/platform/GlContext.h"
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/core/RenderTarget.h"
@@ -49,6 +50,7 @@ struct Options {
     std::string technique = "auto";
     std::string surfaceFormat = "float32";
     std::string tracePass = "auto";
+    std::string glState = "restore";
     std::string transfer = "auto";
     std::string format = "png";
     bool noProgress = false;
@@ -196,6 +198,7 @@ int run(const Options& o) {
     GlContext* gl = devices.gl.get();
     ClContext& cl = *devices.cl;
     if (gl->headless()) refuseHierOptions(o, sceneOptions.technique);
+    setGlStatePolicy(o.glState == "defaults" ? GlStatePolicy::Defaults : GlStatePolicy::Restore);
     if (gl->headless() && !o.windowShot.empty()) // a window-only option, not dropped where none opened
         throw Error(str("--window-shot saves what a window shows, and this run is headless",
                         o.headless ? "" : " (no display)", ": its frames go to --out"));
@@ -316,6 +319,11 @@ int main(int argc, char** argv) {
                    "CPU rasteriser, else whichever of the two this device draws faster, timed on the first draws), "
                    "draw, or compute (a rays draw, a compute pass a lane per pixel, the shading draw; the same hits)")
         ->check(CLI::IsMember({"auto", "draw", "compute"}))->capture_default_str();
+    app.add_option("--gl-state", o.glState,
+                   "what HFX's draws do with the GL state they change (hfx::GlStatePolicy): restore (read it first and "
+                   "put it back) or defaults (read none of it and leave GL's defaults, as for an engine that binds its "
+                   "own state before each draw; the same frames)")
+        ->check(CLI::IsMember({"restore", "defaults"}))->capture_default_str();
     app.add_option("--surface-format", o.surfaceFormat,
                    "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
                    "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")

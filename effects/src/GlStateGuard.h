@@ -9,6 +9,7 @@
 #include "hfx/core/Finite.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/GlObject.h"
+#include "hfx/effects/GlStatePolicy.h"
 #include "hfx/effects/SurfaceRenderer.h"
 #include "hfx/effects/SurfaceUniforms.h"
 #include "ModelMatrix.h"
@@ -16,6 +17,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
 #include <ios>
 #include <string>
 
@@ -38,6 +40,7 @@ void updateBlock(GlBuffer& buffer, GLuint binding, const Block& data) {
 /// its far. Any other is the caller's convention that this draw would get wrong: its traced
 /// depths would be written for the other, and its depth test would face the wrong way.
 inline void checkClipControl(bool reversedZ) {
+    if (glStatePolicy() == GlStatePolicy::Defaults) return; // no queries: the caller vouches for it
     GLint origin = GL_LOWER_LEFT, depthMode = GL_NEGATIVE_ONE_TO_ONE;
     glGetIntegerv(GL_CLIP_ORIGIN, &origin);
     glGetIntegerv(GL_CLIP_DEPTH_MODE, &depthMode);
@@ -89,7 +92,7 @@ inline ColorTarget boundColorTarget(GLuint drawBuffer = 0) {
 /// clamp them to 0, an integer one takes no float. A float or signed normalized target holds
 /// them; with nothing there (GL_NONE) nothing is written.
 inline void checkSignedTarget(int drawBuffer, const char* what) {
-    if (drawBuffer <= 0) return;
+    if (drawBuffer <= 0 || glStatePolicy() == GlStatePolicy::Defaults) return;
     const GLint type = boundColorTarget(GLuint(drawBuffer)).componentType;
     if (type == GL_NONE || type == GL_FLOAT || type == GL_SIGNED_NORMALIZED) return;
     throw Error(str(what, " goes to draw buffer ", drawBuffer, " of the bound framebuffer, whose target is ",
@@ -144,10 +147,14 @@ inline void setEye(SurfaceUniforms& u, const Camera& camera) {
     u.towardsEye = u.orthographic ? -glm::vec3(camera.rayThroughPixel(1.0, 1.0, 2, 2).direction) : glm::vec3(0.0f);
 }
 
-/// Saves what a surface draw or pass changes and puts it back, so the caller's state survives.
+/// Saves what a surface draw or pass changes and puts it back, so the caller's state survives. Under
+/// GlStatePolicy::Defaults it saves nothing and puts back GL's defaults (what the members start
+/// as), except inside another guard (a pass a draw runs, the texel shadows), where what it puts
+/// back is what that draw had bound.
 class GlStateGuard {
 public:
-    GlStateGuard() {
+    GlStateGuard() : nested_(depth()++ > 0) {
+        if (glStatePolicy() == GlStatePolicy::Defaults && !nested_) return;
         depthTest_ = glIsEnabled(GL_DEPTH_TEST);
         cullFace_ = glIsEnabled(GL_CULL_FACE);
         glGetIntegerv(GL_CULL_FACE_MODE, &cullMode_);
@@ -189,6 +196,7 @@ public:
         }
     }
     ~GlStateGuard() {
+        --depth();
         (depthTest_ ? glEnable : glDisable)(GL_DEPTH_TEST);
         (cullFace_ ? glEnable : glDisable)(GL_CULL_FACE);
         glCullFace(GLenum(cullMode_));
@@ -230,16 +238,22 @@ public:
     GlStateGuard& operator=(const GlStateGuard&) = delete;
 
 private:
-    GLboolean depthTest_, depthMask_, programPointSize_, cullFace_;
-    GLint cullMode_, frontFace_; // a closed mesh's back faces culled, a mirrored model's winding
-    GLint indirect_, dispatch_; // the deferred walks' indirect buffers (ExactTracer)
+    /// How many guards this thread is inside.
+    static int& depth() {
+        thread_local int guards = 0;
+        return guards;
+    }
+    bool nested_;
+    GLboolean depthTest_ = GL_FALSE, depthMask_ = GL_TRUE, programPointSize_ = GL_FALSE, cullFace_ = GL_FALSE;
+    GLint cullMode_ = GL_BACK, frontFace_ = GL_CCW; // a closed mesh's back faces culled, a mirrored model's winding
+    GLint indirect_ = 0, dispatch_ = 0; // the deferred walks' indirect buffers (ExactTracer)
     // the storage buffers of hfx/core/Bindings.h: the deferred walks', the computed walks' three
     static constexpr GLuint kStorage = HFX_BUFFER_TRACE_LIGHTS + 1;
     static_assert(HFX_BUFFER_DEFERRED_SHADOWS < kStorage && HFX_BUFFER_TRACE_RAYS < kStorage &&
                       HFX_BUFFER_TRACE_INFO < kStorage,
                   "hfx/core/Bindings.h: the guard saves every storage binding");
-    GLint storage_[kStorage];
-    GLint64 storageStart_[kStorage], storageSize_[kStorage];
+    GLint storage_[kStorage] = {};
+    GLint64 storageStart_[kStorage] = {}, storageSize_[kStorage] = {};
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
     // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,
@@ -248,41 +262,55 @@ private:
     static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages,
                   "hfx/core/Bindings.h: the guard saves every image unit");
     struct Image {
-        GLint name, level, layered, layer, access, format;
+        GLint name = 0, level = 0, layered = GL_FALSE, layer = 0, access = GL_READ_ONLY, format = GL_R8;
     };
     Image images_[kImages];
     static constexpr GLuint kBlocks = HFX_BLOCK_SHADOWS + 1; // surface, water, water rings, planet, shadows
-    GLint depthFunc_, program_, vao_, activeTexture_, textures_[kUnits], blocks_[kBlocks];
+    GLint depthFunc_ = GL_LESS, program_ = 0, vao_ = 0, activeTexture_ = GL_TEXTURE0, textures_[kUnits] = {},
+          blocks_[kBlocks] = {};
     GLint shadowArray_ = 0, shadowSampler_ = 0;
-    GLint64 blockStart_[kBlocks], blockSize_[kBlocks];
+    GLint64 blockStart_[kBlocks] = {}, blockSize_[kBlocks] = {};
 };
 
 /// For its scope a draw into the caller's framebuffer writes only the draw buffers it has
 /// outputs for (`written`: a bit per buffer; 0, none: a shadow caster's): GL leaves a buffer with no
 /// fragment output undefined, and llvmpipe writes output 0's colour there, over an engine's
 /// other targets (its normals, its motion: EngineOutputsTest). The caller's own masks are kept
-/// on the buffers written, and put back on the others when it ends.
+/// on the buffers written, and put back on the others when it ends (GL's default, every channel
+/// written, under GlStatePolicy::Defaults, except inside another of these: the deferred walks'
+/// points inside the draw).
 class DrawBuffersWritten {
 public:
-    explicit DrawBuffersWritten(unsigned written) : first_(written & 1u) {
+    explicit DrawBuffersWritten(unsigned written)
+        : first_(written & 1u), counted_(glStatePolicy() == GlStatePolicy::Defaults) {
+        const bool query = !counted_ || depth()++ > 0;
         for (GLuint i = first_; i < kDrawBuffers; ++i) {
-            glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
+            std::fill_n(masks_[i], 4, GLboolean(GL_TRUE));
+            if (query) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
             if (!(written >> i & 1u)) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         }
     }
     ~DrawBuffersWritten() {
+        if (counted_) --depth();
         for (GLuint i = first_; i < kDrawBuffers; ++i) glColorMaski(i, masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
     }
     DrawBuffersWritten(const DrawBuffersWritten&) = delete;
     DrawBuffersWritten& operator=(const DrawBuffersWritten&) = delete;
 
 private:
+    /// How many of these this thread is inside, counted under GlStatePolicy::Defaults.
+    static int& depth() {
+        thread_local int scopes = 0;
+        return scopes;
+    }
     GLuint first_; ///< buffer 0 is masked only where the draw writes no colour at all
-    GLboolean masks_[kDrawBuffers][4] = {};
+    bool counted_; ///< made under GlStatePolicy::Defaults, and counted in depth()
+    GLboolean masks_[kDrawBuffers][4] = {}; ///< what to put back
 };
 
 /// For its scope a draw writes no colour to any draw buffer and no depth (ExactTracer's rays draw,
-/// whose fragments only store their rays); puts back the caller's masks when it ends.
+/// whose fragments only store their rays); puts back the masks it found when it ends (under any
+/// GlStatePolicy: the draw that follows writes with them).
 class NoFramebufferWrites {
 public:
     NoFramebufferWrites() {

@@ -169,8 +169,8 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     checkClipControl(camera.reversedZ);
     checkSignedTarget(motionOutput_, "the rings' motion (PlanetRings::setMotionOutput)");
     GlStateGuard guard;
-    GLboolean depthWrites = GL_TRUE;
-    glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
+    GLboolean depthWrites = GL_TRUE; // GL's default under GlStatePolicy::Defaults
+    if (glStatePolicy() == GlStatePolicy::Restore) glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
     GLint viewport[4], drawFramebuffer = 0, readFramebuffer = 0;
     glGetIntegerv(GL_VIEWPORT, viewport);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);

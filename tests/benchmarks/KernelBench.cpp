@@ -19,9 +19,13 @@
 #include "hfx/compute/WaveField.h"
 #include "hfx/compute/shared/NoiseMath.h"
 #include "hfx/core/Random.h"
+#include "hfx/core/Mesh.h"
+#include "hfx/core/RenderTarget.h"
 #include "hfx/effects/GasPlanetEffect.h"
+#include "hfx/effects/GlStatePolicy.h"
 #include "hfx/effects/Picking.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/platform/GlContext.h"
 
 #include <benchmark/benchmark.h>
 #include <fftw3.h>
@@ -414,6 +418,32 @@ void BM_InverseFft(benchmark::State& state) {
     fftwf_destroy_plan(plan);
 }
 
+/// The host's time to issue one POM draw of a 64² surface into a 64x64 target (the GL context's
+/// own work waited for outside the timing) under GlStatePolicy Restore (0) or Defaults (1): the
+/// ~120 state queries and restores a restoring draw makes. On a driver that runs GL on a thread
+/// of its own each query also waits for that thread, which this does not measure.
+void BM_DrawIssue(benchmark::State& state) {
+    static std::unique_ptr<GlContext> gl = createHeadlessContext({.width = 64, .height = 64});
+    gl->makeCurrent();
+    constexpr int field = 64;
+    SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = 0.1f});
+    textures.uploadTexels(sobelReference(sumOfSines(field, {{0.3, 2, 1, 0.0}}), field, 0.1f).data());
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.55f, 0.6f);
+    RenderTarget target(64, 64);
+    SurfaceRenderer renderer;
+    renderer.setColorOutput(ColorOutput::Display);
+    target.bind();
+    setGlStatePolicy(state.range(0) != 0 ? GlStatePolicy::Defaults : GlStatePolicy::Restore);
+    for (auto _ : state) {
+        renderer.draw(plane, glm::mat4(1.0f), textures, {.depthScale = 0.1f}, camera, DirectionalLight{});
+        state.PauseTiming();
+        glFinish();
+        state.ResumeTiming();
+    }
+    setGlStatePolicy(GlStatePolicy::Restore);
+}
+
 BENCHMARK(BM_Sobel)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SobelKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Decals)->Arg(512)->Arg(2048)->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -437,8 +467,8 @@ BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Un
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetGas)->Arg(0)->Arg(1)->ArgNames({"maccormack"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetStorms)->Arg(0)->Arg(1)->ArgNames({"held"})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DrawIssue)->Arg(0)->Arg(1)->ArgNames({"defaults"})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
-
 } // namespace
 } // namespace hfx::test
 
