@@ -27,7 +27,8 @@ namespace hfx::test {
 namespace {
 
 /// Counts the GL state queries made while it lives: every glGet* and glIs* entry point HFX's
-/// draws call, wrapped through glad's pointers.
+/// draws call, wrapped through glad's pointers (not glGetError, which HFX polls only in a
+/// HFX_GL_DEBUG build).
 int gQueries = 0;
 #define HFX_COUNTED(name, ret, params, args)                                                       \
     decltype(glad_##name) real_##name = nullptr;                                                   \
@@ -48,7 +49,6 @@ HFX_COUNTED(glIsTexture, GLboolean, (GLuint a), (a))
 HFX_COUNTED(glGetNamedFramebufferAttachmentParameteriv, void, (GLuint f, GLenum a, GLenum p, GLint* v), (f, a, p, v))
 HFX_COUNTED(glGetTextureLevelParameteriv, void, (GLuint t, GLint l, GLenum p, GLint* v), (t, l, p, v))
 HFX_COUNTED(glGetTextureParameteriv, void, (GLuint t, GLenum p, GLint* v), (t, p, v))
-HFX_COUNTED(glGetError, GLenum, (), ())
 #undef HFX_COUNTED
 
 class CountedQueries {
@@ -78,7 +78,6 @@ private:
         HFX_SWAP(glGetNamedFramebufferAttachmentParameteriv);
         HFX_SWAP(glGetTextureLevelParameteriv);
         HFX_SWAP(glGetTextureParameteriv);
-        HFX_SWAP(glGetError);
 #undef HFX_SWAP
     }
 };
