@@ -13,7 +13,8 @@
 # transfer table) at both sizes, the decal wall and the planet at 1280x720 again with hier walking
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
 # column gives its medians of both passes), the ringed planet and the noise on the triplanar box at
-# 1280x720. A step that runs out of time is cut and says so; the rest go on. HFX_GPU_STEPS may name
+# 1280x720, and a draw's issue time under both GlStatePolicy values with the driver's threaded
+# optimisation off and on. A step that runs out of time is cut and says so; the rest go on. HFX_GPU_STEPS may name
 # fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is then shared among those.
 # Nothing here installs anything: the bundle carries what the binaries need
 # but the GL and OpenCL drivers, and glvnd's libraries where a bare GPU image lacks them (EGL then
@@ -30,7 +31,8 @@ run=(bash "$bundle/run.sh")
 # Each step's share of the budget, in percent of all steps; HFX_GPU_STEPS selects.
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10
                    [gl-tests-compute-pass]=4 [bench-tracers-720p]=12 [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
-                   [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8 [bench-triplanar-720p]=6)
+                   [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8 [bench-triplanar-720p]=6
+                   [bench-draw-issue]=3)
 # By default every step but gl-tests-compute-pass, which gl-tests-rest holds.
 selected=${HFX_GPU_STEPS:-$(printf '%s\n' "${!shares[@]}" | grep -vx gl-tests-compute-pass | tr '\n' ' ')}
 total=0
@@ -94,4 +96,10 @@ step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1
 # costs a warp (its POM / NM beside the plane's in bench-720p's tables; on llvmpipe 1.6-1.9x the
 # box's own texcoords, docs/BENCHMARKS.md).
 step bench-triplanar-720p "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 --height 720
+# The host's time to issue a POM draw restoring the caller's GL state (about 120 queries) and under
+# GlStatePolicy::Defaults (none), with NVIDIA's threaded optimisation off and on: on, each query
+# waits for the driver's thread (docs/BENCHMARKS.md, "The GL state a draw reads").
+step bench-draw-issue bash -c "for t in 0 1; do echo \"__GL_THREADED_OPTIMIZATIONS=\$t\"; \
+    __GL_THREADED_OPTIMIZATIONS=\$t bash '$bundle/run.sh' hfx-bench-kernels --benchmark_filter=DrawIssue \
+    --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true; done"
 echo "== done in $(($(date +%s) - start))s of ${budget}s" | tee -a "$out/summary.txt"
