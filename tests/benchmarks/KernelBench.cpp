@@ -423,7 +423,8 @@ void BM_InverseFft(benchmark::State& state) {
 /// ~120 state queries and restores a restoring draw makes. On a driver that runs GL on a thread
 /// of its own each query also waits for that thread, which this does not measure.
 void BM_DrawIssue(benchmark::State& state) {
-    static std::unique_ptr<GlContext> gl = createHeadlessContext({.width = 64, .height = 64});
+    // Outlives every benchmark, as the tests' context does (no driver teardown at exit).
+    static GlContext* gl = createHeadlessContext({.width = 64, .height = 64}).release();
     gl->makeCurrent();
     constexpr int field = 64;
     SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = 0.1f});
