@@ -168,9 +168,7 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
         throw Error(str("PlanetRings::draw: the previous model must be finite, got the columns ", columnsText(*previousModel)));
     checkClipControl(camera.reversedZ);
     checkSignedTarget(motionOutput_, "the rings' motion (PlanetRings::setMotionOutput)");
-    GlStateGuard guard;
-    GLboolean depthWrites = GL_TRUE; // GL's default under GlStatePolicy::Defaults
-    if (glStatePolicy() == GlStatePolicy::Restore) glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
+    GlStateGuard guard; // (it puts back the depth mask the draw turns off, among the rest)
     GLint viewport[4], drawFramebuffer = 0, readFramebuffer = 0;
     glGetIntegerv(GL_VIEWPORT, viewport);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
@@ -239,7 +237,6 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
         const GpuScope scope("rings' motion");
         annulus_.draw();
     }
-    glDepthMask(depthWrites);
 }
 
 } // namespace hfx
