@@ -305,8 +305,8 @@ std::optional<MeshPick> MeshPicker::pick(const Ray& ray, const glm::mat4& model,
     const glm::dvec3 o(inverse * glm::dvec4(ray.origin, 1.0)), d(inverse * glm::dvec4(setup.dir, 0.0));
     const glm::dvec3 invD(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
     auto enters = [&](const Node& n) {
-        // The slabs' test; an axis the ray runs along (invD infinite) leaves its slab's interval
-        // whole when the origin lies in it (0 * inf is NaN, which max and min pass over).
+        // The slabs' test; an axis the ray runs along (d 0, invD infinite) holds the ray wholly
+        // or not at all, by where its origin lies.
         double t0 = 0.0, t1 = 1e300;
         for (int a = 0; a < 3; ++a) {
             if (d[a] == 0.0) {
