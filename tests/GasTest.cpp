@@ -356,6 +356,13 @@ TEST_F(Gas, VelocityAtReadsTheFacesAsTheAdvectionDoes) {
         EXPECT_NEAR(winds[k].y, -2.0 + 0.03 * x - 0.07 * y, 1e-4) << k;
     }
     EXPECT_TRUE(gas.velocityAt({}).empty());
+    // Into the caller's winds (a planet's, every frame): the same reads; a wrong count is refused.
+    std::vector<glm::vec2> into(points.size());
+    gas.velocityAt(points, into);
+    EXPECT_EQ(into, winds);
+    std::vector<glm::vec2> tooFew(points.size() - 1);
+    EXPECT_NE(messageOf([&] { gas.velocityAt(points, tooFew); }).find("4 points and room for 3 winds"),
+              std::string::npos);
     EXPECT_NE(messageOf([&] { gas.velocityAt({{0.5f, 1.5f}}); }).find("velocityAt: point 0"), std::string::npos);
     EXPECT_NE(messageOf([&] { gas.velocityAt({{0.5f, 0.5f}, {NAN, 0.5f}}); }).find("point 1"), std::string::npos);
 }

@@ -147,17 +147,26 @@ void GasField::addVortex(const GasVortex& vx) {
 }
 
 std::vector<glm::vec2> GasField::velocityAt(const std::vector<glm::vec2>& points) {
+    std::vector<glm::vec2> winds(points.size());
+    velocityAt(points, winds);
+    return winds;
+}
+
+void GasField::velocityAt(std::span<const glm::vec2> points, std::span<glm::vec2> winds) {
+    static_assert(sizeof(glm::vec2) == 2 * sizeof(float), "the winds are read straight into glm::vec2s");
+    if (winds.size() != points.size())
+        throw Error(str("GasField::velocityAt: ", points.size(), " points and room for ", winds.size(), " winds"));
     const int W = config_.width, H = config_.height;
-    std::vector<float> cells(2 * points.size()), out(2 * points.size());
+    sampleCells_.resize(2 * points.size());
     for (size_t i = 0; i < points.size(); ++i) {
         const glm::vec2 p = points[i];
         if (!(std::isfinite(p.x) && p.y >= 0.0f && p.y <= 1.0f))
             throw Error(str("GasField::velocityAt: point ", i, " at (", p.x, ", ", p.y,
                             ") is off the map: u must be finite and v in [0, 1]"));
-        cells[2 * i] = float((double(p.x) - std::floor(double(p.x))) * W);
-        cells[2 * i + 1] = p.y * float(H);
+        sampleCells_[2 * i] = float((double(p.x) - std::floor(double(p.x))) * W);
+        sampleCells_[2 * i + 1] = p.y * float(H);
     }
-    if (points.empty()) return {};
+    if (points.empty()) return;
     clGuard("GasField::velocityAt", [&] {
         // The points' buffers are kept (a planet reads its storms' winds every frame), grown to the
         // next power of two that holds them.
@@ -167,15 +176,13 @@ std::vector<glm::vec2> GasField::velocityAt(const std::vector<glm::vec2>& points
             sampleWinds_ = cl::Buffer(cl_.context(), CL_MEM_WRITE_ONLY, 2 * sampleCapacity_ * sizeof(float));
         }
         cl::CommandQueue& q = cl_.queue();
-        q.enqueueWriteBuffer(samplePoints_, CL_FALSE, 0, cells.size() * sizeof(float), cells.data());
+        // (Not waited for: the blocking read below finishes the queue before sampleCells_ changes.)
+        q.enqueueWriteBuffer(samplePoints_, CL_FALSE, 0, sampleCells_.size() * sizeof(float), sampleCells_.data());
         const int n = int(points.size());
         run(sampleVelocity_, {arg(u_), arg(v_), arg(samplePoints_), arg(sampleWinds_), arg(n), arg(W), arg(H)},
             cl::NDRange(points.size()));
-        q.enqueueReadBuffer(sampleWinds_, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+        q.enqueueReadBuffer(sampleWinds_, CL_TRUE, 0, winds.size() * sizeof(glm::vec2), winds.data());
     });
-    std::vector<glm::vec2> velocities(points.size());
-    for (size_t i = 0; i < points.size(); ++i) velocities[i] = {out[2 * i], out[2 * i + 1]};
-    return velocities;
 }
 
 void GasField::advectField(cl::Buffer& field, float ox, float oy, float dt, bool wallRow) {

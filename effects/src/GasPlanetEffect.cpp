@@ -193,10 +193,11 @@ void GasPlanetEffect::advance(double dt) {
     // read a frame, of a queue the last frame has finished). A storm seeded during the frame
     // rides its band's jet until the next.
     if (!storms_.empty()) {
-        std::vector<glm::vec2> centres;
-        for (const Storm& st : storms_) centres.emplace_back(float(st.u), float(st.v));
-        const std::vector<glm::vec2> winds = gas_.velocityAt(centres);
-        for (size_t i = 0; i < storms_.size(); ++i) storms_[i].wind = winds[i];
+        stormCentres_.clear();
+        for (const Storm& st : storms_) stormCentres_.emplace_back(float(st.u), float(st.v));
+        stormWinds_.resize(stormCentres_.size());
+        gas_.velocityAt(stormCentres_, stormWinds_);
+        for (size_t i = 0; i < storms_.size(); ++i) storms_[i].wind = stormWinds_[i];
     }
     for (int s = 0; s < substeps; ++s) {
         time_ += step;

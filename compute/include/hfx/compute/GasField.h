@@ -14,6 +14,7 @@
 #include <glm/vec2.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace hfx {
@@ -92,6 +93,9 @@ public:
     /// bilinear from the faces as the advection reads it; waits for the device. Throws naming
     /// a point off the map.
     std::vector<glm::vec2> velocityAt(const std::vector<glm::vec2>& points);
+    /// The same into `winds` (as many as `points`), allocating nothing once its buffers hold
+    /// that many points: what a caller does every frame.
+    void velocityAt(std::span<const glm::vec2> points, std::span<glm::vec2> winds);
     /// Runs only the pressure projection (tests, and after setting a velocity by hand).
     void project();
 
@@ -130,6 +134,7 @@ private:
     std::vector<float> bands_;
     cl::Buffer samplePoints_, sampleWinds_; ///< velocityAt's, sampleCapacity_ points each
     size_t sampleCapacity_ = 0;
+    std::vector<float> sampleCells_; ///< velocityAt's points in cells, uploaded from here
     cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_;
     cl::Kernel advect_, maccormack_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_, curlKernel_, confine_,
         diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_, relaxDye_;

@@ -170,6 +170,7 @@ private:
     double time_ = 0.0, stormClock_ = 0.0;
     float maxShear_ = 1.0f;
     std::vector<Storm> storms_;
+    std::vector<glm::vec2> stormCentres_, stormWinds_; ///< advance()'s, kept between frames
     /// Queues the two opposite zonal pushes that spin `storm` (force in cells per second^2).
     void spin(const Storm& storm, float force);
     std::vector<glm::vec2> seeded_;
