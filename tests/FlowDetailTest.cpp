@@ -1,8 +1,8 @@
 // The gas's advected detail (FlowDetail, FlowMath.h): a uniform wind carries the noise's
 // coordinates exactly, the kernels match the shared math run on the host, a shear stretches the
 // noise into filaments along it, a warp frays the gas's edges and leaves its flats flat, the
-// layers regenerate at their period, and the detail stays periodic in u and finite at 10^4 times
-// the time scale.
+// layers regenerate at their period, the detail stays periodic in u and finite at 10^4 times the
+// time scale, and a lattice a shear squeezes keeps only the octaves its texels can show.
 
 #include "support/Fixtures.h"
 
@@ -246,7 +246,85 @@ TEST_F(Flow, LayersRegenerateAtTheirPeriodAndStayPeriodicInUAndFiniteAtLongSteps
     // The noise itself wraps around the longitude at every octave.
     for (float y : {3.3f, 17.9f})
         for (float x : {0.1f, 31.7f})
-            EXPECT_NEAR(hfx_flow_noise(x, y, 5.5f, W, 0.25f, 2.0f, 4), hfx_flow_noise(x + W, y, 5.5f, W, 0.25f, 2.0f, 4), 1e-5);
+            EXPECT_NEAR(hfx_flow_noise(x, y, 5.5f, W, 0.25f, 2.0f, 4, 4.0f), hfx_flow_noise(x + W, y, 5.5f, W, 0.25f, 2.0f, 4, 4.0f), 1e-5);
+}
+
+// The largest singular value of the 2x2 matrix (a b; c d), by the textbook's formula in doubles.
+double largestSingular(double a, double b, double c, double d) {
+    const double squares = a * a + b * b + c * c + d * d, det = a * d - b * c;
+    return std::sqrt(0.5 * (squares + std::sqrt(squares * squares - 4.0 * det * det)));
+}
+
+TEST_F(Flow, ASqueezedLatticeKeepsOnlyTheOctavesItsTexelsCanShow) {
+    // Layer 0's displacement a shear d_x = g (y - H / 2): its carried coordinates' Jacobian is
+    // (1 g; 0 1) in every cell, and the finest octave shown is log2(texels / (2 f sigma)), sigma
+    // that of diag(1, aspect) J, in each cell (the walls' rows by one-sided differences) and at
+    // every point between (read bilinearly), as the kernel derives it from the planes it is given.
+    GasField gas(cl(), gasConfig());
+    FlowDetail detail(cl(), gas, {.scale = 4, .amount = 0.3f, .frequency = 0.5f, .aspect = 2.0f, .octaves = 4});
+    const HfxFlowParams p = detail.params();
+    const size_t n = size_t(W) * H;
+    // Unsqueezed, sigma = aspect: the octaves FlowDetail::octaves() counts (2 at 4 texels a cell)
+    // all in full, and the detail is the plain fBm's.
+    std::vector<float> planes = detail.readPlanes();
+    ASSERT_EQ(planes.size(), size_t(HFX_FLOW_PLANES) * n);
+    const float still = std::log2(4.0f / (2.0f * 0.5f * 2.0f)); // 1: octaves 0 and 1
+    for (size_t k = 0; k < 2 * n; ++k) ASSERT_NEAR(planes[HFX_FLOW_FINEST * n + k], still, 1e-6) << k;
+    ASSERT_EQ(detail.octaves(), 2);
+    for (float x : {3.1f, 40.7f})
+        EXPECT_EQ(hfx_flow_noise(x, 9.2f, 3.0f, W, 0.5f, 2.0f, 2, still),
+                  float(hfx_fractal(HFX_NOISE_PERLIN, HFX_FRACTAL_FBM, x * 0.5f, 9.2f, 3.0f, 2, 2.0f, 0.5f, W * 0.5f,
+                                    256.0f) - 0.5f));
+    for (float g : {0.5f, 3.0f, 12.0f}) {
+        std::vector<float> set(5 * n, 0.0f);
+        for (int j = 0; j < H; ++j)
+            for (int i = 0; i < W; ++i) set[size_t(j) * W + i] = g * (float(j) + 0.5f - 0.5f * H);
+        detail.setPlanes(set);
+        planes = detail.readPlanes();
+        const double expected = std::log2(4.0 / (2.0 * 0.5 * largestSingular(1.0, g, 0.0, 2.0)));
+        for (int j : {0, 7, 16, H - 1})
+            for (int i : {0, 11, W - 1}) {
+                EXPECT_NEAR(planes[HFX_FLOW_FINEST * n + size_t(j) * W + i], expected, 1e-5) << "shear " << g << " cell " << i << "," << j;
+                EXPECT_NEAR(hfx_flow_cell_finest(planes.data(), W, H, i, j, 0, p), expected, 1e-5);
+                EXPECT_NEAR(planes[(HFX_FLOW_FINEST + 1) * n + size_t(j) * W + i], still, 1e-6) << "layer 1 unsqueezed";
+            }
+    }
+    // Octave i counts with weight clamp(1 + finest - i, 0, 1): past the finest the sum loses it
+    // (an octave and a half: octave 1 at half weight, 2 and 3 gone), and with none to show the
+    // noise is 0, not aliased.
+    const auto octave = [](float x, float y, int i) {
+        return hfx_noise_octave(HFX_NOISE_PERLIN, x * float(1 << i) + 17.0f * float(i), y * float(1 << i) + 17.0f * float(i),
+                                3.0f + 3.7f * float(i), W * 0.5f * float(1 << i), 256.0f * float(1 << i));
+    };
+    const float x = 7.3f * 0.5f, y = 2.9f * 0.5f * 2.0f, total = 1.0f + 0.5f + 0.25f + 0.125f;
+    EXPECT_NEAR(hfx_flow_noise(7.3f, 2.9f, 3.0f, W, 0.5f, 2.0f, 4, 0.5f),
+                0.5f * (octave(x, y, 0) + 0.5f * 0.5f * octave(x, y, 1)) / total, 1e-6);
+    EXPECT_EQ(hfx_flow_noise(7.3f, 2.9f, 3.0f, W, 0.5f, 2.0f, 4, -1.0f), 0.0f);
+}
+
+TEST_F(Flow, ALongShearsDetailHoldsNoTexelSizedRipples) {
+    // A jet's shear of 4 cells per cell a second squeezes a layer 8-fold across it by its middle
+    // age: unlimited, its noise runs finer than the texels and aliases into ripples a texel or two
+    // apart across the flow (the planet's zipper along a band's edge), whose second difference
+    // nears twice the first (1.72 here without the band limit, on PoCL). Limited, it stays well
+    // below it, as on slopes a few texels long (0.10).
+    GasField gas(cl(), gasConfig());
+    setZonalWind(gas, [](float y) { return 4.0f * (y - 0.5f * H); });
+    FlowDetail detail(cl(), gas, {.scale = 4, .amount = 0.5f, .warp = 2.0f, .calm = 1.0f, .period = 4.0f});
+    for (int s = 0; s < 20; ++s) detail.step(0.1);
+    ASSERT_NEAR(detail.weight(0), 1.0f, 1e-6);
+    detail.run();
+    const std::vector<float> h = detail.readHeights();
+    const int columns = W * 4, rows = H * 4;
+    double first = 0, second = 0;
+    for (int fy = rows / 4; fy < 3 * rows / 4; ++fy)
+        for (int fx = 0; fx < columns; ++fx) {
+            const auto at = [&](int y) { return double(h[size_t(y) * columns + fx]); };
+            first += std::abs(at(fy + 1) - at(fy));
+            second += std::abs(at(fy + 1) - 2.0 * at(fy) + at(fy - 1));
+        }
+    EXPECT_GT(first, 0.0);
+    EXPECT_LT(second / first, 0.4) << "ripples a texel apart across the shear";
 }
 
 TEST_F(Flow, BadConfigurationsAreRefusedByName) {

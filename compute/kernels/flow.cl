@@ -2,8 +2,9 @@
 
 /* The gas planet's advected detail (FlowMath.h, hfx::FlowDetail). */
 
-/* Both layers' displacement planes (the first 4 of 5 x W x H) advected dt into dst, a layer whose
-   `reset` is set starting again from zero; the fifth plane gets the flow's strain rate now. */
+/* Both layers' displacement planes (the first 4 of HFX_FLOW_PLANES x W x H) advected dt into dst, a
+   layer whose `reset` is set starting again from zero; the strain plane gets the flow's strain
+   rate now (flow_finest then fills the last two from dst). */
 __kernel void flow_advect(__global const float* restrict u, __global const float* restrict v,
                           __global const float* restrict src, __global float* restrict dst, int W, int H,
                           float dt, int reset0, int reset1) {
@@ -14,7 +15,16 @@ __kernel void flow_advect(__global const float* restrict u, __global const float
         int reset = plane < 2 ? reset0 : reset1;
         dst[plane * n + k] = reset ? 0.0f : hfx_flow_advect(u, v, src + plane * n, W, H, i, j, dt, plane & 1);
     }
-    dst[4 * n + k] = hfx_flow_strain(u, v, W, H, i, j);
+    dst[HFX_FLOW_STRAIN * n + k] = hfx_flow_strain(u, v, W, H, i, j);
+}
+
+/* Each layer's finest octave at the cell centres (hfx_flow_cell_finest), from the displacements
+   flow_advect wrote into the same planes. */
+__kernel void flow_finest(__global float* restrict planes, int W, int H, HfxFlowParams params) {
+    int i = get_global_id(0), j = get_global_id(1);
+    if (i >= W || j >= H) return;
+    for (int k = 0; k < 2; ++k)
+        planes[(HFX_FLOW_FINEST + k) * W * H + j * W + i] = hfx_flow_cell_finest(planes, W, H, i, j, k, params);
 }
 
 /* The detailed heights, `scale` texels per gas cell along each axis (fine texel (x, y) has its

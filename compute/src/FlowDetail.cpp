@@ -9,7 +9,8 @@
 namespace hfx {
 
 namespace {
-constexpr size_t kPlanes = 5; // two layers' displacements (x, y) and the strain rate
+constexpr size_t kPlanes = HFX_FLOW_PLANES; // FlowMath.h: the displacements, the strain, the finest octaves
+constexpr size_t kSetPlanes = HFX_FLOW_FINEST; // what setPlanes takes: the rest is derived
 } // namespace
 
 void FlowDetailConfig::validate(const GasConfig& gas) const {
@@ -49,8 +50,10 @@ FlowDetail::FlowDetail(ClContext& cl, const GasField& gas, const FlowDetailConfi
         output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, cells * config.scale * config.scale * sizeof(float));
         const cl::Program& program = cl.program("flow.cl");
         advect_ = cl::Kernel(program, "flow_advect");
+        finest_ = cl::Kernel(program, "flow_finest");
         detail_ = cl::Kernel(program, "flow_detail");
     });
+    deriveFinest();
 }
 
 namespace {
@@ -96,6 +99,17 @@ void FlowDetail::step(double dt) {
     });
     front_ = 1 - front_;
     time_ = next;
+    deriveFinest();
+}
+
+void FlowDetail::deriveFinest() {
+    clGuard("FlowDetail: the finest octaves", [&] {
+        finest_.setArg(0, planes_[front_]);
+        finest_.setArg(1, gas_.width());
+        finest_.setArg(2, gas_.height());
+        finest_.setArg(3, params());
+        cl_.enqueue(finest_, cl::NDRange(size_t(gas_.width()), size_t(gas_.height())));
+    });
 }
 
 void FlowDetail::run() {
@@ -124,7 +138,8 @@ int FlowDetail::octaves() const {
 HfxFlowParams FlowDetail::params() const {
     const FlowDetailConfig& c = config_;
     return {.amount = c.amount, .frequency = c.frequency, .aspect = c.aspect, .calm = c.calm, .strainScale = c.strainScale,
-            .octaves = octaves(), .w0 = weight(0), .w1 = weight(1), .z0 = generation(0), .z1 = generation(1), .warp = c.warp};
+            .octaves = octaves(), .w0 = weight(0), .w1 = weight(1), .z0 = generation(0), .z1 = generation(1), .warp = c.warp,
+            .texels = float(c.scale)};
 }
 
 std::vector<float> FlowDetail::readPlanes() {
@@ -136,13 +151,14 @@ std::vector<float> FlowDetail::readPlanes() {
 }
 
 void FlowDetail::setPlanes(const std::vector<float>& planes) {
-    const size_t n = kPlanes * size_t(gas_.width()) * gas_.height();
+    const size_t n = kSetPlanes * size_t(gas_.width()) * gas_.height();
     if (planes.size() != n) throw Error(str("FlowDetail::setPlanes: expected ", n, " values, got ", planes.size()));
     for (float x : planes)
         if (!std::isfinite(x)) throw Error("FlowDetail::setPlanes: the planes hold NaN or infinite values");
     clGuard("setting the flow detail's planes", [&] {
         cl_.queue().enqueueWriteBuffer(planes_[front_], CL_TRUE, 0, n * sizeof(float), planes.data());
     });
+    deriveFinest();
 }
 
 std::vector<float> FlowDetail::readHeights() {

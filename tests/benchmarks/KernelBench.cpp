@@ -9,6 +9,7 @@
 
 #include "hfx/compute/DamageLog.h"
 #include "hfx/compute/DecalMap.h"
+#include "hfx/compute/FlowDetail.h"
 #include "hfx/compute/GasField.h"
 #include "hfx/compute/InverseRealFft.h"
 #include "hfx/compute/BoundsPyramid.h"
@@ -287,6 +288,29 @@ void BM_PlanetGas(benchmark::State& state) {
     }
 }
 
+/// The planet's cloud-top detail a frame (FlowDetail: its layers advected a step, then its heights
+/// written), at 2 and 4 texels per cell of the planet's 512x256 gas (a CPU device's and a GPU's
+/// scale), after 3 simulated seconds of its jets have sheared the layers; the gas's own step is
+/// BM_PlanetGas. The kernel band-limits each texel's noise to the octaves its squeezed lattice
+/// can show (FlowMath.h's hfx_flow_finest), evaluating no faded one.
+void BM_PlanetDetail(benchmark::State& state) {
+    const GasPlanetConfig planet;
+    GasField gas(cl(), planet.gas);
+    FlowDetailConfig config = planet.detail;
+    config.scale = int(state.range(0));
+    FlowDetail detail(cl(), gas, config);
+    for (int s = 0; s < 90; ++s) {
+        gas.step(1.0 / 30.0);
+        detail.step(1.0 / 30.0);
+    }
+    cl().queue().finish();
+    for (auto _ : state) {
+        detail.step(1.0 / 30.0);
+        detail.run();
+        cl().queue().finish();
+    }
+}
+
 /// The planet's gas step with its 32 storms' upkeep (storm lengths of GasPlanetConfig's 0.025
 /// widths, spread over the map): two pushing splats a storm, a storm's radius each, as storms were
 /// kept spinning before 2026-11-29 (0), or each held as an oval vortex with its colour fed
@@ -467,6 +491,7 @@ BENCHMARK(BM_InverseFft)->Arg(256)->Arg(512)->Arg(1024)->ArgNames({"size"})->Use
 BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetGas)->Arg(0)->Arg(1)->ArgNames({"maccormack"})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanetDetail)->Arg(2)->Arg(4)->ArgNames({"scale"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetStorms)->Arg(0)->Arg(1)->ArgNames({"held"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DrawIssue)->Arg(0)->Arg(1)->ArgNames({"defaults"})->Iterations(2000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);

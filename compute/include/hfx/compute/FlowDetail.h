@@ -70,10 +70,12 @@ public:
     /// Layer k's weight and noise generation now (the kernels' w_k, z_k).
     float weight(int layer) const;
     float generation(int layer) const;
-    /// The planes (layer 0's displacement x, y, layer 1's x, y, and the strain rate at the last
-    /// step; each W x H at the cell centres), waits.
+    /// The planes (layer 0's displacement x, y, layer 1's x, y, the strain rate at the last step,
+    /// and each layer's finest octave: FlowMath.h's HFX_FLOW_PLANES, each W x H at the cell
+    /// centres), waits.
     std::vector<float> readPlanes();
-    /// Replaces them (5 * W * H finite values), for tests.
+    /// Replaces the first five (5 * W * H finite values) and derives the finest octaves from
+    /// them, for tests.
     void setPlanes(const std::vector<float>& planes);
     /// output() on the host (width() x height(), row 0 at v = 0), waits.
     std::vector<float> readHeights();
@@ -90,7 +92,9 @@ private:
     std::int64_t lives_[2] = {0, 0}; ///< each layer's regenerations so far
     cl::Buffer planes_[2], output_;
     int front_ = 0;
-    cl::Kernel advect_, detail_;
+    cl::Kernel advect_, finest_, detail_;
+
+    void deriveFinest(); ///< each layer's finest octave from the front planes' displacements
 };
 
 } // namespace hfx

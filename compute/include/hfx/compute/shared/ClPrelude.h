@@ -20,6 +20,7 @@
 #define HFX_SQRT sqrt
 #define HFX_SIN sin
 #define HFX_POW pow
+#define HFX_LOG2 log2
 #define HFX_FLOOR floor
 #define HFX_ATAN2 atan2
 #else
@@ -35,6 +36,7 @@
 #define HFX_SQRT std::sqrt
 #define HFX_SIN std::sin
 #define HFX_POW std::pow
+#define HFX_LOG2 std::log2
 #define HFX_FLOOR std::floor
 #define HFX_ATAN2 std::atan2
 #endif

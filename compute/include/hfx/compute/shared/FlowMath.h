@@ -56,10 +56,12 @@ HFX_FN_INLINE float hfx_flow_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const 
 /* The detail noise at the noise-domain point (x, y) (cells) of generation z: Perlin fBm of
    `octaves` octaves from `frequency` lattice cells per gas cell along x and `aspect` times that
    along y (features that long along the bands), periodic over the W cells of a longitude
-   (W * frequency whole), about zero-mean in [-0.5, 0.5]. */
-HFX_FN float hfx_flow_noise(float x, float y, float z, int W, float frequency, float aspect, int octaves) {
-    return hfx_fractal(HFX_NOISE_PERLIN, HFX_FRACTAL_FBM, x * frequency, y * frequency * aspect, z, octaves,
-                       2.0f, 0.5f, (float)W * frequency, 256.0f) -
+   (W * frequency whole), about zero-mean in [-0.5, 0.5]; the octaves past `finest` fade out
+   (hfx_fractal_limited). */
+HFX_FN float hfx_flow_noise(float x, float y, float z, int W, float frequency, float aspect, int octaves,
+                            float finest) {
+    return hfx_fractal_limited(HFX_NOISE_PERLIN, HFX_FRACTAL_FBM, x * frequency, y * frequency * aspect, z, octaves,
+                               2.0f, 0.5f, (float)W * frequency, 256.0f, finest) -
            0.5f;
 }
 
@@ -95,44 +97,80 @@ HFX_FN float hfx_flow_base(HFX_GLOBAL const float* f, int W, int H, float x, flo
     return sum;
 }
 
-/* What the flow detail's kernels share besides the fields: the detail's shape and this
-   frame's layer weights and generations. */
+/* What the flow detail's kernels share besides the fields: the detail's shape, the output's
+   texels per gas cell, and this frame's layer weights and generations. */
+/* The planes, each W x H at the cell centres: layer 0's displacement x and y, layer 1's, the strain
+   rate at the last step, and each layer's finest octave (hfx_flow_cell_finest). */
+#define HFX_FLOW_STRAIN 4
+#define HFX_FLOW_FINEST 5
+#define HFX_FLOW_PLANES 7
+
 typedef struct HfxFlowParams {
     float amount, frequency, aspect, calm, strainScale;
     int octaves;
     float w0, w1, z0, z1;
-    float warp;
+    float warp, texels;
 } HfxFlowParams;
 
-/* Layer k's noise at the point (x, y) (cells): read at the point's carried coordinates. */
-HFX_FN float hfx_flow_layer(HFX_GLOBAL const float* planes, int W, int H, float x, float y, int k, float z,
-                            HfxFlowParams p) {
+/* The finest octave layer k's noise can show at the centre of cell (i, j), fractional: its lattice
+   rides on the carried coordinates c(x) = x + d_k(x), which a shear squeezes, so one output texel
+   (1 / texels cells) spans J = I + grad d_k of them, and octave i's lattice (frequency 2^i per
+   cell along x, aspect times that along y) sigma * frequency * 2^i / texels of its cells, sigma the
+   largest singular value of diag(1, aspect) J. An octave shows in full up to half a lattice cell a
+   texel (what FlowDetail::octaves() allows an unsqueezed lattice, sigma = aspect) and is gone at
+   one: finest = log2(texels / (2 frequency sigma)). Past it the noise would alias into texel-sized
+   pits and ridges along the shears (a warped band edge's zipper, dark flecks in the planet's
+   diffuse light). grad d_k by central differences of the cell's neighbours (one-sided at the
+   walls); planes as hfx_flow_height's. */
+HFX_FN float hfx_flow_cell_finest(HFX_GLOBAL const float* planes, int W, int H, int i, int j, int k, HfxFlowParams p) {
     const int n = W * H;
-    return hfx_flow_noise(x + hfx_gas_sample(planes + 2 * k * n, W, H, x, y, 0.5f, 0.5f, 1),
-                          y + hfx_gas_sample(planes + (2 * k + 1) * n, W, H, x, y, 0.5f, 0.5f, 1), z, W, p.frequency,
-                          p.aspect, p.octaves);
+    HFX_GLOBAL const float* dx = planes + 2 * k * n;
+    HFX_GLOBAL const float* dy = planes + (2 * k + 1) * n;
+    int west = j * W + hfx_gas_step(i - 1, W), east = j * W + hfx_gas_step(i + 1, W);
+    int south = (j > 0 ? j - 1 : 0) * W + i, north = (j < H - 1 ? j + 1 : H - 1) * W + i;
+    float across = (j > 0 && j < H - 1) ? 0.5f : 1.0f; /* 1 / the rows between south and north */
+    float a = 1.0f + 0.5f * (dx[east] - dx[west]), b = across * (dx[north] - dx[south]);
+    float c = p.aspect * 0.5f * (dy[east] - dy[west]), d = p.aspect * (1.0f + across * (dy[north] - dy[south]));
+    float squares = a * a + b * b + c * c + d * d, det = a * d - b * c;
+    float sigma = HFX_SQRT(0.5f * (squares + HFX_SQRT(HFX_MAX(squares * squares - 4.0f * det * det, 0.0f))));
+    return HFX_LOG2(p.texels / (2.0f * p.frequency * HFX_MAX(sigma, 1e-6f)));
+}
+
+/* Layer k's noises at the point (x, y) (cells), read at the point's carried coordinates and
+   band-limited there (its finest octave, kept per cell: hfx_flow_cell_finest): of generation z
+   into *along, and where `across` is not null of generation z + 101 into it. */
+HFX_FN void hfx_flow_layer(HFX_GLOBAL const float* planes, int W, int H, float x, float y, int k, float z,
+                           HfxFlowParams p, float* along, float* across) {
+    const int n = W * H;
+    float cx = x + hfx_gas_sample(planes + 2 * k * n, W, H, x, y, 0.5f, 0.5f, 1);
+    float cy = y + hfx_gas_sample(planes + (2 * k + 1) * n, W, H, x, y, 0.5f, 0.5f, 1);
+    float finest = hfx_gas_sample(planes + (HFX_FLOW_FINEST + k) * n, W, H, x, y, 0.5f, 0.5f, 1);
+    *along = hfx_flow_noise(cx, cy, z, W, p.frequency, p.aspect, p.octaves, finest);
+    if (across) *across = hfx_flow_noise(cx, cy, z + 101.0f, W, p.frequency, p.aspect, p.octaves, finest);
 }
 
 /* A detailed height at the point (x, y) (cells) of the fine grid: the gas's heights
    (hfx_flow_base) read at the point moved by warp times the layers' noises (x by each layer's
    noise at z_k, y by its noise at z_k + 101), plus amount times the noises at z_k, each layer
-   weighted, both times the strain's share; clamped to [0, 1]. planes: the five planes (layer 0's
-   x and y displacement, layer 1's, the strain), each W x H. The branches are uniform: a layer at
-   weight 0, no warp, or no detail at all (a pole cap alone) reads no noise. */
+   weighted, both times the strain's share; clamped to [0, 1]. planes: the HFX_FLOW_PLANES planes.
+   The branches are uniform: a layer at weight 0, no warp, or no detail at all (a pole cap alone)
+   reads no noise. */
 HFX_FN float hfx_flow_height(HFX_GLOBAL const float* heights, HFX_GLOBAL const float* planes, int W,
                              int H, float x, float y, HfxFlowParams p) {
     float h;
     if (p.amount > 0.0f || p.warp > 0.0f) {
-        float along = 0.0f, across = 0.0f;
+        float along = 0.0f, across = 0.0f, a, c;
         if (p.w0 > 0.0f) {
-            along += p.w0 * hfx_flow_layer(planes, W, H, x, y, 0, p.z0, p);
-            if (p.warp > 0.0f) across += p.w0 * hfx_flow_layer(planes, W, H, x, y, 0, p.z0 + 101.0f, p);
+            hfx_flow_layer(planes, W, H, x, y, 0, p.z0, p, &a, p.warp > 0.0f ? &c : 0);
+            along += p.w0 * a;
+            if (p.warp > 0.0f) across += p.w0 * c;
         }
         if (p.w1 > 0.0f) {
-            along += p.w1 * hfx_flow_layer(planes, W, H, x, y, 1, p.z1, p);
-            if (p.warp > 0.0f) across += p.w1 * hfx_flow_layer(planes, W, H, x, y, 1, p.z1 + 101.0f, p);
+            hfx_flow_layer(planes, W, H, x, y, 1, p.z1, p, &a, p.warp > 0.0f ? &c : 0);
+            along += p.w1 * a;
+            if (p.warp > 0.0f) across += p.w1 * c;
         }
-        float s = hfx_gas_sample(planes + 4 * W * H, W, H, x, y, 0.5f, 0.5f, 1);
+        float s = hfx_gas_sample(planes + HFX_FLOW_STRAIN * W * H, W, H, x, y, 0.5f, 0.5f, 1);
         float share = p.calm + (1.0f - p.calm) * s / (s + p.strainScale);
         h = hfx_flow_base(heights, W, H, x + p.warp * share * along, y + p.warp * share * across) +
             p.amount * share * along;

@@ -167,27 +167,40 @@ HFX_FN float hfx_noise_octave(int kind, float x, float y, float t, float periodX
 /* Sum of octaves at (x, y) in base-lattice units, mapped to [0,1]: fBm 0.5 + 0.5 sum / total,
    ridged sum (1 - |n|)^2 / total, turbulence sum |n| / total (total = sum of the amplitudes).
    Each octave scales the position and the periods by `lacunarity` (2 keeps periods whole) and
-   shifts by a fixed offset so octaves do not line up at the origin. */
-HFX_FN float hfx_fractal(int kind, int fractal, float x, float y, float t, int octaves,
-                         float lacunarity, float gain, float periodX, float periodY) {
+   shifts by a fixed offset so octaves do not line up at the origin.
+   Band-limited: octave i counts with weight clamp(1 + finest - i, 0, 1), so those past `finest`
+   (an octave's index, fractional) fade out over one octave and are not evaluated, while `total`
+   stays every octave's: the coarse octaves keep their contrast where the fine ones go (Musgrave's
+   fractional octaves, for a point whose lattice is squeezed below what its texels can show). */
+HFX_FN float hfx_fractal_limited(int kind, int fractal, float x, float y, float t, int octaves,
+                                 float lacunarity, float gain, float periodX, float periodY, float finest) {
     float sum = 0.0f, amplitude = 1.0f, total = 0.0f, scale = 1.0f;
     for (int i = 0; i < octaves; ++i) {
-        float offset = 17.0f * (float)i;
-        float n = hfx_noise_octave(kind, x * scale + offset, y * scale + offset, t + 3.7f * (float)i,
-                                   periodX * scale, periodY * scale);
-        if (fractal == HFX_FRACTAL_RIDGED) {
-            float r = 1.0f - HFX_FABS(n);
-            n = r * r;
-        } else if (fractal == HFX_FRACTAL_TURBULENCE) {
-            n = HFX_FABS(n);
+        float weight = HFX_MIN(HFX_MAX(1.0f + finest - (float)i, 0.0f), 1.0f);
+        if (weight > 0.0f) {
+            float offset = 17.0f * (float)i;
+            float n = hfx_noise_octave(kind, x * scale + offset, y * scale + offset, t + 3.7f * (float)i,
+                                       periodX * scale, periodY * scale);
+            if (fractal == HFX_FRACTAL_RIDGED) {
+                float r = 1.0f - HFX_FABS(n);
+                n = r * r;
+            } else if (fractal == HFX_FRACTAL_TURBULENCE) {
+                n = HFX_FABS(n);
+            }
+            sum += amplitude * weight * n;
         }
-        sum += amplitude * n;
         total += amplitude;
         amplitude *= gain;
         scale *= lacunarity;
     }
     float h = fractal == HFX_FRACTAL_FBM ? 0.5f + 0.5f * sum / total : sum / total;
     return h < 0.0f ? 0.0f : (h > 1.0f ? 1.0f : h);
+}
+
+/* Every octave at full weight. */
+HFX_FN float hfx_fractal(int kind, int fractal, float x, float y, float t, int octaves,
+                         float lacunarity, float gain, float periodX, float periodY) {
+    return hfx_fractal_limited(kind, fractal, x, y, t, octaves, lacunarity, gain, periodX, periodY, (float)octaves);
 }
 
 /* One texel of a noise field at texcoords (u, v): frequencyX x frequencyY base cells across the
