@@ -22,6 +22,7 @@
 #define HFX_POW pow
 #define HFX_LOG2 log2
 #define HFX_FLOOR floor
+#define HFX_CEIL ceil
 #define HFX_ATAN2 atan2
 #else
 #include <cmath>
@@ -38,6 +39,7 @@
 #define HFX_POW std::pow
 #define HFX_LOG2 std::log2
 #define HFX_FLOOR std::floor
+#define HFX_CEIL std::ceil
 #define HFX_ATAN2 std::atan2
 #endif
 #define HFX_TWO_PI 6.28318530717958647692f

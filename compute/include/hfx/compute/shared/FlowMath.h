@@ -97,14 +97,14 @@ HFX_FN float hfx_flow_base(HFX_GLOBAL const float* f, int W, int H, float x, flo
     return sum;
 }
 
-/* What the flow detail's kernels share besides the fields: the detail's shape, the output's
-   texels per gas cell, and this frame's layer weights and generations. */
 /* The planes, each W x H at the cell centres: layer 0's displacement x and y, layer 1's, the strain
    rate at the last step, and each layer's finest octave (hfx_flow_cell_finest). */
 #define HFX_FLOW_STRAIN 4
 #define HFX_FLOW_FINEST 5
 #define HFX_FLOW_PLANES 7
 
+/* What the flow detail's kernels share besides the fields: the detail's shape, the output's
+   texels per gas cell, and this frame's layer weights and generations. */
 typedef struct HfxFlowParams {
     float amount, frequency, aspect, calm, strainScale;
     int octaves;

@@ -174,24 +174,28 @@ HFX_FN float hfx_noise_octave(int kind, float x, float y, float t, float periodX
    fractional octaves, for a point whose lattice is squeezed below what its texels can show). */
 HFX_FN float hfx_fractal_limited(int kind, int fractal, float x, float y, float t, int octaves,
                                  float lacunarity, float gain, float periodX, float periodY, float finest) {
+    /* The octaves with a weight, i < finest + 1, run as a loop of their own: no branch in it. */
+    int shown = finest + 1.0f >= (float)octaves ? octaves : (finest + 1.0f > 0.0f ? (int)HFX_CEIL(finest + 1.0f) : 0);
     float sum = 0.0f, amplitude = 1.0f, total = 0.0f, scale = 1.0f;
-    for (int i = 0; i < octaves; ++i) {
-        float weight = HFX_MIN(HFX_MAX(1.0f + finest - (float)i, 0.0f), 1.0f);
-        if (weight > 0.0f) {
-            float offset = 17.0f * (float)i;
-            float n = hfx_noise_octave(kind, x * scale + offset, y * scale + offset, t + 3.7f * (float)i,
-                                       periodX * scale, periodY * scale);
-            if (fractal == HFX_FRACTAL_RIDGED) {
-                float r = 1.0f - HFX_FABS(n);
-                n = r * r;
-            } else if (fractal == HFX_FRACTAL_TURBULENCE) {
-                n = HFX_FABS(n);
-            }
-            sum += amplitude * weight * n;
+    for (int i = 0; i < shown; ++i) {
+        float weight = HFX_MIN(1.0f + finest - (float)i, 1.0f);
+        float offset = 17.0f * (float)i;
+        float n = hfx_noise_octave(kind, x * scale + offset, y * scale + offset, t + 3.7f * (float)i,
+                                   periodX * scale, periodY * scale);
+        if (fractal == HFX_FRACTAL_RIDGED) {
+            float r = 1.0f - HFX_FABS(n);
+            n = r * r;
+        } else if (fractal == HFX_FRACTAL_TURBULENCE) {
+            n = HFX_FABS(n);
         }
-        total += amplitude;
+        sum += amplitude * weight * n;
         amplitude *= gain;
         scale *= lacunarity;
+    }
+    amplitude = 1.0f;
+    for (int i = 0; i < octaves; ++i) {
+        total += amplitude;
+        amplitude *= gain;
     }
     float h = fractal == HFX_FRACTAL_FBM ? 0.5f + 0.5f * sum / total : sum / total;
     return h < 0.0f ? 0.0f : (h > 1.0f ? 1.0f : h);
