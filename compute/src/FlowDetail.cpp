@@ -53,7 +53,6 @@ FlowDetail::FlowDetail(ClContext& cl, const GasField& gas, const FlowDetailConfi
         finest_ = cl::Kernel(program, "flow_finest");
         detail_ = cl::Kernel(program, "flow_detail");
     });
-    deriveFinest();
 }
 
 namespace {
@@ -99,10 +98,12 @@ void FlowDetail::step(double dt) {
     });
     front_ = 1 - front_;
     time_ = next;
-    deriveFinest();
+    finestStale_ = true;
 }
 
 void FlowDetail::deriveFinest() {
+    if (!finestStale_) return;
+    finestStale_ = false;
     clGuard("FlowDetail: the finest octaves", [&] {
         finest_.setArg(0, planes_[front_]);
         finest_.setArg(1, gas_.width());
@@ -113,6 +114,7 @@ void FlowDetail::deriveFinest() {
 }
 
 void FlowDetail::run() {
+    deriveFinest();
     const int W = gas_.width(), H = gas_.height();
     clGuard("FlowDetail::run", [&] {
         int a = 0;
@@ -143,6 +145,7 @@ HfxFlowParams FlowDetail::params() const {
 }
 
 std::vector<float> FlowDetail::readPlanes() {
+    deriveFinest();
     std::vector<float> planes(kPlanes * size_t(gas_.width()) * gas_.height());
     clGuard("reading the flow detail's planes", [&] {
         cl_.queue().enqueueReadBuffer(planes_[front_], CL_TRUE, 0, planes.size() * sizeof(float), planes.data());
@@ -158,7 +161,7 @@ void FlowDetail::setPlanes(const std::vector<float>& planes) {
     clGuard("setting the flow detail's planes", [&] {
         cl_.queue().enqueueWriteBuffer(planes_[front_], CL_TRUE, 0, n * sizeof(float), planes.data());
     });
-    deriveFinest();
+    finestStale_ = true;
 }
 
 std::vector<float> FlowDetail::readHeights() {

@@ -288,11 +288,12 @@ void BM_PlanetGas(benchmark::State& state) {
     }
 }
 
-/// The planet's cloud-top detail a frame (FlowDetail: its layers advected a step, then its heights
-/// written), at 2 and 4 texels per cell of the planet's 512x256 gas (a CPU device's and a GPU's
-/// scale), after 3 simulated seconds of its jets have sheared the layers; the gas's own step is
-/// BM_PlanetGas. The kernel band-limits each texel's noise to the octaves its squeezed lattice
-/// can show (FlowMath.h's hfx_flow_finest), evaluating no faded one.
+/// The planet's cloud-top detail a frame (FlowDetail: its layers advected a step, each cell's
+/// finest octave derived, then its heights written), at 2 and 4 texels per cell of the planet's
+/// 512x256 gas (a CPU device's and a GPU's scale), after 3 simulated seconds of its jets have
+/// sheared the layers; the gas's own step is BM_PlanetGas. The kernel band-limits each texel's
+/// noise to the octaves its squeezed lattice can show (FlowMath.h's hfx_flow_cell_finest),
+/// evaluating no faded one.
 void BM_PlanetDetail(benchmark::State& state) {
     const GasPlanetConfig planet;
     GasField gas(cl(), planet.gas);

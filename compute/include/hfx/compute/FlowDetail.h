@@ -74,8 +74,8 @@ public:
     /// and each layer's finest octave: FlowMath.h's HFX_FLOW_PLANES, each W x H at the cell
     /// centres), waits.
     std::vector<float> readPlanes();
-    /// Replaces the first five (5 * W * H finite values) and derives the finest octaves from
-    /// them, for tests.
+    /// Replaces the first five (5 * W * H finite values); the finest octaves follow from them,
+    /// for tests.
     void setPlanes(const std::vector<float>& planes);
     /// output() on the host (width() x height(), row 0 at v = 0), waits.
     std::vector<float> readHeights();
@@ -93,8 +93,11 @@ private:
     cl::Buffer planes_[2], output_;
     int front_ = 0;
     cl::Kernel advect_, finest_, detail_;
+    bool finestStale_ = true; ///< the displacements changed since the finest octaves were derived
 
-    void deriveFinest(); ///< each layer's finest octave from the front planes' displacements
+    /// Each layer's finest octave from the front planes' displacements, where they changed: once
+    /// for the steps between two runs (a frame's substeps, a spin-up), not once a step.
+    void deriveFinest();
 };
 
 } // namespace hfx
