@@ -14,8 +14,9 @@
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
 # column gives its medians of both passes), the ringed planet and the noise on the triplanar box at
 # 1280x720, and a draw's issue time under both GlStatePolicy values with the driver's threaded
-# optimisation off and on. A step that runs out of time is cut and says so; the rest go on. HFX_GPU_STEPS may name
-# fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is then shared among those.
+# optimisation off and on. A step that runs out of time is cut and says so; the rest go on.
+# HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
+# then shared among those.
 # Nothing here installs anything: the bundle carries what the binaries need
 # but the GL and OpenCL drivers, and glvnd's libraries where a bare GPU image lacks them (EGL then
 # finds no device: unpack Debian's libegl1 libglvnd0 libopengl0 libgl1 libglx0 into / first, as

@@ -393,8 +393,8 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
     // the frame changes least along one direction, and that is the wind's (0.6 rad from +u; the
     // frame shows u along x and v along y or its mirror), within 15 degrees; across it changes at
     // least twice as much (3.1x on llvmpipe as bands of foam; 2.2x as the thin lines that meander
-    // and break into patches, 2.6x as unbroken lines). At Beaufort 6 there are none: the frame is the same with the streaks
-    // switched off.
+    // and break into patches, 2.6x as unbroken lines). At Beaufort 6 there are none: the frame is
+    // the same with the streaks switched off.
     constexpr float kWind = 0.6f;
     OceanEffect gale(
         cl(),
