@@ -335,6 +335,81 @@ TEST_F(Gas, ASplatWithADyeTargetMovesTheDyeThatShareOfTheWay) {
     EXPECT_NE(messageOf([&] { gas.addSplat({.dye = 2.0f, .dyeTarget = 0.5f}); }).find("dyeTarget"), std::string::npos);
 }
 
+TEST_F(Gas, AFedColourWindsIntoSpiralArmsThatTrailTheSpin) {
+    // A storm's colour fed over an oval with arms (GasSplat::aspect, GasArms), a full share, into
+    // dye 0.2 of a still gas: every cell is the plain C++ reference's (the oval's Gaussian, the
+    // target moved towards the arms' colour by contrast times the rim's share times the crest's
+    // square, averaged over the step's sweep by 256 angles), within 3x10^-5 (8x10^-6 on PoCL: a
+    // float's phase of up to 15 radians in its cosines). Without a sweep, that reference's
+    // darkest point near an arm (the dark colour's arms in a pale oval), on the rings rho = 0.4
+    // and 0.8, lies at the angle the arms' law gives: from rho = 0.4 out to 0.8 an arm turns
+    // clockwise, trailing a counter-clockwise spin by winding (e^-0.16 - e^-0.64), and the other
+    // sign of winding turns it the other way. Swept through an arm's spacing in a step, the arms
+    // average out: a ring of the oval is one colour.
+    constexpr int W = 160, H = 96;
+    const float x = 80.0f, y = 48.0f, b = 12.0f;
+    const double spacing = 2.0 * std::numbers::pi / 3.0;
+    for (const auto& [winding, sweep] : {std::pair{3.0f, 0.0f}, {-3.0f, 0.0f}, {3.0f, 1.3f}, {3.0f, float(spacing)}}) {
+        GasField gas(cl(), {.width = W, .height = H, .conserveDye = false});
+        gas.setState(std::vector<float>(W * H, 0.0f), std::vector<float>(W * H, 0.0f), std::vector<float>(W * H, 0.2f));
+        gas.addSplat({.u = x / W, .v = y / H, .radius = b / W, .dye = 1.0f, .dyeTarget = 0.9f, .aspect = 2.0f,
+                      .arms = {.count = 3, .target = 0.1f, .contrast = 0.8f, .turned = 0.7f, .winding = winding,
+                               .sweep = sweep}});
+        gas.step(0.01);
+        const std::vector<float> dye = gas.readHeights();
+        auto reference = [&](double i, double j) {
+            const double ex = (i + 0.5 - x) / (2.0 * b), ey = (j + 0.5 - y) / b, rho2 = ex * ex + ey * ey;
+            const double rim = 1.0 - std::exp(-rho2);
+            double crest2 = rho2 < 9.0 ? 0.0 : 0.375; // beyond 3 radii the arms' mean (GasArms)
+            for (int n = 0; rho2 < 9.0 && n < 256; ++n) {
+                const double turned = 0.7 + sweep * ((n + 0.5) / 256.0 - 0.5);
+                const double crest = 0.5 + 0.5 * std::cos(3.0 * (std::atan2(ey, ex) - turned + winding * rim));
+                crest2 += crest * crest / 256.0;
+            }
+            const double target = 0.9 + (0.1 - 0.9) * 0.8 * std::min(rim / (1.0 - std::exp(-1.0)), 1.0) * crest2;
+            return 0.2 + (target - 0.2) * std::exp(-rho2);
+        };
+        double worst = 0.0;
+        for (int j = 0; j < H; ++j)
+            for (int i = 0; i < W; ++i) worst = std::max(worst, std::abs(dye[size_t(j) * W + i] - reference(i, j)));
+        EXPECT_LT(worst, 3e-5) << "winding " << winding << ", sweep " << sweep;
+        // The dye on a ring of the oval at 720 angles within a third of the spacing of `near`
+        // (the reference's, which the dye matches): its darkest angle and its range.
+        auto ring = [&](double rho, double near) {
+            double best = 1e9, top = -1e9, at = 0.0;
+            for (int n = 0; n < 720; ++n) {
+                const double phi = near - spacing / 2.0 + n * spacing / 720.0;
+                const double d = reference(x - 0.5 + rho * 2.0 * b * std::cos(phi), y - 0.5 + rho * b * std::sin(phi));
+                if (d < best) best = d, at = phi;
+                top = std::max(top, d);
+            }
+            return std::pair{at, top - best};
+        };
+        // The law: arm 0 where phi = turned - winding (1 - exp(-rho^2)).
+        const double law04 = 0.7 - winding * (1.0 - std::exp(-0.16)), law08 = 0.7 - winding * (1.0 - std::exp(-0.64));
+        const auto [at04, range04] = ring(0.4, law04);
+        const auto [at08, range08] = ring(0.8, law08);
+        std::printf("[arms] winding %+.0f, sweep %.2f: the dye %.1g from the reference; arm at rho 0.4 %.3f rad (law "
+                    "%.3f), at rho 0.8 %.3f (law %.3f); the ring's range %.3f\n",
+                    winding, sweep, worst, at04, law04, at08, law08, range08);
+        if (sweep == 0.0f) {
+            EXPECT_NEAR(at04, law04, 0.01) << "winding " << winding;
+            EXPECT_NEAR(at08, law08, 0.01) << "winding " << winding;
+            EXPECT_LT(winding * (at08 - at04), -0.5) << "the outer arm does not trail the spin";
+        }
+        if (sweep == float(spacing)) EXPECT_LT(range08, 1e-6) << "arms swept through their spacing still show";
+        else EXPECT_GT(range08, 0.1) << "no arms at sweep " << sweep;
+    }
+    auto refused = [&](const GasSplat& splat) {
+        return messageOf([&] { GasField(cl(), {.width = 16, .height = 8}).addSplat(splat); });
+    };
+    EXPECT_NE(refused({.dye = 0.5f, .arms = {.count = 2}}).find("dyeTarget"), std::string::npos);
+    EXPECT_NE(refused({.aspect = 0.5f}).find("aspect"), std::string::npos);
+    EXPECT_NE(refused({.dye = 0.5f, .dyeTarget = 0.5f, .arms = {.count = 9}}).find("arms.count"), std::string::npos);
+    EXPECT_NE(refused({.dye = 0.5f, .dyeTarget = 0.5f, .arms = {.count = 2, .sweep = NAN}}).find("arms.sweep"),
+              std::string::npos);
+}
+
 TEST_F(Gas, VelocityAtReadsTheFacesAsTheAdvectionDoes) {
     // A linear wind on the faces, u = 1 + 0.1 x + 0.05 y and v = -2 + 0.03 x - 0.07 y (cells):
     // bilinear reads give it exactly between the faces, and u wraps (1.3 is 0.3).

@@ -46,21 +46,51 @@ inline float2 hfx_window_offset(int W, int H, float dx, float dy) {
     return (float2)(dx, dy);
 }
 
-/* A round splat of force (cells/s^2 for dt seconds) and dye (added, or where target >= 0 moved
-   that share of the way to it) at (x, y) cells, Gaussian radius r,
-   over the w x h window of cells from (i0, j0) (GasField::step: 6 radii about the centre, where
-   the Gaussian falls below 10^-15 of its peak; x wraps, and y too where there are no walls). */
+/* A splat of force (cells/s^2 for dt seconds) and dye (added, or where target >= 0 moved that
+   share of the way to it) at (x, y) cells: the force's Gaussian round, of radius r, the dye's an
+   oval, exp(-rho^2) with rho^2 = dx^2 / (aspect r)^2 + dy^2 / r^2, and the target wound into
+   `arms` spiral arms of armTarget (GasArms, their mean over the step's sweep), over the
+   w x h window of cells from (i0, j0) (GasField::step: 6 of the oval's radii about the centre,
+   where its Gaussian falls below 10^-15 of its peak; x wraps, and y too where there are no
+   walls). */
 __kernel void splat(__global float* u, __global float* v, __global float* dye, int W, int H, float x,
                     float y, float r, float fx, float fy, float amount, float target, float dt, int i0, int j0,
-                    int w, int h) {
+                    int w, int h, float aspect, int arms, float armTarget, float contrast, float turned,
+                    float winding, float sinc1, float sinc2) {
     int i, j;
     if (!hfx_window_cell(W, H, i0, j0, w, h, &i, &j)) return;
     int k = j * W + i;
     float2 o = hfx_window_offset(W, H, (float)i + 0.5f - x, (float)j + 0.5f - y);
     float dx = o.x, dy = o.y;
-    float e = exp(-(dx * dx + dy * dy) / (r * r));
-    u[k] += dt * fx * exp(-((dx + 0.5f) * (dx + 0.5f) + dy * dy) / (r * r));
-    if (!(WALLS && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
+    /* (A uniform branch: a storm's feed pushes nothing, and adding nothing changes no bit.) */
+    if (fx != 0.0f) u[k] += dt * fx * exp(-((dx + 0.5f) * (dx + 0.5f) + dy * dy) / (r * r));
+    if (fy != 0.0f) {
+        if (!(WALLS && j == 0)) v[k] += dt * fy * exp(-(dx * dx + (dy + 0.5f) * (dy + 0.5f)) / (r * r));
+    }
+    float ex = dx / (aspect * r), ey = dy / r, rho2 = ex * ex + ey * ey, e = exp(-rho2);
+    if (target >= 0.0f && arms > 0) {
+        /* The crest's square, (1 + cos t)^2 / 4 = 3/8 + cos(t) / 2 + cos(2t) / 8, averaged over
+           the step's sweep: each harmonic scaled by sinc of half the phase it sweeps (sinc1,
+           sinc2: GasField::step's). The harmonics only within 3 radii: beyond, the feed moves the
+           dye by under 10^-4 of them a step (and by at most 10^-3 where the band's relaxation,
+           0.15 a second, holds it), so there the arms are their mean. t = arms phi + arms
+           (winding rim - turned): the first part's cosine and sine are the oval's direction
+           raised to the power `arms` (no atan2). */
+        float rim = 1.0f - e, crest2 = 0.375f;
+        if (rho2 < 9.0f) {
+            float len = sqrt(rho2), ur = len > 0.0f ? ex / len : 1.0f, ui = len > 0.0f ? ey / len : 0.0f;
+            float zr = 1.0f, zi = 0.0f;
+            for (int n = 0; n < arms; ++n) {
+                float next = zr * ur - zi * ui;
+                zi = zr * ui + zi * ur;
+                zr = next;
+            }
+            float cb, sb = sincos((float)arms * (winding * rim - turned), &cb);
+            float c = zr * cb - zi * sb;
+            crest2 += 0.5f * sinc1 * c + 0.125f * sinc2 * (2.0f * c * c - 1.0f);
+        }
+        target += (armTarget - target) * contrast * fmin(rim / 0.6321f, 1.0f) * crest2;
+    }
     dye[k] = target >= 0.0f ? dye[k] + (target - dye[k]) * clamp(amount * e, 0.0f, 1.0f)
                             : clamp(dye[k] + amount * e, 0.0f, 1.0f);
 }

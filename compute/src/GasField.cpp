@@ -129,6 +129,18 @@ void GasField::addSplat(const GasSplat& s) {
     if (!(s.dyeTarget < 0.0f || s.dyeTarget <= 1.0f) || (s.dyeTarget >= 0.0f && !(s.dye >= 0.0f && s.dye <= 1.0f)))
         throw Error(str("gas splat dyeTarget must be < 0 (dye added) or in [0, 1] with a dye share in [0, 1], got ",
                         s.dyeTarget, " and ", s.dye));
+    if (!(s.aspect >= 1.0f && s.aspect <= 8.0f))
+        throw Error(str("gas splat aspect must be in [1, 8], got ", s.aspect));
+    const GasArms& a = s.arms;
+    if (a.count < 0 || a.count > 8) throw Error(str("gas splat arms.count must be in [0, 8], got ", a.count));
+    if (a.count > 0 && s.dyeTarget < 0.0f)
+        throw Error("gas splat arms need a dyeTarget in [0, 1]: they wind the colour it feeds");
+    if (!(a.target >= 0.0f && a.target <= 1.0f) || !(a.contrast >= 0.0f && a.contrast <= 1.0f))
+        throw Error(
+            str("gas splat arms.target and arms.contrast must be in [0, 1], got ", a.target, " and ", a.contrast));
+    if (!std::isfinite(a.turned) || !std::isfinite(a.winding) || !std::isfinite(a.sweep))
+        throw Error(str("gas splat arms.turned, arms.winding and arms.sweep must be finite, got ", a.turned, ", ",
+                        a.winding, " and ", a.sweep));
     splats_.push_back(s);
 }
 
@@ -212,12 +224,20 @@ void GasField::step(double dtSeconds) {
             // Gaussian is below 10^-15 of its peak, under a float's resolution of what it adds to
             // (PlanetWeather's vortex keeps its gas to the bit; at 4 radii, 10^-7, that chaotic
             // flow drifts elsewhere). A planet's storms are kept spinning by two splats each a
-            // step, so a whole-grid splat cost it most of its step.
-            const int reach = int(std::ceil(6.0f * r)) + 1;
-            const int w = std::min(W, 2 * reach + 1), h = std::min(H, 2 * reach + 1);
-            const int i0 = w == W ? 0 : int(std::floor(x)) - reach, j0 = h == H ? 0 : int(std::floor(y)) - reach;
+            // step, so a whole-grid splat cost it most of its step. The dye's oval reaches
+            // `aspect` times as far along u.
+            const int reachX = int(std::ceil(6.0f * r * s.aspect)) + 1, reachY = int(std::ceil(6.0f * r)) + 1;
+            const int w = std::min(W, 2 * reachX + 1), h = std::min(H, 2 * reachY + 1);
+            const int i0 = w == W ? 0 : int(std::floor(x)) - reachX, j0 = h == H ? 0 : int(std::floor(y)) - reachY;
+            // The arms' mean over the sweep: the crest's harmonics scaled by sinc of half the
+            // phase each sweeps (gas.cl's splat).
+            const double p = 0.5 * s.arms.count * double(s.arms.sweep);
+            const float sinc1 = p != 0.0 ? float(std::sin(p) / p) : 1.0f;
+            const float sinc2 = p != 0.0 ? float(std::sin(2.0 * p) / (2.0 * p)) : 1.0f;
             run(splat_, {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r), arg(s.forceX),
-                         arg(s.forceY), arg(s.dye), arg(s.dyeTarget), arg(dt), arg(i0), arg(j0), arg(w), arg(h)},
+                         arg(s.forceY), arg(s.dye), arg(s.dyeTarget), arg(dt), arg(i0), arg(j0), arg(w), arg(h),
+                         arg(s.aspect), arg(s.arms.count), arg(s.arms.target), arg(s.arms.contrast),
+                         arg(s.arms.turned), arg(s.arms.winding), arg(sinc1), arg(sinc2)},
                 cl::NDRange(size_t(w), size_t(h)));
         }
         splats_.clear();

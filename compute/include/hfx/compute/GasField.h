@@ -52,6 +52,25 @@ struct GasConfig {
     void validate() const;
 };
 
+/// Spiral arms in a colour a splat feeds (GasSplat::dyeTarget >= 0), as a storm's clouds wind
+/// them: along each arm the colour fed moves towards `target`, most at the arm's crest, by a share
+/// that grows from none at the centre to `contrast` at rho = 1 (rho as GasSplat's oval has it).
+/// Arm k lies where the oval's angle phi = atan2(dy / b, dx / a) is turned + 2 pi k / count -
+/// winding (1 - exp(-rho^2)): a vortex of streamfunction psi0 exp(-rho^2) (GasVortex) turns its
+/// centre faster than its rim by that profile, so its clouds' arms trail by it. Beyond 3 radii
+/// of the oval, where the splat's share is under 10^-4 of its centre's, they are their mean.
+struct GasArms {
+    int count = 0;          ///< 0: the colour fed is the same throughout; at most 8
+    float target = 0.0f;    ///< the arms' colour, in [0, 1]
+    float contrast = 0.0f;  ///< in [0, 1]
+    float turned = 0.0f;    ///< radians, counter-clockwise (u right, v up)
+    float winding = 0.0f;   ///< radians the rim lags: > 0 trails a counter-clockwise spin, < 0 a clockwise one
+    /// Radians the arms turn during the step, `turned` being their angle midway: the colour fed
+    /// is the arms' mean over the sweep, so a step long against the spin feeds them fainter
+    /// rather than at an angle that jumps from step to step.
+    float sweep = 0.0f;
+};
+
 /// Force and dye added around a point during the next step. Texcoords; radius in widths.
 struct GasSplat {
     float u = 0.5f, v = 0.5f;
@@ -61,6 +80,10 @@ struct GasSplat {
     /// In [0, 1]: the dye moves `dye` (a share in [0, 1]) of the way to this at the centre,
     /// instead of `dye` being added: a colour fed in without overshooting it. < 0: added.
     float dyeTarget = -1.0f;
+    /// The dye's Gaussian an oval, exp(-rho^2) with rho^2 = dx^2 / a^2 + dy^2 / b^2, b = radius
+    /// and a = aspect radius along u (in [1, 8]); the force's stays round, of `radius`.
+    float aspect = 1.0f;
+    GasArms arms; ///< with dyeTarget >= 0
 };
 
 /// A vortex the gas is held towards during the next step: each velocity face moves a share
