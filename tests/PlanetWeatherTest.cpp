@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <memory>
 #include <numbers>
@@ -224,6 +225,69 @@ TEST_F(PlanetWeather, AStormKeepsItsColourAndRidesTheWindAtItsCentre) {
                                                            {"stormFeed", {.stormFeed = 1e3f}}};
     for (const auto& [field, config] : bad)
         EXPECT_NE(messageOf([&] { config.validate(); }).find(field), std::string::npos) << field;
+}
+
+TEST_F(PlanetWeather, AStormsCloudsWindIntoArmsThatTurnWithIt) {
+    // A storm on a 128x64 gas, 10 s later, with its arms (GasPlanetConfig::stormArms, 3) and
+    // without: the same gas (the dye does not move it), so the dye's difference is the arms'.
+    // On the oval's rings rho = 0.5, 0.7 and 0.9 about where the planet has the storm, that
+    // difference's third angular harmonic is larger than what the band's own structure puts in
+    // the dye there without arms (1.9x, 1.6x and 6.6x on llvmpipe). On the middle ring it peaks
+    // within a third of their spacing of where the arms' law puts arm 0 (GasArms: the angle the
+    // planet turned them by, at the gas's spin at the storm's centre, less the winding's lag
+    // there; paler than the storm here): they turn with the storm (0.28 rad from it on llvmpipe;
+    // the gas's own shear winds them further than the law, 0.96 rad ahead of it at rho 0.5 and
+    // 0.60 behind at 0.9).
+    constexpr int W = 128, H = 64;
+    auto after = [&](int arms) {
+        GasPlanetConfig config{.gas = {.width = W, .height = H, .pressureIterations = 30, .vorticity = 0.35f,
+                                       .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,
+                                       .maxSpeed = 56.0f, .initialBands = 6.0f, .dyeRate = 0.15f},
+                               .stormsPerSecond = 0.0f, .stormRadius = 0.1f};
+        config.stormArms = arms;
+        auto planet = std::make_unique<GasPlanetEffect>(cl(), config);
+        planet->addStorm(0.5f, quietestLatitude(*planet), false, 2.0f);
+        while (planet->time() < 10.0) planet->update(0.1);
+        return planet;
+    };
+    const auto with = after(3), without = after(0);
+    std::vector<float> u, v, armed, plain;
+    with->gas().readState(u, v, armed);
+    without->gas().readState(u, v, plain);
+    const GasPlanetEffect::Storm& storm = with->storms().at(0);
+    ASSERT_GT(storm.band, storm.colour) << "the test's premise: paler arms in a dark storm";
+    const double x = storm.u * W, y = storm.v * H, a = storm.radius * W, b = a / with->config().stormAspect;
+    const double spacing = 2.0 * std::numbers::pi / 3.0;
+    // The third harmonic of a field on the ring rho (bilinear reads at 144 angles).
+    auto harmonic = [&](const std::vector<float>& f, double rho) {
+        auto at = [&](int i, int j) { return double(f[size_t(j) * W + size_t((i % W + W) % W)]); };
+        std::complex<double> sum = 0.0;
+        for (int k = 0; k < 144; ++k) {
+            const double phi = 2.0 * std::numbers::pi * k / 144.0;
+            const double fx = x + rho * a * std::cos(phi) - 0.5, fy = y + rho * b * std::sin(phi) - 0.5;
+            const int i = int(std::floor(fx)), j = int(std::floor(fy));
+            const double tx = fx - i, ty = fy - j;
+            const double d = (1 - ty) * ((1 - tx) * at(i, j) + tx * at(i + 1, j)) +
+                             ty * ((1 - tx) * at(i, j + 1) + tx * at(i + 1, j + 1));
+            sum += d * std::polar(2.0 / 144.0, -3.0 * phi);
+        }
+        return sum;
+    };
+    std::vector<float> arms(armed.size());
+    for (size_t k = 0; k < arms.size(); ++k) arms[k] = armed[k] - plain[k];
+    for (const double rho : {0.5, 0.7, 0.9}) {
+        const std::complex<double> drawn = harmonic(arms, rho);
+        const double band = std::abs(harmonic(plain, rho));
+        const double law = storm.turned - with->config().stormWinding * (1.0 - std::exp(-rho * rho));
+        const double off = std::remainder(std::arg(drawn) / 3.0 - law, spacing);
+        std::printf("[arms] rho %.1f: the arms' third harmonic %.3f, the band's own %.3f; the arms %.2f rad from "
+                    "their law\n",
+                    rho, std::abs(drawn), band, off);
+        EXPECT_GT(std::abs(drawn), band) << "rho " << rho;
+        if (rho == 0.7) {
+            EXPECT_LT(std::abs(off), spacing / 3.0) << "the arms do not turn with the storm";
+        }
+    }
 }
 
 /// The planet's zonal wind and a storm's wind after `seconds` of gas, in planet units (map widths

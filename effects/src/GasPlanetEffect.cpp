@@ -43,6 +43,12 @@ void GasPlanetConfig::validate() const {
                         " and ", stormFeed));
     if (!(stormLifeRotations > 0.0f && stormLifeRotations <= 1e4f))
         throw Error(str("GasPlanetConfig.stormLifeRotations must be in (0, 10000], got ", stormLifeRotations));
+    if (stormArms < 0 || stormArms > 8)
+        throw Error(str("GasPlanetConfig.stormArms must be in [0, 8], got ", stormArms));
+    if (!(stormArmContrast >= 0.0f && stormArmContrast <= 1.0f))
+        throw Error(str("GasPlanetConfig.stormArmContrast must be in [0, 1], got ", stormArmContrast));
+    if (!(stormWinding >= 0.0f && stormWinding <= 30.0f))
+        throw Error(str("GasPlanetConfig.stormWinding must be in [0, 30] radians, got ", stormWinding));
     if (maxStorms < 1 || maxStorms > 1024)
         throw Error(str("GasPlanetConfig.maxStorms must be in [1, 1024], got ", maxStorms));
     if (!(gridScale == 0.0f || (gridScale >= 0.0625f && gridScale <= 4.0f)))
@@ -149,7 +155,7 @@ void GasPlanetEffect::addStorm(float u, float v, bool clockwise, float strength)
     const float band = bands[std::min(size_t(v0 * float(bands.size())), bands.size() - 1)];
     const float colour = band < 0.55f ? 0.8f : (clockwise ? 1.0f : 0.15f);
     const Storm storm{.u = u, .v = v0, .radius = r, .strength = size, .clockwise = clockwise, .born = time_,
-                      .colour = colour, .wind = {jetProfile(v0), 0.0f}};
+                      .colour = colour, .wind = {jetProfile(v0), 0.0f}, .band = band};
     spin(storm, config_.stormForce * size);
     gas_.addSplat({.u = u, .v = v0, .radius = 0.6f * r / config_.stormAspect, .dye = 1.0f, .dyeTarget = colour});
     if (int(storms_.size()) == config_.maxStorms) storms_.erase(storms_.begin());
@@ -189,15 +195,27 @@ void GasPlanetEffect::advance(double dt) {
     const double simulated = dt * config_.timeScale;
     const int substeps = std::clamp(int(std::ceil(simulated / config_.maxSubstep)), 1, config_.maxSubsteps);
     const double step = simulated / substeps;
-    // Where the gas carries each storm this frame: its wind at the storm's centre now (one small
-    // read a frame, of a queue the last frame has finished). A storm seeded during the frame
-    // rides its band's jet until the next.
+    // Where the gas carries each storm this frame, and how fast it spins there: its wind at the
+    // storm's centre now and a cell either side of it in u and in v (one small read a frame, of
+    // a queue the last frame has finished). The curl there, dv/dx - du/dy, is 2 psi0 (1/a^2 +
+    // 1/b^2) for GasVortex's oval, whose centre turns at 2 psi0 / (a b): that curl over a/b + b/a.
+    // A storm seeded during the frame rides its band's jet, unturning, until the next.
     if (!storms_.empty()) {
-        stormCentres_.clear();
-        for (const Storm& st : storms_) stormCentres_.emplace_back(float(st.u), float(st.v));
-        stormWinds_.resize(stormCentres_.size());
-        gas_.velocityAt(stormCentres_, stormWinds_);
-        for (size_t i = 0; i < storms_.size(); ++i) storms_[i].wind = stormWinds_[i];
+        const float du = 1.0f / float(config_.gas.width), dv = 1.0f / float(config_.gas.height);
+        stormSamples_.clear();
+        for (const Storm& st : storms_) {
+            const float u = float(st.u), v = float(st.v);
+            for (const glm::vec2 at : {glm::vec2(u, v), {u + du, v}, {u - du, v}, {u, v + dv}, {u, v - dv}})
+                stormSamples_.emplace_back(at.x - std::floor(at.x), at.y);
+        }
+        stormWinds_.resize(stormSamples_.size());
+        gas_.velocityAt(stormSamples_, stormWinds_);
+        for (size_t i = 0; i < storms_.size(); ++i) {
+            const glm::vec2* w = &stormWinds_[5 * i];
+            storms_[i].wind = w[0];
+            const float curl = 0.5f * (w[1].y - w[2].y) - 0.5f * (w[3].x - w[4].x);
+            storms_[i].turnRate = curl / (config_.stormAspect + 1.0f / config_.stormAspect);
+        }
     }
     for (int s = 0; s < substeps; ++s) {
         time_ += step;
@@ -230,10 +248,19 @@ void GasPlanetEffect::advance(double dt) {
                 gas_.addVortex({.u = float(st.u), .v = float(st.v), .radius = st.radius, .aspect = config_.stormAspect,
                                 .speed = (st.clockwise ? -1.0f : 1.0f) * config_.stormWind * config_.gas.jetSpeed,
                                 .driftX = st.wind.x, .rate = config_.stormHold * fade});
+            // Its arms turn as the gas spins at its centre; fed at their angle midway through the
+            // step, as their mean over it.
+            const double sweep = double(st.turnRate) * step;
+            const double midway = std::remainder(st.turned + 0.5 * sweep, 2.0 * std::numbers::pi);
+            st.turned = std::remainder(st.turned + sweep, 2.0 * std::numbers::pi);
             if (config_.stormFeed > 0.0f)
                 gas_.addSplat({.u = float(st.u), .v = float(st.v), .radius = st.radius / config_.stormAspect,
                                .dye = float(1.0 - std::exp(-double(config_.stormFeed * fade) * step)),
-                               .dyeTarget = st.colour});
+                               .dyeTarget = st.colour, .aspect = config_.stormAspect,
+                               .arms = {.count = config_.stormArms, .target = st.band,
+                                        .contrast = config_.stormArmContrast, .turned = float(midway),
+                                        .winding = (st.clockwise ? -1.0f : 1.0f) * config_.stormWinding,
+                                        .sweep = float(sweep)}});
         }
         gas_.step(step);
         if (detail_) detail_->step(step);

@@ -316,22 +316,35 @@ void BM_PlanetDetail(benchmark::State& state) {
 /// widths, spread over the map): two pushing splats a storm, a storm's radius each, as storms were
 /// kept spinning before 2026-11-29 (0), or each held as an oval vortex with its colour fed
 /// (GasField::addVortex and a dye-target splat) and their centres' wind read once a step, as the
-/// planet reads it once a frame (1).
+/// planet reads it once a frame (1); the same with the colour fed over the oval in three spiral
+/// arms and the wind read a cell either side of each centre too, for its spin (2, the planet's
+/// since the storms' arms).
 void BM_PlanetStorms(benchmark::State& state) {
     const GasPlanetConfig planet;
     GasConfig config = planet.gas;
     GasField gas(cl(), config);
-    const bool held = state.range(0) != 0;
+    const bool held = state.range(0) != 0, arms = state.range(0) == 2;
     std::vector<glm::vec2> centres;
     for (int i = 0; i < 32; ++i) centres.emplace_back(float(i) / 32.0f, 0.2f + 0.6f * float(i % 8) / 8.0f);
+    // With arms the wind is read a cell either side of each centre too (the spin).
+    std::vector<glm::vec2> samples;
+    for (const glm::vec2 c : centres)
+        for (const glm::vec2 d : {glm::vec2(0.0f), {1.0f, 0.0f}, {-1.0f, 0.0f}, {0.0f, 1.0f}, {0.0f, -1.0f}})
+            if (arms || d == glm::vec2(0.0f))
+                samples.push_back(c + d / glm::vec2(float(config.width), float(config.height)));
     auto upkeep = [&] {
         const float a = planet.stormRadius, b = a / planet.stormAspect;
-        if (held) (void)gas.velocityAt(centres);
+        if (held) (void)gas.velocityAt(samples);
         for (const glm::vec2 c : centres) {
             if (held) {
                 gas.addVortex({.u = c.x, .v = c.y, .radius = a, .aspect = planet.stormAspect, .speed = config.jetSpeed,
                                .driftX = 5.0f, .rate = planet.stormHold});
-                gas.addSplat({.u = c.x, .v = c.y, .radius = b, .dye = 0.1f, .dyeTarget = 0.8f});
+                GasSplat feed{.u = c.x, .v = c.y, .radius = b, .dye = 0.1f, .dyeTarget = 0.8f};
+                if (arms)
+                    feed.aspect = planet.stormAspect,
+                    feed.arms = {.count = planet.stormArms, .target = 0.4f, .contrast = planet.stormArmContrast,
+                                 .turned = 10.0f * c.x, .winding = planet.stormWinding, .sweep = 0.05f};
+                gas.addSplat(feed);
             } else {
                 const float dv = 0.5f * a * float(config.width) / float(config.height);
                 gas.addSplat({.u = c.x, .v = c.y + dv, .radius = a, .forceX = 18.0f});
@@ -493,7 +506,7 @@ BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Un
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetGas)->Arg(0)->Arg(1)->ArgNames({"maccormack"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetDetail)->Arg(2)->Arg(4)->ArgNames({"scale"})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PlanetStorms)->Arg(0)->Arg(1)->ArgNames({"held"})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanetStorms)->Arg(0)->Arg(1)->Arg(2)->ArgNames({"held"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DrawIssue)->Arg(0)->Arg(1)->ArgNames({"defaults"})->Iterations(2000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);
 } // namespace

@@ -54,6 +54,14 @@ struct GasPlanetConfig {
     float stormFeed = 2.0f;
     float stormLifeRotations = 40.0f;
     int maxStorms = 32;
+    /// The storm's clouds are fed over its oval (stormAspect), wound into stormArms spiral arms
+    /// of its band's colour (GasArms): stormArmContrast of the way to the band's at each arm's
+    /// crest on the oval's rim, none at its centre. The arms turn at the gas's spin at the
+    /// storm's centre (Storm::turnRate) and their outer parts trail by stormWinding (1 -
+    /// exp(-rho^2)) radians, as the vortex's slower rim leaves them. 0 arms: one colour.
+    int stormArms = 3;
+    float stormArmContrast = 0.8f;
+    float stormWinding = 4.0f;
     /// Storms are seeded only where the jets' shear |dU/dy| is at most this fraction of its
     /// largest: in the middle of a band, where a vortex is not torn apart at once.
     float stormShear = 0.35f;
@@ -145,6 +153,9 @@ public:
         double born;
         float colour;
         glm::vec2 wind;
+        float band = 0.0f;     ///< its band's colour when it was born: its arms'
+        float turnRate = 0.0f; ///< radians a second its centre turns (counter-clockwise), read with wind
+        double turned = 0.0;   ///< radians its arms have turned at that rate (counter-clockwise)
     };
     const std::vector<Storm>& storms() const { return storms_; }
     /// Where the last seeded storms (not impacts) went, oldest first, at most 64.
@@ -170,7 +181,7 @@ private:
     double time_ = 0.0, stormClock_ = 0.0;
     float maxShear_ = 1.0f;
     std::vector<Storm> storms_;
-    std::vector<glm::vec2> stormCentres_, stormWinds_; ///< advance()'s, kept between frames
+    std::vector<glm::vec2> stormSamples_, stormWinds_; ///< advance()'s, kept between frames
     /// Queues the two opposite zonal pushes that spin `storm` (force in cells per second^2).
     void spin(const Storm& storm, float force);
     std::vector<glm::vec2> seeded_;
