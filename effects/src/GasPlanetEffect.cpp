@@ -248,9 +248,11 @@ void GasPlanetEffect::advance(double dt) {
                 gas_.addVortex({.u = float(st.u), .v = float(st.v), .radius = st.radius, .aspect = config_.stormAspect,
                                 .speed = (st.clockwise ? -1.0f : 1.0f) * config_.stormWind * config_.gas.jetSpeed,
                                 .driftX = st.wind.x, .rate = config_.stormHold * fade});
-            // Its arms turn as the gas spins at its centre; fed at their angle midway through the
-            // step, as their mean over it.
+            // Its arms turn as the gas spins at its centre and trail that spin (the storm's own
+            // sense until the gas has been read); fed at their angle midway through the step, as
+            // their mean over it.
             const double sweep = double(st.turnRate) * step;
+            const bool clockwise = st.turnRate != 0.0f ? st.turnRate < 0.0f : st.clockwise;
             const double midway = std::remainder(st.turned + 0.5 * sweep, 2.0 * std::numbers::pi);
             st.turned = std::remainder(st.turned + sweep, 2.0 * std::numbers::pi);
             if (config_.stormFeed > 0.0f)
@@ -259,7 +261,7 @@ void GasPlanetEffect::advance(double dt) {
                                .dyeTarget = st.colour, .aspect = config_.stormAspect,
                                .arms = {.count = config_.stormArms, .target = st.band,
                                         .contrast = config_.stormArmContrast, .turned = float(midway),
-                                        .winding = (st.clockwise ? -1.0f : 1.0f) * config_.stormWinding,
+                                        .winding = (clockwise ? -1.0f : 1.0f) * config_.stormWinding,
                                         .sweep = float(sweep)}});
         }
         gas_.step(step);
