@@ -232,10 +232,10 @@ TEST_F(PlanetWeather, AStormsCloudsWindIntoArmsThatTurnWithIt) {
     // without: the same gas (the dye does not move it), so the dye's difference is the arms'.
     // On the oval's rings rho = 0.5, 0.7 and 0.9 about where the planet has the storm, that
     // difference's third angular harmonic is larger than what the band's own structure puts in
-    // the dye there without arms (1.9x, 1.6x and 6.6x on llvmpipe). On the middle ring it peaks
+    // the dye there without arms (1.9x, 1.6x and 6.6x on PoCL). On the middle ring it peaks
     // within a third of their spacing of where the arms' law puts arm 0 (GasArms: the angle the
     // planet turned them by, at the gas's spin at the storm's centre, less the winding's lag
-    // there; paler than the storm here): they turn with the storm (0.28 rad from it on llvmpipe;
+    // there; paler than the storm here): they turn with the storm (0.28 rad from it on PoCL;
     // the gas's own shear winds them further than the law, 0.96 rad ahead of it at rho 0.5 and
     // 0.60 behind at 0.9).
     constexpr int W = 128, H = 64;

@@ -147,14 +147,15 @@ inline void setEye(SurfaceUniforms& u, const Camera& camera) {
     u.towardsEye = u.orthographic ? -glm::vec3(camera.rayThroughPixel(1.0, 1.0, 2, 2).direction) : glm::vec3(0.0f);
 }
 
-/// Saves what a surface draw or pass changes and puts it back, so the caller's state survives. Under
-/// GlStatePolicy::Defaults it saves nothing and puts back GL's defaults (what the members start
-/// as), except inside another guard (a pass a draw runs, the texel shadows), where what it puts
-/// back is what that draw had bound.
+/// Saves what a surface draw or pass changes and puts it back, so the caller's state survives.
+/// Under GlStatePolicy::Defaults it saves nothing and puts back GL's defaults (what the members
+/// start as), except inside another guard (a pass a draw runs, the texel shadows), where what it
+/// puts back is what that draw had bound.
 class GlStateGuard {
 public:
-    GlStateGuard() : nested_(depth()++ > 0) {
-        if (glStatePolicy() == GlStatePolicy::Defaults && !nested_) return;
+    GlStateGuard() {
+        const bool nested = depth()++ > 0;
+        if (glStatePolicy() == GlStatePolicy::Defaults && !nested) return;
         depthTest_ = glIsEnabled(GL_DEPTH_TEST);
         cullFace_ = glIsEnabled(GL_CULL_FACE);
         glGetIntegerv(GL_CULL_FACE_MODE, &cullMode_);
@@ -243,7 +244,6 @@ private:
         thread_local int guards = 0;
         return guards;
     }
-    bool nested_;
     GLboolean depthTest_ = GL_FALSE, depthMask_ = GL_TRUE, programPointSize_ = GL_FALSE, cullFace_ = GL_FALSE;
     GLint cullMode_ = GL_BACK, frontFace_ = GL_CCW; // a closed mesh's back faces culled, a mirrored model's winding
     GLint indirect_ = 0, dispatch_ = 0; // the deferred walks' indirect buffers (ExactTracer)
