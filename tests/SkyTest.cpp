@@ -112,6 +112,64 @@ TEST(SkyModel, CloudsNearTheHorizonShowWhatAPixelCoversRatherThanAliasing) {
     }
 }
 
+/// Overhead (the layer's points within half a cloud height of the eye's zenith), the clouds' runs
+/// along the sun's way across the layer: the mean luminance of the sky a tenth of a cell inside
+/// each run's sunward edge, over that a tenth of a cell inside its far edge, and the runs.
+std::pair<double, int> sunwardOverFarSide(WaterLook look, const DirectionalLight& light) {
+    const glm::vec3 l = glm::normalize(light.direction);
+    const glm::vec2 flat{l.x, l.z};
+    const glm::vec2 way = glm::length(flat) > 1e-6f ? glm::normalize(flat) : glm::vec2(1.0f, 0.0f);
+    const glm::vec2 across{-way.y, way.x};
+    const float step = 0.004f, inset = 0.1f / look.cloudScale;
+    auto luminance = [&](glm::vec2 p) {
+        const glm::vec3 c = skyColor(look, light, kEye, towards(p), 1e-4f);
+        return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    };
+    auto clouded = [&](glm::vec2 p) { return cloudSample(look, kEye, towards(p), 1e-4f).density > 0.5f; };
+    double sunward = 0.0, far = 0.0;
+    int runs = 0;
+    for (int sky = 0; sky < 80; ++sky) {
+        look.cloudDrift = {37.1f * float(sky), -23.3f * float(sky)};
+        for (int line = -10; line <= 10; ++line) {
+            const glm::vec2 origin = across * (0.04f * float(line));
+            // Towards the sun along the line: a run enters a cloud at its far edge and leaves it
+            // at its sunward one (runs cut by the line's ends are left out).
+            bool inside = clouded(origin - 0.5f * way);
+            float entered = std::numeric_limits<float>::quiet_NaN();
+            for (float s = -0.5f + step; s <= 0.5f; s += step) {
+                const bool now = clouded(origin + s * way);
+                if (now && !inside) entered = s;
+                if (!now && inside && !std::isnan(entered) && s - entered > 3.0f * inset) {
+                    far += luminance(origin + (entered + inset) * way);
+                    sunward += luminance(origin + (s - inset) * way);
+                    ++runs;
+                }
+                inside = now;
+            }
+        }
+    }
+    return {sunward / far, runs};
+}
+
+TEST(SkyModel, ACloudsSunlitSideIsBrighterThanItsFarSide) {
+    // The sun's light reaches a cloud's underside through the cloud on its way: little of it on
+    // the cloud's sunward side, all of it past its middle. Seen from below, a cloud under a low
+    // sun is brighter on its sunward side than on its far side; under the sun overhead the
+    // light comes down through the cloud's own depth, and neither side is brighter.
+    WaterLook look;
+    look.cloudCover = 0.4f;
+    const DirectionalLight low{.direction = {-0.35f, 0.22f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}}; // the demo's sun
+    const DirectionalLight overhead{.direction = {0.0f, 1.0f, 0.0f}, .color = {1.0f, 0.9f, 0.75f}};
+    const auto [lowRatio, lowRuns] = sunwardOverFarSide(look, low);
+    const auto [overheadRatio, overheadRuns] = sunwardOverFarSide(look, overhead);
+    std::printf("sunward side over far side: %.3f under the low sun (%d clouds), %.3f under the sun overhead (%d)\n",
+                lowRatio, lowRuns, overheadRatio, overheadRuns);
+    ASSERT_GT(lowRuns, 200) << "too few clouds to test";
+    ASSERT_GT(overheadRuns, 200) << "too few clouds to test";
+    EXPECT_GT(lowRatio, 1.06) << "a cloud's sunlit side is not brighter than its far side";
+    EXPECT_NEAR(overheadRatio, 1.0, 0.03) << "under the sun overhead, one side of the clouds is brighter";
+}
+
 /// Pixel (x, y from the top) of `image`.
 glm::vec3 pixelOf(const Image& image, int x, int y) {
     return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};

@@ -93,14 +93,38 @@ CloudSample cover(const WaterLook& look, glm::vec2 p, float across, float along)
 
 } // namespace
 
-CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float spread) {
-    if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return {};
-    // hfx_clouds: where the direction meets the layer, in cloud heights, and the patch of it the
-    // spread covers there: spread / y across, foreshortened by y again along the view.
+namespace {
+
+/// hfx_clouds' patch of the layer: where the direction meets it, in cloud heights, and the patch
+/// of it the spread covers there: spread / y across, foreshortened by y again along the view.
+struct LayerPatch {
+    glm::vec2 p;
+    float across, along;
+};
+LayerPatch layerPatch(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float spread) {
     const float y = std::max(dir.y, 0.01f);
     const glm::vec2 p = glm::vec2(eye.x, eye.z) / look.cloudHeight +
                         glm::vec2(dir.x, dir.z) / y * (1.0f - eye.y / look.cloudHeight);
-    const CloudSample c = cover(look, p, spread / y, spread / (y * y));
+    return {p, spread / y, spread / (y * y)};
+}
+
+/// hfx_clouds' `sunward`: the cloud's density HFX_CLOUD_DEPTH cloud heights up the sun's ray
+/// from the patch (at most half a cell along the layer), over a cell at least.
+float sunwardDensity(const WaterLook& look, glm::vec3 lightDir, const LayerPatch& patch) {
+    const glm::vec3 l = glm::normalize(lightDir);
+    const glm::vec2 reach = glm::vec2(l.x, l.z) * (float(HFX_CLOUD_DEPTH) / std::max(l.y, 0.01f));
+    const float cell = 1.0f / look.cloudScale, most = 0.5f * cell, length2 = glm::dot(reach, reach);
+    const glm::vec2 step = length2 > most * most ? reach * (most / std::sqrt(length2)) : reach;
+    return cover(look, patch.p + step, std::max(patch.across, cell), std::max(patch.along, cell))
+        .density;
+}
+
+} // namespace
+
+CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float spread) {
+    if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return {};
+    const LayerPatch patch = layerPatch(look, eye, dir, spread);
+    const CloudSample c = cover(look, patch.p, patch.across, patch.along);
     // Far off, the layer fades into the horizon's haze.
     return {c.density * (1.0f - std::exp(-8.0f * dir.y)), c.thickness};
 }
@@ -127,11 +151,13 @@ glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::ve
         base + look.sunGlow * light.color * (0.5f * std::pow(sun, 48.0f) + 0.12f * std::pow(sun, 6.0f));
     const CloudSample cloud = cloudSample(look, eye, dir, spread);
     if (!(cloud.density > 0.0f)) return clear;
+    const float sunward = sunwardDensity(look, light.direction, layerPatch(look, eye, dir, spread));
     // hfx_cloud_color
     const float elevation = std::clamp(lightDir.y, 0.0f, 1.0f);
     const glm::vec3 ambient = look.skyHorizon + (look.skyZenith - look.skyHorizon) * 0.3f;
-    const glm::vec3 lit = (0.7f + 0.3f * (1.0f - cloud.thickness)) *
-                          (0.5f * ambient + (0.55f + 0.45f * elevation) * light.color);
+    const float shade = 0.7f + 0.3f * (1.0f - cloud.thickness);
+    const glm::vec3 lit = shade * (0.5f * ambient + (1.0f - float(HFX_CLOUD_SUNWARD_SHADE) * sunward) *
+                                                         (0.55f + 0.45f * elevation) * light.color);
     const glm::vec3 silver = look.sunGlow * light.color * (1.0f - cloud.thickness) *
                              (1.5f * std::pow(sun, 16.0f) + 0.3f * std::pow(sun, 4.0f));
     return clear + (lit + silver - clear) * cloud.density;

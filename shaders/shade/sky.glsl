@@ -99,17 +99,33 @@ vec2 hfx_cloud_cover(vec2 p, float across, float along) {
 }
 
 // The clouds in direction `dir` (y > 0) from the eye, seen over `spread` radians (a sky pixel's
-// width, a reflection's widened by the water's roughness): (density, thickness). The layer lies
-// u_cloudHeight over the world's y = 0 (the water's level); the direction meets it (height - eye)
-// / y away, so the pixel covers a patch of it about spread / y across and spread / y^2 along the
-// view (foreshortened by y again), in cloud heights (the patch's size leaves out the eye's height,
-// a few metres beside the layer's 1,500).
-vec2 hfx_clouds(vec3 dir, float spread) {
+// width, a reflection's widened by the water's roughness): (density, thickness, sunward). The layer
+// lies u_cloudHeight over the world's y = 0 (the water's level); the direction meets it (height -
+// eye) / y away, so the pixel covers a patch of it about spread / y across and spread / y^2 along
+// the view (foreshortened by y again), in cloud heights (the patch's size leaves out the eye's
+// height, a few metres beside the layer's 1,500). `sunward` is the density of the cloud towards
+// the sun, where a clouded point's direct light came through.
+vec3 hfx_clouds(vec3 dir, float spread) {
     const float y = max(dir.y, 0.01);
-    const vec2 c = hfx_cloud_cover(u_cameraPos.xz / u_cloudHeight + dir.xz / y * (1.0 - u_cameraPos.y / u_cloudHeight),
-                                   spread / y, spread / (y * y));
+    const vec2 p = u_cameraPos.xz / u_cloudHeight + dir.xz / y * (1.0 - u_cameraPos.y / u_cloudHeight);
+    const float across = spread / y, along = spread / (y * y);
+    const vec2 c = hfx_cloud_cover(p, across, along);
+    // The sun's light reaches a cloud's underside through the cloud on its way: from the sunward
+    // side of the cloud, a short way; past its middle, through all of it. So the cloud is read
+    // again HFX_CLOUD_DEPTH cloud heights up the sun's ray (at most half its cells' size along
+    // the layer), over a cell at least: the light spreads in the cloud, and so wide a patch reads
+    // three octaves (half a cell read four, for 1.11x rather than 1.08x between a cloud's sides:
+    // docs/history/tuning.md). Only where there is a cloud to light.
+    float sunward = 0.0;
+    if (c.x > 0.0) {
+        const vec3 l = normalize(u_lightDir);
+        const vec2 reach = l.xz * (HFX_CLOUD_DEPTH / max(l.y, 0.01));
+        const float cell = 1.0 / u_cloudScale, most = 0.5 * cell, length2 = dot(reach, reach);
+        const vec2 step = length2 > most * most ? reach * (most * inversesqrt(length2)) : reach;
+        sunward = hfx_cloud_cover(p + step, max(across, cell), max(along, cell)).x;
+    }
     // Far off, the layer fades into the horizon's haze.
-    return vec2(c.x * (1.0 - exp(-8.0 * dir.y)), c.y);
+    return vec3(c.x * (1.0 - exp(-8.0 * dir.y)), c.y, sunward);
 }
 
 // The share of the sun's direct light the clouds let through to the world point `position`,
@@ -136,14 +152,17 @@ vec3 hfx_clear_sky(vec3 dir) {
     return base + u_sunGlow * u_lightColor * (0.5 * pow(sun, 48.0) + 0.12 * pow(sun, 6.0));
 }
 
-// A cloud's colour: the sky's light from around it and the sun's from above (both dimmed where
-// it is thick: its underside is in its own shade), and at its thin edges towards the sun the
-// light it scatters forwards (the silver lining).
-vec3 hfx_cloud_color(vec3 dir, float thickness) {
+// A cloud's colour: the sky's light from around it, dimmed where it is thick (its underside is in
+// its own shade), and the sun's, dimmed also by the cloud towards the sun (`sunward`: its sunlit
+// side is bright, its far side grey), and at its thin edges towards the sun the light it scatters
+// forwards (the silver lining).
+vec3 hfx_cloud_color(vec3 dir, float thickness, float sunward) {
     const vec3 l = normalize(u_lightDir);
     const float sun = max(dot(normalize(dir), l), 0.0);
     const vec3 ambient = u_skyHorizon + (u_skyZenith - u_skyHorizon) * 0.3;
-    const vec3 lit = (0.7 + 0.3 * (1.0 - thickness)) * (0.5 * ambient + (0.55 + 0.45 * clamp(l.y, 0.0, 1.0)) * u_lightColor);
+    const float shade = 0.7 + 0.3 * (1.0 - thickness);
+    const vec3 lit = shade * (0.5 * ambient + (1.0 - HFX_CLOUD_SUNWARD_SHADE * sunward) *
+                                                  (0.55 + 0.45 * clamp(l.y, 0.0, 1.0)) * u_lightColor);
     const vec3 silver = u_sunGlow * u_lightColor * (1.0 - thickness) * (1.5 * pow(sun, 16.0) + 0.3 * pow(sun, 4.0));
     return lit + silver;
 }
@@ -163,8 +182,8 @@ vec3 hfx_sky(vec3 dir, float spread) {
 #elif HFX_SKY == 1
     const vec3 clear = hfx_clear_sky(dir);
     if (!(dir.y > 0.0)) return clear;
-    const vec2 cloud = hfx_clouds(dir, spread);
-    return clear + (hfx_cloud_color(dir, cloud.y) - clear) * cloud.x;
+    const vec3 cloud = hfx_clouds(dir, spread);
+    return clear + (hfx_cloud_color(dir, cloud.y, cloud.z) - clear) * cloud.x;
 #else
     return hfx_clear_sky(dir);
 #endif

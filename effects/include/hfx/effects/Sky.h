@@ -46,7 +46,9 @@ float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::v
 float cloudThreshold(float cover);
 
 /// The sky's colour (linear RGB) in direction `dir` from `eye` under `light`: the look's
-/// gradient, the sun's glow and, where the look has them, its clouds seen over `spread` radians.
+/// gradient, the sun's glow and, where the look has them, its clouds seen over `spread` radians,
+/// darker where thick and where the sun's light reaching them crossed more of the cloud (half a
+/// cell up the sun's ray: a cloud's sunward side is bright, its far side grey).
 /// The environment image of a look that has one is not read: what it returns is the procedural
 /// sky's.
 glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::vec3 eye, glm::vec3 dir, float spread);

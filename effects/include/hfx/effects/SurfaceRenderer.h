@@ -104,7 +104,7 @@ struct WaterLook {
     /// Clouds in the procedural sky (shade/sky.glsl; hfx::skyColor, hfx::cloudSample and
     /// hfx::cloudSunlight give the same on the CPU): a layer of them `cloudHeight` world units over
     /// the world's y = 0 (the water's level; metres for the ocean), lit by the sun (greyer where
-    /// thick, a silver edge towards the sun), drawn by drawSky, reflected by the water and faded
+    /// thick and on the side away from the sun, a silver edge towards it), drawn by drawSky, reflected by the water and faded
     /// into the haze towards the horizon, their shadows dimming the sun's light on the water.
     /// `cloudCover` is the share of the sky overhead under a cloud's middle, 0 (none, the default)
     /// to 1; `cloudScale` the clouds per cloud height (larger: smaller clouds; about one per
