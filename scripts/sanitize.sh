@@ -8,7 +8,8 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
-    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DHFX_GL_DEBUG=ON -DHFX_BUILD_DEMO=ON -Wno-dev > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }
+    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DHFX_GL_DEBUG=ON -DHFX_BUILD_DEMO=ON -Wno-dev \
+    -DHFX_TEST_TIMEOUT=1200 > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }
 cmake --build build-asan -j"$(nproc)" >> build-asan.log 2>&1 || { tail -n 60 build-asan.log; exit 1; }
 # quarantine_size_mb=16: freed memory waits in
 # AddressSanitizer's quarantine (256 MB by default) before reuse, so blocks allocated and freed
