@@ -40,7 +40,8 @@ namespace hfx {
 
 /// The sky a water look draws and reflects (WaterLook::sky(); HFX_SKY, a define of the program:
 /// on a CPU rasteriser a branch on a uniform runs both sides, and the clouds' noise would cost
-/// every water pixel where there are none).
+/// every water pixel where there are none: llvmpipe's clear-sky POM draw 1.10-1.12x, its sky pass
+/// 1.7x, docs/BENCHMARKS.md; a GPU pays only a program per kind).
 enum class SkyKind {
     Gradient = 0,    ///< skyZenith to skyHorizon with the sun's glow
     Clouds = 1,      ///< the same with clouds (cloudCover > 0)
