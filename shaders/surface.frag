@@ -175,7 +175,7 @@ layout(location = HFX_MATERIAL_OUTPUT) out vec4 o_material;
 #endif
 
 layout(binding = HFX_UNIT_ALBEDO) uniform sampler2D s_albedo;
-layout(binding = HFX_UNIT_CHANNELS) uniform sampler2D s_channels; // roughness, ambient occlusion (layer 0's)
+layout(binding = HFX_UNIT_CHANNELS) uniform sampler2D s_channels; // roughness, ambient occlusion, -, glow (layer 0's)
 #if HFX_BEAM_START
 layout(binding = HFX_UNIT_BEAM_START) uniform sampler2D s_beamStart;
 #endif
@@ -626,9 +626,10 @@ HfxShaded hfx_surface(HfxFrame f) {
     point.foam = HFX_SHADED_FOAM;
     point.foamYoung = HFX_SHADED_YOUNG;
     point.foamDetail = layerDetail;
-    const vec2 channels = textureLod(s_channels, uv * u_layerScale.x, shadeLevel + u_layerLevel.x).rg;
+    const vec4 channels = textureLod(s_channels, uv * u_layerScale.x, shadeLevel + u_layerLevel.x);
     point.roughness = channels.r;
     point.occlusion = channels.g;
+    point.glow = channels.a;
     // Roughness as a slope deviation of its own: it widens the lobe like the variance does.
     const float power = u_specularPower / (1.0 + u_specularPower * (slopeVariance + channels.r * channels.r));
     point.specular = nDotL > 0.0 ? (power + 2.0) / (u_specularPower + 2.0) *

@@ -85,9 +85,12 @@ TEST(DamageLog, HealCurvesReachTheirEndValueAtTheSetTime) {
     config.look.height = {.start = 3.0, .duration = 7.0, .end = 0.5f};
     DamageLog log(config);
     log.add({});
-    log.advance(5.0);
     const BulletHole b = config.look.bullet;
+    EXPECT_EQ(log.stamps().at(0).glow, b.glow) << "a fresh crater is hot";
+    EXPECT_GT(b.glow, 0.0f);
+    log.advance(5.0);
     BulletHole h = log.stamps().at(0);
+    EXPECT_EQ(h.glow, 0.0f) << "its embers cool within the glow curve's 3 s";
     EXPECT_EQ(h.scorch, b.scorch * 0.3f);
     EXPECT_EQ(h.roughness, 0.0f);
     EXPECT_EQ(h.occlusion, b.occlusion);
@@ -201,9 +204,10 @@ TEST(DamageLog, AClientAddingTheServersImpactsLateWithTheirTimesHoldsTheSameDama
         const auto sa = server.stamps(), sb = client.stamps(), sc = careless.stamps();
         ASSERT_EQ(sa.size(), sb.size());
         EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(BulletHole)), 0) << "after " << later << " s more";
-        if (later < 100.0)
+        if (later < 100.0) {
             EXPECT_TRUE(sa.size() != sc.size() || std::memcmp(sa.data(), sc.data(), sa.size() * sizeof(BulletHole)) != 0)
                 << "the client's own clock gave the server's stamps: the test cannot tell";
+        }
     }
     // A time after the clock, one before the last impact's, or not a number is refused by name
     // and changes nothing.

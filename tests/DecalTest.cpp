@@ -201,11 +201,11 @@ TEST_F(Decals, MarksMatchTheSharedMathAndBurnTheAlbedoTowardsSoot) {
     for (size_t i = 0; i < base.size(); ++i) base[i] = std::uint8_t(40 + (i * 37) % 200);
     DecalMap map(cl(), config, {}, base);
     const BulletHole hole{.u = 0.45f, .v = 0.5f, .radius = 0.08f, .scorch = 0.8f, .roughness = 0.7f, .occlusion = 0.5f,
-                          .scorchReach = 2.0f, .phase = 1.3f};
+                          .scorchReach = 2.0f, .phase = 1.3f, .glow = 0.9f};
     map.addBulletHole(hole);
     map.rebuild();
     const auto albedo = bytes(map.albedo(), 4 * N * N), channels = bytes(map.channels(), 4 * N * N);
-    int worst = 0, scorched = 0;
+    int worst = 0, scorched = 0, glowing = 0;
     for (int y = 0; y < N; ++y)
         for (int x = 0; x < N; ++x) {
             const float r = hole.radius * N;
@@ -216,8 +216,10 @@ TEST_F(Decals, MarksMatchTheSharedMathAndBurnTheAlbedoTowardsSoot) {
                             hole.occlusion, hole.scorchReach, w[0], w[1], w[2], w[3], &scorch, &rough, &occlusion);
             const size_t i = 4 * (size_t(y) * N + x);
             auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+            const float glow = hfx_decal_glow(((x + 0.5f) - hole.u * N) / r, ((y + 0.5f) - hole.v * N) / r, hole.glow);
             worst = std::max({worst, std::abs(channels[i] - byte(rough)), std::abs(channels[i + 1] - byte(occlusion)),
-                              std::abs(channels[i + 2] - byte(scorch))});
+                              std::abs(channels[i + 2] - byte(scorch)), std::abs(channels[i + 3] - byte(glow))});
+            glowing += channels[i + 3] > 0;
             for (int c = 0; c < 3; ++c) {
                 const float expected = base[i + c] + scorch * (255.0f * config.soot[size_t(c)] - base[i + c]);
                 worst = std::max(worst, std::abs(albedo[i + c] - int(std::lround(expected))));
@@ -227,6 +229,9 @@ TEST_F(Decals, MarksMatchTheSharedMathAndBurnTheAlbedoTowardsSoot) {
         }
     EXPECT_LE(worst, 1) << "steps of 1/255 from the shared math";
     EXPECT_GT(scorched, 300) << "the burn covers about pi (1.4 radii)^2";
+    // The heat fills the bowl: pi (0.08 N)^2 = 185 texels, the last of them under half a step.
+    EXPECT_GT(glowing, 150);
+    EXPECT_LT(glowing, 190) << "the heat stays in the bowl";
 }
 
 // A log fed 10,000 impacts (merging, evicting, healing as the clock runs), its map rebuilt as it

@@ -428,7 +428,7 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
     for (int y = 0; y < field; ++y)
         for (int x = 0; x < field; ++x) {
             unsigned char* c = &channels[(size_t(y) * field + x) * 4];
-            c[0] = static_cast<unsigned char>(x * 4), c[1] = static_cast<unsigned char>(255 - y * 2), c[2] = 0, c[3] = 255;
+            c[0] = static_cast<unsigned char>(x * 4), c[1] = static_cast<unsigned char>(255 - y * 2), c[2] = 0, c[3] = 0;
         }
     textures.uploadChannels(channels.data());
     const Mesh plane(makePlane({.size = 2.0f}));

@@ -267,7 +267,7 @@ TEST_F(Pipeline, ShadingChannelsTakeTheAmbientAndTheHighlightWhereTheySaySo) {
             c[0] = crater ? 255 : 0; // roughness
             c[1] = crater ? 0 : 255; // occlusion
             c[2] = 0;
-            c[3] = 255;
+            c[3] = 0; // no heat
         }
     textures.uploadChannels(channels.data());
     const SurfaceMaterial material{.depthScale = 0.05f, .shadows = false, .specularStrength = 0.2f, .specularPower = 32.0f};
@@ -314,6 +314,60 @@ TEST_F(Pipeline, ShadingChannelsTakeTheAmbientAndTheHighlightWhereTheySaySo) {
     EXPECT_GT(checked[1], 200);
 }
 
+// The channels' heat (A): a surface half hot emits embers' light there, added to what the lit
+// model reflects, lit or not: 2.5 t^2 (1, 0.12 + 0.6 t^2, 0.02 + 0.4 t^4) (shade/lit.glsl's
+// hfx_ember), and nothing where it is cold.
+TEST_F(Pipeline, HeatInTheChannelsGlowsAsEmbers) {
+    constexpr int N = 8;
+    SurfaceTextures textures({.width = N, .height = N, .mipmaps = false});
+    textures.setAlbedo(Image{1, 1, 3, {0.3f, 0.3f, 0.3f}});
+    constexpr unsigned char kHeat = 100;
+    std::vector<unsigned char> channels(4 * N * N);
+    for (int y = 0; y < N; ++y)
+        for (int x = 0; x < N; ++x) {
+            unsigned char* c = &channels[4 * size_t(y * N + x)];
+            c[0] = 0, c[1] = 255, c[2] = 0, c[3] = x < N / 2 ? kHeat : 0;
+        }
+    textures.uploadChannels(channels.data());
+    const SurfaceMaterial material{.depthScale = 0.05f, .shadows = false, .specularStrength = 0.0f};
+    for (const float up : {1.0f, -1.0f}) { // lit from straight above, then from below (no direct light)
+        DirectionalLight light;
+        light.direction = {0.0f, up, 0.0f};
+        const Camera camera = accuracyCamera(0.0);
+        const Mesh plane(makePlane({.size = 2.0f}));
+        SurfaceRenderer renderer;
+        constexpr int image = 64;
+        RenderTarget target(image, image, true);
+        target.bind();
+        target.clear();
+        renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light,
+                      {.technique = Technique::NormalMapping, .traceOutput = true});
+        const Image color = target.readColor();
+        const std::vector<glm::vec4> trace = target.readTrace();
+        const float albedo = 77.0f / 255.0f, t = kHeat / 255.0f;
+        const float t2 = t * t;
+        const glm::vec3 ember = 2.5f * t2 * glm::vec3(1.0f, 0.12f + 0.6f * t2, 0.02f + 0.4f * t2 * t2);
+        int checked[2] = {0, 0};
+        for (int y = 0; y < image; ++y)
+            for (int x = 0; x < image; ++x) {
+                const glm::vec4 p = trace[size_t(y) * image + x];
+                if (p.w == 0.0f || std::abs(p.x - 0.5f) < 0.2f || p.x < 0.07f || p.x > 0.93f) continue;
+                const bool hot = p.x < 0.5f;
+                for (int c = 0; c < 3; ++c) {
+                    const float reflected = albedo * (light.ambient[c] + (up > 0.0f ? light.color[c] : 0.0f));
+                    const float linear = reflected + (hot ? ember[c] : 0.0f);
+                    const float expected = std::pow(std::min(linear, 1.0f), 1.0f / 2.2f);
+                    ASSERT_NEAR(color.at(x, image - 1 - y, c), expected, 2.0f / 255.0f)
+                        << (hot ? "hot" : "cold") << " pixel " << x << "," << y << " channel " << c << " light "
+                        << up;
+                }
+                ++checked[hot];
+            }
+        EXPECT_GT(checked[0], 200);
+        EXPECT_GT(checked[1], 200);
+    }
+}
+
 } // namespace
 } // namespace hfx::test
 
@@ -324,7 +378,8 @@ namespace {
 // the log's heal clock, healStep apart); a still wall costs no decal pass.
 TEST_F(Pipeline, TheWallRebuildsItsDecalsOnlyWhenTheyWouldChange) {
     DecalWallEffect wall(cl(), {.bricks = {.size = 64}});
-    const DamageLook& look = wall.config().damage.look; // roughness heals from 5 s on, for 30 s
+    // The glow cools from 0 s for 3 s; the roughness heals from 5 s on, for 30 s.
+    const DamageLook& look = wall.config().damage.look;
     auto passes = [&] { return cl().launches("decals"); };
     wall.update(0.1);
     const std::uint64_t start = passes();
@@ -333,10 +388,16 @@ TEST_F(Pipeline, TheWallRebuildsItsDecalsOnlyWhenTheyWouldChange) {
     wall.shoot(0.5, 0.5);
     wall.update(0.1);
     EXPECT_EQ(passes(), start + 1) << "an impact";
-    for (int i = 0; i < 10; ++i) wall.update(0.1);
-    EXPECT_EQ(passes(), start + 1) << "no curve moves before " << look.roughness.start << " s";
+    for (int i = 0; i < 10; ++i) wall.update(0.1); // to 1.1 s: the heal steps at 0.125 .. 1.0 s
+    EXPECT_GE(passes(), start + 1 + 7) << "the crater's glow cools: a pass each heal step";
+    EXPECT_LE(passes(), start + 1 + 9);
+    wall.update(look.glow.duration); // 4.1 s
+    const std::uint64_t cooled = passes();
+    for (int i = 0; i < 5; ++i) wall.update(0.1);
+    EXPECT_EQ(passes(), cooled) << "no curve moves between " << look.glow.duration << " and " << look.roughness.start
+                                << " s";
     wall.update(look.roughness.start);
-    EXPECT_EQ(passes(), start + 2) << "the roughness began to heal";
+    EXPECT_EQ(passes(), cooled + 1) << "the roughness began to heal";
     const std::uint64_t healing = passes();
     for (int i = 0; i < 25; ++i) wall.update(0.01); // 0.25 s: two or three heal steps of 0.125 s
     EXPECT_GE(passes(), healing + 2);

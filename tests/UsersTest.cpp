@@ -21,6 +21,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -187,6 +188,45 @@ TEST_F(Users, AClientWallThatAddsTheServersImpactsAtTheirTimesDrawsTheServersWal
     EXPECT_EQ(server.readHeights(), client.readHeights());
     EXPECT_NE(messageOf([&] { client.impactAt({}, client.damage().now() + 1.0); }).find("DamageLog::addAt"),
               std::string::npos);
+}
+
+TEST_F(Users, AFreshCratersEmbersGlowAndCool) {
+    // An explosion's bowl is hot (the shading channels' heat, which the lit model emits lit or
+    // not) and cools over DamageLook::glow's 3 s. Seen with the sun behind the wall, whose face
+    // then has the ambient light alone, the crater's floor glows orange at first and is as dark as
+    // soot once cooled.
+    DecalWallEffect wall(cl(), {.bricks = {.size = 128}});
+    wall.explode(0.0, 0.0, 7); // texcoords (1, 1): the middle of kWall
+    wall.update(1.0 / 30.0);
+    const Mesh mesh(makePlane(kWall));
+    Camera camera;
+    camera.position = {0.0f, 0.0f, 1.2f};
+    camera.target = {0.0f, 0.0f, 0.0f};
+    camera.aspect = 1.0f;
+    const DirectionalLight behind{.direction = {0.0f, 0.3f, -1.0f}};
+    SurfaceRenderer renderer;
+    constexpr int kSize = 64;
+    RenderTarget target(kSize, kSize);
+    target.bind();
+    auto middle = [&] { // the mean colour of the 5x5 pixels in the middle
+        target.clear();
+        renderer.draw(mesh, kWallModel, wall.textures(), wall.material(), camera, behind,
+                      {.technique = Technique::ParallaxOcclusion});
+        const Image color = target.readColor();
+        glm::vec3 sum(0.0f);
+        for (int y = kSize / 2 - 2; y <= kSize / 2 + 2; ++y)
+            for (int x = kSize / 2 - 2; x <= kSize / 2 + 2; ++x)
+                sum += glm::vec3(color.at(x, y, 0), color.at(x, y, 1), color.at(x, y, 2));
+        return sum / 25.0f;
+    };
+    const glm::vec3 hot = middle();
+    wall.update(3.5); // past the glow curve's end
+    const glm::vec3 cold = middle();
+    std::printf("the crater's floor: %.3f %.3f %.3f fresh, %.3f %.3f %.3f 3.5 s on\n", hot.r, hot.g, hot.b, cold.r,
+                cold.g, cold.b);
+    EXPECT_GT(hot.r, 0.8f) << "a fresh crater does not glow";
+    EXPECT_GT(hot.r - hot.b, 0.4f) << "embers glow orange, not white";
+    EXPECT_LT(cold.r, 0.3f) << "the crater still glows after its curve's end";
 }
 
 TEST_F(Users, DecalWallRefusesBadMapsAndKeepsNoHalfState) {

@@ -3,12 +3,12 @@
 /* One step of the damage map: heal (scale the damage; 0 rebuilds it from this batch alone), then
    apply this batch's stamps in order, each clamped so base + damage stays in [0,1], then write
    the combined height; and the batch's shading marks: the albedo (the base colour burnt towards
-   soot by the scorch) and the shading channels (roughness, occlusion, scorch, 255).
+   soot by the scorch) and the shading channels (roughness, occlusion, scorch, glow).
    Stamps are binned on the host into square tiles of TILE texels: tileStart[t]..tileStart[t+1]
    index tileStamps, the stamps whose footprint touches tile t, in batch order. A texel loops
    over its tile's list only, so thousands of stamps cost what their footprints cover.
    stamps[i] = (centre x, centre y in texels, 1 / radius in texels, depth),
-   shapes[i] = (rimHeight, rimWidth, squared reach in texels^2, 0): texels beyond
+   shapes[i] = (rimHeight, rimWidth, squared reach in texels^2, glow): texels beyond
    the reach of a stamp in their tile's list skip it before any square root.
    looks[i] = (scorch, roughness, occlusion strengths, scorch reach in radii),
    wobbles[i] = hfx_decal_wobble of its phase. */
@@ -24,7 +24,7 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
     int i = y * width + x;
     float b = base[i];
     float d = damage[i] * heal;
-    float scorch = 0.0f, rough = 0.0f, occlusion = 1.0f;
+    float scorch = 0.0f, rough = 0.0f, occlusion = 1.0f, glow = 0.0f;
     int tile = (y / TILE) * tilesX + x / TILE;
     for (int k = tileStart[tile]; k < tileStart[tile + 1]; ++k) {
         int s = tileStamps[k];
@@ -49,6 +49,7 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
             rough = fmax(rough, ro);
             occlusion = fmin(occlusion, oc);
         }
+        if (shape.w > 0.0f) glow = fmax(glow, hfx_decal_glow(dx * stamp.z, dy * stamp.z, shape.w));
     }
     damage[i] = d;
     float h = b + d;
@@ -58,5 +59,5 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
     albedo[i] = (uchar4)(convert_uchar_sat_rte(burnt.x), convert_uchar_sat_rte(burnt.y), convert_uchar_sat_rte(burnt.z),
                          baseAlbedo[i].w);
     channels[i] = (uchar4)(convert_uchar_sat_rte(rough * 255.0f), convert_uchar_sat_rte(occlusion * 255.0f),
-                           convert_uchar_sat_rte(scorch * 255.0f), 255);
+                           convert_uchar_sat_rte(scorch * 255.0f), convert_uchar_sat_rte(glow * 255.0f));
 }

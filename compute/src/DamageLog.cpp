@@ -33,6 +33,7 @@ void DamageLook::validate() const {
     scorch.validate("scorch");
     roughness.validate("roughness");
     occlusion.validate("occlusion");
+    glow.validate("glow");
     if (!(maxStrength >= 1.0f && maxStrength <= 16.0f))
         throw Error(str("DamageLook.maxStrength must be in [1, 16], got ", maxStrength));
 }
@@ -92,7 +93,7 @@ double DamageLog::healTime() const { return std::floor(now_ / config_.healStep) 
 bool DamageLog::healsBetween(double t0, double t1) const {
     if (!(t1 > t0)) return false; // the same heal time reads the same curves
     const DamageLook& look = config_.look;
-    for (const HealCurve* c : {&look.height, &look.scorch, &look.roughness, &look.occlusion}) {
+    for (const HealCurve* c : {&look.height, &look.scorch, &look.roughness, &look.occlusion, &look.glow}) {
         if (c->duration <= 0.0) continue;
         for (int i = 0; i < live_; ++i) {
             const double time = slots_[size_t((oldest_ + i) % config_.budget)].time;
@@ -185,7 +186,7 @@ std::vector<BulletHole> DamageLog::stamps() const {
     for (const ImpactEvent& e : events()) {
         const double age = healTime - e.time;
         const float height = look.height.at(age), scorch = look.scorch.at(age), rough = look.roughness.at(age),
-                    occlusion = look.occlusion.at(age);
+                    occlusion = look.occlusion.at(age), glow = look.glow.at(age);
         // Merged hits deepen the crater and widen it a little.
         const float deeper = 1.0f + 0.35f * (e.strength - 1.0f), wider = 1.0f + 0.2f * (e.strength - 1.0f);
         auto heal = [&](BulletHole h) {
@@ -194,6 +195,7 @@ std::vector<BulletHole> DamageLog::stamps() const {
             h.scorch *= scorch;
             h.roughness *= rough;
             h.occlusion *= occlusion;
+            h.glow *= glow;
             return h;
         };
         if (e.kind == ImpactKind::Bullet) {

@@ -82,7 +82,7 @@ void DecalMap::validate(const BulletHole& h) const {
     if (!(h.rimWidth > 0.0f && h.rimWidth <= 4.0f))
         throw Error(str("decal rimWidth must be in (0, 4] radii, got ", h.rimWidth));
     for (auto [value, name] : {std::pair{h.scorch, "scorch"}, std::pair{h.roughness, "roughness"},
-                               std::pair{h.occlusion, "occlusion"}})
+                               std::pair{h.occlusion, "occlusion"}, std::pair{h.glow, "glow"}})
         if (!(value >= 0.0f && value <= 1.0f)) throw Error(str("decal ", name, " must be in [0, 1], got ", value));
     if (!(h.scorchReach >= 1.0f && h.scorchReach <= 16.0f))
         throw Error(str("decal scorchReach must be in [1, 16] radii, got ", h.scorchReach));
@@ -107,7 +107,7 @@ std::vector<BulletHole> DecalMap::expand(const Explosion& e, EdgeMode edges) {
     std::vector<BulletHole> stamps;
     SplitMix64 random(e.seed);
     stamps.push_back({e.u, e.v, e.radius, e.depth, e.depth * 0.25f, 0.3f, e.scorch, e.roughness, e.occlusion,
-                      e.scorchReach, float(random.uniform(0.0, 2.0 * std::numbers::pi))});
+                      e.scorchReach, float(random.uniform(0.0, 2.0 * std::numbers::pi)), e.glow});
     for (int i = 0; i < e.debris; ++i) {
         const double angle = random.uniform(0.0, 2.0 * std::numbers::pi);
         const double distance = e.radius * random.uniform(0.6, e.debrisSpread);
@@ -122,7 +122,7 @@ std::vector<BulletHole> DecalMap::expand(const Explosion& e, EdgeMode edges) {
         };
         if (!land(u, wrapsU(edges)) || !land(v, wrapsV(edges))) continue;
         stamps.push_back({u, v, size, depth, depth * 0.3f, 0.4f, 0.5f * e.scorch, 0.5f * e.roughness, 0.5f * e.occlusion,
-                          1.5f, float(angle)});
+                          1.5f, float(angle), 0.5f * e.glow});
     }
     return stamps;
 }
@@ -181,7 +181,7 @@ void DecalMap::bin() {
         const float radius = h.radius * float(W);
         const float reach = radius * hfx_decal_reach(h.rimWidth, h.scorch, h.roughness, h.scorchReach);
         stamps_.push_back({{h.u * float(W), h.v * float(H), 1.0f / radius, h.depth}});
-        shapes_.push_back({{h.rimHeight, h.rimWidth, reach * reach, 0.0f}});
+        shapes_.push_back({{h.rimHeight, h.rimWidth, reach * reach, h.glow}});
         looks_.push_back({{h.scorch, h.roughness, h.occlusion, h.scorchReach}});
         cl_float4 wobble;
         hfx_decal_wobble(h.phase, wobble.s);

@@ -65,7 +65,7 @@ SurfaceTextures::SurfaceTextures(const SurfaceTexturesConfig& config)
     HFX_GL_CHECK(glTextureStorage2D(albedo_.id(), levels_, GL_RGBA8, config.width, config.height));
     setAlbedo(Image{1, 1, 3, {0.8f, 0.8f, 0.8f}});
     HFX_GL_CHECK(glTextureStorage2D(channels_.id(), levels_, GL_RGBA8, config.width, config.height));
-    const GLubyte open[4] = {0, 255, 0, 255}; // no added roughness, no occlusion
+    const GLubyte open[4] = {0, 255, 0, 0}; // no added roughness, no occlusion, no heat
     for (int level = 0; level < levels_; ++level)
         HFX_GL_CHECK(glClearTexImage(channels_.id(), level, GL_RGBA, GL_UNSIGNED_BYTE, open));
     uploadTexels(flatTexels(config.format, static_cast<size_t>(config.width) * config.height).data());

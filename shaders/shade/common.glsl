@@ -18,6 +18,7 @@ struct HfxSurfacePoint {
     float specular;       // Blinn-Phong lobe (u_specularPower, widened by slopeVariance and roughness), 0 facing away
     float roughness;      // added to the material's: the shading channels' R (0 where none were given)
     float occlusion;      // ambient occlusion, 1 open: the shading channels' G
+    float glow;           // heat, 0 none to 1: the shading channels' A (a fresh crater's embers)
     float slopeVariance;  // variance of the slopes the pixel covers, from the mip-averaged normals (Toksvig)
     vec4 foam;            // each layer's albedo alpha: foam coverage, where the effect writes it (layers 0-3)
     vec4 foamYoung;       // each layer's albedo red: the young part of that foam (the ocean's)

@@ -49,13 +49,14 @@ struct HealCurve {
 /// The look of impacts and how it heals, per channel.
 struct DamageLook {
     BulletHole bullet{.radius = 0.012f, .depth = 0.5f, .rimHeight = 0.08f, .scorch = 0.55f, .roughness = 0.8f,
-                      .occlusion = 0.6f, .scorchReach = 2.2f};
+                      .occlusion = 0.6f, .scorchReach = 2.2f, .glow = 0.4f};
     Explosion explosion{.radius = 0.05f, .depth = 0.6f, .debris = 40, .scorch = 0.9f, .roughness = 0.9f,
-                        .occlusion = 0.7f, .scorchReach = 2.6f};
+                        .occlusion = 0.7f, .scorchReach = 2.6f, .glow = 0.8f};
     HealCurve height;                                       ///< permanent unless told
     HealCurve scorch{.start = 20.0, .duration = 60.0, .end = 0.35f}; ///< soot weathers to a stain
     HealCurve roughness{.start = 5.0, .duration = 30.0, .end = 0.4f}; ///< fresh fracture dulls
     HealCurve occlusion;
+    HealCurve glow{.start = 0.0, .duration = 3.0, .end = 0.0}; ///< a fresh crater's embers cool
     float maxStrength = 3.0f; ///< merged impacts deepen and widen up to this many times the first
     void validate() const;
 };

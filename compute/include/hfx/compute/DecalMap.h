@@ -27,6 +27,7 @@ struct BulletHole {
     float occlusion = 0.0f;   ///< how dark the bowl's floor is to ambient light
     float scorchReach = 2.0f; ///< radii, 1 to 16
     float phase = 0.0f;       ///< turns the scorch's ragged edge (radians)
+    float glow = 0.0f;        ///< the fresh crater's heat: its bowl glows like embers (hfx_decal_glow)
 };
 
 struct Explosion {
@@ -41,6 +42,7 @@ struct Explosion {
     float roughness = 0.0f;
     float occlusion = 0.0f;
     float scorchReach = 2.5f;
+    float glow = 0.0f;            ///< the crater's heat (BulletHole::glow); the debris get half
 };
 
 struct DecalConfig {
@@ -82,7 +84,7 @@ public:
     /// RGBA8, row 0 at v = 0: the base albedo burnt by the last step's scorch.
     const cl::Buffer& albedo() const { return albedo_; }
     /// RGBA8 shading channels of the last step (SurfaceTextures::uploadChannels): roughness,
-    /// occlusion, scorch, 255.
+    /// occlusion, scorch, glow.
     const cl::Buffer& channels() const { return channels_; }
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }

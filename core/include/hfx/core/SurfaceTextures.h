@@ -55,8 +55,9 @@ public:
     void setAlbedo(const Image& albedo);
     /// Replaces the shading channels with width*height RGBA8 texels, row 0 at v = 0: R the
     /// roughness added to the material's (0: the material's own gloss, 1: fully diffuse), G the
-    /// ambient occlusion (1: open, 0: no ambient light), B and A reserved (write 0 and 255).
-    /// Until the first upload: roughness 0, occlusion 1, which draws as without the texture.
+    /// ambient occlusion (1: open, 0: no ambient light), B reserved (write 0), A the heat the
+    /// lit shading emits as embers (0: none, 1: yellow white; a decal's fresh crater).
+    /// Until the first upload: roughness 0, occlusion 1, no heat, which draws as without it.
     void uploadChannels(const unsigned char* rgba);
 
     GLuint surface() const { return surface_.id(); }

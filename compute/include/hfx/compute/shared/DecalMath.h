@@ -69,6 +69,15 @@ HFX_FN void hfx_decal_marks(float dx, float dy, float scorchStrength, float roug
     *occlusion = r < 1.0f ? 1.0f - occlusionStrength * (1.0f - r * r) : 1.0f;
 }
 
+/* A fresh crater's heat (0 to `strength`) at (dx, dy) radii from its centre: its bowl glows like
+   embers, most at the floor, (1 - r^2)^2, none from the lip out (inside every stamp's reach). */
+HFX_FN float hfx_decal_glow(float dx, float dy, float strength) {
+    float r2 = dx * dx + dy * dy;
+    if (r2 >= 1.0f) return 0.0f;
+    float inside = 1.0f - r2;
+    return strength * inside * inside;
+}
+
 /* How far (radii) a stamp's marks reach: its crater's lip and rim, its roughness, its scorch
    (the wobble adds at most 28%). */
 HFX_FN float hfx_decal_reach(float rimWidth, float scorchStrength, float roughStrength, float scorchReach) {
