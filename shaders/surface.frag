@@ -175,7 +175,8 @@ layout(location = HFX_MATERIAL_OUTPUT) out vec4 o_material;
 #endif
 
 layout(binding = HFX_UNIT_ALBEDO) uniform sampler2D s_albedo;
-layout(binding = HFX_UNIT_CHANNELS) uniform sampler2D s_channels; // roughness, ambient occlusion, -, glow (layer 0's)
+// Layer 0's shading channels: roughness, ambient occlusion, (reserved), heat.
+layout(binding = HFX_UNIT_CHANNELS) uniform sampler2D s_channels;
 #if HFX_BEAM_START
 layout(binding = HFX_UNIT_BEAM_START) uniform sampler2D s_beamStart;
 #endif

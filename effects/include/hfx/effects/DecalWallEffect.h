@@ -3,10 +3,11 @@
 // wall when none are given) carrying damage a game can ship: a DamageLog of impacts (a fixed budget,
 // oldest evicted first, close impacts merged, heal curves per channel, save and load), from
 // which the DecalMap rebuilds the heights, the scorched albedo and the shading channels
-// (roughness, ambient occlusion, a fresh crater's glow) every update. pick() turns a camera ray into the texcoord the
-// user sees on the displaced surface. Normals are re-derived from the damaged heights every
-// update (and added to the normal map's, when one is given), so craters shade, cast soft
-// self-shadows and clip geometry (POM's depth output) from the frame they appear in.
+// (roughness, ambient occlusion, a fresh crater's glow) every update. pick() turns a camera ray
+// into the texcoord the user sees on the displaced surface. Normals are re-derived from the
+// damaged heights every update (and added to the normal map's, when one is given), so craters
+// shade, cast soft self-shadows and clip geometry (POM's depth output) from the frame they
+// appear in.
 //
 // Thread: the thread that owns both the ClContext and the current GL context.
 

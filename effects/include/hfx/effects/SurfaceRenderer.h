@@ -105,8 +105,9 @@ struct WaterLook {
     /// Clouds in the procedural sky (shade/sky.glsl; hfx::skyColor, hfx::cloudSample and
     /// hfx::cloudSunlight give the same on the CPU): a layer of them `cloudHeight` world units over
     /// the world's y = 0 (the water's level; metres for the ocean), lit by the sun (greyer where
-    /// thick and on the side away from the sun, a silver edge towards it), drawn by drawSky, reflected by the water and faded
-    /// into the haze towards the horizon, their shadows dimming the sun's light on the water.
+    /// thick and on the side away from the sun, a silver edge towards it), drawn by drawSky,
+    /// reflected by the water and faded into the haze towards the horizon, their shadows dimming
+    /// the sun's light on the water.
     /// `cloudCover` is the share of the sky overhead under a cloud's middle, 0 (none, the default)
     /// to 1; `cloudScale` the clouds per cloud height (larger: smaller clouds; about one per
     /// 1,000 m at 1,500 m is 1.5); `cloudDrift` how far the layer has moved, in cloud heights
