@@ -64,7 +64,8 @@
 #define HFX_CLOUD_OCTAVE_VARIANCE 0.04607
 // How far up the sun's ray (cloud heights) a clouded point's direct light is taken to have come
 // through the cloud, and how much of it the cloud there takes where it is whole: a cloud's sunlit
-// side is bright, its far side grey (shade/sky.glsl's hfx_clouds and hfx_cloud_color).
+// side is bright, its far side grey (hfx::cloudSunwardStep, once a draw; shade/sky.glsl's
+// hfx_cloud_color).
 #define HFX_CLOUD_DEPTH 0.3
 #define HFX_CLOUD_SUNWARD_SHADE 0.6
 // The sun's angular radius (the Sun's from the Earth), radians: the clouds' shadows' penumbra.

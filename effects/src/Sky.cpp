@@ -91,10 +91,6 @@ CloudSample cover(const WaterLook& look, glm::vec2 p, float across, float along)
             std::clamp((value - threshold) / (0.2f + width), 0.0f, 1.0f)};
 }
 
-} // namespace
-
-namespace {
-
 /// hfx_clouds' patch of the layer: where the direction meets it, in cloud heights, and the patch
 /// of it the spread covers there: spread / y across, foreshortened by y again along the view.
 struct LayerPatch {
@@ -108,25 +104,24 @@ LayerPatch layerPatch(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float
     return {p, spread / y, spread / (y * y)};
 }
 
-/// hfx_clouds' `sunward`: the cloud's density HFX_CLOUD_DEPTH cloud heights up the sun's ray
-/// from the patch (at most half a cell along the layer), over a cell at least.
-float sunwardDensity(const WaterLook& look, glm::vec3 lightDir, const LayerPatch& patch) {
-    const glm::vec3 l = glm::normalize(lightDir);
-    const glm::vec2 reach = glm::vec2(l.x, l.z) * (float(HFX_CLOUD_DEPTH) / std::max(l.y, 0.01f));
-    const float cell = 1.0f / look.cloudScale, most = 0.5f * cell, length2 = glm::dot(reach, reach);
-    const glm::vec2 step = length2 > most * most ? reach * (most / std::sqrt(length2)) : reach;
-    return cover(look, patch.p + step, std::max(patch.across, cell), std::max(patch.along, cell))
-        .density;
+/// hfx_clouds' (density, thickness) over `patch`, faded into the haze towards the horizon.
+CloudSample clouds(const WaterLook& look, const LayerPatch& patch, glm::vec3 dir) {
+    const CloudSample c = cover(look, patch.p, patch.across, patch.along);
+    return {c.density * (1.0f - std::exp(-8.0f * dir.y)), c.thickness};
 }
 
 } // namespace
 
+glm::vec2 cloudSunwardStep(const WaterLook& look, const DirectionalLight& light) {
+    const glm::vec3 l = glm::normalize(light.direction);
+    const glm::vec2 reach = glm::vec2(l.x, l.z) * (float(HFX_CLOUD_DEPTH) / std::max(l.y, 0.01f));
+    const float most = 0.5f / look.cloudScale, length2 = glm::dot(reach, reach);
+    return length2 > most * most ? reach * (most / std::sqrt(length2)) : reach;
+}
+
 CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float spread) {
     if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return {};
-    const LayerPatch patch = layerPatch(look, eye, dir, spread);
-    const CloudSample c = cover(look, patch.p, patch.across, patch.along);
-    // Far off, the layer fades into the horizon's haze.
-    return {c.density * (1.0f - std::exp(-8.0f * dir.y)), c.thickness};
+    return clouds(look, layerPatch(look, eye, dir, spread), dir);
 }
 
 float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::vec3 position, float footprint) {
@@ -149,9 +144,16 @@ glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::ve
     const float sun = std::max(glm::dot(glm::normalize(dir), lightDir), 0.0f);
     const glm::vec3 clear =
         base + look.sunGlow * light.color * (0.5f * std::pow(sun, 48.0f) + 0.12f * std::pow(sun, 6.0f));
-    const CloudSample cloud = cloudSample(look, eye, dir, spread);
+    if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return clear;
+    const LayerPatch patch = layerPatch(look, eye, dir, spread);
+    const CloudSample cloud = clouds(look, patch, dir);
     if (!(cloud.density > 0.0f)) return clear;
-    const float sunward = sunwardDensity(look, light.direction, layerPatch(look, eye, dir, spread));
+    // hfx_clouds' `sunward`: the cloud's density where its direct light came through, over a
+    // cell at least.
+    const float cell = 1.0f / look.cloudScale;
+    const float sunward = cover(look, patch.p + cloudSunwardStep(look, light), std::max(patch.across, cell),
+                                std::max(patch.along, cell))
+                              .density;
     // hfx_cloud_color
     const float elevation = std::clamp(lightDir.y, 0.0f, 1.0f);
     const glm::vec3 ambient = look.skyHorizon + (look.skyZenith - look.skyHorizon) * 0.3f;

@@ -30,7 +30,7 @@ std::vector<SourceFile> surfaceStage(std::string_view top, const std::map<std::s
 
 namespace {
 
-WaterUniforms waterUniforms(const WaterLook& w) {
+WaterUniforms waterUniforms(const WaterLook& w, const DirectionalLight& light) {
     return {.deepColor = w.deepColor,
             .fresnelF0 = w.fresnelF0,
             .shallowColor = w.shallowColor,
@@ -54,7 +54,8 @@ WaterUniforms waterUniforms(const WaterLook& w) {
             .cloudHeight = w.cloudHeight,
             .cloudDrift = w.cloudDrift,
             .cloudScale = w.cloudScale,
-            .cloudThreshold = cloudThreshold(w.cloudCover)};
+            .cloudThreshold = cloudThreshold(w.cloudCover),
+            .cloudSunward = cloudSunwardStep(w, light)};
 }
 
 /// The slope variance a format's rounding alone shows in its mip-0 normals (Toksvig must not
@@ -560,7 +561,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const DrawBuffersWritten written(caster ? 0u : buffersWritten(motion, outputs, options.traceOutput));
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
-        updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(w));
+        updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(w, light));
         glBindTextureUnit(HFX_UNIT_ENVIRONMENT, w.environment);
         RingUniforms rings;
         rings.count = w.ringCount;
@@ -661,7 +662,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     if (motionOutput_) setMotion(u, camera, glm::mat4(1.0f), std::nullopt);
     const DrawBuffersWritten written(buffersWritten(motionOutput_, {}, false));
     bindUniforms(u, glm::mat4(1.0f), camera.viewProjection());
-    updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(look));
+    updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(look, light));
     glBindTextureUnit(HFX_UNIT_ENVIRONMENT, look.environment);
     sky.set("u_inverseViewProj", glm::inverse(camera.viewProjection()));
     glDisable(GL_DEPTH_TEST);

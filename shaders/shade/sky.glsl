@@ -33,7 +33,7 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     vec2 u_cloudDrift;        // how far the cloud layer has moved, cloud heights along world x, z
     float u_cloudScale;       // clouds (the noise's first cells) per cloud height
     float u_cloudThreshold;   // where the noise is clouded: its (1 - cover) quantile
-    vec2 u_waterPadding1;
+    vec2 u_cloudSunward;      // where a cloud's direct light came through, cloud heights (hfx::cloudSunwardStep)
 };
 layout(binding = HFX_UNIT_ENVIRONMENT) uniform sampler2D s_environment;
 #ifndef HFX_SKY
@@ -112,17 +112,14 @@ vec3 hfx_clouds(vec3 dir, float spread) {
     const vec2 c = hfx_cloud_cover(p, across, along);
     // The sun's light reaches a cloud's underside through the cloud on its way: from the sunward
     // side of the cloud, a short way; past its middle, through all of it. So the cloud is read
-    // again HFX_CLOUD_DEPTH cloud heights up the sun's ray (at most half its cells' size along
-    // the layer), over a cell at least: the light spreads in the cloud, and so wide a patch reads
-    // three octaves (half a cell read four, for 1.11x rather than 1.08x between a cloud's sides:
-    // docs/history/tuning.md). Only where there is a cloud to light.
+    // again u_cloudSunward along the layer (HFX_CLOUD_DEPTH cloud heights up the sun's ray, at
+    // most half a cell: the host's, once a draw), over a cell at least: the light spreads in the
+    // cloud, and so wide a patch reads three octaves (half a cell read four, for 1.11x rather
+    // than 1.08x between a cloud's sides: docs/history/tuning.md). Only where there is a cloud.
     float sunward = 0.0;
     if (c.x > 0.0) {
-        const vec3 l = normalize(u_lightDir);
-        const vec2 reach = l.xz * (HFX_CLOUD_DEPTH / max(l.y, 0.01));
-        const float cell = 1.0 / u_cloudScale, most = 0.5 * cell, length2 = dot(reach, reach);
-        const vec2 step = length2 > most * most ? reach * (most * inversesqrt(length2)) : reach;
-        sunward = hfx_cloud_cover(p + step, max(across, cell), max(along, cell)).x;
+        const float cell = 1.0 / u_cloudScale;
+        sunward = hfx_cloud_cover(p + u_cloudSunward, max(across, cell), max(along, cell)).x;
     }
     // Far off, the layer fades into the horizon's haze.
     return vec3(c.x * (1.0 - exp(-8.0 * dir.y)), c.y, sunward);

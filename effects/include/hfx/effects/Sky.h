@@ -40,6 +40,12 @@ CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, flo
 /// (HFX_SUN_RADIUS), whichever is wider; 1 without clouds or with the sun under the horizon.
 float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::vec3 position, float footprint);
 
+/// Where a clouded point's direct light came through the cloud, as a step along the layer in
+/// cloud heights: HFX_CLOUD_DEPTH cloud heights up the sun's ray, at most half a noise cell
+/// (1 / cloudScale). The sky reads the cloud there to shade a cloud's far side (skyColor; the
+/// shaders get it in their water block). Zero for a sun straight overhead.
+glm::vec2 cloudSunwardStep(const WaterLook& look, const DirectionalLight& light);
+
 /// The value of the clouds' noise above which the sky is clouded, for `cover` (0 to 1): its
 /// quantile, so that `cover` of the sky overhead lies under a cloud's middle (density > 0.5).
 /// Read from a table of the noise's distribution (measured over 2^22 points, interpolated).

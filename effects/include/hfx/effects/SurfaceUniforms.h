@@ -119,7 +119,7 @@ struct WaterUniforms {
     glm::vec2 cloudDrift{0.0f};   ///< WaterLook::cloudDrift
     float cloudScale = 1.0f;
     float cloudThreshold = 1.0f;  ///< hfx::cloudThreshold(WaterLook::cloudCover): where the noise is clouded
-    float padding1[2] = {0.0f, 0.0f}; ///< the block's size, a multiple of 16 bytes
+    glm::vec2 cloudSunward{0.0f}; ///< hfx::cloudSunwardStep(WaterLook, light): where a cloud's light came through
 };
 
 /// HfxRings (shaders/surface/uniforms.glsl, binding 2): the water's impact rings.
@@ -198,6 +198,7 @@ static_assert(offsetof(WaterUniforms, spindriftFrom) == 128);
 static_assert(offsetof(WaterUniforms, cloudHeight) == 132);
 static_assert(offsetof(WaterUniforms, cloudDrift) == 136);
 static_assert(offsetof(WaterUniforms, cloudThreshold) == 148);
+static_assert(offsetof(WaterUniforms, cloudSunward) == 152);
 static_assert(sizeof(WaterUniforms) == 160);
 static_assert(offsetof(PlanetUniforms, ringAxis) == 16);
 static_assert(offsetof(PlanetUniforms, ringOuter) == 32);
