@@ -374,7 +374,8 @@ HfxShaded hfx_surface(HfxFrame f) {
     // The walks pass's hit (the ray this pixel's fragment of the rays draw stored): 1 where the slot
     // holds this draw's traced ray, 2 where it holds this draw's normal-mapped pixel or the
     // fragment is a back face's (it stored none: normal mapped), 0 where it holds neither (a
-    // helper lane past the mesh's edge, below).
+    // helper lane past the mesh's edge, below; on llvmpipe every helper lane, whose loads return
+    // zeros: a GPU's helper lane where a quad straddles two triangles reads the other's hit).
     const uvec2 traceInfo = hfx_traceInfo[slot];
     const uint mark = traceInfo.y & 0xffff0000u;
     const uint computed = !gl_FrontFacing              ? 2u

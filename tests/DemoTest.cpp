@@ -381,8 +381,8 @@ TEST(Demo, TheBeamStartDrawsTheFlatScenesAsTheWalkFromTheTopDoes) {
 TEST(Demo, TheTracePassDrawsTheScenesAsTheDrawDoes) {
     // --trace-pass compute (hier's walks in a compute pass) against draw (the walks in the surface
     // draw, llvmpipe's choice): the decal wall (its shadow map's caster too) and the
-    // planet (a sphere, a silhouette fade) draw the same frame but where a 2x2 quad straddles two
-    // triangles and the shading's mip level follows the neighbour's hit (docs/BENCHMARKS.md);
+    // planet (a sphere, a silhouette fade) draw the same frame but where a 2x2 quad has a helper
+    // lane, whose hit the shading draw takes from a neighbour's (docs/BENCHMARKS.md);
     // the log says where the walks ran. Normal mapped, the frames differ ten times as much at
     // least (measured: decals 0.024 levels on average against 14.1, the planet 0.018 against 0.83).
     for (const std::string scene : {"decals", "planet"}) {
