@@ -216,7 +216,8 @@ TEST_F(Decals, MarksMatchTheSharedMathAndBurnTheAlbedoTowardsSoot) {
                             hole.occlusion, hole.scorchReach, w[0], w[1], w[2], w[3], &scorch, &rough, &occlusion);
             const size_t i = 4 * (size_t(y) * N + x);
             auto byte = [](float v) { return int(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
-            const float glow = hfx_decal_glow(((x + 0.5f) - hole.u * N) / r, ((y + 0.5f) - hole.v * N) / r, hole.glow);
+            const float hx = ((x + 0.5f) - hole.u * N) / r, hy = ((y + 0.5f) - hole.v * N) / r;
+            const float glow = hfx_decal_heat(hx, hy, hole.glow) * hfx_decal_crust(hx, hy, hole.glow, 1.0f / r, w[0], w[1]);
             worst = std::max({worst, std::abs(channels[i] - byte(rough)), std::abs(channels[i + 1] - byte(occlusion)),
                               std::abs(channels[i + 2] - byte(scorch)), std::abs(channels[i + 3] - byte(glow))});
             glowing += channels[i + 3] > 0;
@@ -232,6 +233,79 @@ TEST_F(Decals, MarksMatchTheSharedMathAndBurnTheAlbedoTowardsSoot) {
     // The heat fills the bowl: pi (0.08 N)^2 = 185 texels, the last of them under half a step.
     EXPECT_GT(glowing, 150);
     EXPECT_LT(glowing, 190) << "the heat stays in the bowl";
+}
+
+TEST_F(Decals, AFreshCratersHeatCracksIntoPlatesThatCoolFirst) {
+    // A crater 30 texels across: its heat over the bowl's profile, strength (1 - r^2)^2, is 1 on
+    // the cracks and the crust's 0.6 strength on the plates. Inside 0.8 radii the plates are most
+    // of the floor, a dozen of them (0.4 radii across: pi 0.8^2 / 0.4^2 = 12.6 cells), parted by
+    // cracks; a crater half as hot has plates half as bright against its cracks.
+    constexpr int N = 96;
+    auto heat = [&](float glow) {
+        DecalMap map(cl(), {.width = N, .height = N, .edges = EdgeMode::Clamp});
+        map.addBulletHole({.u = 0.5f, .v = 0.5f, .radius = 15.0f / N, .phase = 0.7f, .glow = glow});
+        map.rebuild();
+        const auto channels = bytes(map.channels(), 4 * N * N);
+        std::vector<float> share(N * N, -1.0f); // heat / the bowl's profile, -1 outside 0.8 radii
+        for (int y = 0; y < N; ++y)
+            for (int x = 0; x < N; ++x) {
+                const float dx = (x + 0.5f - 0.5f * N) / 15.0f, dy = (y + 0.5f - 0.5f * N) / 15.0f;
+                const float r2 = dx * dx + dy * dy;
+                if (r2 < 0.64f) share[size_t(y * N + x)] = channels[4 * size_t(y * N + x) + 3] / 255.0f /
+                                                           (glow * (1.0f - r2) * (1.0f - r2));
+            }
+        return share;
+    };
+    const std::vector<float> hot = heat(0.8f), cool = heat(0.4f);
+    int floor = 0, cracks = 0, plateTexels = 0;
+    for (float s : hot) {
+        if (s < 0.0f) continue;
+        ++floor;
+        cracks += s > 0.9f;
+        plateTexels += s < 0.5f;
+    }
+    // The plates: connected texels of the plate, 4-neighbours, each a dozen texels or more.
+    std::vector<int> label(hot.size(), 0);
+    int plates = 0;
+    for (size_t start = 0; start < hot.size(); ++start) {
+        if (label[start] || hot[start] < 0.0f || hot[start] >= 0.5f) continue;
+        std::vector<size_t> stack{start};
+        label[start] = -1;
+        int size = 0;
+        while (!stack.empty()) {
+            const size_t i = stack.back();
+            stack.pop_back();
+            ++size;
+            const int x = int(i % N), y = int(i / N);
+            for (const auto [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
+                const size_t j = size_t(ny * N + nx);
+                if (nx < 0 || ny < 0 || nx >= N || ny >= N || label[j] || hot[j] < 0.0f || hot[j] >= 0.5f) continue;
+                label[j] = -1;
+                stack.push_back(j);
+            }
+        }
+        plates += size >= 12;
+    }
+    double hotPlate = 0.0, coolPlate = 0.0;
+    int both = 0;
+    for (size_t i = 0; i < hot.size(); ++i)
+        if (hot[i] >= 0.0f && hot[i] < 0.5f && cool[i] >= 0.0f) {
+            hotPlate += hot[i];
+            coolPlate += cool[i];
+            ++both;
+        }
+    hotPlate /= both;
+    coolPlate /= both;
+    std::printf("floor %d texels: cracks %.1f%%, plates %.1f%% in %d plates; a plate's share of the heat %.3f hot, "
+                "%.3f at half the heat\n",
+                floor, 100.0 * cracks / floor, 100.0 * plateTexels / floor, plates, hotPlate, coolPlate);
+    EXPECT_GT(cracks, floor / 12) << "too few cracks";
+    EXPECT_LT(cracks, floor / 3) << "the cracks are no narrower than the plates";
+    EXPECT_GT(plateTexels, floor / 2);
+    EXPECT_GE(plates, 8);
+    EXPECT_LE(plates, 20);
+    EXPECT_NEAR(hotPlate, 0.48, 0.03) << "the crust at 0.6 of the heat of 0.8";
+    EXPECT_NEAR(coolPlate, 0.24, 0.03) << "the crust at 0.6 of the heat of 0.4";
 }
 
 // A log fed 10,000 impacts (merging, evicting, healing as the clock runs), its map rebuilt as it

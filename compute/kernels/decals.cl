@@ -24,7 +24,8 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
     int i = y * width + x;
     float b = base[i];
     float d = damage[i] * heal;
-    float scorch = 0.0f, rough = 0.0f, occlusion = 1.0f, glow = 0.0f;
+    float scorch = 0.0f, rough = 0.0f, occlusion = 1.0f, glow = 0.0f, hotX = 0.0f, hotY = 0.0f;
+    int hottest = -1; /* the stamp whose bowl is hottest here: its crust's cracks show */
     int tile = (y / TILE) * tilesX + x / TILE;
     for (int k = tileStart[tile]; k < tileStart[tile + 1]; ++k) {
         int s = tileStamps[k];
@@ -49,7 +50,19 @@ __kernel void decals(__global float* damage, __global const float* base, __globa
             rough = fmax(rough, ro);
             occlusion = fmin(occlusion, oc);
         }
-        if (shape.w > 0.0f) glow = fmax(glow, hfx_decal_glow(dx * stamp.z, dy * stamp.z, shape.w));
+        if (shape.w > 0.0f) {
+            float heat = hfx_decal_heat(dx * stamp.z, dy * stamp.z, shape.w);
+            if (heat > glow) {
+                glow = heat;
+                hottest = s;
+                hotX = dx;
+                hotY = dy;
+            }
+        }
+    }
+    if (hottest >= 0) {
+        float4 stamp = stamps[hottest], w = wobbles[hottest];
+        glow *= hfx_decal_crust(hotX * stamp.z, hotY * stamp.z, shapes[hottest].w, stamp.z, w.x, w.y);
     }
     damage[i] = d;
     float h = b + d;

@@ -69,13 +69,74 @@ HFX_FN void hfx_decal_marks(float dx, float dy, float scorchStrength, float roug
     *occlusion = r < 1.0f ? 1.0f - occlusionStrength * (1.0f - r * r) : 1.0f;
 }
 
-/* A fresh crater's heat (0 to `strength`) at (dx, dy) radii from its centre: its bowl glows like
-   embers, most at the floor, (1 - r^2)^2, none from the lip out (inside every stamp's reach). */
-HFX_FN float hfx_decal_glow(float dx, float dy, float strength) {
+/* A 32-bit integer hash of a lattice point (an avalanche of multiplies and shifts: every bit of
+   the point moves about half the bits out). */
+HFX_FN unsigned int hfx_decal_hash(int x, int y) {
+    unsigned int h = (unsigned int)x * 0x8da6b343u ^ (unsigned int)y * 0xd8163841u;
+    h ^= h >> 15;
+    h *= 0x2c1b3c6du;
+    h ^= h >> 12;
+    h *= 0x297a2d39u;
+    h ^= h >> 15;
+    return h;
+}
+
+/* Cooling embers crack into plates: a Voronoi diagram of one jittered point per lattice cell
+   (inside the middle 0.8 of the cell, so the 3x3 cells around a point hold its two nearest), at
+   (x, y) in cells. Its distance to the bisector of its two nearest points (the plates' edge
+   there, in cells) against `width`: 1 on a crack's middle, falling smoothly to 0 a width out. */
+HFX_FN float hfx_decal_cracks(float x, float y, float width) {
+    float fx = HFX_FLOOR(x), fy = HFX_FLOOR(y);
+    int ix = (int)fx, iy = (int)fy;
+    fx = x - fx;
+    fy = y - fy;
+    float d1 = 1e9f, d2 = 1e9f, p1x = 0.0f, p1y = 0.0f, p2x = 0.0f, p2y = 0.0f;
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+            unsigned int h = hfx_decal_hash(ix + i, iy + j);
+            float px = (float)i + 0.1f + 0.8f * (float)(h & 0xffffu) * (1.0f / 65535.0f);
+            float py = (float)j + 0.1f + 0.8f * (float)(h >> 16) * (1.0f / 65535.0f);
+            float ex = px - fx, ey = py - fy, d = ex * ex + ey * ey;
+            if (d < d1) {
+                d2 = d1;
+                p2x = p1x;
+                p2y = p1y;
+                d1 = d;
+                p1x = px;
+                p1y = py;
+            } else if (d < d2) {
+                d2 = d;
+                p2x = px;
+                p2y = py;
+            }
+        }
+    float sx = p2x - p1x, sy = p2y - p1y;
+    float edge = (d2 - d1) / (2.0f * HFX_SQRT(sx * sx + sy * sy));
+    return 1.0f - hfx_decal_smoothstep(0.0f, width, edge);
+}
+
+/* A fresh crater's heat (0 to `strength`) at (dx, dy) radii from its centre, before its cracks:
+   its bowl glows like embers, most at the floor, strength (1 - r^2)^2, none from the lip out
+   (inside every stamp's reach). */
+HFX_FN float hfx_decal_heat(float dx, float dy, float strength) {
     float r2 = dx * dx + dy * dy;
     if (r2 >= 1.0f) return 0.0f;
     float inside = 1.0f - r2;
     return strength * inside * inside;
+}
+
+/* The share of hfx_decal_heat a crater's floor shows at (dx, dy) radii from its centre: a crust
+   cracked into plates (hfx_decal_cracks: 0.4 radii across, or 4 texels where the crater is
+   small, `texel` being a texel in radii; cracks 0.06 radii or 0.75 texels wide; the lattice
+   turned and moved by the impact's phase through wobble (cos p, sin p)). The cracks show all of
+   the heat, the plates 0.6 strength of it, so as a crater cools its plates darken first and the
+   cracks glow last. */
+HFX_FN float hfx_decal_crust(float dx, float dy, float strength, float texel, float cosPhase, float sinPhase) {
+    float cell = HFX_MAX(0.4f, 4.0f * texel), width = HFX_MAX(0.06f, 0.75f * texel) / cell;
+    float x = (cosPhase * dx - sinPhase * dy) / cell + 17.0f * cosPhase;
+    float y = (sinPhase * dx + cosPhase * dy) / cell + 17.0f * sinPhase;
+    float crust = 0.6f * HFX_MIN(strength, 1.0f);
+    return crust + (1.0f - crust) * hfx_decal_cracks(x, y, width);
 }
 
 /* How far (radii) a stamp's marks reach: its crater's lip and rim, its roughness, its scorch
