@@ -8,7 +8,8 @@
 //   <tracer>                hfx_trace and hfx_shadow: trace/<technique>.glsl (trace/README.md)
 //   shade/common.glsl       the shaded point
 //   shade/sky.glsl          the sky (reflections, haze), its look's uniform block
-//   <shading>               hfx_shade: shade/<model>.glsl, one per shading model (lit, water, planet)
+//   <shading>               hfx_shade and hfx_emission: shade/<model>.glsl, one per shading model (lit,
+//                           water, planet)
 //   surface.frag            this file: the texture-space frame, level of detail, depth output
 // Prepended #defines, from the C++ technique table (hfx::techniqueInfo) and the draw:
 //   HFX_TRACES        1 when the technique displaces the texcoords (all but normal mapping):
@@ -51,8 +52,8 @@
 //                     texcoords the ray entered at, as the rasteriser interpolated them
 //   HFX_MOTION_OUTPUT 1 to 7: the output (draw buffer) the traced point's screen motion since the
 //                     previous frame goes to (hfx::SurfaceRenderer::setMotionOutput); 0 none
-//   HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT 1 to 7: the outputs a deferred
-//                     engine's lighting reads (hfx::SurfaceOutputs); 0 none
+//   HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT, HFX_EMISSION_OUTPUT 1 to 7: the
+//                     outputs a deferred engine's lighting reads (hfx::SurfaceOutputs); 0 none
 //   HFX_TRIPLANAR     1: the texcoords and frame come from the mesh's own position projected
 //                     along each of its axes, each projection with a weight traced and shaded,
 //                     the results blended (hfx::TriplanarMapping); 0: the mesh's texcoords
@@ -172,6 +173,12 @@ layout(location = HFX_ALBEDO_OUTPUT) out vec4 o_albedo;
 #endif
 #if HFX_MATERIAL_OUTPUT
 layout(location = HFX_MATERIAL_OUTPUT) out vec4 o_material;
+#endif
+#ifndef HFX_EMISSION_OUTPUT
+#define HFX_EMISSION_OUTPUT 0
+#endif
+#if HFX_EMISSION_OUTPUT
+layout(location = HFX_EMISSION_OUTPUT) out vec4 o_emission;
 #endif
 
 layout(binding = HFX_UNIT_ALBEDO) uniform sampler2D s_albedo;
@@ -325,10 +332,12 @@ struct HfxShaded {
     vec4 normal;   // the shading normal, the slopes' variance (hfx::SurfaceOutputs)
     vec4 albedo;   // the albedo, layer 0's alpha (the foam where an effect writes it)
     vec4 material; // roughness, ambient occlusion, the self-shadow's light, the height
+    vec3 emission; // the light the point emits itself, linear (the shading model's hfx_emission)
     vec4 trace;    // the hit's texcoords, its depth fraction, the light (HFX_TRACE_OUTPUT)
     vec2 entry;    // the texcoords the ray entered at
 };
-const HfxShaded HFX_UNSHADED = HfxShaded(vec3(0.0), vec3(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec2(0.0));
+const HfxShaded HFX_UNSHADED = HfxShaded(vec3(0.0), vec3(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec3(0.0), vec4(0.0),
+                                          vec2(0.0));
 
 // The pixel traced and shaded in frame `f`. Called in uniform control flow, but for a triplanar
 // mapping's projections, whose branches take no derivatives (below).
@@ -668,6 +677,7 @@ HfxShaded hfx_surface(HfxFrame f) {
     reaching *= g_cloudSunlight;
 #endif
     s.material = vec4(point.roughness, point.occlusion, reaching, height);
+    s.emission = hfx_emission(point);
     s.trace = vec4(uv, depthFraction, lit);
     s.entry = uv0;
     return s;
@@ -712,6 +722,7 @@ void main() {
         s.normal += w * a.normal;
         s.albedo += w * a.albedo;
         s.material += w * a.material;
+        s.emission += w * a.emission;
         if (axis == heaviest) {
             s.trace = a.trace;
             s.entry = a.entry;
@@ -743,6 +754,9 @@ void main() {
 #endif
 #if HFX_MATERIAL_OUTPUT
     o_material = s.material;
+#endif
+#if HFX_EMISSION_OUTPUT
+    o_emission = vec4(s.emission, 1.0);
 #endif
 #if HFX_TRACE_OUTPUT
     // w: the fetch count in its integer part, the light (0..1) in half of its fraction.

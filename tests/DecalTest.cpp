@@ -277,7 +277,7 @@ TEST_F(Decals, AFreshCratersHeatCracksIntoPlatesThatCoolFirst) {
             stack.pop_back();
             ++size;
             const int x = int(i % N), y = int(i / N);
-            for (const auto [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
+            for (const auto& [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
                 const size_t j = size_t(ny * N + nx);
                 if (nx < 0 || ny < 0 || nx >= N || ny >= N || label[j] || hot[j] < 0.0f || hot[j] >= 0.5f) continue;
                 label[j] = -1;

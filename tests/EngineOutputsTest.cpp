@@ -409,12 +409,19 @@ T bilinear(glm::dvec2 uv, int size, Texel&& texel) {
            T(f.x * f.y) * at(1, 1);
 }
 
+/// The light the lit model emits at heat t (shade/lit.glsl's hfx_ember).
+glm::dvec3 ember(double t) {
+    const double t2 = t * t;
+    return 2.5 * t2 * glm::dvec3(1.0, 0.12 + 0.6 * t2, 0.02 + 0.4 * t2 * t2);
+}
+
 // A deferred engine lights the relief itself from what the draw writes of the traced point
 // (SurfaceOutputs): the relief's normal there (the stored normals filtered at the hit, turned
-// into the world), its albedo, its shading channels (filtered at the hit, not at the polygon) and
-// the self-shadow the draw's light casts there, the one the draw's own shading used; HFX's forward
-// colour in buffer 0 is their Lambert shading. For POM and for hier walking in the draw and in a
-// compute pass.
+// into the world), its albedo, its shading channels (filtered at the hit, not at the polygon),
+// the self-shadow the draw's light casts there, the one the draw's own shading used, and the
+// light it emits (the channels' heat, as embers); HFX's forward colour in buffer 0 is their
+// Lambert shading plus that light. For POM and for hier walking in the draw and in a compute
+// pass.
 TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsAndShadow) {
     constexpr int field = 64, W = 160, H = 120;
     constexpr float depthScale = 0.15f;
@@ -423,12 +430,14 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
     SurfaceTextures textures({.width = field, .height = field, .mipmaps = false, .normalDepth = depthScale});
     textures.uploadTexels(texels.data());
     textures.setAlbedo(Image{1, 1, 3, {0.6f, 0.4f, 0.2f}});
-    // Roughness along u, occlusion along v: what a channel reads tells where it was read.
+    // Roughness along u, occlusion along v: what a channel reads tells where it was read. Heat in
+    // the left half, rising along v (none in the right half).
     std::vector<unsigned char> channels(size_t(field) * field * 4);
     for (int y = 0; y < field; ++y)
         for (int x = 0; x < field; ++x) {
             unsigned char* c = &channels[(size_t(y) * field + x) * 4];
-            c[0] = static_cast<unsigned char>(x * 4), c[1] = static_cast<unsigned char>(255 - y * 2), c[2] = 0, c[3] = 0;
+            c[0] = static_cast<unsigned char>(x * 4), c[1] = static_cast<unsigned char>(255 - y * 2), c[2] = 0;
+            c[3] = static_cast<unsigned char>(x < field / 2 ? 60 + y * 2 : 0);
         }
     textures.uploadChannels(channels.data());
     const Mesh plane(makePlane({.size = 2.0f}));
@@ -437,12 +446,12 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
     Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.4f, 0.8f);
     camera.aspect = float(W) / float(H);
     // Colour, the trace output (1, 2: the hit's uv, its depth fraction and light; the entry's uv),
-    // then the normal, albedo and channels (3, 4, 5).
+    // then the normal, albedo, channels and emission (3, 4, 5, 6).
     GlFramebuffer fbo = GlFramebuffer::create();
     std::vector<GlTexture> attachments;
-    const GLenum formats[] = {GL_RGBA8, GL_RGBA32F, GL_RG32F, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F};
+    const GLenum formats[] = {GL_RGBA8, GL_RGBA32F, GL_RG32F, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F, GL_RGBA16F};
     std::vector<GLenum> buffers;
-    for (GLenum i = 0; i < 6; ++i) {
+    for (GLenum i = 0; i < 7; ++i) {
         attachments.push_back(GlTexture::create());
         glTextureStorage2D(attachments.back().id(), 1, formats[i], W, H);
         glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0 + i, attachments.back().id(), 0);
@@ -459,7 +468,7 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
         return out;
     };
     SurfaceRenderer renderer;
-    renderer.setSurfaceOutputs({.normal = 3, .albedo = 4, .material = 5});
+    renderer.setSurfaceOutputs({.normal = 3, .albedo = 4, .material = 5, .emission = 6});
     const glm::dvec3 l = glm::normalize(glm::dvec3(light.direction));
     const std::pair<const char*, DrawOptions> drawn[] = {
         {"pom", {.technique = Technique::ParallaxOcclusion, .traceOutput = true}},
@@ -470,13 +479,14 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
         glViewport(0, 0, W, H);
         const float zero[4] = {0, 0, 0, 0}, far = 1.0f;
-        for (int i = 0; i < 6; ++i) glClearNamedFramebufferfv(fbo.id(), GL_COLOR, i, zero);
+        for (int i = 0; i < 7; ++i) glClearNamedFramebufferfv(fbo.id(), GL_COLOR, i, zero);
         glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
         renderer.draw(plane, glm::mat4(1.0f), textures, material, camera, light, options);
-        const auto colour = read(0), trace = read(1), entry = read(2), normal = read(3), albedo = read(4), channel = read(5);
+        const auto colour = read(0), trace = read(1), entry = read(2), normal = read(3), albedo = read(4), channel = read(5),
+                   emission = read(6);
         size_t relief = 0, shadowed = 0, apartFromEntry = 0, normalOff = 0, channelOff = 0, shadowOff = 0, colourOff = 0,
-               albedoOff = 0;
-        double worstNormal = 0.0, worstChannel = 0.0, worstColour = 0.0;
+               albedoOff = 0, glowing = 0, emissionOff = 0;
+        double worstNormal = 0.0, worstChannel = 0.0, worstColour = 0.0, worstEmission = 0.0;
         for (size_t i = 0; i < colour.size(); ++i) {
             if (!(trace[i].z > 0.0f) && trace[i] == glm::vec4(0.0f)) continue; // the background
             ++relief;
@@ -496,6 +506,15 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
                     return glm::dvec2(c[0], c[1]) / 255.0;
                 });
             };
+            // The heat filtered at the hit, emitted as embers (GL's filter weights: 8 bits).
+            const double heat = bilinear<double>(uv, field, [&](int x, int y) {
+                return channels[(size_t(y) * field + x) * 4 + 3] / 255.0;
+            });
+            const glm::dvec3 glow = ember(heat);
+            const double emissionApart = glm::length(glow - glm::dvec3(emission[i]));
+            worstEmission = std::max(worstEmission, emissionApart);
+            emissionOff += emissionApart > 0.012 + 0.002 * glow.r; // (half-floats, 8-bit weights)
+            glowing += glow.r > 0.05;
             const glm::dvec2 expected = channelsAt(uv);
             const double off = glm::length(expected - glm::dvec2(channel[i]));
             worstChannel = std::max(worstChannel, off);
@@ -509,16 +528,17 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
             // The forward colour: Lambert of these (no specular), encoded for the 8-bit target.
             const glm::dvec3 a(albedo[i]), lin = a * glm::dvec3(light.ambient) * double(channel[i].y) +
                                                  double(channel[i].z) * glm::dvec3(light.color) * a *
-                                                     std::max(glm::dot(glm::normalize(glm::dvec3(normal[i])), l), 0.0);
+                                                     std::max(glm::dot(glm::normalize(glm::dvec3(normal[i])), l), 0.0) +
+                                                 glm::dvec3(emission[i]);
             for (int c = 0; c < 3; ++c) {
                 const double diff = std::abs(std::pow(std::clamp(lin[c], 0.0, 1.0), 1.0 / 2.2) - colour[i][c]);
                 worstColour = std::max(worstColour, diff);
                 colourOff += diff > 1.5 / 255.0;
             }
         }
-        std::printf("[surface outputs] %s: %zu relief pixels, %zu shadowed, %zu whose channels at the entry differ; "
-                    "normals within %.2g rad, channels within %.2g, colour within %.2g\n",
-                    name, relief, shadowed, apartFromEntry, worstNormal, worstChannel, worstColour);
+        std::printf("[surface outputs] %s: %zu relief pixels, %zu shadowed, %zu glowing, %zu whose channels at the entry "
+                    "differ; normals within %.2g rad, channels within %.2g, emission within %.2g, colour within %.2g\n",
+                    name, relief, shadowed, glowing, apartFromEntry, worstNormal, worstChannel, worstEmission, worstColour);
         ASSERT_GT(relief, size_t(W * H / 3));
         EXPECT_GT(shadowed, relief / 20);
         EXPECT_GT(apartFromEntry, relief / 4) << "the channels read at the polygon would pass as well";
@@ -527,6 +547,9 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
         EXPECT_EQ(albedoOff, 0u);
         EXPECT_EQ(shadowOff, 0u);
         EXPECT_EQ(colourOff, 0u);
+        EXPECT_GT(glowing, relief / 5);
+        EXPECT_LT(glowing, relief * 4 / 5) << "the right half of the field has no heat";
+        EXPECT_EQ(emissionOff, 0u);
     }
     // Deferred light walks would rewrite the colour and leave the self-shadow written: they stay
     // in the draw where the material is written.
@@ -576,6 +599,16 @@ TEST_F(DeferredOutputs, ABadLayoutIsRefusedByName) {
                   renderer.draw(Mesh(makePlane({})), glm::mat4(1.0f), textures, {.depthScale = 0.1f}, cameraAtAngle(40, 3.0f, 1.0f), {});
               }).find("the normal (SurfaceRenderer::setSurfaceOutputs) goes to draw buffer 3 of the bound framebuffer, whose "
                       "target is unsigned normalized"),
+              std::string::npos);
+    // The emission into a normalized target, which would clamp the embers' light at 1: refused.
+    renderer.setSurfaceOutputs({.emission = 3});
+    EXPECT_NE(messageOf([&] {
+                  renderer.draw(Mesh(makePlane({})), glm::mat4(1.0f), textures, {.depthScale = 0.1f}, cameraAtAngle(40, 3.0f, 1.0f), {});
+              }).find("the emission (SurfaceRenderer::setSurfaceOutputs) goes to draw buffer 3 of the bound framebuffer, whose "
+                      "target is normalized: its values over 1 would clamp"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { renderer.setSurfaceOutputs({.material = 4, .emission = 4}); })
+                  .find("the material and the emission would both go to draw buffer 4"),
               std::string::npos);
 }
 

@@ -101,6 +101,20 @@ inline void checkSignedTarget(int drawBuffer, const char* what) {
                     "; attach a float (RG16F, RGBA16F) or signed normalized one there"));
 }
 
+/// Throws hfx::Error naming `what` (an output) where `drawBuffer` of the bound framebuffer is not a
+/// float target (a normalized one would clamp its values to [-1, 1] or [0, 1], an integer one
+/// takes none), unless under GlStatePolicy::Defaults; 0: none.
+inline void checkFloatTarget(int drawBuffer, const char* what) {
+    if (drawBuffer <= 0 || glStatePolicy() == GlStatePolicy::Defaults) return;
+    const GLint type = boundColorTarget(GLuint(drawBuffer)).componentType;
+    if (type == GL_NONE || type == GL_FLOAT) return;
+    throw Error(str(what, " goes to draw buffer ", drawBuffer, " of the bound framebuffer, whose target is ",
+                    type == GL_UNSIGNED_NORMALIZED || type == GL_SIGNED_NORMALIZED
+                        ? "normalized: its values over 1 would clamp"
+                        : "an integer one: it takes no float values",
+                    "; attach a float one there (RGBA16F, R11F_G11F_B10F)"));
+}
+
 /// GL 4.5 promises at least 8 draw buffers; the masks of the first 8 are saved and set (without
 /// asking the context its count).
 inline constexpr GLuint kDrawBuffers = 8;

@@ -200,8 +200,12 @@ void requireTextureUnits() {
 }
 
 /// The extra outputs' draw buffers, named: the motion's and the surface outputs'.
-std::array<std::pair<const char*, int>, 4> extraOutputs(int motion, const SurfaceOutputs& o) {
-    return {{{"the motion", motion}, {"the normal", o.normal}, {"the albedo", o.albedo}, {"the material", o.material}}};
+std::array<std::pair<const char*, int>, 5> extraOutputs(int motion, const SurfaceOutputs& o) {
+    return {{{"the motion", motion},
+             {"the normal", o.normal},
+             {"the albedo", o.albedo},
+             {"the material", o.material},
+             {"the emission", o.emission}}};
 }
 
 /// Throws hfx::Error where two of the extra outputs name one draw buffer.
@@ -275,6 +279,7 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
                                                    {"HFX_NORMAL_OUTPUT", std::to_string(v.outputs.normal)},
                                                    {"HFX_ALBEDO_OUTPUT", std::to_string(v.outputs.albedo)},
                                                    {"HFX_MATERIAL_OUTPUT", std::to_string(v.outputs.material)},
+                                                   {"HFX_EMISSION_OUTPUT", std::to_string(v.outputs.emission)},
                                                    {"HFX_TRIPLANAR", v.triplanar ? "1" : "0"}};
         ShaderProgram p(surfaceStage("surface.vert"),
                         surfaceStage("surface.frag", {{"tracer", info.shader}, {"shading", shadingShader(v.shading)}}), defines);
@@ -470,6 +475,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     if (!caster) {
         checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
         checkSignedTarget(outputs_.normal, "the normal (SurfaceRenderer::setSurfaceOutputs)");
+        checkFloatTarget(outputs_.emission, "the emission (SurfaceRenderer::setSurfaceOutputs)");
     }
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);

@@ -25,6 +25,9 @@ float hfx_twilight(float mu) {
     return mu >= HFX_TWILIGHT ? mu : HFX_TWILIGHT * exp((mu - HFX_TWILIGHT) / HFX_TWILIGHT);
 }
 
+// The cloud tops emit no light of their own.
+vec3 hfx_emission(HfxSurfacePoint p) { return vec3(0.0); }
+
 vec3 hfx_shade(HfxSurfacePoint p) {
     const float muSphere = dot(p.geometricNormal, p.lightDir);
     const float k = 0.85;

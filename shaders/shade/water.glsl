@@ -124,6 +124,9 @@ float hfx_spindrift(vec2 uv, float footprint) {
                1.0);
 }
 
+// The sea emits no light of its own (its crest glow is the sun's, through the wave).
+vec3 hfx_emission(HfxSurfacePoint p) { return vec3(0.0); }
+
 vec3 hfx_shade(HfxSurfacePoint p) {
 #if HFX_SKY == 1
     // The clouds' shadows: the sun's light they let through, here (the sky's light is left;

@@ -301,6 +301,11 @@ struct SurfaceOutputs {
     /// POM's soft) times, on water under clouds, the clouds' shadow (WaterLook::cloudCover); the
     /// light's shadow map not in it. And the height (a, 1 at the polygon).
     int material = 0;
+    /// The light the point emits itself, linear RGB (rgb; a 1): the shading channels' heat as
+    /// embers (a fresh crater's glow) under the lit model, none on the water and the planet. The
+    /// engine adds it to its lighting. A float target (a normalized one, which would clamp it at
+    /// 1, is refused by name).
+    int emission = 0;
     auto operator<=>(const SurfaceOutputs&) const = default;
 };
 
@@ -393,8 +398,8 @@ struct SurfaceVariant {
     /// HFX_MOTION_OUTPUT: the draw buffer the screen motion is written to
     /// (SurfaceRenderer::setMotionOutput); 0: none
     int motionOutput = 0;
-    /// HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT: the draw buffers a deferred
-    /// engine reads (SurfaceRenderer::setSurfaceOutputs)
+    /// HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT, HFX_EMISSION_OUTPUT: the draw
+    /// buffers a deferred engine reads (SurfaceRenderer::setSurfaceOutputs)
     SurfaceOutputs outputs;
     /// HFX_TRIPLANAR: SurfaceMaterial::triplanar is on (not with the compute pass, texel shadows,
     /// beam start or layers)
