@@ -205,11 +205,12 @@ struct SurfaceMaterial {
     float pixelBudget = 0.0f;
     /// Bound the sampled searches (pom, secant, relief, steep) by the height pyramid, where every
     /// traced layer can carry one (HeightBounds: power-of-two sizes, a float format; the exact
-    /// tracer builds them each frame the heights change): each ray steps only through the depths the heights on its path reach
-    /// (four pyramid fetches per layer give them), and each shadow ray only below their top,
-    /// with steps no longer than without. It pays where rays take many steps through a relief
-    /// whose range along them is small against its depth (the ocean's cascades: OceanEffect sets
-    /// it); on a single map with large texels the four fetches cost what they save.
+    /// tracer builds them each frame the heights change): each ray steps only through the depths
+    /// the heights on its path reach (four pyramid fetches per layer give them), and each shadow
+    /// ray only below their top, with steps no longer than without. It pays where rays take many
+    /// steps through a relief whose range along them is small against its depth (the ocean's
+    /// cascades: OceanEffect sets it); on a single map with large texels the four fetches cost what
+    /// they save.
     bool boundedSearch = false;
     /// The texcoords from the mesh's position projected along its axes (TriplanarMapping; off by
     /// default): with one layer, and not with clipToPatch.
@@ -281,7 +282,8 @@ enum class ColorOutput {
     /// Clamped to [0, 1] and encoded with gamma 2.2: display values for a plain 8-bit target.
     Display,
     /// Linear radiance, unclamped (up to 65504, a half float's largest): for an engine's HDR
-    /// target, its exposure and tone mapping (the sun's glint on ColorOutputTest's sea reaches 34.6).
+    /// target, its exposure and tone mapping (the sun's glint on ColorOutputTest's sea reaches
+    /// 34.6).
     Linear,
 };
 
@@ -366,7 +368,8 @@ struct SurfaceVariant {
     int layers = 1;             ///< HFX_LAYERS
     int traced = 0;             ///< HFX_TRACED_LAYERS (0: all the layers)
     bool selfShadows = true;    ///< HFX_SELF_SHADOW where the technique has them: SurfaceMaterial::shadows
-    bool boundedSearch = false; ///< HFX_BOUNDED_SEARCH: SurfaceMaterial::boundedSearch, every traced layer can carry bounds
+    /// HFX_BOUNDED_SEARCH: SurfaceMaterial::boundedSearch, every traced layer can carry bounds
+    bool boundedSearch = false;
     /// HFX_SHADOW_MAP: the light's shadow maps are received, from a 2D texture (1: a ShadowMap, or
     /// ShadowCascades in an atlas) or a 2D array (2); 0: none
     int shadowMap = 0;
@@ -461,16 +464,16 @@ public:
 
     /// Where every camera's surface draw and the sky write each pixel's screen motion since the
     /// previous frame, for an engine's temporal anti-aliasing or motion blur: draw buffer
-    /// `drawBuffer` (1 to 7) of the bound framebuffer (a two-channel float target, RG16F or
-    /// RG32F, or a signed normalized one: a draw refuses an unsigned normalized or integer one by
-    /// name, which could not hold a negative motion), as (x, y) in the viewport's uv units (1 across it), now less then, without the
-    /// camera's jitter. A surface's pixel moves as its traced point does (the relief's, not the
-    /// polygon's: Camera::previousViewProjection, DrawOptions::previousModel); the sky's as its
-    /// direction; a point behind the previous frame's eye, 0. 0 (the default): none.
-    /// Whatever is set, a draw writes no draw buffer but colour buffer 0, this one, the surface
-    /// outputs (setSurfaceOutputs) and a trace output asked for: an engine's other targets keep
-    /// what they hold. Throws hfx::Error for a buffer outside 0 to 7, or one the surface outputs
-    /// name.
+    /// `drawBuffer` (1 to 7) of the bound framebuffer (a two-channel float target, RG16F or RG32F,
+    /// or a signed normalized one: a draw refuses an unsigned normalized or integer one by name,
+    /// which could not hold a negative motion), as (x, y) in the viewport's uv units (1 across it),
+    /// now less then, without the camera's jitter. A surface's pixel moves as its traced point does
+    /// (the relief's, not the polygon's: Camera::previousViewProjection,
+    /// DrawOptions::previousModel); the sky's as its direction; a point behind the previous frame's
+    /// eye, 0. 0 (the default): none. Whatever is set, a draw writes no draw buffer but colour
+    /// buffer 0, this one, the surface outputs (setSurfaceOutputs) and a trace output asked for: an
+    /// engine's other targets keep what they hold. Throws hfx::Error for a buffer outside 0 to 7,
+    /// or one the surface outputs name.
     void setMotionOutput(int drawBuffer);
     int motionOutput() const { return motionOutput_; }
 
