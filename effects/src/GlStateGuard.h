@@ -324,12 +324,18 @@ private:
 
 /// For its scope a draw writes no colour to any draw buffer and no depth (ExactTracer's rays draw,
 /// whose fragments only store their rays); puts back the masks it found when it ends (under any
-/// GlStatePolicy: the draw that follows writes with them).
+/// GlStatePolicy: the draw that follows writes with them). Made inside a DrawBuffersWritten of
+/// `written` under GlStatePolicy::Defaults, it knows them without asking: every channel of the
+/// buffers written, none of the others, and the depth written.
 class NoFramebufferWrites {
 public:
-    NoFramebufferWrites() {
-        for (GLuint i = 0; i < kBuffers; ++i) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
-        glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_);
+    explicit NoFramebufferWrites(unsigned written) {
+        if (glStatePolicy() == GlStatePolicy::Defaults) {
+            for (GLuint i = 0; i < kBuffers; ++i) std::fill_n(masks_[i], 4, GLboolean(written >> i & 1u));
+        } else {
+            for (GLuint i = 0; i < kBuffers; ++i) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
+            glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_);
+        }
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glDepthMask(GL_FALSE);
     }
