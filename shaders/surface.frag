@@ -8,8 +8,8 @@
 //   <tracer>                hfx_trace and hfx_shadow: trace/<technique>.glsl (trace/README.md)
 //   shade/common.glsl       the shaded point
 //   shade/sky.glsl          the sky (reflections, haze), its look's uniform block
-//   <shading>               hfx_shade and hfx_emission: shade/<model>.glsl, one per shading model (lit,
-//                           water, planet)
+//   <shading>               hfx_shade and hfx_emission: shade/<model>.glsl, one per shading
+//                           model (lit, water, planet)
 //   surface.frag            this file: the texture-space frame, level of detail, depth output
 // Prepended #defines, from the C++ technique table (hfx::techniqueInfo) and the draw:
 //   HFX_TRACES        1 when the technique displaces the texcoords (all but normal mapping):

@@ -27,7 +27,7 @@ struct BulletHole {
     float occlusion = 0.0f;   ///< how dark the bowl's floor is to ambient light
     float scorchReach = 2.0f; ///< radii, 1 to 16
     float phase = 0.0f;       ///< turns the scorch's ragged edge (radians)
-    float glow = 0.0f;        ///< a fresh crater's heat: its bowl glows as embers in cracks (hfx_decal_heat, hfx_decal_crust)
+    float glow = 0.0f;        ///< a fresh crater's heat, glowing in cracks (hfx_decal_heat, hfx_decal_crust)
 };
 
 struct Explosion {

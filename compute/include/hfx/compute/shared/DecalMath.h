@@ -82,8 +82,8 @@ HFX_FN unsigned int hfx_decal_hash(int x, int y) {
 }
 
 /* Cooling embers crack into plates: a Voronoi diagram of one jittered point per lattice cell
-   (inside the middle 0.8 of the cell, so the 3x3 cells around a point hold its two nearest), at
-   (x, y) in cells. Its distance to the bisector of its two nearest points (the plates' edge
+   (inside the middle 0.8 of the cell; the two nearest are looked for in the 3x3 cells around the
+   point), at (x, y) in cells. Its distance to the bisector of its two nearest points (the plates' edge
    there, in cells) against `width`: 1 on a crack's middle, falling smoothly to 0 a width out. */
 HFX_FN float hfx_decal_cracks(float x, float y, float width) {
     float fx = HFX_FLOOR(x), fy = HFX_FLOOR(y);
