@@ -296,11 +296,11 @@ private:
 class DrawBuffersWritten {
 public:
     explicit DrawBuffersWritten(unsigned written)
-        : first_(written & 1u), counted_(glStatePolicy() == GlStatePolicy::Defaults) {
-        const bool query = !counted_ || depth()++ > 0;
+        : first_(written & 1u), written_(written), counted_(glStatePolicy() == GlStatePolicy::Defaults) {
+        queried_ = !counted_ || depth()++ > 0;
         for (GLuint i = first_; i < kDrawBuffers; ++i) {
             std::fill_n(masks_[i], 4, GLboolean(GL_TRUE));
-            if (query) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
+            if (queried_) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
             if (!(written >> i & 1u)) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         }
     }
@@ -311,45 +311,59 @@ public:
     DrawBuffersWritten(const DrawBuffersWritten&) = delete;
     DrawBuffersWritten& operator=(const DrawBuffersWritten&) = delete;
 
+    /// Whether the caller's state is GL's defaults, not asked for (GlStatePolicy::Defaults, outside
+    /// another of these): every mask on, the depth's among them.
+    bool atDefaults() const { return !queried_; }
+    /// The colour masks in effect inside this scope: the caller's on the buffers written, none on
+    /// the others. Buffer 0, which a scope that writes it leaves alone, is asked for unless
+    /// atDefaults().
+    void inEffect(GLboolean (&masks)[kDrawBuffers][4]) const {
+        for (GLuint i = 0; i < kDrawBuffers; ++i) {
+            if (i < first_) {
+                std::fill_n(masks[i], 4, GLboolean(GL_TRUE));
+                if (queried_) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks[i]);
+            } else {
+                for (int c = 0; c < 4; ++c) masks[i][c] = (written_ >> i & 1u) ? masks_[i][c] : GLboolean(GL_FALSE);
+            }
+        }
+    }
+
 private:
     /// How many of these this thread is inside, counted under GlStatePolicy::Defaults.
     static int& depth() {
         thread_local int scopes = 0;
         return scopes;
     }
-    GLuint first_; ///< buffer 0 is masked only where the draw writes no colour at all
-    bool counted_; ///< made under GlStatePolicy::Defaults, and counted in depth()
+    GLuint first_;     ///< buffer 0 is masked only where the draw writes no colour at all
+    unsigned written_; ///< the buffers written, a bit each
+    bool counted_;     ///< made under GlStatePolicy::Defaults, and counted in depth()
+    bool queried_ = true; ///< the caller's masks were asked for (not known to be GL's defaults)
     GLboolean masks_[kDrawBuffers][4] = {}; ///< what to put back
 };
 
 /// For its scope a draw writes no colour to any draw buffer and no depth (ExactTracer's rays draw,
-/// whose fragments only store their rays); puts back the masks it found when it ends (under any
-/// GlStatePolicy: the draw that follows writes with them). Made inside a DrawBuffersWritten of
-/// `written` under GlStatePolicy::Defaults, it knows them without asking: every channel of the
-/// buffers written, none of the others, and the depth written.
+/// whose fragments only store their rays), inside the draw's DrawBuffersWritten; puts back the
+/// masks that scope has in effect when it ends (the draw that follows writes with them): the
+/// scope knows them, so only buffer 0's and the depth's are asked for, and under
+/// GlStatePolicy::Defaults none.
 class NoFramebufferWrites {
 public:
-    explicit NoFramebufferWrites(unsigned written) {
-        if (glStatePolicy() == GlStatePolicy::Defaults) {
-            for (GLuint i = 0; i < kBuffers; ++i) std::fill_n(masks_[i], 4, GLboolean(written >> i & 1u));
-        } else {
-            for (GLuint i = 0; i < kBuffers; ++i) glGetBooleani_v(GL_COLOR_WRITEMASK, i, masks_[i]);
-            glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_);
-        }
+    explicit NoFramebufferWrites(const DrawBuffersWritten& scope) {
+        scope.inEffect(masks_);
+        if (!scope.atDefaults()) glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_);
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glDepthMask(GL_FALSE);
     }
     ~NoFramebufferWrites() {
-        for (GLuint i = 0; i < kBuffers; ++i) glColorMaski(i, masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
+        for (GLuint i = 0; i < kDrawBuffers; ++i) glColorMaski(i, masks_[i][0], masks_[i][1], masks_[i][2], masks_[i][3]);
         glDepthMask(depth_);
     }
     NoFramebufferWrites(const NoFramebufferWrites&) = delete;
     NoFramebufferWrites& operator=(const NoFramebufferWrites&) = delete;
 
 private:
-    // (glColorMask sets every buffer's mask: the first kDrawBuffers are saved.)
-    static constexpr GLuint kBuffers = kDrawBuffers;
-    GLboolean masks_[kBuffers][4] = {}, depth_ = GL_TRUE;
+    // (glColorMask sets every buffer's mask: the first kDrawBuffers are put back.)
+    GLboolean masks_[kDrawBuffers][4] = {}, depth_ = GL_TRUE;
 };
 
 /// Attaches `texture` (width x height, `format` named in the error) as colour attachment 0 of

@@ -564,8 +564,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
                                  .triplanar = triplanar};
     const ShaderProgram& p = program(options, variant);
     // (A caster writes no colour buffer: an engine's shadow map may have a colour attachment.)
-    const unsigned buffers = caster ? 0u : buffersWritten(motion, outputs, options.traceOutput);
-    const DrawBuffersWritten written(buffers);
+    const DrawBuffersWritten written(caster ? 0u : buffersWritten(motion, outputs, options.traceOutput));
     if (material.shading == Shading::Water) {
         const WaterLook& w = material.water;
         updateBlock(waterBlock_, HFX_BLOCK_WATER, waterUniforms(w, light));
@@ -621,7 +620,7 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
         const ShaderProgram& r = program(rays, raysVariant);
         {
             const GpuScope scope("rays");
-            const NoFramebufferWrites none(buffers);
+            const NoFramebufferWrites none(written);
             r.use();
             mesh.draw();
         }
