@@ -409,12 +409,6 @@ T bilinear(glm::dvec2 uv, int size, Texel&& texel) {
            T(f.x * f.y) * at(1, 1);
 }
 
-/// The light the lit model emits at heat t (shade/lit.glsl's hfx_ember).
-glm::dvec3 ember(double t) {
-    const double t2 = t * t;
-    return 2.5 * t2 * glm::dvec3(1.0, 0.12 + 0.6 * t2, 0.02 + 0.4 * t2 * t2);
-}
-
 // A deferred engine lights the relief itself from what the draw writes of the traced point
 // (SurfaceOutputs): the relief's normal there (the stored normals filtered at the hit, turned
 // into the world), its albedo, its shading channels (filtered at the hit, not at the polygon),
@@ -510,7 +504,7 @@ TEST_F(DeferredOutputs, ADeferredEngineReadsTheTracedPointsNormalAlbedoChannelsA
             const double heat = bilinear<double>(uv, field, [&](int x, int y) {
                 return channels[(size_t(y) * field + x) * 4 + 3] / 255.0;
             });
-            const glm::dvec3 glow = ember(heat);
+            const glm::dvec3 glow = emberReference(heat);
             const double emissionApart = glm::length(glow - glm::dvec3(emission[i]));
             worstEmission = std::max(worstEmission, emissionApart);
             emissionOff += emissionApart > 0.012 + 0.002 * glow.r; // (half-floats, 8-bit weights)

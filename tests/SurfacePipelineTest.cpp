@@ -335,8 +335,8 @@ TEST_F(Pipeline, ShadingChannelsTakeTheAmbientAndTheHighlightWhereTheySaySo) {
 // hfx_ember), and nothing where it is cold.
 TEST_F(Pipeline, HeatInTheChannelsGlowsAsEmbers) {
     constexpr unsigned char kHeat = 100;
-    const float albedo = 77.0f / 255.0f, t = kHeat / 255.0f, t2 = t * t;
-    const glm::vec3 ember = 2.5f * t2 * glm::vec3(1.0f, 0.12f + 0.6f * t2, 0.02f + 0.4f * t2 * t2);
+    const float albedo = 77.0f / 255.0f;
+    const glm::vec3 ember(emberReference(kHeat / 255.0));
     const SurfaceMaterial material{.depthScale = 0.05f, .shadows = false, .specularStrength = 0.0f};
     for (const float up : {1.0f, -1.0f}) { // lit from straight above, then from below (no direct light)
         DirectionalLight light;

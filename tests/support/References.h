@@ -8,6 +8,8 @@
 #include "hfx/core/EdgeMode.h"
 #include "hfx/compute/shared/GasMath.h"
 
+#include <glm/vec3.hpp>
+
 #include <vector>
 
 namespace hfx::test {
@@ -22,6 +24,13 @@ std::vector<float> sobelReference(const std::vector<float>& heights, int size, f
 /// Each stamp over its own footprint, in batch order: how one thread would stamp.
 void decalsReference(const DecalConfig& config, const std::vector<float>& base, std::vector<float>& damage,
                      const std::vector<BulletHole>& stamps);
+
+/// The light the lit model emits at heat t, 0 to 1 (shaders/shade/lit.glsl's hfx_ember, written
+/// out): 2.5 t^2 (1, 0.12 + 0.6 t^2, 0.02 + 0.4 t^4), linear RGB.
+inline glm::dvec3 emberReference(double t) {
+    const double t2 = t * t;
+    return 2.5 * t2 * glm::dvec3(1.0, 0.12 + 0.6 * t2, 0.02 + 0.4 * t2 * t2);
+}
 
 /// Level 0 and the reductions of the height-bounds pyramid as (max, min) pairs, concatenated like
 /// BoundsPyramid's buffer.
