@@ -87,32 +87,28 @@ inline ColorTarget boundColorTarget(GLuint drawBuffer = 0) {
             .componentType = type};
 }
 
-/// Throws hfx::Error where draw buffer `drawBuffer` of the bound framebuffer, which `what` (the
-/// motion, the normal) goes to, cannot hold negative values: an unsigned normalized target would
-/// clamp them to 0, an integer one takes no float. A float or signed normalized target holds
-/// them; with nothing there (GL_NONE) nothing is written.
-inline void checkSignedTarget(int drawBuffer, const char* what) {
-    if (drawBuffer <= 0 || glStatePolicy() == GlStatePolicy::Defaults) return;
-    const GLint type = boundColorTarget(GLuint(drawBuffer)).componentType;
-    if (type == GL_NONE || type == GL_FLOAT || type == GL_SIGNED_NORMALIZED) return;
-    throw Error(str(what, " goes to draw buffer ", drawBuffer, " of the bound framebuffer, whose target is ",
-                    type == GL_UNSIGNED_NORMALIZED ? "unsigned normalized: its negative values would clamp to 0"
-                                                   : "an integer one: it takes no float values",
-                    "; attach a float (RG16F, RGBA16F) or signed normalized one there"));
-}
+/// What an output needs its draw buffer's target to hold.
+enum class TargetHolds {
+    Negatives, ///< values below 0 (a motion, a normal): a float or signed normalized target
+    OverOne,   ///< values above 1 (emitted light): a float target
+};
 
-/// Throws hfx::Error naming `what` (an output) where `drawBuffer` of the bound framebuffer is not a
-/// float target (a normalized one would clamp its values to [-1, 1] or [0, 1], an integer one
-/// takes none), unless under GlStatePolicy::Defaults; 0: none.
-inline void checkFloatTarget(int drawBuffer, const char* what) {
+/// Throws hfx::Error where draw buffer `drawBuffer` of the bound framebuffer, which `what` (the
+/// motion, the normal, the emission) goes to, cannot hold what it `needs`: a normalized target
+/// clamps (an unsigned one below 0, either above 1), an integer one takes no float. With nothing
+/// there (GL_NONE) nothing is written; 0: no output. Not checked under GlStatePolicy::Defaults.
+inline void checkOutputTarget(int drawBuffer, const char* what, TargetHolds needs) {
     if (drawBuffer <= 0 || glStatePolicy() == GlStatePolicy::Defaults) return;
     const GLint type = boundColorTarget(GLuint(drawBuffer)).componentType;
-    if (type == GL_NONE || type == GL_FLOAT) return;
+    const bool overOne = needs == TargetHolds::OverOne;
+    if (type == GL_NONE || type == GL_FLOAT || (!overOne && type == GL_SIGNED_NORMALIZED)) return;
+    const bool normalized = type == GL_UNSIGNED_NORMALIZED || type == GL_SIGNED_NORMALIZED;
     throw Error(str(what, " goes to draw buffer ", drawBuffer, " of the bound framebuffer, whose target is ",
-                    type == GL_UNSIGNED_NORMALIZED || type == GL_SIGNED_NORMALIZED
-                        ? "normalized: its values over 1 would clamp"
-                        : "an integer one: it takes no float values",
-                    "; attach a float one there (RGBA16F, R11F_G11F_B10F)"));
+                    !normalized ? "an integer one: it takes no float values"
+                    : overOne   ? "normalized: its values over 1 would clamp"
+                                : "unsigned normalized: its negative values would clamp to 0",
+                    overOne ? "; attach a float one there (RGBA16F, R11F_G11F_B10F)"
+                            : "; attach a float (RG16F, RGBA16F) or signed normalized one there"));
 }
 
 /// GL 4.5 promises at least 8 draw buffers; the masks of the first 8 are saved and set (without

@@ -167,7 +167,7 @@ void PlanetRings::draw(const glm::mat4& model, const Camera& camera, const Direc
     if (previousModel && !isFinite(*previousModel))
         throw Error(str("PlanetRings::draw: the previous model must be finite, got the columns ", columnsText(*previousModel)));
     checkClipControl(camera.reversedZ);
-    checkSignedTarget(motionOutput_, "the rings' motion (PlanetRings::setMotionOutput)");
+    checkOutputTarget(motionOutput_, "the rings' motion (PlanetRings::setMotionOutput)", TargetHolds::Negatives);
     GlStateGuard guard; // (it puts back the depth mask the draw turns off, among the rest)
     GLint viewport[4], drawFramebuffer = 0, readFramebuffer = 0;
     glGetIntegerv(GL_VIEWPORT, viewport);

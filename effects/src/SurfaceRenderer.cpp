@@ -473,9 +473,9 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     const bool reversedZ = camera.reversedZ;
     checkClipControl(reversedZ);
     if (!caster) {
-        checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
-        checkSignedTarget(outputs_.normal, "the normal (SurfaceRenderer::setSurfaceOutputs)");
-        checkFloatTarget(outputs_.emission, "the emission (SurfaceRenderer::setSurfaceOutputs)");
+        checkOutputTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)", TargetHolds::Negatives);
+        checkOutputTarget(outputs_.normal, "the normal (SurfaceRenderer::setSurfaceOutputs)", TargetHolds::Negatives);
+        checkOutputTarget(outputs_.emission, "the emission (SurfaceRenderer::setSurfaceOutputs)", TargetHolds::OverOne);
     }
     const TechniqueInfo& info = techniqueInfo(options.technique);
     validateLayers(layers, info);
@@ -651,7 +651,7 @@ void SurfaceRenderer::drawSky(const Camera& camera, const DirectionalLight& ligh
     camera.validate();
     light.validate();
     look.validateSky();
-    checkSignedTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)");
+    checkOutputTarget(motionOutput_, "the motion (SurfaceRenderer::setMotionOutput)", TargetHolds::Negatives);
     ShaderProgram& sky = sky_[{look.sky(), motionOutput_}];
     if (!sky.id()) {
         sky = ShaderProgram(surfaceStage("sky.vert"), surfaceStage("sky.frag"),
