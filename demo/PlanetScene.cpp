@@ -34,7 +34,7 @@ public:
             std::fprintf(stderr, "hfx: planet: %.0f s of weather spun up in %.1f s (--spin-up)\n", double(o.spinUp),
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         }
-        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, o.cameraDistance, 0.3f, 0.25f);
+        camera_ = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.6f, 0.3f, 0.25f); // --camera-distance: placeCamera
         camera_.aspect = o.aspect();
         light_.direction = {0.95f, 0.15f, -0.2f}; // 83 degrees from the view: the terminator crosses the disc
         // With rings: the sun 25 degrees below their plane (Saturn's reaches 27) and the camera
@@ -43,6 +43,19 @@ public:
         if (o.rings) light_.direction = {0.95f, -0.47f, -0.2f};
         light_.color = {1.0f, 0.97f, 0.92f};
         light_.ambient = {0.03f, 0.03f, 0.04f};
+    }
+
+    /// The orbit options, then a camera inside the planet's cloud tops refused by name.
+    void placeCamera(const SceneOptions& o) override {
+        Scene::placeCamera(o);
+        const float fromCentre = glm::length(camera_.position);
+        if (fromCentre < 1.05f) {
+            char radii[32];
+            std::snprintf(radii, sizeof radii, "%.2f", double(fromCentre));
+            throw Error(str("the planet's camera would stand ", radii,
+                            " radii from its centre, inside its cloud tops (at least 1.05: --camera-target, "
+                            "--camera-distance)"));
+        }
     }
 
     void draw() override {

@@ -4,13 +4,49 @@
 #include "hfx/core/Gl.h"
 #include "hfx/tools/ImageFiles.h"
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 
 namespace hfx::demo {
+
+CameraOrbit::CameraOrbit(const Camera& c) {
+    const glm::vec3 d = c.position - c.target;
+    distance = glm::length(d);
+    elevation = std::asin(std::clamp(d.y / distance, -1.0f, 1.0f));
+    azimuth = std::atan2(d.x, d.z);
+}
+
+void CameraOrbit::apply(Camera& c) const {
+    c.position = Camera::orbit(c.target, distance, azimuth, elevation).position;
+}
+
+void Scene::placeCamera(const SceneOptions& o) {
+    if (!o.cameraAzimuth && !o.cameraElevation && !o.cameraDistance && !o.cameraTarget) return; // the scene's, to the bit
+    CameraOrbit orbit(camera_);
+    if (o.cameraTarget) camera_.target = *o.cameraTarget;
+    if (o.cameraAzimuth) orbit.azimuth = glm::radians(*o.cameraAzimuth);
+    if (o.cameraElevation) orbit.elevation = glm::radians(*o.cameraElevation);
+    if (o.cameraDistance) orbit.distance = *o.cameraDistance;
+    orbit.apply(camera_);
+}
+
+std::string Scene::cameraLabel() const {
+    const CameraOrbit orbit(camera_);
+    char label[256];
+    std::snprintf(label, sizeof label,
+                  "azimuth %.1f, elevation %.1f degrees, distance %.2f from its target (%.2f, %.2f, %.2f) "
+                  "(--camera-azimuth, --camera-elevation, --camera-distance, --camera-target)",
+                  double(glm::degrees(orbit.azimuth) + 0.0f), double(glm::degrees(orbit.elevation) + 0.0f), // no -0
+                  double(orbit.distance), double(camera_.target.x + 0.0f), double(camera_.target.y + 0.0f),
+                  double(camera_.target.z + 0.0f));
+    return label;
+}
 
 void Scene::applyOptions(const SceneOptions& o) {
     SurfaceMaterial m = effect().material();
@@ -149,6 +185,7 @@ std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const S
                                    : name == "noise"  ? makeNoiseScene(cl, options)
                                                       : nullptr;
     if (!scene) throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
+    scene->placeCamera(options);
     scene->camera().reversedZ = options.reversedZ;
     scene->orthographic = options.orthographic;
     return scene;

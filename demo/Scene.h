@@ -67,8 +67,14 @@ struct SceneOptions {
     float choppiness = 1.0f;           ///< water: horizontal displacement lambda
     int cascades = 0;                  ///< water: 0: the ocean's default (4)
     float cameraPitch = 8.0f;          ///< water: degrees the camera looks below the horizon
+    /// Where the camera stands about the scene's target, each the scene's own where not given
+    /// (Scene::placeCamera): degrees about the vertical axis from +z (water: the way it looks, 0
+    /// along -z), degrees above the target (not water: its camera stands 7 m above the sea, its
+    /// pitch is cameraPitch), and the distance (planet: radii from the centre).
+    std::optional<float> cameraAzimuth, cameraElevation, cameraDistance;
+    /// The point the camera looks at and stands about (not water), the scene's own where not given.
+    std::optional<glm::vec3> cameraTarget;
     float foamHistory = 0.0f;          ///< water: seconds of wind the first frame's foam has seen
-    float cameraDistance = 2.6f;       ///< planet: the camera's distance from the centre, in radii
     int detailScale = 0;               ///< planet: detail texels per gas cell (0: the device's)
     float timeScale = 1.0f;            ///< planet: simulated seconds per second, 1 to 10^4
     float spinUp = 60.0f;              ///< planet: simulated seconds of weather before the first frame
@@ -86,6 +92,15 @@ struct SceneOptions {
     /// noise: > 0 draws the relief on a rounded box with a triplanar mapping (TriplanarMapping::scale,
     /// texcoords per unit) instead of the plane's texcoords
     float triplanar = 0.0f;
+};
+
+/// Where a camera stands about its target: the inverse of Camera::orbit (radians; azimuth about
+/// the vertical axis from +z, elevation above the target), read from a camera and put back.
+struct CameraOrbit {
+    explicit CameraOrbit(const Camera& c);
+    /// Moves c's position to this orbit about c's target.
+    void apply(Camera& c) const;
+    float distance, azimuth, elevation;
 };
 
 class Scene {
@@ -125,6 +140,12 @@ public:
     virtual void clear() {}
     /// After the last frame: writes what the options asked for (the decal scene's damage log).
     virtual void finish() {}
+    /// SceneOptions' camera placement over the scene's own (makeScene, after the scene set its
+    /// camera): its target moved, then the orbit about it, each only where given.
+    virtual void placeCamera(const SceneOptions& options);
+    /// Where the camera stands, for the log: "azimuth 65.9, elevation 8.6 degrees, distance 3.40
+    /// from its target (--camera-...)".
+    virtual std::string cameraLabel() const;
 
     Camera& camera() { return camera_; }
     /// SceneOptions::orthographic: drawInto gives the camera an orthographic projection.

@@ -9,6 +9,7 @@
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
 
+#include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <imgui.h>
 
@@ -104,6 +105,31 @@ public:
         light_.direction = {-0.35f, 0.22f, -1.0f};
         light_.color = {1.0f, 0.9f, 0.75f};
         light_.ambient = {0.35f, 0.42f, 0.5f};
+    }
+
+    /// --camera-azimuth turns the way the camera looks about the vertical (0: along -z, towards the
+    /// low sun); it keeps its place 7 m above the sea and its pitch (--camera-pitch). The other
+    /// placements are refused by name (their options' labels leave the water out).
+    void placeCamera(const SceneOptions& o) override {
+        if (!o.cameraAzimuth) return;
+        const float azimuth = glm::radians(*o.cameraAzimuth), ahead = glm::length(camera_.target - camera_.position);
+        const glm::vec3 look = glm::normalize(camera_.target - camera_.position);
+        const float horizontal = std::sqrt(std::max(0.0f, 1.0f - look.y * look.y));
+        camera_.target = camera_.position + ahead * glm::vec3(-std::sin(azimuth) * horizontal, look.y,
+                                                              -std::cos(azimuth) * horizontal);
+    }
+
+    std::string cameraLabel() const override {
+        const glm::vec3 look = glm::normalize(camera_.target - camera_.position);
+        float azimuth = glm::degrees(std::atan2(-look.x, -look.z));
+        azimuth = azimuth < -179.95f ? azimuth + 360.0f : azimuth + 0.0f; // (-180, 180], no -0
+        char label[160];
+        std::snprintf(label, sizeof label,
+                      "azimuth %.1f degrees (looking along -z at 0), %.1f below the horizon, %.0f m above the sea "
+                      "(--camera-azimuth, --camera-pitch)",
+                      double(azimuth), double(glm::degrees(std::asin(-look.y))),
+                      double(camera_.position.y));
+        return label;
     }
 
     /// The clouds drift downwind, with the wind aloft (the texcoords' v runs along -z on the plane).

@@ -46,21 +46,6 @@ public:
     ImGuiSession& operator=(const ImGuiSession&) = delete;
 };
 
-/// Orbit state around the camera's target, read from where the scene put the camera.
-struct Orbit {
-    explicit Orbit(const Camera& c) {
-        const glm::vec3 d = c.position - c.target;
-        distance = glm::length(d);
-        elevation = std::asin(std::clamp(d.y / distance, -1.0f, 1.0f));
-        azimuth = std::atan2(d.x, d.z);
-    }
-    void apply(Camera& c) const {
-        const Camera o = Camera::orbit(c.target, distance, azimuth, elevation);
-        c.position = o.position;
-    }
-    float distance, azimuth, elevation;
-};
-
 /// True once per press.
 class KeyEdge {
 public:
@@ -99,7 +84,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     if (gl.headless() || !window) throw Error("WindowLoop needs a GLFW window context");
     ImGuiSession imgui(window);
     RenderTarget target(options_.width, options_.height);
-    Orbit orbit(scene.camera());
+    CameraOrbit orbit(scene.camera());
     KeyEdge explodeKey(GLFW_KEY_E), clearKey(GLFW_KEY_C), screenshotKey(GLFW_KEY_F12), escapeKey(GLFW_KEY_ESCAPE);
     if (!options_.out.empty()) makeFolder(options_.out, "--out");
     int screenshots = 0;

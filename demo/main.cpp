@@ -206,6 +206,7 @@ int run(const Options& o) {
     std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\nhfx: technique: %s%s\n", cl.programReport().c_str(),
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
                  o.technique == "auto" ? " (auto: the scene's default)" : "");
+    std::fprintf(stderr, "hfx: camera: %s\n", scene->cameraLabel().c_str());
     if (scene->camera().reversedZ) std::fprintf(stderr, "hfx: depth: reversed Z (near at 1, GL_ZERO_TO_ONE, GL_GREATER)\n");
     if (scene->orthographic)
         std::fprintf(stderr, "hfx: projection: orthographic (glm::ortho, the lens's frame at its target: parallel rays)\n");
@@ -370,8 +371,26 @@ int main(int argc, char** argv) {
     app.add_option("--foam-history", s.foamHistory,
                    "water: seconds of this wind the first frame's foam has seen (0: a clear start; whitecaps build over their 4 s half-life)")
         ->check(kFinite)->check(CLI::Range(0.0, 600.0))->capture_default_str();
-    app.add_option("--camera-distance", s.cameraDistance, "planet: the camera's distance from the centre in radii (close-up: 1.3)")
-        ->check(kFinite)->check(CLI::Range(1.05, 100.0))->capture_default_str();
+    // The camera's place about its target: given, each replaces the scene's own (SceneOptions).
+    float cameraAzimuth = 0.0f, cameraElevation = 0.0f, cameraDistance = 0.0f;
+    app.add_option("--camera-azimuth", cameraAzimuth,
+                   "water, decals, planet, noise, maps: degrees about the vertical axis from +z where the camera "
+                   "stands about its target (default: the scene's, which the log gives; water: the way it looks, 0 "
+                   "along -z towards the low sun)")
+        ->check(kFinite)->check(CLI::Range(-360.0, 360.0));
+    app.add_option("--camera-elevation", cameraElevation,
+                   "decals, planet, noise, maps: degrees the camera stands above its target (default: the scene's; "
+                   "the water's camera stands 7 m above the sea: --camera-pitch)")
+        ->check(kFinite)->check(CLI::Range(-89.0, 89.0));
+    std::vector<float> cameraTarget;
+    app.add_option("--camera-target", cameraTarget,
+                   "decals, planet, noise, maps: the point X,Y,Z the camera looks at and stands about, world units "
+                   "(default: the scene's, the origin; the wall spans -2..2 in x and y)")
+        ->expected(3)->delimiter(',')->check(kFinite)->check(CLI::Range(-100.0, 100.0));
+    app.add_option("--camera-distance", cameraDistance,
+                   "decals, planet, noise, maps: the camera's distance from its target (default: the scene's; "
+                   "planet: radii from the centre, 2.6, a close-up 1.3)")
+        ->check(kFinite)->check(CLI::Range(1.05, 100.0));
     app.add_option("--rings", s.rings, "planet: rings in the equatorial plane, casting and receiving shadows (1.24-2.27 radii: "
                                        "--camera-distance 5 shows them whole)")
         ->capture_default_str();
@@ -420,6 +439,10 @@ int main(int argc, char** argv) {
         ->delimiter(',');
     app.add_flag("--no-progress", o.noProgress, "headless: print each frame's file instead of a progress bar");
     CLI11_PARSE(app, argc, argv);
+    if (app.count("--camera-azimuth") > 0) s.cameraAzimuth = cameraAzimuth;
+    if (app.count("--camera-elevation") > 0) s.cameraElevation = cameraElevation;
+    if (app.count("--camera-distance") > 0) s.cameraDistance = cameraDistance;
+    if (cameraTarget.size() == 3) s.cameraTarget = glm::vec3(cameraTarget[0], cameraTarget[1], cameraTarget[2]);
     o.devices.gl = parseGlBackend(o.gl);
     s.shadows = !noShadows;
     s.texelShadows = texelShadowsOn ? TexelShadowChoice::On : texelShadowsOff ? TexelShadowChoice::Off : TexelShadowChoice::Auto;

@@ -4,7 +4,7 @@
 # of wind behind it, --foam-history; the decal volley: 196 bullets and 5 explosions with their
 # scorch; the planet's storms). Writes
 # docs/gallery/{water,decals,planet,noise}.jpg, the wall's bricks and damage on a column
-# (decals-pillar.jpg), the noise on a rounded box (noise-triplanar.jpg),
+# (decals-pillar.jpg), a fresh crater on the wall close up (decals-closeup.jpg), the noise on a rounded box (noise-triplanar.jpg),
 # the planet close up (planet-closeup.jpg) and with rings (planet-rings.jpg), the sea
 # calm (Beaufort 3) and rough (Beaufort 7), a Beaufort 4 / 7 / 10 strip, the far field seen 5 degrees down (water-horizon.jpg),
 # the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
@@ -47,6 +47,7 @@ if wanted water; then
 fi
 if wanted decals; then
     render decals 50 --pillar && mv docs/gallery/decals.jpg docs/gallery/decals-pillar.jpg
+    render decals 50 --camera-target -1.2,-0.4,0 --camera-azimuth 15 --camera-elevation 5 --camera-distance 1.3 && mv docs/gallery/decals.jpg docs/gallery/decals-closeup.jpg
     render decals 50
 fi
 if wanted noise; then

@@ -463,6 +463,82 @@ TEST(Demo, AnOrthographicRunDrawsEachScenesParallelView) {
     }
 }
 
+TEST(Demo, TheCameraOptionsPlaceEachScenesCamera) {
+    // --camera-azimuth, --camera-elevation and --camera-distance move the camera about its
+    // target (--camera-target) from where the scene put it; the log says where it stands. The decal wall (4 units
+    // square, centred on the target) seen head-on from 8 and 16 units is a square in the middle
+    // of the frame, its edges parallel to the frame's, half as wide from twice as far; the
+    // scene's own camera grazes it (a trapezoid).
+    std::string log;
+    const Image grazing = flatSceneFrame("decals", "camera_own", "", 128, &log);
+    EXPECT_NE(log.find("hfx: camera: azimuth 65.9, elevation 8.6 degrees, distance 3.40"), std::string::npos) << log;
+    struct Extent { // the wall's pixels apart from the sky's (the top-left corner's)
+        int left = 1 << 20, right = -1, top = 1 << 20, bottom = -1, minRow = 1 << 20, maxRow = 0;
+    };
+    auto extent = [](const Image& frame) {
+        Extent e;
+        for (int y = 0; y < frame.height; ++y) {
+            int row = 0;
+            for (int x = 0; x < frame.width; ++x) {
+                float d = 0.0f;
+                for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(frame.at(x, y, c) - frame.at(0, 0, c)));
+                if (d <= 8.0f / 255.0f) continue;
+                ++row;
+                e.left = std::min(e.left, x), e.right = std::max(e.right, x);
+                e.top = std::min(e.top, y), e.bottom = std::max(e.bottom, y);
+            }
+            if (row > 0) e.minRow = std::min(e.minRow, row), e.maxRow = std::max(e.maxRow, row);
+        }
+        return e;
+    };
+    Extent headOn[2];
+    for (int i = 0; i < 2; ++i) {
+        const int distance = 8 << i;
+        const Image frame = flatSceneFrame("decals", "camera_" + std::to_string(distance),
+                                           " --camera-azimuth 0 --camera-elevation 0 --camera-distance " +
+                                               std::to_string(distance),
+                                           128, &log);
+        EXPECT_NE(log.find("hfx: camera: azimuth 0.0, elevation 0.0 degrees, distance " + std::to_string(distance) + ".00"),
+                  std::string::npos)
+            << log;
+        const Extent& e = headOn[i] = extent(frame);
+        const int width = e.right - e.left + 1, height = e.bottom - e.top + 1;
+        std::printf("[camera] head-on from %d: the wall %dx%d pixels at (%d, %d), rows %d to %d wide\n", distance, width,
+                    height, e.left, e.top, e.minRow, e.maxRow);
+        EXPECT_NEAR(width, height, 2) << "not square";
+        EXPECT_NEAR(e.left, frame.width - 1 - e.right, 2) << "not in the middle";
+        EXPECT_NEAR(e.top, frame.height - 1 - e.bottom, 2) << "not in the middle";
+        EXPECT_LE(e.maxRow - e.minRow, 1) << "its edges lean";
+    }
+    const double ratio = double(headOn[0].right - headOn[0].left + 1) / double(headOn[1].right - headOn[1].left + 1);
+    EXPECT_NEAR(ratio, 2.0, 0.1) << "twice as far is not half as wide";
+    // Looking at a point 1 unit right of the wall's centre from 8 units, the wall's centre sits a
+    // quarter of its width (4 units wide) left of the frame's.
+    const Image shifted = flatSceneFrame("decals", "camera_target",
+                                         " --camera-azimuth 0 --camera-elevation 0 --camera-distance 8 "
+                                         "--camera-target 1,0,0",
+                                         128, &log);
+    EXPECT_NE(log.find("distance 8.00 from its target (1.00, 0.00, 0.00)"), std::string::npos) << log;
+    const Extent moved = extent(shifted);
+    const double centre = 0.5 * (moved.left + moved.right), frameCentre = 0.5 * (shifted.width - 1),
+                 quarter = 0.25 * (headOn[0].right - headOn[0].left + 1);
+    std::printf("[camera] looking 1 unit right of it: the wall's centre %.1f pixels left of the frame's (a quarter "
+                "of its width: %.1f)\n",
+                frameCentre - centre, quarter);
+    EXPECT_NEAR(frameCentre - centre, quarter, 1.5);
+    EXPECT_NEAR(moved.right - moved.left, headOn[0].right - headOn[0].left, 1) << "the distance changed";
+    const Extent own = extent(grazing);
+    EXPECT_GT(own.maxRow - own.minRow, 10) << "the scene's own camera would pass as head-on";
+    // The water's camera keeps its place and pitch and turns away from the low sun.
+    const Image sunward = flatSceneFrame("water", "camera_sunward", "", 128, &log);
+    EXPECT_NE(log.find("hfx: camera: azimuth 0.0 degrees (looking along -z at 0), 8.0 below the horizon, 7 m"),
+              std::string::npos)
+        << log;
+    const Image away = flatSceneFrame("water", "camera_away", " --camera-azimuth 180", 128, &log);
+    EXPECT_NE(log.find("hfx: camera: azimuth 180.0 degrees"), std::string::npos) << log;
+    EXPECT_GT(frameDifference(sunward, away).mean, 5.0) << "the turn made no difference";
+}
+
 TEST(Demo, AutoSaysWhichTracePassItTimedFasterWhereNoWorkaroundDecides) {
     // --trace-pass auto where no workaround decides (trace-in-draw off: a GPU's case): the trial
     // times both passes on the first 8 frames and the log gives its choice and both medians; with
@@ -719,7 +795,7 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
                              "water --wind-speed -4", "water --depth-scale 2", "water --lod-threshold -1",
                              "water --dt 0", "water --field 100", "decals --shots /no/such/shots.txt",
                              "decals --normal-map n.png",  /* a normal map without a height map */ "water --environment /no/such/sky.exr",
-                             "planet --field 4", "water --height 9", "noise --texel-shadows --no-texel-shadows",
+                             "planet --field 4", "water --height 9", "planet --camera-distance 1", "decals --camera-elevation 90", "noise --texel-shadows --no-texel-shadows",
                              "decals --trace-pass sideways", "water --clouds 1.5"}) {
         const Result r = runDemo(std::string(args) + " --headless");
         EXPECT_NE(r.exitCode, 0) << args;
@@ -754,6 +830,12 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
           std::pair{"decals --pillar --texel-shadows", "--texel-shadows is for the wall: --pillar's column"},
           std::pair{"decals --pillar --defer-shadow-walks", "--defer-shadow-walks is for the wall: --pillar's column"},
           std::pair{"noise --pillar", "--pillar is for the decals scene: the noise scene"},
+          std::pair{"water --camera-elevation 30", "--camera-elevation is for the decals, planet, noise and maps scenes"},
+          std::pair{"water --camera-distance 3", "--camera-distance is for the decals, planet, noise and maps scenes"},
+          std::pair{"decals --camera-target 1,2", "--camera-target: At least 3 required"},
+          std::pair{"planet --field 64 --spin-up 0 --camera-target 0,0,-0.5 --camera-distance 1.2",
+                    "the planet's camera would stand 0.76 radii from its centre, inside its cloud tops"},
+          std::pair{"decals --camera-target 0,nan,0", "--camera-target: 'nan' is not a finite number"},
           std::pair{"noise --triplanar 1 --tiling clamp --noise-kind simplex --field 64",
                     "SurfaceMaterial.triplanar needs a surface that wraps both ways"}}) {
         const Result other = runDemo(std::string(args) + " --headless");
@@ -784,7 +866,8 @@ TEST(Demo, HelpListsTheOptions) {
                                "--depth-scale", "--lod-threshold", "--seed", "--no-shadows", "--waves",
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
                                "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format",
-                               "--texel-shadows", "--no-texel-shadows", "--trace-pass", "--reversed-z", "--gl", "--cl-device", "water", "decals", "planet",
+                               "--texel-shadows", "--no-texel-shadows", "--trace-pass", "--reversed-z", "--camera-azimuth",
+                               "--camera-elevation", "--camera-distance", "--camera-target", "--gl", "--cl-device", "water", "decals", "planet",
                                "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }
