@@ -5,7 +5,7 @@
 # scorch; the planet's storms). Writes
 # docs/gallery/{water,decals,planet,noise}.jpg, the wall's bricks and damage on a column
 # (decals-pillar.jpg), a fresh crater on the wall close up (decals-closeup.jpg), the noise on a rounded box (noise-triplanar.jpg),
-# the planet close up (planet-closeup.jpg) and with rings (planet-rings.jpg), the sea
+# the planet close up (planet-closeup.jpg), with rings (planet-rings.jpg) and over its pole (planet-pole.jpg), the sea
 # calm (Beaufort 3) and rough (Beaufort 7), a Beaufort 4 / 7 / 10 strip, the far field seen 5 degrees down (water-horizon.jpg),
 # the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
 # (water.mp4, needs ffmpeg). `bash scripts/gallery.sh water` (or decals, noise, planet) renders one
@@ -59,6 +59,8 @@ if wanted planet; then
     # of its gas (the festoons and filaments of its advected detail).
     render planet 150 --detail-scale 4 --camera-distance 1.8 --time-scale 3 && mv docs/gallery/planet.jpg docs/gallery/planet-closeup.jpg
     render planet 120 --detail-scale 4 --rings 1 --camera-distance 5 && mv docs/gallery/planet.jpg docs/gallery/planet-rings.jpg
+    # Its north polar cap from 70 degrees up (the polar filter: no starburst where the meridians meet).
+    render planet 120 --detail-scale 4 --camera-elevation 70 --camera-distance 2.2 && mv docs/gallery/planet.jpg docs/gallery/planet-pole.jpg
     render planet 120 --detail-scale 4
 fi
 ls -l docs/gallery

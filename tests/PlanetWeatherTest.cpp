@@ -94,6 +94,56 @@ TEST_F(PlanetWeather, ASpunUpPlanetDrawsItsWeatherBeforeAnyUpdate) {
     EXPECT_LT(largestDifference(after, heights), 1e-6f) << "the textures are not the heights readHeights() gives";
 }
 
+TEST_F(PlanetWeather, ThePolarFilterDrawsThePolarCapsWithoutAStarburst) {
+    // A texel's longitude spans cos(latitude) of what its latitude spans: near a pole the gas's
+    // detail, round on the map, is drawn as wedges along the meridians that meet in a starburst.
+    // Measured on the sphere (a zonal difference over cos(latitude) texels of arc), the drawn
+    // heights' slope across the meridians over their slope along them, 75 to 85 degrees of
+    // latitude: with the polar filter (GasPlanetConfig::polarSmoothing), a planet's heights vary
+    // about as much either way (measured: 0.94); without it, 2.7 times more across. The same
+    // weather, and below 50 degrees the same heights to the bit.
+    GasPlanetConfig config;
+    config.gas.width = 256;
+    config.gas.height = 128;
+    config.detail.scale = 2;
+    GasPlanetEffect filtered(cl(), config);
+    config.polarSmoothing = 0.0f;
+    GasPlanetEffect plain(cl(), config);
+    filtered.spinUp(30.0);
+    plain.spinUp(30.0);
+    const std::vector<float> a = filtered.readHeights(), b = plain.readHeights();
+    const int W = filtered.surfaceWidth(), H = filtered.surfaceHeight();
+    ASSERT_EQ(a.size(), size_t(W) * H);
+    auto anisotropy = [&](const std::vector<float>& h) {
+        double across = 0.0, along = 0.0;
+        for (int y = 0; y + 1 < H; ++y) {
+            const double latitude = ((y + 1.0) / H - 0.5) * std::numbers::pi; // between rows y and y + 1
+            if (std::abs(latitude) < 75.0 * std::numbers::pi / 180.0 || std::abs(latitude) > 85.0 * std::numbers::pi / 180.0)
+                continue;
+            const double c = std::cos(((y + 0.5) / H - 0.5) * std::numbers::pi);
+            for (int x = 0; x < W; ++x) {
+                const size_t k = size_t(y) * W + x;
+                across += std::abs(h[size_t(y) * W + (x + 1) % W] - h[k]) / c;
+                along += std::abs(h[k + W] - h[k]);
+            }
+        }
+        return across / along;
+    };
+    int same = 0, low = 0;
+    for (int y = 0; y < H; ++y) {
+        if (std::abs((y + 0.5) / H - 0.5) * 180.0 >= 50.0) continue;
+        ++low;
+        same += std::equal(a.begin() + ptrdiff_t(y) * W, a.begin() + ptrdiff_t(y + 1) * W, b.begin() + ptrdiff_t(y) * W);
+    }
+    const double withFilter = anisotropy(a), without = anisotropy(b);
+    std::printf("[polar] 75-85 degrees: the heights' slope across the meridians / along them, %.2f filtered, %.2f "
+                "without; %d of %d rows below 50 degrees the same\n",
+                withFilter, without, same, low);
+    EXPECT_GT(without, 2.0) << "the unfiltered caps would pass as well";
+    EXPECT_LT(withFilter, 1.4);
+    EXPECT_EQ(same, low);
+}
+
 TEST_F(PlanetWeather, ATimeScaleOfTenThousandRunsAThousandStepsWithoutNaN) {
     GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .pressureIterations = 20, .vorticity = 0.35f,
                                           .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,

@@ -56,6 +56,8 @@ void GasPlanetConfig::validate() const {
     if (gridScale > 0.0f) scaledGas(gas, gridScale).validate();
     if (!(poleCap >= 0.0f && poleCap <= 0.25f))
         throw Error(str("GasPlanetConfig.poleCap must be in [0, 0.25], got ", poleCap));
+    if (!(polarSmoothing >= 0.0f && polarSmoothing <= 60.0f))
+        throw Error(str("GasPlanetConfig.polarSmoothing must be in [0, 60] degrees, got ", polarSmoothing));
     if (detail.scale != 0) detail.validate(gas); // scale 0 is validated once the device picks one
     if (rings) {
         rings->validate();
@@ -128,6 +130,8 @@ GasPlanetEffect::GasPlanetEffect(ClContext& cl, const GasPlanetConfig& config)
       detail_(makeDetail(cl, gas_, config_)),
       colors_(cl, config_.gas.width * config_.detail.scale, config_.gas.height * config_.detail.scale, config_.palette),
       random_(config.seed), surface_(cl, surfaceOf(gas_, config_)) {
+    if (config_.polarSmoothing > 0.0f)
+        polar_ = std::make_unique<PolarFilter>(cl, surfaceWidth(), surfaceHeight(), config_.polarSmoothing);
     float largest = 0.0f;
     for (int i = 1; i < 4096; ++i) {
         const double v = i / 4096.0, h = 1e-4;
@@ -284,14 +288,23 @@ void GasPlanetEffect::spinUp(double seconds) {
 void GasPlanetEffect::enqueueSurface() {
     // The colour follows the heights: the gas's, with the cloud tops' detail.
     if (detail_) detail_->run();
-    surface_.derive(detail_ ? detail_->output() : gas_.buffer());
-    colors_.run(detail_ ? detail_->output() : gas_.buffer());
+    const cl::Buffer* heights = detail_ ? &detail_->output() : &gas_.buffer();
+    if (polar_) {
+        polar_->run(*heights);
+        heights = &polar_->output();
+    }
+    surface_.derive(*heights);
+    colors_.run(*heights);
     surface_.submit(&colors_.output());
 }
 
 std::vector<float> GasPlanetEffect::readHeights() {
-    if (!detail_) return gas_.readHeights();
-    return detail_->readHeights();
+    if (!polar_) return detail_ ? detail_->readHeights() : gas_.readHeights();
+    std::vector<float> heights(size_t(surfaceWidth()) * surfaceHeight());
+    clGuard("reading the planet's heights", [&] {
+        cl_.queue().enqueueReadBuffer(polar_->output(), CL_TRUE, 0, heights.size() * sizeof(float), heights.data());
+    });
+    return heights;
 }
 
 glm::mat4 GasPlanetEffect::modelMatrix() const {

@@ -16,6 +16,7 @@
 #include "hfx/compute/NoiseField.h"
 #include "hfx/compute/OceanField.h"
 #include "hfx/compute/OceanQuery.h"
+#include "hfx/compute/PolarFilter.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/WaveField.h"
 #include "hfx/compute/shared/NoiseMath.h"
@@ -312,6 +313,23 @@ void BM_PlanetDetail(benchmark::State& state) {
     }
 }
 
+/// The planet's polar filter a frame (PolarFilter at GasPlanetConfig's smoothing), on the drawn
+/// heights at 2 and 4 texels per cell of its 512x256 gas: each filtered row's prefix sums, then
+/// every texel's box. Against BM_PlanetDetail, which writes the same heights.
+void BM_PlanetPolarFilter(benchmark::State& state) {
+    const GasPlanetConfig planet;
+    const int scale = int(state.range(0)), width = planet.gas.width * scale, height = planet.gas.height * scale;
+    std::vector<float> field(size_t(width) * height);
+    SplitMix64 random(3);
+    for (float& h : field) h = float(random.next());
+    cl::Buffer in(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, field.size() * sizeof(float), field.data());
+    PolarFilter polar(cl(), width, height, planet.polarSmoothing);
+    for (auto _ : state) {
+        polar.run(in);
+        cl().queue().finish();
+    }
+}
+
 /// The planet's gas step with its 32 storms' upkeep (storm lengths of GasPlanetConfig's 0.025
 /// widths, spread over the map): two pushing splats a storm, a storm's radius each, as storms were
 /// kept spinning before 2026-11-29 (0), or each held as an oval vortex with its colour fed
@@ -506,6 +524,7 @@ BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Un
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetGas)->Arg(0)->Arg(1)->ArgNames({"maccormack"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetDetail)->Arg(2)->Arg(4)->ArgNames({"scale"})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanetPolarFilter)->Arg(2)->Arg(4)->ArgNames({"scale"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetStorms)->Arg(0)->Arg(1)->Arg(2)->ArgNames({"held"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DrawIssue)->Arg(0)->Arg(1)->ArgNames({"defaults"})->Iterations(2000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Gas)->Args({512, 0})->Args({512, 1})->Args({2048, 0})->UseRealTime()->Unit(benchmark::kMillisecond);

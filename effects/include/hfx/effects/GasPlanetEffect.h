@@ -12,6 +12,7 @@
 #include "hfx/compute/ColorRamp.h"
 #include "hfx/compute/GasField.h"
 #include "hfx/compute/FlowDetail.h"
+#include "hfx/compute/PolarFilter.h"
 #include "hfx/core/Random.h"
 #include "hfx/effects/Effect.h"
 #include "hfx/effects/PlanetRings.h"
@@ -75,6 +76,10 @@ struct GasPlanetConfig {
     /// The last fraction of rows at each pole fades to a flat 0.5, so the poles, where all the
     /// columns meet in one point, show no pinched seam. 0: none.
     float poleCap = 0.04f;
+    /// The drawn heights' polar filter (PolarFilter): each row averaged along the longitude over
+    /// this many degrees at 60 degrees of latitude, more towards the poles, so detail the
+    /// longitude-latitude grid squeezes there shows no starburst at a pole, in [0, 60]. 0: none.
+    float polarSmoothing = 0.75f;
     float rotationSpeed = 0.08f;   ///< radians per second about +Y
     /// The cloud tops' detail finer than the gas's grid, advected by its flow (FlowDetail; its
     /// capRows come from poleCap, its seed from seed). scale 0 picks one for the compute
@@ -124,7 +129,7 @@ public:
     /// drawn next, before any update, is the weather spun up. Waits for the device.
     void spinUp(double seconds);
     GasField& gas() { return gas_; }
-    /// The heights drawn (the gas's, with the cloud tops' detail, surfaceWidth() x
+    /// The heights drawn (the gas's, with the cloud tops' detail, polar filtered, surfaceWidth() x
     /// surfaceHeight()), row 0 at v = 0; waits.
     std::vector<float> readHeights();
     /// The cloud tops' detail: none when its amount, warp and poleCap are 0 (the surface is the gas's).
@@ -176,6 +181,7 @@ private:
     GasPlanetConfig config_;
     GasField gas_;
     std::unique_ptr<FlowDetail> detail_; ///< none when config.detail.amount, warp and poleCap are 0
+    std::unique_ptr<PolarFilter> polar_; ///< none when config.polarSmoothing is 0
     ColorRamp colors_;
     SplitMix64 random_;
     double time_ = 0.0, stormClock_ = 0.0;

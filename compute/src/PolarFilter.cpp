@@ -1,0 +1,78 @@
+#include "hfx/compute/PolarFilter.h"
+
+#include "hfx/core/Error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hfx {
+
+float PolarFilter::rowWidth(int y, int width, int height, float smoothing) {
+    const double latitude = ((y + 0.5) / height - 0.5) * 3.141592653589793;
+    const double stretch = 1.0 / std::max(std::cos(latitude), 1e-9) - 1.0; // 1 at 60 degrees
+    return float(std::min(double(smoothing) / 360.0 * width * stretch * stretch, double(width)));
+}
+
+std::vector<float> PolarFilter::reference(const std::vector<float>& field, int width, int height, float smoothing) {
+    if (width < 1 || height < 1 || field.size() != size_t(width) * size_t(height))
+        throw Error(str("PolarFilter::reference: ", field.size(), " values for ", width, "x", height));
+    std::vector<float> out(field);
+    for (int y = 0; y < height; ++y) {
+        const double w = rowWidth(y, width, height, smoothing);
+        if (w <= 1.0) continue;
+        const float* row = field.data() + size_t(y) * width;
+        std::vector<double> prefix(size_t(width) + 1, 0.0); // the sums of the texels before each
+        for (int i = 0; i < width; ++i) prefix[size_t(i) + 1] = prefix[size_t(i)] + row[i];
+        // The integral of the piecewise-constant row (texel i on [i, i + 1)) from 0 to t.
+        auto integral = [&](double t) {
+            const double turns = std::floor(t / width), local = t - turns * width;
+            const int i = std::min(int(local), width - 1);
+            return turns * prefix[size_t(width)] + prefix[size_t(i)] + (local - i) * row[i];
+        };
+        for (int x = 0; x < width; ++x)
+            out[size_t(y) * width + x] = float((integral(x + 0.5 + 0.5 * w) - integral(x + 0.5 - 0.5 * w)) / w);
+    }
+    return out;
+}
+
+PolarFilter::PolarFilter(ClContext& cl, int width, int height, float smoothing)
+    : cl_(cl), width_(width), height_(height), smoothing_(smoothing) {
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw Error(str("PolarFilter size must be in 1..16384, got ", width, "x", height));
+    if (!(smoothing >= 0.0f && smoothing <= 60.0f))
+        throw Error(str("PolarFilter smoothing must be in [0, 60] degrees of longitude, got ", smoothing));
+    std::vector<float> widths(static_cast<size_t>(height));
+    for (int y = 0; y < height; ++y) widths[size_t(y)] = rowWidth(y, width, height, smoothing);
+    clGuard("creating the polar filter", [&] {
+        prefix_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(width + 1) * height);
+        widths_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * widths.size(),
+                             widths.data());
+        output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(width) * height);
+        sums_ = cl.kernel("polar.cl", "polar_sums");
+        filter_ = cl.kernel("polar.cl", "polar_filter");
+    });
+}
+
+void PolarFilter::run(const cl::Buffer& field) {
+    const size_t n = size_t(width_) * height_;
+    if (field.getInfo<CL_MEM_SIZE>() < n * sizeof(float))
+        throw Error(str("PolarFilter::run: field holds ", field.getInfo<CL_MEM_SIZE>(), " bytes, ", width_, "x",
+                        height_, " floats need ", n * sizeof(float)));
+    clGuard("PolarFilter::run", [&] {
+        sums_.setArg(0, field);
+        sums_.setArg(1, prefix_);
+        sums_.setArg(2, widths_);
+        sums_.setArg(3, width_);
+        sums_.setArg(4, height_);
+        cl_.enqueue(sums_, cl::NDRange(size_t(height_)));
+        filter_.setArg(0, field);
+        filter_.setArg(1, prefix_);
+        filter_.setArg(2, widths_);
+        filter_.setArg(3, output_);
+        filter_.setArg(4, width_);
+        filter_.setArg(5, height_);
+        cl_.enqueue(filter_, cl::NDRange(size_t(width_), size_t(height_)));
+    });
+}
+
+} // namespace hfx
