@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 
+#include <cmath>
 #include <cstdio>
 
 namespace hfx::demo {
@@ -29,11 +30,38 @@ constexpr PlaneConfig kWall{.size = 4.0f, .texcoordScale = 1.0f, .subdivisions =
 /// bricks the wall's.
 const CylinderConfig kPillar{.radius = 0.6f, .height = 3.2f, .segments = 96, .texcoordScale = {1.0f, 0.8f}};
 
+/// The column's capstones: a disc on its top facing up and one under it facing down, so a camera
+/// above or below it sees a closed column rather than into an open tube (makeCylinder has no caps).
+MeshData pillarCaps(const CylinderConfig& c) {
+    MeshData caps;
+    for (const float side : {1.0f, -1.0f}) {
+        const glm::vec3 normal{0.0f, side, 0.0f};
+        const auto centre = uint32_t(caps.vertices.size());
+        const float y = 0.5f * c.height * side;
+        caps.vertices.push_back({{0.0f, y, 0.0f}, normal, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -side}, {0.5f, 0.5f}});
+        for (int i = 0; i < c.segments; ++i) {
+            const float a = 6.2831853f * float(i) / float(c.segments);
+            const glm::vec2 p{c.radius * std::cos(a), c.radius * std::sin(a)};
+            caps.vertices.push_back({{p.x, y, p.y}, normal, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -side},
+                                     {0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a)}});
+        }
+        for (int i = 0; i < c.segments; ++i) {
+            const uint32_t a = centre + 1 + uint32_t(i), b = centre + 1 + uint32_t((i + 1) % c.segments);
+            // Counter-clockwise seen from the normal's side: (x, z) turns clockwise seen from +y.
+            if (side > 0.0f) caps.indices.insert(caps.indices.end(), {centre, b, a});
+            else caps.indices.insert(caps.indices.end(), {centre, a, b});
+        }
+    }
+    return caps;
+}
+
 class DecalScene final : public Scene {
 public:
     DecalScene(ClContext& cl, const SceneOptions& o)
         : wall_(cl, config(o)), pillar_(o.pillar), shape_(o.pillar ? makeCylinder(kPillar) : makePlane(kWall)),
-          mesh_(shape_), post_(makePlane({.size = 0.5f, .texcoordScale = 1.0f, .subdivisions = 1})), random_(o.seed),
+          mesh_(shape_),
+          post_(o.pillar ? pillarCaps(kPillar) : makePlane({.size = 0.5f, .texcoordScale = 1.0f, .subdivisions = 1})),
+          random_(o.seed),
           width_(o.width), height_(o.height), saveDamage_(o.saveDamage) {
         applyOptions(o);
         if (!o.shots.empty()) {
@@ -66,20 +94,22 @@ public:
         }
     }
     void draw() override {
-        // A shelf half sunk into the wall: clipped where the relief is, by the traced depth.
-        const glm::mat4 post = glm::translate(glm::mat4(1.0f), {0.9f, -0.6f, 0.0f});
+        // A shelf half sunk into the wall: clipped where the relief is, by the traced depth. The
+        // column's capstones instead.
+        const glm::mat4 post = pillar_ ? glm::mat4(1.0f) : glm::translate(glm::mat4(1.0f), {0.9f, -0.6f, 0.0f});
+        const glm::vec4 postColor = pillar_ ? glm::vec4(0.62f, 0.6f, 0.56f, 1.0f) : glm::vec4(0.75f, 0.72f, 0.2f, 1.0f);
         // The light's shadow map: the wall casts its traced relief and the shelf itself, so the
         // shelf's shadow falls into the mortar and the holes, and the bricks shade the shelf.
         shadowMap_.fit(light_.direction, {0.0f, 0.0f, 0.0f}, 2.9f);
         {
             const auto casting = shadowMap_.scope();
             renderer_.drawShadow(mesh(), model(), effect().layers(), effect().material(), shadowMap_, drawOptions());
-            if (!pillar_) renderer_.drawFlatShadow(post_, post, shadowMap_);
+            renderer_.drawFlatShadow(post_, post, shadowMap_);
         }
         DirectionalLight light = light_;
         light.shadowMap = &shadowMap_;
         drawSurface(renderer_, light);
-        if (!pillar_) renderer_.drawFlat(post_, post, camera_, {0.75f, 0.72f, 0.2f, 1.0f}, &light);
+        renderer_.drawFlat(post_, post, camera_, postColor, &light);
     }
     Effect& effect() override { return wall_; }
     const char* name() const override { return "decals"; }
@@ -178,7 +208,7 @@ private:
     DecalWallEffect wall_;
     bool pillar_;
     MeshData shape_; ///< the wall's plane, or --pillar's column: drawn, and picked by its triangles
-    Mesh mesh_, post_;
+    Mesh mesh_, post_; ///< post_: the wall's shelf, or the column's capstones
     DirectionalLight light_;
     SurfaceRenderer renderer_;
     ShadowMap shadowMap_{1024};

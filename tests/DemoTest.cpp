@@ -3,7 +3,10 @@
 #include "support/Fixtures.h"
 
 #include "hfx/tools/ImageFiles.h"
+#include "hfx/core/Camera.h"
 #include "hfx/effects/Technique.h"
+
+#include <glm/trigonometric.hpp>
 
 #include <sys/wait.h>
 
@@ -288,6 +291,41 @@ TEST(Demo, ThePillarTakesAClickWhereItsReliefIs) {
                 darkest / a.width, most / 3.0);
     EXPECT_LE(std::hypot(darkest % a.width - 170.0, darkest / a.width - 95.0), 2.0);
     EXPECT_GT(most / 3.0, 0.1);
+}
+
+TEST(Demo, ThePillarIsClosedByCapstonesSeenFromAbove) {
+    // Looked at from 60 degrees above, the column's top is a capstone: around the point where
+    // its axis meets the top, a flat grey disc (channels within a few levels, little variation), not the
+    // inside of an open tube (bricks, red over blue) nor the sky.
+    const std::string dir = outputPath("demo_pillar_above");
+    std::filesystem::remove_all(dir);
+    const Result r = runDemo("decals --pillar --headless --frames 1 --width 320 --height 180 --field 128 "
+                             "--camera-target 0,1.6,0 --camera-elevation 60 --camera-distance 3 --out " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Image frame = readImage(dir + "/decals_0000.png");
+    Camera camera = Camera::orbit({0.0f, 1.6f, 0.0f}, 3.0f, 0.6f, glm::radians(60.0f)); // the scene's azimuth
+    camera.aspect = 320.0f / 180.0f;
+    const glm::vec4 clip = camera.viewProjection() * glm::vec4(0.0f, 1.6f, 0.0f, 1.0f); // the top's centre
+    const int px = int((clip.x / clip.w * 0.5f + 0.5f) * 320.0f), py = int((0.5f - clip.y / clip.w * 0.5f) * 180.0f);
+    ASSERT_TRUE(px >= 4 && px < 316 && py >= 4 && py < 176) << px << ", " << py;
+    double sum[3] = {0, 0, 0}, sum2 = 0, mean = 0;
+    int n = 0;
+    for (int y = py - 4; y <= py + 4; ++y)
+        for (int x = px - 4; x <= px + 4; ++x, ++n) {
+            const double l = (frame.at(x, y, 0) + frame.at(x, y, 1) + frame.at(x, y, 2)) / 3.0;
+            for (int c = 0; c < 3; ++c) sum[c] += frame.at(x, y, c);
+            mean += l;
+            sum2 += l * l;
+        }
+    mean /= n;
+    const double spread = std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+    const double red = sum[0] / n, green = sum[1] / n, blue = sum[2] / n;
+    std::printf("[pillar] its top's centre at (%d, %d): (%.3f, %.3f, %.3f), spread %.4f\n", px, py, red, green, blue,
+                spread);
+    EXPECT_LT(std::abs(red - green), 0.06) << "not grey";
+    EXPECT_LT(std::abs(green - blue), 0.06) << "not grey";
+    EXPECT_LT(spread, 0.02) << "not flat";
+    EXPECT_GT(std::abs(blue - frame.at(0, 0, 2)) + std::abs(red - frame.at(0, 0, 0)), 0.1) << "the sky";
 }
 
 // Save and load: a run that loads the damage log another run saved draws, on its first frame,
