@@ -67,10 +67,11 @@ struct SceneOptions {
     float choppiness = 1.0f;           ///< water: horizontal displacement lambda
     int cascades = 0;                  ///< water: 0: the ocean's default (4)
     float cameraPitch = 8.0f;          ///< water: degrees the camera looks below the horizon
+    float cameraHeight = 7.0f;         ///< water: metres the camera stands above the sea
     /// Where the camera stands about the scene's target, each the scene's own where not given
     /// (Scene::placeCamera): degrees about the vertical axis from +z (water: the way it looks, 0
-    /// along -z), degrees above the target (not water: its camera stands 7 m above the sea, its
-    /// pitch is cameraPitch), and the distance (planet: radii from the centre).
+    /// along -z), degrees above the target (not water: its camera stands cameraHeight above the
+    /// sea, its pitch is cameraPitch), and the distance (planet: radii from the centre).
     std::optional<float> cameraAzimuth, cameraElevation, cameraDistance;
     /// The point the camera looks at and stands about (not water), the scene's own where not given.
     std::optional<glm::vec3> cameraTarget;

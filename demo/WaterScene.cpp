@@ -96,9 +96,10 @@ public:
         m.water.cloudScale = kCloudHeightMeters / 1000.0f;
         effect().setMaterial(m);
         applyOptions(o);
-        // Seven metres above the water, looking down (8 degrees unless told) towards the low sun.
-        camera_.position = {0.0f, 7.0f, 0.0f};
-        camera_.target = {0.0f, 7.0f - 100.0f * std::tan(glm::radians(o.cameraPitch)), -100.0f};
+        // Seven metres above the water unless told, looking down (8 degrees unless told) towards
+        // the low sun.
+        camera_.position = {0.0f, o.cameraHeight, 0.0f};
+        camera_.target = {0.0f, o.cameraHeight - 100.0f * std::tan(glm::radians(o.cameraPitch)), -100.0f};
         camera_.aspect = o.aspect();
         camera_.nearPlane = 0.2f;
         camera_.farPlane = 12000.0f;
@@ -108,8 +109,8 @@ public:
     }
 
     /// --camera-azimuth turns the way the camera looks about the vertical (0: along -z, towards the
-    /// low sun); it keeps its place 7 m above the sea and its pitch (--camera-pitch). The other
-    /// placements are refused by name (their options' labels leave the water out).
+    /// low sun); it keeps its place above the sea (--camera-height) and its pitch (--camera-pitch).
+    /// The other placements are refused by name (their options' labels leave the water out).
     void placeCamera(const SceneOptions& o) override {
         if (!o.cameraAzimuth) return;
         const float azimuth = glm::radians(*o.cameraAzimuth), ahead = glm::length(camera_.target - camera_.position);

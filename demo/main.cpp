@@ -368,6 +368,9 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(0.0, 3600.0))->capture_default_str();
     app.add_option("--camera-pitch", s.cameraPitch, "water: degrees the camera looks below the horizon (small: the far field)")
         ->check(kFinite)->check(CLI::Range(0.0, 89.0))->capture_default_str();
+    app.add_option("--camera-height", s.cameraHeight,
+                   "water: metres the camera stands above the sea (high: the cascades' tiling and the far field)")
+        ->check(kFinite)->check(CLI::Range(1.0, 2000.0))->capture_default_str();
     app.add_option("--foam-history", s.foamHistory,
                    "water: seconds of this wind the first frame's foam has seen (0: a clear start; whitecaps build over their 4 s half-life)")
         ->check(kFinite)->check(CLI::Range(0.0, 600.0))->capture_default_str();
@@ -380,7 +383,7 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(-360.0, 360.0));
     app.add_option("--camera-elevation", cameraElevation,
                    "decals, planet, noise, maps: degrees the camera stands above its target (default: the scene's; "
-                   "the water's camera stands 7 m above the sea: --camera-pitch)")
+                   "the water's camera stands above the sea: --camera-height, --camera-pitch)")
         ->check(kFinite)->check(CLI::Range(-89.0, 89.0));
     std::vector<float> cameraTarget;
     app.add_option("--camera-target", cameraTarget,

@@ -575,6 +575,9 @@ TEST(Demo, TheCameraOptionsPlaceEachScenesCamera) {
     const Image away = flatSceneFrame("water", "camera_away", " --camera-azimuth 180", 128, &log);
     EXPECT_NE(log.find("hfx: camera: azimuth 180.0 degrees"), std::string::npos) << log;
     EXPECT_GT(frameDifference(sunward, away).mean, 5.0) << "the turn made no difference";
+    const Image high = flatSceneFrame("water", "camera_high", " --camera-height 100", 128, &log);
+    EXPECT_NE(log.find("8.0 below the horizon, 100 m above the sea"), std::string::npos) << log;
+    EXPECT_GT(frameDifference(sunward, high).mean, 5.0) << "the height made no difference";
 }
 
 TEST(Demo, AutoSaysWhichTracePassItTimedFasterWhereNoWorkaroundDecides) {
@@ -871,6 +874,7 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
           std::pair{"water --camera-elevation 30", "--camera-elevation is for the decals, planet, noise and maps scenes"},
           std::pair{"water --camera-distance 3", "--camera-distance is for the decals, planet, noise and maps scenes"},
           std::pair{"decals --camera-target 1,2", "--camera-target: At least 3 required"},
+          std::pair{"decals --camera-height 20", "--camera-height is for the water scene: the decals scene"},
           std::pair{"planet --field 64 --spin-up 0 --camera-target 0,0,-0.5 --camera-distance 1.2",
                     "the planet's camera would stand 0.76 radii from its centre, inside its cloud tops"},
           std::pair{"decals --camera-target 0,nan,0", "--camera-target: 'nan' is not a finite number"},
@@ -905,8 +909,8 @@ TEST(Demo, HelpListsTheOptions) {
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
                                "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format",
                                "--texel-shadows", "--no-texel-shadows", "--trace-pass", "--reversed-z", "--camera-azimuth",
-                               "--camera-elevation", "--camera-distance", "--camera-target", "--gl", "--cl-device", "water", "decals", "planet",
-                               "maps", "bench"})
+                               "--camera-elevation", "--camera-distance", "--camera-target", "--camera-height",
+                               "--gl", "--cl-device", "water", "decals", "planet", "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }
 
