@@ -7,7 +7,7 @@
 # (decals-pillar.jpg), a fresh crater on the wall close up (decals-closeup.jpg), the noise on a rounded box (noise-triplanar.jpg),
 # the planet close up (planet-closeup.jpg), with rings (planet-rings.jpg) and over its pole (planet-pole.jpg), the sea
 # calm (Beaufort 3) and rough (Beaufort 7), a Beaufort 4 / 7 / 10 strip, the far field seen 5 degrees down (water-horizon.jpg),
-# the sea after an explosion (water-explosion.jpg), and a 4-second 640x360 video of the rough sea
+# the sea after an explosion (water-explosion.jpg), from 120 m up (water-above.jpg), and a 4-second 640x360 video of the rough sea
 # (water.mp4, needs ffmpeg). `bash scripts/gallery.sh water` (or decals, noise, planet) renders one
 # scene's pictures only.
 set -euo pipefail
@@ -33,6 +33,7 @@ if wanted water; then
     render water 30 --foam-history 20 --beaufort 4 && mv docs/gallery/water.jpg docs/gallery/water-beaufort4.jpg
     render water 30 --foam-history 20 --beaufort 10 && mv docs/gallery/water.jpg docs/gallery/water-beaufort10.jpg
     render water 30 --foam-history 20 --camera-pitch 5 && mv docs/gallery/water.jpg docs/gallery/water-horizon.jpg
+    render water 30 --foam-history 20 --camera-height 120 --camera-pitch 35 && mv docs/gallery/water.jpg docs/gallery/water-above.jpg
     if command -v ffmpeg >/dev/null; then
         # Encoded here rather than by --video: a higher CRF keeps the committed file small.
         ./build/demo/hfx-demo water --headless --frames 120 --width 640 --height 360 --beaufort 7 --foam-history 20 --format jpg \

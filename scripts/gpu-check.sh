@@ -99,7 +99,7 @@ step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1
 step bench-triplanar-720p "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 --height 720
 # The host's time to issue a POM draw restoring the caller's GL state (about 120 queries) and under
 # GlStatePolicy::Defaults (none), with NVIDIA's threaded optimisation off and on: on, each query
-# waits for the driver's thread (docs/BENCHMARKS.md, "The GL state a draw reads").
+# waits for the driver's thread (docs/BENCHMARKS.md).
 step bench-draw-issue bash -c "for t in 0 1; do echo \"__GL_THREADED_OPTIMIZATIONS=\$t\"; \
     __GL_THREADED_OPTIMIZATIONS=\$t bash '$bundle/run.sh' hfx-bench-kernels --benchmark_filter=DrawIssue \
     --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true; done"
