@@ -26,6 +26,12 @@ void CameraOrbit::apply(Camera& c) const {
     c.position = Camera::orbit(c.target, distance, azimuth, elevation).position;
 }
 
+void Scene::turnCamera(float degrees) {
+    CameraOrbit orbit(camera_);
+    orbit.azimuth += glm::radians(degrees);
+    orbit.apply(camera_);
+}
+
 void Scene::placeCamera(const SceneOptions& o) {
     if (!o.cameraAzimuth && !o.cameraElevation && !o.cameraDistance && !o.cameraTarget) return; // the scene's, to the bit
     CameraOrbit orbit(camera_);
@@ -186,6 +192,7 @@ std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const S
                                                       : nullptr;
     if (!scene) throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
     scene->placeCamera(options);
+    scene->cameraTurn = options.cameraTurn;
     scene->camera().reversedZ = options.reversedZ;
     scene->orthographic = options.orthographic;
     return scene;

@@ -75,6 +75,9 @@ struct SceneOptions {
     std::optional<float> cameraAzimuth, cameraElevation, cameraDistance;
     /// The point the camera looks at and stands about (not water), the scene's own where not given.
     std::optional<glm::vec3> cameraTarget;
+    /// Degrees a second the camera turns about its target (the water's on the spot), in the
+    /// frames' time (Scene::turnCamera): a video of the relief's parallax as the view swings. 0: still.
+    float cameraTurn = 0.0f;
     float foamHistory = 0.0f;          ///< water: seconds of wind the first frame's foam has seen
     int detailScale = 0;               ///< planet: detail texels per gas cell (0: the device's)
     float timeScale = 1.0f;            ///< planet: simulated seconds per second, 1 to 10^4
@@ -147,6 +150,10 @@ public:
     /// Where the camera stands, for the log: "azimuth 65.9, elevation 8.6 degrees, distance 3.40
     /// from its target (--camera-...)".
     virtual std::string cameraLabel() const;
+    /// Turns the camera `degrees` about the vertical through its target (the water's: on the spot).
+    virtual void turnCamera(float degrees);
+    /// SceneOptions::cameraTurn, degrees a second: the program loops call turnCamera with it.
+    float cameraTurn = 0.0f;
 
     Camera& camera() { return camera_; }
     /// SceneOptions::orthographic: drawInto gives the camera an orthographic projection.

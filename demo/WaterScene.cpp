@@ -112,11 +112,20 @@ public:
     /// low sun); it keeps its place above the sea (--camera-height) and its pitch (--camera-pitch).
     /// The other placements are refused by name (their options' labels leave the water out).
     void placeCamera(const SceneOptions& o) override {
-        if (!o.cameraAzimuth) return;
-        const float azimuth = glm::radians(*o.cameraAzimuth), ahead = glm::length(camera_.target - camera_.position);
-        const glm::vec3 look = glm::normalize(camera_.target - camera_.position);
-        const float horizontal = std::sqrt(std::max(0.0f, 1.0f - look.y * look.y));
-        camera_.target = camera_.position + ahead * glm::vec3(-std::sin(azimuth) * horizontal, look.y,
+        if (o.cameraAzimuth) look(glm::radians(*o.cameraAzimuth));
+    }
+    /// On the spot: the way it looks turns, its place and pitch stay.
+    void turnCamera(float degrees) override {
+        const glm::vec3 d = camera_.target - camera_.position;
+        look(std::atan2(-d.x, -d.z) + glm::radians(degrees));
+    }
+
+    /// Looks along `azimuth` (radians about the vertical, 0 along -z) at the pitch it has.
+    void look(float azimuth) {
+        const float ahead = glm::length(camera_.target - camera_.position);
+        const glm::vec3 d = glm::normalize(camera_.target - camera_.position);
+        const float horizontal = std::sqrt(std::max(0.0f, 1.0f - d.y * d.y));
+        camera_.target = camera_.position + ahead * glm::vec3(-std::sin(azimuth) * horizontal, d.y,
                                                               -std::cos(azimuth) * horizontal);
     }
 

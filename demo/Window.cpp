@@ -129,6 +129,10 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
             }
         }
         orbit.apply(scene.camera());
+        if (scene.cameraTurn != 0.0f) { // --camera-turn, as the headless frames turn it
+            scene.turnCamera(scene.cameraTurn * float(dt));
+            orbit = CameraOrbit(scene.camera());
+        }
         if (!io.WantCaptureKeyboard) {
             if (explodeKey.pressed(window)) {
                 const ImVec2 p = toImage(io.MousePos);

@@ -128,6 +128,7 @@ int runHeadless(const Options& o, Scene& scene) {
         // Headless runs advance by the fixed dt so two runs write identical frames. The next
         // field is computed while this one draws (begin after the draw, end before the next).
         if (frame > 0) scene.endUpdate();
+        if (frame > 0 && scene.cameraTurn != 0.0f) scene.turnCamera(scene.cameraTurn * float(o.dt));
         target.bind();
         scene.drawInto(target, background(o.scene));
         if (frame + 1 < frames) scene.beginUpdate(o.dt);
@@ -207,6 +208,8 @@ int run(const Options& o) {
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
                  o.technique == "auto" ? " (auto: the scene's default)" : "");
     std::fprintf(stderr, "hfx: camera: %s\n", scene->cameraLabel().c_str());
+    if (scene->cameraTurn != 0.0f)
+        std::fprintf(stderr, "hfx: camera: turning %.1f degrees a second (--camera-turn)\n", double(scene->cameraTurn));
     if (scene->camera().reversedZ) std::fprintf(stderr, "hfx: depth: reversed Z (near at 1, GL_ZERO_TO_ONE, GL_GREATER)\n");
     if (scene->orthographic)
         std::fprintf(stderr, "hfx: projection: orthographic (glm::ortho, the lens's frame at its target: parallel rays)\n");
@@ -390,6 +393,11 @@ int main(int argc, char** argv) {
                    "decals, planet, noise, maps: the point X,Y,Z the camera looks at and stands about, world units "
                    "(default: the scene's, the origin; the wall spans -2..2 in x and y)")
         ->expected(3)->delimiter(',')->check(kFinite)->check(CLI::Range(-100.0, 100.0));
+    app.add_option("--camera-turn", s.cameraTurn,
+                   "water, decals, planet, noise, maps: degrees a second the camera turns about its target in the "
+                   "frames' time (the water's on the spot), for a video of the relief's parallax as the view swings "
+                   "(0: still)")
+        ->check(kFinite)->check(CLI::Range(-360.0, 360.0))->capture_default_str();
     app.add_option("--camera-distance", cameraDistance,
                    "decals, planet, noise, maps: the camera's distance from its target (default: the scene's; "
                    "planet: radii from the centre, 2.6, a close-up 1.3)")

@@ -293,6 +293,35 @@ TEST(Demo, ThePillarTakesAClickWhereItsReliefIs) {
     EXPECT_GT(most / 3.0, 0.1);
 }
 
+TEST(Demo, TheCameraTurnsAtItsRateForAVideo) {
+    // --camera-turn 10: each frame's camera turned further round its target at 10 degrees a
+    // second of the frames' time (the water's on the spot). Half-second frames: the third, a
+    // second in, is the frame of a camera placed 10 degrees round (within the rounding of the
+    // turns added up), and not the still camera's.
+    for (const auto& [scene, placed] : {std::pair{"decals", " --camera-azimuth 75.8902"},
+                                        std::pair{"water", " --camera-azimuth 10"}}) {
+        std::string log;
+        auto third = [&, scene = std::string(scene)](const std::string& tag, const std::string& flags) {
+            const std::string dir = outputPath("demo_turn_" + tag + "_" + scene);
+            std::filesystem::remove_all(dir);
+            const Result r = runDemo(scene + " --headless --frames 3 --dt 0.5 --width 320 --height 180 --field 128 "
+                                             "--out " + dir + flags);
+            EXPECT_EQ(r.exitCode, 0) << r.output;
+            log = r.output;
+            return readImage(dir + "/" + scene + "_0002.png");
+        };
+        const Image turning = third("10", " --camera-turn 10");
+        EXPECT_NE(log.find("hfx: camera: turning 10.0 degrees a second"), std::string::npos) << log;
+        const Image still = third("still", ""), moved = third("placed", placed);
+        const FrameDifference asPlaced = frameDifference(turning, moved), asStill = frameDifference(turning, still);
+        std::printf("[turn] %s a second in: %.3f levels from the camera placed 10 degrees round, %.2f from the still "
+                    "one\n",
+                    scene, asPlaced.mean, asStill.mean);
+        EXPECT_LT(asPlaced.mean, 0.5) << scene;
+        EXPECT_GT(asStill.mean, 10.0 * std::max(asPlaced.mean, 0.1)) << scene;
+    }
+}
+
 TEST(Demo, ThePillarIsClosedByCapstonesSeenFromAbove) {
     // Looked at from 60 degrees above, the column's top is a capstone: around the point where
     // its axis meets the top, a flat grey disc (channels within a few levels, little variation), not the
@@ -692,10 +721,12 @@ TEST(Demo, OpensAWindowUnderXvfb) {
         GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
     const std::string out = outputPath("demo_window");
     std::filesystem::remove_all(out);
-    const Result r = runDemo("water --frames 3 --width 320 --height 180 --field 64 --out " + out,
+    // (The camera turning, as --camera-turn turns the window's orbit.)
+    const Result r = runDemo("water --frames 3 --width 320 --height 180 --field 64 --camera-turn 30 --out " + out,
                              "xvfb-run -a -s '-screen 0 640x480x24'");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("hfx: GL GLFW window: OpenGL 4.5"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("hfx: camera: turning 30.0 degrees a second"), std::string::npos) << r.output;
     EXPECT_GT(luminanceStdDev(readImage(out + "/water_0002.png")), 0.02);
     // The decal scene with its panel, closed by the frame count. The window's last frame holds
     // the rendered image scaled to the window plus the panel: its top-left corner (where the
@@ -909,7 +940,7 @@ TEST(Demo, HelpListsTheOptions) {
                                "--wind-speed", "--wind-dir", "--environment", "--shots", "--height-map",
                                "--normal-map", "--color-map", "--no-progress", "--format", "--window-shot", "--surface-format",
                                "--texel-shadows", "--no-texel-shadows", "--trace-pass", "--reversed-z", "--camera-azimuth",
-                               "--camera-elevation", "--camera-distance", "--camera-target", "--camera-height",
+                               "--camera-elevation", "--camera-distance", "--camera-target", "--camera-height", "--camera-turn",
                                "--gl", "--cl-device", "water", "decals", "planet", "maps", "bench"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option;
 }
