@@ -8,10 +8,9 @@
 // (1 / cos(latitude) - 1)^2 (0.09 of it at 40 degrees, 3.7 times it at 70, 23 times at 80; the
 // gas planet's 0.75 spans the whole row within 2.5 degrees of a pole), so the low and middle
 // latitudes keep their detail, and the polar caps keep their bands as rings and the coarse
-// spirals about them. As the models of the
-// atmosphere on such grids filter their polar rows (Arakawa & Lamb 1977), here only the drawn
-// heights are filtered, not the gas. A row's mean is kept; rows whose box is at most a texel wide
-// come through bit for bit.
+// spirals about them. As the models of the atmosphere on such grids filter their polar rows
+// (Arakawa & Lamb 1977), here only the drawn heights are filtered, not the gas. A row's mean is
+// kept; rows whose box is at most a texel wide come through bit for bit.
 //
 // Owns its prefix sums, its output and its kernels. Thread: the thread that owns the ClContext.
 
