@@ -257,10 +257,15 @@ int hfx_budget_samples(int samples, float pixels) {
 // the pixel's share of the surface, where a texel's glint, or its reflection of the horizon, lit
 // or missed the pixel by chance and flickered as the view moved (a rough sea's crests at middle
 // distance: OceanShading's footprint test). dx, dy: the hits' texcoords' derivatives, in texels.
+// `texelAspect`: the texels' shorter side on the surface over their longer (1 on a plane; a
+// sphere's cos(latitude)). Near a pole, where the frame degenerates, the hits of neighbouring
+// pixels lie far apart in u though close on the surface: there the levels above the entry's fade
+// out (from a tenth to a fiftieth), or the shading read texels that average the bands round the
+// pole into a dark dot (history/tuning.md, the planet's poles).
 const float HFX_FOOTPRINT_LEVELS = 3.0;
-float hfx_shade_level(float entryLevel, vec2 dx, vec2 dy) {
+float hfx_shade_level(float entryLevel, vec2 dx, vec2 dy, float texelAspect) {
     const float hitLevel = 0.5 * log2(max(max(dot(dx, dx), dot(dy, dy)), 1e-12));
-    return clamp(hitLevel, entryLevel, entryLevel + HFX_FOOTPRINT_LEVELS);
+    return clamp(hitLevel, entryLevel, entryLevel + HFX_FOOTPRINT_LEVELS * smoothstep(0.02, 0.1, texelAspect));
 }
 
 // The polygon's texture space from the world's (the identity for a degenerate frame, whose
@@ -497,7 +502,9 @@ HfxShaded hfx_surface(HfxFrame f) {
 #else
     const vec2 hitDx = dFdx(uv), hitDy = dFdy(uv);
 #endif
-    const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels);
+    const float tangentTexel = length(tangent) / texels.x, bitangentTexel = length(bitangent) / texels.y;
+    const float texelAspect = min(tangentTexel, bitangentTexel) / max(max(tangentTexel, bitangentTexel), 1e-30);
+    const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect);
     const float footprint = max(length(hitDx), length(hitDy));
 
 #if HFX_COMPUTE_TRACE == 2

@@ -685,6 +685,35 @@ TEST(Demo, ImpactsLandInTheWaterAndOnThePlanet) {
 
 // --rings 1 gives the planet its rings: from 5 radii they reach out beside the disc, where the
 // ringless frame is black sky.
+TEST(Demo, ThePlanetsPoleDrawsNoDarkDot) {
+    // Seen from 80 degrees up, close: round the pole the traced hits of neighbouring pixels lie
+    // far apart in u, and the shading read from their spread took texels that average the bands
+    // round it, a dark dot 0.8 as bright as what surrounds it. The darkest pixel within 2 of the
+    // pole against the mean of those 6 to 10 pixels from it.
+    const std::string dir = outputPath("demo_planet_pole");
+    std::filesystem::remove_all(dir);
+    const Result r = runDemo("planet --headless --frames 1 --width 640 --height 360 --field 128 --spin-up 5 "
+                             "--camera-elevation 80 --camera-distance 1.6 --out " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Image frame = readImage(dir + "/planet_0000.png");
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, glm::radians(80.0f)); // the scene's azimuth
+    camera.aspect = 640.0f / 360.0f;
+    const glm::vec4 clip = camera.viewProjection() * glm::vec4(0.0f, 1.0f, 0.0f, 1.0f); // the north pole
+    const double px = (clip.x / clip.w * 0.5 + 0.5) * 640.0 - 0.5, py = (0.5 - clip.y / clip.w * 0.5) * 360.0 - 0.5;
+    ASSERT_TRUE(px > 12 && px < 628 && py > 12 && py < 348) << px << ", " << py;
+    double darkest = 1e9, around = 0.0;
+    int n = 0;
+    for (int y = int(py) - 11; y <= int(py) + 11; ++y)
+        for (int x = int(px) - 11; x <= int(px) + 11; ++x) {
+            const double l = frame.at(x, y, 0) + frame.at(x, y, 1) + frame.at(x, y, 2), d = std::hypot(x - px, y - py);
+            if (d <= 2.0) darkest = std::min(darkest, l);
+            if (d >= 6.0 && d <= 10.0) around += l, ++n;
+        }
+    around /= n;
+    std::printf("[pole] the darkest pixel at the pole %.3f of its surroundings' brightness\n", darkest / around);
+    EXPECT_GT(darkest / around, 0.92);
+}
+
 TEST(Demo, ThePlanetsRingsShowBesideItsDisc) {
     double beside[2];
     for (int rings = 0; rings < 2; ++rings) {

@@ -143,7 +143,7 @@ TEST_F(OceanShading, TheRoughSeasCrestsShadedOverTheirHitsFootprintDoNotShimmer)
                            .upwards = true};
     const double footprint = shimmer(ocean, band);
     const double entry = withPatchedSurfaceShader(
-        "ocean_shading_entry_level", "hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels)",
+        "ocean_shading_entry_level", "hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect)",
         "(mipLevel)", [&] { return shimmer(ocean, band); });
     std::printf("[shimmer] Beaufort 7 at 3-8 degrees, quarter-pixel move: %.2f%% of pixels sparkle "
                 "shaded over the hits' footprint, %.2f%% over the entry's\n",
