@@ -95,6 +95,27 @@ double luminanceStdDev(const Image& image) {
     return std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
 }
 
+/// The first frame of `scene args` at width x height, written into a fresh folder named by `tag`,
+/// and where the world point `point` falls in it (pixels from the top-left corner, a pixel's
+/// centre at +0.5) through `camera`, the orbit camera the run's options place.
+struct SeenPoint {
+    Image frame;
+    glm::dvec2 pixel;
+};
+SeenPoint renderAndFind(const std::string& tag, const std::string& args, int width, int height, Camera camera,
+                        glm::vec3 point) {
+    const std::string dir = outputPath("demo_" + tag);
+    std::filesystem::remove_all(dir);
+    const std::string scene = args.substr(0, args.find(' '));
+    const Result r = runDemo(args + " --headless --frames 1 --width " + std::to_string(width) + " --height " +
+                             std::to_string(height) + " --out " + dir);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    camera.aspect = float(width) / float(height);
+    const glm::vec4 clip = camera.viewProjection() * glm::vec4(point, 1.0f);
+    return {readImage(dir + "/" + scene + "_0000.png"),
+            {(clip.x / clip.w * 0.5 + 0.5) * width, (0.5 - clip.y / clip.w * 0.5) * height}};
+}
+
 class DemoScenes : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(DemoScenes, HeadlessRunsAreDeterministicDynamicAndFinite) {
@@ -324,18 +345,13 @@ TEST(Demo, TheCameraTurnsAtItsRateForAVideo) {
 
 TEST(Demo, ThePillarIsClosedByCapstonesSeenFromAbove) {
     // Looked at from 60 degrees above, the column's top is a capstone: around the point where
-    // its axis meets the top, a flat grey disc (channels within a few levels, little variation), not the
-    // inside of an open tube (bricks, red over blue) nor the sky.
-    const std::string dir = outputPath("demo_pillar_above");
-    std::filesystem::remove_all(dir);
-    const Result r = runDemo("decals --pillar --headless --frames 1 --width 320 --height 180 --field 128 "
-                             "--camera-target 0,1.6,0 --camera-elevation 60 --camera-distance 3 --out " + dir);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const Image frame = readImage(dir + "/decals_0000.png");
-    Camera camera = Camera::orbit({0.0f, 1.6f, 0.0f}, 3.0f, 0.6f, glm::radians(60.0f)); // the scene's azimuth
-    camera.aspect = 320.0f / 180.0f;
-    const glm::vec4 clip = camera.viewProjection() * glm::vec4(0.0f, 1.6f, 0.0f, 1.0f); // the top's centre
-    const int px = int((clip.x / clip.w * 0.5f + 0.5f) * 320.0f), py = int((0.5f - clip.y / clip.w * 0.5f) * 180.0f);
+    // its axis meets the top, a flat grey disc (channels within a few levels, little variation),
+    // not the inside of an open tube (bricks, red over blue) nor the sky.
+    const SeenPoint seen = renderAndFind(
+        "pillar_above", "decals --pillar --field 128 --camera-target 0,1.6,0 --camera-elevation 60 --camera-distance 3",
+        320, 180, Camera::orbit({0.0f, 1.6f, 0.0f}, 3.0f, 0.6f, glm::radians(60.0f)), {0.0f, 1.6f, 0.0f});
+    const Image& frame = seen.frame;
+    const int px = int(seen.pixel.x), py = int(seen.pixel.y); // (0.6: the scene's azimuth)
     ASSERT_TRUE(px >= 4 && px < 316 && py >= 4 && py < 176) << px << ", " << py;
     double sum[3] = {0, 0, 0}, sum2 = 0, mean = 0;
     int n = 0;
@@ -357,8 +373,6 @@ TEST(Demo, ThePillarIsClosedByCapstonesSeenFromAbove) {
     EXPECT_GT(std::abs(blue - frame.at(0, 0, 2)) + std::abs(red - frame.at(0, 0, 0)), 0.1) << "the sky";
 }
 
-// Save and load: a run that loads the damage log another run saved draws, on its first frame,
-// exactly the last frame of the run that saved it (a late-joining client sees the same wall).
 TEST(Demo, TheTexelShadowsAreDrawnByDefaultWhereTheSurfaceHasFewerTexelsThanPixels) {
     // The noise plane covers most of a 320x180 image: a 64² field shows on about ten pixels per
     // texel (the texel shadows pay), a 256² one on well under one (they do not). The default
@@ -637,6 +651,8 @@ TEST(Demo, AutoSaysWhichTracePassItTimedFasterWhereNoWorkaroundDecides) {
     EXPECT_NE(decided.find("hfx: hier walked in the draw\n"), std::string::npos) << decided;
 }
 
+// Save and load: a run that loads the damage log another run saved draws, on its first frame,
+// exactly the last frame of the run that saved it (a late-joining client sees the same wall).
 TEST(Demo, ASavedDamageLogLoadsIntoTheSameWall) {
     const std::string a = outputPath("demo_damage_a"), b = outputPath("demo_damage_b"), c = outputPath("demo_damage_c");
     const std::string log = outputPath("demo_damage.log");
@@ -683,23 +699,16 @@ TEST(Demo, ImpactsLandInTheWaterAndOnThePlanet) {
     EXPECT_NE(off.output.find("line 1"), std::string::npos) << off.output;
 }
 
-// --rings 1 gives the planet its rings: from 5 radii they reach out beside the disc, where the
-// ringless frame is black sky.
 TEST(Demo, ThePlanetsPoleDrawsNoDarkDot) {
     // Seen from 80 degrees up, close: round the pole the traced hits of neighbouring pixels lie
     // far apart in u, and the shading read from their spread took texels that average the bands
     // round it, a dark dot 0.8 as bright as what surrounds it. The darkest pixel within 2 of the
     // pole against the mean of those 6 to 10 pixels from it.
-    const std::string dir = outputPath("demo_planet_pole");
-    std::filesystem::remove_all(dir);
-    const Result r = runDemo("planet --headless --frames 1 --width 640 --height 360 --field 128 --spin-up 5 "
-                             "--camera-elevation 80 --camera-distance 1.6 --out " + dir);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const Image frame = readImage(dir + "/planet_0000.png");
-    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, glm::radians(80.0f)); // the scene's azimuth
-    camera.aspect = 640.0f / 360.0f;
-    const glm::vec4 clip = camera.viewProjection() * glm::vec4(0.0f, 1.0f, 0.0f, 1.0f); // the north pole
-    const double px = (clip.x / clip.w * 0.5 + 0.5) * 640.0 - 0.5, py = (0.5 - clip.y / clip.w * 0.5) * 360.0 - 0.5;
+    const SeenPoint seen = renderAndFind(
+        "planet_pole", "planet --field 128 --spin-up 5 --camera-elevation 80 --camera-distance 1.6", 640, 360,
+        Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, glm::radians(80.0f)), {0.0f, 1.0f, 0.0f}); // the north pole
+    const Image& frame = seen.frame;
+    const double px = seen.pixel.x - 0.5, py = seen.pixel.y - 0.5; // (0.3: the scene's azimuth)
     ASSERT_TRUE(px > 12 && px < 628 && py > 12 && py < 348) << px << ", " << py;
     double darkest = 1e9, around = 0.0;
     int n = 0;
@@ -714,6 +723,8 @@ TEST(Demo, ThePlanetsPoleDrawsNoDarkDot) {
     EXPECT_GT(darkest / around, 0.92);
 }
 
+// --rings 1 gives the planet its rings: from 5 radii they reach out beside the disc, where the
+// ringless frame is black sky.
 TEST(Demo, ThePlanetsRingsShowBesideItsDisc) {
     double beside[2];
     for (int rings = 0; rings < 2; ++rings) {
