@@ -29,8 +29,8 @@ size_t BoundsPyramid::totalTexels() const {
 }
 
 void BoundsPyramid::build(const cl::Buffer& height) {
-    if (height.getInfo<CL_MEM_SIZE>() < sizeof(float) * size_t(width_) * height_)
-        throw Error(str("BoundsPyramid::build: the height buffer is smaller than ", width_, "x", height_, " floats"));
+    requireBufferBytes(height, sizeof(float) * size_t(width_) * height_, "BoundsPyramid::build: the height buffer",
+                       str(width_, "x", height_, " floats"));
     clGuard("BoundsPyramid::build", [&] {
         cells_.setArg(0, height);
         cells_.setArg(1, buffer_); // level 0 starts at offset 0

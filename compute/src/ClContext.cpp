@@ -23,6 +23,12 @@ void rethrowCl(const char* what, const cl::Error& e) {
 }
 } // namespace detail
 
+void requireBufferBytes(const cl::Buffer& buffer, std::size_t needed, const std::string& what,
+                        const std::string& content) {
+    const std::size_t bytes = buffer.getInfo<CL_MEM_SIZE>();
+    if (bytes < needed) throw Error(str(what, " holds ", bytes, " bytes, ", content, " need ", needed));
+}
+
 std::string clErrorName(cl_int code) {
     switch (code) {
 #define HFX_CASE(c) case c: return str(#c, " (", code, ")")

@@ -55,9 +55,7 @@ void ColorRamp::setStops(std::vector<ColorStop> stops) {
 
 void ColorRamp::run(const cl::Buffer& field) {
     const size_t n = size_t(width_) * height_;
-    if (field.getInfo<CL_MEM_SIZE>() < n * sizeof(float))
-        throw Error(str("ColorRamp::run: field holds ", field.getInfo<CL_MEM_SIZE>(), " bytes, ", width_, "x",
-                        height_, " floats need ", n * sizeof(float)));
+    requireBufferBytes(field, n * sizeof(float), "ColorRamp::run: field", str(width_, "x", height_, " floats"));
     clGuard("ColorRamp::run", [&] {
         kernel_.setArg(0, field);
         kernel_.setArg(1, output_);

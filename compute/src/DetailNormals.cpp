@@ -31,10 +31,8 @@ DetailNormals::DetailNormals(ClContext& cl, const SobelConfig& sobel, const std:
 }
 
 void DetailNormals::apply(const cl::Buffer& normals) {
-    const size_t needed = size_t(count_) * sizeof(cl_float4);
-    if (normals.getInfo<CL_MEM_SIZE>() < needed)
-        throw Error(str("DetailNormals::apply: the normals hold ", normals.getInfo<CL_MEM_SIZE>(), " bytes, ",
-                        count_, " float4 texels need ", needed));
+    requireBufferBytes(normals, size_t(count_) * sizeof(cl_float4), "DetailNormals::apply: the normals buffer",
+                       str(count_, " float4 texels"));
     clGuard("DetailNormals::apply", [&] {
         kernel_.setArg(0, normals);
         kernel_.setArg(1, baseNormals_.output());

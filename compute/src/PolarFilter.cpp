@@ -54,10 +54,8 @@ PolarFilter::PolarFilter(ClContext& cl, int width, int height, float smoothing)
 }
 
 void PolarFilter::run(const cl::Buffer& field) {
-    const size_t n = size_t(width_) * height_;
-    if (field.getInfo<CL_MEM_SIZE>() < n * sizeof(float))
-        throw Error(str("PolarFilter::run: field holds ", field.getInfo<CL_MEM_SIZE>(), " bytes, ", width_, "x",
-                        height_, " floats need ", n * sizeof(float)));
+    requireBufferBytes(field, sizeof(float) * size_t(width_) * height_, "PolarFilter::run: field",
+                       str(width_, "x", height_, " floats"));
     clGuard("PolarFilter::run", [&] {
         sums_.setArg(0, field);
         sums_.setArg(1, prefix_);

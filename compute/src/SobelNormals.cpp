@@ -25,11 +25,8 @@ SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config, void* hostM
 }
 
 void SobelNormals::run(const cl::Buffer& height) {
-    const size_t bytes = height.getInfo<CL_MEM_SIZE>();
-    const size_t needed = sizeof(float) * size_t(config_.width) * config_.height;
-    if (bytes < needed)
-        throw Error(str("SobelNormals::run: height buffer holds ", bytes, " bytes, ", config_.width,
-                        "x", config_.height, " floats need ", needed));
+    requireBufferBytes(height, sizeof(float) * size_t(config_.width) * config_.height,
+                       "SobelNormals::run: height buffer", str(config_.width, "x", config_.height, " floats"));
     clGuard("SobelNormals::run", [&] {
         kernel_.setArg(0, height);
         kernel_.setArg(1, output_);

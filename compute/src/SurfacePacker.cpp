@@ -19,10 +19,8 @@ SurfacePacker::SurfacePacker(ClContext& cl, int width, int height, SurfaceFormat
 }
 
 void SurfacePacker::run(const cl::Buffer& normalHeight) {
-    const size_t needed = size_t(count_) * sizeof(cl_float4);
-    if (normalHeight.getInfo<CL_MEM_SIZE>() < needed)
-        throw Error(str("SurfacePacker::run: input holds ", normalHeight.getInfo<CL_MEM_SIZE>(), " bytes, ",
-                        count_, " float4 texels need ", needed));
+    requireBufferBytes(normalHeight, size_t(count_) * sizeof(cl_float4), "SurfacePacker::run: input",
+                       str(count_, " float4 texels"));
     clGuard("SurfacePacker::run", [&] {
         kernel_.setArg(0, normalHeight);
         kernel_.setArg(1, output_);

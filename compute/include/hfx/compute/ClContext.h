@@ -136,6 +136,11 @@ private:
 /// EdgeMode becomes kernel text (read through hfx_edge_index, compute/shared/EdgeMath.h).
 std::string edgeOptions(EdgeMode edges);
 
+/// Throws hfx::Error "<what> holds N bytes, <content> need M" where `buffer`, an input a kernel
+/// will read, is smaller than `needed` bytes (`content` says what fills them: "512x512 floats").
+void requireBufferBytes(const cl::Buffer& buffer, std::size_t needed, const std::string& what,
+                        const std::string& content);
+
 /// Runs f, turning an OpenCL exception into hfx::Error that says what was being done.
 template <typename F>
 decltype(auto) clGuard(const char* what, F&& f);
