@@ -115,9 +115,12 @@ public:
         if (o.cameraAzimuth) look(glm::radians(*o.cameraAzimuth));
     }
     /// On the spot: the way it looks turns, its place and pitch stay.
-    void turnCamera(float degrees) override {
+    void turnCamera(float degrees) override { look(lookAzimuth() + glm::radians(degrees)); }
+
+    /// The way the camera looks, radians about the vertical (0 along -z).
+    float lookAzimuth() const {
         const glm::vec3 d = camera_.target - camera_.position;
-        look(std::atan2(-d.x, -d.z) + glm::radians(degrees));
+        return std::atan2(-d.x, -d.z);
     }
 
     /// Looks along `azimuth` (radians about the vertical, 0 along -z) at the pitch it has.
@@ -131,7 +134,7 @@ public:
 
     std::string cameraLabel() const override {
         const glm::vec3 look = glm::normalize(camera_.target - camera_.position);
-        float azimuth = glm::degrees(std::atan2(-look.x, -look.z));
+        float azimuth = glm::degrees(lookAzimuth());
         azimuth = azimuth < -179.95f ? azimuth + 360.0f : azimuth + 0.0f; // (-180, 180], no -0
         char label[160];
         std::snprintf(label, sizeof label,
