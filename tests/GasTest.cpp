@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <tuple>
 
 namespace hfx::test {
 namespace {
@@ -198,8 +199,11 @@ TEST_F(Gas, MacCormackKeepsAnAdvectedEdgeSharper) {
 
 TEST_F(Gas, KernelsMatchCppReference) {
     // Width 40 runs the four-cells-per-item pressure sweep, 42 the one-cell sweep.
-    for (const auto& [width, edges] : {std::pair{40, EdgeMode::WrapU}, std::pair{40, EdgeMode::Wrap}, std::pair{42, EdgeMode::WrapU}}) {
-        const GasConfig config{.width = width, .height = 24, .edges = edges, .pressureIterations = 30,
+    // Width 40 on a sphere's map too (the metric, the frame's turns and the row means).
+    using Case = std::tuple<int, EdgeMode, bool>;
+    for (const auto& [width, edges, sphere] : {Case{40, EdgeMode::WrapU, false}, Case{40, EdgeMode::Wrap, false},
+                                               Case{42, EdgeMode::WrapU, false}, Case{40, EdgeMode::WrapU, true}}) {
+        const GasConfig config{.width = width, .height = 24, .edges = edges, .sphere = sphere, .pressureIterations = 30,
                                .vorticity = 0.2f, .maccormack = edges == EdgeMode::Wrap, .conserveDye = false, .jetSpeed = 3.0f, .jetRate = 0.0f,
                                .initialBands = 3.0f};
         GasField gas(cl(), config);
@@ -217,7 +221,7 @@ TEST_F(Gas, KernelsMatchCppReference) {
                                 double(std::abs(dye[i] - reference.dye[i]))});
         // Same float operations in the same order; the device's sqrt and the host's agree to an
         // ulp, which four steps of 30 sweeps carry to about 1e-6 of the jets' speed of 3.
-        EXPECT_LT(maxDiff, 2e-5) << edgeModeName(edges) << ", width " << width;
+        EXPECT_LT(maxDiff, 2e-5) << edgeModeName(edges) << ", width " << width << (sphere ? ", sphere" : "");
     }
 }
 
@@ -538,12 +542,159 @@ TEST_F(Gas, AStepsSplatsApplyInTheOrderTheyCameOverEveryCellTheyReach) {
     }
 }
 
+TEST_F(Gas, OnASphereASolidBodyRotationCarriesTheDyeRoundAsOneAndStaysSteady) {
+    // u = U m(y): every latitude turns at U cells of longitude a second, the sphere turning as a
+    // solid body. It is steady: the curvature turns (hfx_gas_turn) push its rows towards the
+    // equator by u^2 tan / R, a push uniform along each row, which the projection's zonal part
+    // takes away exactly. So after 40 steps of 0.5 s the wind is unchanged, and a zonal wave of
+    // dye has moved U t cells of the grid in every row from 60 S to 60 N (its phase within 0.1
+    // cell; beyond, the dye's polar filter damps it). The premise: on the flat map, the same wind
+    // moves the rows U m t, 31 cells apart between the equator and 57.7 degrees.
+    constexpr int W = 128, H = 64, k = 2, steps = 40;
+    constexpr float U = 3.3f, dt = 0.5f; // 1.65 cells a step: the advection interpolates
+    for (const bool sphere : {true, false}) {
+        const GasConfig config{.width = W, .height = H, .sphere = sphere, .pressureIterations = 30, .maccormack = true};
+        GasField gas(cl(), config);
+        std::vector<float> u(W * H), v(W * H, 0.0f), dye(W * H);
+        for (int j = 0; j < H; ++j)
+            for (int i = 0; i < W; ++i) {
+                u[j * W + i] = U * float(std::sin(std::numbers::pi * (j + 0.5) / H)); // m at the row's centre
+                dye[j * W + i] = float(0.5 + 0.3 * std::sin(kTwoPi * k * (i + 0.5) / W));
+            }
+        gas.setState(u, v, dye);
+        for (int s = 0; s < steps; ++s) gas.step(dt);
+        std::vector<float> u2, v2, dye2;
+        gas.readState(u2, v2, dye2);
+        double worstWind = 0.0, worstShift = 0.0, equator = 0.0, sixty = 0.0;
+        for (size_t n = 0; n < u.size(); ++n)
+            worstWind = std::max({worstWind, double(std::abs(u2[n] - u[n])), double(std::abs(v2[n]))});
+        for (int j = 0; j < H; ++j) {
+            const double latitude = std::abs((j + 0.5) / H - 0.5) * 180.0;
+            if (latitude > 60.0) continue;
+            // The wave's phase in this row: where the dye's k-th harmonic peaks, in cells.
+            double c = 0.0, sn = 0.0;
+            for (int i = 0; i < W; ++i) {
+                c += (dye2[j * W + i] - 0.5) * std::cos(kTwoPi * k * (i + 0.5) / W);
+                sn += (dye2[j * W + i] - 0.5) * std::sin(kTwoPi * k * (i + 0.5) / W);
+            }
+            const double moved = std::atan2(-c, sn) / kTwoPi * W / k; // sin(2 pi k (x - d) / W)
+            const double expected = std::remainder(U * dt * steps, double(W) / k);
+            const double shift = std::remainder(moved - expected, double(W) / k);
+            if (sphere) worstShift = std::max(worstShift, std::abs(shift));
+            if (j == H / 2) equator = moved;
+            if (j == 11) sixty = moved; // 57.7 degrees south
+        }
+        std::printf("[solid body] %s: the wind %.2g off; the wave %.3f cells from U t at worst; moved %.1f at the "
+                    "equator, %.1f at 57.7 degrees\n",
+                    sphere ? "sphere" : "flat", worstWind, worstShift, equator, sixty);
+        if (sphere) {
+            EXPECT_LT(worstWind, 1e-3) << "the solid-body rotation is not steady";
+            EXPECT_LT(worstShift, 0.1) << "the rows did not turn as one";
+        } else {
+            EXPECT_GT(std::abs(std::remainder(equator - sixty, double(W) / k)), 5.0) << "the flat map turned as one";
+        }
+    }
+}
+
+TEST_F(Gas, OnASphereTheProjectionRemovesOnlyTheSpheresDivergence) {
+    // A wind from a streamfunction psi at the cells' corners, u = psi(i, j + 1) - psi(i, j) and
+    // m v = psi(i, j) - psi(i + 1, j), has no divergence under the sphere's metric to the last
+    // bit of algebra: the projection leaves it (to float rounding). After it every face row's
+    // mean v is 0, exactly what walls allow an incompressible flow.
+    constexpr int W = 64, H = 32;
+    GasField gas(cl(), {.width = W, .height = H, .sphere = true, .pressureIterations = 400});
+    const std::vector<float>& m = gas.metricTable();
+    auto psi = [&](int i, int j) { // 0 on both walls (j = 0, H): no flow across them
+        return 3.0 * std::sin(std::numbers::pi * j / H) * std::cos(kTwoPi * 3 * i / W + 0.4 * j);
+    };
+    std::vector<float> u(W * H), v(W * H, 0.0f), dye(W * H, 0.0f);
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            u[j * W + i] = float(psi(i, j + 1) - psi(i, j));
+            if (j > 0) v[j * W + i] = float((psi(i, j) - psi((i + 1) % W, j)) / m[size_t(2 * j)]);
+        }
+    gas.setState(u, v, dye);
+    const double before = rms(gas.readDivergence());
+    gas.project();
+    std::vector<float> u2, v2, d2;
+    gas.readState(u2, v2, d2);
+    double moved = 0.0, largest = 0.0;
+    for (size_t n = 0; n < u.size(); ++n) {
+        moved = std::max({moved, double(std::abs(u2[n] - u[n])), double(std::abs(v2[n] - v[n]))});
+        largest = std::max({largest, double(std::abs(u[n])), double(std::abs(v[n]))});
+    }
+    std::printf("[sphere projection] a streamfunction's wind (divergence %.2g) moved by %.2g of %.2g\n", before, moved,
+                largest);
+    EXPECT_LT(before, 1e-4);
+    EXPECT_LT(moved, 1e-4 * largest);
+    // The same random wind on the flat map and on the sphere: Jacobi's sweeps leave the large
+    // scales' divergence on either (measured: 3.4% of it on the flat map, 6.2% on the sphere), and
+    // the sphere's metric, whose x neighbours outweigh the y ones 1 / m^2 times near a pole,
+    // slows them by less than twice.
+    double left[2];
+    for (const bool sphere : {false, true}) {
+        GasField field(cl(), {.width = W, .height = H, .sphere = sphere, .pressureIterations = 400});
+        SplitMix64 random(7);
+        for (float& x : u) x = float(random.uniform(-1, 1));
+        for (int j = 0; j < H; ++j)
+            for (int i = 0; i < W; ++i) v[j * W + i] = j == 0 ? 0.0f : float(random.uniform(-1, 1));
+        field.setState(u, v, dye);
+        const double noisy = rms(field.readDivergence());
+        field.project();
+        left[sphere] = rms(field.readDivergence()) / noisy;
+        field.readState(u2, v2, d2);
+        double rowMean = 0.0;
+        for (int j = 0; j < H; ++j) {
+            double sum = 0.0;
+            for (int i = 0; i < W; ++i) sum += v2[j * W + i];
+            rowMean = std::max(rowMean, std::abs(sum / W));
+        }
+        std::printf("[projection] a random wind on the %s: %.2f%% of its divergence left; largest row mean of v "
+                    "%.2g\n",
+                    sphere ? "sphere" : "flat map", 100.0 * left[sphere], rowMean);
+        EXPECT_LT(rowMean, 1e-6) << (sphere ? "sphere" : "flat");
+    }
+    EXPECT_LT(left[1], 0.1);
+    EXPECT_LT(left[1], 2.0 * left[0]);
+}
+
+TEST_F(Gas, TheSpheresFrameTurnsTheWindButNotItsZonalMean) {
+    // hfx_gas_turn at a u face in the row at 50.6 degrees north: an eddy wind (u +-5 along the
+    // row, its zonal mean 0; v 2) is turned by -u tan(latitude) dt / R exactly, R = H / pi, its
+    // speed kept; a zonal jet (u 5 all along the row, v 0) is not turned (its push, uniform along
+    // the row, is the pressure's to balance); on the flat map nothing turns.
+    constexpr int W = 32, H = 16;
+    const int j = 12, i = 6;
+    for (const bool sphere : {true, false}) {
+        const std::vector<float> table = gasMetricTable({.width = W, .height = H, .sphere = sphere});
+        const double latitude = ((j + 0.5) / H - 0.5) * std::numbers::pi, radius = H / std::numbers::pi;
+        const double angle = sphere ? -5.0 * std::tan(latitude) * 0.3 / radius : 0.0;
+        std::vector<float> u(W * H), v(W * H, 2.0f), zonal(H, 0.0f);
+        for (int n = 0; n < W * H; ++n) u[size_t(n)] = n % 2 == 0 ? 5.0f : -5.0f;
+        float a, b;
+        hfx_gas_turn(u.data(), v.data(), table.data(), zonal.data(), W, H, i, j, 0.3f, 1, &a, &b);
+        EXPECT_NEAR(a, 5.0 * std::cos(angle) - 2.0 * std::sin(angle), 1e-5) << (sphere ? "sphere" : "flat");
+        EXPECT_NEAR(std::hypot(a, 2.0 * std::cos(angle) + 5.0 * std::sin(angle)), std::hypot(5.0, 2.0), 1e-5);
+        std::fill(u.begin(), u.end(), 5.0f);
+        std::fill(v.begin(), v.end(), 0.0f);
+        std::fill(zonal.begin(), zonal.end(), 5.0f * W);
+        hfx_gas_turn(u.data(), v.data(), table.data(), zonal.data(), W, H, i, j, 0.3f, 1, &a, &b);
+        EXPECT_NEAR(a, 5.0, 1e-6);
+        EXPECT_NEAR(b, 0.0, 1e-6);
+        EXPECT_NEAR(table[size_t(2 * j + 1)], sphere ? std::cos(latitude) : 1.0, 1e-6); // m, W = 2H
+    }
+}
+
 TEST_F(Gas, BadInputIsRefused) {
     EXPECT_THROW(GasField(cl(), {.bandVariety = 1.5f}), Error);
     EXPECT_THROW(GasField(cl(), {.dyeRate = -0.1f}), Error);
     EXPECT_THROW(GasField(cl(), {.width = 2}), Error);
     EXPECT_THROW(GasField(cl(), {.pressureIterations = 0}), Error);
     EXPECT_THROW(GasField(cl(), {.viscosity = -1.0f}), Error);
+    EXPECT_NE(messageOf([&] { GasField(cl(), {.edges = EdgeMode::Wrap, .sphere = true}); }).find("sphere"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { GasField(cl(), {.sphere = true, .viscosity = 1.0f}); }).find("viscosity"),
+              std::string::npos);
     GasField gas(cl(), {.width = 16, .height = 16});
     EXPECT_THROW(gas.addSplat({.u = 1.5f}), Error);
     EXPECT_THROW(gas.addSplat({.radius = 0.0f}), Error);

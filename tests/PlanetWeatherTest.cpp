@@ -94,24 +94,29 @@ TEST_F(PlanetWeather, ASpunUpPlanetDrawsItsWeatherBeforeAnyUpdate) {
     EXPECT_LT(largestDifference(after, heights), 1e-6f) << "the textures are not the heights readHeights() gives";
 }
 
-TEST_F(PlanetWeather, ThePolarFilterDrawsThePolarCapsWithoutAStarburst) {
-    // A texel's longitude spans cos(latitude) of what its latitude spans: near a pole the gas's
-    // detail, round on the map, is drawn as wedges along the meridians that meet in a starburst.
-    // Measured on the sphere (a zonal difference over cos(latitude) texels of arc), the drawn
-    // heights' slope across the meridians over their slope along them, 75 to 85 degrees of
-    // latitude: with the polar filter (GasPlanetConfig::polarSmoothing), a planet's heights vary
-    // about as much either way (measured: 0.94); without it, 2.7 times more across. The same
-    // weather, and below 50 degrees the same heights to the bit.
+TEST_F(PlanetWeather, ThePolesDrawNoStarburstOnTheSphereNorThroughThePolarFilter) {
+    // A texel's longitude spans cos(latitude) of what its latitude spans: near a pole, a flat
+    // gas's eddies, round on the map, are drawn as wedges along the meridians that meet in a
+    // starburst. Measured on the sphere (a zonal difference over cos(latitude) texels of arc), the
+    // drawn heights' slope across the meridians over their slope along them, 75 to 85 degrees of
+    // latitude, 30 s into the same weather: on the sphere's metric (GasConfig::sphere, the
+    // planet's) no more across than along (measured: 0.59, the polar gas's rings about the pole);
+    // on a flat gas, 2.6 times more across, and 0.91 through the polar filter
+    // (GasPlanetConfig::polarSmoothing), which leaves the heights below 50 degrees the same to
+    // the bit.
     GasPlanetConfig config;
     config.gas.width = 256;
     config.gas.height = 128;
     config.detail.scale = 2;
+    ASSERT_TRUE(config.gas.sphere);
+    ASSERT_EQ(config.polarSmoothing, 0.0f);
+    GasPlanetEffect sphere(cl(), config);
+    config.gas.sphere = false;
+    GasPlanetEffect flat(cl(), config);
+    config.polarSmoothing = 0.75f;
     GasPlanetEffect filtered(cl(), config);
-    config.polarSmoothing = 0.0f;
-    GasPlanetEffect plain(cl(), config);
-    filtered.spinUp(30.0);
-    plain.spinUp(30.0);
-    const std::vector<float> a = filtered.readHeights(), b = plain.readHeights();
+    for (GasPlanetEffect* planet : {&sphere, &flat, &filtered}) planet->spinUp(30.0);
+    const std::vector<float> a = filtered.readHeights(), b = flat.readHeights();
     const int W = filtered.surfaceWidth(), H = filtered.surfaceHeight();
     ASSERT_EQ(a.size(), size_t(W) * H);
     auto anisotropy = [&](const std::vector<float>& h) {
@@ -135,11 +140,12 @@ TEST_F(PlanetWeather, ThePolarFilterDrawsThePolarCapsWithoutAStarburst) {
         ++low;
         same += std::equal(a.begin() + ptrdiff_t(y) * W, a.begin() + ptrdiff_t(y + 1) * W, b.begin() + ptrdiff_t(y) * W);
     }
-    const double withFilter = anisotropy(a), without = anisotropy(b);
-    std::printf("[polar] 75-85 degrees: the heights' slope across the meridians / along them, %.2f filtered, %.2f "
-                "without; %d of %d rows below 50 degrees the same\n",
-                withFilter, without, same, low);
-    EXPECT_GT(without, 2.0) << "the unfiltered caps would pass as well";
+    const double onSphere = anisotropy(sphere.readHeights()), withFilter = anisotropy(a), without = anisotropy(b);
+    std::printf("[polar] 75-85 degrees: the heights' slope across the meridians / along them, %.2f on the sphere; "
+                "on a flat gas %.2f, %.2f filtered; %d of %d rows below 50 degrees the same\n",
+                onSphere, without, withFilter, same, low);
+    EXPECT_GT(without, 2.0) << "a flat gas's caps would pass as well";
+    EXPECT_LT(onSphere, 1.4);
     EXPECT_LT(withFilter, 1.4);
     EXPECT_EQ(same, low);
 }
@@ -182,6 +188,7 @@ TEST_F(PlanetWeather, ASeededVortexIsStillThereAfterTwentyRotations) {
     planet.addStorm(0.5f, quietestLatitude(planet), true, 2.0f);
     const double rotation = 2.0 * std::numbers::pi / config.rotationSpeed;
     std::vector<float> u, v, dye;
+    const std::vector<float>& table = planet.gas().metricTable();
     auto vortexRatio = [&] {
         planet.gas().readState(u, v, dye);
         const GasPlanetEffect::Storm& storm = planet.storms().at(0);
@@ -191,7 +198,7 @@ TEST_F(PlanetWeather, ASeededVortexIsStillThereAfterTwentyRotations) {
         std::vector<double> band;
         for (int j = std::max(1, cj - reach); j <= std::min(H - 2, cj + reach); ++j)
             for (int i = 0; i < W; ++i) {
-                const double w = std::abs(hfx_gas_curl(u.data(), v.data(), W, H, i, j));
+                const double w = std::abs(hfx_gas_curl(u.data(), v.data(), table.data(), W, H, i, j));
                 band.push_back(w);
                 const int di = std::min(std::abs(i - ci), W - std::abs(i - ci));
                 if (di <= reach) extremum = std::max(extremum, w);
@@ -214,60 +221,77 @@ TEST_F(PlanetWeather, ASeededVortexIsStillThereAfterTwentyRotations) {
 }
 
 TEST_F(PlanetWeather, AStormKeepsItsColourAndRidesTheWindAtItsCentre) {
-    // A storm seeded in a band's middle on a 128x64 gas, five rotations later: the gas's wind at
-    // its centre carries it (GasField::velocityAt, once a frame), so its vortex, held there, is
-    // where the planet says the storm is: the core of its spin (over half its strongest, within
-    // two storm lengths) is centred within half a storm height of it (1.5 cells of 3.8 on
-    // llvmpipe; 3.7 when the storm rode its band's jet instead, dragging the hold through slower
-    // gas). Its clouds keep its colour (the feed) within 0.15 where, unheld and unfed, the shear
-    // and the dye's relaxation leave its band's (0.08 and 0.35 off).
+    // A storm seeded in a band's middle on the planet's sphere (a 128x64 gas), read at rotations 3
+    // to 7: the gas's wind at its centre carries it (GasField::velocityAt, once a frame), so its
+    // vortex, held there, is where the planet says the storm is. The core of its spin (over half
+    // its strongest, within two storm lengths) is centred inside the hold's oval (rho < 1 in its
+    // semi-axes a and b), by the median of the five readings (measured: 0.76): the flow about it
+    // is chaotic, and one reading varies from rho 0.36 to 1.17 (a single reading at rotation 5,
+    // which this test once took, was as chance made it: on the flat gas the storm then had, 1.5
+    // cells off at rotation 5 but 3.3 to 4.8 at rotations 3, 4, 6 and 7). Its clouds keep its
+    // colour (the feed) within 0.15 (median 0.08) where, unheld and unfed, the shear and the dye's
+    // relaxation leave its band's (0.48 off).
     constexpr int W = 128, H = 64;
-    auto after = [&](float hold, float feed) {
-        GasPlanetConfig config{.gas = {.width = W, .height = H, .pressureIterations = 30, .vorticity = 0.35f,
-                                       .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,
-                                       .maxSpeed = 56.0f, .initialBands = 6.0f, .dyeRate = 0.15f},
+    auto make = [&](float hold, float feed) {
+        GasPlanetConfig config{.gas = {.width = W, .height = H, .sphere = true, .pressureIterations = 30,
+                                       .vorticity = 0.35f, .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f,
+                                       .jetPolar = 1.0f, .maxSpeed = 56.0f, .initialBands = 6.0f, .dyeRate = 0.15f},
                                .stormsPerSecond = 0.0f, .stormRadius = 0.06f, .timeScale = 60.0f};
         config.stormHold = hold;
         config.stormFeed = feed;
         auto planet = std::make_unique<GasPlanetEffect>(cl(), config);
         planet->addStorm(0.5f, quietestLatitude(*planet), true);
-        const double rotation = 2.0 * std::numbers::pi / config.rotationSpeed;
-        while (planet->time() < 5.0 * rotation) planet->update(1.0 / 30.0);
         return planet;
     };
-    const auto held = after(1.0f, 2.0f), loose = after(0.0f, 0.0f);
+    const auto held = make(1.0f, 2.0f), loose = make(0.0f, 0.0f);
+    const double rotation = 2.0 * std::numbers::pi / held->config().rotationSpeed;
     auto colourError = [&](GasPlanetEffect& planet) {
         std::vector<float> u, v, dye;
         planet.gas().readState(u, v, dye);
         const GasPlanetEffect::Storm& storm = planet.storms().at(0);
         return std::abs(dye[size_t(storm.v * H) * W + size_t(storm.u * W)] - storm.colour);
     };
-    std::vector<float> u, v, dye;
-    held->gas().readState(u, v, dye);
-    const GasPlanetEffect::Storm& storm = held->storms().at(0);
-    const int ci = int(storm.u * W), cj = int(storm.v * H), reach = int(2.0f * storm.radius * W);
-    // Its spin (clockwise: the negative curl) within two storm lengths; the vortex's core is where
-    // the spin is over half its strongest, and its centre that core's centroid.
-    std::vector<std::array<double, 3>> spins;
-    double strongest = 0.0;
-    for (int j = std::max(1, cj - reach); j <= std::min(H - 2, cj + reach); ++j)
-        for (int di = -reach; di <= reach; ++di) {
-            const double spin = -hfx_gas_curl(u.data(), v.data(), W, H, ((ci + di) % W + W) % W, j);
-            spins.push_back({spin, double(di) + 0.5, double(j - cj) + 0.5});
-            strongest = std::max(strongest, spin);
-        }
-    double weight = 0.0, x = 0.0, y = 0.0;
-    for (const auto& [spin, dx, dy] : spins)
-        if (spin > 0.5 * strongest) weight += spin, x += spin * dx, y += spin * dy;
-    const double distance = std::hypot(x / weight + ci - storm.u * W, y / weight + cj - storm.v * H);
-    const double height = storm.radius * W / held->config().stormAspect;
-    const double heldError = colourError(*held), looseError = colourError(*loose);
-    std::printf("[storm] its vortex %.1f cells from where the planet has it (its height %.1f); its colour %.2f off "
-                "held and fed, %.2f off without\n",
-                distance, height, heldError, looseError);
-    EXPECT_LT(distance, 0.5 * height) << "the storm's vortex is not where the planet says the storm is";
-    EXPECT_LT(heldError, 0.15) << "the storm lost its colour";
-    EXPECT_GT(looseError, 0.2) << "unfed, the storm kept its colour (the test's premise)";
+    // Where the held storm's vortex is against where the planet has it, in the oval's rho.
+    auto offset = [&] {
+        std::vector<float> u, v, dye;
+        held->gas().readState(u, v, dye);
+        const std::vector<float>& table = held->gas().metricTable();
+        const GasPlanetEffect::Storm& storm = held->storms().at(0);
+        const int ci = int(storm.u * W), cj = int(storm.v * H), reach = int(2.0f * storm.radius * W);
+        // Its spin (clockwise: the negative curl) within two storm lengths; the vortex's core is
+        // where the spin is over half its strongest, and its centre that core's centroid.
+        std::vector<std::array<double, 3>> spins;
+        double strongest = 0.0;
+        for (int j = std::max(1, cj - reach); j <= std::min(H - 2, cj + reach); ++j)
+            for (int di = -reach; di <= reach; ++di) {
+                const double spin = -hfx_gas_curl(u.data(), v.data(), table.data(), W, H, ((ci + di) % W + W) % W, j);
+                spins.push_back({spin, double(di) + 0.5, double(j - cj) + 0.5});
+                strongest = std::max(strongest, spin);
+            }
+        double weight = 0.0, x = 0.0, y = 0.0;
+        for (const auto& [spin, dx, dy] : spins)
+            if (spin > 0.5 * strongest) weight += spin, x += spin * dx, y += spin * dy;
+        const double a = storm.radius * W, b = a / held->config().stormAspect;
+        return std::hypot((x / weight + ci - storm.u * W) / a, (y / weight + cj - storm.v * H) / b);
+    };
+    std::vector<double> rho, heldErrors, looseErrors;
+    for (int r = 3; r <= 7; ++r) {
+        while (held->time() < r * rotation) held->update(1.0 / 30.0);
+        while (loose->time() < r * rotation) loose->update(1.0 / 30.0);
+        rho.push_back(offset());
+        heldErrors.push_back(colourError(*held));
+        looseErrors.push_back(colourError(*loose));
+        std::printf("[storm] rotation %d: its vortex at rho %.2f from where the planet has it; its colour %.2f off "
+                    "held and fed, %.2f off without\n",
+                    r, rho.back(), heldErrors.back(), looseErrors.back());
+    }
+    auto median = [](std::vector<double> x) {
+        std::nth_element(x.begin(), x.begin() + 2, x.end());
+        return x[2];
+    };
+    EXPECT_LT(median(rho), 1.0) << "the storm's vortex is not where the planet says the storm is";
+    EXPECT_LT(median(heldErrors), 0.15) << "the storm lost its colour";
+    EXPECT_GT(median(looseErrors), 0.2) << "unfed, the storm kept its colour (the test's premise)";
     // Bad storm settings are refused by name.
     const std::pair<const char*, GasPlanetConfig> bad[] = {{"stormWind", {.stormWind = -1.0f}},
                                                            {"stormAspect", {.stormAspect = 0.5f}},
@@ -379,6 +403,8 @@ TEST_F(PlanetWeather, AFinerGridKeepsTheWeatherInPlanetUnits) {
     // grid, scaled with the cells' square), so its jets are laminar: inviscid, they are
     // shear-unstable on grids this coarse (4.5 bands on 32 or 64 rows) and their zonal mean is
     // chaos, 5-20% of its target and a different share on each grid, which no scaling keeps.
+    // Measured on llvmpipe + PoCL: scaled, the zonal wind 1.3% and the storm's 1.8% off the
+    // reference's; unscaled, 7.5% and 14%, outside the 5% and 10% the scaled grid meets.
     const GasPlanetConfig reference{.gas = {.width = 64, .height = 32, .viscosity = 2.0f, .pressureIterations = 20,
                                             .vorticity = 0.35f, .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f,
                                             .jetPolar = 1.0f, .maxSpeed = 56.0f, .initialBands = 6.0f},
@@ -394,10 +420,10 @@ TEST_F(PlanetWeather, AFinerGridKeepsTheWeatherInPlanetUnits) {
                 "unscaled: %.4f, %.4f\n",
                 a.width, a.zonalWind, a.stormWind, b.width, b.zonalWind, b.stormWind, c.width, c.zonalWind, c.stormWind);
     ASSERT_EQ(b.width, 128);
-    EXPECT_NEAR(b.zonalWind / a.zonalWind, 1.0, 0.1) << "the jets' speed changed with the grid";
-    EXPECT_NEAR(b.stormWind / a.stormWind, 1.0, 0.2) << "the storm's wind changed with the grid";
-    EXPECT_GT(std::max(std::abs(c.zonalWind / a.zonalWind - 1.0), std::abs(c.stormWind / a.stormWind - 1.0)), 0.25)
-        << "unscaled, a finer grid should change the weather (the test's premise)";
+    EXPECT_NEAR(b.zonalWind / a.zonalWind, 1.0, 0.05) << "the jets' speed changed with the grid";
+    EXPECT_NEAR(b.stormWind / a.stormWind, 1.0, 0.1) << "the storm's wind changed with the grid";
+    EXPECT_TRUE(std::abs(c.zonalWind / a.zonalWind - 1.0) > 0.05 || std::abs(c.stormWind / a.stormWind - 1.0) > 0.1)
+        << "unscaled, a finer grid should miss what the scaled one meets (the test's premise)";
     EXPECT_THROW(GasPlanetEffect(cl(), GasPlanetConfig{.gridScale = 8.0f}), Error);
     EXPECT_THROW(GasPlanetEffect(cl(), GasPlanetConfig{.gridScale = -1.0f}), Error);
 }

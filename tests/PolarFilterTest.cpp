@@ -20,6 +20,9 @@ class Polar : public ClTest {
 protected:
     std::vector<float> filter(const std::vector<float>& field, int width, int height, float smoothing) {
         PolarFilter polar(cl(), width, height, smoothing);
+        return filter(polar, field);
+    }
+    std::vector<float> filter(PolarFilter& polar, const std::vector<float>& field) {
         cl::Buffer in(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, field.size() * sizeof(float),
                       const_cast<float*>(field.data()));
         polar.run(in);
@@ -103,6 +106,31 @@ TEST_F(Polar, AZonalWaveIsDampedAsTheRowsBoxDampsItAndThePolarRowsFlatten) {
     }
     EXPECT_GT(checked, 60);
     EXPECT_GE(flat, 2) << "no row at a pole spans its box whole";
+}
+
+TEST_F(Polar, GivenRowWidthsTheKernelsMatchTheHostFilter) {
+    // The widths a sphere's gas filters its dye with (gasPolarWidths' law, 1 / cos(latitude) - 1
+    // cells), given row by row: the kernels as the host's filter, the rows of a box of at most a
+    // texel copied.
+    constexpr int W = 128, H = 64;
+    std::vector<float> widths(H);
+    for (int y = 0; y < H; ++y)
+        widths[size_t(y)] = float(std::min(1.0 / std::cos(((y + 0.5) / H - 0.5) * std::numbers::pi) - 1.0, double(W)));
+    SplitMix64 random(3);
+    std::vector<float> field(size_t(W) * H);
+    for (float& h : field) h = float(random.next());
+    PolarFilter polar(cl(), W, H, widths);
+    EXPECT_EQ(polar.smoothing(), 0.0f);
+    const std::vector<float> out = filter(polar, field), expected = PolarFilter::reference(field, W, H, widths);
+    double largest = 0.0;
+    for (size_t k = 0; k < out.size(); ++k) largest = std::max(largest, double(std::abs(out[k] - expected[k])));
+    EXPECT_LT(largest, 2e-5);
+    for (int x = 0; x < W; ++x) ASSERT_EQ(out[size_t(H / 2) * W + x], field[size_t(H / 2) * W + x]);
+    EXPECT_NE(out[size_t(W) + 5], field[size_t(W) + 5]) << "the second row (a box of 39 texels) came through";
+    widths[3] = -1.0f;
+    EXPECT_NE(messageOf([&] { PolarFilter(cl(), W, H, widths); }).find("row 3's width"), std::string::npos);
+    widths.pop_back();
+    EXPECT_NE(messageOf([&] { PolarFilter(cl(), W, H, widths); }).find("63 row widths for 64 rows"), std::string::npos);
 }
 
 TEST_F(Polar, BadSizesAndSmoothingsAreRefusedByName) {

@@ -6,16 +6,16 @@
    layer whose `reset` is set starting again from zero; the strain plane gets the flow's strain
    rate now (flow_finest then fills the last two from dst). */
 __kernel void flow_advect(__global const float* restrict u, __global const float* restrict v,
-                          __global const float* restrict src, __global float* restrict dst, int W, int H,
-                          float dt, int reset0, int reset1) {
+                          __global const float* restrict metric, __global const float* restrict src,
+                          __global float* restrict dst, int W, int H, float dt, int reset0, int reset1) {
     int i = get_global_id(0), j = get_global_id(1);
     if (i >= W || j >= H) return;
     int k = j * W + i, n = W * H;
     for (int plane = 0; plane < 4; ++plane) {
         int reset = plane < 2 ? reset0 : reset1;
-        dst[plane * n + k] = reset ? 0.0f : hfx_flow_advect(u, v, src + plane * n, W, H, i, j, dt, plane & 1);
+        dst[plane * n + k] = reset ? 0.0f : hfx_flow_advect(u, v, metric, src + plane * n, W, H, i, j, dt, plane & 1);
     }
-    dst[HFX_FLOW_STRAIN * n + k] = hfx_flow_strain(u, v, W, H, i, j);
+    dst[HFX_FLOW_STRAIN * n + k] = hfx_flow_strain(u, v, metric, W, H, i, j);
 }
 
 /* Each layer's finest octave at the cell centres (hfx_flow_cell_finest), from the displacements

@@ -11,20 +11,51 @@
     int k = j * W + i;
 
 __kernel void advect(__global const float* restrict u, __global const float* restrict v,
-                     __global const float* restrict src, __global float* restrict dst, int W, int H,
-                     float ox, float oy, float dt, int wallRow) {
+                     __global const float* restrict metric, __global const float* restrict src,
+                     __global float* restrict dst, int W, int H, float ox, float oy, float dt, int wallRow) {
     ID
     dst[k] = (WALLS && wallRow && j == 0) ? 0.0f
-                                            : hfx_gas_advect(u, v, src, W, H, i, j, ox, oy, dt, WALLS);
+                                            : hfx_gas_advect(u, v, metric, src, W, H, i, j, ox, oy, dt, WALLS);
 }
 
-__kernel void maccormack(__global const float* u, __global const float* v, __global const float* src,
-                         __global const float* forward, __global const float* backward,
-                         __global float* dst, int W, int H, float ox, float oy, float dt, int wallRow) {
+__kernel void maccormack(__global const float* u, __global const float* v, __global const float* metric,
+                         __global const float* src, __global const float* forward,
+                         __global const float* backward, __global float* dst, int W, int H, float ox,
+                         float oy, float dt, int wallRow) {
     ID
     dst[k] = (WALLS && wallRow && j == 0)
                  ? 0.0f
-                 : hfx_gas_maccormack(u, v, src, forward, backward, W, H, i, j, ox, oy, dt, WALLS);
+                 : hfx_gas_maccormack(u, v, metric, src, forward, backward, W, H, i, j, ox, oy, dt, WALLS);
+}
+
+/* The wind turned by the sphere's frame over dt (hfx_gas_turn; zonal: each row's sum of u), into
+   uOut and vOut. */
+__kernel void turn(__global const float* restrict u, __global const float* restrict v,
+                   __global const float* restrict metric, __global const float* restrict zonal,
+                   __global float* restrict uOut, __global float* restrict vOut, int W, int H, float dt) {
+    ID
+    float a, b;
+    hfx_gas_turn(u, v, metric, zonal, W, H, i, j, dt, WALLS, &a, &b);
+    uOut[k] = a;
+    vOut[k] = b;
+}
+
+/* Each face row's mean v taken away (one work-item a row; the wall's row stays 0): between walls
+   no gas crosses a whole row, so the zonal mean of an incompressible flow's v is 0 on every face
+   row, and this is the projection's zonal part done exactly (its pressure a function of the row
+   alone, its gradient along v alone), the part Jacobi's sweeps converge slowest on. */
+__kernel void remove_row_mean(__global float* v, int W, int H) {
+    int j = get_global_id(0);
+    if (j >= H || j == 0) return;
+    float sum = 0.0f, carry = 0.0f;
+    for (int i = 0; i < W; ++i) {
+        float y = v[j * W + i] - carry;
+        float t = sum + y;
+        carry = (t - sum) - y;
+        sum = t;
+    }
+    float mean = sum / (float)W;
+    for (int i = 0; i < W; ++i) v[j * W + i] -= mean;
 }
 
 /* The cell (i, j) a work-item of a w x h window from cell (i0, j0) stands on, x wrapped, and y
@@ -98,9 +129,12 @@ __kernel void splat(__global float* u, __global float* v, __global float* dye, i
 /* A vortex the velocity is held towards (GasField::addVortex) at (x, y) cells, semi-axes a along
    x and b along y (cells), over the w x h window from (i0, j0): each face moves share *
    exp(-rho^2) of the way to the drift + the wind of psi = psi0 exp(-rho^2), rho^2 = dx^2/a^2 +
-   dy^2/b^2, which is u = d(psi)/dy = -2 dy / b^2 psi, v = -d(psi)/dx = 2 dx / a^2 psi. */
-__kernel void vortex(__global float* u, __global float* v, int W, int H, float x, float y, float a, float b,
-                     float psi0, float driftX, float driftY, float share, int i0, int j0, int w, int h) {
+   dy^2/b^2, which is u = d(psi)/dy = -2 dy / b^2 psi, v = -d(psi)/dx / m = 2 dx / a^2 psi / m (on a
+   sphere's map, m v = -d(psi)/dx keeps the wind divergence-free under its metric, GasMath.h: the
+   oval's shape is the map's, its wind the sphere's). */
+__kernel void vortex(__global float* u, __global float* v, __global const float* metric, int W, int H, float x,
+                     float y, float a, float b, float psi0, float driftX, float driftY, float share, int i0, int j0,
+                     int w, int h) {
     int i, j;
     if (!hfx_window_cell(W, H, i0, j0, w, h, &i, &j)) return;
     int k = j * W + i;
@@ -111,7 +145,7 @@ __kernel void vortex(__global float* u, __global float* v, int W, int H, float x
     o = hfx_window_offset(W, H, (float)i + 0.5f - x, (float)j - y); /* the v face */
     rho2 = o.x * o.x / (a * a) + o.y * o.y / (b * b);
     psi = psi0 * exp(-rho2);
-    v[k] += (driftY + 2.0f * o.x / (a * a) * psi - v[k]) * share * exp(-rho2);
+    v[k] += (driftY + 2.0f * o.x / (a * a) * psi / metric[2 * j] - v[k]) * share * exp(-rho2);
 }
 
 /* The velocity at n points (cells), bilinear from the faces: GasField::velocityAt. */
@@ -147,9 +181,10 @@ __kernel void clamp_speed(__global float* u, __global float* v, int W, int H, fl
     v[k] = clamp(v[k], -limit, limit);
 }
 
-__kernel void curl(__global const float* u, __global const float* v, __global float* w, int W, int H) {
+__kernel void curl(__global const float* u, __global const float* v, __global const float* metric,
+                   __global float* w, int W, int H) {
     ID
-    w[k] = hfx_gas_curl(u, v, W, H, i, j);
+    w[k] = hfx_gas_curl(u, v, metric, W, H, i, j);
 }
 
 /* Adds the confinement force, computed at the two cells beside each face, to u and v. */
@@ -171,37 +206,42 @@ __kernel void diffuse(__global const float* x, __global const float* x0, __globa
     dst[k] = (WALLS && wallRow && j == 0) ? 0.0f : hfx_gas_diffuse_jacobi(x, x0, W, H, i, j, a);
 }
 
-__kernel void divergence(__global const float* u, __global const float* v, __global float* div, int W, int H) {
+__kernel void divergence(__global const float* u, __global const float* v, __global const float* metric,
+                         __global float* div, int W, int H) {
     ID
-    div[k] = hfx_gas_divergence(u, v, W, H, i, j);
+    div[k] = hfx_gas_divergence(u, v, metric, W, H, i, j);
 }
 
-__kernel void pressure(__global const float* p, __global const float* div, __global float* dst, int W, int H) {
+__kernel void pressure(__global const float* p, __global const float* div, __global const float* metric,
+                       __global float* dst, int W, int H) {
     ID
-    dst[k] = hfx_gas_pressure_jacobi(p, div, W, H, i, j, WALLS);
+    dst[k] = hfx_gas_pressure_jacobi(p, div, metric, W, H, i, j, WALLS);
 }
 
 /* The same sweep, four cells along i per work-item (W a multiple of 4), as float4: the rows are
-   loaded once with vload4 and shifted for the left and right neighbours. The additions run in
-   hfx_gas_pressure_jacobi's order (left + right, then below, then above), so the results are
-   the same bit for bit. */
-__kernel void pressure4(__global const float* p, __global const float* div, __global float* dst, int W, int H) {
+   loaded once with vload4 and shifted for the left and right neighbours. The weights are the
+   row's, and the operations run in hfx_gas_pressure_jacobi's order (left + right, then below,
+   then above), so the results are the same bit for bit. */
+__kernel void pressure4(__global const float* p, __global const float* div, __global const float* metric,
+                        __global float* dst, int W, int H) {
     int i0 = get_global_id(0) * 4, j = get_global_id(1);
     if (i0 >= W || j >= H) return;
     int row = j * W;
+    float w[4];
+    hfx_gas_pressure_weights(metric, H, j, WALLS, w);
     float4 c = vload4(0, p + row + i0);
     float l = p[row + hfx_gas_step(i0 - 1, W)], r = p[row + hfx_gas_step(i0 + 4, W)];
-    float4 sum = (float4)(l, c.x, c.y, c.z) + (float4)(c.y, c.z, c.w, r);
-    float n = 2.0f;
-    if (!WALLS || j > 0) { sum += vload4(0, p + hfx_gas_step(j - 1, H) * W + i0); n += 1.0f; }
-    if (!WALLS || j < H - 1) { sum += vload4(0, p + hfx_gas_step(j + 1, H) * W + i0); n += 1.0f; }
-    vstore4((sum - vload4(0, div + row + i0)) / n, 0, dst + row + i0);
+    float4 sum = w[0] * ((float4)(l, c.x, c.y, c.z) + (float4)(c.y, c.z, c.w, r));
+    if (w[1] != 0.0f) sum += w[1] * vload4(0, p + hfx_gas_step(j - 1, H) * W + i0);
+    if (w[2] != 0.0f) sum += w[2] * vload4(0, p + hfx_gas_step(j + 1, H) * W + i0);
+    vstore4((sum - w[3] * vload4(0, div + row + i0)) / (2.0f * w[0] + w[1] + w[2]), 0, dst + row + i0);
 }
 
-/* u -= grad p on every face; the wall's v stays 0. */
-__kernel void project(__global float* u, __global float* v, __global const float* p, int W, int H) {
+/* u -= grad p on every face (along x over the row's m); the wall's v stays 0. */
+__kernel void project(__global float* u, __global float* v, __global const float* p,
+                      __global const float* metric, int W, int H) {
     ID
-    u[k] -= p[k] - p[j * W + hfx_gas_step(i - 1, W)];
+    u[k] -= (p[k] - p[j * W + hfx_gas_step(i - 1, W)]) / metric[2 * j + 1];
     v[k] = (WALLS && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H) * W + i]);
 }
 
@@ -211,8 +251,9 @@ __kernel void dye_height(__global const float* dye, __global float* height, int 
 }
 
 /* Dye mass, kept by a global correction: advection by interpolation (and MacCormack's limiter
-   above all) is not conservative. Row sums (Kahan), then one work-item totals them and leaves
-   before/after in factor[0], then every texel scales: no read-back, no host round trip. */
+   above all) is not conservative. Row sums (Kahan), then one work-item totals them, each row
+   weighted by its cells' area (the metric's m, 1 on a flat grid), and leaves before/after in
+   factor[0], then every texel scales: no read-back, no host round trip. */
 __kernel void row_sums(__global const float* f, __global float* sums, int W, int H) {
     int j = get_global_id(0);
     if (j >= H) return;
@@ -226,13 +267,13 @@ __kernel void row_sums(__global const float* f, __global float* sums, int W, int
     sums[j] = sum;
 }
 
-__kernel void mass_factor(__global const float* before, __global const float* after, int H,
-                          __global float* factor) {
+__kernel void mass_factor(__global const float* before, __global const float* after,
+                          __global const float* metric, int H, __global float* factor) {
     if (get_global_id(0) != 0) return;
     float a = 0.0f, b = 0.0f;
     for (int j = 0; j < H; ++j) {
-        a += before[j];
-        b += after[j];
+        a += before[j] * metric[2 * j + 1];
+        b += after[j] * metric[2 * j + 1];
     }
     factor[0] = b > 0.0f ? a / b : 1.0f;
 }

@@ -87,13 +87,14 @@ void FlowDetail::step(double dt) {
     clGuard("FlowDetail::step", [&] {
         advect_.setArg(0, gas_.velocityX());
         advect_.setArg(1, gas_.velocityY());
-        advect_.setArg(2, planes_[front_]);
-        advect_.setArg(3, planes_[1 - front_]);
-        advect_.setArg(4, W);
-        advect_.setArg(5, H);
-        advect_.setArg(6, float(dt));
-        advect_.setArg(7, reset[0]);
-        advect_.setArg(8, reset[1]);
+        advect_.setArg(2, gas_.metric());
+        advect_.setArg(3, planes_[front_]);
+        advect_.setArg(4, planes_[1 - front_]);
+        advect_.setArg(5, W);
+        advect_.setArg(6, H);
+        advect_.setArg(7, float(dt));
+        advect_.setArg(8, reset[0]);
+        advect_.setArg(9, reset[1]);
         cl_.enqueue(advect_, cl::NDRange(size_t(W), size_t(H)));
     });
     front_ = 1 - front_;
@@ -141,7 +142,7 @@ HfxFlowParams FlowDetail::params() const {
     const FlowDetailConfig& c = config_;
     return {.amount = c.amount, .frequency = c.frequency, .aspect = c.aspect, .calm = c.calm, .strainScale = c.strainScale,
             .octaves = octaves(), .w0 = weight(0), .w1 = weight(1), .z0 = generation(0), .z1 = generation(1), .warp = c.warp,
-            .texels = float(c.scale)};
+            .texels = float(c.scale), .sphere = gas_.config().sphere ? 1 : 0};
 }
 
 std::vector<float> FlowDetail::readPlanes() {

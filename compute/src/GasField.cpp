@@ -1,5 +1,7 @@
 #include "hfx/compute/GasField.h"
 
+#include "hfx/compute/shared/GasMath.h"
+
 #include "hfx/core/Error.h"
 #include "hfx/core/Random.h"
 
@@ -18,6 +20,11 @@ void GasConfig::validate() const {
         throw Error("GasConfig.edges must be wrap or wrap-u, got clamp: the gas always wraps in x (longitude)");
     if (!(viscosity >= 0.0f) || !std::isfinite(viscosity))
         throw Error(str("GasConfig.viscosity must be >= 0, got ", viscosity));
+    if (sphere && edges != EdgeMode::WrapU)
+        throw Error(str("GasConfig.sphere needs edges wrap-u (walls at the poles), got ", edgeModeName(edges)));
+    if (sphere && viscosity != 0.0f)
+        throw Error(str("GasConfig.viscosity must be 0 on a sphere (its viscosity is flat grids' only), got ",
+                        viscosity));
     if (viscosityIterations < 1 || viscosityIterations > 1000)
         throw Error(str("GasConfig.viscosityIterations must be in [1, 1000], got ", viscosityIterations));
     if (pressureIterations < 1 || pressureIterations > 10000)
@@ -39,8 +46,36 @@ void GasConfig::validate() const {
         throw Error(str("GasConfig.dyeRate must be in [0, 1] per second, got ", dyeRate));
 }
 
+std::vector<float> gasMetricTable(const GasConfig& config) {
+    const int H = config.height, points = 2 * H + 1;
+    std::vector<float> table(size_t(2 * points), 1.0f);
+    std::fill(table.begin() + points, table.end(), 0.0f);
+    if (!config.sphere) return table;
+    const double k = 2.0 * H / config.width, radius = H / std::numbers::pi;
+    for (int t = 0; t < points; ++t) {
+        const double a = std::numbers::pi * t / (2.0 * H); // pi y / H; latitude = a - pi / 2
+        const bool pole = t == 0 || t == points - 1;
+        table[size_t(t)] = pole ? 0.0f : float(k * std::sin(a));
+        table[size_t(points + t)] = pole ? 0.0f : float(-std::cos(a) / std::sin(a) / radius);
+    }
+    return table;
+}
+
+std::vector<float> gasPolarWidths(const GasConfig& config) {
+    if (!config.sphere) return {};
+    // A cell of latitude spans 1 / m cells of longitude (5.8 at 80 degrees): the box takes the
+    // rows' x resolution down to about the y resolution, and leaves alone the rows where a cell
+    // of latitude spans at most two of longitude.
+    const std::vector<float> table = gasMetricTable(config);
+    std::vector<float> widths(size_t(config.height));
+    for (int j = 0; j < config.height; ++j)
+        widths[size_t(j)] = std::clamp(1.0f / table[size_t(2 * j + 1)] - 1.0f, 0.0f, float(config.width));
+    return widths;
+}
+
 GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(config) {
     config.validate();
+    metricTable_ = gasMetricTable(config);
     const size_t n = size_t(config.width) * config.height, bytes = n * sizeof(float);
     clGuard("creating the gas", [&] {
         for (cl::Buffer* b : {&u_, &v_, &dye_, &work_[0], &work_[1], &work_[2], &work_[3], &p_, &p2_, &div_,
@@ -49,9 +84,16 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         sumsBefore_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
         sumsAfter_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
         factor_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float));
+        metric_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                             sizeof(float) * metricTable_.size(), metricTable_.data());
+        std::vector<float> grid = gasMetricTable({.width = config.width, .height = config.height});
+        gridMetric_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * grid.size(),
+                                 grid.data());
         const cl::Program& program = cl.program("gas.cl", edgeOptions(config.edges));
         advect_ = cl::Kernel(program, "advect");
         maccormack_ = cl::Kernel(program, "maccormack");
+        turn_ = cl::Kernel(program, "turn");
+        removeRowMean_ = cl::Kernel(program, "remove_row_mean");
         splat_ = cl::Kernel(program, "splat");
         vortex_ = cl::Kernel(program, "vortex");
         sampleVelocity_ = cl::Kernel(program, "sample_velocity");
@@ -71,6 +113,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         scale_ = cl::Kernel(program, "scale");
         relaxDye_ = cl::Kernel(program, "relax_dye");
     });
+    if (config.sphere) polar_ = std::make_unique<PolarFilter>(cl, config.width, config.height, gasPolarWidths(config));
     // Initial state: jets already blowing, banded dye with a little noise to seed the storms.
     std::vector<float> u(n), v(n, 0.0f), dye(n), rows(size_t(config.height), 0.0f);
     SplitMix64 random(config.seed);
@@ -200,13 +243,17 @@ void GasField::velocityAt(std::span<const glm::vec2> points, std::span<glm::vec2
 void GasField::advectField(cl::Buffer& field, float ox, float oy, float dt, bool wallRow) {
     const int W = config_.width, H = config_.height, wall = wallRow ? 1 : 0;
     const float back = -dt;
+    const cl::Buffer& m = metric_;
     if (!config_.maccormack) {
-        run(advect_, {arg(u_), arg(v_), arg(field), arg(work_[0]), arg(W), arg(H), arg(ox), arg(oy), arg(dt), arg(wall)});
+        run(advect_, {arg(u_), arg(v_), arg(m), arg(field), arg(work_[0]), arg(W), arg(H), arg(ox), arg(oy), arg(dt),
+                      arg(wall)});
     } else {
-        run(advect_, {arg(u_), arg(v_), arg(field), arg(work_[1]), arg(W), arg(H), arg(ox), arg(oy), arg(dt), arg(wall)});
-        run(advect_, {arg(u_), arg(v_), arg(work_[1]), arg(work_[2]), arg(W), arg(H), arg(ox), arg(oy), arg(back), arg(wall)});
-        run(maccormack_, {arg(u_), arg(v_), arg(field), arg(work_[1]), arg(work_[2]), arg(work_[0]), arg(W), arg(H),
-                          arg(ox), arg(oy), arg(dt), arg(wall)});
+        run(advect_, {arg(u_), arg(v_), arg(m), arg(field), arg(work_[1]), arg(W), arg(H), arg(ox), arg(oy), arg(dt),
+                      arg(wall)});
+        run(advect_, {arg(u_), arg(v_), arg(m), arg(work_[1]), arg(work_[2]), arg(W), arg(H), arg(ox), arg(oy),
+                      arg(back), arg(wall)});
+        run(maccormack_, {arg(u_), arg(v_), arg(m), arg(field), arg(work_[1]), arg(work_[2]), arg(work_[0]), arg(W),
+                          arg(H), arg(ox), arg(oy), arg(dt), arg(wall)});
     }
 }
 
@@ -218,6 +265,13 @@ void GasField::step(double dtSeconds) {
     clGuard("GasField::step", [&] {
         cl::CommandQueue& q = cl_.queue();
         const size_t bytes = sizeof(float) * size_t(W) * H;
+        auto rowSums = [&](const cl::Buffer& field, const cl::Buffer& sums) {
+            rowSums_.setArg(0, field);
+            rowSums_.setArg(1, sums);
+            rowSums_.setArg(2, W);
+            rowSums_.setArg(3, H);
+            cl_.enqueue(rowSums_, cl::NDRange(size_t(H)));
+        };
         for (const GasSplat& s : splats_) {
             const float x = s.u * W, y = s.v * H, r = s.radius * W;
             // Only the cells within 6 radii (and the half cell of the faces' offsets): beyond, the
@@ -253,16 +307,27 @@ void GasField::step(double dtSeconds) {
             const int reachX = int(std::ceil(3.0f * a)) + 1, reachY = int(std::ceil(3.0f * b)) + 1;
             const int w = std::min(W, 2 * reachX + 1), h = std::min(H, 2 * reachY + 1);
             const int i0 = w == W ? 0 : int(std::floor(x)) - reachX, j0 = h == H ? 0 : int(std::floor(y)) - reachY;
-            run(vortex_, {arg(u_), arg(v_), arg(W), arg(H), arg(x), arg(y), arg(a), arg(b), arg(psi0), arg(vx.driftX),
-                          arg(vx.driftY), arg(share), arg(i0), arg(j0), arg(w), arg(h)},
+            run(vortex_, {arg(u_), arg(v_), arg(metric_), arg(W), arg(H), arg(x), arg(y), arg(a), arg(b), arg(psi0),
+                          arg(vx.driftX), arg(vx.driftY), arg(share), arg(i0), arg(j0), arg(w), arg(h)},
                 cl::NDRange(size_t(w), size_t(h)));
         }
         vortices_.clear();
         if (config_.vorticity > 0.0f) {
-            run(curlKernel_, {arg(u_), arg(v_), arg(curl_), arg(W), arg(H)});
+            // On the map's cells (gridMetric_) even on a sphere: the confinement gives back what
+            // the grid's own dissipation takes, at the grid's scale, and with the sphere's
+            // metric it pumped the polar rows' grid-scale noise, whose x differences m divides
+            // (|curl| 66 in the last row against 4 elsewhere, on 128x64).
+            run(curlKernel_, {arg(u_), arg(v_), arg(gridMetric_), arg(curl_), arg(W), arg(H)});
             run(confine_, {arg(curl_), arg(u_), arg(v_), arg(W), arg(H), arg(config_.vorticity), arg(dt)});
         }
         if (config_.maxSpeed > 0.0f) run(clampSpeed_, {arg(u_), arg(v_), arg(W), arg(H), arg(config_.maxSpeed)});
+        if (config_.sphere) { // the wind's frame turns as it moves (hfx_gas_turn), before it carries itself
+            rowSums(u_, sumsBefore_);
+            run(turn_, {arg(u_), arg(v_), arg(metric_), arg(sumsBefore_), arg(work_[0]), arg(work_[3]), arg(W), arg(H),
+                        arg(dt)});
+            std::swap(work_[0], u_);
+            std::swap(work_[3], v_);
+        }
         // Self-advection: both components read the old velocity, so the new u waits in work_[3].
         // Results change places with the state by swapping handles, not by copying.
         advectField(u_, 0.0f, 0.5f, dt, false);
@@ -282,13 +347,6 @@ void GasField::step(double dtSeconds) {
             }
         }
         project();
-        auto rowSums = [&](const cl::Buffer& field, const cl::Buffer& sums) {
-            rowSums_.setArg(0, field);
-            rowSums_.setArg(1, sums);
-            rowSums_.setArg(2, W);
-            rowSums_.setArg(3, H);
-            cl_.enqueue(rowSums_, cl::NDRange(size_t(H)));
-        };
         if (config_.conserveDye) rowSums(dye_, sumsBefore_);
         advectField(dye_, 0.5f, 0.5f, dt, false);
         std::swap(work_[0], dye_);
@@ -296,10 +354,20 @@ void GasField::step(double dtSeconds) {
             rowSums(dye_, sumsAfter_);
             massFactor_.setArg(0, sumsBefore_);
             massFactor_.setArg(1, sumsAfter_);
-            massFactor_.setArg(2, H);
-            massFactor_.setArg(3, factor_);
+            massFactor_.setArg(2, metric_);
+            massFactor_.setArg(3, H);
+            massFactor_.setArg(4, factor_);
             cl_.enqueue(massFactor_, cl::NDRange(1));
             run(scale_, {arg(dye_), arg(factor_), arg(W), arg(H)});
+        }
+        if (polar_) {
+            // On a sphere the polar rows' dye is filtered along x to the sphere's resolution: the
+            // rows near a pole turn at u / m cells a second, so their differential rotation winds
+            // the dye into stripes a few cells of longitude apart, far finer than a cell of
+            // latitude (drawn as radial fur about the pole's cap). As the models of the atmosphere
+            // on such grids filter their polar rows (Arakawa & Lamb 1977).
+            polar_->run(dye_);
+            q.enqueueCopyBuffer(polar_->output(), dye_, 0, 0, bytes);
         }
         if (config_.dyeRate > 0.0f) {
             const float share = float(1.0 - std::exp(-double(config_.dyeRate) * dtSeconds));
@@ -313,20 +381,26 @@ void GasField::project() {
     const int W = config_.width, H = config_.height;
     clGuard("GasField::project", [&] {
         cl::CommandQueue& q = cl_.queue();
-        run(divergence_, {arg(u_), arg(v_), arg(div_), arg(W), arg(H)});
+        if (config_.edges == EdgeMode::WrapU) run(removeRowMean_, {arg(v_), arg(W), arg(H)}, cl::NDRange(size_t(H)));
+        run(divergence_, {arg(u_), arg(v_), arg(metric_), arg(div_), arg(W), arg(H)});
         q.enqueueFillBuffer(p_, 0.0f, 0, sizeof(float) * size_t(W) * H);
         const cl::NDRange sweep(W % 4 == 0 ? W / 4 : W, H);
         for (int it = 0; it < config_.pressureIterations; ++it) {
             pressure_.setArg(0, p_);
             pressure_.setArg(1, div_);
-            pressure_.setArg(2, p2_);
-            pressure_.setArg(3, W);
-            pressure_.setArg(4, H);
+            pressure_.setArg(2, metric_);
+            pressure_.setArg(3, p2_);
+            pressure_.setArg(4, W);
+            pressure_.setArg(5, H);
             cl_.enqueue(pressure_, sweep);
             std::swap(p_, p2_);
         }
-        run(project_, {arg(u_), arg(v_), arg(p_), arg(W), arg(H)});
+        run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
     });
+}
+
+float GasField::metricAt(float v) const {
+    return hfx_gas_metric_at(metricTable_.data(), config_.height, v * float(config_.height));
 }
 
 void GasField::writeHeight() {
@@ -376,7 +450,7 @@ std::vector<float> GasField::readDivergence() {
     const int W = config_.width, H = config_.height;
     std::vector<float> out(size_t(W) * H);
     clGuard("GasField::readDivergence", [&] {
-        run(divergence_, {arg(u_), arg(v_), arg(div_), arg(W), arg(H)});
+        run(divergence_, {arg(u_), arg(v_), arg(metric_), arg(div_), arg(W), arg(H)});
         cl_.queue().enqueueReadBuffer(div_, CL_TRUE, 0, out.size() * sizeof(float), out.data());
     });
     return out;

@@ -14,11 +14,19 @@ float PolarFilter::rowWidth(int y, int width, int height, float smoothing) {
 }
 
 std::vector<float> PolarFilter::reference(const std::vector<float>& field, int width, int height, float smoothing) {
-    if (width < 1 || height < 1 || field.size() != size_t(width) * size_t(height))
-        throw Error(str("PolarFilter::reference: ", field.size(), " values for ", width, "x", height));
+    std::vector<float> widths(size_t(std::max(height, 0)));
+    for (int y = 0; y < height; ++y) widths[size_t(y)] = rowWidth(y, width, height, smoothing);
+    return reference(field, width, height, widths);
+}
+
+std::vector<float> PolarFilter::reference(const std::vector<float>& field, int width, int height,
+                                          const std::vector<float>& widths) {
+    if (width < 1 || height < 1 || field.size() != size_t(width) * size_t(height) || widths.size() != size_t(height))
+        throw Error(str("PolarFilter::reference: ", field.size(), " values for ", width, "x", height, " and ",
+                        widths.size(), " row widths"));
     std::vector<float> out(field);
     for (int y = 0; y < height; ++y) {
-        const double w = rowWidth(y, width, height, smoothing);
+        const double w = widths[size_t(y)];
         if (w <= 1.0) continue;
         const float* row = field.data() + size_t(y) * width;
         std::vector<double> prefix(size_t(width) + 1, 0.0); // the sums of the texels before each
@@ -35,18 +43,39 @@ std::vector<float> PolarFilter::reference(const std::vector<float>& field, int w
     return out;
 }
 
-PolarFilter::PolarFilter(ClContext& cl, int width, int height, float smoothing)
-    : cl_(cl), width_(width), height_(height), smoothing_(smoothing) {
+namespace {
+void checkSize(int width, int height) {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
         throw Error(str("PolarFilter size must be in 1..16384, got ", width, "x", height));
+}
+
+std::vector<float> widthsOf(int width, int height, float smoothing) {
+    checkSize(width, height);
     if (!(smoothing >= 0.0f && smoothing <= 60.0f))
         throw Error(str("PolarFilter smoothing must be in [0, 60] degrees of longitude, got ", smoothing));
     std::vector<float> widths(static_cast<size_t>(height));
-    for (int y = 0; y < height; ++y) widths[size_t(y)] = rowWidth(y, width, height, smoothing);
+    for (int y = 0; y < height; ++y) widths[size_t(y)] = PolarFilter::rowWidth(y, width, height, smoothing);
+    return widths;
+}
+} // namespace
+
+PolarFilter::PolarFilter(ClContext& cl, int width, int height, float smoothing)
+    : PolarFilter(cl, width, height, widthsOf(width, height, smoothing)) {
+    smoothing_ = smoothing;
+}
+
+PolarFilter::PolarFilter(ClContext& cl, int width, int height, const std::vector<float>& widths)
+    : cl_(cl), width_(width), height_(height), smoothing_(0.0f) {
+    checkSize(width, height);
+    if (widths.size() != size_t(height))
+        throw Error(str("PolarFilter: ", widths.size(), " row widths for ", height, " rows"));
+    for (size_t y = 0; y < widths.size(); ++y)
+        if (!(widths[y] >= 0.0f && widths[y] <= float(width)))
+            throw Error(str("PolarFilter: row ", y, "'s width must be in [0, ", width, "] texels, got ", widths[y]));
     clGuard("creating the polar filter", [&] {
         prefix_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(width + 1) * height);
         widths_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * widths.size(),
-                             widths.data());
+                             const_cast<float*>(widths.data())); // CL_MEM_COPY_HOST_PTR only reads it
         output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(width) * height);
         sums_ = cl.kernel("polar.cl", "polar_sums");
         filter_ = cl.kernel("polar.cl", "polar_filter");

@@ -217,8 +217,12 @@ void GasPlanetEffect::advance(double dt) {
         for (size_t i = 0; i < storms_.size(); ++i) {
             const glm::vec2* w = &stormWinds_[5 * i];
             storms_[i].wind = w[0];
-            const float curl = 0.5f * (w[1].y - w[2].y) - 0.5f * (w[3].x - w[4].x);
-            storms_[i].turnRate = curl / (config_.stormAspect + 1.0f / config_.stormAspect);
+            // (dv/dx - d(m u)/dy) / m: on the sphere's map a cell of longitude is m cells wide.
+            const float v = float(storms_[i].v), m = gas_.metricAt(v);
+            const float across = w[3].x * gas_.metricAt(v + dv) - w[4].x * gas_.metricAt(v - dv);
+            const float curl = (0.5f * (w[1].y - w[2].y) - 0.5f * across) / m;
+            const float aspect = config_.stormAspect * m; // the oval's on the sphere
+            storms_[i].turnRate = curl / (aspect + 1.0f / aspect);
         }
     }
     for (int s = 0; s < substeps; ++s) {
@@ -244,7 +248,7 @@ void GasPlanetEffect::advance(double dt) {
         const double life = config_.stormLifeRotations * 2.0 * std::numbers::pi / std::max(config_.rotationSpeed, 1e-6f);
         std::erase_if(storms_, [&](const Storm& st) { return time_ - st.born > life; });
         for (Storm& st : storms_) {
-            st.u += double(st.wind.x) * step / double(config_.gas.width);
+            st.u += double(st.wind.x / gas_.metricAt(float(st.v))) * step / double(config_.gas.width);
             st.u -= std::floor(st.u);
             if (st.u >= 1.0) st.u = 0.0;
             const float fade = float(1.0 - (time_ - st.born) / life);

@@ -151,13 +151,14 @@ void BM_GasPressureKernel(benchmark::State& state) {
     auto buffer = [&](const std::vector<float>& v) {
         return cl::Buffer(cl().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, v.size() * 4, const_cast<float*>(v.data()));
     };
-    cl::Buffer p = buffer(p0), d = buffer(div), out = buffer(p0);
+    cl::Buffer p = buffer(p0), d = buffer(div), out = buffer(p0), metric = buffer(gasMetricTable({.width = n, .height = n}));
     cl::Kernel kernel = cl().kernel("gas.cl", perItem == 4 ? "pressure4" : "pressure", edgeOptions(EdgeMode::WrapU));
     kernel.setArg(0, p);
     kernel.setArg(1, d);
-    kernel.setArg(2, out);
-    kernel.setArg(3, n);
+    kernel.setArg(2, metric);
+    kernel.setArg(3, out);
     kernel.setArg(4, n);
+    kernel.setArg(5, n);
     measure(state, [&] { cl().enqueue(kernel, cl::NDRange(n / perItem, n)); },
             12.0 * n * n, nullptr);
 }
@@ -276,10 +277,12 @@ void BM_Gas(benchmark::State& state) {
 
 /// The planet's gas step (GasPlanetConfig's gas: 512x256, 30 pressure sweeps, jets, confinement,
 /// the dye's relaxation) at 30 steps a second, its advection semi-Lagrangian (0) or MacCormack's
-/// (1, the planet's default): what the sharper edges cost a frame.
+/// (1, the planet's default): what the sharper edges cost a frame; on the sphere's metric (1, the
+/// planet's: the frame's turns, the metric's weights, the dye's polar filter) or the flat map (0).
 void BM_PlanetGas(benchmark::State& state) {
     GasConfig config = GasPlanetConfig{}.gas;
     config.maccormack = state.range(0) != 0;
+    config.sphere = state.range(1) != 0;
     GasField gas(cl(), config);
     for (int s = 0; s < 10; ++s) gas.step(1.0 / 30.0); // the jets under way
     cl().queue().finish();
@@ -294,9 +297,11 @@ void BM_PlanetGas(benchmark::State& state) {
 /// 512x256 gas (a CPU device's and a GPU's scale), after 3 simulated seconds of its jets have
 /// sheared the layers; the gas's own step is BM_PlanetGas. The kernel band-limits each texel's
 /// noise to the octaves its squeezed lattice can show (FlowMath.h's hfx_flow_cell_finest),
-/// evaluating no faded one.
+/// evaluating no faded one. On the sphere's map (sphere 1, the planet's) its noise is read at the
+/// sphere's points (hfx_flow_noise_sphere); on the flat map (0), on the map's.
 void BM_PlanetDetail(benchmark::State& state) {
-    const GasPlanetConfig planet;
+    GasPlanetConfig planet;
+    planet.gas.sphere = state.range(1) != 0;
     GasField gas(cl(), planet.gas);
     FlowDetailConfig config = planet.detail;
     config.scale = int(state.range(0));
@@ -313,9 +318,10 @@ void BM_PlanetDetail(benchmark::State& state) {
     }
 }
 
-/// The planet's polar filter a frame (PolarFilter at GasPlanetConfig's smoothing), on the drawn
-/// heights at 2 and 4 texels per cell of its 512x256 gas: each filtered row's prefix sums, then
-/// every texel's box. Against BM_PlanetDetail, which writes the same heights.
+/// The planet's polar filter a frame (PolarFilter at 0.75 degrees, what a flat gas's planet sets:
+/// GasPlanetConfig::polarSmoothing), on the drawn heights at 2 and 4 texels per cell of its
+/// 512x256 gas: each filtered row's prefix sums, then every texel's box. Against
+/// BM_PlanetDetail, which writes the same heights.
 void BM_PlanetPolarFilter(benchmark::State& state) {
     const GasPlanetConfig planet;
     const int scale = int(state.range(0)), width = planet.gas.width * scale, height = planet.gas.height * scale;
@@ -323,7 +329,7 @@ void BM_PlanetPolarFilter(benchmark::State& state) {
     SplitMix64 random(3);
     for (float& h : field) h = float(random.next());
     cl::Buffer in(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, field.size() * sizeof(float), field.data());
-    PolarFilter polar(cl(), width, height, planet.polarSmoothing);
+    PolarFilter polar(cl(), width, height, 0.75f);
     for (auto _ : state) {
         polar.run(in);
         cl().queue().finish();
@@ -522,8 +528,8 @@ BENCHMARK(BM_Pick)->DenseRange(0, 4)->ArgNames({"mesh"})->Unit(benchmark::kMicro
 BENCHMARK(BM_InverseFft)->Arg(256)->Arg(512)->Arg(1024)->ArgNames({"size"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OceanQuery)->Arg(1)->Arg(0)->ArgNames({"new_t"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GasPressureKernel)->Args({512, 1})->Args({512, 4})->Args({2048, 1})->Args({2048, 4})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PlanetGas)->Arg(0)->Arg(1)->ArgNames({"maccormack"})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PlanetDetail)->Arg(2)->Arg(4)->ArgNames({"scale"})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanetGas)->Args({0, 1})->Args({1, 1})->Args({1, 0})->ArgNames({"maccormack", "sphere"})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanetDetail)->Args({2, 1})->Args({4, 1})->Args({2, 0})->Args({4, 0})->ArgNames({"scale", "sphere"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetPolarFilter)->Arg(2)->Arg(4)->ArgNames({"scale"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanetStorms)->Arg(0)->Arg(1)->Arg(2)->ArgNames({"held"})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DrawIssue)->Arg(0)->Arg(1)->ArgNames({"defaults"})->Iterations(2000)->Unit(benchmark::kMicrosecond);

@@ -4,6 +4,7 @@
 
 #include "hfx/compute/DecalMap.h"
 #include "hfx/compute/GasField.h"
+#include "hfx/compute/PolarFilter.h"
 #include "hfx/compute/WaveField.h"
 #include "hfx/core/EdgeMode.h"
 #include "hfx/compute/shared/GasMath.h"
@@ -41,6 +42,8 @@ std::vector<float> pyramidReference(const std::vector<float>& heights, int width
 struct GasReference {
     GasConfig c;
     std::vector<float> u, v, dye;
+    std::vector<float> metric = gasMetricTable(c);
+    std::vector<float> grid = gasMetricTable({.width = c.width, .height = c.height}); // the confinement's
     int W() const { return c.width; }
     int H() const { return c.height; }
     int walls() const { return wrapsV(c.edges) ? 0 : 1; }
@@ -56,7 +59,8 @@ struct GasReference {
             return map([&](int i, int j) {
                 return (walls() && wallRow && j == 0)
                            ? 0.0f
-                           : hfx_gas_advect(u.data(), v.data(), s.data(), W(), H(), i, j, ox, oy, step, walls());
+                           : hfx_gas_advect(u.data(), v.data(), metric.data(), s.data(), W(), H(), i, j, ox, oy, step,
+                                            walls());
             });
         };
         if (!c.maccormack) return plain(src, dt);
@@ -64,13 +68,14 @@ struct GasReference {
         return map([&](int i, int j) {
             return (walls() && wallRow && j == 0)
                        ? 0.0f
-                       : hfx_gas_maccormack(u.data(), v.data(), src.data(), forward.data(), backward.data(), W(), H(),
-                                            i, j, ox, oy, dt, walls());
+                       : hfx_gas_maccormack(u.data(), v.data(), metric.data(), src.data(), forward.data(),
+                                            backward.data(), W(), H(), i, j, ox, oy, dt, walls());
         });
     }
     void step(float dt) {
         if (c.vorticity > 0) {
-            const auto w = map([&](int i, int j) { return hfx_gas_curl(u.data(), v.data(), W(), H(), i, j); });
+            const auto w =
+                map([&](int i, int j) { return hfx_gas_curl(u.data(), v.data(), grid.data(), W(), H(), i, j); });
             for (int j = 0; j < H(); ++j)
                 for (int i = 0; i < W(); ++i) {
                     float a[2], b[2];
@@ -82,21 +87,48 @@ struct GasReference {
                     v[j * W() + i] += dt * 0.5f * (a[1] + b[1]);
                 }
         }
+        if (c.sphere) {
+            std::vector<float> ut(u.size()), vt(v.size()), zonal(size_t(H()), 0.0f);
+            for (int j = 0; j < H(); ++j) { // gas.cl's row_sums (Kahan's)
+                float sum = 0.0f, carry = 0.0f;
+                for (int i = 0; i < W(); ++i) {
+                    const float y = u[j * W() + i] - carry, t = sum + y;
+                    carry = (t - sum) - y;
+                    sum = t;
+                }
+                zonal[size_t(j)] = sum;
+            }
+            for (int j = 0; j < H(); ++j)
+                for (int i = 0; i < W(); ++i)
+                    hfx_gas_turn(u.data(), v.data(), metric.data(), zonal.data(), W(), H(), i, j, dt, walls(),
+                                 &ut[j * W() + i], &vt[j * W() + i]);
+            u = ut;
+            v = vt;
+        }
         const auto u2 = advect(u, 0.0f, 0.5f, dt, false);
         const auto v2 = advect(v, 0.5f, 0.0f, dt, true);
         u = u2;
         v = v2;
-        std::vector<float> div = map([&](int i, int j) { return hfx_gas_divergence(u.data(), v.data(), W(), H(), i, j); });
+        for (int j = 1; j < H() && walls(); ++j) { // each face row's mean v (gas.cl's remove_row_mean)
+            double sum = 0;
+            for (int i = 0; i < W(); ++i) sum += v[j * W() + i];
+            for (int i = 0; i < W(); ++i) v[j * W() + i] -= float(sum / W());
+        }
+        std::vector<float> div =
+            map([&](int i, int j) { return hfx_gas_divergence(u.data(), v.data(), metric.data(), W(), H(), i, j); });
         std::vector<float> p(div.size(), 0.0f);
         for (int it = 0; it < c.pressureIterations; ++it)
-            p = map([&](int i, int j) { return hfx_gas_pressure_jacobi(p.data(), div.data(), W(), H(), i, j, walls()); });
+            p = map([&](int i, int j) {
+                return hfx_gas_pressure_jacobi(p.data(), div.data(), metric.data(), W(), H(), i, j, walls());
+            });
         for (int j = 0; j < H(); ++j)
             for (int i = 0; i < W(); ++i) {
                 const int k = j * W() + i;
-                u[k] -= p[k] - p[j * W() + hfx_gas_step(i - 1, W())];
+                u[k] -= (p[k] - p[j * W() + hfx_gas_step(i - 1, W())]) / metric[size_t(2 * j + 1)];
                 v[k] = (walls() && j == 0) ? 0.0f : v[k] - (p[k] - p[hfx_gas_step(j - 1, H()) * W() + i]);
             }
         dye = advect(dye, 0.5f, 0.5f, dt, false);
+        if (c.sphere) dye = PolarFilter::reference(dye, W(), H(), gasPolarWidths(c));
     }
 };
 

@@ -3,17 +3,21 @@
 // semi-Lagrangian advection (MacCormack optional), implicit viscosity, vorticity confinement,
 // pressure projection by Jacobi iterations, advected dye, splats of force and dye, vortices the
 // gas is held towards, and zonal jets for banded planets. x is periodic (longitude wraps); y is
-// periodic or bounded by walls. The height field is the dye, so the gas's bands and vortices read
-// as relief.
+// periodic or bounded by walls. The grid is flat, or a sphere's longitude-latitude map, whose
+// metric the advection, the projection and the vorticity carry (GasConfig::sphere). The height
+// field is the dye, so the gas's bands and vortices read as relief.
 //
-// Grid units: lengths in cells, velocities in cells per second. See shared/GasMath.h.
+// Grid units: lengths in cells, velocities in cells per second (on a sphere, cells of latitude).
+// See shared/GasMath.h.
 // Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/HeightSource.h"
+#include "hfx/compute/PolarFilter.h"
 
 #include <glm/vec2.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -24,7 +28,15 @@ struct GasConfig {
     int height = 128;
     /// x always wraps (longitude). WrapU: walls at the top and bottom (poles); Wrap: a torus.
     EdgeMode edges = EdgeMode::WrapU;
-    float viscosity = 0.0f;       ///< cells^2 per second
+    /// The grid is a sphere's longitude-latitude map (the walls of WrapU its poles; a 2:1 map has
+    /// square cells at the equator): lengths are cells of latitude, u is the eastward wind in them
+    /// and moves a point u / m cells of the grid along x, m = (2 height / width) cos(latitude)
+    /// (metricAt), and the projection, the vorticity and the curvature of the wind's frame
+    /// follow the sphere, so an eddy near a pole stays round on the sphere instead of round on
+    /// the map (a planet's polar gas, which a flat grid draws as radial streaks). Splats and held
+    /// vortices keep their shapes in the map's cells. Needs edges WrapU and no viscosity.
+    bool sphere = false;
+    float viscosity = 0.0f;       ///< cells^2 per second; flat grids only
     int viscosityIterations = 20;
     int pressureIterations = 40;
     float vorticity = 0.0f;       ///< confinement strength epsilon
@@ -101,6 +113,14 @@ struct GasVortex {
     float rate = 1.0f;     ///< per second, >= 0
 };
 
+/// GasMath.h's metric table for `config`'s grid: m = (2H / W) sin(pi y / H) at y = t / 2 for t in
+/// [0, 2H], then tan(latitude) / R at the same points (0 at the poles); 1s and 0s for a flat grid.
+std::vector<float> gasMetricTable(const GasConfig& config);
+
+/// The dye's polar filter on a sphere (GasField::step): each row's box along x, 1 / m - 1 cells
+/// (none up to 60 degrees of latitude, 4.8 cells at 80); none on a flat grid (empty).
+std::vector<float> gasPolarWidths(const GasConfig& config);
+
 class GasField final : public HeightSource {
 public:
     GasField(ClContext& cl, const GasConfig& config);
@@ -119,15 +139,21 @@ public:
     /// The same into `winds` (as many as `points`), allocating nothing once its buffers hold
     /// that many points: what a caller does every frame.
     void velocityAt(std::span<const glm::vec2> points, std::span<glm::vec2> winds);
-    /// Runs only the pressure projection (tests, and after setting a velocity by hand).
+    /// Runs only the pressure projection (tests, and after setting a velocity by hand). Between
+    /// walls, each face row's mean v is taken away first: the projection's zonal part, exactly.
     void project();
+    /// A cell of longitude's width in cells of latitude at texcoord v (GasMath.h's m, linear
+    /// between half rows as the advection reads it): a point moves u / metricAt(v) cells along
+    /// x a second. 1 everywhere on a flat grid.
+    float metricAt(float v) const;
 
     /// Host access to the state (row-major W x H; see GasMath.h for where each lives).
     void setState(const std::vector<float>& u, const std::vector<float>& v, const std::vector<float>& dye);
     void readState(std::vector<float>& u, std::vector<float>& v, std::vector<float>& dye);
     /// The heights buffer() holds (row 0 at v = 0), waiting for the queue.
     std::vector<float> readHeights();
-    /// The divergence the projection's Laplacian matches: outflow through each cell's faces.
+    /// The divergence the projection's Laplacian matches: outflow through each cell's faces, over
+    /// its area (the sphere's when GasConfig::sphere).
     std::vector<float> readDivergence();
 
     const cl::Buffer& buffer() const override { return height_; }
@@ -135,6 +161,10 @@ public:
     /// for passes that move with the gas (FlowDetail).
     const cl::Buffer& velocityX() const { return u_; }
     const cl::Buffer& velocityY() const { return v_; }
+    /// The grid's metric table (GasMath.h): m at every half row, then tan(latitude) / R.
+    const cl::Buffer& metric() const { return metric_; }
+    /// The same table on the host.
+    const std::vector<float>& metricTable() const { return metricTable_; }
     int width() const override { return config_.width; }
     int height() const override { return config_.height; }
     EdgeMode edges() const override { return config_.edges; }
@@ -155,12 +185,16 @@ private:
     std::vector<GasSplat> splats_;
     std::vector<GasVortex> vortices_;
     std::vector<float> bands_;
+    std::vector<float> metricTable_;
+    std::unique_ptr<PolarFilter> polar_; ///< the dye's, on a sphere
     cl::Buffer samplePoints_, sampleWinds_; ///< velocityAt's, sampleCapacity_ points each
     size_t sampleCapacity_ = 0;
     std::vector<float> sampleCells_; ///< velocityAt's points in cells, uploaded from here
-    cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_;
-    cl::Kernel advect_, maccormack_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_, curlKernel_, confine_,
-        diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_, relaxDye_;
+    cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_,
+        metric_, gridMetric_; ///< the grid's metric, and a flat one's (1s) for the vorticity confinement
+    cl::Kernel advect_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
+        curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,
+        relaxDye_;
 };
 
 } // namespace hfx

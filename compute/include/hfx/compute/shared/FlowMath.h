@@ -29,26 +29,28 @@
    Lengths in gas cells; x wraps over W (longitude), y is walled (the gas's poles). */
 
 /* The flow's strain rate at the centre of cell (i, j): sqrt((du/dx - dv/dy)^2 + (du/dy + dv/dx)^2),
-   per second, from central differences of the velocity one cell apart. */
-HFX_FN_INLINE float hfx_flow_strain(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v, int W, int H,
-                                    int i, int j) {
-    float x = (float)i + 0.5f, y = (float)j + 0.5f;
-    float ux = hfx_gas_sample(u, W, H, x + 0.5f, y, 0.0f, 0.5f, 1) - hfx_gas_sample(u, W, H, x - 0.5f, y, 0.0f, 0.5f, 1);
+   per second, from central differences of the velocity one cell apart (along x over the row's
+   width m: GasMath.h's metric). */
+HFX_FN_INLINE float hfx_flow_strain(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
+                                    HFX_GLOBAL const float* metric, int W, int H, int i, int j) {
+    float x = (float)i + 0.5f, y = (float)j + 0.5f, m = metric[2 * j + 1];
+    float ux = (hfx_gas_sample(u, W, H, x + 0.5f, y, 0.0f, 0.5f, 1) -
+                hfx_gas_sample(u, W, H, x - 0.5f, y, 0.0f, 0.5f, 1)) / m;
     float vy = hfx_gas_sample(v, W, H, x, y + 0.5f, 0.5f, 0.0f, 1) - hfx_gas_sample(v, W, H, x, y - 0.5f, 0.5f, 0.0f, 1);
     float uy = 0.5f * (hfx_gas_sample(u, W, H, x, y + 1.0f, 0.0f, 0.5f, 1) -
                        hfx_gas_sample(u, W, H, x, y - 1.0f, 0.0f, 0.5f, 1));
     float vx = 0.5f * (hfx_gas_sample(v, W, H, x + 1.0f, y, 0.5f, 0.0f, 1) -
-                       hfx_gas_sample(v, W, H, x - 1.0f, y, 0.5f, 0.0f, 1));
+                       hfx_gas_sample(v, W, H, x - 1.0f, y, 0.5f, 0.0f, 1)) / m;
     float a = ux - vy, b = uy + vx;
     return HFX_SQRT(a * a + b * b);
 }
 
 /* One displacement plane (W x H, at the cell centres) advected dt: its new value at cell (i, j). */
 HFX_FN_INLINE float hfx_flow_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
-                                    HFX_GLOBAL const float* d, int W, int H, int i, int j, float dt,
-                                    int axis) {
+                                    HFX_GLOBAL const float* metric, HFX_GLOBAL const float* d, int W,
+                                    int H, int i, int j, float dt, int axis) {
     float px, py;
-    hfx_gas_departure(u, v, W, H, i, j, 0.5f, 0.5f, dt, 1, &px, &py);
+    hfx_gas_departure(u, v, metric, W, H, i, j, 0.5f, 0.5f, dt, 1, &px, &py);
     float moved = axis == 0 ? px - ((float)i + 0.5f) : py - ((float)j + 0.5f);
     return hfx_gas_sample(d, W, H, px, py, 0.5f, 0.5f, 1) + moved;
 }
@@ -62,6 +64,25 @@ HFX_FN float hfx_flow_noise(float x, float y, float z, int W, float frequency, f
                             float finest) {
     return hfx_fractal_limited(HFX_NOISE_PERLIN, HFX_FRACTAL_FBM, x * frequency, y * frequency * aspect, z, octaves,
                                2.0f, 0.5f, (float)W * frequency, 256.0f, finest) -
+           0.5f;
+}
+
+/* The same noise for a gas on a sphere's map (GasConfig::sphere), read at the sphere's point
+   under (x, y): longitude 2 pi x / W, latitude pi (y / H - 1/2), on a sphere of W frequency / 2 pi
+   lattice cells' radius (frequency lattice cells per cell of the equator, as hfx_flow_noise has
+   along x), its polar axis scaled by `aspect` (along the bands near the equator, the features
+   `aspect` times longer, as hfx_flow_noise's; isotropic at a pole, where the axis points out of
+   the surface), the generation z moving the point through Perlin's 256-cell lattice. Round on
+   the sphere, so its features do not narrow into wedges towards a pole, and seamless across
+   the longitude's wrap and at the poles. */
+HFX_FN float hfx_flow_noise_sphere(float x, float y, float z, int W, int H, float frequency, float aspect,
+                                   int octaves, float finest) {
+    float longitude = HFX_TWO_PI * x / (float)W, latitude = 0.5f * HFX_TWO_PI * (y / (float)H - 0.5f);
+    float r = (float)W * frequency / HFX_TWO_PI, c = HFX_COS(latitude);
+    float px = r * c * HFX_COS(longitude) + z, py = r * HFX_SIN(latitude) * aspect + 0.618034f * z;
+    float pz = r * c * HFX_SIN(longitude);
+    return hfx_fractal_octaves(HFX_NOISE_PERLIN, HFX_FRACTAL_FBM, px, py, pz, 1, octaves, 2.0f, 0.5f, 0.0f, 0.0f,
+                               finest) -
            0.5f;
 }
 
@@ -110,6 +131,7 @@ typedef struct HfxFlowParams {
     int octaves;
     float w0, w1, z0, z1;
     float warp, texels;
+    int sphere; /* the gas is a sphere's map: hfx_flow_noise_sphere */
 } HfxFlowParams;
 
 /* The finest octave layer k's noise can show at the centre of cell (i, j), fractional: its lattice
@@ -145,8 +167,13 @@ HFX_FN void hfx_flow_layer(HFX_GLOBAL const float* planes, int W, int H, float x
     float cx = x + hfx_gas_sample(planes + 2 * k * n, W, H, x, y, 0.5f, 0.5f, 1);
     float cy = y + hfx_gas_sample(planes + (2 * k + 1) * n, W, H, x, y, 0.5f, 0.5f, 1);
     float finest = hfx_gas_sample(planes + (HFX_FLOW_FINEST + k) * n, W, H, x, y, 0.5f, 0.5f, 1);
-    *along = hfx_flow_noise(cx, cy, z, W, p.frequency, p.aspect, p.octaves, finest);
-    if (across) *across = hfx_flow_noise(cx, cy, z + 101.0f, W, p.frequency, p.aspect, p.octaves, finest);
+    if (p.sphere) { /* uniform */
+        *along = hfx_flow_noise_sphere(cx, cy, z, W, H, p.frequency, p.aspect, p.octaves, finest);
+        if (across) *across = hfx_flow_noise_sphere(cx, cy, z + 101.0f, W, H, p.frequency, p.aspect, p.octaves, finest);
+    } else {
+        *along = hfx_flow_noise(cx, cy, z, W, p.frequency, p.aspect, p.octaves, finest);
+        if (across) *across = hfx_flow_noise(cx, cy, z + 101.0f, W, p.frequency, p.aspect, p.octaves, finest);
+    }
 }
 
 /* A detailed height at the point (x, y) (cells) of the fine grid: the gas's heights

@@ -171,8 +171,10 @@ HFX_FN float hfx_noise_octave(int kind, float x, float y, float t, float periodX
    Band-limited: octave i counts with weight clamp(1 + finest - i, 0, 1), so those past `finest`
    (an octave's index, fractional) fade out over one octave and are not evaluated, while `total`
    stays every octave's: the coarse octaves keep their contrast where the fine ones go (Musgrave's
-   fractional octaves, for a point whose lattice is squeezed below what its texels can show). */
-HFX_FN float hfx_fractal_limited(int kind, int fractal, float x, float y, float t, int octaves,
+   fractional octaves, for a point whose lattice is squeezed below what its texels can show).
+   t is the noise's third axis: with solid 0, a time each octave reads as it is (shifted); with
+   solid 1, a third axis of space, scaled and shifted with x and y (a solid noise, periods 0). */
+HFX_FN float hfx_fractal_octaves(int kind, int fractal, float x, float y, float t, int solid, int octaves,
                                  float lacunarity, float gain, float periodX, float periodY, float finest) {
     /* The octaves with a weight, i < finest + 1, run as a loop of their own: no branch in it. */
     int shown = finest + 1.0f >= (float)octaves ? octaves : (finest + 1.0f > 0.0f ? (int)HFX_CEIL(finest + 1.0f) : 0);
@@ -180,8 +182,8 @@ HFX_FN float hfx_fractal_limited(int kind, int fractal, float x, float y, float 
     for (int i = 0; i < shown; ++i) {
         float weight = HFX_MIN(1.0f + finest - (float)i, 1.0f);
         float offset = 17.0f * (float)i;
-        float n = hfx_noise_octave(kind, x * scale + offset, y * scale + offset, t + 3.7f * (float)i,
-                                   periodX * scale, periodY * scale);
+        float n = hfx_noise_octave(kind, x * scale + offset, y * scale + offset,
+                                   solid ? t * scale + offset : t + 3.7f * (float)i, periodX * scale, periodY * scale);
         if (fractal == HFX_FRACTAL_RIDGED) {
             float r = 1.0f - HFX_FABS(n);
             n = r * r;
@@ -199,6 +201,12 @@ HFX_FN float hfx_fractal_limited(int kind, int fractal, float x, float y, float 
     }
     float h = fractal == HFX_FRACTAL_FBM ? 0.5f + 0.5f * sum / total : sum / total;
     return h < 0.0f ? 0.0f : (h > 1.0f ? 1.0f : h);
+}
+
+/* hfx_fractal_octaves over a plane, t its time. */
+HFX_FN float hfx_fractal_limited(int kind, int fractal, float x, float y, float t, int octaves,
+                                 float lacunarity, float gain, float periodX, float periodY, float finest) {
+    return hfx_fractal_octaves(kind, fractal, x, y, t, 0, octaves, lacunarity, gain, periodX, periodY, finest);
 }
 
 /* Every octave at full weight. */
