@@ -60,7 +60,7 @@ if wanted planet; then
     # of its gas (the festoons and filaments of its advected detail).
     render planet 150 --detail-scale 4 --camera-distance 1.8 --time-scale 3 && mv docs/gallery/planet.jpg docs/gallery/planet-closeup.jpg
     render planet 120 --detail-scale 4 --rings 1 --camera-distance 5 && mv docs/gallery/planet.jpg docs/gallery/planet-rings.jpg
-    # Its north polar cap from 70 degrees up (the polar filter: no starburst where the meridians meet).
+    # Its north polar cap from 70 degrees up (its gas on the sphere: no starburst where the meridians meet).
     render planet 120 --detail-scale 4 --camera-elevation 70 --camera-distance 2.2 && mv docs/gallery/planet.jpg docs/gallery/planet-pole.jpg
     render planet 120 --detail-scale 4
 fi
