@@ -47,14 +47,7 @@ __kernel void turn(__global const float* restrict u, __global const float* restr
 __kernel void remove_row_mean(__global float* v, int W, int H) {
     int j = get_global_id(0);
     if (j >= H || j == 0) return;
-    float sum = 0.0f, carry = 0.0f;
-    for (int i = 0; i < W; ++i) {
-        float y = v[j * W + i] - carry;
-        float t = sum + y;
-        carry = (t - sum) - y;
-        sum = t;
-    }
-    float mean = sum / (float)W;
+    float mean = hfx_gas_row_sum(v + j * W, W) / (float)W;
     for (int i = 0; i < W; ++i) v[j * W + i] -= mean;
 }
 
@@ -257,14 +250,7 @@ __kernel void dye_height(__global const float* dye, __global float* height, int 
 __kernel void row_sums(__global const float* f, __global float* sums, int W, int H) {
     int j = get_global_id(0);
     if (j >= H) return;
-    float sum = 0.0f, carry = 0.0f;
-    for (int i = 0; i < W; ++i) {
-        float y = f[j * W + i] - carry;
-        float t = sum + y;
-        carry = (t - sum) - y;
-        sum = t;
-    }
-    sums[j] = sum;
+    sums[j] = hfx_gas_row_sum(f + j * W, W);
 }
 
 __kernel void mass_factor(__global const float* before, __global const float* after,

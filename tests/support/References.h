@@ -88,16 +88,8 @@ struct GasReference {
                 }
         }
         if (c.sphere) {
-            std::vector<float> ut(u.size()), vt(v.size()), zonal(size_t(H()), 0.0f);
-            for (int j = 0; j < H(); ++j) { // gas.cl's row_sums (Kahan's)
-                float sum = 0.0f, carry = 0.0f;
-                for (int i = 0; i < W(); ++i) {
-                    const float y = u[j * W() + i] - carry, t = sum + y;
-                    carry = (t - sum) - y;
-                    sum = t;
-                }
-                zonal[size_t(j)] = sum;
-            }
+            std::vector<float> ut(u.size()), vt(v.size()), zonal(static_cast<size_t>(H()));
+            for (int j = 0; j < H(); ++j) zonal[size_t(j)] = hfx_gas_row_sum(u.data() + j * W(), W());
             for (int j = 0; j < H(); ++j)
                 for (int i = 0; i < W(); ++i)
                     hfx_gas_turn(u.data(), v.data(), metric.data(), zonal.data(), W(), H(), i, j, dt, walls(),

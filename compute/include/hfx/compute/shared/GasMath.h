@@ -63,6 +63,18 @@ HFX_FN_INLINE void hfx_gas_bounds(HFX_GLOBAL const float* f, int W, int H, float
     *hi = HFX_MAX(HFX_MAX(a, b), HFX_MAX(c, d));
 }
 
+/* The sum of a row's n values, compensated (Kahan): the dye's mass and a row's mean wind. */
+HFX_FN_INLINE float hfx_gas_row_sum(HFX_GLOBAL const float* row, int n) {
+    float sum = 0.0f, carry = 0.0f;
+    for (int i = 0; i < n; ++i) {
+        float y = row[i] - carry;
+        float t = sum + y;
+        carry = (t - sum) - y;
+        sum = t;
+    }
+    return sum;
+}
+
 /* The metric m (a cell of longitude in cells of latitude) at row height y, linear between the
    table's half-row points, y held to the rows' centres (at a pole m is 0). */
 HFX_FN_INLINE float hfx_gas_metric_at(HFX_GLOBAL const float* metric, int H, float y) {
