@@ -327,6 +327,52 @@ TEST_F(Flow, ALongShearsDetailHoldsNoTexelSizedRipples) {
     EXPECT_LT(second / first, 0.4) << "ripples a texel apart across the shear";
 }
 
+TEST(FlowNoise, OnASphereTheNoiseIsRoundOnThePlanetAndSeamless) {
+    // hfx_flow_noise_sphere on a 128x64 map: the same around the longitude's wrap; at the
+    // equator as rough along x and y as the map's noise (its slopes per cell within 10%); at
+    // 70 degrees its slope per cell of the map along x is cos(70) of the equator's, the same per
+    // unit of the sphere (measured 0.333 against 0.342), where the map's noise keeps its own and
+    // is drawn as wedges.
+    constexpr int w = 128, h = 64;
+    constexpr float z = 7.3f, f = 0.5f, aspect = 2.0f, e = 0.05f;
+    for (const float y : {9.3f, 40.1f})
+        for (const float x : {0.2f, 77.7f})
+            EXPECT_NEAR(hfx_flow_noise_sphere(x, y, z, w, h, f, aspect, 4, 4.0f),
+                        hfx_flow_noise_sphere(x + w, y, z, w, h, f, aspect, 4, 4.0f), 1e-5);
+    // The mean |slope| per cell along x and y over a band of rows about `row`.
+    auto slopes = [&](bool sphere, float row) {
+        double sx = 0.0, sy = 0.0;
+        int n = 0;
+        auto noise = [&](float x, float y) {
+            return sphere ? hfx_flow_noise_sphere(x, y, z, w, h, f, aspect, 4, 4.0f)
+                          : hfx_flow_noise(x, y, z, w, f, aspect, 4, 4.0f);
+        };
+        for (int j = 0; j < 40; ++j)
+            for (int i = 0; i < 1280; ++i) {
+                const float x = i * 0.1f, y = row - 1.0f + j * 0.05f, at = noise(x, y);
+                sx += std::abs(noise(x + e, y) - at) / e;
+                sy += std::abs(noise(x, y + e) - at) / e;
+                ++n;
+            }
+        return std::pair{sx / n, sy / n};
+    };
+    const auto [ex, ey] = slopes(true, 32.0f);
+    const auto [mx, my] = slopes(false, 32.0f);
+    const float polar = 56.9f; // 70 degrees north
+    const auto [px, py] = slopes(true, polar);
+    const auto [qx, qy] = slopes(false, polar);
+    const double c = std::cos(70.0 * std::numbers::pi / 180.0);
+    std::printf("[sphere noise] slopes per cell along x, y: equator %.3f, %.3f (the map's %.3f, %.3f); 70 degrees "
+                "%.3f, %.3f (the map's %.3f, %.3f)\n",
+                ex, ey, mx, my, px, py, qx, qy);
+    EXPECT_NEAR(ex / mx, 1.0, 0.1);
+    EXPECT_NEAR(ey / my, 1.0, 0.1);
+    EXPECT_NEAR(px / ex, c, 0.1);
+    EXPECT_NEAR(qx / mx, 1.0, 0.1) << "the map's noise keeps its cells (the test's premise)";
+    // Along y the aspect fades as the polar axis leaves the surface: sqrt(c^2 a^2 + s^2) / a.
+    EXPECT_NEAR(py / ey, std::sqrt(c * c * aspect * aspect + 1.0 - c * c) / aspect, 0.1);
+}
+
 TEST_F(Flow, BadConfigurationsAreRefusedByName) {
     GasField gas(cl(), gasConfig());
     auto refuses = [&](FlowDetailConfig c, const char* field) {

@@ -4,7 +4,7 @@
 // pressure projection by Jacobi iterations, advected dye, splats of force and dye, vortices the
 // gas is held towards, and zonal jets for banded planets. x is periodic (longitude wraps); y is
 // periodic or bounded by walls. The grid is flat, or a sphere's longitude-latitude map, whose
-// metric the advection, the projection and the vorticity carry (GasConfig::sphere). The height
+// metric the advection and the projection carry (GasConfig::sphere). The height
 // field is the dye, so the gas's bands and vortices read as relief.
 //
 // Grid units: lengths in cells, velocities in cells per second (on a sphere, cells of latitude).
@@ -31,10 +31,11 @@ struct GasConfig {
     /// The grid is a sphere's longitude-latitude map (the walls of WrapU its poles; a 2:1 map has
     /// square cells at the equator): lengths are cells of latitude, u is the eastward wind in them
     /// and moves a point u / m cells of the grid along x, m = (2 height / width) cos(latitude)
-    /// (metricAt), and the projection, the vorticity and the curvature of the wind's frame
-    /// follow the sphere, so an eddy near a pole stays round on the sphere instead of round on
-    /// the map (a planet's polar gas, which a flat grid draws as radial streaks). Splats and held
-    /// vortices keep their shapes in the map's cells. Needs edges WrapU and no viscosity.
+    /// (metricAt), and the projection and the curvature of the wind's frame follow the sphere,
+    /// so an eddy near a pole stays round on the sphere instead of round on the map (a planet's
+    /// polar gas, which a flat grid draws as radial streaks); the polar rows' dye is filtered to
+    /// the sphere's resolution (gasPolarWidths). The vorticity confinement, the splats and the
+    /// held vortices' ovals keep the map's cells. Needs edges WrapU and no viscosity.
     bool sphere = false;
     float viscosity = 0.0f;       ///< cells^2 per second; flat grids only
     int viscosityIterations = 20;
