@@ -133,14 +133,14 @@ public:
     }
 
     std::string cameraLabel() const override {
-        const glm::vec3 look = glm::normalize(camera_.target - camera_.position);
+        const glm::vec3 view = glm::normalize(camera_.target - camera_.position);
         float azimuth = glm::degrees(lookAzimuth());
         azimuth = azimuth < -179.95f ? azimuth + 360.0f : azimuth + 0.0f; // (-180, 180], no -0
         char label[160];
         std::snprintf(label, sizeof label,
                       "azimuth %.1f degrees (looking along -z at 0), %.1f below the horizon, %.0f m above the sea "
                       "(--camera-azimuth, --camera-pitch)",
-                      double(azimuth), double(glm::degrees(std::asin(-look.y))),
+                      double(azimuth), double(glm::degrees(std::asin(-view.y))),
                       double(camera_.position.y));
         return label;
     }

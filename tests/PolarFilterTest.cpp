@@ -127,6 +127,16 @@ TEST_F(Polar, GivenRowWidthsTheKernelsMatchTheHostFilter) {
     EXPECT_LT(largest, 2e-5);
     for (int x = 0; x < W; ++x) ASSERT_EQ(out[size_t(H / 2) * W + x], field[size_t(H / 2) * W + x]);
     EXPECT_NE(out[size_t(W) + 5], field[size_t(W) + 5]) << "the second row (a box of 39 texels) came through";
+    // Into a buffer of the caller's (as a gas filters its dye): the same values; not into the field.
+    cl::Buffer in(cl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, field.size() * sizeof(float), field.data());
+    cl::Buffer mine(cl().context(), CL_MEM_READ_WRITE, field.size() * sizeof(float));
+    polar.run(in, mine);
+    std::vector<float> into(field.size());
+    cl().queue().enqueueReadBuffer(mine, CL_TRUE, 0, into.size() * sizeof(float), into.data());
+    EXPECT_EQ(into, out);
+    EXPECT_NE(messageOf([&] { polar.run(in, in); }).find("out is the field it reads"), std::string::npos);
+    const cl::Buffer small(cl().context(), CL_MEM_READ_WRITE, 16 * sizeof(float));
+    EXPECT_NE(messageOf([&] { polar.run(in, small); }).find("PolarFilter::run: out holds 64 bytes"), std::string::npos);
     widths[3] = -1.0f;
     EXPECT_NE(messageOf([&] { PolarFilter(cl(), W, H, widths); }).find("row 3's width"), std::string::npos);
     widths.pop_back();

@@ -30,7 +30,7 @@ size_t BoundsPyramid::totalTexels() const {
 
 void BoundsPyramid::build(const cl::Buffer& height) {
     requireBufferBytes(height, sizeof(float) * size_t(width_) * height_, "BoundsPyramid::build: the height buffer",
-                       str(width_, "x", height_, " floats"));
+                       [&] { return str(width_, "x", height_, " floats"); });
     clGuard("BoundsPyramid::build", [&] {
         cells_.setArg(0, height);
         cells_.setArg(1, buffer_); // level 0 starts at offset 0

@@ -23,11 +23,11 @@ void rethrowCl(const char* what, const cl::Error& e) {
 }
 } // namespace detail
 
-void requireBufferBytes(const cl::Buffer& buffer, std::size_t needed, const std::string& what,
-                        const std::string& content) {
-    const std::size_t bytes = buffer.getInfo<CL_MEM_SIZE>();
-    if (bytes < needed) throw Error(str(what, " holds ", bytes, " bytes, ", content, " need ", needed));
+namespace detail {
+void throwBufferTooSmall(const char* what, std::size_t bytes, const std::string& content, std::size_t needed) {
+    throw Error(str(what, " holds ", bytes, " bytes, ", content, " need ", needed));
 }
+} // namespace detail
 
 std::string clErrorName(cl_int code) {
     switch (code) {

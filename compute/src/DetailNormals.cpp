@@ -32,7 +32,7 @@ DetailNormals::DetailNormals(ClContext& cl, const SobelConfig& sobel, const std:
 
 void DetailNormals::apply(const cl::Buffer& normals) {
     requireBufferBytes(normals, size_t(count_) * sizeof(cl_float4), "DetailNormals::apply: the normals buffer",
-                       str(count_, " float4 texels"));
+                       [&] { return str(count_, " float4 texels"); });
     clGuard("DetailNormals::apply", [&] {
         kernel_.setArg(0, normals);
         kernel_.setArg(1, baseNormals_.output());

@@ -266,11 +266,7 @@ void GasField::step(double dtSeconds) {
         cl::CommandQueue& q = cl_.queue();
         const size_t bytes = sizeof(float) * size_t(W) * H;
         auto rowSums = [&](const cl::Buffer& field, const cl::Buffer& sums) {
-            rowSums_.setArg(0, field);
-            rowSums_.setArg(1, sums);
-            rowSums_.setArg(2, W);
-            rowSums_.setArg(3, H);
-            cl_.enqueue(rowSums_, cl::NDRange(size_t(H)));
+            run(rowSums_, {arg(field), arg(sums), arg(W), arg(H)}, cl::NDRange(size_t(H)));
         };
         for (const GasSplat& s : splats_) {
             const float x = s.u * W, y = s.v * H, r = s.radius * W;
@@ -352,12 +348,7 @@ void GasField::step(double dtSeconds) {
         std::swap(work_[0], dye_);
         if (config_.conserveDye) {
             rowSums(dye_, sumsAfter_);
-            massFactor_.setArg(0, sumsBefore_);
-            massFactor_.setArg(1, sumsAfter_);
-            massFactor_.setArg(2, metric_);
-            massFactor_.setArg(3, H);
-            massFactor_.setArg(4, factor_);
-            cl_.enqueue(massFactor_, cl::NDRange(1));
+            run(massFactor_, {arg(sumsBefore_), arg(sumsAfter_), arg(metric_), arg(H), arg(factor_)}, cl::NDRange(1));
             run(scale_, {arg(dye_), arg(factor_), arg(W), arg(H)});
         }
         if (polar_) {
@@ -366,8 +357,8 @@ void GasField::step(double dtSeconds) {
             // the dye into stripes a few cells of longitude apart, far finer than a cell of
             // latitude (drawn as radial fur about the pole's cap). As the models of the atmosphere
             // on such grids filter their polar rows (Arakawa & Lamb 1977).
-            polar_->run(dye_);
-            q.enqueueCopyBuffer(polar_->output(), dye_, 0, 0, bytes);
+            polar_->run(dye_, work_[0]);
+            std::swap(work_[0], dye_);
         }
         if (config_.dyeRate > 0.0f) {
             const float share = float(1.0 - std::exp(-double(config_.dyeRate) * dtSeconds));
@@ -386,13 +377,7 @@ void GasField::project() {
         q.enqueueFillBuffer(p_, 0.0f, 0, sizeof(float) * size_t(W) * H);
         const cl::NDRange sweep(W % 4 == 0 ? W / 4 : W, H);
         for (int it = 0; it < config_.pressureIterations; ++it) {
-            pressure_.setArg(0, p_);
-            pressure_.setArg(1, div_);
-            pressure_.setArg(2, metric_);
-            pressure_.setArg(3, p2_);
-            pressure_.setArg(4, W);
-            pressure_.setArg(5, H);
-            cl_.enqueue(pressure_, sweep);
+            run(pressure_, {arg(p_), arg(div_), arg(metric_), arg(p2_), arg(W), arg(H)}, sweep);
             std::swap(p_, p2_);
         }
         run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});

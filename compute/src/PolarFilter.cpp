@@ -76,28 +76,28 @@ PolarFilter::PolarFilter(ClContext& cl, int width, int height, const std::vector
         prefix_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(width + 1) * height);
         widths_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * widths.size(),
                              const_cast<float*>(widths.data())); // CL_MEM_COPY_HOST_PTR only reads it
-        output_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(width) * height);
         sums_ = cl.kernel("polar.cl", "polar_sums");
         filter_ = cl.kernel("polar.cl", "polar_filter");
     });
 }
 
 void PolarFilter::run(const cl::Buffer& field) {
-    requireBufferBytes(field, sizeof(float) * size_t(width_) * height_, "PolarFilter::run: field",
-                       str(width_, "x", height_, " floats"));
+    if (!output_())
+        clGuard("creating the polar filter's output", [&] {
+            output_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(width_) * height_);
+        });
+    run(field, output_);
+}
+
+void PolarFilter::run(const cl::Buffer& field, const cl::Buffer& out) {
+    const auto floats = [&] { return str(width_, "x", height_, " floats"); };
+    requireBufferBytes(field, sizeof(float) * size_t(width_) * height_, "PolarFilter::run: field", floats);
+    requireBufferBytes(out, sizeof(float) * size_t(width_) * height_, "PolarFilter::run: out", floats);
+    if (out() == field()) throw Error("PolarFilter::run: out is the field it reads; give it another buffer");
     clGuard("PolarFilter::run", [&] {
-        sums_.setArg(0, field);
-        sums_.setArg(1, prefix_);
-        sums_.setArg(2, widths_);
-        sums_.setArg(3, width_);
-        sums_.setArg(4, height_);
+        setArgs(sums_, field, prefix_, widths_, width_, height_);
         cl_.enqueue(sums_, cl::NDRange(size_t(height_)));
-        filter_.setArg(0, field);
-        filter_.setArg(1, prefix_);
-        filter_.setArg(2, widths_);
-        filter_.setArg(3, output_);
-        filter_.setArg(4, width_);
-        filter_.setArg(5, height_);
+        setArgs(filter_, field, prefix_, widths_, out, width_, height_);
         cl_.enqueue(filter_, cl::NDRange(size_t(width_), size_t(height_)));
     });
 }

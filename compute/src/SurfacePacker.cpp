@@ -20,7 +20,7 @@ SurfacePacker::SurfacePacker(ClContext& cl, int width, int height, SurfaceFormat
 
 void SurfacePacker::run(const cl::Buffer& normalHeight) {
     requireBufferBytes(normalHeight, size_t(count_) * sizeof(cl_float4), "SurfacePacker::run: input",
-                       str(count_, " float4 texels"));
+                       [&] { return str(count_, " float4 texels"); });
     clGuard("SurfacePacker::run", [&] {
         kernel_.setArg(0, normalHeight);
         kernel_.setArg(1, output_);

@@ -153,12 +153,7 @@ void BM_GasPressureKernel(benchmark::State& state) {
     };
     cl::Buffer p = buffer(p0), d = buffer(div), out = buffer(p0), metric = buffer(gasMetricTable({.width = n, .height = n}));
     cl::Kernel kernel = cl().kernel("gas.cl", perItem == 4 ? "pressure4" : "pressure", edgeOptions(EdgeMode::WrapU));
-    kernel.setArg(0, p);
-    kernel.setArg(1, d);
-    kernel.setArg(2, metric);
-    kernel.setArg(3, out);
-    kernel.setArg(4, n);
-    kernel.setArg(5, n);
+    setArgs(kernel, p, d, metric, out, n, n);
     measure(state, [&] { cl().enqueue(kernel, cl::NDRange(n / perItem, n)); },
             12.0 * n * n, nullptr);
 }

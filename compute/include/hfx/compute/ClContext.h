@@ -136,10 +136,27 @@ private:
 /// EdgeMode becomes kernel text (read through hfx_edge_index, compute/shared/EdgeMath.h).
 std::string edgeOptions(EdgeMode edges);
 
+namespace detail {
+[[noreturn]] void throwBufferTooSmall(const char* what, std::size_t bytes, const std::string& content,
+                                      std::size_t needed);
+}
+
 /// Throws hfx::Error "<what> holds N bytes, <content> need M" where `buffer`, an input a kernel
-/// will read, is smaller than `needed` bytes (`content` says what fills them: "512x512 floats").
-void requireBufferBytes(const cl::Buffer& buffer, std::size_t needed, const std::string& what,
-                        const std::string& content);
+/// will read, is smaller than `needed` bytes. `content()` says what fills them ("512x512 floats")
+/// and is called only then: a kernel's every run checks its input, and words nothing unless it
+/// fails.
+template <typename Content>
+void requireBufferBytes(const cl::Buffer& buffer, std::size_t needed, const char* what, Content&& content) {
+    const std::size_t bytes = buffer.getInfo<CL_MEM_SIZE>();
+    if (bytes < needed) detail::throwBufferTooSmall(what, bytes, content(), needed);
+}
+
+/// Sets `kernel`'s arguments 0, 1, ... to `args` in order (buffers, scalars, structs by value).
+template <typename... Args>
+void setArgs(cl::Kernel& kernel, const Args&... args) {
+    cl_uint index = 0;
+    (kernel.setArg(index++, args), ...);
+}
 
 /// Runs f, turning an OpenCL exception into hfx::Error that says what was being done.
 template <typename F>

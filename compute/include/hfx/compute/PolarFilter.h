@@ -13,7 +13,7 @@
 // polar caps keep their bands as rings and the coarse spirals about them. A row's mean is kept;
 // rows whose box is at most a texel wide come through bit for bit.
 //
-// Owns its prefix sums, its output and its kernels. Thread: the thread that owns the ClContext.
+// Owns its prefix sums, its output (made when first run into it) and its kernels. Thread: the thread that owns the ClContext.
 
 #include "hfx/compute/ClContext.h"
 
@@ -32,8 +32,12 @@ public:
     /// bad width.
     PolarFilter(ClContext& cl, int width, int height, const std::vector<float>& rowWidths);
 
-    /// Enqueues the filtered `field` (width x height floats) into output(); does not wait.
+    /// Enqueues the filtered `field` (width x height floats) into output() (made on the first
+    /// run); does not wait.
     void run(const cl::Buffer& field);
+    /// The same into `out` (width x height floats, not `field`): a caller that keeps its own
+    /// buffers (a gas filtering its dye each step swaps them) needs no copy of output().
+    void run(const cl::Buffer& field, const cl::Buffer& out);
     const cl::Buffer& output() const { return output_; }
     int width() const { return width_; }
     int height() const { return height_; }
