@@ -33,7 +33,7 @@ TEST_F(ClContextTest, ProgramsAreBuiltOncePerOptions) {
 
 // Every embedded kernel file, in every variant the module builds, compiles without a warning:
 // -Werror turns one into a build failure that names it. (A cold start used to print "N warnings
-// generated": those came from the FFT library's generated kernels, see InverseRealFft.cpp.)
+// generated": those came from the FFT library's generated kernels, see VkFft.cpp.)
 TEST_F(ClContextTest, EveryKernelBuildsWithoutWarnings) {
     // The device honours -Werror: a kernel with an implicit float-to-int conversion fails.
     EXPECT_NE(messageOf([&] {

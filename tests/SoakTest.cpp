@@ -119,7 +119,8 @@ TEST_F(Soak, DecalWallUnderStampStorms) {
 TEST_F(Soak, GasPlanetWithStorms) {
     // The advected detail at one texel per gas cell: its advection and regeneration run every
     // update as at any scale, without the 16x larger surface (and CI minutes) of the device's 4.
-    GasPlanetEffect planet(cl(), {.gas = {.width = 128, .height = 64, .pressureIterations = 20, .vorticity = 0.5f,
+    GasPlanetEffect planet(cl(), {.gas = {.width = 128, .height = 64, .pressure = GasPressure::Jacobi,
+                                          .pressureIterations = 20, .vorticity = 0.5f,
                                           .jetSpeed = 20.0f, .initialBands = 6.0f},
                                   .stormsPerSecond = 6.0f, .detail = {.scale = 1}});
     SplitMix64 random(13);

@@ -230,6 +230,97 @@ __kernel void pressure4(__global const float* p, __global const float* div, __gl
     vstore4((sum - w[3] * vload4(0, div + row + i0)) / (2.0f * w[0] + w[1] + w[2]), 0, dst + row + i0);
 }
 
+/* An exact solve between walls, one zonal wavenumber k a work-item (K = W/2 + 1 of them): `s`
+   holds the rows' transforms of a right-hand side (rows of K complex values, RealFft::Rows) and
+   becomes the solution's. Along y each k's tridiagonal system, rows first..H-1 (GasField.cpp's
+   GasColumns: the pressure's, or the streamfunction's), is eliminated downward with the host's
+   factors (the pivots' reciprocals and Thomas's c', H x K) and solved upward; `rhs` scales each
+   row's value (its area, the inverse transform's 1 / W, a sign) and `lower` is each row's weight
+   of the row below. Rows before `first` are 0, and so is a k whose system is singular (pivot 0:
+   the pressure's zonal means, which have no divergence once each face row's mean v is gone). */
+__kernel void solve_columns(__global float2* s, __global const float* upper, __global const float* pivots,
+                            __global const float* lower, __global const float* rhs, int K, int H, int first) {
+    int k = get_global_id(0);
+    if (k >= K) return;
+    for (int j = 0; j < first; ++j) s[j * K + k] = (float2)(0.0f, 0.0f);
+    if (pivots[first * K + k] == 0.0f) {
+        for (int j = first; j < H; ++j) s[j * K + k] = (float2)(0.0f, 0.0f);
+        return;
+    }
+    float2 x = (float2)(0.0f, 0.0f);
+    for (int j = first; j < H; ++j) {
+        x = (rhs[j] * s[j * K + k] - lower[j] * x) * pivots[j * K + k];
+        s[j * K + k] = x;
+    }
+    for (int j = H - 2; j >= first; --j) {
+        x = s[j * K + k] - upper[j * K + k] * x;
+        s[j * K + k] = x;
+    }
+}
+
+/* GasConfig::rotation's step, one zonal wavenumber k a work-item (K = W/2 + 1): the beta term of
+   the vorticity equation, d zeta / dt = -beta v (beta = df/dy, f = 2 omega sin(latitude)), taken
+   implicitly, trapezoidal: zeta gains -dt beta (v + v') / 2, v' the wind after it, so a Rossby
+   wave keeps its amplitude at any step. At the corners' rows 1..H-1 (v at a corner is its two
+   faces' mean), for the streamfunction psi of the gain (0 on the walls; add_stream's wind, whose
+   vorticity is -L psi / m) this is, per k, the tridiagonal system
+     (L_k + i dt beta sin(2 pi k / W) / 2) psi = m dt beta v_k,
+   L_k as GasField.cpp's gasStreamOperator writes it. `s` holds the rows' transforms of v (rows of
+   K, RealFft::Rows) and becomes psi's; `scratch` (as large) holds the elimination's c'; `scale`
+   is the inverse transform's 1 / W. */
+inline float2 hfx_cmul(float2 a, float2 b) { return (float2)(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
+inline float2 hfx_cdiv(float2 a, float2 b) {
+    return (float2)(a.x * b.x + a.y * b.y, a.y * b.x - a.x * b.y) / (b.x * b.x + b.y * b.y);
+}
+__kernel void beta_columns(__global float2* s, __global float2* scratch, __global const float* metric, int W,
+                           int H, float dt, float omega, float scale) {
+    int k = get_global_id(0), K = W / 2 + 1;
+    if (k >= K) return;
+    float theta = 2.0f * (float)k / (float)W, sk = sinpi((float)k / (float)W);
+    float eigen = 4.0f * sk * sk; /* 2 - 2 cos(theta pi) */
+    float2 corner = (float2)(1.0f + cospi(theta), -sinpi(theta)) * 0.5f; /* a corner's two faces */
+    s[k] = (float2)(0.0f, 0.0f);
+    float2 c = (float2)(0.0f, 0.0f), d = (float2)(0.0f, 0.0f);
+    for (int j = 1; j < H; ++j) {
+        float m = metric[2 * j], below = metric[2 * j - 1], above = metric[2 * j + 1];
+        float beta = 2.0f * omega * sinpi((float)j / (float)H) * 3.14159265f / (float)H;
+        float lower = j > 1 ? below : 0.0f, upper = j < H - 1 ? above : 0.0f;
+        float2 diagonal = (float2)(-(below + above) - eigen / m, 0.5f * dt * beta * sinpi(theta));
+        float2 pivot = diagonal - lower * c;
+        float2 rhs = (m * dt * beta * scale) * hfx_cmul(s[j * K + k], corner);
+        c = hfx_cdiv((float2)(upper, 0.0f), pivot);
+        d = hfx_cdiv(rhs - lower * d, pivot);
+        scratch[j * K + k] = c;
+        s[j * K + k] = d;
+    }
+    for (int j = H - 2; j >= 1; --j) {
+        d = s[j * K + k] - hfx_cmul(scratch[j * K + k], d);
+        s[j * K + k] = d;
+    }
+}
+
+/* Adds the wind of the streamfunction psi at the corners (rows 0 and H, the walls, 0):
+   u = psi(i, j+1) - psi(i, j), m v = psi(i, j) - psi(i+1, j), which has no divergence on the
+   sphere (hfx_gas_divergence) and whose vorticity is -L psi / m (L: GasColumns' operator). */
+__kernel void add_stream(__global float* u, __global float* v, __global const float* psi,
+                         __global const float* metric, int W, int H) {
+    ID
+    u[k] += (j + 1 < H ? psi[(j + 1) * W + i] : 0.0f) - psi[k];
+    if (j > 0) v[k] += (psi[k] - psi[j * W + hfx_gas_step(i + 1, W)]) / metric[2 * j];
+}
+
+/* GasPressure::Exact on a torus (a flat grid), one mode (k, l) a work-item: `s` holds the
+   divergence's 2D transform (rows of K = W/2 + 1, RealFft::Both), and each mode is divided by
+   the 5-point Laplacian's eigenvalue, -(2 - 2 cos(2 pi k / W)) - (2 - 2 cos(2 pi l / H)); the
+   constant's pressure is 0. `scale`, 1 / (W H), is the inverse transform's. */
+__kernel void pressure_modes(__global float2* s, int W, int H, float scale) {
+    int k = get_global_id(0), l = get_global_id(1), K = W / 2 + 1;
+    if (k >= K || l >= H) return;
+    float sx = sinpi((float)k / (float)W), sy = sinpi((float)l / (float)H);
+    float eigen = 4.0f * (sx * sx + sy * sy); /* 2 - 2 cos 2a = 4 sin^2 a, exact for the longest waves */
+    s[l * K + k] = (k == 0 && l == 0) ? (float2)(0.0f, 0.0f) : s[l * K + k] * (-scale / eigen);
+}
+
 /* u -= grad p on every face (along x over the row's m); the wall's v stays 0. */
 __kernel void project(__global float* u, __global float* v, __global const float* p,
                       __global const float* metric, int W, int H) {

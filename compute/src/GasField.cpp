@@ -27,6 +27,11 @@ void GasConfig::validate() const {
                         viscosity));
     if (viscosityIterations < 1 || viscosityIterations > 1000)
         throw Error(str("GasConfig.viscosityIterations must be in [1, 1000], got ", viscosityIterations));
+    if (pressure != GasPressure::Exact && pressure != GasPressure::Jacobi)
+        throw Error(str("GasConfig.pressure must be Exact or Jacobi, got ", int(pressure)));
+    if (pressure == GasPressure::Exact && width % 2 != 0)
+        throw Error(str("GasConfig.pressure Exact needs an even width (its rows' real FFT), got ", width,
+                        ": use GasPressure::Jacobi"));
     if (pressureIterations < 1 || pressureIterations > 10000)
         throw Error(str("GasConfig.pressureIterations must be in [1, 10000], got ", pressureIterations));
     if (!(vorticity >= 0.0f) || !std::isfinite(vorticity))
@@ -38,6 +43,13 @@ void GasConfig::validate() const {
         throw Error(str("GasConfig.jetPolar must be in [0, 16], got ", jetPolar));
     if (!(maxSpeed >= 0.0f) || !std::isfinite(maxSpeed))
         throw Error(str("GasConfig.maxSpeed must be >= 0 and finite, got ", maxSpeed));
+    if (!(rotation >= 0.0f) || !std::isfinite(rotation))
+        throw Error(str("GasConfig.rotation must be >= 0 and finite, got ", rotation));
+    if (rotation > 0.0f && !sphere)
+        throw Error(str("GasConfig.rotation needs sphere (its Coriolis parameter is the latitude's), got ", rotation,
+                        " on a flat grid"));
+    if (rotation > 0.0f && width % 2 != 0)
+        throw Error(str("GasConfig.rotation needs an even width (its rows' real FFT), got ", width));
     if (!(initialBands >= 0.0f) || initialBands > float(height))
         throw Error(str("GasConfig.initialBands must be in [0, height], got ", initialBands));
     if (!(bandVariety >= 0.0f && bandVariety <= 1.0f))
@@ -73,13 +85,64 @@ std::vector<float> gasPolarWidths(const GasConfig& config) {
     return widths;
 }
 
+namespace {
+
+/// An exact solve along y between walls (gas.cl's solve_columns), on the host: for each zonal
+/// wavenumber k (K = W/2 + 1 of them) the system of rows first..H-1
+///   lower[j] x[j-1] + upper[j] x[j+1] + (diagonal[j] - across[j] (2 - 2 cos(2 pi k / W))) x[j] = rhs[j] b[j]
+/// (the x neighbours' sum turned into its eigenvalue), eliminated downward: the pivots'
+/// reciprocals and the upper diagonal over them (Thomas's c'), row-major H x K. Every system
+/// with k > 0 here is diagonally dominant, so the elimination needs no pivoting; a singular k = 0
+/// (the pressure's) is marked by pivots of 0.
+struct GasColumns {
+    std::vector<float> lower, upper, diagonal, across, rhs;
+    int first = 0;
+    bool singularMean = false;
+
+    void factor(int W, std::vector<float>& factors, std::vector<float>& pivots) const {
+        const int H = int(lower.size()), K = W / 2 + 1;
+        factors.assign(size_t(H) * K, 0.0f);
+        pivots.assign(size_t(H) * K, 0.0f);
+        for (int k = singularMean ? 1 : 0; k < K; ++k) {
+            const double half = std::sin(std::numbers::pi * k / W), eigen = 4.0 * half * half; // 2 - 2 cos
+            double before = 0.0; // c'[j-1]
+            for (int j = first; j < H; ++j) {
+                const double pivot = diagonal[size_t(j)] - across[size_t(j)] * eigen - lower[size_t(j)] * before;
+                before = upper[size_t(j)] / pivot;
+                pivots[size_t(j) * K + k] = float(1.0 / pivot);
+                factors[size_t(j) * K + k] = float(before);
+            }
+        }
+    }
+};
+
+/// The pressure's columns: the Jacobi sweep's equation (hfx_gas_pressure_weights), Neumann at the
+/// walls, each row's divergence times its area.
+GasColumns gasPressureColumns(const GasConfig& config, const std::vector<float>& metric) {
+    const int H = config.height;
+    GasColumns c{.lower = std::vector<float>(size_t(H)), .first = 0, .singularMean = true};
+    c.upper = c.diagonal = c.across = c.rhs = c.lower;
+    for (int j = 0; j < H; ++j) {
+        float w[4];
+        hfx_gas_pressure_weights(metric.data(), H, j, 1, w);
+        c.lower[size_t(j)] = w[1];
+        c.upper[size_t(j)] = w[2];
+        c.diagonal[size_t(j)] = -(w[1] + w[2]);
+        c.across[size_t(j)] = w[0];
+        c.rhs[size_t(j)] = w[3] / float(config.width);
+    }
+    return c;
+}
+
+} // namespace
+
 GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(config) {
     config.validate();
     metricTable_ = gasMetricTable(config);
     const size_t n = size_t(config.width) * config.height, bytes = n * sizeof(float);
     clGuard("creating the gas", [&] {
-        for (cl::Buffer* b : {&u_, &v_, &dye_, &work_[0], &work_[1], &work_[2], &work_[3], &p_, &p2_, &div_,
-                              &curl_, &height_})
+        for (cl::Buffer* b : {&u_, &v_, &dye_, &work_[0], &work_[1], &work_[2], &work_[3], &p_, &div_, &curl_,
+                              &height_})
             *b = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, bytes);
         sumsBefore_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
         sumsAfter_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
@@ -103,9 +166,38 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         confine_ = cl::Kernel(program, "confine");
         diffuse_ = cl::Kernel(program, "diffuse");
         divergence_ = cl::Kernel(program, "divergence");
-        // Four cells per work-item where the rows allow it: faster, the same results
-        // (BM_GasPressureKernel, docs/history/tuning.md).
-        pressure_ = cl::Kernel(program, config.width % 4 == 0 ? "pressure4" : "pressure");
+        const bool walls = config.edges == EdgeMode::WrapU;
+        if (config.pressure == GasPressure::Exact || config.rotation > 0.0f) {
+            fft_ = std::make_unique<RealFft>(cl, config.width, config.height,
+                                             walls ? RealFft::Axes::Rows : RealFft::Axes::Both);
+            spectrum_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, fft_->spectrumBytes());
+            if (walls) solveColumns_ = cl::Kernel(program, "solve_columns");
+        }
+        auto upload = [&](const GasColumns& c) {
+            std::vector<float> factors, pivots;
+            c.factor(config.width, factors, pivots);
+            auto buffer = [&](const std::vector<float>& x) {
+                return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * x.size(),
+                                  const_cast<float*>(x.data()));
+            };
+            return Columns{buffer(factors), buffer(pivots), buffer(c.lower), buffer(c.rhs), c.first};
+        };
+        if (config.rotation > 0.0f) {
+            scratch_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, fft_->spectrumBytes());
+            betaColumns_ = cl::Kernel(program, "beta_columns");
+            addStream_ = cl::Kernel(program, "add_stream");
+        }
+        if (config.pressure == GasPressure::Exact) {
+            if (walls)
+                pressureColumns_ = upload(gasPressureColumns(config, metricTable_));
+            else
+                pressure_ = cl::Kernel(program, "pressure_modes");
+        } else {
+            p2_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, bytes);
+            // Four cells per work-item where the rows allow it: faster, the same results
+            // (BM_GasPressureKernel, docs/history/tuning.md).
+            pressure_ = cl::Kernel(program, config.width % 4 == 0 ? "pressure4" : "pressure");
+        }
         project_ = cl::Kernel(program, "project");
         dyeHeight_ = cl::Kernel(program, "dye_height");
         rowSums_ = cl::Kernel(program, "row_sums");
@@ -331,6 +423,14 @@ void GasField::step(double dtSeconds) {
         advectField(v_, 0.5f, 0.0f, dt, true);
         std::swap(work_[0], v_);
         std::swap(work_[3], u_);
+        if (config_.rotation > 0.0f) { // the planet's spin; p_ holds its streamfunction until the projection
+            fft_->forward(v_, spectrum_);
+            run(betaColumns_, {arg(spectrum_), arg(scratch_), arg(metric_), arg(W), arg(H), arg(dt),
+                               arg(config_.rotation), arg(1.0f / float(W))},
+                cl::NDRange(size_t(W / 2 + 1)));
+            fft_->inverse(spectrum_, p_);
+            run(addStream_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
+        }
         if (config_.viscosity > 0.0f) {
             const float a = config_.viscosity * dt;
             for (cl::Buffer* x : {&u_, &v_}) {
@@ -374,6 +474,19 @@ void GasField::project() {
         cl::CommandQueue& q = cl_.queue();
         if (config_.edges == EdgeMode::WrapU) run(removeRowMean_, {arg(v_), arg(W), arg(H)}, cl::NDRange(size_t(H)));
         run(divergence_, {arg(u_), arg(v_), arg(metric_), arg(div_), arg(W), arg(H)});
+        if (config_.pressure == GasPressure::Exact) {
+            if (config_.edges == EdgeMode::WrapU) {
+                solveColumns(div_, pressureColumns_, p_);
+            } else {
+                const int K = W / 2 + 1;
+                fft_->forward(div_, spectrum_);
+                run(pressure_, {arg(spectrum_), arg(W), arg(H), arg(1.0f / (float(W) * float(H)))},
+                    cl::NDRange(size_t(K), size_t(H)));
+                fft_->inverse(spectrum_, p_);
+            }
+            run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
+            return;
+        }
         q.enqueueFillBuffer(p_, 0.0f, 0, sizeof(float) * size_t(W) * H);
         const cl::NDRange sweep(W % 4 == 0 ? W / 4 : W, H);
         for (int it = 0; it < config_.pressureIterations; ++it) {
@@ -382,6 +495,16 @@ void GasField::project() {
         }
         run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
     });
+}
+
+void GasField::solveColumns(const cl::Buffer& field, const Columns& columns, const cl::Buffer& out) {
+    const int K = config_.width / 2 + 1, H = config_.height;
+    fft_->forward(field, spectrum_);
+    run(solveColumns_,
+        {arg(spectrum_), arg(columns.upper), arg(columns.pivots), arg(columns.lower), arg(columns.rhs), arg(K), arg(H),
+         arg(columns.first)},
+        cl::NDRange(size_t(K)));
+    fft_->inverse(spectrum_, out);
 }
 
 float GasField::metricAt(float v) const {

@@ -84,7 +84,7 @@ GasConfig scaledGas(const GasConfig& gas, float gridScale) {
     if (gridScale == 1.0f) return gas;
     GasConfig g = gas;
     const double s = gridScale;
-    g.width = std::max(4, int(std::lround(gas.width * s)));
+    g.width = std::max(4, 2 * int(std::lround(gas.width * s / 2.0))); // even: the exact pressure's FFT
     g.height = std::max(4, int(std::lround(gas.height * s)));
     g.jetSpeed = float(gas.jetSpeed * s);
     g.maxSpeed = float(gas.maxSpeed * s);

@@ -1,7 +1,7 @@
 #pragma once
 // A Navier-Stokes gas (Stam's stable fluids; Harris, GPU Gems ch. 38) on a staggered grid:
 // semi-Lagrangian advection (MacCormack optional), implicit viscosity, vorticity confinement,
-// pressure projection by Jacobi iterations, advected dye, splats of force and dye, vortices the
+// pressure projection (solved exactly by FFT, or by Jacobi sweeps), advected dye, splats of force and dye, vortices the
 // gas is held towards, and zonal jets for banded planets. x is periodic (longitude wraps); y is
 // periodic or bounded by walls. The grid is flat, or a sphere's longitude-latitude map, whose
 // metric the advection and the projection carry (GasConfig::sphere). The height
@@ -13,6 +13,7 @@
 
 #include "hfx/compute/HeightSource.h"
 #include "hfx/compute/PolarFilter.h"
+#include "hfx/compute/RealFft.h"
 
 #include <glm/vec2.hpp>
 
@@ -22,6 +23,17 @@
 #include <vector>
 
 namespace hfx {
+
+/// How the projection finds the pressure.
+enum class GasPressure {
+    /// Solved to rounding in one pass: each row's FFT (VkFFT, RealFft), then along y one
+    /// tridiagonal solve per zonal wavenumber between walls (WrapU), or the columns' FFT too on a
+    /// torus (Wrap); the wind comes out divergence-free at every scale. Needs an even width.
+    Exact,
+    /// pressureIterations Jacobi sweeps from zero: a partial solve, which leaves the large scales'
+    /// divergence (6% of a random wind's on a sphere after 400 sweeps, most of it near the poles).
+    Jacobi,
+};
 
 struct GasConfig {
     int width = 256;
@@ -39,7 +51,8 @@ struct GasConfig {
     bool sphere = false;
     float viscosity = 0.0f;       ///< cells^2 per second; flat grids only
     int viscosityIterations = 20;
-    int pressureIterations = 40;
+    GasPressure pressure = GasPressure::Exact;
+    int pressureIterations = 40;  ///< GasPressure::Jacobi's sweeps
     float vorticity = 0.0f;       ///< confinement strength epsilon
     bool maccormack = false;      ///< second-order MacCormack advection (costlier: docs/history/tuning.md)
     bool conserveDye = true;      ///< rescale the dye after advection to keep its total
@@ -51,6 +64,15 @@ struct GasConfig {
     /// After the forces, each velocity component is clamped to +-maxSpeed cells per second, so
     /// steps of any length stay bounded (the planet's large time scales); 0: no clamp.
     float maxSpeed = 0.0f;
+    /// On a sphere: the planet's spin, radians per second of the gas's time. The vorticity
+    /// equation's beta term, d zeta / dt = -beta v (beta = 2 rotation cos(latitude) / R), taken
+    /// implicitly after the advection through the rows' FFT and a complex tridiagonal solve per
+    /// wavenumber: a Rossby-Haurwitz wave drifts west at its angular speed (0.26% off at rotation
+    /// dt 0.05), eddies drift west and jets whose curvature is below beta hold (Rayleigh-Kuo).
+    /// Stable at any step, but damped where the step is long against the spin: a wave keeps 0.957
+    /// of its amplitude over 60 steps at rotation dt 0.5, 0.35 at 5. Needs sphere and an even
+    /// width; 0: no rotation (the planet's: GasPlanetConfig says why).
+    float rotation = 0.0f;
     float initialBands = 0.0f;    ///< dye starts as 0.5 + 0.45 sin(2 pi bands y / H) plus noise
     /// 0: every initial band alike. Up to 1: each zone and belt (each half period of the bands)
     /// gets its own depth, down to 1 - 0.6 variety of the full swing, and thinner bands inside it
@@ -191,11 +213,21 @@ private:
     cl::Buffer samplePoints_, sampleWinds_; ///< velocityAt's, sampleCapacity_ points each
     size_t sampleCapacity_ = 0;
     std::vector<float> sampleCells_; ///< velocityAt's points in cells, uploaded from here
-    cl::Buffer u_, v_, dye_, work_[4], p_, p2_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_,
+    cl::Buffer u_, v_, dye_, work_[4], p_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_,
         metric_, gridMetric_; ///< the grid's metric, and a flat one's (1s) for the vorticity confinement
+    /// An exact solve along y between walls (gas.cl's solve_columns): its factors on the device.
+    struct Columns {
+        cl::Buffer upper, pivots, lower, rhs;
+        int first = 0;
+    };
+    void solveColumns(const cl::Buffer& field, const Columns& columns, const cl::Buffer& out);
+    cl::Buffer p2_;                ///< GasPressure::Jacobi's second pressure
+    std::unique_ptr<RealFft> fft_; ///< the rows' transforms: GasPressure::Exact's, and the rotation's
+    cl::Buffer spectrum_, scratch_; ///< the transforms' spectrum; the rotation's elimination's
+    Columns pressureColumns_;       ///< between walls
     cl::Kernel advect_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
         curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,
-        relaxDye_;
+        relaxDye_, solveColumns_, betaColumns_, addStream_;
 };
 
 } // namespace hfx

@@ -35,7 +35,14 @@ struct GasPlanetConfig {
     /// the gas step's time on PoCL on 2 cores of an Intel Xeon, Skylake-AVX512 (BM_PlanetGas in
     /// hfx-bench-kernels). On the sphere's metric (GasConfig::sphere), so its polar eddies are
     /// round on the planet, not on the map: 1.25x the flat map's step on the same device.
-    GasConfig gas{.width = 512, .height = 256, .sphere = true, .pressureIterations = 30, .vorticity = 0.35f,
+    /// Its pressure is Jacobi's 30 sweeps, not the exact solve (GasPressure::Exact, the same cost
+    /// here): its jets have inflection points and are unstable on a still sphere, and the sweeps,
+    /// which leave the large scales' divergence, damp their eddies' growth; solved exactly, the
+    /// bands broke up about twice as soon (docs/DESIGN.md: in either they go in a minute or two).
+    /// The planet's spin (GasConfig::rotation, the beta effect) held them at 6 rad/s in steps of
+    /// 0.1 s but not in the spin-up's of 0.5 s, so it is off.
+    GasConfig gas{.width = 512, .height = 256, .sphere = true, .pressure = GasPressure::Jacobi,
+                  .pressureIterations = 30, .vorticity = 0.35f,
                   .maccormack = true, .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,
                   .maxSpeed = 56.0f, .initialBands = 9.0f, .bandVariety = 1.0f, .dyeRate = 0.15f};
     std::vector<ColorStop> palette = gasGiantPalette();

@@ -1,0 +1,225 @@
+// Both of HFX's VkFFT plans, InverseRealFft (the ocean) and RealFft (the gas's pressure), in one
+// file: VkFFT's header is 33,000 lines of code generator, compiled here only.
+#include "hfx/compute/InverseRealFft.h"
+#include "hfx/compute/RealFft.h"
+
+#include "hfx/core/Error.h"
+
+#include <clocale>
+#include <cstdlib>
+#include <string>
+
+#define VKFFT_BACKEND 3
+#include <vkFFT.h>
+
+namespace hfx {
+namespace {
+
+std::string vkfftResultName(VkFFTResult r) {
+    switch (r) {
+#define HFX_CASE(c) case c: return str(#c, " (", int(c), ")")
+        HFX_CASE(VKFFT_ERROR_MALLOC_FAILED);
+        HFX_CASE(VKFFT_ERROR_INSUFFICIENT_CODE_BUFFER);
+        HFX_CASE(VKFFT_ERROR_INVALID_DEVICE);
+        HFX_CASE(VKFFT_ERROR_INVALID_CONTEXT);
+        HFX_CASE(VKFFT_ERROR_INVALID_PLATFORM);
+        HFX_CASE(VKFFT_ERROR_UNSUPPORTED_RADIX);
+        HFX_CASE(VKFFT_ERROR_UNSUPPORTED_FFT_LENGTH);
+        HFX_CASE(VKFFT_ERROR_UNSUPPORTED_FFT_LENGTH_R2C);
+        HFX_CASE(VKFFT_ERROR_FAILED_TO_ALLOCATE);
+        HFX_CASE(VKFFT_ERROR_FAILED_TO_CREATE_PROGRAM);
+        HFX_CASE(VKFFT_ERROR_FAILED_TO_COMPILE_PROGRAM);
+        HFX_CASE(VKFFT_ERROR_FAILED_TO_SET_KERNEL_ARG);
+        HFX_CASE(VKFFT_ERROR_FAILED_TO_LAUNCH_KERNEL);
+#undef HFX_CASE
+    default: return str("VkFFT error ", int(r));
+    }
+}
+
+/// VkFFT builds its generated kernels with no hook for build options, and PoCL's clang prints
+/// "N warnings generated" for them on a cold build. PoCL reads POCL_EXTRA_BUILD_FLAGS at each
+/// build, so "-w" is set for the plan alone, unless the user set the variable. HFX's own kernels
+/// are held to -Werror by ClContextTest.EveryKernelBuildsWithoutWarnings.
+template <typename F>
+auto withoutPoclWarnings(F&& plan) {
+    const bool ours = std::getenv("POCL_EXTRA_BUILD_FLAGS") == nullptr;
+    if (ours) setenv("POCL_EXTRA_BUILD_FLAGS", "-w", 0);
+    const auto result = plan();
+    if (ours) unsetenv("POCL_EXTRA_BUILD_FLAGS");
+    return result;
+}
+
+/// VkFFT's code generator keeps the pointer setlocale(LC_ALL, NULL) returns, sets "C", and
+/// restores the locale through that pointer, which the "C" call has freed where the locale was a
+/// composite one (GLFW's X11 start sets LC_CTYPE alone: AddressSanitizer found the read in a
+/// window run). The plan is made under "C" here, so its save and restore both name the C
+/// locale's own string, and the caller's locale is put back from a copy.
+template <typename F>
+auto inTheCLocale(F&& plan) {
+    const char* current = std::setlocale(LC_ALL, nullptr);
+    const std::string saved = current ? current : "C";
+    std::setlocale(LC_ALL, "C");
+    const auto result = plan();
+    std::setlocale(LC_ALL, saved.c_str());
+    return result;
+}
+
+/// A VkFFT application and the handles it reads through pointers: VkFFT keeps pointers to these
+/// (device, context, buffers, sizes) for the plan's lifetime, and reads the buffers' handles
+/// through them at every launch, so a launch only writes its own handles into the same slots.
+/// `spectrum` is VkFFT's `buffer` (rows of W/2 + 1 complex values), `field` its formatted
+/// `inputBuffer` (rows of W floats, no padding), which an inverse plan writes when told to
+/// return to the input buffer.
+struct VkFftPlan {
+    cl_platform_id platform = nullptr;
+    cl_device_id device = nullptr;
+    cl_context context = nullptr;
+    cl_command_queue queue = nullptr;
+    cl_mem spectrum = nullptr;
+    cl_mem field = nullptr;
+    uint64_t spectrumBytes = 0;
+    uint64_t fieldBytes = 0;
+    VkFFTApplication app = {};
+    bool initialised = false;
+
+    VkFftPlan(ClContext& cl, size_t spectrumSize, size_t fieldSize) {
+        platform = cl.device().getInfo<CL_DEVICE_PLATFORM>();
+        device = cl.device()();
+        context = cl.context()();
+        queue = cl.queue()();
+        spectrumBytes = spectrumSize;
+        fieldBytes = fieldSize;
+    }
+    ~VkFftPlan() {
+        if (initialised) deleteVkFFT(&app);
+    }
+    VkFftPlan(const VkFftPlan&) = delete;
+    VkFftPlan& operator=(const VkFftPlan&) = delete;
+
+    /// The configuration's device, buffers and their strides for W-wide rows, W x H a field.
+    VkFFTConfiguration configuration(int width, int height) {
+        VkFFTConfiguration c = {};
+        c.platform = &platform;
+        c.device = &device;
+        c.context = &context;
+        c.commandQueue = &queue;
+        c.performR2C = 1;
+        c.isInputFormatted = 1;
+        c.inverseReturnToInputBuffer = 1;
+        c.buffer = &spectrum;
+        c.bufferSize = &spectrumBytes;
+        c.bufferStride[0] = uint64_t(width / 2 + 1);
+        c.bufferStride[1] = uint64_t(width / 2 + 1) * uint64_t(height);
+        c.inputBuffer = &field;
+        c.inputBufferSize = &fieldBytes;
+        c.inputBufferStride[0] = uint64_t(width);
+        c.inputBufferStride[1] = uint64_t(width) * uint64_t(height);
+        return c;
+    }
+
+    /// Makes the plan; `what` names it in the error (VkFFT has then freed what it made, and
+    /// printed the build log of a kernel that failed).
+    void initialise(const VkFFTConfiguration& c, ClContext& cl, const std::string& what) {
+        const VkFFTResult result =
+            withoutPoclWarnings([&] { return inTheCLocale([&] { return initializeVkFFT(&app, c); }); });
+        if (result != VKFFT_SUCCESS)
+            throw Error(str("VkFFT could not plan the ", what, " on ", cl.description(), ": ", vkfftResultName(result)));
+        initialised = true;
+    }
+
+    /// Enqueues the transform (VkFFT's direction: -1 forward, 1 inverse) of `spectrumBuffer` and
+    /// `fieldBuffer` on the context's queue; its kernels do not go through ClContext::enqueue, so
+    /// two markers time them when asked.
+    void append(ClContext& cl, const cl::Buffer& spectrumBuffer, const cl::Buffer& fieldBuffer, int direction,
+                const std::string& what) {
+        spectrum = spectrumBuffer();
+        field = fieldBuffer();
+        queue = cl.queue()();
+        VkFFTLaunchParams launch = {};
+        launch.commandQueue = &queue;
+        launch.buffer = &spectrum;
+        launch.inputBuffer = &field;
+        cl::Event before, after;
+        if (cl.recordingKernelTimes()) cl.queue().enqueueMarkerWithWaitList(nullptr, &before);
+        const VkFFTResult result = VkFFTAppend(&app, direction, &launch);
+        if (result != VKFFT_SUCCESS)
+            throw Error(str("VkFFT: the ", what, " failed to enqueue on ", cl.description(), ": ",
+                            vkfftResultName(result)));
+        if (cl.recordingKernelTimes()) {
+            cl.queue().enqueueMarkerWithWaitList(nullptr, &after);
+            cl.recordSpan("vkfft", before, after);
+        }
+    }
+};
+
+} // namespace
+
+struct InverseRealFft::Plan : VkFftPlan {
+    using VkFftPlan::VkFftPlan;
+};
+
+InverseRealFft::InverseRealFft(ClContext& cl, int n, int batch) : cl_(cl), n_(n), batch_(batch) {
+    if (n < 2 || n > 8192 || (n & (n - 1)) != 0)
+        throw Error(str("InverseRealFft: the size must be a power of two in [2, 8192], got ", n));
+    if (batch < 1 || batch > 64) throw Error(str("InverseRealFft: the batch must be in [1, 64], got ", batch));
+    plan_ = std::make_unique<Plan>(cl, spectrumBytes(), fieldBytes());
+    VkFFTConfiguration c = plan_->configuration(n, n);
+    c.FFTdim = 2;
+    c.size[0] = uint64_t(n);
+    c.size[1] = uint64_t(n);
+    c.numberBatches = uint64_t(batch);
+    c.makeInversePlanOnly = 1;
+    plan_->initialise(c, cl, str(n, "x", n, " inverse real FFT (batch ", batch, ")"));
+}
+
+InverseRealFft::~InverseRealFft() = default;
+
+void InverseRealFft::enqueue(const cl::Buffer& spectrum, const cl::Buffer& fields) {
+    const size_t haveSpectrum = spectrum.getInfo<CL_MEM_SIZE>(), haveFields = fields.getInfo<CL_MEM_SIZE>();
+    if (haveSpectrum < spectrumBytes() || haveFields < fieldBytes())
+        throw Error(str("InverseRealFft::enqueue: a ", n_, "x", n_, " batch of ", batch_, " needs ", spectrumBytes(),
+                        " bytes of spectrum and ", fieldBytes(), " of fields, got ", haveSpectrum, " and ",
+                        haveFields));
+    plan_->append(cl_, spectrum, fields, 1, str(n_, "x", n_, " inverse real FFT"));
+}
+
+std::string InverseRealFft::libraryVersion() {
+    const int v = VkFFTGetVersion();
+    return str("VkFFT ", v / 10000, ".", (v / 100) % 100, ".", v % 100);
+}
+
+struct RealFft::Plan : VkFftPlan {
+    using VkFftPlan::VkFftPlan;
+};
+
+RealFft::RealFft(ClContext& cl, int width, int height, Axes axes)
+    : cl_(cl), width_(width), height_(height), axes_(axes) {
+    if (width < 2 || width > 8192 || width % 2 != 0 || height < 2 || height > 8192)
+        throw Error(str("RealFft: the size must be an even width and a height in [2, 8192], got ", width, "x",
+                        height));
+    plan_ = std::make_unique<Plan>(cl, spectrumBytes(), fieldBytes());
+    VkFFTConfiguration c = plan_->configuration(width, height);
+    c.FFTdim = 2;
+    c.size[0] = uint64_t(width);
+    c.size[1] = uint64_t(height);
+    c.omitDimension[1] = axes == Axes::Rows ? 1 : 0; // the rows alone: H transforms of W
+    plan_->initialise(c, cl,
+                      str(width, "x", height, " real FFT", axes == Axes::Rows ? " along the rows" : ""));
+}
+
+RealFft::~RealFft() = default;
+
+void RealFft::forward(const cl::Buffer& field, const cl::Buffer& spectrum) { enqueue(spectrum, field, -1); }
+
+void RealFft::inverse(const cl::Buffer& spectrum, const cl::Buffer& field) { enqueue(spectrum, field, 1); }
+
+void RealFft::enqueue(const cl::Buffer& spectrum, const cl::Buffer& field, int direction) {
+    const size_t haveSpectrum = spectrum.getInfo<CL_MEM_SIZE>(), haveField = field.getInfo<CL_MEM_SIZE>();
+    if (haveSpectrum < spectrumBytes() || haveField < fieldBytes())
+        throw Error(str("RealFft: a ", width_, "x", height_, " transform needs ", spectrumBytes(),
+                        " bytes of spectrum and ", fieldBytes(), " of field, got ", haveSpectrum, " and ", haveField));
+    plan_->append(cl_, spectrum, field, direction,
+                  str(width_, "x", height_, direction < 0 ? " forward" : " inverse", " real FFT"));
+}
+
+} // namespace hfx
