@@ -230,44 +230,44 @@ __kernel void pressure4(__global const float* p, __global const float* div, __gl
     vstore4((sum - w[3] * vload4(0, div + row + i0)) / (2.0f * w[0] + w[1] + w[2]), 0, dst + row + i0);
 }
 
-/* An exact solve between walls, one zonal wavenumber k a work-item (K = W/2 + 1 of them): `s`
-   holds the rows' transforms of a right-hand side (rows of K complex values, RealFft::Rows) and
-   becomes the solution's. Along y each k's tridiagonal system, rows first..H-1 (GasField.cpp's
-   GasColumns: the pressure's, or the streamfunction's), is eliminated downward with the host's
-   factors (the pivots' reciprocals and Thomas's c', H x K) and solved upward; `rhs` scales each
-   row's value (its area, the inverse transform's 1 / W, a sign) and `lower` is each row's weight
-   of the row below. Rows before `first` are 0, and so is a k whose system is singular (pivot 0:
-   the pressure's zonal means, which have no divergence once each face row's mean v is gone). */
+/* GasPressure::Exact between walls, one zonal wavenumber k a work-item (K = W/2 + 1 of them):
+   `s` holds the rows' transforms of the divergence (rows of K complex values, RealFft::Rows) and
+   becomes the pressure's. Along y each k's tridiagonal system (the Jacobi sweep's equation, its x
+   neighbours' sum turned into its eigenvalue: GasField.cpp's gasPressureColumns) is eliminated
+   downward with the host's factors (the pivots' reciprocals and Thomas's c', H x K) and solved
+   upward; `rhs` scales each row's divergence (its area and the inverse transform's 1 / W) and
+   `lower` is each row's weight of the row below. A k whose pivots are 0 is singular, the zonal
+   means, which have no divergence once each face row's mean v is gone: its pressure is 0. */
 __kernel void solve_columns(__global float2* s, __global const float* upper, __global const float* pivots,
-                            __global const float* lower, __global const float* rhs, int K, int H, int first) {
+                            __global const float* lower, __global const float* rhs, int K, int H) {
     int k = get_global_id(0);
     if (k >= K) return;
-    for (int j = 0; j < first; ++j) s[j * K + k] = (float2)(0.0f, 0.0f);
-    if (pivots[first * K + k] == 0.0f) {
-        for (int j = first; j < H; ++j) s[j * K + k] = (float2)(0.0f, 0.0f);
+    if (pivots[k] == 0.0f) {
+        for (int j = 0; j < H; ++j) s[j * K + k] = (float2)(0.0f, 0.0f);
         return;
     }
     float2 x = (float2)(0.0f, 0.0f);
-    for (int j = first; j < H; ++j) {
+    for (int j = 0; j < H; ++j) {
         x = (rhs[j] * s[j * K + k] - lower[j] * x) * pivots[j * K + k];
         s[j * K + k] = x;
     }
-    for (int j = H - 2; j >= first; --j) {
+    for (int j = H - 2; j >= 0; --j) {
         x = s[j * K + k] - upper[j * K + k] * x;
         s[j * K + k] = x;
     }
 }
 
-/* GasConfig::rotation's step, one zonal wavenumber k a work-item (K = W/2 + 1): the beta term of
-   the vorticity equation, d zeta / dt = -beta v (beta = df/dy, f = 2 omega sin(latitude)), taken
-   implicitly, trapezoidal: zeta gains -dt beta (v + v') / 2, v' the wind after it, so a Rossby
-   wave keeps its amplitude at any step. At the corners' rows 1..H-1 (v at a corner is its two
-   faces' mean), for the streamfunction psi of the gain (0 on the walls; add_stream's wind, whose
-   vorticity is -L psi / m) this is, per k, the tridiagonal system
-     (L_k + i dt beta sin(2 pi k / W) / 2) psi = m dt beta v_k,
-   L_k as GasField.cpp's gasStreamOperator writes it. `s` holds the rows' transforms of v (rows of
-   K, RealFft::Rows) and becomes psi's; `scratch` (as large) holds the elimination's c'; `scale`
-   is the inverse transform's 1 / W. */
+/* GasConfig::rotation's step, one zonal wavenumber k a work-item (K = W/2 + 1), on the projected
+   wind: the beta term of the vorticity equation, d zeta / dt = -beta v (beta = df/dy, f = 2 omega
+   sin(latitude)), taken implicitly, trapezoidal: zeta gains -dt beta (v + v') / 2, v' the wind
+   after it, which adds and takes no energy however long the step. At the corners' rows 1..H-1
+   (v at a corner is its two faces' mean), for the streamfunction psi of the gain (0 on the
+   walls), whose add_stream wind has the vorticity -L psi / m with
+     L psi = (psi[i-1] + psi[i+1] - 2 psi) / m + m(j+1/2) (psi[j+1] - psi) + m(j-1/2) (psi[j-1] - psi)
+   (m the corner row's), this is, per k, the tridiagonal system
+     (L_k + i dt beta sin(2 pi k / W) / 2) psi = m dt beta v_k.
+   `s` holds the rows' transforms of v (rows of K, RealFft::Rows) and becomes psi's; `scratch`
+   (as large) holds the elimination's c'; `scale` is the inverse transform's 1 / W. */
 inline float2 hfx_cmul(float2 a, float2 b) { return (float2)(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
 inline float2 hfx_cdiv(float2 a, float2 b) {
     return (float2)(a.x * b.x + a.y * b.y, a.y * b.x - a.x * b.y) / (b.x * b.x + b.y * b.y);
@@ -283,7 +283,7 @@ __kernel void beta_columns(__global float2* s, __global float2* scratch, __globa
     float2 c = (float2)(0.0f, 0.0f), d = (float2)(0.0f, 0.0f);
     for (int j = 1; j < H; ++j) {
         float m = metric[2 * j], below = metric[2 * j - 1], above = metric[2 * j + 1];
-        float beta = 2.0f * omega * sinpi((float)j / (float)H) * 3.14159265f / (float)H;
+        float beta = 2.0f * omega * sinpi((float)j / (float)H) * M_PI_F / (float)H; /* cos(latitude) / R */
         float lower = j > 1 ? below : 0.0f, upper = j < H - 1 ? above : 0.0f;
         float2 diagonal = (float2)(-(below + above) - eigen / m, 0.5f * dt * beta * sinpi(theta));
         float2 pivot = diagonal - lower * c;
@@ -301,7 +301,7 @@ __kernel void beta_columns(__global float2* s, __global float2* scratch, __globa
 
 /* Adds the wind of the streamfunction psi at the corners (rows 0 and H, the walls, 0):
    u = psi(i, j+1) - psi(i, j), m v = psi(i, j) - psi(i+1, j), which has no divergence on the
-   sphere (hfx_gas_divergence) and whose vorticity is -L psi / m (L: GasColumns' operator). */
+   sphere (hfx_gas_divergence) and whose vorticity is -L psi / m (L as beta_columns writes it). */
 __kernel void add_stream(__global float* u, __global float* v, __global const float* psi,
                          __global const float* metric, int W, int H) {
     ID

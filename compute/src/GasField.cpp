@@ -6,6 +6,7 @@
 #include "hfx/core/Random.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -87,49 +88,38 @@ std::vector<float> gasPolarWidths(const GasConfig& config) {
 
 namespace {
 
-/// An exact solve along y between walls (gas.cl's solve_columns), on the host: for each zonal
-/// wavenumber k (K = W/2 + 1 of them) the system of rows first..H-1
-///   lower[j] x[j-1] + upper[j] x[j+1] + (diagonal[j] - across[j] (2 - 2 cos(2 pi k / W))) x[j] = rhs[j] b[j]
-/// (the x neighbours' sum turned into its eigenvalue), eliminated downward: the pivots'
-/// reciprocals and the upper diagonal over them (Thomas's c'), row-major H x K. Every system
-/// with k > 0 here is diagonally dominant, so the elimination needs no pivoting; a singular k = 0
-/// (the pressure's) is marked by pivots of 0.
-struct GasColumns {
-    std::vector<float> lower, upper, diagonal, across, rhs;
-    int first = 0;
-    bool singularMean = false;
-
-    void factor(int W, std::vector<float>& factors, std::vector<float>& pivots) const {
-        const int H = int(lower.size()), K = W / 2 + 1;
-        factors.assign(size_t(H) * K, 0.0f);
-        pivots.assign(size_t(H) * K, 0.0f);
-        for (int k = singularMean ? 1 : 0; k < K; ++k) {
-            const double half = std::sin(std::numbers::pi * k / W), eigen = 4.0 * half * half; // 2 - 2 cos
-            double before = 0.0; // c'[j-1]
-            for (int j = first; j < H; ++j) {
-                const double pivot = diagonal[size_t(j)] - across[size_t(j)] * eigen - lower[size_t(j)] * before;
-                before = upper[size_t(j)] / pivot;
-                pivots[size_t(j) * K + k] = float(1.0 / pivot);
-                factors[size_t(j) * K + k] = float(before);
-            }
-        }
-    }
+/// GasPressure::Exact's systems between walls (gas.cl's solve_columns), one for each zonal
+/// wavenumber k (K = W/2 + 1 of them): the Jacobi sweep's equation (hfx_gas_pressure_weights),
+/// Neumann at the walls, with the x neighbours' sum turned into its eigenvalue,
+///   w1 p[j-1] + w2 p[j+1] - (w1 + w2 + w0 (2 - 2 cos(2 pi k / W))) p[j] = w3 div[j],
+/// eliminated downward: the pivots' reciprocals and the upper diagonal over them (Thomas's c'),
+/// row-major H x K; each row's weight of the row below, and the scale of its divergence (its area
+/// w3 and the inverse transform's 1 / W). Every system with k > 0 is diagonally dominant, so the
+/// elimination needs no pivoting; k = 0 is singular, and its pivots are left 0 (no pressure).
+struct GasPressureColumns {
+    std::vector<float> upper, pivots, lower, rhs;
 };
 
-/// The pressure's columns: the Jacobi sweep's equation (hfx_gas_pressure_weights), Neumann at the
-/// walls, each row's divergence times its area.
-GasColumns gasPressureColumns(const GasConfig& config, const std::vector<float>& metric) {
-    const int H = config.height;
-    GasColumns c{.lower = std::vector<float>(size_t(H)), .first = 0, .singularMean = true};
-    c.upper = c.diagonal = c.across = c.rhs = c.lower;
+GasPressureColumns gasPressureColumns(const GasConfig& config, const std::vector<float>& metric) {
+    const int W = config.width, H = config.height, K = W / 2 + 1;
+    GasPressureColumns c{std::vector<float>(size_t(H) * K, 0.0f), std::vector<float>(size_t(H) * K, 0.0f),
+                         std::vector<float>(size_t(H)), std::vector<float>(size_t(H))};
+    std::vector<std::array<float, 4>> weights(static_cast<size_t>(H));
     for (int j = 0; j < H; ++j) {
-        float w[4];
-        hfx_gas_pressure_weights(metric.data(), H, j, 1, w);
-        c.lower[size_t(j)] = w[1];
-        c.upper[size_t(j)] = w[2];
-        c.diagonal[size_t(j)] = -(w[1] + w[2]);
-        c.across[size_t(j)] = w[0];
-        c.rhs[size_t(j)] = w[3] / float(config.width);
+        hfx_gas_pressure_weights(metric.data(), H, j, 1, weights[size_t(j)].data());
+        c.lower[size_t(j)] = weights[size_t(j)][1];
+        c.rhs[size_t(j)] = weights[size_t(j)][3] / float(W);
+    }
+    for (int k = 1; k < K; ++k) {
+        const double half = std::sin(std::numbers::pi * k / W), eigen = 4.0 * half * half; // 2 - 2 cos
+        double before = 0.0; // c'[j-1]
+        for (int j = 0; j < H; ++j) {
+            const auto& w = weights[size_t(j)];
+            const double pivot = -(double(w[1]) + w[2] + w[0] * eigen) - w[1] * before;
+            before = w[2] / pivot;
+            c.pivots[size_t(j) * K + k] = float(1.0 / pivot);
+            c.upper[size_t(j) * K + k] = float(before);
+        }
     }
     return c;
 }
@@ -171,26 +161,22 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
             fft_ = std::make_unique<RealFft>(cl, config.width, config.height,
                                              walls ? RealFft::Axes::Rows : RealFft::Axes::Both);
             spectrum_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, fft_->spectrumBytes());
-            if (walls) solveColumns_ = cl::Kernel(program, "solve_columns");
         }
-        auto upload = [&](const GasColumns& c) {
-            std::vector<float> factors, pivots;
-            c.factor(config.width, factors, pivots);
-            auto buffer = [&](const std::vector<float>& x) {
-                return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * x.size(),
-                                  const_cast<float*>(x.data()));
-            };
-            return Columns{buffer(factors), buffer(pivots), buffer(c.lower), buffer(c.rhs), c.first};
-        };
         if (config.rotation > 0.0f) {
             scratch_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, fft_->spectrumBytes());
             betaColumns_ = cl::Kernel(program, "beta_columns");
             addStream_ = cl::Kernel(program, "add_stream");
         }
         if (config.pressure == GasPressure::Exact) {
-            if (walls)
-                pressureColumns_ = upload(gasPressureColumns(config, metricTable_));
-            else
+            if (walls) {
+                const GasPressureColumns c = gasPressureColumns(config, metricTable_);
+                auto buffer = [&](const std::vector<float>& x) {
+                    return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * x.size(),
+                                      const_cast<float*>(x.data()));
+                };
+                pressureColumns_ = {buffer(c.upper), buffer(c.pivots), buffer(c.lower), buffer(c.rhs)};
+                solveColumns_ = cl::Kernel(program, "solve_columns");
+            } else
                 pressure_ = cl::Kernel(program, "pressure_modes");
         } else {
             p2_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, bytes);
@@ -423,14 +409,6 @@ void GasField::step(double dtSeconds) {
         advectField(v_, 0.5f, 0.0f, dt, true);
         std::swap(work_[0], v_);
         std::swap(work_[3], u_);
-        if (config_.rotation > 0.0f) { // the planet's spin; p_ holds its streamfunction until the projection
-            fft_->forward(v_, spectrum_);
-            run(betaColumns_, {arg(spectrum_), arg(scratch_), arg(metric_), arg(W), arg(H), arg(dt),
-                               arg(config_.rotation), arg(1.0f / float(W))},
-                cl::NDRange(size_t(W / 2 + 1)));
-            fft_->inverse(spectrum_, p_);
-            run(addStream_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
-        }
         if (config_.viscosity > 0.0f) {
             const float a = config_.viscosity * dt;
             for (cl::Buffer* x : {&u_, &v_}) {
@@ -443,6 +421,14 @@ void GasField::step(double dtSeconds) {
             }
         }
         project();
+        if (config_.rotation > 0.0f) { // the planet's spin, on the projected wind (p_ free again)
+            fft_->forward(v_, spectrum_);
+            run(betaColumns_, {arg(spectrum_), arg(scratch_), arg(metric_), arg(W), arg(H), arg(dt),
+                               arg(config_.rotation), arg(1.0f / float(W))},
+                cl::NDRange(size_t(W / 2 + 1)));
+            fft_->inverse(spectrum_, p_);
+            run(addStream_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
+        }
         if (config_.conserveDye) rowSums(dye_, sumsBefore_);
         advectField(dye_, 0.5f, 0.5f, dt, false);
         std::swap(work_[0], dye_);
@@ -475,15 +461,17 @@ void GasField::project() {
         if (config_.edges == EdgeMode::WrapU) run(removeRowMean_, {arg(v_), arg(W), arg(H)}, cl::NDRange(size_t(H)));
         run(divergence_, {arg(u_), arg(v_), arg(metric_), arg(div_), arg(W), arg(H)});
         if (config_.pressure == GasPressure::Exact) {
+            const int K = W / 2 + 1;
+            fft_->forward(div_, spectrum_);
             if (config_.edges == EdgeMode::WrapU) {
-                solveColumns(div_, pressureColumns_, p_);
+                const PressureColumns& c = pressureColumns_;
+                run(solveColumns_, {arg(spectrum_), arg(c.upper), arg(c.pivots), arg(c.lower), arg(c.rhs), arg(K), arg(H)},
+                    cl::NDRange(size_t(K)));
             } else {
-                const int K = W / 2 + 1;
-                fft_->forward(div_, spectrum_);
                 run(pressure_, {arg(spectrum_), arg(W), arg(H), arg(1.0f / (float(W) * float(H)))},
                     cl::NDRange(size_t(K), size_t(H)));
-                fft_->inverse(spectrum_, p_);
             }
+            fft_->inverse(spectrum_, p_);
             run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
             return;
         }
@@ -495,16 +483,6 @@ void GasField::project() {
         }
         run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
     });
-}
-
-void GasField::solveColumns(const cl::Buffer& field, const Columns& columns, const cl::Buffer& out) {
-    const int K = config_.width / 2 + 1, H = config_.height;
-    fft_->forward(field, spectrum_);
-    run(solveColumns_,
-        {arg(spectrum_), arg(columns.upper), arg(columns.pivots), arg(columns.lower), arg(columns.rhs), arg(K), arg(H),
-         arg(columns.first)},
-        cl::NDRange(size_t(K)));
-    fft_->inverse(spectrum_, out);
 }
 
 float GasField::metricAt(float v) const {

@@ -66,12 +66,11 @@ struct GasConfig {
     float maxSpeed = 0.0f;
     /// On a sphere: the planet's spin, radians per second of the gas's time. The vorticity
     /// equation's beta term, d zeta / dt = -beta v (beta = 2 rotation cos(latitude) / R), taken
-    /// implicitly after the advection through the rows' FFT and a complex tridiagonal solve per
-    /// wavenumber: a Rossby-Haurwitz wave drifts west at its angular speed (0.26% off at rotation
-    /// dt 0.05), eddies drift west and jets whose curvature is below beta hold (Rayleigh-Kuo).
-    /// Stable at any step, but damped where the step is long against the spin: a wave keeps 0.957
-    /// of its amplitude over 60 steps at rotation dt 0.5, 0.35 at 5. Needs sphere and an even
-    /// width; 0: no rotation (the planet's: GasPlanetConfig says why).
+    /// implicitly on the projected wind through the rows' FFT and a complex tridiagonal solve per
+    /// wavenumber: a Rossby-Haurwitz wave drifts west at its angular speed (0.07% off at rotation
+    /// dt 0.05), the term adds and takes no energy at any step (within 1% at rotation dt 5), eddies
+    /// drift west, and jets whose curvature is below beta hold (Rayleigh-Kuo). Needs sphere and an
+    /// even width; 0: no rotation.
     float rotation = 0.0f;
     float initialBands = 0.0f;    ///< dye starts as 0.5 + 0.45 sin(2 pi bands y / H) plus noise
     /// 0: every initial band alike. Up to 1: each zone and belt (each half period of the bands)
@@ -215,16 +214,14 @@ private:
     std::vector<float> sampleCells_; ///< velocityAt's points in cells, uploaded from here
     cl::Buffer u_, v_, dye_, work_[4], p_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_,
         metric_, gridMetric_; ///< the grid's metric, and a flat one's (1s) for the vorticity confinement
-    /// An exact solve along y between walls (gas.cl's solve_columns): its factors on the device.
-    struct Columns {
+    /// GasPressure::Exact's elimination between walls (gas.cl's solve_columns) on the device.
+    struct PressureColumns {
         cl::Buffer upper, pivots, lower, rhs;
-        int first = 0;
     };
-    void solveColumns(const cl::Buffer& field, const Columns& columns, const cl::Buffer& out);
     cl::Buffer p2_;                ///< GasPressure::Jacobi's second pressure
     std::unique_ptr<RealFft> fft_; ///< the rows' transforms: GasPressure::Exact's, and the rotation's
     cl::Buffer spectrum_, scratch_; ///< the transforms' spectrum; the rotation's elimination's
-    Columns pressureColumns_;       ///< between walls
+    PressureColumns pressureColumns_;
     cl::Kernel advect_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
         curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,
         relaxDye_, solveColumns_, betaColumns_, addStream_;
