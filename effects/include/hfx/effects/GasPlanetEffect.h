@@ -35,16 +35,14 @@ struct GasPlanetConfig {
     /// the gas step's time on PoCL on 2 cores of an Intel Xeon, Skylake-AVX512 (BM_PlanetGas in
     /// hfx-bench-kernels). On the sphere's metric (GasConfig::sphere), so its polar eddies are
     /// round on the planet, not on the map: 1.25x the flat map's step on the same device.
-    /// Its pressure is Jacobi's 30 sweeps, not the exact solve (GasPressure::Exact, the same cost
-    /// here): its jets have inflection points and are unstable on a still sphere, and the sweeps,
-    /// which leave the large scales' divergence, damp their eddies' growth; solved exactly, the
-    /// bands broke up about twice as soon (docs/DESIGN.md: in either they go in a minute or two).
-    /// The planet's spin (GasConfig::rotation, the beta effect) held them at 6 rad/s in steps of
-    /// 0.1 s but not in the spin-up's of 0.5 s, so it is off.
-    GasConfig gas{.width = 512, .height = 256, .sphere = true, .pressure = GasPressure::Jacobi,
-                  .pressureIterations = 30, .vorticity = 0.35f,
+    /// Its pressure is solved exactly (GasPressure::Exact) and it spins (GasConfig::rotation, 8
+    /// rad/s): its jets have inflection points and, on a still sphere, break into eddies within a
+    /// minute or two (Jacobi's sweeps, which leave the large scales' divergence, only delay it);
+    /// the spin's beta effect, above the jets' curvature (Rayleigh-Kuo: 6.9 at the equator),
+    /// holds them (PlanetWeather.ThePlanetsSpinHoldsItsBandsWhichWithoutItBreakUp).
+    GasConfig gas{.width = 512, .height = 256, .sphere = true, .vorticity = 0.35f,
                   .maccormack = true, .jetSpeed = 14.0f, .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f,
-                  .maxSpeed = 56.0f, .initialBands = 9.0f, .bandVariety = 1.0f, .dyeRate = 0.15f};
+                  .maxSpeed = 56.0f, .rotation = 8.0f, .initialBands = 9.0f, .bandVariety = 1.0f, .dyeRate = 0.15f};
     std::vector<ColorStop> palette = gasGiantPalette();
     float stormsPerSecond = 0.6f;  ///< new storms, their sizes drawn from 0.63x to 1.59x
     float stormRadius = 0.025f;    ///< a storm's half-length along the bands, in map widths
