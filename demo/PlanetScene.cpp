@@ -45,17 +45,29 @@ public:
         light_.ambient = {0.03f, 0.03f, 0.04f};
     }
 
-    /// The orbit options, then a camera inside the planet's cloud tops refused by name.
+    /// The orbit options, then a camera inside the planet's cloud tops refused by name: where it
+    /// stands, and with --camera-turn anywhere on the circle it turns round (about the vertical
+    /// through its target, which need not be the planet's centre).
     void placeCamera(const SceneOptions& o) override {
         Scene::placeCamera(o);
-        const float fromCentre = glm::length(camera_.position);
-        if (fromCentre < 1.05f) {
+        constexpr float kNearest = 1.05f; // radii from the centre
+        const auto refuse = [](float fromCentre, const char* where) {
             char radii[32];
             std::snprintf(radii, sizeof radii, "%.2f", double(fromCentre));
-            throw Error(str("the planet's camera would stand ", radii,
+            throw Error(str("the planet's camera would ", where, " ", radii,
                             " radii from its centre, inside its cloud tops (at least 1.05: --camera-target, "
-                            "--camera-distance)"));
-        }
+                            "--camera-distance, --camera-elevation)"));
+        };
+        const float fromCentre = glm::length(camera_.position);
+        if (fromCentre < kNearest) refuse(fromCentre, "stand");
+        if (o.cameraTurn == 0.0f) return;
+        // The turn's circle: centred above the target, in the horizontal plane through the
+        // camera; its nearest point to the planet's centre lies towards the centre's vertical.
+        const glm::vec3 offset = camera_.position - camera_.target;
+        const float radius = glm::length(glm::vec2(offset.x, offset.z));
+        const float targetAcross = glm::length(glm::vec2(camera_.target.x, camera_.target.z));
+        const float nearest = std::hypot(camera_.position.y, targetAcross - radius);
+        if (nearest < kNearest) refuse(nearest, "pass, turning (--camera-turn),");
     }
 
     void draw() override {

@@ -948,6 +948,9 @@ TEST(Demo, BadOptionValuesAreClearErrors) {
           std::pair{"decals --camera-height 20", "--camera-height is for the water scene: the decals scene"},
           std::pair{"planet --field 64 --spin-up 0 --camera-target 0,0,-0.5 --camera-distance 1.2",
                     "the planet's camera would stand 0.76 radii from its centre, inside its cloud tops"},
+          std::pair{"planet --field 64 --spin-up 0 --camera-target 2,0,0 --camera-distance 1.5 "
+                    "--camera-azimuth 90 --camera-elevation 0 --camera-turn 30",
+                    "the planet's camera would pass, turning (--camera-turn), 0.50 radii from its centre"},
           std::pair{"decals --camera-target 0,nan,0", "--camera-target: 'nan' is not a finite number"},
           std::pair{"noise --triplanar 1 --tiling clamp --noise-kind simplex --field 64",
                     "SurfaceMaterial.triplanar needs a surface that wraps both ways"}}) {
