@@ -226,19 +226,16 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
     setState(u, v, dye);
 }
 
-void GasField::run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args, cl::NDRange range) {
-    cl_uint index = 0;
-    for (const auto& [size, value] : args) kernel.setArg(index++, size, value);
-    cl_.enqueue(kernel, range.dimensions() == 0 ? cl::NDRange(config_.width, config_.height) : range);
+template <typename... Args>
+void GasField::run(cl::Kernel& kernel, const Args&... args) {
+    runOver(cl::NDRange(config_.width, config_.height), kernel, args...);
 }
 
-namespace {
-template <typename T>
-std::pair<size_t, const void*> arg(const T& value) {
-    return {sizeof(T), &value};
+template <typename... Args>
+void GasField::runOver(cl::NDRange range, cl::Kernel& kernel, const Args&... args) {
+    setArgs(kernel, args...);
+    cl_.enqueue(kernel, range);
 }
-std::pair<size_t, const void*> arg(const cl::Buffer& buffer) { return {sizeof(cl_mem), &buffer()}; }
-} // namespace
 
 void GasField::addSplat(const GasSplat& s) {
     if (!(s.u >= 0.0f && s.u < 1.0f && s.v >= 0.0f && s.v < 1.0f))
@@ -312,8 +309,7 @@ void GasField::velocityAt(std::span<const glm::vec2> points, std::span<glm::vec2
         // (Not waited for: the blocking read below finishes the queue before sampleCells_ changes.)
         q.enqueueWriteBuffer(samplePoints_, CL_FALSE, 0, sampleCells_.size() * sizeof(float), sampleCells_.data());
         const int n = int(points.size());
-        run(sampleVelocity_, {arg(u_), arg(v_), arg(samplePoints_), arg(sampleWinds_), arg(n), arg(W), arg(H)},
-            cl::NDRange(points.size()));
+        runOver(cl::NDRange(points.size()), sampleVelocity_, u_, v_, samplePoints_, sampleWinds_, n, W, H);
         q.enqueueReadBuffer(sampleWinds_, CL_TRUE, 0, winds.size() * sizeof(glm::vec2), winds.data());
     });
 }
@@ -323,15 +319,11 @@ void GasField::advectField(cl::Buffer& field, float ox, float oy, float dt, bool
     const float back = -dt;
     const cl::Buffer& m = metric_;
     if (!config_.maccormack) {
-        run(advect_, {arg(u_), arg(v_), arg(m), arg(field), arg(work_[0]), arg(W), arg(H), arg(ox), arg(oy), arg(dt),
-                      arg(wall)});
+        run(advect_, u_, v_, m, field, work_[0], W, H, ox, oy, dt, wall);
     } else {
-        run(advect_, {arg(u_), arg(v_), arg(m), arg(field), arg(work_[1]), arg(W), arg(H), arg(ox), arg(oy), arg(dt),
-                      arg(wall)});
-        run(advect_, {arg(u_), arg(v_), arg(m), arg(work_[1]), arg(work_[2]), arg(W), arg(H), arg(ox), arg(oy),
-                      arg(back), arg(wall)});
-        run(maccormack_, {arg(u_), arg(v_), arg(m), arg(field), arg(work_[1]), arg(work_[2]), arg(work_[0]), arg(W),
-                          arg(H), arg(ox), arg(oy), arg(dt), arg(wall)});
+        run(advect_, u_, v_, m, field, work_[1], W, H, ox, oy, dt, wall);
+        run(advect_, u_, v_, m, work_[1], work_[2], W, H, ox, oy, back, wall);
+        run(maccormack_, u_, v_, m, field, work_[1], work_[2], work_[0], W, H, ox, oy, dt, wall);
     }
 }
 
@@ -344,7 +336,7 @@ void GasField::step(double dtSeconds) {
         cl::CommandQueue& q = cl_.queue();
         const size_t bytes = sizeof(float) * size_t(W) * H;
         auto rowSums = [&](const cl::Buffer& field, const cl::Buffer& sums) {
-            run(rowSums_, {arg(field), arg(sums), arg(W), arg(H)}, cl::NDRange(size_t(H)));
+            runOver(cl::NDRange(size_t(H)), rowSums_, field, sums, W, H);
         };
         for (const GasSplat& s : splats_) {
             const float x = s.u * W, y = s.v * H, r = s.radius * W;
@@ -362,16 +354,13 @@ void GasField::step(double dtSeconds) {
             const double p = 0.5 * s.arms.count * double(s.arms.sweep);
             const float sinc1 = p != 0.0 ? float(std::sin(p) / p) : 1.0f;
             const float sinc2 = p != 0.0 ? float(std::sin(2.0 * p) / (2.0 * p)) : 1.0f;
-            run(splat_, {arg(u_), arg(v_), arg(dye_), arg(W), arg(H), arg(x), arg(y), arg(r), arg(s.forceX),
-                         arg(s.forceY), arg(s.dye), arg(s.dyeTarget), arg(dt), arg(i0), arg(j0), arg(w), arg(h),
-                         arg(s.aspect), arg(s.arms.count), arg(s.arms.target), arg(s.arms.contrast),
-                         arg(s.arms.turned), arg(s.arms.winding), arg(sinc1), arg(sinc2)},
-                cl::NDRange(size_t(w), size_t(h)));
+            runOver(cl::NDRange(size_t(w), size_t(h)), splat_, u_, v_, dye_, W, H, x, y, r, s.forceX, s.forceY, s.dye,
+                    s.dyeTarget, dt, i0, j0, w, h, s.aspect, s.arms.count, s.arms.target, s.arms.contrast,
+                    s.arms.turned, s.arms.winding, sinc1, sinc2);
         }
         splats_.clear();
         if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f)
-            run(jets_, {arg(u_), arg(W), arg(H), arg(config_.jetSpeed), arg(config_.jetBands), arg(config_.jetRate), arg(dt),
-                        arg(config_.jetPolar)});
+            run(jets_, u_, W, H, config_.jetSpeed, config_.jetBands, config_.jetRate, dt, config_.jetPolar);
         for (const GasVortex& vx : vortices_) {
             // Within 3 of its sizes (the weight and its wind there 10^-4 of their peaks) and the
             // faces' half cell: a planet holds each of its storms every step.
@@ -381,9 +370,8 @@ void GasField::step(double dtSeconds) {
             const int reachX = int(std::ceil(3.0f * a)) + 1, reachY = int(std::ceil(3.0f * b)) + 1;
             const int w = std::min(W, 2 * reachX + 1), h = std::min(H, 2 * reachY + 1);
             const int i0 = w == W ? 0 : int(std::floor(x)) - reachX, j0 = h == H ? 0 : int(std::floor(y)) - reachY;
-            run(vortex_, {arg(u_), arg(v_), arg(metric_), arg(W), arg(H), arg(x), arg(y), arg(a), arg(b), arg(psi0),
-                          arg(vx.driftX), arg(vx.driftY), arg(share), arg(i0), arg(j0), arg(w), arg(h)},
-                cl::NDRange(size_t(w), size_t(h)));
+            runOver(cl::NDRange(size_t(w), size_t(h)), vortex_, u_, v_, metric_, W, H, x, y, a, b, psi0, vx.driftX,
+                    vx.driftY, share, i0, j0, w, h);
         }
         vortices_.clear();
         if (config_.vorticity > 0.0f) {
@@ -391,14 +379,13 @@ void GasField::step(double dtSeconds) {
             // the grid's own dissipation takes, at the grid's scale, and with the sphere's
             // metric it pumped the polar rows' grid-scale noise, whose x differences m divides
             // (|curl| 66 in the last row against 4 elsewhere, on 128x64).
-            run(curlKernel_, {arg(u_), arg(v_), arg(gridMetric_), arg(curl_), arg(W), arg(H)});
-            run(confine_, {arg(curl_), arg(u_), arg(v_), arg(W), arg(H), arg(config_.vorticity), arg(dt)});
+            run(curlKernel_, u_, v_, gridMetric_, curl_, W, H);
+            run(confine_, curl_, u_, v_, W, H, config_.vorticity, dt);
         }
-        if (config_.maxSpeed > 0.0f) run(clampSpeed_, {arg(u_), arg(v_), arg(W), arg(H), arg(config_.maxSpeed)});
+        if (config_.maxSpeed > 0.0f) run(clampSpeed_, u_, v_, W, H, config_.maxSpeed);
         if (config_.sphere) { // the wind's frame turns as it moves (hfx_gas_turn), before it carries itself
             rowSums(u_, sumsBefore_);
-            run(turn_, {arg(u_), arg(v_), arg(metric_), arg(sumsBefore_), arg(work_[0]), arg(work_[3]), arg(W), arg(H),
-                        arg(dt)});
+            run(turn_, u_, v_, metric_, sumsBefore_, work_[0], work_[3], W, H, dt);
             std::swap(work_[0], u_);
             std::swap(work_[3], v_);
         }
@@ -415,7 +402,7 @@ void GasField::step(double dtSeconds) {
                 const int wall = x == &v_ ? 1 : 0;
                 q.enqueueCopyBuffer(*x, work_[1], 0, 0, bytes); // x0, the right-hand side
                 for (int it = 0; it < config_.viscosityIterations; ++it) {
-                    run(diffuse_, {arg(*x), arg(work_[1]), arg(work_[2]), arg(W), arg(H), arg(a), arg(wall)});
+                    run(diffuse_, *x, work_[1], work_[2], W, H, a, wall);
                     std::swap(*x, work_[2]);
                 }
             }
@@ -423,19 +410,18 @@ void GasField::step(double dtSeconds) {
         project();
         if (config_.rotation > 0.0f) { // the planet's spin, on the projected wind (p_ free again)
             fft_->forward(v_, spectrum_);
-            run(betaColumns_, {arg(spectrum_), arg(scratch_), arg(metric_), arg(W), arg(H), arg(dt),
-                               arg(config_.rotation), arg(1.0f / float(W))},
-                cl::NDRange(size_t(W / 2 + 1)));
+            runOver(cl::NDRange(size_t(W / 2 + 1)), betaColumns_, spectrum_, scratch_, metric_, W, H, dt,
+                    config_.rotation, 1.0f / float(W));
             fft_->inverse(spectrum_, p_);
-            run(addStream_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
+            run(addStream_, u_, v_, p_, metric_, W, H);
         }
         if (config_.conserveDye) rowSums(dye_, sumsBefore_);
         advectField(dye_, 0.5f, 0.5f, dt, false);
         std::swap(work_[0], dye_);
         if (config_.conserveDye) {
             rowSums(dye_, sumsAfter_);
-            run(massFactor_, {arg(sumsBefore_), arg(sumsAfter_), arg(metric_), arg(H), arg(factor_)}, cl::NDRange(1));
-            run(scale_, {arg(dye_), arg(factor_), arg(W), arg(H)});
+            runOver(cl::NDRange(1), massFactor_, sumsBefore_, sumsAfter_, metric_, H, factor_);
+            run(scale_, dye_, factor_, W, H);
         }
         if (polar_) {
             // On a sphere the polar rows' dye is filtered along x to the sphere's resolution: the
@@ -448,7 +434,7 @@ void GasField::step(double dtSeconds) {
         }
         if (config_.dyeRate > 0.0f) {
             const float share = float(1.0 - std::exp(-double(config_.dyeRate) * dtSeconds));
-            run(relaxDye_, {arg(dye_), arg(bandRows_), arg(W), arg(H), arg(share)});
+            run(relaxDye_, dye_, bandRows_, W, H, share);
         }
         writeHeight();
     });
@@ -458,30 +444,28 @@ void GasField::project() {
     const int W = config_.width, H = config_.height;
     clGuard("GasField::project", [&] {
         cl::CommandQueue& q = cl_.queue();
-        if (config_.edges == EdgeMode::WrapU) run(removeRowMean_, {arg(v_), arg(W), arg(H)}, cl::NDRange(size_t(H)));
-        run(divergence_, {arg(u_), arg(v_), arg(metric_), arg(div_), arg(W), arg(H)});
+        if (config_.edges == EdgeMode::WrapU) runOver(cl::NDRange(size_t(H)), removeRowMean_, v_, W, H);
+        run(divergence_, u_, v_, metric_, div_, W, H);
         if (config_.pressure == GasPressure::Exact) {
             const int K = W / 2 + 1;
             fft_->forward(div_, spectrum_);
             if (config_.edges == EdgeMode::WrapU) {
                 const PressureColumns& c = pressureColumns_;
-                run(solveColumns_, {arg(spectrum_), arg(c.upper), arg(c.pivots), arg(c.lower), arg(c.rhs), arg(K), arg(H)},
-                    cl::NDRange(size_t(K)));
+                runOver(cl::NDRange(size_t(K)), solveColumns_, spectrum_, c.upper, c.pivots, c.lower, c.rhs, K, H);
             } else {
-                run(pressure_, {arg(spectrum_), arg(W), arg(H), arg(1.0f / (float(W) * float(H)))},
-                    cl::NDRange(size_t(K), size_t(H)));
+                runOver(cl::NDRange(size_t(K), size_t(H)), pressure_, spectrum_, W, H, 1.0f / (float(W) * float(H)));
             }
             fft_->inverse(spectrum_, p_);
-            run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
+            run(project_, u_, v_, p_, metric_, W, H);
             return;
         }
         q.enqueueFillBuffer(p_, 0.0f, 0, sizeof(float) * size_t(W) * H);
         const cl::NDRange sweep(W % 4 == 0 ? W / 4 : W, H);
         for (int it = 0; it < config_.pressureIterations; ++it) {
-            run(pressure_, {arg(p_), arg(div_), arg(metric_), arg(p2_), arg(W), arg(H)}, sweep);
+            runOver(sweep, pressure_, p_, div_, metric_, p2_, W, H);
             std::swap(p_, p2_);
         }
-        run(project_, {arg(u_), arg(v_), arg(p_), arg(metric_), arg(W), arg(H)});
+        run(project_, u_, v_, p_, metric_, W, H);
     });
 }
 
@@ -491,7 +475,7 @@ float GasField::metricAt(float v) const {
 
 void GasField::writeHeight() {
     const int W = config_.width, H = config_.height;
-    run(dyeHeight_, {arg(dye_), arg(height_), arg(W), arg(H)});
+    run(dyeHeight_, dye_, height_, W, H);
 }
 
 void GasField::setState(const std::vector<float>& u, const std::vector<float>& v, const std::vector<float>& dye) {
@@ -536,7 +520,7 @@ std::vector<float> GasField::readDivergence() {
     const int W = config_.width, H = config_.height;
     std::vector<float> out(size_t(W) * H);
     clGuard("GasField::readDivergence", [&] {
-        run(divergence_, {arg(u_), arg(v_), arg(metric_), arg(div_), arg(W), arg(H)});
+        run(divergence_, u_, v_, metric_, div_, W, H);
         cl_.queue().enqueueReadBuffer(div_, CL_TRUE, 0, out.size() * sizeof(float), out.data());
     });
     return out;

@@ -196,9 +196,11 @@ public:
     const std::vector<float>& bands() const { return bands_; }
 
 private:
-    /// Sets the kernel's arguments in order and enqueues it over `range` (default: every cell).
-    void run(cl::Kernel& kernel, std::initializer_list<std::pair<size_t, const void*>> args,
-             cl::NDRange range = cl::NullRange);
+    /// Sets the kernel's arguments in order and enqueues it over every cell, or over `range`.
+    template <typename... Args>
+    void run(cl::Kernel& kernel, const Args&... args);
+    template <typename... Args>
+    void runOver(cl::NDRange range, cl::Kernel& kernel, const Args&... args);
     void advectField(cl::Buffer& field, float ox, float oy, float dt, bool wallRow);
     void writeHeight();
 
