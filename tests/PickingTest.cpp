@@ -1,6 +1,7 @@
 // Picking on meshes (pickMesh): a ray through a pixel's centre picks the texcoords that pixel's
 // trace output holds and the depth it wrote, on the decal wall's bricks drawn on a sphere (curved,
-// with a silhouette fade) and under a triplanar mapping; a shot at the pick lands there; on a
+// with a silhouette fade), under a triplanar mapping and on two sheets of one mesh where the
+// later one shows in front of the first one's deep relief; a shot at the pick lands there; on a
 // plane it is pickSurface on the plane's frame; a MeshPicker picks what pickMesh picks, to the
 // bit; bad input is refused by name.
 
@@ -280,6 +281,46 @@ TEST_F(Picking, ATriplanarSpherePicksItsHeaviestProjection) {
     EXPECT_LE(a.off, a.covered / 200);
     EXPECT_EQ(a.projections[0], 0) << "a triplanar pick reported the mesh's texcoords";
     for (int axis = 1; axis <= 3; ++axis) EXPECT_GT(a.projections[size_t(axis)], int(a.covered / 20)) << "xyz"[axis - 1];
+}
+
+TEST_F(Picking, ANearerPartOfTheMeshInFrontOfADeepHitIsWhatIsPicked) {
+    // Two overlapping sheets of one mesh, the lower 0.03 below the upper (a fifth of the relief's
+    // depth) and shifted along it: where the upper sheet's relief runs deeper than the lower's
+    // surface, the lower sheet's relief shows in front of it though the ray entered it later.
+    // The draw's depth test keeps it, and the pick must too (it picked the sheet entered first).
+    constexpr int W = 256, H = 192, kField = 64;
+    const SineRelief relief(kField, 0.08f);
+    MeshData data = makePlane({.size = 2.0f, .subdivisions = 2});
+    const MeshData lower = makePlane({.size = 2.0f, .subdivisions = 2});
+    const uint32_t upperVertices = uint32_t(data.vertices.size()), upperTriangles = uint32_t(data.indices.size() / 3);
+    for (Vertex v : lower.vertices) {
+        v.position += glm::vec3(0.37f, -0.03f, 0.21f);
+        data.vertices.push_back(v);
+    }
+    for (const uint32_t i : lower.indices) data.indices.push_back(i + upperVertices);
+    const Mesh sheets(data);
+    const SurfaceMaterial material{.depthScale = 0.08f, .lodThreshold = 100.0f};
+    Camera camera = Camera::orbit({0.2f, 0.0f, 0.1f}, 2.6f, 0.4f, 0.75f);
+    camera.aspect = float(W) / float(H);
+    const HeightFieldTracer heights(relief.heights, kField, kField, EdgeMode::Wrap);
+    size_t inFront = 0; // picks on the lower sheet where the ray crossed the upper one first
+    const Agreement a = compare(sheets, glm::mat4(1.0f), {{&relief.textures}}, material, camera, W, H, kField, true,
+                                [&](const Ray& ray) {
+                                    const auto p = pickMesh(ray, data, glm::mat4(1.0f), heights, material);
+                                    const glm::dvec3 upper = ray.origin - ray.direction * (ray.origin.y / ray.direction.y);
+                                    inFront += p && p->triangle >= upperTriangles && std::abs(upper.x) < 1.0 &&
+                                               std::abs(upper.z) < 1.0;
+                                    return p;
+                                });
+    std::printf("[two sheets] %zu pixels, %zu picked nothing, %zu off the trace by more than 0.01 texels (%.2g at "
+                "most), %zu depths off by more than 1e-5; %zu picks on the lower sheet where the ray entered the "
+                "upper\n",
+                a.covered, a.missed, a.off, a.worst, a.depthOff, inFront);
+    ASSERT_GT(a.covered, size_t(W * H / 4));
+    EXPECT_GT(inFront, a.covered / 50) << "the lower sheet never showed through the upper's relief";
+    EXPECT_LE(a.missed, a.covered / 1000);
+    EXPECT_LE(a.off, a.covered / 200);
+    EXPECT_LE(a.depthOff, a.covered / 200);
 }
 
 TEST_F(Picking, AnImpactOnThePlanetLandsOnTheTexelItsPixelShows) {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -163,8 +164,13 @@ std::optional<Crossing> cross(const MeshPickSetup& setup, const Ray& ray, const 
     return Crossing{t, k, {1.0 - b1 - b2, b1, b2}, front};
 }
 
-// The pick along the crossings, nearest first (ties in the triangles' order, so that any way of
-// finding them gives the same pick).
+// The pick along the crossings, as the draw's depth test decides it: each front face the ray
+// crosses traces its own relief (or shows its polygon's point), and the nearest of those points
+// shows. Its relief lies at or beyond where the ray crossed it, so the crossings are taken nearest
+// first (ties in the triangles' order, so that any way of finding them gives the same pick) until
+// one lies beyond the nearest point so far. A back face nearer than that shows itself (the mesh
+// seen from behind or inside: nothing picked), unless the mesh is closed and a front face came
+// first: there the renderer culls it, or it lies behind that face's polygon.
 std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPickSetup& setup, const Ray& ray,
                                   const MeshData& mesh, const HeightFieldTracer& heights,
                                   const SurfaceMaterial& material) {
@@ -172,8 +178,16 @@ std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPi
               [](const Crossing& a, const Crossing& b) { return a.t < b.t || (a.t == b.t && a.triangle < b.triangle); });
     const auto& v = mesh.vertices;
     const glm::dvec3 dir = setup.dir;
+    std::optional<MeshPick> nearest;
+    double nearestT = std::numeric_limits<double>::infinity();
+    bool frontCrossed = false;
     for (const Crossing& c : crossings) {
-        if (!c.front) return std::nullopt; // seen from behind: the back face is what shows
+        if (c.t > nearestT) break;
+        if (!c.front) {
+            if (mesh.closed && frontCrossed) continue;
+            return std::nullopt;
+        }
+        frontCrossed = true;
         // The vertex stage's outputs at the crossing (perspective-correct interpolation is the
         // barycentric weights of the point in space).
         glm::dvec3 objectPos(0.0), objectNormal(0.0), normal(0.0), tangent(0.0), bitangent(0.0);
@@ -221,10 +235,15 @@ std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPi
             const SurfaceFrame frame{entry - tangent * uv0.x - bitangent * uv0.y, tangent, bitangent, unitNormal};
             hit = pickSurface(ray, frame, heights, depthScale, bounds);
         }
-        if (hit) return MeshPick{*hit, c.triangle, entry, unitNormal, projection};
-        // Its pixel discarded (the ray left the patch): the next triangle along the ray shows.
+        // (None: its pixel discarded, the ray having left the patch; the next triangle shows.)
+        if (!hit) continue;
+        const double t = glm::dot(hit->world - ray.origin, dir);
+        if (t < nearestT) {
+            nearest = MeshPick{*hit, c.triangle, entry, unitNormal, projection};
+            nearestT = t;
+        }
     }
-    return std::nullopt;
+    return nearest;
 }
 
 } // namespace

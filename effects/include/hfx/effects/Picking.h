@@ -58,20 +58,25 @@ struct MeshPick : SurfacePick {
     int projection = -1;
 };
 
-/// The first point where `ray` meets the relief SurfaceRenderer draws on `mesh` under `model`
-/// with `material`, or nothing: the nearest triangle the ray enters from its front (counter-
-/// clockwise as seen, turned with a mirroring model), traced in the frame a pixel there is
-/// traced in. That frame is the mesh's texcoords and tangent frame interpolated at the entry
-/// point, or the heaviest projection of material.triplanar. The tracer is exact (what hier
-/// draws; the sampled searches land within their step of it). The depth scale is
-/// material.depthScale, faded by material.silhouetteFade as the view grazes the entry normal,
-/// and 0 where the frame is degenerate (a sphere's poles): there the pick is the polygon's point.
+/// The point of the relief SurfaceRenderer draws on `mesh` under `model` with `material` that
+/// the ray's pixel shows, or nothing. Each triangle the ray enters from its front (counter-
+/// clockwise as seen, turned with a mirroring model) is traced in the frame a pixel there is
+/// traced in, and the nearest of their points along the ray is picked, as the draw's depth test
+/// keeps it: a nearer part of the mesh passing in front of a deep hit shows (and is picked)
+/// though the ray entered it later. That frame is the mesh's texcoords and tangent frame
+/// interpolated at the entry point, or the heaviest projection of material.triplanar. The tracer
+/// is exact (what hier draws; the sampled searches land within their step of it). The depth
+/// scale is material.depthScale, faded by material.silhouetteFade as the view grazes the entry
+/// normal, and 0 where the frame is degenerate (a sphere's poles): there the pick is the
+/// polygon's point.
 ///
-/// A triangle whose hit leaves material.patchBounds under clipToPatch is passed through to the
-/// next, as its pixel is discarded. The ray entering a back face first (the mesh seen from
-/// behind or inside) picks nothing, as a ray from below the relief does. Not modelled: the
-/// level of detail (lodThreshold: the relief at any distance) and a nearer part of the mesh
-/// passing in front of the traced point. The heights are those of the drawn surface, row 0 at
+/// A triangle whose hit leaves material.patchBounds under clipToPatch offers no point, as its
+/// pixel is discarded. A back face nearer than every point found (the mesh seen from behind or
+/// inside) picks nothing, as a ray from below the relief does, unless the mesh is closed
+/// (MeshData::closed) and a front face came first: the renderer culls it then (or, with the eye
+/// near the mesh, its polygon lies behind that face's; a relief deeper than the solid is thick
+/// there is the one place the draw can differ). Not modelled: the level of detail (lodThreshold:
+/// the relief at any distance). The heights are those of the drawn surface, row 0 at
 /// v = 0 (DecalWallEffect::heightTracer, a SurfaceMaps' heights). O(triangles): 0.22 ms for
 /// makeSphere's 9,216 on one thread of an Intel Xeon (Skylake-AVX512), and 1.4x pickSurface's
 /// trace alone for a plane's 2 triangles (hfx-bench-kernels --benchmark_filter=BM_Pick); a
