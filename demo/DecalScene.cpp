@@ -179,9 +179,11 @@ private:
         return c;
     }
 
+    /// What pixel (x, y) (from the top) shows of the wall, at the draw's level of detail.
     std::optional<SurfacePick> pick(double x, double y, int width, int height) {
         const Ray ray = camera_.rayThroughPixel(x, height - y, width, height);
-        return wall_.pick(ray, shape_, model(), wall_.material());
+        return wall_.pick(ray, shape_, model(), wall_.material(),
+                          PixelNeighbours::of(camera_, x, height - y, width, height));
     }
 
     void apply(const Shot& shot) {

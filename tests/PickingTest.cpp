@@ -48,7 +48,7 @@ struct Agreement {
 /// ray through its centre (`checkDepth`: and the depth it wrote with the pick's point's).
 Agreement compare(const Mesh& mesh, const glm::mat4& model, const std::vector<SurfaceLayer>& layers,
                   const SurfaceMaterial& material, const Camera& camera, int W, int H, int texels, bool checkDepth,
-                  const std::function<std::optional<MeshPick>(const Ray&)>& pick) {
+                  const std::function<std::optional<MeshPick>(const Ray&, glm::dvec2 pixel)>& pick) {
     RenderTarget target(W, H, true);
     target.bind();
     target.clear();
@@ -64,7 +64,7 @@ Agreement compare(const Mesh& mesh, const glm::mat4& model, const std::vector<Su
             const size_t i = size_t(y) * W + x;
             if (!(depth[i] < 1.0f)) continue;
             ++a.covered;
-            const std::optional<MeshPick> p = pick(camera.rayThroughPixel(x + 0.5, y + 0.5, W, H));
+            const std::optional<MeshPick> p = pick(camera.rayThroughPixel(x + 0.5, y + 0.5, W, H), {x + 0.5, y + 0.5});
             if (!p) {
                 ++a.missed;
                 continue;
@@ -146,8 +146,9 @@ TEST(PickMesh, BadInputIsRefusedByName) {
 TEST(MeshPicker, PicksWhatPickMeshPicksToTheBit) {
     // Its hierarchy passes over triangles and crosses the rest as pickMesh does: on a sphere, a
     // cylinder and a clipped plane, under a turned, scaled and moved model and its mirror, 1,500
-    // rays each from around the mesh (some past it, some from inside) pick the same triangle and
-    // the same texcoords and point to the bit, or nothing both.
+    // rays each from around the mesh (some past it, some from inside; half of them with a
+    // pixel's neighbours) pick the same triangle and the same texcoords and point to the bit, or
+    // nothing both.
     const HeightFieldTracer heights(sumOfSines(64, {{0.3, 2, 1, 0.0}, {0.15, -3, 5, 1.0}}), 64, 64, EdgeMode::Wrap);
     SurfaceMaterial clipped{.depthScale = 0.06f, .silhouetteFade = 0.2f};
     clipped.clipToPatch = true;
@@ -171,8 +172,16 @@ TEST(MeshPicker, PicksWhatPickMeshPicksToTheBit) {
                 const glm::dvec3 from = centre + (k % 10 == 0 ? 0.2 : 3.0) * glm::dvec3(unit(random), unit(random), unit(random));
                 const glm::dvec3 to = centre + 1.2 * glm::dvec3(unit(random), unit(random), unit(random));
                 const Ray ray{from, glm::normalize(to - from)};
-                const auto a = pickMesh(ray, mesh, model, heights, material);
-                const auto b = picker.pick(ray, model, heights, material);
+                // Every other ray with neighbours spread from 0 to 19 texels: its relief faded
+                // or flat past the level of detail.
+                std::optional<PixelNeighbours> neighbours;
+                if (k % 2 == 1) {
+                    const double apart = 0.03 * (k % 20);
+                    neighbours = PixelNeighbours{{from, glm::normalize(to + glm::dvec3(apart, 0.0, 0.0) - from)},
+                                                 {from, glm::normalize(to + glm::dvec3(0.0, apart, 0.0) - from)}};
+                }
+                const auto a = pickMesh(ray, mesh, model, heights, material, neighbours);
+                const auto b = picker.pick(ray, model, heights, material, neighbours);
                 ASSERT_EQ(a.has_value(), b.has_value()) << "ray " << k;
                 if (!a) continue;
                 ++picked;
@@ -220,7 +229,7 @@ TEST_F(Picking, ABrickWallOnASpherePicksWhatItsPixelsTraceAndAShotLandsThere) {
     for (const glm::mat4& m : {model, glm::scale(model, {-1.0f, 1.0f, 1.0f})}) {
         const bool mirrored = glm::determinant(glm::mat3(m)) < 0.0f;
         const Agreement a = compare(sphere, m, wall.layers(), material, camera, W, H, 128, true,
-                                    [&](const Ray& ray) { return pickMesh(ray, data, m, heights, material); });
+                                    [&](const Ray& ray, glm::dvec2) { return pickMesh(ray, data, m, heights, material); });
         std::printf("[bricks on a sphere%s] %zu pixels, %zu picked nothing, %zu off the trace by more than 0.01 "
                     "texels (%.2g at most), %zu depths off by more than 1e-5\n",
                     mirrored ? ", mirrored" : "", a.covered, a.missed, a.off, a.worst, a.depthOff);
@@ -272,7 +281,7 @@ TEST_F(Picking, ATriplanarSpherePicksItsHeaviestProjection) {
     camera.aspect = float(W) / float(H);
     const HeightFieldTracer heights(relief.heights, kField, kField, EdgeMode::Wrap);
     const Agreement a = compare(sphere, model, {{&relief.textures}}, material, camera, W, H, kField, false,
-                                [&](const Ray& ray) { return pickMesh(ray, data, model, heights, material); });
+                                [&](const Ray& ray, glm::dvec2) { return pickMesh(ray, data, model, heights, material); });
     std::printf("[triplanar sphere] %zu pixels, %zu picked nothing, %zu off the trace by more than 0.01 texels "
                 "(%.2g at most); picks along x, y, z: %d, %d, %d\n",
                 a.covered, a.missed, a.off, a.worst, a.projections[1], a.projections[2], a.projections[3]);
@@ -305,7 +314,7 @@ TEST_F(Picking, ANearerPartOfTheMeshInFrontOfADeepHitIsWhatIsPicked) {
     const HeightFieldTracer heights(relief.heights, kField, kField, EdgeMode::Wrap);
     size_t inFront = 0; // picks on the lower sheet where the ray crossed the upper one first
     const Agreement a = compare(sheets, glm::mat4(1.0f), {{&relief.textures}}, material, camera, W, H, kField, true,
-                                [&](const Ray& ray) {
+                                [&](const Ray& ray, glm::dvec2) {
                                     const auto p = pickMesh(ray, data, glm::mat4(1.0f), heights, material);
                                     const glm::dvec3 upper = ray.origin - ray.direction * (ray.origin.y / ray.direction.y);
                                     inFront += p && p->triangle >= upperTriangles && std::abs(upper.x) < 1.0 &&
@@ -321,6 +330,57 @@ TEST_F(Picking, ANearerPartOfTheMeshInFrontOfADeepHitIsWhatIsPicked) {
     EXPECT_LE(a.missed, a.covered / 1000);
     EXPECT_LE(a.off, a.covered / 200);
     EXPECT_LE(a.depthOff, a.covered / 200);
+}
+
+TEST_F(Picking, GivenThePixelsNeighboursAPickFadesTheReliefWithTheLevelOfDetail) {
+    // A plane whose far half lies past the level of detail: its relief fades to normal mapping
+    // over the level below lodThreshold, flat past it. A pick given its pixel's neighbours in its
+    // 2x2 quad (those the draw's derivatives difference) has the draw's mip level and picks what
+    // the pixel shows there too. Without them it picks the relief's hit, far from what many of
+    // those pixels show.
+    constexpr int W = 256, H = 192, kField = 128;
+    const SineRelief relief(kField, 0.05f);
+    const MeshData data = makePlane({.size = 2.0f, .texcoordScale = 4.0f, .subdivisions = 2});
+    const Mesh plane(data);
+    const glm::mat4 model = glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 1, 0));
+    const SurfaceMaterial material{.depthScale = 0.05f, .lodThreshold = 3.0f};
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.2f, 0.2f, 0.45f);
+    camera.aspect = float(W) / float(H);
+    const HeightFieldTracer heights(relief.heights, kField, kField, EdgeMode::Wrap);
+    size_t faded = 0, flat = 0; // pixels whose pick moved off the hit, and those at the polygon
+    const Agreement given = compare(plane, model, {{&relief.textures}}, material, camera, W, H, kField, true,
+                                    [&](const Ray& ray, glm::dvec2 pixel) {
+                                        const auto p = pickMesh(ray, data, model, heights, material,
+                                                                PixelNeighbours::of(camera, pixel.x, pixel.y, W, H));
+                                        const auto hit = pickMesh(ray, data, model, heights, material);
+                                        if (p && hit && glm::length(p->uv - hit->uv) * kField > 0.01) {
+                                            ++faded;
+                                            flat += glm::length(p->world - p->entry) < 1e-9;
+                                        }
+                                        return p;
+                                    });
+    const Agreement without =
+        compare(plane, model, {{&relief.textures}}, material, camera, W, H, kField, true,
+                [&](const Ray& ray, glm::dvec2) { return pickMesh(ray, data, model, heights, material); });
+    std::printf("[level of detail] %zu pixels, %zu faded (%zu of them flat); given the neighbours %zu picked "
+                "nothing, %zu off the trace by more than 0.01 texels (%.2g at most), %zu depths off by more "
+                "than 1e-5; without them %zu off (%.2g texels at most), %zu depths off\n",
+                given.covered, faded, flat, given.missed, given.off, given.worst, given.depthOff, without.off,
+                without.worst, without.depthOff);
+    ASSERT_GT(given.covered, size_t(W * H / 5));
+    EXPECT_GT(faded - flat, given.covered / 20) << "too few pixels in the fade";
+    EXPECT_GT(flat, given.covered / 20) << "too few pixels past the level of detail";
+    EXPECT_LE(given.missed, given.covered / 1000);
+    EXPECT_LE(given.off, given.covered / 200);
+    EXPECT_LE(given.depthOff, given.covered / 200);
+    EXPECT_GT(without.off, given.covered / 10);
+    EXPECT_GT(without.depthOff, given.covered / 10);
+    // Neighbours whose rays are not rays are refused by name.
+    const Ray middle = camera.rayThroughPixel(W / 2, H / 2, W, H);
+    EXPECT_NE(messageOf([&] {
+                  pickMesh(middle, data, model, heights, material, PixelNeighbours{middle, {{0, 0, 0}, {0, 0, 0}}});
+              }).find("pickMesh: the neighbours' ray up must be finite and have a direction"),
+              std::string::npos);
 }
 
 TEST_F(Picking, AnImpactOnThePlanetLandsOnTheTexelItsPixelShows) {

@@ -172,8 +172,9 @@ std::optional<SurfacePick> DecalWallEffect::pick(const Ray& ray, const SurfaceFr
 }
 
 std::optional<MeshPick> DecalWallEffect::pick(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
-                                              const SurfaceMaterial& material) {
-    return pickMesh(ray, mesh, model, heightTracer(), material);
+                                              const SurfaceMaterial& material,
+                                              const std::optional<PixelNeighbours>& neighbours) {
+    return pickMesh(ray, mesh, model, heightTracer(), material, neighbours);
 }
 
 } // namespace hfx

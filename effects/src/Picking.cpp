@@ -116,10 +116,19 @@ struct MeshPickSetup {
     glm::dvec3 dir; ///< the ray's unit direction
 };
 
-MeshPickSetup checkedSetup(const Ray& ray, const glm::mat4& model, const SurfaceMaterial& material, const char* caller) {
+void checkRay(const Ray& ray, const char* caller, const char* which) {
     if (!isFinite(ray.origin) || !isFinite(ray.direction) || !(glm::length(ray.direction) > 0.0))
-        throw Error(str(caller, ": the ray must be finite and have a direction, got origin ", text(ray.origin),
+        throw Error(str(caller, ": ", which, " must be finite and have a direction, got origin ", text(ray.origin),
                         " and direction ", text(ray.direction)));
+}
+
+MeshPickSetup checkedSetup(const Ray& ray, const glm::mat4& model, const SurfaceMaterial& material,
+                           const std::optional<PixelNeighbours>& neighbours, const char* caller) {
+    checkRay(ray, caller, "the ray");
+    if (neighbours) {
+        checkRay(neighbours->across, caller, "the neighbours' ray across");
+        checkRay(neighbours->up, caller, "the neighbours' ray up");
+    }
     checkModel(model, str(caller, ": ").c_str());
     {
         // The fields the pick reads; a shading model's look is not among them (and a water
@@ -148,20 +157,30 @@ struct Crossing {
     bool front;
 };
 
-// Where the ray crosses triangle `k` (Moller-Trumbore in world space), if it does.
-std::optional<Crossing> cross(const MeshPickSetup& setup, const Ray& ray, const MeshData& mesh, std::uint32_t k) {
+// Where a ray from `origin` along the unit `dir` crosses the plane of triangle `k` (Moller-
+// Trumbore in world space), inside the triangle or not: its barycentric weights there and t
+// along the ray; nothing where the ray runs in its plane or it has no area.
+std::optional<Crossing> crossPlane(const MeshPickSetup& setup, glm::dvec3 origin, glm::dvec3 dir, const MeshData& mesh,
+                                   std::uint32_t k) {
     const auto& v = mesh.vertices;
     const glm::dvec3 p0(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k]].position), 1.0));
     const glm::dvec3 p1(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k + 1]].position), 1.0));
     const glm::dvec3 p2(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k + 2]].position), 1.0));
-    const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0, q = glm::cross(setup.dir, e2);
+    const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0, q = glm::cross(dir, e2);
     const double det = glm::dot(e1, q);
-    if (!(std::abs(det) > 1e-300)) return std::nullopt; // the ray runs in its plane, or it has no area
-    const glm::dvec3 s = ray.origin - p0, r = glm::cross(s, e1);
-    const double b1 = glm::dot(s, q) / det, b2 = glm::dot(setup.dir, r) / det, t = glm::dot(e2, r) / det;
-    if (b1 < 0.0 || b2 < 0.0 || b1 + b2 > 1.0 || !(t > 0.0)) return std::nullopt;
-    const bool front = setup.winding * glm::dot(glm::cross(e1, e2), setup.dir) < 0.0;
+    if (!(std::abs(det) > 1e-300)) return std::nullopt;
+    const glm::dvec3 s = origin - p0, r = glm::cross(s, e1);
+    const double b1 = glm::dot(s, q) / det, b2 = glm::dot(dir, r) / det, t = glm::dot(e2, r) / det;
+    const bool front = setup.winding * glm::dot(glm::cross(e1, e2), dir) < 0.0;
     return Crossing{t, k, {1.0 - b1 - b2, b1, b2}, front};
+}
+
+// Where the ray crosses triangle `k`, if it does.
+std::optional<Crossing> cross(const MeshPickSetup& setup, const Ray& ray, const MeshData& mesh, std::uint32_t k) {
+    const auto c = crossPlane(setup, ray.origin, setup.dir, mesh, k);
+    if (!c || c->weights.y < 0.0 || c->weights.z < 0.0 || c->weights.y + c->weights.z > 1.0 || !(c->t > 0.0))
+        return std::nullopt;
+    return c;
 }
 
 // The pick along the crossings, as the draw's depth test decides it: each front face the ray
@@ -173,7 +192,7 @@ std::optional<Crossing> cross(const MeshPickSetup& setup, const Ray& ray, const 
 // first: there the renderer culls it, or it lies behind that face's polygon.
 std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPickSetup& setup, const Ray& ray,
                                   const MeshData& mesh, const HeightFieldTracer& heights,
-                                  const SurfaceMaterial& material) {
+                                  const SurfaceMaterial& material, const std::optional<PixelNeighbours>& neighbours) {
     std::sort(crossings.begin(), crossings.end(),
               [](const Crossing& a, const Crossing& b) { return a.t < b.t || (a.t == b.t && a.triangle < b.triangle); });
     const auto& v = mesh.vertices;
@@ -204,13 +223,45 @@ std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPi
         }
         const glm::dvec3 entry = ray.origin + c.t * dir;
         int projection = -1;
+        glm::dvec3 projectionNormal(0.0);
         if (material.triplanar.on()) {
-            const glm::dvec3 n = glm::length(objectNormal) > 1e-6 ? glm::normalize(objectNormal) : glm::dvec3(0.0, 1.0, 0.0);
-            projection = heaviestProjection(n, material.triplanar.sharpness);
-            const Projected f = projected(projection, n, objectPos, material.triplanar.scale);
+            projectionNormal =
+                glm::length(objectNormal) > 1e-6 ? glm::normalize(objectNormal) : glm::dvec3(0.0, 1.0, 0.0);
+            projection = heaviestProjection(projectionNormal, material.triplanar.sharpness);
+            const Projected f = projected(projection, projectionNormal, objectPos, material.triplanar.scale);
             uv0 = f.uv;
             tangent = setup.m3 * f.tangent;
             bitangent = setup.m3 * f.bitangent;
+        }
+        // The draw's level of detail (surface.frag): the mip level of the texcoords' spread to
+        // the neighbouring pixels, whose rays cross the triangle's plane where their texcoords are
+        // interpolated (or projected); `flatten`, how far the point shown slides back from the
+        // hit to the polygon (1: normal mapped).
+        double flatten = 0.0;
+        if (neighbours) {
+            const glm::dvec2 texels(heights.width(), heights.height());
+            double spread = 0.0; // the longer, squared, in texels
+            for (const Ray* r : {&neighbours->across, &neighbours->up}) {
+                const auto w = crossPlane(setup, r->origin, glm::normalize(r->direction), mesh, c.triangle);
+                if (!w || !(w->t > 0.0)) { // the neighbour's ray misses the plane: the spread is endless
+                    spread = std::numeric_limits<double>::infinity();
+                    break;
+                }
+                glm::dvec2 uv(0.0);
+                if (projection >= 0) {
+                    glm::dvec3 p(0.0);
+                    for (int i = 0; i < 3; ++i)
+                        p += w->weights[i] * glm::dvec3(v[mesh.indices[3 * c.triangle + i]].position);
+                    uv = projected(projection, projectionNormal, p, material.triplanar.scale).uv;
+                } else {
+                    for (int i = 0; i < 3; ++i)
+                        uv += w->weights[i] * glm::dvec2(v[mesh.indices[3 * c.triangle + i]].texcoord);
+                }
+                const glm::dvec2 d = (uv - uv0) * texels;
+                spread = std::max(spread, glm::dot(d, d));
+            }
+            const double level = 0.5 * std::log2(std::max(spread, 1e-12)), threshold = material.lodThreshold;
+            flatten = level > threshold ? 1.0 : std::clamp(level - (threshold - 1.0), 0.0, 1.0);
         }
         // hfx_surface: a degenerate frame is normal mapped; the relief fades out as the view
         // grazes the entry's normal.
@@ -223,19 +274,26 @@ std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPi
             const double x = std::clamp(cosView / double(material.silhouetteFade), 0.0, 1.0);
             depthScale *= x * x * (3.0 - 2.0 * x);
         }
-        glm::dvec4 bounds(-1e30, -1e30, 1e30, 1e30);
-        if (material.clipToPatch) bounds = glm::dvec4(material.patchBounds);
         std::optional<SurfacePick> hit;
-        if (!frameOk || !(depthScale > 0.0) || !(glm::dot(unitNormal, -dir) > 0.0)) {
-            // No texture space, no relief, or the view at or past the entry normal's horizon:
-            // normal mapped, the polygon's point at its texcoords.
-            if (uv0.x >= bounds.x && uv0.y >= bounds.y && uv0.x <= bounds.z && uv0.y <= bounds.w)
-                hit = SurfacePick{uv0, entry, heights.heightAt(uv0)};
+        if (!frameOk || !(depthScale > 0.0) || !(glm::dot(unitNormal, -dir) > 0.0) || flatten >= 1.0) {
+            // No texture space, no relief, the view at or past the entry normal's horizon, or
+            // past the level of detail: normal mapped, the polygon's point at its texcoords.
+            hit = SurfacePick{uv0, entry, heights.heightAt(uv0)};
         } else {
             const SurfaceFrame frame{entry - tangent * uv0.x - bitangent * uv0.y, tangent, bitangent, unitNormal};
-            hit = pickSurface(ray, frame, heights, depthScale, bounds);
+            hit = pickSurface(ray, frame, heights, depthScale);
+            if (hit && flatten > 0.0) {
+                hit->uv = glm::mix(hit->uv, uv0, flatten);
+                hit->world = glm::mix(hit->world, entry, flatten);
+                hit->height = heights.heightAt(hit->uv);
+            }
         }
-        // (None: its pixel discarded, the ray having left the patch; the next triangle shows.)
+        // (None, or a point off the patch: its pixel discarded; the next triangle shows.)
+        if (material.clipToPatch && hit) {
+            const glm::dvec4 bounds(material.patchBounds);
+            if (hit->uv.x < bounds.x || hit->uv.y < bounds.y || hit->uv.x > bounds.z || hit->uv.y > bounds.w)
+                hit.reset();
+        }
         if (!hit) continue;
         const double t = glm::dot(hit->world - ray.origin, dir);
         if (t < nearestT) {
@@ -248,15 +306,23 @@ std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPi
 
 } // namespace
 
+PixelNeighbours PixelNeighbours::of(const Camera& camera, double x, double y, int width, int height) {
+    // The other pixel of its 2x2 quad across and up: quads start at even window coordinates.
+    const double across = (static_cast<long long>(std::floor(x)) & 1) != 0 ? -1.0 : 1.0;
+    const double up = (static_cast<long long>(std::floor(y)) & 1) != 0 ? -1.0 : 1.0;
+    return {camera.rayThroughPixel(x + across, y, width, height), camera.rayThroughPixel(x, y + up, width, height)};
+}
+
 std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
-                                 const HeightFieldTracer& heights, const SurfaceMaterial& material) {
-    const MeshPickSetup setup = checkedSetup(ray, model, material, "pickMesh");
+                                 const HeightFieldTracer& heights, const SurfaceMaterial& material,
+                                 const std::optional<PixelNeighbours>& neighbours) {
+    const MeshPickSetup setup = checkedSetup(ray, model, material, neighbours, "pickMesh");
     mesh.validate();
     // Every triangle the ray crosses.
     std::vector<Crossing> crossings;
     for (std::uint32_t k = 0; 3 * size_t(k) + 2 < mesh.indices.size(); ++k)
         if (const auto c = cross(setup, ray, mesh, k)) crossings.push_back(*c);
-    return pickAlong(crossings, setup, ray, mesh, heights, material);
+    return pickAlong(crossings, setup, ray, mesh, heights, material, neighbours);
 }
 
 MeshPicker::MeshPicker(MeshData mesh) : mesh_((mesh.validate(), std::move(mesh))) {
@@ -317,8 +383,9 @@ MeshPicker::MeshPicker(MeshData mesh) : mesh_((mesh.validate(), std::move(mesh))
 }
 
 std::optional<MeshPick> MeshPicker::pick(const Ray& ray, const glm::mat4& model, const HeightFieldTracer& heights,
-                                         const SurfaceMaterial& material) const {
-    const MeshPickSetup setup = checkedSetup(ray, model, material, "MeshPicker::pick");
+                                         const SurfaceMaterial& material,
+                                         const std::optional<PixelNeighbours>& neighbours) const {
+    const MeshPickSetup setup = checkedSetup(ray, model, material, neighbours, "MeshPicker::pick");
     // The ray in object space (the model is affine: a point at t along it is the world ray's at t).
     const glm::dmat4 inverse = glm::inverse(setup.m);
     const glm::dvec3 o(inverse * glm::dvec4(ray.origin, 1.0)), d(inverse * glm::dvec4(setup.dir, 0.0));
@@ -353,7 +420,7 @@ std::optional<MeshPick> MeshPicker::pick(const Ray& ray, const glm::mat4& model,
             stack.push_back(n.first + 1);
         }
     }
-    return pickAlong(crossings, setup, ray, mesh_, heights, material);
+    return pickAlong(crossings, setup, ray, mesh_, heights, material, neighbours);
 }
 
 } // namespace hfx

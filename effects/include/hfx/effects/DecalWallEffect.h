@@ -80,9 +80,11 @@ public:
     /// of the last update (read back once per call).
     std::optional<SurfacePick> pick(const Ray& ray, const SurfaceFrame& frame);
     /// ... on the wall drawn on any `mesh` (a pillar, a barrel, a triplanar rock) with `model`
-    /// and `material` (pickMesh): shoot(pick->uv) stamps where the ray met the relief.
+    /// and `material` (pickMesh; with the pixel's `neighbours`, at the draw's level of detail):
+    /// shoot(pick->uv) stamps where the ray met the relief.
     std::optional<MeshPick> pick(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
-                                 const SurfaceMaterial& material);
+                                 const SurfaceMaterial& material,
+                                 const std::optional<PixelNeighbours>& neighbours = std::nullopt);
     /// The combined heights of the last update, row 0 at v = 0 (for picking and export).
     std::vector<float> readHeights();
     /// Those heights' exact tracer, for pickSurface and pickMesh (read back once per call).

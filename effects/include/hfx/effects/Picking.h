@@ -3,7 +3,9 @@
 // the height field that POM draws, found exactly by the bilinear ray/height-field intersection
 // (HeightFieldTracer), so a click lands on the texel the user sees, not on the flat polygon: on
 // a flat patch (pickSurface) or on any mesh as SurfaceRenderer draws it (pickMesh: curved, with
-// a silhouette fade, or triplanar mapped; MeshPicker: the same through a hierarchy of boxes).
+// a silhouette fade, or triplanar mapped, its parts in front of one another as the depth test
+// keeps them, and given the pixel's neighbours at its level of detail; MeshPicker: the same
+// through a hierarchy of boxes).
 //
 // pickSurface and pickMesh own nothing; a MeshPicker owns its copy of the mesh and its hierarchy.
 // Thread: any; pure CPU work.
@@ -58,6 +60,23 @@ struct MeshPick : SurfacePick {
     int projection = -1;
 };
 
+/// The rays through the pixels beside a picked one: one across and one up or down. Given them,
+/// pickMesh has the draw's level of detail: the mip level of the texcoords' spread from the
+/// pick's ray to theirs (what the draw's derivatives give), the relief faded out over the level
+/// below SurfaceMaterial::lodThreshold (the point shown slides along the ray from the hit back to
+/// the polygon) and flat past it.
+struct PixelNeighbours {
+    Ray across;
+    Ray up;
+    /// Pixel (x, y)'s in a width x height image of `camera` (y from the bottom, as
+    /// Camera::rayThroughPixel and gl_FragCoord count it): the rays through the other pixels of
+    /// its 2x2 quad across and up or down, the pairs a GPU's derivatives difference. (The pixels at
+    /// x + 1 and y + 1 put the picks of Picking.GivenThePixelsNeighboursAPickFadesTheRelief...
+    /// up to 0.47 texels from the drawn point, an eighth of a pixel or less in the fade; these,
+    /// 0.0003.)
+    static PixelNeighbours of(const Camera& camera, double x, double y, int width, int height);
+};
+
 /// The point of the relief SurfaceRenderer draws on `mesh` under `model` with `material` that
 /// the ray's pixel shows, or nothing. Each triangle the ray enters from its front (counter-
 /// clockwise as seen, turned with a mirroring model) is traced in the frame a pixel there is
@@ -75,18 +94,21 @@ struct MeshPick : SurfacePick {
 /// inside) picks nothing, as a ray from below the relief does, unless the mesh is closed
 /// (MeshData::closed) and a front face came first: the renderer culls it then (or, with the eye
 /// near the mesh, its polygon lies behind that face's; a relief deeper than the solid is thick
-/// there is the one place the draw can differ). Not modelled: the level of detail (lodThreshold:
-/// the relief at any distance). The heights are those of the drawn surface, row 0 at
-/// v = 0 (DecalWallEffect::heightTracer, a SurfaceMaps' heights). O(triangles): 0.22 ms for
+/// there is the one place the draw can differ). The level of detail (lodThreshold) needs the
+/// pixel's `neighbours`: without them the relief is picked at any distance. The heights are those
+/// of the drawn surface, row 0 at v = 0 (DecalWallEffect::heightTracer, a SurfaceMaps' heights);
+/// their size is the drawn surface's, what its mip levels count. O(triangles): 0.22 ms for
 /// makeSphere's 9,216 on one thread of an Intel Xeon (Skylake-AVX512), and 1.4x pickSurface's
 /// trace alone for a plane's 2 triangles (hfx-bench-kernels --benchmark_filter=BM_Pick); a
 /// MeshPicker picks the same in 1.55 us on that sphere.
 ///
 /// Throws hfx::Error naming the problem: a ray not finite or of no direction, a model matrix
 /// not finite or without an inverse, a bad mesh (MeshData::validate) or material
-/// (SurfaceMaterial::validate, less the shading model's look: no GL call).
+/// (SurfaceMaterial::validate, less the shading model's look: no GL call), or neighbours whose
+/// rays are not finite or have no direction.
 std::optional<MeshPick> pickMesh(const Ray& ray, const MeshData& mesh, const glm::mat4& model,
-                                 const HeightFieldTracer& heights, const SurfaceMaterial& material);
+                                 const HeightFieldTracer& heights, const SurfaceMaterial& material,
+                                 const std::optional<PixelNeighbours>& neighbours = std::nullopt);
 
 /// pickMesh on a mesh picked many times: a bounding volume hierarchy over its triangles (in
 /// object space, built once, O(n log n)) passes over the triangles a ray cannot cross, and the
@@ -97,10 +119,11 @@ class MeshPicker {
 public:
     /// Throws hfx::Error for a bad mesh (MeshData::validate).
     explicit MeshPicker(MeshData mesh);
-    /// pickMesh(ray, mesh(), model, heights, material); throws as it does (its messages begin
-    /// "MeshPicker::pick").
+    /// pickMesh(ray, mesh(), model, heights, material, neighbours); throws as it does (its
+    /// messages begin "MeshPicker::pick").
     std::optional<MeshPick> pick(const Ray& ray, const glm::mat4& model, const HeightFieldTracer& heights,
-                                 const SurfaceMaterial& material) const;
+                                 const SurfaceMaterial& material,
+                                 const std::optional<PixelNeighbours>& neighbours = std::nullopt) const;
     const MeshData& mesh() const { return mesh_; }
     /// The hierarchy's nodes (a leaf holds at most 4 triangles).
     size_t nodeCount() const { return nodes_.size(); }
