@@ -32,6 +32,13 @@ void Scene::turnCamera(float degrees) {
     orbit.apply(camera_);
 }
 
+void Scene::followPath(double seconds) {
+    if (!cameraPath) return;
+    SceneOptions o = options;
+    cameraPath->apply(seconds, o);
+    placeCamera(o);
+}
+
 void Scene::placeCamera(const SceneOptions& o) {
     if (!o.cameraAzimuth && !o.cameraElevation && !o.cameraDistance && !o.cameraTarget) return; // the scene's, to the bit
     CameraOrbit orbit(camera_);
@@ -192,6 +199,7 @@ std::unique_ptr<Scene> makeScene(const std::string& name, ClContext& cl, const S
                                                       : nullptr;
     if (!scene) throw Error(str("unknown scene '", name, "' (known scenes: ", kSceneNames, ", bench)"));
     scene->placeCamera(options);
+    scene->options = options;
     scene->cameraTurn = options.cameraTurn;
     scene->camera().reversedZ = options.reversedZ;
     scene->orthographic = options.orthographic;

@@ -3,6 +3,8 @@
 // its camera and light; the effect owns the material the panel edits. The program loop (main.cpp) owns the context,
 // the frame and the UI; a scene only updates its effect and draws.
 
+#include "CameraPath.h"
+
 #include "hfx/compute/ClContext.h"
 #include "hfx/core/Camera.h"
 #include "hfx/core/Mesh.h"
@@ -154,6 +156,13 @@ public:
     virtual void turnCamera(float degrees);
     /// SceneOptions::cameraTurn, degrees a second: the program loops call turnCamera with it.
     float cameraTurn = 0.0f;
+    /// --camera-path: the program loops call followPath with the frames' time.
+    std::optional<CameraPath> cameraPath;
+    /// Places the camera where cameraPath has it at `seconds` (placeCamera over the options the
+    /// scene was made with); nothing without a path.
+    void followPath(double seconds);
+    /// The options the scene was made with (makeScene).
+    SceneOptions options;
 
     Camera& camera() { return camera_; }
     /// SceneOptions::orthographic: drawInto gives the camera an orthographic projection.

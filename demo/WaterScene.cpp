@@ -100,6 +100,7 @@ public:
         // the low sun.
         camera_.position = {0.0f, o.cameraHeight, 0.0f};
         camera_.target = {0.0f, o.cameraHeight - 100.0f * std::tan(glm::radians(o.cameraPitch)), -100.0f};
+        pitch_ = o.cameraPitch;
         camera_.aspect = o.aspect();
         camera_.nearPlane = 0.2f;
         camera_.farPlane = 12000.0f;
@@ -109,10 +110,20 @@ public:
     }
 
     /// --camera-azimuth turns the way the camera looks about the vertical (0: along -z, towards the
-    /// low sun); it keeps its place above the sea (--camera-height) and its pitch (--camera-pitch).
+    /// low sun); it keeps its place above the sea and its pitch, unless a camera path moves them
+    /// (--camera-height and --camera-pitch place the camera when the scene is made).
     /// The other placements are refused by name (their options' labels leave the water out).
     void placeCamera(const SceneOptions& o) override {
-        if (o.cameraAzimuth) look(glm::radians(*o.cameraAzimuth));
+        const bool moved = o.cameraHeight != camera_.position.y || o.cameraPitch != pitch_;
+        if (!moved && !o.cameraAzimuth) return; // the scene's, to the bit
+        const float azimuth = o.cameraAzimuth ? glm::radians(*o.cameraAzimuth) : lookAzimuth();
+        if (moved) {
+            // Stood that high, looking that far below the horizon: as the scene was made.
+            pitch_ = o.cameraPitch;
+            camera_.position.y = o.cameraHeight;
+            camera_.target = camera_.position + glm::vec3(0.0f, -100.0f * std::tan(glm::radians(pitch_)), -100.0f);
+        }
+        look(azimuth);
     }
     /// On the spot: the way it looks turns, its place and pitch stay.
     void turnCamera(float degrees) override { look(lookAzimuth() + glm::radians(degrees)); }
@@ -225,6 +236,7 @@ private:
     DirectionalLight light_;
     SurfaceRenderer renderer_;
     float wind_, windDir_;
+    float pitch_ = 0.0f; ///< degrees the camera looks below the horizon (placeCamera)
 };
 
 } // namespace

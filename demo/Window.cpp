@@ -89,6 +89,7 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
     if (!options_.out.empty()) makeFolder(options_.out, "--out");
     int screenshots = 0;
     double drawMs = 0.0, frameMs = 0.0, last = nowMs();
+    double pathSeconds = 0.0; // how far along its --camera-path the camera is
     // The techniques this scene can draw: those that walk the height bounds only on one grid
     // that can carry them (not the ocean's cascades; power-of-two sizes, a float format).
     std::vector<Technique> offered;
@@ -131,6 +132,12 @@ int WindowLoop::run(GlContext& gl, Scene& scene) {
         orbit.apply(scene.camera());
         if (scene.cameraTurn != 0.0f) { // --camera-turn, as the headless frames turn it
             scene.turnCamera(scene.cameraTurn * float(dt));
+            orbit = CameraOrbit(scene.camera());
+        }
+        if (scene.cameraPath && pathSeconds <= scene.cameraPath->duration()) {
+            // --camera-path, on the window's clock, once: its last key's placement, then the mouse's.
+            pathSeconds += dt;
+            scene.followPath(std::min(pathSeconds, scene.cameraPath->duration()));
             orbit = CameraOrbit(scene.camera());
         }
         if (!io.WantCaptureKeyboard) {

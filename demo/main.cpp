@@ -56,6 +56,7 @@ struct Options {
     bool noProgress = false;
     std::vector<std::string> benchOnly;
     SceneOptions sceneOptions;
+    std::optional<CameraPath> cameraPath; ///< --camera-path, read before any device opens
     std::string gl = "auto";
     DeviceOptions devices;
     std::vector<std::string> hierOptions; ///< those of kHierOptions given on the command line
@@ -95,18 +96,27 @@ std::vector<std::string> optionScenes(const CLI::Option& option) {
                : std::vector<std::string>{};
 }
 
+/// Throws "WHAT is for the water and planet scenes: the noise scene does not take it" where
+/// `option`'s label names scenes and not `scene`.
+void refuseForScene(const CLI::Option& option, const std::string& scene, const std::string& what) {
+    const std::vector<std::string> scenes = optionScenes(option);
+    if (scenes.empty() || std::find(scenes.begin(), scenes.end(), scene) != scenes.end()) return;
+    std::string names = scenes[0];
+    for (std::size_t i = 1; i < scenes.size(); ++i) names += (i + 1 < scenes.size() ? ", " : " and ") + scenes[i];
+    throw Error(str(what, " is for the ", names, " scene", scenes.size() > 1 ? "s" : "", ": the ", scene,
+                    " scene does not take it"));
+}
+
 /// A scene refuses by name an option given on the command line that only other scenes take
-/// (`water --rings 1`), where it would otherwise draw as if it had not been given.
-void refuseOtherScenesOptions(const CLI::App& app, const std::string& scene) {
-    for (const CLI::Option* option : app.get_options()) {
-        if (option->count() == 0) continue;
-        const std::vector<std::string> scenes = optionScenes(*option);
-        if (scenes.empty() || std::find(scenes.begin(), scenes.end(), scene) != scenes.end()) continue;
-        std::string names = scenes[0];
-        for (std::size_t i = 1; i < scenes.size(); ++i) names += (i + 1 < scenes.size() ? ", " : " and ") + scenes[i];
-        throw Error(str(option->get_name(), " is for the ", names, " scene", scenes.size() > 1 ? "s" : "",
-                        ": the ", scene, " scene does not take it"));
-    }
+/// (`water --rings 1`), where it would otherwise draw as if it had not been given; and a camera
+/// path's value that only other scenes' cameras take (the option of its name's label).
+void refuseOtherScenesOptions(const CLI::App& app, const std::string& scene, const std::optional<CameraPath>& path) {
+    for (const CLI::Option* option : app.get_options())
+        if (option->count() > 0) refuseForScene(*option, scene, option->get_name());
+    if (path)
+        for (const std::string& name : path->names())
+            refuseForScene(*app.get_option("--camera-" + name), scene,
+                           str("camera path ", path->file(), ": ", name, " (--camera-", name, ")"));
 }
 
 const glm::vec4 kBackground{0.55f, 0.68f, 0.85f, 1.0f};
@@ -129,6 +139,7 @@ int runHeadless(const Options& o, Scene& scene) {
         // field is computed while this one draws (begin after the draw, end before the next).
         if (frame > 0) scene.endUpdate();
         if (frame > 0 && scene.cameraTurn != 0.0f) scene.turnCamera(scene.cameraTurn * float(o.dt));
+        scene.followPath(frame * o.dt);
         target.bind();
         scene.drawInto(target, background(o.scene));
         if (frame + 1 < frames) scene.beginUpdate(o.dt);
@@ -204,12 +215,31 @@ int run(const Options& o) {
         throw Error(str("--window-shot saves what a window shows, and this run is headless",
                         o.headless ? "" : " (no display)", ": its frames go to --out"));
     auto scene = makeScene(o.scene, cl, sceneOptions);
+    if (o.cameraPath) {
+        // Every frame's placement refused here, by its time, not mid-run (the planet's camera
+        // inside its cloud tops): the path tried at 64 times between each pair of keys.
+        scene->cameraPath = o.cameraPath;
+        const std::vector<double> keys = o.cameraPath->times();
+        for (size_t k = 0; k < keys.size(); ++k)
+            for (int i = 0; i < (k + 1 < keys.size() ? 64 : 1); ++i) {
+                const double t = k + 1 < keys.size() ? keys[k] + (keys[k + 1] - keys[k]) * i / 64.0 : keys[k];
+                try {
+                    scene->followPath(t);
+                } catch (const Error& e) {
+                    throw Error(str("camera path ", o.cameraPath->file(), " at ", t, " s: ", e.what()));
+                }
+            }
+        scene->followPath(0.0);
+    }
     std::fprintf(stderr, "hfx: kernels: %s\nhfx: surface: %s\nhfx: technique: %s%s\n", cl.programReport().c_str(),
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
                  o.technique == "auto" ? " (auto: the scene's default)" : "");
     std::fprintf(stderr, "hfx: camera: %s\n", scene->cameraLabel().c_str());
     if (scene->cameraTurn != 0.0f)
         std::fprintf(stderr, "hfx: camera: turning %.1f degrees a second (--camera-turn)\n", double(scene->cameraTurn));
+    if (o.cameraPath)
+        std::fprintf(stderr, "hfx: camera: following %s, %zu keys over %.2f s (--camera-path)\n",
+                     o.cameraPath->file().c_str(), o.cameraPath->times().size(), o.cameraPath->duration());
     if (scene->camera().reversedZ) std::fprintf(stderr, "hfx: depth: reversed Z (near at 1, GL_ZERO_TO_ONE, GL_GREATER)\n");
     if (scene->orthographic)
         std::fprintf(stderr, "hfx: projection: orthographic (glm::ortho, the lens's frame at its target: parallel rays)\n");
@@ -398,6 +428,12 @@ int main(int argc, char** argv) {
                    "frames' time (the water's on the spot), for a video of the relief's parallax as the view swings "
                    "(0: still)")
         ->check(kFinite)->check(CLI::Range(-360.0, 360.0))->capture_default_str();
+    std::string cameraPath;
+    app.add_option("--camera-path", cameraPath,
+                   "water, decals, planet, noise, maps: a keyframed camera path, a file of lines 'SECONDS NAME=VALUE "
+                   "...' with the --camera-NAME options' names and units (azimuth, elevation, distance, target=X,Y,Z; "
+                   "the water's azimuth, height, pitch), every line the same names; eased between the keys, in the "
+                   "frames' time (a window plays it once, then the mouse has the camera)");
     app.add_option("--camera-distance", cameraDistance,
                    "decals, planet, noise, maps: the camera's distance from its target (default: the scene's; "
                    "planet: radii from the centre, 2.6, a close-up 1.3)")
@@ -467,7 +503,12 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        if (isSceneName(o.scene)) refuseOtherScenesOptions(app, o.scene);
+        if (!cameraPath.empty()) {
+            if (s.cameraTurn != 0.0f)
+                throw Error("--camera-path excludes --camera-turn (the path turns the camera: give it azimuth keys)");
+            o.cameraPath = CameraPath::load(cameraPath);
+        }
+        if (isSceneName(o.scene)) refuseOtherScenesOptions(app, o.scene, o.cameraPath);
         // The triplanar box's hier walks in the draw: what follows a flat patch's texcoords is
         // refused by name rather than left undone.
         if (s.triplanar > 0.0f)

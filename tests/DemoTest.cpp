@@ -76,6 +76,21 @@ FrameDifference frameDifference(const Image& x, const Image& y) {
     return {sum / double(n), double(far) / double(n)};
 }
 
+/// The second and third of three half-second frames of `scene` at 320x180 with `flags`, written
+/// to a folder of their own (`tag`), and the run's log.
+struct HalfSecondFrames {
+    Image second, third;
+    std::string log;
+};
+HalfSecondFrames halfSecondFrames(const std::string& scene, const std::string& tag, const std::string& flags) {
+    const std::string dir = outputPath("demo_" + tag + "_" + scene);
+    std::filesystem::remove_all(dir);
+    const Result r = runDemo(scene + " --headless --frames 3 --dt 0.5 --width 320 --height 180 --field 128 --out " +
+                             dir + flags);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return {readImage(dir + "/" + scene + "_0001.png"), readImage(dir + "/" + scene + "_0002.png"), r.output};
+}
+
 std::string readBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream s;
@@ -321,25 +336,76 @@ TEST(Demo, TheCameraTurnsAtItsRateForAVideo) {
     // turns added up), and not the still camera's.
     for (const auto& [scene, placed] : {std::pair{"decals", " --camera-azimuth 75.8902"},
                                         std::pair{"water", " --camera-azimuth 10"}}) {
-        std::string log;
-        auto third = [&, scene = std::string(scene)](const std::string& tag, const std::string& flags) {
-            const std::string dir = outputPath("demo_turn_" + tag + "_" + scene);
-            std::filesystem::remove_all(dir);
-            const Result r = runDemo(scene + " --headless --frames 3 --dt 0.5 --width 320 --height 180 --field 128 "
-                                             "--out " + dir + flags);
-            EXPECT_EQ(r.exitCode, 0) << r.output;
-            log = r.output;
-            return readImage(dir + "/" + scene + "_0002.png");
-        };
-        const Image turning = third("10", " --camera-turn 10");
-        EXPECT_NE(log.find("hfx: camera: turning 10.0 degrees a second"), std::string::npos) << log;
-        const Image still = third("still", ""), moved = third("placed", placed);
+        const HalfSecondFrames turned = halfSecondFrames(scene, "turn_10", " --camera-turn 10");
+        EXPECT_NE(turned.log.find("hfx: camera: turning 10.0 degrees a second"), std::string::npos) << turned.log;
+        const Image& turning = turned.third;
+        const Image still = halfSecondFrames(scene, "turn_still", "").third,
+                    moved = halfSecondFrames(scene, "turn_placed", placed).third;
         const FrameDifference asPlaced = frameDifference(turning, moved), asStill = frameDifference(turning, still);
         std::printf("[turn] %s a second in: %.3f levels from the camera placed 10 degrees round, %.2f from the still "
                     "one\n",
                     scene, asPlaced.mean, asStill.mean);
         EXPECT_LT(asPlaced.mean, 0.5) << scene;
         EXPECT_GT(asStill.mean, 10.0 * std::max(asPlaced.mean, 0.1)) << scene;
+    }
+}
+
+TEST(Demo, TheCameraPathPlacesEachFrameBetweenItsKeys) {
+    // --camera-path: two keys a second apart, half-second frames. The second frame is halfway
+    // in time, and the path eases in and out symmetrically (a cubic with no slope at either end),
+    // so it is the frame of a camera placed halfway between the keys; the third is the last
+    // key's. The water's camera also climbs (its height keys) as it turns.
+    for (const auto& [scene, keys, halfway, last] :
+         {std::tuple{"decals", "0 azimuth=65\n1 azimuth=85\n", " --camera-azimuth 75", " --camera-azimuth 85"},
+          std::tuple{"water", "0 azimuth=0 height=7\n1 azimuth=20 height=27\n", " --camera-azimuth 10 --camera-height 17",
+                     " --camera-azimuth 20 --camera-height 27"}}) {
+        const std::string path = outputPath(std::string("demo_path_") + scene + ".txt");
+        std::ofstream(path) << "# seconds, then the camera's placement\n" << keys;
+        const HalfSecondFrames followed = halfSecondFrames(scene, "path", " --camera-path " + path);
+        EXPECT_NE(followed.log.find("hfx: camera: following " + path + ", 2 keys over 1.00 s"), std::string::npos)
+            << followed.log;
+        const Image &pathMiddle = followed.second, &pathLast = followed.third;
+        const Image placedMiddle = halfSecondFrames(scene, "path_halfway", halfway).second,
+                    placedLast = halfSecondFrames(scene, "path_last", last).third;
+        const FrameDifference middle = frameDifference(pathMiddle, placedMiddle), end = frameDifference(pathLast, placedLast),
+                              apart = frameDifference(pathMiddle, pathLast);
+        std::printf("[camera path] %s: halfway %.3f levels from the camera placed there, last %.3f; the two frames "
+                    "%.2f apart\n",
+                    scene, middle.mean, end.mean, apart.mean);
+        EXPECT_LT(middle.mean, 0.5) << scene;
+        EXPECT_LT(end.mean, 0.5) << scene;
+        EXPECT_GT(apart.mean, 10.0 * std::max({middle.mean, end.mean, 0.1})) << scene;
+    }
+    // Between keys no value leaves the range of the two about it: a planet's camera that comes in
+    // to 1.1 radii, holds there and goes out again never dips into the cloud tops (1.05), where a
+    // Catmull-Rom spline through the same keys comes to 0.86 halfway through the hold.
+    const std::string dive = outputPath("demo_path_dive.txt");
+    std::ofstream(dive) << "0 distance=3\n1 distance=1.1\n2 distance=1.1\n3 distance=3\n";
+    const Result dived = runDemo("planet --field 64 --spin-up 0 --headless --width 64 --height 36 --out " +
+                                 outputPath("demo_path_dive") + " --camera-path " + dive);
+    EXPECT_EQ(dived.exitCode, 0) << dived.output;
+    // A path's faults are named with its file and line, or the time where the scene refuses it;
+    // a value that only other scenes' cameras take is refused as its option is.
+    const std::string bad = outputPath("demo_path_bad.txt");
+    for (const auto& [args, keys, message] :
+         {std::tuple{"water", "0 azimuth=0 elevation=10\n", "elevation (--camera-elevation) is for the decals, planet, "
+                                                            "noise and maps scenes: the water scene does not take it"},
+          std::tuple{"decals", "0 azimuth=0\n1 azimuth=10 distance=3\n", "line 2: names other values than line 1"},
+          std::tuple{"decals", "0 elevation=95\n", "line 1: elevation 95 is outside -89 to 89 degrees"},
+          std::tuple{"decals", "1 azimuth=0\n0.5 azimuth=3\n", "line 2: its time 0.5 s does not come after"},
+          std::tuple{"decals", "0 target=1,2\n", "line 1: target takes three values, X,Y,Z, got '1,2'"},
+          std::tuple{"decals", "0 zoom=3\n", "line 1: 'zoom=3' is not NAME=VALUE"},
+          std::tuple{"decals", "# nothing\n", "holds no key"},
+          std::tuple{"decals --camera-turn 5", "0 azimuth=0\n", "--camera-path excludes --camera-turn"},
+          std::tuple{"planet --field 64 --spin-up 0", "0 distance=3 target=0,0,0\n2 distance=1.2 target=0,0,-0.5\n",
+                     " at 1.5625 s: the planet's camera would stand 1.03 radii from its centre"}}) {
+        std::ofstream(bad) << keys;
+        const Result r = runDemo(std::string(args) + " --headless --camera-path " + bad);
+        EXPECT_NE(r.exitCode, 0) << args << " " << keys;
+        EXPECT_NE(r.output.find(message), std::string::npos) << args << " " << keys << "\n" << r.output;
+        if (std::string_view(args).find("--camera-turn") == std::string_view::npos) {
+            EXPECT_NE(r.output.find("camera path " + bad), std::string::npos) << r.output;
+        }
     }
 }
 
