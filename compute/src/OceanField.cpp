@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <numbers>
 
 namespace hfx {
@@ -27,6 +28,8 @@ void FoamConfig::validate() const {
     if (!(youngHalfLife > 0.0f && std::isfinite(youngHalfLife)))
         throw Error(str("FoamConfig.youngHalfLife must be positive seconds, got ", youngHalfLife));
     if (!(drift >= 0.0f && drift <= 1.0f)) throw Error(str("FoamConfig.drift must be in [0, 1], got ", drift));
+    if (!(shortestWhitecap >= 0.0f) || !std::isfinite(shortestWhitecap))
+        throw Error(str("FoamConfig.shortestWhitecap must be >= 0 metres, got ", shortestWhitecap));
 }
 
 void OceanConfig::validate() const {
@@ -247,7 +250,7 @@ double OceanField::whitecapCoverage(double windSpeed) {
 void OceanField::calibrateFoam() {
     const FoamConfig& f = config_.foam;
     double total = 0.0;
-    for (const OceanCascade& c : cascades_) total += double(c.sigmaJ) * c.sigmaJ;
+    for (const OceanCascade& c : cascades_) total += double(c.sigmaJWhitecaps) * c.sigmaJWhitecaps;
     const double coverage = whitecapCoverage(config_.sea.wind.windSpeed) * f.coverage;
     const size_t n = size_t(config_.size) * config_.size;
     std::vector<float> J(n);
@@ -257,10 +260,12 @@ void OceanField::calibrateFoam() {
             c.foamGain = f.injection;
             continue;
         }
-        // This cascade's share of the coverage, by its share of the J variance, as the quantile
-        // of its J now: J's lower tail is thinner than a Gaussian's (its quadratic terms), so
-        // the realised field sets the threshold, not sigma_J alone.
-        const double share = total > 0.0 ? coverage * double(c.sigmaJ) * c.sigmaJ / total : 0.0;
+        // This cascade's share of the coverage, by its share of the J variance of the waves that
+        // whiten as they break, as the quantile of its J now: J's lower tail is thinner than a
+        // Gaussian's (its quadratic terms), so the realised field sets the threshold, not
+        // sigma_J alone.
+        const double share =
+            total > 0.0 ? coverage * double(c.sigmaJWhitecaps) * c.sigmaJWhitecaps / total : 0.0;
         if (share <= 0.0) {
             c.foamThreshold = -1.0f;
             c.foamGain = 0.0f;
@@ -287,7 +292,10 @@ void OceanField::uploadAmplitudes(OceanCascade& c) {
     // The expected variances: E|h(k, t)|^2 = |h0(k)|^2 + |h0(-k)|^2 summed over k, and J - 1,
     // about -lambda div D = lambda |k| h, has |k|^2 of each mode's.
     const int N = config_.size;
-    double jVariance = 0.0;
+    double jVariance = 0.0, whitecapVariance = 0.0;
+    const double kWhitecap = config_.foam.shortestWhitecap > 0.0f
+                                 ? 2.0 * std::numbers::pi / double(config_.foam.shortestWhitecap)
+                                 : std::numeric_limits<double>::infinity();
     c.varianceFrom = c.varianceTo = 0.0;
     for (int y = 0; y < N; ++y)
         for (int x = 0; x < N; ++x) {
@@ -297,9 +305,12 @@ void OceanField::uploadAmplitudes(OceanCascade& c) {
             const double e = 2.0 * std::norm(c.h0[k]);
             c.varianceTo += e;
             c.varianceFrom += 2.0 * std::norm(c.h0From[k]);
-            jVariance += e * (kx * kx + ky * ky);
+            const double k2 = kx * kx + ky * ky;
+            jVariance += e * k2;
+            if (k2 <= kWhitecap * kWhitecap) whitecapVariance += e * k2;
         }
     c.sigmaJ = float(config_.choppiness * std::sqrt(jVariance));
+    c.sigmaJWhitecaps = float(config_.choppiness * std::sqrt(whitecapVariance));
     setBlendedSigma(c, blend_.at(time_));
     clGuard("uploading the ocean spectrum", [&] {
         cl_.queue().enqueueWriteBuffer(c.h0Device, CL_TRUE, 0, c.h0.size() * sizeof(cl_float2), c.h0.data());

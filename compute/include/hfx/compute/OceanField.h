@@ -61,6 +61,11 @@ struct FoamConfig {
     /// is shorter.
     float youngHalfLife = 1.0f;
     float drift = 0.03f;     ///< downwind drift, as a fraction of the wind speed
+    /// Metres: waves shorter than this break without entraining air (microscale breaking, up to
+    /// O(1 m) long: Jessup, Zappa and Yeh 1997) and make no whitecap. The automatic thresholds
+    /// share Monahan's coverage among the cascades by the J variance of their waves at least this
+    /// long (0: of all their waves, as the finest cascade's centimetre waves strewed specks).
+    float shortestWhitecap = 1.0f;
     void validate() const;   ///< throws hfx::Error naming the bad field and its value
 };
 
@@ -87,6 +92,8 @@ struct OceanCascade {
     float kMin = 0.0f, kMax = 0.0f;   ///< its band (rad/m): k in [kMin, kMax)
     float sigma = 0.0f;               ///< its height's RMS (m), the spectrum's expected value
     float sigmaJ = 0.0f;              ///< RMS of its J - 1 (about lambda |k| h), the spectrum's expected value
+    /// ... of its waves at least FoamConfig::shortestWhitecap long: those that whiten as they break.
+    float sigmaJWhitecaps = 0.0f;
     float foamThreshold = 0.0f;       ///< where foam is injected: J below this
     float foamGain = 0.0f;            ///< foam per second per unit of threshold - J
     float scale = 0.0f;               ///< stored height h = 0.5 + metres * scale (1 / 8 sigma)
