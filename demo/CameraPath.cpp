@@ -77,12 +77,11 @@ CameraPath CameraPath::load(const std::string& path) {
                                                    "target, height or pitch"));
             if (std::find(names.begin(), names.end(), name) != names.end())
                 throw Error(str(where, name, " is given twice"));
-            std::string text = token.substr(equals + 1);
-            std::replace(text.begin(), text.end(), ',', ' ');
+            const std::string text = token.substr(equals + 1);
             std::istringstream parts(text);
             std::string part;
             int count = 0;
-            while (parts >> part) {
+            while (std::getline(parts, part, ',')) {
                 double v = 0.0;
                 if (!parseNumber(part, v)) throw Error(str(where, name, ": '", part, "' is not a finite number"));
                 if (v < c->lo || v > c->hi)
@@ -90,6 +89,7 @@ CameraPath CameraPath::load(const std::string& path) {
                 values.push_back(v);
                 ++count;
             }
+            if (!text.empty() && text.back() == ',') throw Error(str(where, name, ": '' is not a finite number"));
             if (count != c->count)
                 throw Error(str(where, name, " takes ", c->count == 3 ? "three values, X,Y,Z" : "one value", ", got '",
                                 token.substr(equals + 1), "'"));

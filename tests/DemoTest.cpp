@@ -394,6 +394,7 @@ TEST(Demo, TheCameraPathPlacesEachFrameBetweenItsKeys) {
           std::tuple{"decals", "0 elevation=95\n", "line 1: elevation 95 is outside -89 to 89 degrees"},
           std::tuple{"decals", "1 azimuth=0\n0.5 azimuth=3\n", "line 2: its time 0.5 s does not come after"},
           std::tuple{"decals", "0 target=1,2\n", "line 1: target takes three values, X,Y,Z, got '1,2'"},
+          std::tuple{"decals", "0 target=1,,2,3\n", "line 1: target: '' is not a finite number"},
           std::tuple{"decals", "0 zoom=3\n", "line 1: 'zoom=3' is not NAME=VALUE"},
           std::tuple{"decals", "# nothing\n", "holds no key"},
           std::tuple{"decals --camera-turn 5", "0 azimuth=0\n", "--camera-path excludes --camera-turn"},
