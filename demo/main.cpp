@@ -503,6 +503,11 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        // The benches draw each scene from one place: a turn or a path would be dropped unsaid.
+        if (o.scene.starts_with("bench") && (s.cameraTurn != 0.0f || !cameraPath.empty()))
+            throw Error(str(s.cameraTurn != 0.0f ? "--camera-turn" : "--camera-path", " is for the scenes' runs: ",
+                            o.scene, " draws each scene from one place (--camera-azimuth, --camera-elevation, "
+                                     "--camera-distance and --camera-target place it)"));
         if (!cameraPath.empty()) {
             if (s.cameraTurn != 0.0f)
                 throw Error("--camera-path excludes --camera-turn (the path turns the camera: give it azimuth keys)");
