@@ -158,10 +158,11 @@ struct Crossing {
 };
 
 // Where a ray from `origin` along the unit `dir` crosses the plane of triangle `k` (Moller-
-// Trumbore in world space), inside the triangle or not: its barycentric weights there and t
-// along the ray; nothing where the ray runs in its plane or it has no area.
+// Trumbore in world space): its barycentric weights there and t along the ray; nothing where the
+// ray runs in its plane or the triangle has no area, or under `inside` where it crosses the plane
+// outside the triangle or not ahead of its origin.
 std::optional<Crossing> crossPlane(const MeshPickSetup& setup, glm::dvec3 origin, glm::dvec3 dir, const MeshData& mesh,
-                                   std::uint32_t k) {
+                                   std::uint32_t k, bool inside) {
     const auto& v = mesh.vertices;
     const glm::dvec3 p0(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k]].position), 1.0));
     const glm::dvec3 p1(setup.m * glm::dvec4(glm::dvec3(v[mesh.indices[3 * k + 1]].position), 1.0));
@@ -171,16 +172,14 @@ std::optional<Crossing> crossPlane(const MeshPickSetup& setup, glm::dvec3 origin
     if (!(std::abs(det) > 1e-300)) return std::nullopt;
     const glm::dvec3 s = origin - p0, r = glm::cross(s, e1);
     const double b1 = glm::dot(s, q) / det, b2 = glm::dot(dir, r) / det, t = glm::dot(e2, r) / det;
+    if (inside && (b1 < 0.0 || b2 < 0.0 || b1 + b2 > 1.0 || !(t > 0.0))) return std::nullopt;
     const bool front = setup.winding * glm::dot(glm::cross(e1, e2), dir) < 0.0;
     return Crossing{t, k, {1.0 - b1 - b2, b1, b2}, front};
 }
 
 // Where the ray crosses triangle `k`, if it does.
 std::optional<Crossing> cross(const MeshPickSetup& setup, const Ray& ray, const MeshData& mesh, std::uint32_t k) {
-    const auto c = crossPlane(setup, ray.origin, setup.dir, mesh, k);
-    if (!c || c->weights.y < 0.0 || c->weights.z < 0.0 || c->weights.y + c->weights.z > 1.0 || !(c->t > 0.0))
-        return std::nullopt;
-    return c;
+    return crossPlane(setup, ray.origin, setup.dir, mesh, k, true);
 }
 
 // The pick along the crossings, as the draw's depth test decides it: each front face the ray
@@ -242,7 +241,7 @@ std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPi
             const glm::dvec2 texels(heights.width(), heights.height());
             double spread = 0.0; // the longer, squared, in texels
             for (const Ray* r : {&neighbours->across, &neighbours->up}) {
-                const auto w = crossPlane(setup, r->origin, glm::normalize(r->direction), mesh, c.triangle);
+                const auto w = crossPlane(setup, r->origin, glm::normalize(r->direction), mesh, c.triangle, false);
                 if (!w || !(w->t > 0.0)) { // the neighbour's ray misses the plane: the spread is endless
                     spread = std::numeric_limits<double>::infinity();
                     break;
