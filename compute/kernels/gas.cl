@@ -299,6 +299,51 @@ __kernel void beta_columns(__global float2* s, __global float2* scratch, __globa
     }
 }
 
+/* GasConfig::viscosity on the sphere, first half, on the projected wind: at each corner of rows
+   1..H-1, L psi of the wind's streamfunction psi (L as beta_columns writes it; the wind is
+   add_stream's of psi), read from the faces about the corner:
+     L psi = v(i-1, j) - v(i, j) + m(j+1/2) u(i, j) - m(j-1/2) u(i, j-1),
+   the vorticity -L psi / m times -m. Row 0, the wall's corners, 0. */
+__kernel void corner_laplacian(__global const float* u, __global const float* v, __global const float* metric,
+                               __global float* out, int W, int H) {
+    ID
+    out[k] = j == 0 ? 0.0f
+                    : v[j * W + hfx_gas_step(i - 1, W)] - v[k] + metric[2 * j + 1] * u[k] -
+                          metric[2 * j - 1] * u[(j - 1) * W + i];
+}
+
+/* Second half, one zonal wavenumber k a work-item: the vorticity diffused implicitly, zeta' =
+   (1 - a D)^-1 zeta with D = L / m the sphere's Laplacian at the corners and a = viscosity dt,
+   is the wind of psi' = (1 - a D)^-1 psi, and the change psi' - psi solves
+     (m - a L_k) (psi' - psi) = a (L psi)_k,
+   one real tridiagonal system per k (walls: 0 at rows 0 and H), diagonally dominant. `s` holds
+   the rows' transforms of L psi (corner_laplacian's, rows of K) and becomes the change's;
+   `scratch` the elimination's c'; `scale` the inverse transform's 1 / W. Each spherical harmonic
+   of degree n then loses the share a n (n + 1) / R^2 / (1 + a n (n + 1) / R^2) of its wind a step
+   (R = H / pi cells), as on the flat grid each Fourier mode does. */
+__kernel void viscous_columns(__global float2* s, __global float* scratch, __global const float* metric, int W,
+                              int H, float a, float scale) {
+    int k = get_global_id(0), K = W / 2 + 1;
+    if (k >= K) return;
+    float sk = sinpi((float)k / (float)W), eigen = 4.0f * sk * sk; /* 2 - 2 cos(2 pi k / W) */
+    s[k] = (float2)(0.0f, 0.0f);
+    float c = 0.0f;
+    float2 d = (float2)(0.0f, 0.0f);
+    for (int j = 1; j < H; ++j) {
+        float m = metric[2 * j], below = metric[2 * j - 1], above = metric[2 * j + 1];
+        float lower = j > 1 ? -a * below : 0.0f, upper = j < H - 1 ? -a * above : 0.0f;
+        float pivot = m + a * (below + above + eigen / m) - lower * c;
+        c = upper / pivot;
+        d = ((a * scale) * s[j * K + k] - lower * d) / pivot;
+        scratch[j * K + k] = c;
+        s[j * K + k] = d;
+    }
+    for (int j = H - 2; j >= 1; --j) {
+        d = s[j * K + k] - scratch[j * K + k] * d;
+        s[j * K + k] = d;
+    }
+}
+
 /* Adds the wind of the streamfunction psi at the corners (rows 0 and H, the walls, 0):
    u = psi(i, j+1) - psi(i, j), m v = psi(i, j) - psi(i+1, j), which has no divergence on the
    sphere (hfx_gas_divergence) and whose vorticity is -L psi / m (L as beta_columns writes it). */

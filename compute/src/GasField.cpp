@@ -23,9 +23,8 @@ void GasConfig::validate() const {
         throw Error(str("GasConfig.viscosity must be >= 0, got ", viscosity));
     if (sphere && edges != EdgeMode::WrapU)
         throw Error(str("GasConfig.sphere needs edges wrap-u (walls at the poles), got ", edgeModeName(edges)));
-    if (sphere && viscosity != 0.0f)
-        throw Error(str("GasConfig.viscosity must be 0 on a sphere (its viscosity is flat grids' only), got ",
-                        viscosity));
+    if (sphere && viscosity > 0.0f && width % 2 != 0)
+        throw Error(str("GasConfig.viscosity on a sphere needs an even width (its rows' real FFT), got ", width));
     if (viscosityIterations < 1 || viscosityIterations > 1000)
         throw Error(str("GasConfig.viscosityIterations must be in [1, 1000], got ", viscosityIterations));
     if (pressure != GasPressure::Exact && pressure != GasPressure::Jacobi)
@@ -157,15 +156,20 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         diffuse_ = cl::Kernel(program, "diffuse");
         divergence_ = cl::Kernel(program, "divergence");
         const bool walls = config.edges == EdgeMode::WrapU;
-        if (config.pressure == GasPressure::Exact || config.rotation > 0.0f) {
+        const bool sphereViscous = config.sphere && config.viscosity > 0.0f;
+        if (config.pressure == GasPressure::Exact || config.rotation > 0.0f || sphereViscous) {
             fft_ = std::make_unique<RealFft>(cl, config.width, config.height,
                                              walls ? RealFft::Axes::Rows : RealFft::Axes::Both);
             spectrum_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, fft_->spectrumBytes());
         }
-        if (config.rotation > 0.0f) {
+        if (config.rotation > 0.0f || sphereViscous) {
             scratch_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, fft_->spectrumBytes());
-            betaColumns_ = cl::Kernel(program, "beta_columns");
             addStream_ = cl::Kernel(program, "add_stream");
+        }
+        if (config.rotation > 0.0f) betaColumns_ = cl::Kernel(program, "beta_columns");
+        if (sphereViscous) {
+            cornerLaplacian_ = cl::Kernel(program, "corner_laplacian");
+            viscousColumns_ = cl::Kernel(program, "viscous_columns");
         }
         if (config.pressure == GasPressure::Exact) {
             if (walls) {
@@ -396,7 +400,7 @@ void GasField::step(double dtSeconds) {
         advectField(v_, 0.5f, 0.0f, dt, true);
         std::swap(work_[0], v_);
         std::swap(work_[3], u_);
-        if (config_.viscosity > 0.0f) {
+        if (config_.viscosity > 0.0f && !config_.sphere) {
             const float a = config_.viscosity * dt;
             for (cl::Buffer* x : {&u_, &v_}) {
                 const int wall = x == &v_ ? 1 : 0;
@@ -408,6 +412,14 @@ void GasField::step(double dtSeconds) {
             }
         }
         project();
+        if (config_.viscosity > 0.0f && config_.sphere) { // on the sphere: the vorticity diffused
+            run(cornerLaplacian_, u_, v_, metric_, curl_, W, H);
+            fft_->forward(curl_, spectrum_);
+            runOver(cl::NDRange(size_t(W / 2 + 1)), viscousColumns_, spectrum_, scratch_, metric_, W, H,
+                    config_.viscosity * dt, 1.0f / float(W));
+            fft_->inverse(spectrum_, p_);
+            run(addStream_, u_, v_, p_, metric_, W, H);
+        }
         if (config_.rotation > 0.0f) { // the planet's spin, on the projected wind (p_ free again)
             fft_->forward(v_, spectrum_);
             runOver(cl::NDRange(size_t(W / 2 + 1)), betaColumns_, spectrum_, scratch_, metric_, W, H, dt,

@@ -47,10 +47,15 @@ struct GasConfig {
     /// so an eddy near a pole stays round on the sphere instead of round on the map (a planet's
     /// polar gas, which a flat grid draws as radial streaks); the polar rows' dye is filtered to
     /// the sphere's resolution (gasPolarWidths). The vorticity confinement, the splats and the
-    /// held vortices' ovals keep the map's cells. Needs edges WrapU and no viscosity.
+    /// held vortices' ovals keep the map's cells. Needs edges WrapU.
     bool sphere = false;
-    float viscosity = 0.0f;       ///< cells^2 per second; flat grids only
-    int viscosityIterations = 20;
+    /// Cells^2 per second. On a flat grid the wind's components diffuse implicitly
+    /// (viscosityIterations Jacobi sweeps, before the projection); on the sphere its vorticity
+    /// does, solved exactly on the projected wind (the rows' FFT and a tridiagonal solve per
+    /// wavenumber; an even width), so a spherical harmonic of degree n keeps 1 / (1 + a n (n + 1)
+    /// / R^2) of its wind a step (a = viscosity dt, R = height / pi cells).
+    float viscosity = 0.0f;
+    int viscosityIterations = 20; ///< the flat grid's sweeps
     GasPressure pressure = GasPressure::Exact;
     int pressureIterations = 40;  ///< GasPressure::Jacobi's sweeps
     float vorticity = 0.0f;       ///< confinement strength epsilon
@@ -226,7 +231,7 @@ private:
     PressureColumns pressureColumns_;
     cl::Kernel advect_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
         curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,
-        relaxDye_, solveColumns_, betaColumns_, addStream_;
+        relaxDye_, solveColumns_, betaColumns_, addStream_, cornerLaplacian_, viscousColumns_;
 };
 
 } // namespace hfx
