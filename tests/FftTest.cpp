@@ -1,12 +1,17 @@
 // The ocean's inverse FFT on the device (InverseRealFft, VkFFT) against a plain C++ DFT of the
-// same Hermitian half spectra, against analytic single modes, and against Parseval's theorem.
+// same Hermitian half spectra, against analytic single modes, and against Parseval's theorem; the
+// gas's forward and inverse real FFT (RealFft) along the rows and along both axes against a plain
+// DFT, and its inverse as the forward's, unscaled.
 
 #include "support/Fixtures.h"
 
 #include "hfx/compute/InverseRealFft.h"
+#include "hfx/compute/RealFft.h"
 #include "hfx/core/Error.h"
 
+#include <algorithm>
 #include <clocale>
+#include <cstdio>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -152,6 +157,56 @@ TEST_F(InverseFft, BadSizesAndBuffersAreRefusedByName) {
     const std::string m = messageOf([&] { fft.enqueue(small, fields); });
     EXPECT_NE(m.find("64x64"), std::string::npos) << m;
     EXPECT_NE(m.find(std::to_string(fft.spectrumBytes())), std::string::npos) << m;
+}
+
+TEST_F(InverseFft, TheGassRealFftIsAPlainDftAlongTheRowsOrBothAxesAndItsInverseUndoesIt) {
+    // A random 24x10 field (a width VkFFT splits into radices 2 and 3): its transform is the plain
+    // DFT's half spectrum to 1e-5 of the largest value, along the rows (RealFft::Rows, the gas
+    // between walls) and along both axes (Both, on a torus); the inverse of that spectrum is the
+    // field times W (Rows) or W H (Both). Bad buffers are refused by name.
+    constexpr int W = 24, H = 10, K = W / 2 + 1;
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::vector<float> field(size_t(W) * H);
+    for (float& f : field) f = unit(random);
+    for (const RealFft::Axes axes : {RealFft::Axes::Rows, RealFft::Axes::Both}) {
+        const bool both = axes == RealFft::Axes::Both;
+        RealFft fft(cl(), W, H, axes);
+        cl::Buffer in(cl().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, fft.fieldBytes(), field.data());
+        cl::Buffer spectrum(cl().context(), CL_MEM_READ_WRITE, fft.spectrumBytes());
+        cl::Buffer back(cl().context(), CL_MEM_READ_WRITE, fft.fieldBytes());
+        fft.forward(in, spectrum);
+        const std::vector<float> s = readFloats(cl(), spectrum, fft.spectrumBytes() / sizeof(float));
+        double worst = 0.0, largest = 0.0;
+        for (int l = 0; l < H; ++l)
+            for (int k = 0; k < K; ++k) {
+                Complex dft = 0.0;
+                for (int y = both ? 0 : l; y < (both ? H : l + 1); ++y)
+                    for (int x = 0; x < W; ++x) {
+                        const double turns = double(k) * x / W + (both ? double(l) * y / H : 0.0);
+                        dft += double(field[size_t(y) * W + x]) * std::polar(1.0, -2.0 * std::numbers::pi * turns);
+                    }
+                const Complex got(s[2 * (size_t(l) * K + k)], s[2 * (size_t(l) * K + k) + 1]);
+                worst = std::max(worst, std::abs(got - dft));
+                largest = std::max(largest, std::abs(dft));
+            }
+        fft.inverse(spectrum, back);
+        const std::vector<float> b = readFloats(cl(), back, field.size());
+        const double scale = both ? double(W) * H : double(W);
+        double roundTrip = 0.0;
+        for (size_t i = 0; i < field.size(); ++i) roundTrip = std::max(roundTrip, std::abs(b[i] / scale - field[i]));
+        std::printf("[real fft] %s: %.2g of the largest value off the DFT; the inverse %.2g off the field\n",
+                    both ? "both axes" : "rows", worst / largest, roundTrip);
+        EXPECT_LT(worst / largest, 1e-5);
+        EXPECT_LT(roundTrip, 1e-5);
+        cl::Buffer small(cl().context(), CL_MEM_READ_WRITE, 64);
+        EXPECT_NE(messageOf([&] { fft.forward(in, small); })
+                      .find("RealFft: the spectrum holds 64 bytes, a 24x10 transform"),
+                  std::string::npos);
+        EXPECT_NE(messageOf([&] { fft.inverse(spectrum, small); }).find("RealFft: the field holds 64 bytes"),
+                  std::string::npos);
+    }
+    EXPECT_NE(messageOf([&] { RealFft(cl(), 23, 10, RealFft::Axes::Rows); }).find("even width"), std::string::npos);
 }
 
 } // namespace

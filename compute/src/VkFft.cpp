@@ -123,15 +123,18 @@ struct VkFftPlan {
         const VkFFTResult result =
             withoutPoclWarnings([&] { return inTheCLocale([&] { return initializeVkFFT(&app, c); }); });
         if (result != VKFFT_SUCCESS)
-            throw Error(str("VkFFT could not plan the ", what, " on ", cl.description(), ": ", vkfftResultName(result)));
+            throw Error(
+                str("VkFFT could not plan the ", what, " on ", cl.description(), ": ", vkfftResultName(result)));
         initialised = true;
     }
 
     /// Enqueues the transform (VkFFT's direction: -1 forward, 1 inverse) of `spectrumBuffer` and
     /// `fieldBuffer` on the context's queue; its kernels do not go through ClContext::enqueue, so
-    /// two markers time them when asked.
+    /// two markers time them when asked. `what()` names the transform, called only for an error
+    /// (a gas step or an ocean frame runs several).
+    template <typename What>
     void append(ClContext& cl, const cl::Buffer& spectrumBuffer, const cl::Buffer& fieldBuffer, int direction,
-                const std::string& what) {
+                What&& what) {
         spectrum = spectrumBuffer();
         field = fieldBuffer();
         queue = cl.queue()();
@@ -143,7 +146,7 @@ struct VkFftPlan {
         if (cl.recordingKernelTimes()) cl.queue().enqueueMarkerWithWaitList(nullptr, &before);
         const VkFFTResult result = VkFFTAppend(&app, direction, &launch);
         if (result != VKFFT_SUCCESS)
-            throw Error(str("VkFFT: the ", what, " failed to enqueue on ", cl.description(), ": ",
+            throw Error(str("VkFFT: the ", what(), " failed to enqueue on ", cl.description(), ": ",
                             vkfftResultName(result)));
         if (cl.recordingKernelTimes()) {
             cl.queue().enqueueMarkerWithWaitList(nullptr, &after);
@@ -175,12 +178,10 @@ InverseRealFft::InverseRealFft(ClContext& cl, int n, int batch) : cl_(cl), n_(n)
 InverseRealFft::~InverseRealFft() = default;
 
 void InverseRealFft::enqueue(const cl::Buffer& spectrum, const cl::Buffer& fields) {
-    const size_t haveSpectrum = spectrum.getInfo<CL_MEM_SIZE>(), haveFields = fields.getInfo<CL_MEM_SIZE>();
-    if (haveSpectrum < spectrumBytes() || haveFields < fieldBytes())
-        throw Error(str("InverseRealFft::enqueue: a ", n_, "x", n_, " batch of ", batch_, " needs ", spectrumBytes(),
-                        " bytes of spectrum and ", fieldBytes(), " of fields, got ", haveSpectrum, " and ",
-                        haveFields));
-    plan_->append(cl_, spectrum, fields, 1, str(n_, "x", n_, " inverse real FFT"));
+    const auto batch = [&] { return str("a batch of ", batch_, " ", n_, "x", n_, " transforms"); };
+    requireBufferBytes(spectrum, spectrumBytes(), "InverseRealFft::enqueue: the spectrum", batch);
+    requireBufferBytes(fields, fieldBytes(), "InverseRealFft::enqueue: the fields", batch);
+    plan_->append(cl_, spectrum, fields, 1, [&] { return str(n_, "x", n_, " inverse real FFT"); });
 }
 
 std::string InverseRealFft::libraryVersion() {
@@ -214,12 +215,11 @@ void RealFft::forward(const cl::Buffer& field, const cl::Buffer& spectrum) { enq
 void RealFft::inverse(const cl::Buffer& spectrum, const cl::Buffer& field) { enqueue(spectrum, field, 1); }
 
 void RealFft::enqueue(const cl::Buffer& spectrum, const cl::Buffer& field, int direction) {
-    const size_t haveSpectrum = spectrum.getInfo<CL_MEM_SIZE>(), haveField = field.getInfo<CL_MEM_SIZE>();
-    if (haveSpectrum < spectrumBytes() || haveField < fieldBytes())
-        throw Error(str("RealFft: a ", width_, "x", height_, " transform needs ", spectrumBytes(),
-                        " bytes of spectrum and ", fieldBytes(), " of field, got ", haveSpectrum, " and ", haveField));
+    const auto transform = [&] { return str("a ", width_, "x", height_, " transform"); };
+    requireBufferBytes(spectrum, spectrumBytes(), "RealFft: the spectrum", transform);
+    requireBufferBytes(field, fieldBytes(), "RealFft: the field", transform);
     plan_->append(cl_, spectrum, field, direction,
-                  str(width_, "x", height_, direction < 0 ? " forward" : " inverse", " real FFT"));
+                  [&] { return str(width_, "x", height_, direction < 0 ? " forward" : " inverse", " real FFT"); });
 }
 
 } // namespace hfx
