@@ -55,7 +55,8 @@ void ColorRamp::setStops(std::vector<ColorStop> stops) {
 
 void ColorRamp::run(const cl::Buffer& field) {
     const size_t n = size_t(width_) * height_;
-    requireBufferBytes(field, n * sizeof(float), "ColorRamp::run: field", [&] { return str(width_, "x", height_, " floats"); });
+    requireBufferBytes(field, n * sizeof(float), "ColorRamp::run: field",
+                       [&] { return str(width_, "x", height_, " floats"); });
     clGuard("ColorRamp::run", [&] {
         kernel_.setArg(0, field);
         kernel_.setArg(1, output_);

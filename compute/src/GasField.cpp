@@ -412,21 +412,22 @@ void GasField::step(double dtSeconds) {
             }
         }
         project();
-        if (config_.viscosity > 0.0f && config_.sphere) { // on the sphere: the vorticity diffused
+        // On the projected wind, a change given by its streamfunction: `source`'s rows' transform,
+        // solved per zonal wavenumber by `columns` (gas.cl's, whose arguments after the spectrum,
+        // its scratch, the metric, W and H are `more` and the inverse transform's 1 / W), whose
+        // wind add_stream adds (into p_, free again after the projection).
+        auto addStreamOf = [&](const cl::Buffer& source, cl::Kernel& columns, auto... more) {
+            fft_->forward(source, spectrum_);
+            runOver(cl::NDRange(size_t(W / 2 + 1)), columns, spectrum_, scratch_, metric_, W, H, more...,
+                    1.0f / float(W));
+            fft_->inverse(spectrum_, p_);
+            run(addStream_, u_, v_, p_, metric_, W, H);
+        };
+        if (config_.viscosity > 0.0f && config_.sphere) { // on the sphere the vorticity diffuses
             run(cornerLaplacian_, u_, v_, metric_, curl_, W, H);
-            fft_->forward(curl_, spectrum_);
-            runOver(cl::NDRange(size_t(W / 2 + 1)), viscousColumns_, spectrum_, scratch_, metric_, W, H,
-                    config_.viscosity * dt, 1.0f / float(W));
-            fft_->inverse(spectrum_, p_);
-            run(addStream_, u_, v_, p_, metric_, W, H);
+            addStreamOf(curl_, viscousColumns_, config_.viscosity * dt);
         }
-        if (config_.rotation > 0.0f) { // the planet's spin, on the projected wind (p_ free again)
-            fft_->forward(v_, spectrum_);
-            runOver(cl::NDRange(size_t(W / 2 + 1)), betaColumns_, spectrum_, scratch_, metric_, W, H, dt,
-                    config_.rotation, 1.0f / float(W));
-            fft_->inverse(spectrum_, p_);
-            run(addStream_, u_, v_, p_, metric_, W, H);
-        }
+        if (config_.rotation > 0.0f) addStreamOf(v_, betaColumns_, dt, config_.rotation); // the planet's spin
         if (config_.conserveDye) rowSums(dye_, sumsBefore_);
         advectField(dye_, 0.5f, 0.5f, dt, false);
         std::swap(work_[0], dye_);

@@ -26,7 +26,8 @@ SobelNormals::SobelNormals(ClContext& cl, const SobelConfig& config, void* hostM
 
 void SobelNormals::run(const cl::Buffer& height) {
     requireBufferBytes(height, sizeof(float) * size_t(config_.width) * config_.height,
-                       "SobelNormals::run: height buffer", [&] { return str(config_.width, "x", config_.height, " floats"); });
+                       "SobelNormals::run: height buffer",
+                       [&] { return str(config_.width, "x", config_.height, " floats"); });
     clGuard("SobelNormals::run", [&] {
         kernel_.setArg(0, height);
         kernel_.setArg(1, output_);

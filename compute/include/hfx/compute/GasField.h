@@ -1,11 +1,12 @@
 #pragma once
 // A Navier-Stokes gas (Stam's stable fluids; Harris, GPU Gems ch. 38) on a staggered grid:
 // semi-Lagrangian advection (MacCormack optional), implicit viscosity, vorticity confinement,
-// pressure projection (solved exactly by FFT, or by Jacobi sweeps), advected dye, splats of force and dye, vortices the
-// gas is held towards, and zonal jets for banded planets. x is periodic (longitude wraps); y is
-// periodic or bounded by walls. The grid is flat, or a sphere's longitude-latitude map, whose
-// metric the advection and the projection carry (GasConfig::sphere). The height
-// field is the dye, so the gas's bands and vortices read as relief.
+// pressure projection (solved exactly by FFT, or by Jacobi sweeps), advected dye, splats of force
+// and dye, vortices the gas is held towards, and zonal jets for banded planets. x is periodic
+// (longitude wraps); y is periodic or bounded by walls. The grid is flat, or a sphere's
+// longitude-latitude map, whose metric the advection, the projection and the viscosity carry
+// (GasConfig::sphere), and which may spin (GasConfig::rotation). The height field is the dye, so
+// the gas's bands and vortices read as relief.
 //
 // Grid units: lengths in cells, velocities in cells per second (on a sphere, cells of latitude).
 // See shared/GasMath.h.
@@ -226,8 +227,8 @@ private:
         cl::Buffer upper, pivots, lower, rhs;
     };
     cl::Buffer p2_;                ///< GasPressure::Jacobi's second pressure
-    std::unique_ptr<RealFft> fft_; ///< the rows' transforms: GasPressure::Exact's, and the rotation's
-    cl::Buffer spectrum_, scratch_; ///< the transforms' spectrum; the rotation's elimination's
+    std::unique_ptr<RealFft> fft_; ///< the rows' transforms: GasPressure::Exact's, the spin's, the sphere's viscosity's
+    cl::Buffer spectrum_, scratch_; ///< the transforms' spectrum; the spin's and viscosity's eliminations' c'
     PressureColumns pressureColumns_;
     cl::Kernel advect_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
         curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,

@@ -13,7 +13,8 @@
 // polar caps keep their bands as rings and the coarse spirals about them. A row's mean is kept;
 // rows whose box is at most a texel wide come through bit for bit.
 //
-// Owns its prefix sums, its output (made when first run into it) and its kernels. Thread: the thread that owns the ClContext.
+// Owns its prefix sums, its output (made when first run into it) and its kernels. Thread: the
+// thread that owns the ClContext.
 
 #include "hfx/compute/ClContext.h"
 
