@@ -5,6 +5,7 @@
 #include "hfx/core/Error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -123,18 +124,17 @@ CameraPath CameraPath::load(const std::string& path) {
 }
 
 void CameraPath::apply(double seconds, SceneOptions& base) const {
-    const size_t n = times_.size();
-    std::vector<double> v;
+    const size_t n = times_.size(), channels = keys_.front().size();
+    std::array<double, kMaxChannels> v{}; // (no allocation: the loops call this every frame)
     if (!(seconds > times_.front()) || n == 1) {
-        v = keys_.front();
+        std::copy(keys_.front().begin(), keys_.front().end(), v.begin());
     } else if (seconds >= times_.back()) {
-        v = keys_.back();
+        std::copy(keys_.back().begin(), keys_.back().end(), v.begin());
     } else {
         const size_t k = size_t(std::upper_bound(times_.begin(), times_.end(), seconds) - times_.begin()) - 1;
         const double h = times_[k + 1] - times_[k], s = (seconds - times_[k]) / h;
         const double s2 = s * s, s3 = s2 * s;
-        v.resize(keys_[k].size());
-        for (size_t c = 0; c < v.size(); ++c)
+        for (size_t c = 0; c < channels; ++c)
             v[c] = (2.0 * s3 - 3.0 * s2 + 1.0) * keys_[k][c] + (s3 - 2.0 * s2 + s) * h * slopes_[c][k] +
                    (3.0 * s2 - 2.0 * s3) * keys_[k + 1][c] + (s3 - s2) * h * slopes_[c][k + 1];
     }

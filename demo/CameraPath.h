@@ -3,6 +3,7 @@
 // between them, for a video that flies through a scene (the headless frames' time, or a window's
 // clock). Read once; the program loops give it the time and the scene places its camera.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ public:
     const std::string& file() const { return file_; }
 
 private:
+    static constexpr size_t kMaxChannels = 8; ///< every name once: target's three and five more
     std::string file_;
     std::vector<std::string> names_;
     std::vector<double> times_;

@@ -34,9 +34,8 @@ void Scene::turnCamera(float degrees) {
 
 void Scene::followPath(double seconds) {
     if (!cameraPath) return;
-    SceneOptions o = options;
-    cameraPath->apply(seconds, o);
-    placeCamera(o);
+    cameraPath->apply(seconds, options); // the path's values only: the rest stay as made
+    placeCamera(options);
 }
 
 void Scene::placeCamera(const SceneOptions& o) {

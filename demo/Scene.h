@@ -158,10 +158,11 @@ public:
     float cameraTurn = 0.0f;
     /// --camera-path: the program loops call followPath with the frames' time.
     std::optional<CameraPath> cameraPath;
-    /// Places the camera where cameraPath has it at `seconds` (placeCamera over the options the
-    /// scene was made with); nothing without a path.
+    /// Places the camera where cameraPath has it at `seconds`: the path's values written into
+    /// `options`, then placeCamera; nothing without a path.
     void followPath(double seconds);
-    /// The options the scene was made with (makeScene).
+    /// The options the scene was made with (makeScene), the camera path's values since the last
+    /// followPath.
     SceneOptions options;
 
     Camera& camera() { return camera_; }

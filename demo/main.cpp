@@ -219,7 +219,7 @@ int run(const Options& o) {
         // Every frame's placement refused here, by its time, not mid-run (the planet's camera
         // inside its cloud tops): the path tried at 64 times between each pair of keys.
         scene->cameraPath = o.cameraPath;
-        const std::vector<double> keys = o.cameraPath->times();
+        const std::vector<double>& keys = o.cameraPath->times();
         for (size_t k = 0; k < keys.size(); ++k)
             for (int i = 0; i < (k + 1 < keys.size() ? 64 : 1); ++i) {
                 const double t = k + 1 < keys.size() ? keys[k] + (keys[k + 1] - keys[k]) * i / 64.0 : keys[k];
