@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 namespace hfx::test {
@@ -346,6 +347,56 @@ TEST_F(Decals, AReplayedDamageLogRebuildsTheSameMapsBitForBit) {
     replayed.addBulletHoles(more.stamps());
     replayed.rebuild();
     EXPECT_NE(hashMaps(replayed), liveHash);
+}
+
+TEST(DecalMarks, ABurnIsDarkestAtItsCraterAndFadesOutInRays) {
+    // Along every ray from an impact the soot is full on the crater's floor and fades from the lip
+    // out to its outline (where it falls below a twentieth), lower at every step, and by a tenth a
+    // third of the way there: no flat plate of full soot past the lip with a rim round it, as
+    // the burn had until 2026-11-29. It ends inside the reach its stamp is binned by (no cut along
+    // a tile's edge), and its outline bulges into a blast's rays, 12 or more round the circle.
+    const DamageLook look;
+    const std::vector<BulletHole> explosion = DecalMap::expand(look.explosion, EdgeMode::Wrap);
+    for (const BulletHole& mark : {look.bullet, explosion[0], explosion[1]})
+        for (const float phase : {0.0f, 0.9f, 2.3f, 4.1f, 5.9f}) {
+            float w[4];
+            hfx_decal_wobble(phase, w);
+            const float reach = hfx_decal_reach(mark.rimWidth, mark.scorch, mark.roughness, mark.scorchReach);
+            auto scorchAt = [&](float r, float a) {
+                float scorch, rough, occlusion;
+                hfx_decal_marks(r * std::cos(a), r * std::sin(a), 1.0f, mark.roughness, mark.occlusion,
+                                mark.scorchReach, w[0], w[1], w[2], w[3], &scorch, &rough, &occlusion);
+                return scorch;
+            };
+            constexpr int kAngles = 720;
+            constexpr float kStep = 0.02f;
+            std::vector<float> outline(kAngles);
+            float palestFloor = 1.0f, darkestThird = 0.0f, lastSoot = 0.0f;
+            int flat = 0;
+            for (int k = 0; k < kAngles; ++k) {
+                const float a = 2.0f * std::numbers::pi_v<float> * float(k) / kAngles;
+                float r = 0.5f, here = scorchAt(r, a);
+                palestFloor = std::min(palestFloor, here);
+                for (r = 1.0f, here = scorchAt(r, a); here > 0.0f; r += kStep) {
+                    const float next = scorchAt(r + kStep, a);
+                    flat += next >= here;
+                    if (here >= 0.05f) outline[size_t(k)] = r + kStep;
+                    here = next;
+                }
+                darkestThird = std::max(darkestThird, scorchAt(1.0f + (outline[size_t(k)] - 1.0f) / 3.0f, a));
+                lastSoot = std::max(lastSoot, scorchAt(reach - 0.01f, a));
+            }
+            int rays = 0;
+            for (int k = 0; k < kAngles; ++k)
+                rays += outline[size_t(k)] > outline[size_t((k + kAngles - 1) % kAngles)] &&
+                        outline[size_t(k)] >= outline[size_t((k + 1) % kAngles)];
+            const std::string where = str("scorch reach ", mark.scorchReach, ", phase ", phase);
+            EXPECT_GT(palestFloor, 0.95f) << where << ": the crater's floor is burnt black";
+            EXPECT_LT(darkestThird, 0.9f) << where << ": full soot past the lip";
+            EXPECT_EQ(flat, 0) << where << ": steps where the soot did not fade outwards";
+            EXPECT_LT(lastSoot, 1e-3f) << where << ": the soot is cut at the binned reach";
+            EXPECT_GE(rays, 12) << where;
+        }
 }
 
 TEST(DecalExplosion, ExpandsIntoCraterAndDebris) {
