@@ -643,28 +643,31 @@ TEST_F(OceanShading, AGaleThatTurnsCrossFadesItsStreaksWithoutAJump) {
 
 TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {
     // The demo's sea: Beaufort 4 from 7 m, 8 degrees down, the sun 12 degrees up and 19 to the
-    // left: ahead of the camera (the light crosses the crests towards the eye) and behind it. What the translucency adds
-    // (the frame with it less the frame without) is light in the shallow colour, green over red,
-    // never a darkening, on the steep faces as well as the tallest crests, and it is there looking
-    // towards the sun and not away from it.
+    // left: ahead of the camera (the light crosses the crests towards the eye) and behind it. What
+    // the translucency adds (the frame with it less the frame without) is light in the shallow
+    // colour, green over red, never a darkening, on the tallest crests and over the faces of the
+    // waves (the light the water scatters out towards an eye that looks towards the sun), varying
+    // with the waves from pixel to pixel, and it is there looking towards the sun and at a grazing
+    // angle, and not away from the sun nor looking down on the sea.
     OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3, .sea = {.wind = {.windSpeed = beaufortWindSpeed(4)}}}});
     ocean.update(0.1);
     constexpr int W = 320, H = 180;
     const Mesh sea(makePlane({.size = 4000.0f, .texcoordScale = 4000.0f / ocean.ocean().config().patchMeters}));
     RenderTarget target(W, H);
     SurfaceRenderer renderer;
-    Camera camera;
-    camera.position = {0.0f, 7.0f, 0.0f};
-    camera.target = {0.0f, 7.0f - 100.0f * std::tan(glm::radians(8.0f)), -100.0f};
-    camera.aspect = float(W) / H;
-    camera.nearPlane = 0.2f;
-    camera.farPlane = 8000.0f;
     struct Glow {
-        glm::dvec3 mean{0.0};     // added light, the sea's mean
+        glm::dvec3 mean{0.0};      // added light, the sea's mean
         glm::vec3 brightest{0.0f}; // at the pixel where the most green is added
         double glowing = 0.0;      // the share of the sea's pixels it adds 2/255 of green to
+        double texture = 0.0;      // the mean change of the added green from a block of 8x8 pixels to the next, over its mean
     };
-    auto added = [&](float sunZ) {
+    auto added = [&](float sunZ, float degreesDown) {
+        Camera camera;
+        camera.position = {0.0f, 7.0f, 0.0f};
+        camera.target = camera.position + glm::vec3(0.0f, -std::sin(glm::radians(degreesDown)), -std::cos(glm::radians(degreesDown)));
+        camera.aspect = float(W) / H;
+        camera.nearPlane = 0.2f;
+        camera.farPlane = 8000.0f;
         DirectionalLight light{.direction = {-0.35f, 0.22f, sunZ}, .color = {1.0f, 0.9f, 0.75f}, .ambient = {0.35f, 0.42f, 0.5f}};
         auto view = [&](float translucency) {
             SurfaceMaterial material = ocean.material();
@@ -675,31 +678,51 @@ TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {
         const Image with = view(1.0f), without = view(0.0f);
         Glow glow;
         float darkest = 0.0f;
-        for (int y = H / 2 + 10; y < H; ++y) // the sea below the horizon's haze
+        const int top = degreesDown < 45.0f ? H / 2 + 10 : 0; // the sea below the horizon's haze
+        const double pixels = double(W * (H - top));
+        constexpr int kBlock = 8;
+        std::vector<double> blocks(size_t(W / kBlock) * size_t((H - top) / kBlock), 0.0);
+        for (int y = top; y < H; ++y)
             for (int x = 0; x < W; ++x) {
                 glm::vec3 d;
                 for (int c = 0; c < 3; ++c) {
                     d[c] = with.at(x, y, c) - without.at(x, y, c);
                     darkest = std::min(darkest, d[c]);
                 }
-                glow.mean += glm::dvec3(d) / double(W * (H - H / 2 - 10));
-                glow.glowing += d.g > 2.0f / 255.0f ? 1.0 / double(W * (H - H / 2 - 10)) : 0.0;
+                glow.mean += glm::dvec3(d) / pixels;
+                glow.glowing += d.g > 2.0f / 255.0f ? 1.0 / pixels : 0.0;
                 if (d.g > glow.brightest.g) glow.brightest = d;
+                if ((y - top) / kBlock < (H - top) / kBlock)
+                    blocks[size_t((y - top) / kBlock * (W / kBlock) + x / kBlock)] += d.g / (kBlock * kBlock);
             }
+        double steps = 0.0, mean = 0.0;
+        for (int j = 0; j < (H - top) / kBlock; ++j)
+            for (int i = 0; i + 1 < W / kBlock; ++i) {
+                const size_t at = size_t(j * (W / kBlock) + i);
+                steps += std::abs(blocks[at + 1] - blocks[at]);
+                mean += blocks[at];
+            }
+        glow.texture = mean > 0.0 ? steps / mean : 0.0;
         EXPECT_GE(darkest, -1.0f / 255.0f) << "the glow darkened a pixel";
         return glow;
     };
-    const Glow towards = added(-1.0f), away = added(1.0f);
+    const Glow towards = added(-1.0f, 8.0f), away = added(1.0f, 8.0f), down = added(-1.0f, 75.0f);
     std::printf("[translucency] towards the sun: mean green added %.5f, the brightest (%.3f, %.3f, %.3f), %.1f%% of the "
-                "sea's pixels glowing; away: mean %.5f, brightest green %.3f\n",
+                "sea's pixels glowing, %.3f of the mean from a block to the next; away: mean %.5f, brightest green "
+                "%.3f; looking down towards it: mean %.5f\n",
                 towards.mean.g, towards.brightest.r, towards.brightest.g, towards.brightest.b, 100.0 * towards.glowing,
-                away.mean.g, away.brightest.g);
-    EXPECT_GT(towards.brightest.g, 0.02f) << "the crests glow"; // 0.086 on llvmpipe
-    // The steep faces of waves below the tallest crests glow too: 5.8% of the sea's pixels on
-    // llvmpipe, where the tallest crests alone lit 4.1%.
-    EXPECT_GT(towards.glowing, 0.05) << "only the tallest crests glow";
+                towards.texture, away.mean.g, away.brightest.g, down.mean.g);
+    EXPECT_GT(towards.brightest.g, 0.1f) << "the crests glow"; // 0.200 on llvmpipe
+    // Whole faces glow: 53.9% of the sea's pixels on llvmpipe, where the crests and their steep
+    // faces alone (before 2026-11-29) lit 5.8%, with a mean of 0.0169 against 0.0016.
+    EXPECT_GT(towards.glowing, 0.4) << "only the crests glow";
+    // The glow changes by 0.32 of its mean from a block of 8x8 pixels to the next on llvmpipe; a
+    // tint as bright over the whole sea (the same light scattered out, but a flat 0.3 where the
+    // crests and faces give 0.1 to 0.6) changed by 0.16.
+    EXPECT_GT(towards.texture, 0.25) << "a tint, not the waves' faces";
     EXPECT_GT(towards.brightest.g, 2.0f * towards.brightest.r) << "in the shallow colour";
     EXPECT_LT(away.mean.g, 0.1 * towards.mean.g) << "with the sun behind the camera nothing crosses the crests towards it";
+    EXPECT_LT(down.mean.g, 0.2 * towards.mean.g) << "looking down, the eye sees no light scattered out towards the sun";
     SurfaceMaterial bad = ocean.material();
     bad.water.translucency = -1.0f;
     EXPECT_THROW(bad.validate(), Error);

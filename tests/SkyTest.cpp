@@ -390,6 +390,59 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     EXPECT_LT(worstLight, 0.1);
 }
 
+TEST_F(Sky, TheCloudsShadowsDimTheGlowThroughTheWater) {
+    // Flat water seen at a grazing angle towards a low sun, reflecting nothing: the translucency's
+    // glow (the frame with it less the frame without, in linear light) is the sun's, scattered out
+    // of the water, so a cloud's shadow dims it as it dims the sun: with the clouds over the glow
+    // under a clear sky, each pixel's share is hfx::cloudSunlight at its point.
+    const int n = 160;
+    FlatWater water(n, n);
+    Camera camera;
+    camera.position = {0.0f, 3.0f, 0.0f};
+    camera.target = {0.0f, 0.0f, -20.0f};
+    camera.fovY = 0.8f;
+    camera.aspect = 1.0f;
+    camera.farPlane = 100.0f;
+    const DirectionalLight sun{.direction = {0.1f, 0.3f, -1.0f}, .color = glm::vec3(4.0f), .ambient = glm::vec3(0.0f)};
+    SurfaceMaterial& material = water.material;
+    material.water.fresnelF0 = 0.0f;
+    material.water.skyZenith = material.water.skyHorizon = glm::vec3(0.0f); // the reflection adds nothing
+    material.water.sunGlow = 0.0f;
+    material.water.cloudCover = 0.6f;
+    material.water.cloudHeight = 4.0f; // low, so that the low sun's shadows fall near their clouds
+    material.water.cloudScale = 2.0f;
+    material.water.translucency = 1.0f;
+    const auto [clouded, plain] = water.draw(camera, sun);
+    material.water.translucency = 0.0f;
+    const auto [cloudedDark, plainDark] = water.draw(camera, sun);
+    auto hit = [&](double x, double y) { // the plane's point seen through pixel (x, y from the top)
+        const Ray ray = camera.rayThroughPixel(x + 0.5, n - 1 - y + 0.5, n, n);
+        return glm::vec3(ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction);
+    };
+    auto linearGreen = [](const Image& image, int x, int y) { return std::pow(pixelOf(image, x, y).y, 2.2f); };
+    int checked = 0, off = 0, shaded = 0, sunny = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const float clearGlow = linearGreen(plain, x, y) - linearGreen(plainDark, x, y);
+            if (clearGlow < 0.05f || hit(x, y).z > -1.0f) continue; // the glow's faint edge; the sky
+            ++checked;
+            const glm::vec3 p = hit(x, y);
+            const float footprint = std::max(glm::length(hit(x + 1, y) - p), glm::length(hit(x, y + 1) - p));
+            const float expected = cloudSunlight(material.water, sun, p, footprint);
+            const float share = (linearGreen(clouded, x, y) - linearGreen(cloudedDark, x, y)) / clearGlow;
+            off += std::abs(share - expected) > 0.1f;
+            shaded += expected < 0.7f;
+            sunny += expected > 0.95f;
+        }
+    std::printf("%d glowing pixels checked: %d in a cloud's shadow, %d in full sun; %d off the CPU's sunlight by over "
+                "0.1\n",
+                checked, shaded, sunny, off);
+    ASSERT_GT(checked, n * n / 8);
+    EXPECT_GT(shaded, checked / 10) << "too few shadows to test";
+    EXPECT_GT(sunny, checked / 10) << "too little sun to test";
+    EXPECT_LE(off, checked / 50) << "the glow is not the sunlight the clouds let through";
+}
+
 TEST_F(Sky, BadCloudsAreRefusedByNameAndDrawNothing) {
     RenderTarget target(kW, kH);
     SurfaceRenderer renderer;

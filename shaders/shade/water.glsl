@@ -14,11 +14,18 @@
 // steep face above the mean is as thin as a great crest: its slope (the relief's normal turned
 // 5 to 16 degrees from the mesh's) lights it from the mean up to a sigma above it, so the faces
 // of a rough sea glow and not only its tallest crests.
+// And the light the sea scatters back out of its body towards an eye that looks towards the sun
+// (Crest's approximation: (L.-V)^5, more at grazing views, 1 - v^2 with v the cosine between the
+// view and the mesh's normal): a tenth of it everywhere and up to six tenths on the crests and
+// steep faces, so whole faces of the waves against the sun glow, and none of it where the eye
+// looks down or away.
 float hfx_crest_glow(HfxSurfacePoint p) {
     const float steep = smoothstep(0.003, 0.04, 1.0 - dot(p.normal, p.geometricNormal));
     const float crest = max(smoothstep(0.55, 0.8, p.height), steep * smoothstep(0.5, 0.6, p.height));
     const float through = pow(clamp(dot(p.viewDir, -normalize(p.lightDir + 0.4 * p.normal)), 0.0, 1.0), 4.0);
-    return 4.0 * u_translucency * crest * through;
+    const float v = p.cosView, towardsSun = pow(max(dot(p.lightDir, -p.viewDir), 0.0), 5.0);
+    const float scattered = 3.4 * towardsSun * (1.0 - v * v) * (0.1 + 0.5 * max(crest, steep));
+    return u_translucency * (4.0 * crest * through + scattered);
 }
 
 // Two values in [0, 1) for an integer cell (a sine-free hash: the same on every device).
@@ -133,8 +140,13 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     // surface.frag's main found it).
     p.lit *= g_cloudSunlight;
 #endif
+    // The glow is the sun's, through the water: the clouds' shadow dims it too.
+    float sunThrough = 1.0;
+#if HFX_SKY == 1
+    sunThrough = g_cloudSunlight;
+#endif
     const vec3 body = mix(u_deepColor, u_shallowColor, p.height * p.height) * (u_ambient + p.lit * p.diffuse * u_lightColor) +
-                      hfx_crest_glow(p) * u_shallowColor * u_lightColor;
+                      hfx_crest_glow(p) * sunThrough * u_shallowColor * u_lightColor;
     vec3 reflected = reflect(-p.viewDir, p.normal);
     reflected.y = abs(reflected.y); // a ray reflected downwards sees the next wave's sky
     // Roughness from the slope variance: Schlick's Fresnel with roughness (Lagarde) and a glint

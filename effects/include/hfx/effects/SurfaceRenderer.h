@@ -72,8 +72,10 @@ struct WaterLook {
     float hazeDistance = 90.0f;                    ///< world units where half the colour is haze
     float sunGlow = 0.6f;                          ///< the glow around the sun in the procedural sky
     /// Crests lit from behind glow in shallowColor: sunlight crossing a wave's thin top towards
-    /// the eye. 0: none; 1 lights a crest two sigma of the sea high, seen against the sun, with
-    /// six times the shallow colour.
+    /// the eye; and the faces of the waves, dimmer, with the light the water scatters out towards
+    /// an eye that looks towards the sun at a grazing angle (shaders/shade/water.glsl). 0: none;
+    /// 1 lights a crest two sigma of the sea high, seen against the sun, with six times the
+    /// shallow colour.
     float translucency = 1.0f;
     /// The albedo's alpha is foam coverage and its red the young part of it (OceanEffect writes
     /// them per cascade): foam is drawn in foamColor, lit like snow, and widens the glint by
