@@ -375,9 +375,8 @@ TEST(DecalMarks, ABurnIsDarkestAtItsCraterAndFadesOutInRays) {
             int flat = 0;
             for (int k = 0; k < kAngles; ++k) {
                 const float a = 2.0f * std::numbers::pi_v<float> * float(k) / kAngles;
-                float r = 0.5f, here = scorchAt(r, a);
-                palestFloor = std::min(palestFloor, here);
-                for (r = 1.0f, here = scorchAt(r, a); here > 0.0f; r += kStep) {
+                palestFloor = std::min(palestFloor, scorchAt(0.5f, a));
+                for (float r = 1.0f, here = scorchAt(r, a); here > 0.0f; r += kStep) {
                     const float next = scorchAt(r + kStep, a);
                     flat += next >= here;
                     if (here >= 0.05f) outline[size_t(k)] = r + kStep;

@@ -659,12 +659,13 @@ TEST_F(OceanShading, CrestsLitFromBehindGlowInTheShallowColour) {
         glm::dvec3 mean{0.0};      // added light, the sea's mean
         glm::vec3 brightest{0.0f}; // at the pixel where the most green is added
         double glowing = 0.0;      // the share of the sea's pixels it adds 2/255 of green to
-        double texture = 0.0;      // the mean change of the added green from a block of 8x8 pixels to the next, over its mean
+        double texture = 0.0;      // the added green's change between neighbouring 8x8 blocks, over its mean
     };
     auto added = [&](float sunZ, float degreesDown) {
         Camera camera;
         camera.position = {0.0f, 7.0f, 0.0f};
-        camera.target = camera.position + glm::vec3(0.0f, -std::sin(glm::radians(degreesDown)), -std::cos(glm::radians(degreesDown)));
+        const float down = glm::radians(degreesDown);
+        camera.target = camera.position + glm::vec3(0.0f, -std::sin(down), -std::cos(down));
         camera.aspect = float(W) / H;
         camera.nearPlane = 0.2f;
         camera.farPlane = 8000.0f;
