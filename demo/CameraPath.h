@@ -14,9 +14,10 @@ struct SceneOptions;
 /// One key a line: SECONDS, then NAME=VALUE for any of the camera options --camera-NAME takes:
 /// azimuth, elevation, distance, target=X,Y,Z, and the water's height and pitch, in their units
 /// and ranges (an azimuth may run on past 360 degrees, for turns). Every line names the same ones;
-/// '#' starts a comment. Between keys each value follows a monotone cubic (Fritsch and Carlson): it
-/// passes through the keys and never leaves the range of the two about it, and eases in and out
-/// at the first and last key; before the first key the first holds, after the last the last.
+/// '#' starts a comment. Between keys each value follows a monotone cubic (Fritsch and Carlson's,
+/// with Fritsch and Butland's slopes): it passes through the keys and never leaves the range of the
+/// two about it, and eases in and out at the first and last key; before the first key the first
+/// holds, after the last the last.
 class CameraPath {
 public:
     /// Throws hfx::Error naming the file, and the line and value where it is one: a file that

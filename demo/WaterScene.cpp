@@ -98,9 +98,7 @@ public:
         applyOptions(o);
         // Seven metres above the water unless told, looking down (8 degrees unless told) towards
         // the low sun.
-        camera_.position = {0.0f, o.cameraHeight, 0.0f};
-        camera_.target = {0.0f, o.cameraHeight - 100.0f * std::tan(glm::radians(o.cameraPitch)), -100.0f};
-        pitch_ = o.cameraPitch;
+        stand(o.cameraHeight, o.cameraPitch);
         camera_.aspect = o.aspect();
         camera_.nearPlane = 0.2f;
         camera_.farPlane = 12000.0f;
@@ -117,13 +115,16 @@ public:
         const bool moved = o.cameraHeight != camera_.position.y || o.cameraPitch != pitch_;
         if (!moved && !o.cameraAzimuth) return; // the scene's, to the bit
         const float azimuth = o.cameraAzimuth ? glm::radians(*o.cameraAzimuth) : lookAzimuth();
-        if (moved) {
-            // Stood that high, looking that far below the horizon: as the scene was made.
-            pitch_ = o.cameraPitch;
-            camera_.position.y = o.cameraHeight;
-            camera_.target = camera_.position + glm::vec3(0.0f, -100.0f * std::tan(glm::radians(pitch_)), -100.0f);
-        }
+        if (moved) stand(o.cameraHeight, o.cameraPitch);
         look(azimuth);
+    }
+
+    /// Stands `height` metres above the sea at the origin, looking `pitch` degrees below the
+    /// horizon along -z (look turns it).
+    void stand(float height, float pitch) {
+        pitch_ = pitch;
+        camera_.position = {0.0f, height, 0.0f};
+        camera_.target = camera_.position + glm::vec3(0.0f, -100.0f * std::tan(glm::radians(pitch)), -100.0f);
     }
     /// On the spot: the way it looks turns, its place and pitch stay.
     void turnCamera(float degrees) override { look(lookAzimuth() + glm::radians(degrees)); }

@@ -260,7 +260,7 @@ std::optional<MeshPick> pickAlong(std::vector<Crossing>& crossings, const MeshPi
                 spread = std::max(spread, glm::dot(d, d));
             }
             const double level = 0.5 * std::log2(std::max(spread, 1e-12)), threshold = material.lodThreshold;
-            flatten = level > threshold ? 1.0 : std::clamp(level - (threshold - 1.0), 0.0, 1.0);
+            flatten = std::clamp(level - (threshold - 1.0), 0.0, 1.0);
         }
         // hfx_surface: a degenerate frame is normal mapped; the relief fades out as the view
         // grazes the entry's normal.
