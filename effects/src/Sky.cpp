@@ -104,10 +104,19 @@ LayerPatch layerPatch(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float
     return {p, spread / y, spread / (y * y)};
 }
 
-/// hfx_clouds' (density, thickness) over `patch`, faded into the haze towards the horizon.
+/// hfx_cloud_mean's thickness: the layer's clouds' mean.
+float meanThickness(const WaterLook& look) { return 0.15f + 0.6f * look.cloudCover; }
+
+/// hfx_clouds' fade towards the horizon: the share of a sample `dir` keeps (y > 0), the rest the
+/// layer's mean.
+float nearness(glm::vec3 dir) { return 1.0f - std::exp(-8.0f * dir.y); }
+float fade(float value, float mean, float near) { return mean + (value - mean) * near; }
+
+/// hfx_clouds' (density, thickness) over `patch`, faded into the layer's mean towards the horizon.
 CloudSample clouds(const WaterLook& look, const LayerPatch& patch, glm::vec3 dir) {
     const CloudSample c = cover(look, patch.p, patch.across, patch.along);
-    return {c.density * (1.0f - std::exp(-8.0f * dir.y)), c.thickness};
+    const float near = nearness(dir);
+    return {fade(c.density, look.cloudCover, near), fade(c.thickness, meanThickness(look), near)};
 }
 
 } // namespace
@@ -144,16 +153,24 @@ glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::ve
     const float sun = std::max(glm::dot(glm::normalize(dir), lightDir), 0.0f);
     const glm::vec3 clear =
         base + look.sunGlow * light.color * (0.5f * std::pow(sun, 48.0f) + 0.12f * std::pow(sun, 6.0f));
-    if (!(look.cloudCover > 0.0f) || !(dir.y > 0.0f)) return clear;
-    const LayerPatch patch = layerPatch(look, eye, dir, spread);
-    const CloudSample cloud = clouds(look, patch, dir);
-    if (!(cloud.density > 0.0f)) return clear;
-    // hfx_clouds' `sunward`: the cloud's density where its direct light came through, over a
-    // cell at least.
-    const float cell = 1.0f / look.cloudScale;
-    const float sunward = cover(look, patch.p + cloudSunwardStep(look, light), std::max(patch.across, cell),
-                                std::max(patch.along, cell))
-                              .density;
+    if (!(look.cloudCover > 0.0f)) return clear;
+    // At and below the horizon the clouds' far field continues: the layer's mean.
+    CloudSample cloud{look.cloudCover, meanThickness(look)};
+    float sunward = look.cloudCover;
+    if (dir.y > 0.0f) {
+        const LayerPatch patch = layerPatch(look, eye, dir, spread);
+        const CloudSample sharp = cover(look, patch.p, patch.across, patch.along);
+        // hfx_clouds' `sunward`: the cloud's density where its direct light came through, over a
+        // cell at least (only where there is a cloud).
+        const float cell = 1.0f / look.cloudScale;
+        const float through = sharp.density > 0.0f ? cover(look, patch.p + cloudSunwardStep(look, light),
+                                                           std::max(patch.across, cell), std::max(patch.along, cell))
+                                                         .density
+                                                   : 0.0f;
+        const float near = nearness(dir);
+        cloud = {fade(sharp.density, look.cloudCover, near), fade(sharp.thickness, meanThickness(look), near)};
+        sunward = fade(through, look.cloudCover, near);
+    }
     // hfx_cloud_color
     const float elevation = std::clamp(lightDir.y, 0.0f, 1.0f);
     const glm::vec3 ambient = look.skyHorizon + (look.skyZenith - look.skyHorizon) * 0.3f;

@@ -55,7 +55,8 @@ WaterUniforms waterUniforms(const WaterLook& w, const DirectionalLight& light) {
             .cloudDrift = w.cloudDrift,
             .cloudScale = w.cloudScale,
             .cloudThreshold = cloudThreshold(w.cloudCover),
-            .cloudSunward = cloudSunwardStep(w, light)};
+            .cloudSunward = cloudSunwardStep(w, light),
+            .cloudCover = w.cloudCover};
 }
 
 /// The slope variance a format's rounding alone shows in its mip-0 normals (Toksvig must not

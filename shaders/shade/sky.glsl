@@ -34,6 +34,7 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     float u_cloudScale;       // clouds (the noise's first cells) per cloud height
     float u_cloudThreshold;   // where the noise is clouded: its (1 - cover) quantile
     vec2 u_cloudSunward;      // where a cloud's direct light came through, cloud heights (hfx::cloudSunwardStep)
+    float u_cloudCover;       // the share of the sky under cloud: what the layer fades into at the horizon
 };
 layout(binding = HFX_UNIT_ENVIRONMENT) uniform sampler2D s_environment;
 #ifndef HFX_SKY
@@ -98,6 +99,12 @@ vec2 hfx_cloud_cover(vec2 p, float across, float along) {
     return vec2(density, clamp((value - u_cloudThreshold) / (0.2 + width), 0.0, 1.0));
 }
 
+// The layer's mean (density, thickness, sunward): the cover's share of it clouded, its clouds'
+// mean thickness 0.15 + 0.6 cover (a deck that covers more of the sky is deeper and greyer
+// underneath: measured over the layer, 0.26 at a cover of 0.2, 0.76 at 0.95), their light
+// crossing the cover's share of cloud.
+vec3 hfx_cloud_mean() { return vec3(u_cloudCover, 0.15 + 0.6 * u_cloudCover, u_cloudCover); }
+
 // The clouds in direction `dir` (y > 0) from the eye, seen over `spread` radians (a sky pixel's
 // width, a reflection's widened by the water's roughness): (density, thickness, sunward). The layer
 // lies u_cloudHeight over the world's y = 0 (the water's level); the direction meets it (height -
@@ -121,8 +128,10 @@ vec3 hfx_clouds(vec3 dir, float spread) {
         const float cell = 1.0 / u_cloudScale;
         sunward = hfx_cloud_cover(p + u_cloudSunward, max(across, cell), max(along, cell)).x;
     }
-    // Far off, the layer fades into the horizon's haze.
-    return vec3(c.x * (1.0 - exp(-8.0 * dir.y)), c.y, sunward);
+    // Far off, the layer is seen edge on, more of it in a pixel than the octaves show: it fades
+    // into its mean (hfx_cloud_mean). An overcast horizon is the clouds' grey, as a clear one is
+    // the sky's.
+    return mix(hfx_cloud_mean(), vec3(c, sunward), 1.0 - exp(-8.0 * dir.y));
 }
 
 // The share of the sun's direct light the clouds let through to the world point `position`,
@@ -178,8 +187,8 @@ vec3 hfx_sky(vec3 dir, float spread) {
     return textureLod(s_environment, vec2(uv.x, 1.0 - uv.y), 0.0).rgb;
 #elif HFX_SKY == 1
     const vec3 clear = hfx_clear_sky(dir);
-    if (!(dir.y > 0.0)) return clear;
-    const vec3 cloud = hfx_clouds(dir, spread);
+    // At and below the horizon the clouds' far field (what hfx_clouds fades into) continues.
+    const vec3 cloud = dir.y > 0.0 ? hfx_clouds(dir, spread) : hfx_cloud_mean();
     return clear + (hfx_cloud_color(dir, cloud.y, cloud.z) - clear) * cloud.x;
 #else
     return hfx_clear_sky(dir);
@@ -187,13 +196,8 @@ vec3 hfx_sky(vec3 dir, float spread) {
 }
 
 /// The haze at a distance: the sky at the horizon in the direction of the point (where the clouds
-/// have faded into it).
+/// have faded into their cover's mean).
 vec3 hfx_haze(vec3 toPoint) {
     const vec3 level = vec3(toPoint.x, 0.0, toPoint.z);
-    const vec3 dir = dot(level, level) > 0.0 ? normalize(level) : vec3(1.0, 0.0, 0.0);
-#if HFX_SKY == 2
-    return hfx_sky(dir, 0.0);
-#else
-    return hfx_clear_sky(dir);
-#endif
+    return hfx_sky(dot(level, level) > 0.0 ? normalize(level) : vec3(1.0, 0.0, 0.0), 0.0);
 }

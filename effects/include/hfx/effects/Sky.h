@@ -25,8 +25,11 @@ namespace hfx {
 /// its edge, 1 in its middle), which darkens its underside. Each octave keeps about the share of
 /// its variance that a box the size of the pixel's patch of the layer leaves it (spread / y
 /// across, spread / y^2 along the view), and what the octaves no longer show softens the edge
-/// instead: about the share of the pixel under cloud, not an aliased sample. 0 below the horizon
-/// and where the look has no clouds.
+/// instead: about the share of the pixel under cloud, not an aliased sample. Towards the horizon,
+/// where the layer is seen edge on, both fade into the layer's mean (1 - e^(-8 y) of the sample
+/// kept): the density into the cover, the thickness into the clouds' mean, 0.15 + 0.6 cover
+/// (measured over the layer: 0.26 at a cover of 0.2, 0.76 at 0.95). 0 below the horizon and
+/// where the look has no clouds.
 struct CloudSample {
     float density = 0.0f;
     float thickness = 0.0f;
@@ -54,7 +57,10 @@ float cloudThreshold(float cover);
 /// The sky's colour (linear RGB) in direction `dir` from `eye` under `light`: the look's
 /// gradient, the sun's glow and, where the look has them, its clouds seen over `spread` radians,
 /// darker where thick and where the sun's light reaching them crossed more of the cloud (half a
-/// cell up the sun's ray: a cloud's sunward side is bright, its far side grey).
+/// cell up the sun's ray: a cloud's sunward side is bright, its far side grey). At the horizon
+/// and below it the layer's mean continues (the cover's share of the clouds' mean colour over
+/// the clear sky's): the colour the water's haze fades into, so an overcast horizon is grey. A
+/// level `dir` gives an engine the colour its fog should take to meet the sea and the sky.
 /// The environment image of a look that has one is not read: what it returns is the procedural
 /// sky's.
 glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::vec3 eye, glm::vec3 dir, float spread);

@@ -108,8 +108,9 @@ struct WaterLook {
     /// hfx::cloudSunlight give the same on the CPU): a layer of them `cloudHeight` world units over
     /// the world's y = 0 (the water's level; metres for the ocean), lit by the sun (greyer where
     /// thick and on the side away from the sun, a silver edge towards it), drawn by drawSky,
-    /// reflected by the water and faded into the haze towards the horizon, their shadows dimming
-    /// the sun's light on the water.
+    /// reflected by the water, their shadows dimming the sun's light on the water. Towards the
+    /// horizon the layer, seen edge on, fades into its mean, which the haze takes: under a cover
+    /// near 1 the horizon and the far sea are the clouds' grey, not the clear sky's blue.
     /// `cloudCover` is the share of the sky overhead under a cloud's middle, 0 (none, the default)
     /// to 1; `cloudScale` the clouds per cloud height (larger: smaller clouds; about one per
     /// 1,000 m at 1,500 m is 1.5); `cloudDrift` how far the layer has moved, in cloud heights

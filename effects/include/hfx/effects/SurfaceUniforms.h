@@ -120,6 +120,8 @@ struct WaterUniforms {
     float cloudScale = 1.0f;
     float cloudThreshold = 1.0f;  ///< hfx::cloudThreshold(WaterLook::cloudCover): where the noise is clouded
     glm::vec2 cloudSunward{0.0f}; ///< hfx::cloudSunwardStep(WaterLook, light): where a cloud's light came through
+    float cloudCover = 0.0f;      ///< WaterLook::cloudCover: what the layer fades into at the horizon
+    float padding[3] = {0.0f, 0.0f, 0.0f};
 };
 
 /// HfxRings (shaders/surface/uniforms.glsl, binding 2): the water's impact rings.
@@ -199,7 +201,8 @@ static_assert(offsetof(WaterUniforms, cloudHeight) == 132);
 static_assert(offsetof(WaterUniforms, cloudDrift) == 136);
 static_assert(offsetof(WaterUniforms, cloudThreshold) == 148);
 static_assert(offsetof(WaterUniforms, cloudSunward) == 152);
-static_assert(sizeof(WaterUniforms) == 160);
+static_assert(offsetof(WaterUniforms, cloudCover) == 160);
+static_assert(sizeof(WaterUniforms) == 176);
 static_assert(offsetof(PlanetUniforms, ringAxis) == 16);
 static_assert(offsetof(PlanetUniforms, ringOuter) == 32);
 static_assert(sizeof(PlanetUniforms) == 48);
