@@ -88,7 +88,7 @@ struct SceneOptions {
     std::string heightMap, normalMap, colorMap; ///< maps scene (decals: height and colour)
     std::string shots;                 ///< decals, water, planet: shot list file (decals headless default: a seeded volley)
     std::string environment;           ///< water: equirectangular sky image
-    float clouds = -1.0f;              ///< water: the share of the sky under cloud (-1: 0.4, none with an environment)
+    float clouds = -1.0f;              ///< water: the share of the sky under cloud (-1: the wind's weather, none with an environment)
     std::string saveDamage, loadDamage; ///< decals: damage log written after the last frame, read at start
     bool pillar = false;               ///< decals: the bricks on a column (a cylinder) instead of the wall
     // noise: the NoiseField shown (NoiseConfig's fields)
@@ -152,6 +152,8 @@ public:
     /// Where the camera stands, for the log: "azimuth 65.9, elevation 8.6 degrees, distance 3.40
     /// from its target (--camera-...)".
     virtual std::string cameraLabel() const;
+    /// What else the log says of the scene as it starts (the water's weather); empty for nothing.
+    virtual std::string sceneLabel() const { return {}; }
     /// Turns the camera `degrees` about the vertical through its target (the water's: on the spot).
     virtual void turnCamera(float degrees);
     /// SceneOptions::cameraTurn, degrees a second: the program loops call turnCamera with it.

@@ -23,6 +23,23 @@ constexpr float kSeaMeters = 8000.0f;
 /// The clouds' layer over the sea, and how much faster than the wind at 10 m it moves.
 constexpr float kCloudHeightMeters = 1500.0f, kWindAloft = 2.0f;
 
+/// The sky's weather at a wind of `u10` m/s: fair-weather cumulus over 0.4 of the sky up to a
+/// strong breeze (the middle of Beaufort 6), clouding over to 0.95 at a storm (Beaufort 10) and
+/// beyond; the haze half the colour at 2,500 m up to a gale (Beaufort 8), its spray thickening
+/// it to 1,200 m at a storm and 600 m at the most (the scale's own words: "spray may affect
+/// visibility" at 9, "visibility affected" at 10).
+struct Weather {
+    float cloudCover, hazeDistance;
+};
+Weather weatherAt(float u10) {
+    const float overcast = std::clamp((u10 - beaufortWindSpeed(6)) / (beaufortWindSpeed(10) - beaufortWindSpeed(6)), 0.0f, 1.0f);
+    const float spray = std::max((u10 - beaufortWindSpeed(8)) / (beaufortWindSpeed(10) - beaufortWindSpeed(8)), 0.0f);
+    return {0.4f + 0.55f * overcast, std::max(2500.0f - 1300.0f * spray, 600.0f)};
+}
+/// Seconds the sky takes to settle two thirds of the way to a new wind's weather (the waves
+/// blend over four: OceanEffect::setWind).
+constexpr float kWeatherSeconds = 1.3f;
+
 /// The sea state the options describe: a Beaufort force, or a wind speed; fetch, spectrum,
 /// spreading, depth and swell as given.
 OceanEffectConfig oceanConfig(const SceneOptions& o) {
@@ -88,10 +105,13 @@ public:
         if (ocean_) impacts_ = std::make_unique<OceanImpacts>(*ocean_, SurfaceFrame::ofPlane(sea));
         SurfaceMaterial m = effect().material();
         m.water.environment = environment_.id();
-        m.water.hazeDistance = 2500.0f; // metres
+        // The wind's weather: its haze (metres), and its clouds unless --clouds holds them.
         // Cumulus about a kilometre across at 1.5 km (an environment image is the whole sky: a
         // cover asked for with one is refused by name).
-        m.water.cloudCover = o.clouds >= 0.0f ? o.clouds : o.environment.empty() ? 0.4f : 0.0f;
+        const Weather weather = weatherAt(wind_);
+        cloudsFollowWind_ = o.clouds < 0.0f && o.environment.empty();
+        m.water.hazeDistance = weather.hazeDistance;
+        m.water.cloudCover = o.clouds >= 0.0f ? o.clouds : cloudsFollowWind_ ? weather.cloudCover : 0.0f;
         m.water.cloudHeight = kCloudHeightMeters;
         m.water.cloudScale = kCloudHeightMeters / 1000.0f;
         effect().setMaterial(m);
@@ -157,14 +177,30 @@ public:
         return label;
     }
 
-    /// The clouds drift downwind, with the wind aloft (the texcoords' v runs along -z on the plane).
+    std::string sceneLabel() const override {
+        const WaterLook& look = (ocean_ ? static_cast<const Effect&>(*ocean_) : *sine_).material().water;
+        char label[200];
+        std::snprintf(label, sizeof label, "weather: clouds over %.2f of the sky (%s), haze half the colour at %.0f m",
+                      double(look.cloudCover),
+                      cloudsFollowWind_ ? "the wind's: --clouds sets them"
+                                        : look.environment ? "an environment image" : "--clouds",
+                      double(look.hazeDistance));
+        return label;
+    }
+
+    /// The sky settles towards the wind's weather (a new wind from the panel), and the clouds drift
+    /// downwind with the wind aloft (the texcoords' v runs along -z on the plane).
     void prepare(double dt) override {
         ImpactScene::prepare(dt); // this frame's shots
         SurfaceMaterial m = effect().material();
-        if (!(m.water.cloudCover > 0.0f)) return;
+        const Weather weather = weatherAt(wind_);
+        const float settle = 1.0f - std::exp(-float(dt) / kWeatherSeconds);
+        m.water.hazeDistance += (weather.hazeDistance - m.water.hazeDistance) * settle;
+        if (cloudsFollowWind_) m.water.cloudCover += (weather.cloudCover - m.water.cloudCover) * settle;
         const float speed = kWindAloft * wind_ / kCloudHeightMeters; // cloud heights per second
-        m.water.cloudDrift -= float(dt) * speed * glm::vec2(std::cos(windDir_), -std::sin(windDir_));
-        effect().setMaterial(m);
+        if (m.water.cloudCover > 0.0f)
+            m.water.cloudDrift -= float(dt) * speed * glm::vec2(std::cos(windDir_), -std::sin(windDir_));
+        if (!(m == effect().material())) effect().setMaterial(m);
     }
 
     void draw() override {
@@ -197,8 +233,13 @@ public:
         changed |= ImGui::SliderAngle("wind direction", &windDir_, -180.0f, 180.0f);
         if (changed) ocean_->setWind(wind_, windDir_); // the sea's new depth is in the ocean's material
         SurfaceMaterial m = effect().material();
-        if (m.water.environment == 0 && ImGui::SliderFloat("clouds", &m.water.cloudCover, 0.0f, 1.0f))
+        // The slider holds the clouds where it leaves them; the wind's weather moves them again
+        // from the next change of wind.
+        if (m.water.environment == 0 && ImGui::SliderFloat("clouds", &m.water.cloudCover, 0.0f, 1.0f)) {
             effect().setMaterial(m);
+            cloudsFollowWind_ = false;
+        }
+        if (changed) cloudsFollowWind_ = m.water.environment == 0;
         const OceanField& sea = ocean_->ocean();
         double variance = 0.0;
         for (int i = 0; i < sea.cascadeCount(); ++i) variance += double(sea.cascade(i).sigma) * sea.cascade(i).sigma;
@@ -237,6 +278,7 @@ private:
     DirectionalLight light_;
     SurfaceRenderer renderer_;
     float wind_, windDir_;
+    bool cloudsFollowWind_ = true; ///< the clouds are the wind's weather (not --clouds, the slider or an environment)
     float pitch_ = 0.0f; ///< degrees the camera looks below the horizon (placeCamera)
 };
 

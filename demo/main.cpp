@@ -235,6 +235,7 @@ int run(const Options& o) {
                  scene->effect().transferDescription().c_str(), techniqueName(scene->technique),
                  o.technique == "auto" ? " (auto: the scene's default)" : "");
     std::fprintf(stderr, "hfx: camera: %s\n", scene->cameraLabel().c_str());
+    if (const std::string label = scene->sceneLabel(); !label.empty()) std::fprintf(stderr, "hfx: %s\n", label.c_str());
     if (scene->cameraTurn != 0.0f)
         std::fprintf(stderr, "hfx: camera: turning %.1f degrees a second (--camera-turn)\n", double(scene->cameraTurn));
     if (o.cameraPath)
@@ -376,8 +377,8 @@ int main(int argc, char** argv) {
         ->check(kFinite)->check(CLI::Range(-10.0, 10.0))->capture_default_str();
     app.add_option("--environment", s.environment, "water: equirectangular sky image to reflect");
     app.add_option("--clouds", s.clouds,
-                   "water: the share of the sky under cloud, 0 to 1 (default 0.4; none with --environment, which is the "
-                   "whole sky)")
+                   "water: the share of the sky under cloud, 0 to 1 (default: the wind's weather, 0.4 up to Beaufort 6, "
+                   "clouding over to 0.95 at 10; none with --environment, which is the whole sky)")
         ->check(kFinite)->check(CLI::Range(0.0, 1.0));
     app.add_option("--beaufort", s.beaufort, "water: Beaufort force 0-12, sets the wind speed (overrides --wind-speed)")
         ->check(CLI::Range(0, 12));

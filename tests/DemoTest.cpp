@@ -575,6 +575,36 @@ TEST(Demo, AReversedZRunDrawsTheScenesFrames) {
     }
 }
 
+TEST(Demo, TheWatersSkyCloudsOverAndItsHazeThickensWithTheWind) {
+    // The water's weather follows its wind: fair cumulus over 0.4 of the sky at Beaufort 4,
+    // overcast (0.95) and a spray haze at a storm (10), and --clouds holds the clouds. The storm's
+    // sky (the frame's top fifth) is greyer: less blue over red than the breeze's.
+    std::string breeze, storm, held;
+    const Image calm = flatSceneFrame("water", "weather_4", " --beaufort 4", 64, &breeze);
+    const Image rough = flatSceneFrame("water", "weather_10", " --beaufort 10", 64, &storm);
+    flatSceneFrame("water", "weather_held", " --beaufort 10 --clouds 0.3", 64, &held);
+    EXPECT_NE(breeze.find("hfx: weather: clouds over 0.40 of the sky (the wind's: --clouds sets them), haze half the "
+                          "colour at 2500 m"),
+              std::string::npos)
+        << breeze;
+    EXPECT_NE(storm.find("hfx: weather: clouds over 0.95 of the sky (the wind's: --clouds sets them), haze half the "
+                         "colour at 1200 m"),
+              std::string::npos)
+        << storm;
+    EXPECT_NE(held.find("hfx: weather: clouds over 0.30 of the sky (--clouds), haze half the colour at 1200 m"),
+              std::string::npos)
+        << held;
+    auto blueOverRed = [](const Image& image) {
+        double sum = 0.0;
+        for (int y = 0; y < image.height / 5; ++y)
+            for (int x = 0; x < image.width; ++x) sum += image.at(x, y, 2) - image.at(x, y, 0);
+        return sum / (image.width * (image.height / 5));
+    };
+    std::printf("[weather] the sky's blue over red: %.3f at Beaufort 4, %.3f at 10\n", blueOverRed(calm),
+                blueOverRed(rough));
+    EXPECT_GT(blueOverRed(calm), blueOverRed(rough) + 0.05) << "the storm's sky is as blue as the breeze's";
+}
+
 TEST(Demo, AnOrthographicRunDrawsEachScenesParallelView) {
     // --orthographic: every user's scene drawn with parallel rays (glm::ortho framing the lens's
     // view at its target). The decal wall, a rectangle seen at an angle, is then as wide on every
