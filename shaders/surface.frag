@@ -502,7 +502,10 @@ HfxShaded hfx_surface(HfxFrame f) {
 #else
     const vec2 hitDx = dFdx(uv), hitDy = dFdy(uv);
 #endif
-    const float tangentTexel = length(tangent) / texels.x, bitangentTexel = length(bitangent) / texels.y;
+    // The texels' sides on the surface, both times texels.x * texels.y (their ratio is all that
+    // counts): dividing by texels took 1/texels into two registers held through the layers' reads
+    // (RDNA2's ocean program 64 -> 66, 16 waves a SIMD -> 12: docs/BENCHMARKS.md).
+    const float tangentTexel = length(tangent) * texels.y, bitangentTexel = length(bitangent) * texels.x;
     const float texelAspect = min(tangentTexel, bitangentTexel) / max(max(tangentTexel, bitangentTexel), 1e-30);
     const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect);
     const float footprint = max(length(hitDx), length(hitDy));
