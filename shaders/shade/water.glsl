@@ -23,7 +23,11 @@ float hfx_crest_glow(HfxSurfacePoint p) {
     const float steep = smoothstep(0.003, 0.04, 1.0 - dot(p.normal, p.geometricNormal));
     const float crest = max(smoothstep(0.55, 0.8, p.height), steep * smoothstep(0.5, 0.6, p.height));
     const float through = pow(clamp(dot(p.viewDir, -normalize(p.lightDir + 0.4 * p.normal)), 0.0, 1.0), 4.0);
-    const float v = p.cosView, towardsSun = pow(max(dot(p.lightDir, -p.viewDir), 0.0), 5.0);
+    // (v found here at the hit from the mesh's normal, not the entry's p.cosView: that one, held
+    // through the walk and the layers' reads for this, cost RDNA2's clouded ocean program a
+    // register and its 64: docs/BENCHMARKS.md.)
+    const float v = clamp(dot(p.geometricNormal, p.viewDir), 0.0, 1.0);
+    const float towardsSun = pow(max(dot(p.lightDir, -p.viewDir), 0.0), 5.0);
     const float scattered = 3.4 * towardsSun * (1.0 - v * v) * (0.1 + 0.5 * max(crest, steep));
     return u_translucency * (4.0 * crest * through + scattered);
 }
