@@ -313,6 +313,17 @@ struct FlatWater {
         clear.water.cloudCover = 0.0f;
         return {one(material), one(clear)};
     }
+    /// A camera at `position` looking at `at`, with the render target's aspect, seeing past the
+    /// plane's edge.
+    Camera camera(glm::vec3 position, glm::vec3 at, float fovY) const {
+        Camera c;
+        c.position = position;
+        c.target = at;
+        c.fovY = fovY;
+        c.aspect = float(target.width()) / float(target.height());
+        c.farPlane = 100.0f;
+        return c;
+    }
     SurfaceMaterial material;
     RenderTarget target;
     SurfaceRenderer renderer;
@@ -325,12 +336,7 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
     // glint or haze. Each pixel is the sky in its reflected direction, seen over the water's
     // floor of spread (2 mrad; its normals do not spread) and rolled off above the water's knee.
     FlatWater water(kW, kH);
-    Camera camera;
-    camera.position = {0.0f, 6.0f, 6.0f};
-    camera.target = {0.0f, 0.0f, -4.0f};
-    camera.fovY = 1.0f;
-    camera.aspect = float(kW) / kH;
-    camera.farPlane = 100.0f;
+    const Camera camera = water.camera({0.0f, 6.0f, 6.0f}, {0.0f, 0.0f, -4.0f}, 1.0f);
     SurfaceMaterial& material = water.material;
     material.water.fresnelF0 = 1.0f;
     material.water.cloudCover = 0.5f;
@@ -369,12 +375,7 @@ TEST_F(Sky, TheSeaFadesIntoTheCloudsGreyAtTheHorizonUnderOvercast) {
     // in the direction of its point, as the CPU's sky has it, under 0.9 of cloud the clouds' grey
     // and not the clear sky's pale blue (which the haze was before the horizon took the clouds).
     FlatWater water(kW, kH);
-    Camera camera;
-    camera.position = {0.0f, 2.0f, 0.0f};
-    camera.target = {0.0f, 0.0f, -20.0f};
-    camera.fovY = 0.8f;
-    camera.aspect = float(kW) / kH;
-    camera.farPlane = 100.0f;
+    const Camera camera = water.camera({0.0f, 2.0f, 0.0f}, {0.0f, 0.0f, -20.0f}, 0.8f);
     SurfaceMaterial& material = water.material;
     material.water.cloudCover = 0.9f;
     material.water.hazeDistance = 0.05f;
@@ -409,13 +410,8 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     // through there, hfx::cloudSunlight at its point (the layer 20 units up: shadows of about 13).
     const int n = 160;
     FlatWater water(n, n);
-    Camera camera;
-    camera.position = {0.0f, 30.0f, 0.0f};
-    camera.target = {0.0f, 0.0f, 0.0f};
+    Camera camera = water.camera({0.0f, 30.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, 1.0f);
     camera.up = {0.0f, 0.0f, -1.0f};
-    camera.fovY = 1.0f;
-    camera.aspect = 1.0f;
-    camera.farPlane = 100.0f;
     const DirectionalLight sun{.direction = {0.3f, 1.0f, 0.2f}, .color = glm::vec3(4.0f), .ambient = glm::vec3(0.0f)};
     SurfaceMaterial& material = water.material;
     material.water.fresnelF0 = 0.0f;
@@ -486,12 +482,7 @@ TEST_F(Sky, TheCloudsShadowsDimTheGlowThroughTheWater) {
     // share is hfx::cloudSunlight at its point.
     const int n = 160;
     FlatWater water(n, n);
-    Camera camera;
-    camera.position = {0.0f, 3.0f, 0.0f};
-    camera.target = {0.0f, 0.0f, -20.0f};
-    camera.fovY = 0.8f;
-    camera.aspect = 1.0f;
-    camera.farPlane = 100.0f;
+    const Camera camera = water.camera({0.0f, 3.0f, 0.0f}, {0.0f, 0.0f, -20.0f}, 0.8f);
     const DirectionalLight sun{.direction = {0.1f, 0.3f, -1.0f}, .color = glm::vec3(4.0f), .ambient = glm::vec3(0.0f)};
     SurfaceMaterial& material = water.material;
     material.water.fresnelF0 = 0.0f;
