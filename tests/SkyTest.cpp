@@ -324,6 +324,24 @@ struct FlatWater {
         c.farPlane = 100.0f;
         return c;
     }
+    /// Calls visit(x, y, ray) for each pixel (x, y from the top) whose ray from `camera` goes down
+    /// by more than `down` (its sine; the plane's far edge and the sky left out) and meets the
+    /// plane within 19 units of its middle; returns how many it called it for.
+    template <class Visit>
+    int forEachWaterPixel(const Camera& camera, double down, Visit visit) const {
+        const int w = target.width(), h = target.height();
+        int pixels = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const Ray ray = camera.rayThroughPixel(x + 0.5, h - 1 - y + 0.5, w, h);
+                if (!(ray.direction.y < -down)) continue;
+                const glm::dvec3 hit = ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction;
+                if (std::abs(hit.x) > 19.0 || std::abs(hit.z) > 19.0) continue;
+                ++pixels;
+                visit(x, y, ray);
+            }
+        return pixels;
+    }
     SurfaceMaterial material;
     RenderTarget target;
     SurfaceRenderer renderer;
@@ -342,24 +360,17 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
     material.water.cloudCover = 0.5f;
     material.water.cloudScale = 3.0f;
     const auto [mirrored, plain] = water.draw(camera, kSun);
-    int pixels = 0, off = 0, clouded = 0, changed = 0;
+    int off = 0, clouded = 0, changed = 0;
     float worst = 0.0f;
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            const Ray ray = camera.rayThroughPixel(x + 0.5, kH - 1 - y + 0.5, kW, kH);
-            if (!(ray.direction.y < -0.05)) continue; // the plane's far edge and the sky
-            const double t = -ray.origin.y / ray.direction.y;
-            const glm::dvec3 hit = ray.origin + t * ray.direction;
-            if (std::abs(hit.x) > 19.0 || std::abs(hit.z) > 19.0) continue;
-            ++pixels;
-            const glm::vec3 reflected(glm::vec3(ray.direction.x, -ray.direction.y, ray.direction.z));
-            const glm::vec3 expected = displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, reflected, 0.002f)));
-            const float e = apart(pixelOf(mirrored, x, y), expected);
-            worst = std::max(worst, e);
-            off += e > 2.5f / 255.0f;
-            clouded += cloudSample(material.water, camera.position, reflected, 0.002f).density > 0.5f;
-            changed += apart(pixelOf(mirrored, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
-        }
+    const int pixels = water.forEachWaterPixel(camera, 0.05, [&](int x, int y, const Ray& ray) {
+        const glm::vec3 reflected(glm::vec3(ray.direction.x, -ray.direction.y, ray.direction.z));
+        const glm::vec3 expected = displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, reflected, 0.002f)));
+        const float e = apart(pixelOf(mirrored, x, y), expected);
+        worst = std::max(worst, e);
+        off += e > 2.5f / 255.0f;
+        clouded += cloudSample(material.water, camera.position, reflected, 0.002f).density > 0.5f;
+        changed += apart(pixelOf(mirrored, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
+    });
     std::printf("%d water pixels, %d reflecting a cloud, %d changed by the clouds; %d off the CPU's mirrored sky by "
                 "over 2.5/255 (at most %.1f/255)\n",
                 pixels, clouded, changed, off, double(worst) * 255.0);
@@ -380,22 +391,16 @@ TEST_F(Sky, TheSeaFadesIntoTheCloudsGreyAtTheHorizonUnderOvercast) {
     material.water.cloudCover = 0.9f;
     material.water.hazeDistance = 0.05f;
     const auto [overcast, plain] = water.draw(camera, kSun);
-    int pixels = 0, off = 0, changed = 0;
+    int off = 0, changed = 0;
     float worst = 0.0f;
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            const Ray ray = camera.rayThroughPixel(x + 0.5, kH - 1 - y + 0.5, kW, kH);
-            if (!(ray.direction.y < -0.02)) continue; // the plane's far edge and the sky
-            const glm::dvec3 hit = ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction;
-            if (std::abs(hit.x) > 19.0 || std::abs(hit.z) > 19.0) continue;
-            ++pixels;
-            const glm::vec3 level = glm::normalize(glm::vec3(float(ray.direction.x), 0.0f, float(ray.direction.z)));
-            const glm::vec3 expected = displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, level, 0.0f)));
-            const float e = apart(pixelOf(overcast, x, y), expected);
-            worst = std::max(worst, e);
-            off += e > 3.0f / 255.0f;
-            changed += apart(pixelOf(overcast, x, y), pixelOf(plain, x, y)) > 20.0f / 255.0f;
-        }
+    const int pixels = water.forEachWaterPixel(camera, 0.02, [&](int x, int y, const Ray& ray) {
+        const glm::vec3 level = glm::normalize(glm::vec3(float(ray.direction.x), 0.0f, float(ray.direction.z)));
+        const glm::vec3 expected = displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, level, 0.0f)));
+        const float e = apart(pixelOf(overcast, x, y), expected);
+        worst = std::max(worst, e);
+        off += e > 3.0f / 255.0f;
+        changed += apart(pixelOf(overcast, x, y), pixelOf(plain, x, y)) > 20.0f / 255.0f;
+    });
     std::printf("%d water pixels, %d changed by the clouds; %d off the CPU's horizon by over 3/255 (at most %.1f/255)\n",
                 pixels, changed, off, double(worst) * 255.0);
     ASSERT_GT(pixels, kW * kH / 3);
