@@ -232,7 +232,9 @@ def main():
     print("|---" * (len(STATS) + 1) + "|")
     for variant in args.variants:
         program, _, rest = variant.partition(":")
-        tracer, _, shading = program.partition("/")
+        # A compute shader is named by its path ("trace/hier/trace.comp"); a surface program as
+        # tracer/shading ("pom/water").
+        tracer, shading = (program, "") if program.endswith(".comp") else program.partition("/")[::2]
         defines = dict(d.split("=", 1) for d in rest.split(",") if d)
         s = stats(args.shaders, args.family, tracer, defines, shading or "lit")
         print(f"| {variant} | " + " | ".join(f"{s.get(k, float('nan')):.0f}" for k in STATS) + " |")

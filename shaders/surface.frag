@@ -502,11 +502,14 @@ HfxShaded hfx_surface(HfxFrame f) {
 #else
     const vec2 hitDx = dFdx(uv), hitDy = dFdy(uv);
 #endif
-    // The texels' sides on the surface, both times texels.x * texels.y (their ratio is all that
-    // counts): dividing by texels took 1/texels into two registers held through the layers' reads
-    // (RDNA2's ocean program 64 -> 66, 16 waves a SIMD -> 12: docs/BENCHMARKS.md).
-    const float tangentTexel = length(tangent) * texels.y, bitangentTexel = length(bitangent) * texels.x;
-    const float texelAspect = min(tangentTexel, bitangentTexel) / max(max(tangentTexel, bitangentTexel), 1e-30);
+    // The texels' sides on the surface squared, both times (texels.x * texels.y)^2: their ratio is
+    // all that counts. Dividing by texels held 1/texels in two registers through the layers'
+    // reads, and the sides' lengths shared the frame check's square roots, held through the
+    // search (RDNA2: the ocean's program 66 registers, 12 waves a SIMD; POM's without
+    // self-shadows 20, the triplanar mappings' 12 and 8: docs/BENCHMARKS.md).
+    const float tangentTexel = dot(tangent, tangent) * texels.y * texels.y;
+    const float bitangentTexel = dot(bitangent, bitangent) * texels.x * texels.x;
+    const float texelAspect = sqrt(min(tangentTexel, bitangentTexel) / max(max(tangentTexel, bitangentTexel), 1e-30));
     const float shadeLevel = hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect);
     const float footprint = max(length(hitDx), length(hitDy));
 
