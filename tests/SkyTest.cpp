@@ -226,8 +226,9 @@ TEST(SkyModel, TheHorizonIsTheCloudLayersMeanSeenEdgeOn) {
         EXPECT_LT(apart(glm::vec3(horizon), glm::vec3(overhead)), 0.03f) << "cover " << cover;
         EXPECT_LT(apart(glm::vec3(above), glm::vec3(horizon)), 0.03f) << "a seam at the horizon, cover " << cover;
         EXPECT_LT(below, 1e-6f) << "below the horizon, cover " << cover;
-        if (cover > 0.9f)
+        if (cover > 0.9f) {
             EXPECT_GT(apart(glm::vec3(horizon), look.skyHorizon), 0.15f) << "an overcast horizon is the clear sky's";
+        }
     }
 }
 
@@ -342,6 +343,19 @@ struct FlatWater {
             }
         return pixels;
     }
+    /// The sunlight the clouds let through (hfx::cloudSunlight) at the plane's point seen through
+    /// pixel (x, y from the top) from `camera`, over the pixel's footprint there (the larger step
+    /// to its neighbours' points).
+    float cloudSunlightAt(const Camera& camera, const DirectionalLight& light, int x, int y) const {
+        const int w = target.width(), h = target.height();
+        auto hit = [&](int px, int py) {
+            const Ray ray = camera.rayThroughPixel(px + 0.5, h - 1 - py + 0.5, w, h);
+            return glm::vec3(ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction);
+        };
+        const glm::vec3 p = hit(x, y);
+        const float footprint = std::max(glm::length(hit(x + 1, y) - p), glm::length(hit(x, y + 1) - p));
+        return cloudSunlight(material.water, light, p, footprint);
+    }
     SurfaceMaterial material;
     RenderTarget target;
     SurfaceRenderer renderer;
@@ -425,10 +439,6 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     material.water.cloudHeight = 20.0f;
     material.water.cloudDrift = {0.4f, -0.3f};
     const auto [clouded, plain] = water.draw(camera, sun);
-    auto hit = [&](double x, double y) { // the plane's point seen through pixel (x, y from the top)
-        const Ray ray = camera.rayThroughPixel(x + 0.5, n - 1 - y + 0.5, n, n);
-        return glm::vec3(ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction);
-    };
     int checked = 0, off = 0, shaded = 0, sunny = 0;
     double worst = 0.0;
     for (int y = 0; y < n; ++y)
@@ -436,9 +446,7 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
             const float bright = std::pow(pixelOf(plain, x, y).z, 2.2f); // blue: the water's brightest
             if (bright < 0.05f) continue;
             ++checked;
-            const glm::vec3 p = hit(x, y);
-            const float footprint = std::max(glm::length(hit(x + 1, y) - p), glm::length(hit(x, y + 1) - p));
-            const float expected = cloudSunlight(material.water, sun, p, footprint);
+            const float expected = water.cloudSunlightAt(camera, sun, x, y);
             const double e = std::abs(std::pow(pixelOf(clouded, x, y).z, 2.2f) / bright - expected);
             worst = std::max(worst, e);
             off += e > 0.04;
@@ -467,9 +475,7 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     double worstLight = 0.0;
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
-            const glm::vec3 p = hit(x, y);
-            const float footprint = std::max(glm::length(hit(x + 1, y) - p), glm::length(hit(x, y + 1) - p));
-            const double e = std::abs(channels[size_t(n - 1 - y) * n + x].z - cloudSunlight(material.water, sun, p, footprint));
+            const double e = std::abs(channels[size_t(n - 1 - y) * n + x].z - water.cloudSunlightAt(camera, sun, x, y));
             worstLight = std::max(worstLight, e);
             lightOff += e > 0.01;
         }
@@ -500,16 +506,16 @@ TEST_F(Sky, TheCloudsShadowsDimTheGlowThroughTheWater) {
     const auto [clouded, plain] = water.draw(camera, sun);
     material.water.translucency = 0.0f;
     const auto [cloudedDark, plainDark] = water.draw(camera, sun);
-    auto hit = [&](double x, double y) { // the plane's point seen through pixel (x, y from the top)
+    auto seenZ = [&](int x, int y) { // where the plane's point seen through pixel (x, y from the top) lies
         const Ray ray = camera.rayThroughPixel(x + 0.5, n - 1 - y + 0.5, n, n);
-        return glm::vec3(ray.origin + (-ray.origin.y / ray.direction.y) * ray.direction);
+        return ray.origin.z + (-ray.origin.y / ray.direction.y) * ray.direction.z;
     };
     auto linearGreen = [](const Image& image, int x, int y) { return std::pow(pixelOf(image, x, y).y, 2.2f); };
     int checked = 0, off = 0, shaded = 0, sunny = 0, clipped = 0;
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
             const float clearGlow = linearGreen(plain, x, y) - linearGreen(plainDark, x, y);
-            if (clearGlow < 0.05f || hit(x, y).z > -1.0f) continue; // the glow's faint edge; the sky
+            if (clearGlow < 0.05f || seenZ(x, y) > -1.0) continue; // the glow's faint edge; the sky
             // Where the clouds' reflection brings a pixel to the display's white, what the glow
             // adds is clipped: no share can be read there.
             if (pixelOf(clouded, x, y).y > 0.94f) {
@@ -517,9 +523,7 @@ TEST_F(Sky, TheCloudsShadowsDimTheGlowThroughTheWater) {
                 continue;
             }
             ++checked;
-            const glm::vec3 p = hit(x, y);
-            const float footprint = std::max(glm::length(hit(x + 1, y) - p), glm::length(hit(x, y + 1) - p));
-            const float expected = cloudSunlight(material.water, sun, p, footprint);
+            const float expected = water.cloudSunlightAt(camera, sun, x, y);
             const float share = (linearGreen(clouded, x, y) - linearGreen(cloudedDark, x, y)) / clearGlow;
             off += std::abs(share - expected) > 0.1f;
             shaded += expected < 0.7f;

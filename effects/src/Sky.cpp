@@ -112,11 +112,16 @@ float meanThickness(const WaterLook& look) { return 0.15f + 0.6f * look.cloudCov
 float nearness(glm::vec3 dir) { return 1.0f - std::exp(-8.0f * dir.y); }
 float fade(float value, float mean, float near) { return mean + (value - mean) * near; }
 
-/// hfx_clouds' (density, thickness) over `patch`, faded into the layer's mean towards the horizon.
-CloudSample clouds(const WaterLook& look, const LayerPatch& patch, glm::vec3 dir) {
-    const CloudSample c = cover(look, patch.p, patch.across, patch.along);
+/// hfx_clouds' (density, thickness) of the sample `sharp` in direction `dir`, faded into the
+/// layer's mean towards the horizon.
+CloudSample faded(const WaterLook& look, CloudSample sharp, glm::vec3 dir) {
     const float near = nearness(dir);
-    return {fade(c.density, look.cloudCover, near), fade(c.thickness, meanThickness(look), near)};
+    return {fade(sharp.density, look.cloudCover, near), fade(sharp.thickness, meanThickness(look), near)};
+}
+
+/// hfx_clouds' (density, thickness) over `patch`, faded.
+CloudSample clouds(const WaterLook& look, const LayerPatch& patch, glm::vec3 dir) {
+    return faded(look, cover(look, patch.p, patch.across, patch.along), dir);
 }
 
 } // namespace
@@ -167,9 +172,8 @@ glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::ve
                                                            std::max(patch.across, cell), std::max(patch.along, cell))
                                                          .density
                                                    : 0.0f;
-        const float near = nearness(dir);
-        cloud = {fade(sharp.density, look.cloudCover, near), fade(sharp.thickness, meanThickness(look), near)};
-        sunward = fade(through, look.cloudCover, near);
+        cloud = faded(look, sharp, dir);
+        sunward = fade(through, look.cloudCover, nearness(dir));
     }
     // hfx_cloud_color
     const float elevation = std::clamp(lightDir.y, 0.0f, 1.0f);

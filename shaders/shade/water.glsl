@@ -23,9 +23,9 @@ float hfx_crest_glow(HfxSurfacePoint p) {
     const float steep = smoothstep(0.003, 0.04, 1.0 - dot(p.normal, p.geometricNormal));
     const float crest = max(smoothstep(0.55, 0.8, p.height), steep * smoothstep(0.5, 0.6, p.height));
     const float through = pow(clamp(dot(p.viewDir, -normalize(p.lightDir + 0.4 * p.normal)), 0.0, 1.0), 4.0);
-    // (v found here at the hit from the mesh's normal, not the entry's p.cosView: that one, held
-    // through the walk and the layers' reads for this, cost RDNA2's clouded ocean program a
-    // register and its 64: docs/BENCHMARKS.md.)
+    // (v is found here, at the hit, from the mesh's normal. The entry's p.cosView, read here,
+    // was held through the walk and the layers' reads: one register more, which took RDNA2's
+    // clouded ocean program past 64: docs/BENCHMARKS.md.)
     const float v = clamp(dot(p.geometricNormal, p.viewDir), 0.0, 1.0);
     const float towardsSun = pow(max(dot(p.lightDir, -p.viewDir), 0.0), 5.0);
     const float scattered = 3.4 * towardsSun * (1.0 - v * v) * (0.1 + 0.5 * max(crest, steep));
@@ -139,14 +139,11 @@ float hfx_spindrift(vec2 uv, float footprint) {
 vec3 hfx_emission(HfxSurfacePoint p) { return vec3(0.0); }
 
 vec3 hfx_shade(HfxSurfacePoint p) {
-#if HFX_SKY == 1
     // The clouds' shadows: the sun's light they let through, here (the sky's light is left;
-    // surface.frag's main found it).
-    p.lit *= g_cloudSunlight;
-#endif
-    // The glow is the sun's, through the water: the clouds' shadow dims it too.
+    // surface.frag's main found it). The glow is the sun's, through the water: they dim it too.
     float sunThrough = 1.0;
 #if HFX_SKY == 1
+    p.lit *= g_cloudSunlight;
     sunThrough = g_cloudSunlight;
 #endif
     const vec3 body = mix(u_deepColor, u_shallowColor, p.height * p.height) * (u_ambient + p.lit * p.diffuse * u_lightColor) +
