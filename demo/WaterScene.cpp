@@ -25,7 +25,8 @@ constexpr float kCloudHeightMeters = 1500.0f, kWindAloft = 2.0f;
 
 /// The sky's weather at a wind of `u10` m/s: fair-weather cumulus over 0.4 of the sky up to a
 /// strong breeze (the middle of Beaufort 6), clouding over to 0.95 at a storm (Beaufort 10) and
-/// beyond; the haze half the colour at 2,500 m up to a gale (Beaufort 8), its spray thickening
+/// beyond, where a veil over the deck greys its gaps (hfx::cloudVeil, from a cover of 0.7,
+/// between Beaufort 8 and 9); the haze half the colour at 2,500 m up to a gale (Beaufort 8), its spray thickening
 /// it to 1,200 m at a storm and 600 m at the most (the scale's own words: "spray may affect
 /// visibility" at 9, "visibility affected" at 10).
 struct Weather {

@@ -232,6 +232,57 @@ TEST(SkyModel, TheHorizonIsTheCloudLayersMeanSeenEdgeOn) {
     }
 }
 
+TEST(SkyModel, AnOvercastDecksGapsAreGreyAndShadedNotBlueAndSunlit) {
+    // A deck that covers most of the sky lies under a higher veil: in its gaps (the layer's
+    // density under 0.1) the sky is not the clear sky's blue, and the sun's light through them is
+    // dimmed as at a cloud's edge. Under fair-weather cumulus (a cover of 0.6) the gaps are the
+    // clear sky, and full sun reaches the sea through them. The look's own colours, the demo's low
+    // sun, skies overhead far apart on the layer: how far the gaps' blue (blue less red) lies from
+    // the clouds' (density over 0.9) towards the clear sky's in the same directions (1: the clear
+    // sky's), and the most sunlight at points of the sea.
+    const DirectionalLight low{.direction = {-0.35f, 0.22f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}};
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+    for (const float cover : {0.6f, 0.9f, 0.95f}) {
+        WaterLook look, clear;
+        look.cloudCover = cover;
+        clear.cloudCover = 0.0f;
+        double blue = 0.0, clearBlue = 0.0, cloudBlue = 0.0;
+        float sunniest = 0.0f;
+        int gaps = 0, clouds = 0;
+        for (int i = 0; i < 40000; ++i) {
+            look.cloudDrift = {500.0f * uniform(random), 500.0f * uniform(random)};
+            const glm::vec3 dir = towards({0.75f * uniform(random), 0.75f * uniform(random)});
+            sunniest = std::max(sunniest, cloudSunlight(look, low, glm::vec3(300.0f * uniform(random), 0.0f, 0.0f), 1.0f));
+            const float density = cloudSample(look, kEye, dir, 1e-4f).density;
+            const glm::vec3 c = skyColor(look, low, kEye, dir, 1e-4f);
+            if (density > 0.9f) {
+                cloudBlue += c.b - c.r;
+                ++clouds;
+            }
+            if (density >= 0.1f) continue;
+            const glm::vec3 s = skyColor(clear, low, kEye, dir, 1e-4f);
+            blue += c.b - c.r;
+            clearBlue += s.b - s.r;
+            ++gaps;
+        }
+        cloudBlue /= clouds;
+        const double towardsClear = (blue / gaps - cloudBlue) / (clearBlue / gaps - cloudBlue);
+        std::printf("cover %.2f (veil %.2f): %d gaps, their blue %.2f of the way from the clouds' to the clear sky's; the "
+                    "most sunlight on the sea %.2f\n",
+                    double(cover), double(cloudVeil(look)), gaps, towardsClear, double(sunniest));
+        ASSERT_GT(gaps, 200) << "too few gaps to test, cover " << cover;
+        if (cover < 0.7f) {
+            EXPECT_GT(towardsClear, 0.95) << "fair weather's gaps are not the clear sky";
+            EXPECT_GT(sunniest, 0.99f) << "no full sun under fair weather";
+        } else {
+            const double most = cover > 0.93f ? 0.15 : 0.5;
+            EXPECT_LT(towardsClear, most) << "an overcast deck's gaps are blue, cover " << cover;
+            EXPECT_LT(sunniest, 1.0f - 0.7f * cloudVeil(look) + 1e-4f) << "full sun under an overcast deck, cover " << cover;
+        }
+    }
+}
+
 constexpr int kW = 192, kH = 128;
 
 /// A camera 10 units up looking 40 degrees over the horizon, the sun low behind its left.
@@ -247,49 +298,53 @@ Camera skyCamera() {
 const DirectionalLight kSun{.direction = {-0.35f, 0.45f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}};
 
 TEST_F(Sky, TheSkyPassDrawsTheCpuSkyItsCloudsIncluded) {
+    // Fair-weather cumulus, and an overcast deck with the veil in its gaps (cloudVeil 0.93).
     RenderTarget target(kW, kH);
     SurfaceRenderer renderer;
     const Camera camera = skyCamera();
-    WaterLook look;
-    look.cloudCover = 0.45f;
-    look.cloudScale = 2.0f;
-    look.cloudDrift = {1.3f, 0.4f};
     auto draw = [&](const WaterLook& l) {
         target.bind();
         target.clear();
         renderer.drawSky(camera, kSun, l);
         return target.readColor();
     };
-    const Image cloudy = draw(look);
-    WaterLook clear = look;
-    clear.cloudCover = 0.0f;
-    const Image plain = draw(clear);
     // Each pixel's direction, and its width as the shader takes it: the larger step to its
     // neighbours.
     auto dirAt = [&](double x, double y) {
         return glm::vec3(camera.rayThroughPixel(x + 0.5, kH - 1 - y + 0.5, kW, kH).direction);
     };
-    int off = 0, clouded = 0, changed = 0;
-    float worst = 0.0f;
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            const glm::vec3 dir = dirAt(x, y);
-            const float spread = std::max(glm::length(dirAt(x + 1, y) - dir), glm::length(dirAt(x, y + 1) - dir));
-            const glm::vec3 expected = displayValue(skyColor(look, kSun, camera.position, dir, spread));
-            const float e = apart(pixelOf(cloudy, x, y), expected);
-            worst = std::max(worst, e);
-            off += e > 2.5f / 255.0f;
-            clouded += cloudSample(look, camera.position, dir, spread).density > 0.5f;
-            changed += apart(pixelOf(cloudy, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
-            EXPECT_LE(apart(pixelOf(plain, x, y), displayValue(skyColor(clear, kSun, camera.position, dir, spread))), 1.5f / 255.0f);
-        }
-    std::printf("%d of %d pixels clouded, %d changed by the clouds; %d off the CPU's sky by over 2.5/255 (at most "
-                "%.1f/255)\n",
-                clouded, kW * kH, changed, off, double(worst) * 255.0);
-    EXPECT_GT(clouded, kW * kH / 5) << "too few clouds to test";
-    EXPECT_GT(changed, kW * kH / 5) << "the clouds do not show";
-    EXPECT_LE(off, kW * kH / 200) << "the sky pass is not the CPU's sky";
-    EXPECT_LT(worst, 12.0f / 255.0f);
+    for (const float cover : {0.45f, 0.95f}) {
+        WaterLook look;
+        look.cloudCover = cover;
+        look.cloudScale = 2.0f;
+        look.cloudDrift = {1.3f, 0.4f};
+        const Image cloudy = draw(look);
+        WaterLook clear = look;
+        clear.cloudCover = 0.0f;
+        const Image plain = draw(clear);
+        int off = 0, clouded = 0, changed = 0;
+        float worst = 0.0f;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const glm::vec3 dir = dirAt(x, y);
+                const float spread = std::max(glm::length(dirAt(x + 1, y) - dir), glm::length(dirAt(x, y + 1) - dir));
+                const glm::vec3 expected = displayValue(skyColor(look, kSun, camera.position, dir, spread));
+                const float e = apart(pixelOf(cloudy, x, y), expected);
+                worst = std::max(worst, e);
+                off += e > 2.5f / 255.0f;
+                clouded += cloudSample(look, camera.position, dir, spread).density > 0.5f;
+                changed += apart(pixelOf(cloudy, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
+                EXPECT_LE(apart(pixelOf(plain, x, y), displayValue(skyColor(clear, kSun, camera.position, dir, spread))),
+                          1.5f / 255.0f);
+            }
+        std::printf("cover %.2f: %d of %d pixels clouded, %d changed by the clouds; %d off the CPU's sky by over "
+                    "2.5/255 (at most %.1f/255)\n",
+                    double(cover), clouded, kW * kH, changed, off, double(worst) * 255.0);
+        EXPECT_GT(clouded, kW * kH / 5) << "too few clouds to test, cover " << cover;
+        EXPECT_GT(changed, kW * kH / 5) << "the clouds do not show, cover " << cover;
+        EXPECT_LE(off, kW * kH / 200) << "the sky pass is not the CPU's sky, cover " << cover;
+        EXPECT_LT(worst, 12.0f / 255.0f) << "cover " << cover;
+    }
 }
 
 /// A flat water plane 40 units across at y = 0 (the material's depth 0: its normals straight up)
@@ -435,32 +490,37 @@ TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
     SurfaceMaterial& material = water.material;
     material.water.fresnelF0 = 0.0f;
     material.water.translucency = 0.0f;
-    material.water.cloudCover = 0.6f;
     material.water.cloudHeight = 20.0f;
     material.water.cloudDrift = {0.4f, -0.3f};
-    const auto [clouded, plain] = water.draw(camera, sun);
-    int checked = 0, off = 0, shaded = 0, sunny = 0;
-    double worst = 0.0;
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
-            const float bright = std::pow(pixelOf(plain, x, y).z, 2.2f); // blue: the water's brightest
-            if (bright < 0.05f) continue;
-            ++checked;
-            const float expected = water.cloudSunlightAt(camera, sun, x, y);
-            const double e = std::abs(std::pow(pixelOf(clouded, x, y).z, 2.2f) / bright - expected);
-            worst = std::max(worst, e);
-            off += e > 0.04;
-            shaded += expected < 0.7f;
-            sunny += expected > 0.95f;
-        }
-    std::printf("%d pixels checked: %d in a cloud's shadow, %d in full sun; %d off the CPU's sunlight by over 0.04 "
-                "(at most %.3f)\n",
-                checked, shaded, sunny, off, worst);
-    ASSERT_GT(checked, n * n / 2);
-    EXPECT_GT(shaded, checked / 6) << "too few shadows to test";
-    EXPECT_GT(sunny, checked / 6) << "too little sun to test";
-    EXPECT_LE(off, checked / 100) << "the water's sunlight is not the CPU's under the clouds";
-    EXPECT_LT(worst, 0.1);
+    // Fair-weather cumulus, and an overcast deck whose veil dims the sun in its gaps (cloudVeil
+    // 0.74: there 1 - 0.7 x 0.74 = 0.48 of it).
+    for (const float cover : {0.6f, 0.9f}) {
+        material.water.cloudCover = cover;
+        const auto [clouded, plain] = water.draw(camera, sun);
+        int checked = 0, off = 0, shaded = 0, sunny = 0, veiled = 0;
+        double worst = 0.0;
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const float bright = std::pow(pixelOf(plain, x, y).z, 2.2f); // blue: the water's brightest
+                if (bright < 0.05f) continue;
+                ++checked;
+                const float expected = water.cloudSunlightAt(camera, sun, x, y);
+                const double e = std::abs(std::pow(pixelOf(clouded, x, y).z, 2.2f) / bright - expected);
+                worst = std::max(worst, e);
+                off += e > 0.04;
+                shaded += expected < 0.3f;
+                sunny += expected > 0.95f;
+                veiled += expected > 0.45f && expected < 0.5f;
+            }
+        std::printf("cover %.1f: %d pixels checked: %d in a cloud's shadow, %d in full sun, %d under the veil alone; %d "
+                    "off the CPU's sunlight by over 0.04 (at most %.3f)\n",
+                    double(cover), checked, shaded, sunny, veiled, off, worst);
+        ASSERT_GT(checked, n * n / 2);
+        EXPECT_GT(shaded, checked / 6) << "too few shadows to test, cover " << cover;
+        EXPECT_GT(cover < 0.7f ? sunny : veiled, checked / 20) << "too little sun to test, cover " << cover;
+        EXPECT_LE(off, checked / 100) << "the water's sunlight is not the CPU's under the clouds, cover " << cover;
+        EXPECT_LT(worst, 0.1) << "cover " << cover;
+    }
 
     // A deferred engine lights the water itself: the material output's light share (b) is the
     // same sunlight (the flat water casts no self-shadow), in float, as precisely as the hash.

@@ -119,12 +119,23 @@ CloudSample faded(const WaterLook& look, CloudSample sharp, glm::vec3 dir) {
     return {fade(sharp.density, look.cloudCover, near), fade(sharp.thickness, meanThickness(look), near)};
 }
 
+/// hfx_cloud_veiled: the veil over an overcast deck fills the layer's gaps, thin and lit through the
+/// deck's mean cloud; `sunward` becomes the two's mean with the density.
+CloudSample veiled(const WaterLook& look, CloudSample layer, float& sunward) {
+    const float veil = cloudVeil(look) * (1.0f - layer.density), density = layer.density + veil;
+    const float share = density > 0.0f ? layer.density / density : 0.0f;
+    sunward = sunward * share + look.cloudCover * (1.0f - share);
+    return {density, layer.thickness * share};
+}
+
 /// hfx_clouds' (density, thickness) over `patch`, faded.
 CloudSample clouds(const WaterLook& look, const LayerPatch& patch, glm::vec3 dir) {
     return faded(look, cover(look, patch.p, patch.across, patch.along), dir);
 }
 
 } // namespace
+
+float cloudVeil(const WaterLook& look) { return smoothstep(0.7f, 1.0f, look.cloudCover); }
 
 glm::vec2 cloudSunwardStep(const WaterLook& look, const DirectionalLight& light) {
     const glm::vec3 l = glm::normalize(light.direction);
@@ -146,7 +157,8 @@ float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::v
     const float y = std::max(l.y, 0.01f), reach = (1.0f - position.y / look.cloudHeight) / y;
     const float size = footprint / look.cloudHeight, penumbra = 2.0f * float(HFX_SUN_RADIUS) * reach;
     const glm::vec2 p = glm::vec2(position.x, position.z) / look.cloudHeight + glm::vec2(l.x, l.z) * reach;
-    const CloudSample c = cover(look, p, std::max(size, penumbra), std::max(size, penumbra / y));
+    float sunward = 0.0f;
+    const CloudSample c = veiled(look, cover(look, p, std::max(size, penumbra), std::max(size, penumbra / y)), sunward);
     return 1.0f - c.density * (0.7f + 0.25f * c.thickness);
 }
 
@@ -175,6 +187,7 @@ glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::ve
         cloud = faded(look, sharp, dir);
         sunward = fade(through, look.cloudCover, nearness(dir));
     }
+    cloud = veiled(look, cloud, sunward);
     // hfx_cloud_color
     const float elevation = std::clamp(lightDir.y, 0.0f, 1.0f);
     const glm::vec3 ambient = look.skyHorizon + (look.skyZenith - look.skyHorizon) * 0.3f;

@@ -105,6 +105,18 @@ vec2 hfx_cloud_cover(vec2 p, float across, float along) {
 // crossing the cover's share of cloud.
 vec3 hfx_cloud_mean() { return vec3(u_cloudCover, 0.15 + 0.6 * u_cloudCover, u_cloudCover); }
 
+// A deck that covers most of the sky lies under a higher, even veil (a storm's altostratus and
+// nimbostratus): from a cover of 0.7 to a full one it hides the clear sky in the layer's gaps,
+// 0 to 1 of it. The veil is thin (thickness 0) and lit through the deck's mean cloud (sunward the
+// cover): a gap is a paler grey, not blue, and passes the sun's light as a cloud's edge does.
+// `cloud` is (density, thickness, sunward) of the layer; the veil fills the rest of the density,
+// and the thickness and the sunward density become the two's means over it.
+vec3 hfx_cloud_veiled(vec3 cloud) {
+    const float veil = smoothstep(0.7, 1.0, u_cloudCover) * (1.0 - cloud.x), density = cloud.x + veil;
+    const float layer = density > 0.0 ? cloud.x / density : 0.0;
+    return vec3(density, cloud.y * layer, cloud.z * layer + u_cloudCover * (1.0 - layer));
+}
+
 // The clouds in direction `dir` (y > 0) from the eye, seen over `spread` radians (a sky pixel's
 // width, a reflection's widened by the water's roughness): (density, thickness, sunward). The layer
 // lies u_cloudHeight over the world's y = 0 (the water's level); the direction meets it (height -
@@ -139,14 +151,15 @@ vec3 hfx_clouds(vec3 dir, float spread) {
 // cloud heights away where the clouds cover it, over the pixel's patch of the sea (a horizontal
 // patch falls on one as wide) or the sun's disc seen from the point, 2 HFX_SUN_RADIUS reach
 // across and that over y along the sun's way (the penumbra), whichever is wider. A cloud passes
-// 0.3 of the light at its edge, 0.05 in its thick middle.
+// 0.3 of the light at its edge, 0.05 in its thick middle; the veil over an overcast deck
+// (hfx_cloud_veiled) as much as a cloud's edge.
 float hfx_cloud_sunlight(vec3 position, float footprint) {
     const vec3 l = normalize(u_lightDir);
     if (!(l.y > 0.0)) return 1.0; // a sun under the horizon lights nothing through the layer
     const float y = max(l.y, 0.01), reach = (1.0 - position.y / u_cloudHeight) / y;
     const float size = footprint / u_cloudHeight, penumbra = 2.0 * HFX_SUN_RADIUS * reach;
-    const vec2 c = hfx_cloud_cover(position.xz / u_cloudHeight + l.xz * reach, max(size, penumbra),
-                                   max(size, penumbra / y));
+    const vec2 c = hfx_cloud_veiled(vec3(hfx_cloud_cover(position.xz / u_cloudHeight + l.xz * reach,
+                                                         max(size, penumbra), max(size, penumbra / y)), 0.0)).xy;
     return 1.0 - c.x * (0.7 + 0.25 * c.y);
 }
 
@@ -188,7 +201,7 @@ vec3 hfx_sky(vec3 dir, float spread) {
 #elif HFX_SKY == 1
     const vec3 clear = hfx_clear_sky(dir);
     // At and below the horizon the clouds' far field (what hfx_clouds fades into) continues.
-    const vec3 cloud = dir.y > 0.0 ? hfx_clouds(dir, spread) : hfx_cloud_mean();
+    const vec3 cloud = hfx_cloud_veiled(dir.y > 0.0 ? hfx_clouds(dir, spread) : hfx_cloud_mean());
     return clear + (hfx_cloud_color(dir, cloud.y, cloud.z) - clear) * cloud.x;
 #else
     return hfx_clear_sky(dir);

@@ -29,18 +29,27 @@ namespace hfx {
 /// where the layer is seen edge on, both fade into the layer's mean (1 - e^(-8 y) of the sample
 /// kept): the density into the cover, the thickness into the clouds' mean, 0.15 + 0.6 cover
 /// (measured over the layer: 0.26 at a cover of 0.2, 0.76 at 0.95). 0 below the horizon and
-/// where the look has no clouds.
+/// where the look has no clouds. The layer's alone: the veil over an overcast deck (cloudVeil)
+/// is not in it.
 struct CloudSample {
     float density = 0.0f;
     float thickness = 0.0f;
 };
 CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float spread);
 
+/// How much of the clear sky in the layer's gaps a higher veil hides (a storm's altostratus and
+/// nimbostratus over its deck): 0 up to a cover of 0.7, rising smoothly to 1 at a full cover. The
+/// gaps of an overcast sky are a paler grey than its clouds, not blue: skyColor draws them as a
+/// thin cloud lit through the deck's mean, and cloudSunlight dims the sun's light through them as
+/// at a cloud's edge.
+float cloudVeil(const WaterLook& look);
+
 /// The share of `light`'s direct light that the clouds let through to the world point
 /// `position`, a pixel there spanning `footprint` world units (what the water's shading
 /// multiplies the sun's light by): 1 where the sun's ray from it meets no cloud, 0.3 at a cloud's
-/// edge down to 0.05 in its thick middle, over the pixel's patch or the penumbra of the sun's disc
-/// (HFX_SUN_RADIUS), whichever is wider; 1 without clouds or with the sun under the horizon.
+/// edge down to 0.05 in its thick middle (the veil of an overcast deck, cloudVeil, as a cloud's
+/// edge), over the pixel's patch or the penumbra of the sun's disc (HFX_SUN_RADIUS), whichever
+/// is wider; 1 without clouds or with the sun under the horizon.
 float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::vec3 position, float footprint);
 
 /// Where a clouded point's direct light came through the cloud, as a step along the layer in
@@ -57,7 +66,8 @@ float cloudThreshold(float cover);
 /// The sky's colour (linear RGB) in direction `dir` from `eye` under `light`: the look's
 /// gradient, the sun's glow and, where the look has them, its clouds seen over `spread` radians,
 /// darker where thick and where the sun's light reaching them crossed more of the cloud (half a
-/// cell up the sun's ray: a cloud's sunward side is bright, its far side grey). At the horizon
+/// cell up the sun's ray: a cloud's sunward side is bright, its far side grey), and over an
+/// overcast deck the veil in its gaps (cloudVeil). At the horizon
 /// and below it the layer's mean continues (the cover's share of the clouds' mean colour over
 /// the clear sky's): the colour the water's haze fades into, so an overcast horizon is grey. A
 /// level `dir` gives an engine the colour its fog should take to meet the sea and the sky.
