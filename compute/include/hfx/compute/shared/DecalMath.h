@@ -32,10 +32,10 @@ HFX_FN float hfx_decal_smoothstep(float e0, float e1, float x) {
     return t * t * (3.0f - 2.0f * t);
 }
 
-/* The scorch's outline at an impact of phase p: the angle's harmonics 5, 9, 13 and 21 turned by
-   p, 2.3p, 3.3p and 1.3p, as (cos 5p', sin 5p'...) need no trigonometry per texel: wobble[] =
-   (cos p, sin p, cos 2.3p, sin 2.3p), computed once per stamp (hfx_decal_wobble); the other two
-   phases are their sum and difference. */
+/* The scorch's outline at an impact of phase p: the angle's harmonics 3, 5, 7, 11, 13 and 17 turned
+   by p, 2.3p, 3.3p, 1.3p, -p and -2.3p, as (cos 3p', sin 3p'...) need no trigonometry per texel:
+   wobble[] = (cos p, sin p, cos 2.3p, sin 2.3p), computed once per stamp (hfx_decal_wobble); the
+   phases 3.3p and 1.3p are their sum and difference, -p and -2.3p their conjugates. */
 HFX_FN void hfx_decal_wobble(float phase, float* wobble) {
     wobble[0] = HFX_COS(phase);
     wobble[1] = HFX_SIN(phase);
@@ -47,9 +47,11 @@ HFX_FN void hfx_decal_wobble(float phase, float* wobble) {
    lip). Scorch: full at the lip and fading from there, (1 - t^2)^2 with t from 0 at the lip to 1
    at the outline (from half the outline where that lies within 2 radii), so the soot is darkest
    at the crater and has no flat plate and no hard rim. The outline lies at the reach (in radii)
-   times 1 + 0.18 sin(5a + p) + 0.1 sin(9a + 2.3p) + 0.07 sin(13a + 3.3p) + 0.05 sin(21a + 1.3p)
-   at the angle a (p the impact's phase; the multiple angles from powers of (cos a + i sin a)):
-   a blast's rays, 13 to 17 of them, and no two burns share an outline.
+   times 1 + 0.07 sin(3a + p) + 0.07 sin(5a + 2.3p) + 0.07 sin(7a + 3.3p) + 0.06 sin(11a + 1.3p)
+   + 0.06 sin(13a - p) + 0.05 sin(17a - 2.3p) at the angle a (p the impact's phase; the multiple
+   angles from powers of (cos a + i sin a)): a blast's ragged rays, and no two burns share an
+   outline. The orders are primes and none holds over a fifth of the variance, so a burn too small
+   for the fine orders to show is no star (one order 5 at 0.18 read as a five-pointed one).
    Roughness: the fresh fracture of the bowl and the lip, fading out by 1.5 radii. Occlusion:
    the bowl's shadowed floor, 1 - strength (1 - r^2) inside the lip. Each is scaled by its
    strength (the heal curves' values). */
@@ -61,18 +63,20 @@ HFX_FN void hfx_decal_marks(float dx, float dy, float scorchStrength, float roug
     if (scorchStrength > 0.0f && r < 1.4f * reach) {
         float inv = r > 0.0f ? 1.0f / r : 0.0f;
         float c = r > 0.0f ? dx * inv : 1.0f, s = dy * inv;
-        /* (c + i s)^2, ^4, ^5, ^9, ^8, ^13, ^21 */
+        /* (c + i s)^2, ^3, ^4, ^5, ^7, ^11, ^13, ^17 */
         float c2a = c * c - s * s, s2a = 2.0f * c * s;
+        float c3a = c2a * c - s2a * s, s3a = s2a * c + c2a * s;
         float c4a = c2a * c2a - s2a * s2a, s4a = 2.0f * c2a * s2a;
-        float c5a = c4a * c - s4a * s, s5a = s4a * c + c4a * s;
-        float c9a = c5a * c4a - s5a * s4a, s9a = s5a * c4a + c5a * s4a;
-        float c8a = c4a * c4a - s4a * s4a, s8a = 2.0f * c4a * s4a;
-        float c13a = c9a * c4a - s9a * s4a, s13a = s9a * c4a + c9a * s4a;
-        float c21a = c13a * c8a - s13a * s8a, s21a = s13a * c8a + c13a * s8a;
+        float c5a = c3a * c2a - s3a * s2a, s5a = s3a * c2a + c3a * s2a;
+        float c7a = c5a * c2a - s5a * s2a, s7a = s5a * c2a + c5a * s2a;
+        float c11a = c7a * c4a - s7a * s4a, s11a = s7a * c4a + c7a * s4a;
+        float c13a = c11a * c2a - s11a * s2a, s13a = s11a * c2a + c11a * s2a;
+        float c17a = c13a * c4a - s13a * s4a, s17a = s13a * c4a + c13a * s4a;
         /* The phases 3.3p = p + 2.3p and 1.3p = 2.3p - p */
         float cSum = c1 * c2 - s1 * s2, sSum = s1 * c2 + c1 * s2, cDiff = c2 * c1 + s2 * s1, sDiff = s2 * c1 - c2 * s1;
-        float edge = reach * (1.0f + 0.18f * (s5a * c1 + c5a * s1) + 0.1f * (s9a * c2 + c9a * s2) +
-                              0.07f * (s13a * cSum + c13a * sSum) + 0.05f * (s21a * cDiff + c21a * sDiff));
+        float edge = reach * (1.0f + 0.07f * (s3a * c1 + c3a * s1) + 0.07f * (s5a * c2 + c5a * s2) +
+                              0.07f * (s7a * cSum + c7a * sSum) + 0.06f * (s11a * cDiff + c11a * sDiff) +
+                              0.06f * (s13a * c1 - c13a * s1) + 0.05f * (s17a * c2 - c17a * s2));
         float inner = edge < 2.0f ? 0.5f * edge : 1.0f;
         float t = (r - inner) / (edge - inner);
         t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
