@@ -119,13 +119,13 @@ CloudSample faded(const WaterLook& look, CloudSample sharp, glm::vec3 dir) {
     return {fade(sharp.density, look.cloudCover, near), fade(sharp.thickness, meanThickness(look), near)};
 }
 
-/// hfx_cloud_veiled: the veil over an overcast deck fills the layer's gaps, thin and lit through the
-/// deck's mean cloud; `sunward` becomes the two's mean with the density.
+/// hfx_cloud_veiled: the veil over an overcast deck fills the layer's gaps, half as thick as the
+/// deck's mean cloud and lit through it; `sunward` becomes the two's mean with the density.
 CloudSample veiled(const WaterLook& look, CloudSample layer, float& sunward) {
     const float veil = cloudVeil(look) * (1.0f - layer.density), density = layer.density + veil;
     const float share = density > 0.0f ? layer.density / density : 0.0f;
     sunward = sunward * share + look.cloudCover * (1.0f - share);
-    return {density, layer.thickness * share};
+    return {density, layer.thickness * share + 0.5f * meanThickness(look) * (1.0f - share)};
 }
 
 /// hfx_clouds' (density, thickness) over `patch`, faded.

@@ -107,14 +107,15 @@ vec3 hfx_cloud_mean() { return vec3(u_cloudCover, 0.15 + 0.6 * u_cloudCover, u_c
 
 // A deck that covers most of the sky lies under a higher, even veil (a storm's altostratus and
 // nimbostratus): from a cover of 0.7 to a full one it hides the clear sky in the layer's gaps,
-// 0 to 1 of it. The veil is thin (thickness 0) and lit through the deck's mean cloud (sunward the
-// cover): a gap is a paler grey, not blue, and passes the sun's light as a cloud's edge does.
+// 0 to 1 of it. The veil is half as thick as the deck's mean cloud and lit through it (sunward the
+// cover): a gap is a paler grey, not blue, and passes the sun's light as that thin a cloud does.
 // `cloud` is (density, thickness, sunward) of the layer; the veil fills the rest of the density,
 // and the thickness and the sunward density become the two's means over it.
 vec3 hfx_cloud_veiled(vec3 cloud) {
     const float veil = smoothstep(0.7, 1.0, u_cloudCover) * (1.0 - cloud.x), density = cloud.x + veil;
     const float layer = density > 0.0 ? cloud.x / density : 0.0;
-    return vec3(density, cloud.y * layer, cloud.z * layer + u_cloudCover * (1.0 - layer));
+    return vec3(density, cloud.y * layer + 0.5 * hfx_cloud_mean().y * (1.0 - layer),
+                cloud.z * layer + u_cloudCover * (1.0 - layer));
 }
 
 // The clouds in direction `dir` (y > 0) from the eye, seen over `spread` radians (a sky pixel's
@@ -152,7 +153,7 @@ vec3 hfx_clouds(vec3 dir, float spread) {
 // patch falls on one as wide) or the sun's disc seen from the point, 2 HFX_SUN_RADIUS reach
 // across and that over y along the sun's way (the penumbra), whichever is wider. A cloud passes
 // 0.3 of the light at its edge, 0.05 in its thick middle; the veil over an overcast deck
-// (hfx_cloud_veiled) as much as a cloud's edge.
+// (hfx_cloud_veiled) as a cloud of its thickness does.
 float hfx_cloud_sunlight(vec3 position, float footprint) {
     const vec3 l = normalize(u_lightDir);
     if (!(l.y > 0.0)) return 1.0; // a sun under the horizon lights nothing through the layer

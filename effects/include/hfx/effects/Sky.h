@@ -40,15 +40,15 @@ CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, flo
 /// How much of the clear sky in the layer's gaps a higher veil hides (a storm's altostratus and
 /// nimbostratus over its deck): 0 up to a cover of 0.7, rising smoothly to 1 at a full cover. The
 /// gaps of an overcast sky are a paler grey than its clouds, not blue: skyColor draws them as a
-/// thin cloud lit through the deck's mean, and cloudSunlight dims the sun's light through them as
-/// at a cloud's edge.
+/// cloud half as thick as the deck's mean, lit through it, and cloudSunlight dims the sun's light
+/// through them as that cloud does (at a full veil to 0.3 less a quarter of its thickness).
 float cloudVeil(const WaterLook& look);
 
 /// The share of `light`'s direct light that the clouds let through to the world point
 /// `position`, a pixel there spanning `footprint` world units (what the water's shading
 /// multiplies the sun's light by): 1 where the sun's ray from it meets no cloud, 0.3 at a cloud's
-/// edge down to 0.05 in its thick middle (the veil of an overcast deck, cloudVeil, as a cloud's
-/// edge), over the pixel's patch or the penumbra of the sun's disc (HFX_SUN_RADIUS), whichever
+/// edge down to 0.05 in its thick middle (the veil of an overcast deck, cloudVeil, as a thin
+/// cloud), over the pixel's patch or the penumbra of the sun's disc (HFX_SUN_RADIUS), whichever
 /// is wider; 1 without clouds or with the sun under the horizon.
 float cloudSunlight(const WaterLook& look, const DirectionalLight& light, glm::vec3 position, float footprint);
 
