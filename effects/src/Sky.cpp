@@ -42,19 +42,28 @@ float valueNoise(glm::vec2 q) {
 }
 
 // The quantiles of the clouds' noise (the octaves' sum over their amplitudes' sum), every 5% from
-// 0 to 100%, measured over 2^22 random points of it (this file's noise, points in [-1000, 1000]^2).
+// 0 to 100%, and every 1% in the tails (0 to 5%, 95 to 100%), where the distribution is steep:
+// measured over 2^22 random points of it (this file's noise, points in [-1000, 1000]^2).
 constexpr std::array<float, 21> kQuantiles{0.0357f, 0.2932f, 0.3340f, 0.3634f, 0.3877f, 0.4093f, 0.4290f,
                                            0.4477f, 0.4656f, 0.4829f, 0.5001f, 0.5172f, 0.5346f, 0.5524f,
                                            0.5711f, 0.5908f, 0.6123f, 0.6365f, 0.6660f, 0.7068f, 0.9359f};
+constexpr std::array<float, 6> kLowTail{0.0357f, 0.2258f, 0.2512f, 0.2685f, 0.2818f, 0.2932f};
+constexpr std::array<float, 6> kHighTail{0.7068f, 0.7181f, 0.7315f, 0.7485f, 0.7740f, 0.9359f};
+
+/// The table's value at `at` entries along it, interpolated.
+template <size_t N> float interpolated(const std::array<float, N>& table, float at) {
+    const int i = std::clamp(int(at), 0, int(N) - 2);
+    return table[size_t(i)] + (table[size_t(i) + 1] - table[size_t(i)]) * (at - float(i));
+}
 
 } // namespace
 
 float cloudThreshold(float cover) {
-    const float c = std::clamp(cover, 0.0f, 1.0f);
     // The sky is clouded where the noise is above its (1 - cover) quantile.
-    const float at = (1.0f - c) * float(kQuantiles.size() - 1);
-    const int i = std::min(int(at), int(kQuantiles.size()) - 2);
-    return kQuantiles[size_t(i)] + (kQuantiles[size_t(i) + 1] - kQuantiles[size_t(i)]) * (at - float(i));
+    const float share = 1.0f - std::clamp(cover, 0.0f, 1.0f);
+    if (share < 0.05f) return interpolated(kLowTail, share * 100.0f);
+    if (share > 0.95f) return interpolated(kHighTail, (share - 0.95f) * 100.0f);
+    return interpolated(kQuantiles, share * 20.0f);
 }
 
 namespace {
@@ -88,7 +97,7 @@ CloudSample cover(const WaterLook& look, glm::vec2 p, float across, float along)
     const float threshold = cloudThreshold(look.cloudCover);
     const float width = std::sqrt(0.04f * 0.04f + 5.0f * lostVariance);
     return {smoothstep(threshold - width, threshold + width, value),
-            std::clamp((value - threshold) / (0.2f + width), 0.0f, 1.0f)};
+            std::clamp((value - threshold) / (std::max(0.2f, 0.45f - threshold) + width), 0.0f, 1.0f)};
 }
 
 /// hfx_clouds' patch of the layer: where the direction meets it, in cloud heights, and the patch
@@ -105,7 +114,10 @@ LayerPatch layerPatch(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float
 }
 
 /// hfx_cloud_mean's thickness: the layer's clouds' mean.
-float meanThickness(const WaterLook& look) { return 0.15f + 0.6f * look.cloudCover; }
+float meanThickness(const WaterLook& look) {
+    const float c2 = look.cloudCover * look.cloudCover, c4 = c2 * c2;
+    return 0.15f + 0.55f * look.cloudCover + 0.17f * (c4 * c4 * c4);
+}
 
 /// hfx_clouds' fade towards the horizon: the share of a sample `dir` keeps (y > 0), the rest the
 /// layer's mean.
