@@ -93,7 +93,8 @@ CloudSample cover(const WaterLook& look, glm::vec2 p, float across, float along)
     const float lostVariance = float(HFX_CLOUD_OCTAVE_VARIANCE) * lost / (sum * sum);
     // The edge: a ramp 0.04 either side of the threshold, widened as a Gaussian of the lost
     // octaves' variance would widen it (a smoothstep's variance is a fifth of its half-width's
-    // square).
+    // square). The thickness ramps over 0.2 past the threshold, up to 0.45 under a deck that
+    // covers nearly all the sky (a low threshold).
     const float threshold = cloudThreshold(look.cloudCover);
     const float width = std::sqrt(0.04f * 0.04f + 5.0f * lostVariance);
     return {smoothstep(threshold - width, threshold + width, value),
