@@ -8,6 +8,7 @@
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/effects/OceanEffect.h"
 #include "hfx/effects/SineWavesEffect.h"
+#include "hfx/effects/Sky.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -180,12 +181,16 @@ public:
 
     std::string sceneLabel() const override {
         const WaterLook& look = (ocean_ ? static_cast<const Effect&>(*ocean_) : *sine_).material().water;
-        char label[200];
-        std::snprintf(label, sizeof label, "weather: clouds over %.2f of the sky (%s), haze half the colour at %.0f m",
+        // An overcast deck's veil over its gaps (hfx::cloudVeil), where there is one.
+        char veil[64] = "";
+        if (const float v = cloudVeil(look); v > 0.0f)
+            std::snprintf(veil, sizeof veil, ", a veil over %.2f of their gaps", double(v));
+        char label[260];
+        std::snprintf(label, sizeof label, "weather: clouds over %.2f of the sky (%s)%s, haze half the colour at %.0f m",
                       double(look.cloudCover),
                       cloudsFollowWind_ ? "the wind's: --clouds sets them"
                                         : look.environment ? "an environment image" : "--clouds",
-                      double(look.hazeDistance));
+                      veil, double(look.hazeDistance));
         return label;
     }
 

@@ -577,8 +577,9 @@ TEST(Demo, AReversedZRunDrawsTheScenesFrames) {
 
 TEST(Demo, TheWatersSkyCloudsOverAndItsHazeThickensWithTheWind) {
     // The water's weather follows its wind: fair cumulus over 0.4 of the sky at Beaufort 4,
-    // overcast (0.95) and a spray haze at a storm (10), and --clouds holds the clouds. The storm's
-    // sky (the frame's top fifth) is greyer: less blue over red than the breeze's.
+    // overcast (0.95, a veil over its gaps) and a spray haze at a storm (10), and --clouds holds
+    // the clouds. The storm's sky (the frame's top fifth) is greyer: less blue over red than the
+    // breeze's.
     std::string breeze, storm, held;
     const Image calm = flatSceneFrame("water", "weather_4", " --beaufort 4", 64, &breeze);
     const Image rough = flatSceneFrame("water", "weather_10", " --beaufort 10", 64, &storm);
@@ -587,8 +588,8 @@ TEST(Demo, TheWatersSkyCloudsOverAndItsHazeThickensWithTheWind) {
                           "colour at 2500 m"),
               std::string::npos)
         << breeze;
-    EXPECT_NE(storm.find("hfx: weather: clouds over 0.95 of the sky (the wind's: --clouds sets them), haze half the "
-                         "colour at 1200 m"),
+    EXPECT_NE(storm.find("hfx: weather: clouds over 0.95 of the sky (the wind's: --clouds sets them), a veil over 0.93 "
+                         "of their gaps, haze half the colour at 1200 m"),
               std::string::npos)
         << storm;
     EXPECT_NE(held.find("hfx: weather: clouds over 0.30 of the sky (--clouds), haze half the colour at 1200 m"),
