@@ -38,6 +38,9 @@ Weather weatherAt(float u10) {
     const float spray = std::max((u10 - beaufortWindSpeed(8)) / (beaufortWindSpeed(10) - beaufortWindSpeed(8)), 0.0f);
     return {0.4f + 0.55f * overcast, std::max(2500.0f - 1300.0f * spray, 600.0f)};
 }
+/// Where the default camera (7 m up, 8 degrees down, along -z) looks at the sea: the clouds' layer
+/// starts with the sun out there (sunnyDrift).
+constexpr glm::vec3 kSunnySpot{0.0f, 0.0f, -50.0f};
 /// Seconds the sky takes to settle two thirds of the way to a new wind's weather (the waves
 /// blend over four: OceanEffect::setWind).
 constexpr float kWeatherSeconds = 1.3f;
@@ -105,6 +108,9 @@ public:
         const PlaneConfig sea{.size = kSeaMeters, .texcoordScale = kSeaMeters / patch, .subdivisions = 1};
         plane_ = Mesh(makePlane(sea));
         if (ocean_) impacts_ = std::make_unique<OceanImpacts>(*ocean_, SurfaceFrame::ofPlane(sea));
+        light_.direction = {-0.35f, 0.22f, -1.0f};
+        light_.color = {1.0f, 0.9f, 0.75f};
+        light_.ambient = {0.35f, 0.42f, 0.5f};
         SurfaceMaterial m = effect().material();
         m.water.environment = environment_.id();
         // The wind's weather: its haze (metres), and its clouds unless --clouds holds them.
@@ -116,6 +122,7 @@ public:
         m.water.cloudCover = o.clouds >= 0.0f ? o.clouds : cloudsFollowWind_ ? weather.cloudCover : 0.0f;
         m.water.cloudHeight = kCloudHeightMeters;
         m.water.cloudScale = kCloudHeightMeters / 1000.0f;
+        m.water.cloudDrift = sunnyDrift(m.water); // the sun out where the default view looks
         effect().setMaterial(m);
         applyOptions(o);
         // Seven metres above the water unless told, looking down (8 degrees unless told) towards
@@ -124,9 +131,6 @@ public:
         camera_.aspect = o.aspect();
         camera_.nearPlane = 0.2f;
         camera_.farPlane = 12000.0f;
-        light_.direction = {-0.35f, 0.22f, -1.0f};
-        light_.color = {1.0f, 0.9f, 0.75f};
-        light_.ambient = {0.35f, 0.42f, 0.5f};
     }
 
     /// --camera-azimuth turns the way the camera looks about the vertical (0: along -z, towards the
@@ -207,6 +211,27 @@ public:
         if (m.water.cloudCover > 0.0f)
             m.water.cloudDrift -= float(dt) * speed * glm::vec2(std::cos(windDir_), -std::sin(windDir_));
         if (!(m == effect().material())) effect().setMaterial(m);
+    }
+
+    /// Where the clouds' layer starts (WaterLook::cloudDrift): the first drift downwind, in steps
+    /// of a tenth of a cloud height (150 m), that leaves kSunnySpot in full sun, or the sunniest of
+    /// 64 such steps (an overcast deck has no gap). The layer drifts from there, so the default
+    /// view's first frames show the waves in the sun rather than a cloud's shadow by chance; the
+    /// start depends on the weather, the wind and the sun, not on the camera, so every camera
+    /// sees the same sky.
+    glm::vec2 sunnyDrift(WaterLook look) const {
+        if (!(look.cloudCover > 0.0f)) return look.cloudDrift;
+        const glm::vec2 downwind(std::cos(windDir_), -std::sin(windDir_));
+        glm::vec2 best = look.cloudDrift;
+        float sunniest = -1.0f;
+        for (int k = 0; k < 64 && sunniest < 0.999f; ++k) {
+            look.cloudDrift = -0.1f * float(k) * downwind;
+            if (const float sun = cloudSunlight(look, light_, kSunnySpot, 1.0f); sun > sunniest) {
+                sunniest = sun;
+                best = look.cloudDrift;
+            }
+        }
+        return best;
     }
 
     void draw() override {

@@ -606,6 +606,27 @@ TEST(Demo, TheWatersSkyCloudsOverAndItsHazeThickensWithTheWind) {
     EXPECT_GT(blueOverRed(calm), blueOverRed(rough) + 0.05) << "the storm's sky is as blue as the breeze's";
 }
 
+TEST(Demo, TheWatersCloudsStartWithTheSunOutWhereTheDefaultViewLooks) {
+    // The clouds' layer starts where it leaves the sea the default view looks at in full sun
+    // (the sunniest start under an overcast deck): the middle of its first frames, the waves the
+    // camera looks at, is lit as under a clear sky, not darkened by a cloud's shadow by chance
+    // (as the gallery's frames were until 2026-11-30). The frame's middle (a third of its width,
+    // from just under the horizon to three quarters down) with the default clouds over it under
+    // a clear sky: their mean luminance, and how far apart they are.
+    auto middle = [](const Image& image) {
+        double sum = 0.0;
+        int n = 0;
+        for (int y = image.height * 45 / 100; y < image.height * 3 / 4; ++y)
+            for (int x = image.width / 3; x < image.width * 2 / 3; ++x, ++n)
+                sum += 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
+        return sum / n;
+    };
+    const double clouded = middle(flatSceneFrame("water", "sunny_start", "", 256)),
+                 clear = middle(flatSceneFrame("water", "sunny_clear", " --clouds 0", 256));
+    std::printf("[sunny start] the view's middle: %.3f under the clouds, %.3f under a clear sky\n", clouded, clear);
+    EXPECT_GT(clouded, 0.9 * clear) << "the sea the default view looks at lies in a cloud's shadow";
+}
+
 TEST(Demo, AnOrthographicRunDrawsEachScenesParallelView) {
     // --orthographic: every user's scene drawn with parallel rays (glm::ortho framing the lens's
     // view at its target). The decal wall, a rectangle seen at an angle, is then as wide on every
