@@ -27,9 +27,9 @@ constexpr float kCloudHeightMeters = 1500.0f, kWindAloft = 2.0f;
 /// The sky's weather at a wind of `u10` m/s: fair-weather cumulus over 0.4 of the sky up to a
 /// strong breeze (the middle of Beaufort 6), clouding over to 0.95 at a storm (Beaufort 10) and
 /// beyond, where a veil over the deck greys its gaps (hfx::cloudVeil, from a cover of 0.7,
-/// between Beaufort 8 and 9); the haze half the colour at 2,500 m up to a gale (Beaufort 8), its spray thickening
-/// it to 1,200 m at a storm and 600 m at the most (the scale's own words: "spray may affect
-/// visibility" at 9, "visibility affected" at 10).
+/// between Beaufort 8 and 9); the haze half the colour at 2,500 m up to a gale (Beaufort 8), its
+/// spray thickening it to 1,200 m at a storm and 600 m at the most (the scale's own words: "spray
+/// may affect visibility" at 9, "visibility affected" at 10).
 struct Weather {
     float cloudCover, hazeDistance;
 };
@@ -108,6 +108,7 @@ public:
         const PlaneConfig sea{.size = kSeaMeters, .texcoordScale = kSeaMeters / patch, .subdivisions = 1};
         plane_ = Mesh(makePlane(sea));
         if (ocean_) impacts_ = std::make_unique<OceanImpacts>(*ocean_, SurfaceFrame::ofPlane(sea));
+        // A low sun ahead (first: where the clouds start depends on it, sunnyDrift).
         light_.direction = {-0.35f, 0.22f, -1.0f};
         light_.color = {1.0f, 0.9f, 0.75f};
         light_.ambient = {0.35f, 0.42f, 0.5f};
