@@ -188,8 +188,8 @@ TEST(SkyModel, TheHorizonIsTheCloudLayersMeanSeenEdgeOn) {
     // horizon, and below it (what distant water fades into), the sky is the layer's mean. Under a
     // flat clear sky (the zenith's colour the horizon's, no glow about the sun), the demo's low
     // sun: the horizon is the mean of the sky overhead over many skies, within 0.03 at covers
-    // 0.2, 0.6, 0.95 and 1 (overcast, the clouds' grey: the clear sky's colour, which the layer used
-    // to fade into, was 0.16 to 0.32 off it); the sky 0.5 degrees up (a 2 mrad pixel) meets it
+    // 0.2, 0.6, 0.95 and 1 (overcast, the clouds' grey: the clear sky's colour, which the layer
+    // used to fade into, was 0.16 to 0.32 off it); the sky 0.5 degrees up (a 2 mrad pixel) meets it
     // without a seam, and below the horizon it goes on.
     const DirectionalLight low{.direction = {-0.35f, 0.22f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}};
     std::mt19937 random(7);
@@ -237,11 +237,11 @@ TEST(SkyModel, TheHorizonIsTheCloudLayersMeanSeenEdgeOn) {
 TEST(SkyModel, AnOvercastDecksGapsAreGreyAndShadedNotBlueAndSunlit) {
     // A deck that covers most of the sky lies under a higher veil: in its gaps (the layer's
     // density under 0.1) the sky is not the clear sky's blue, and the sun's light through them is
-    // dimmed at least as at a cloud's edge. Under fair-weather cumulus (a cover of 0.6) the gaps are the
-    // clear sky, and full sun reaches the sea through them. The look's own colours, the demo's low
-    // sun, skies overhead far apart on the layer: how far the gaps' blue (blue less red) lies from
-    // the clouds' (density over 0.9) towards the clear sky's in the same directions (1: the clear
-    // sky's), and the most sunlight at points of the sea.
+    // dimmed at least as at a cloud's edge. Under fair-weather cumulus (a cover of 0.6) the gaps
+    // are the clear sky, and full sun reaches the sea through them. The look's own colours, the
+    // demo's low sun, skies overhead far apart on the layer: how far the gaps' blue (blue less
+    // red) lies from the clouds' (density over 0.9) towards the clear sky's in the same
+    // directions (1: the clear sky's), and the most sunlight at points of the sea.
     const DirectionalLight low{.direction = {-0.35f, 0.22f, -1.0f}, .color = {1.0f, 0.9f, 0.75f}};
     std::mt19937 random(11);
     std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -255,7 +255,8 @@ TEST(SkyModel, AnOvercastDecksGapsAreGreyAndShadedNotBlueAndSunlit) {
         for (int i = 0; i < 40000; ++i) {
             look.cloudDrift = {500.0f * uniform(random), 500.0f * uniform(random)};
             const glm::vec3 dir = towards({0.75f * uniform(random), 0.75f * uniform(random)});
-            sunniest = std::max(sunniest, cloudSunlight(look, low, glm::vec3(300.0f * uniform(random), 0.0f, 0.0f), 1.0f));
+            const glm::vec3 sea(300.0f * uniform(random), 0.0f, 0.0f);
+            sunniest = std::max(sunniest, cloudSunlight(look, low, sea, 1.0f));
             const float density = cloudSample(look, kEye, dir, 1e-4f).density;
             const glm::vec3 c = skyColor(look, low, kEye, dir, 1e-4f);
             if (density > 0.9f) {
@@ -270,8 +271,8 @@ TEST(SkyModel, AnOvercastDecksGapsAreGreyAndShadedNotBlueAndSunlit) {
         }
         cloudBlue /= clouds;
         const double towardsClear = (blue / gaps - cloudBlue) / (clearBlue / gaps - cloudBlue);
-        std::printf("cover %.2f (veil %.2f): %d gaps, their blue %.2f of the way from the clouds' to the clear sky's; the "
-                    "most sunlight on the sea %.2f\n",
+        std::printf("cover %.2f (veil %.2f): %d gaps, their blue %.2f of the way from the clouds' to the clear "
+                    "sky's; the most sunlight on the sea %.2f\n",
                     double(cover), double(cloudVeil(look)), gaps, towardsClear, double(sunniest));
         ASSERT_GT(gaps, 200) << "too few gaps to test, cover " << cover;
         if (cover < 0.7f) {
@@ -280,7 +281,8 @@ TEST(SkyModel, AnOvercastDecksGapsAreGreyAndShadedNotBlueAndSunlit) {
         } else {
             const double most = cover > 0.93f ? 0.15 : 0.5;
             EXPECT_LT(towardsClear, most) << "an overcast deck's gaps are blue, cover " << cover;
-            EXPECT_LT(sunniest, 1.0f - 0.7f * cloudVeil(look) + 1e-4f) << "full sun under an overcast deck, cover " << cover;
+            EXPECT_LT(sunniest, 1.0f - 0.7f * cloudVeil(look) + 1e-4f)
+                << "full sun under an overcast deck, cover " << cover;
         }
     }
 }
