@@ -289,6 +289,21 @@ TEST(SkyModel, AnOvercastDecksGapsAreGreyAndShadedNotBlueAndSunlit) {
 
 constexpr int kW = 192, kH = 128;
 
+/// How a drawn frame's pixels agree with the CPU's sky: those more than `tolerance` off the
+/// colour expected and the most any is, and those the clouds changed, more than `changedBy` from
+/// the same pixel under a clear sky.
+struct Agreement {
+    float tolerance, changedBy;
+    int off = 0, changed = 0;
+    float worst = 0.0f;
+    void add(glm::vec3 drawn, glm::vec3 expected, glm::vec3 clear) {
+        const float e = apart(drawn, expected);
+        worst = std::max(worst, e);
+        off += e > tolerance;
+        changed += apart(drawn, clear) > changedBy;
+    }
+};
+
 /// A camera 10 units up looking 40 degrees over the horizon, the sun low behind its left.
 Camera skyCamera() {
     Camera camera;
@@ -326,28 +341,25 @@ TEST_F(Sky, TheSkyPassDrawsTheCpuSkyItsCloudsIncluded) {
         WaterLook clear = look;
         clear.cloudCover = 0.0f;
         const Image plain = draw(clear);
-        int off = 0, clouded = 0, changed = 0;
-        float worst = 0.0f;
+        Agreement sky{.tolerance = 2.5f / 255.0f, .changedBy = 10.0f / 255.0f};
+        int clouded = 0;
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
                 const glm::vec3 dir = dirAt(x, y);
                 const float spread = std::max(glm::length(dirAt(x + 1, y) - dir), glm::length(dirAt(x, y + 1) - dir));
-                const glm::vec3 expected = displayValue(skyColor(look, kSun, camera.position, dir, spread));
-                const float e = apart(pixelOf(cloudy, x, y), expected);
-                worst = std::max(worst, e);
-                off += e > 2.5f / 255.0f;
+                sky.add(pixelOf(cloudy, x, y), displayValue(skyColor(look, kSun, camera.position, dir, spread)),
+                        pixelOf(plain, x, y));
                 clouded += cloudSample(look, camera.position, dir, spread).density > 0.5f;
-                changed += apart(pixelOf(cloudy, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
                 EXPECT_LE(apart(pixelOf(plain, x, y), displayValue(skyColor(clear, kSun, camera.position, dir, spread))),
                           1.5f / 255.0f);
             }
         std::printf("cover %.2f: %d of %d pixels clouded, %d changed by the clouds; %d off the CPU's sky by over "
                     "2.5/255 (at most %.1f/255)\n",
-                    double(cover), clouded, kW * kH, changed, off, double(worst) * 255.0);
+                    double(cover), clouded, kW * kH, sky.changed, sky.off, double(sky.worst) * 255.0);
         EXPECT_GT(clouded, kW * kH / 5) << "too few clouds to test, cover " << cover;
-        EXPECT_GT(changed, kW * kH / 5) << "the clouds do not show, cover " << cover;
-        EXPECT_LE(off, kW * kH / 200) << "the sky pass is not the CPU's sky, cover " << cover;
-        EXPECT_LT(worst, 12.0f / 255.0f) << "cover " << cover;
+        EXPECT_GT(sky.changed, kW * kH / 5) << "the clouds do not show, cover " << cover;
+        EXPECT_LE(sky.off, kW * kH / 200) << "the sky pass is not the CPU's sky, cover " << cover;
+        EXPECT_LT(sky.worst, 12.0f / 255.0f) << "cover " << cover;
     }
 }
 
@@ -433,25 +445,23 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
     material.water.cloudCover = 0.5f;
     material.water.cloudScale = 3.0f;
     const auto [mirrored, plain] = water.draw(camera, kSun);
-    int off = 0, clouded = 0, changed = 0;
-    float worst = 0.0f;
+    Agreement mirror{.tolerance = 2.5f / 255.0f, .changedBy = 10.0f / 255.0f};
+    int clouded = 0;
     const int pixels = water.forEachWaterPixel(camera, 0.05, [&](int x, int y, const Ray& ray) {
         const glm::vec3 reflected(glm::vec3(ray.direction.x, -ray.direction.y, ray.direction.z));
-        const glm::vec3 expected = displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, reflected, 0.002f)));
-        const float e = apart(pixelOf(mirrored, x, y), expected);
-        worst = std::max(worst, e);
-        off += e > 2.5f / 255.0f;
+        mirror.add(pixelOf(mirrored, x, y),
+                   displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, reflected, 0.002f))),
+                   pixelOf(plain, x, y));
         clouded += cloudSample(material.water, camera.position, reflected, 0.002f).density > 0.5f;
-        changed += apart(pixelOf(mirrored, x, y), pixelOf(plain, x, y)) > 10.0f / 255.0f;
     });
     std::printf("%d water pixels, %d reflecting a cloud, %d changed by the clouds; %d off the CPU's mirrored sky by "
                 "over 2.5/255 (at most %.1f/255)\n",
-                pixels, clouded, changed, off, double(worst) * 255.0);
+                pixels, clouded, mirror.changed, mirror.off, double(mirror.worst) * 255.0);
     ASSERT_GT(pixels, kW * kH / 2);
     EXPECT_GT(clouded, pixels / 5) << "too few clouds to test";
-    EXPECT_GT(changed, pixels / 5) << "the water does not reflect the clouds";
-    EXPECT_LE(off, pixels / 200) << "the water does not mirror the CPU's sky";
-    EXPECT_LT(worst, 12.0f / 255.0f);
+    EXPECT_GT(mirror.changed, pixels / 5) << "the water does not reflect the clouds";
+    EXPECT_LE(mirror.off, pixels / 200) << "the water does not mirror the CPU's sky";
+    EXPECT_LT(mirror.worst, 12.0f / 255.0f);
 }
 
 TEST_F(Sky, TheSeaFadesIntoTheCloudsGreyAtTheHorizonUnderOvercast) {
@@ -464,21 +474,18 @@ TEST_F(Sky, TheSeaFadesIntoTheCloudsGreyAtTheHorizonUnderOvercast) {
     material.water.cloudCover = 0.9f;
     material.water.hazeDistance = 0.05f;
     const auto [overcast, plain] = water.draw(camera, kSun);
-    int off = 0, changed = 0;
-    float worst = 0.0f;
+    Agreement haze{.tolerance = 3.0f / 255.0f, .changedBy = 20.0f / 255.0f};
     const int pixels = water.forEachWaterPixel(camera, 0.02, [&](int x, int y, const Ray& ray) {
         const glm::vec3 level = glm::normalize(glm::vec3(float(ray.direction.x), 0.0f, float(ray.direction.z)));
-        const glm::vec3 expected = displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, level, 0.0f)));
-        const float e = apart(pixelOf(overcast, x, y), expected);
-        worst = std::max(worst, e);
-        off += e > 3.0f / 255.0f;
-        changed += apart(pixelOf(overcast, x, y), pixelOf(plain, x, y)) > 20.0f / 255.0f;
+        haze.add(pixelOf(overcast, x, y),
+                 displayValue(waterRollOff(skyColor(material.water, kSun, camera.position, level, 0.0f))),
+                 pixelOf(plain, x, y));
     });
     std::printf("%d water pixels, %d changed by the clouds; %d off the CPU's horizon by over 3/255 (at most %.1f/255)\n",
-                pixels, changed, off, double(worst) * 255.0);
+                pixels, haze.changed, haze.off, double(haze.worst) * 255.0);
     ASSERT_GT(pixels, kW * kH / 3);
-    EXPECT_GT(changed, pixels * 9 / 10) << "the haze is the clear sky's under overcast";
-    EXPECT_LE(off, pixels / 200) << "the haze is not the CPU's horizon";
+    EXPECT_GT(haze.changed, pixels * 9 / 10) << "the haze is the clear sky's under overcast";
+    EXPECT_LE(haze.off, pixels / 200) << "the haze is not the CPU's horizon";
 }
 
 TEST_F(Sky, TheCloudsShadowsDimTheSunsLightOnTheWater) {
