@@ -209,10 +209,13 @@ public:
         m.water.hazeDistance += (weather.hazeDistance - m.water.hazeDistance) * settle;
         if (cloudsFollowWind_) m.water.cloudCover += (weather.cloudCover - m.water.cloudCover) * settle;
         const float speed = kWindAloft * wind_ / kCloudHeightMeters; // cloud heights per second
-        if (m.water.cloudCover > 0.0f)
-            m.water.cloudDrift -= float(dt) * speed * glm::vec2(std::cos(windDir_), -std::sin(windDir_));
+        if (m.water.cloudCover > 0.0f) m.water.cloudDrift -= float(dt) * speed * downwind();
         if (!(m == effect().material())) effect().setMaterial(m);
     }
+
+    /// The way the wind blows over the layer (world x, z); the drift, read as p + drift, falls
+    /// along it, so the clouds move downwind.
+    glm::vec2 downwind() const { return {std::cos(windDir_), -std::sin(windDir_)}; }
 
     /// Where the clouds' layer starts (WaterLook::cloudDrift): the first drift downwind, in steps
     /// of a tenth of a cloud height (150 m), that leaves kSunnySpot in full sun, or the sunniest of
@@ -222,11 +225,10 @@ public:
     /// sees the same sky.
     glm::vec2 sunnyDrift(WaterLook look) const {
         if (!(look.cloudCover > 0.0f)) return look.cloudDrift;
-        const glm::vec2 downwind(std::cos(windDir_), -std::sin(windDir_));
         glm::vec2 best = look.cloudDrift;
         float sunniest = -1.0f;
         for (int k = 0; k < 64 && sunniest < 0.999f; ++k) {
-            look.cloudDrift = -0.1f * float(k) * downwind;
+            look.cloudDrift = -0.1f * float(k) * downwind();
             if (const float sun = cloudSunlight(look, light_, kSunnySpot, 1.0f); sun > sunniest) {
                 sunniest = sun;
                 best = look.cloudDrift;
