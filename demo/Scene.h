@@ -80,7 +80,7 @@ struct SceneOptions {
     /// Degrees a second the camera turns about its target (the water's on the spot), in the
     /// frames' time (Scene::turnCamera): a video of the relief's parallax as the view swings. 0: still.
     float cameraTurn = 0.0f;
-    float foamHistory = 0.0f;          ///< water: seconds of wind the first frame's foam has seen
+    float foamHistory = 20.0f;         ///< water: seconds of wind the first frame's foam has seen (0: a clear start)
     int detailScale = 0;               ///< planet: detail texels per gas cell (0: the device's)
     float timeScale = 1.0f;            ///< planet: simulated seconds per second, 1 to 10^4
     float spinUp = 60.0f;              ///< planet: simulated seconds of weather before the first frame

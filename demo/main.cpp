@@ -406,7 +406,8 @@ int main(int argc, char** argv) {
                    "water: metres the camera stands above the sea (high: the cascades' tiling and the far field)")
         ->check(kFinite)->check(CLI::Range(1.0, 2000.0))->capture_default_str();
     app.add_option("--foam-history", s.foamHistory,
-                   "water: seconds of this wind the first frame's foam has seen (0: a clear start; whitecaps build over their 4 s half-life)")
+                   "water: seconds of this wind the first frame's foam has seen (five of its 4 s half-lives by default: the whitecaps "
+                   "and a gale's streaks of a sea that has blown a while; 0: a clear start, where they build over the first seconds)")
         ->check(kFinite)->check(CLI::Range(0.0, 600.0))->capture_default_str();
     // The camera's place about its target: given, each replaces the scene's own (SceneOptions).
     float cameraAzimuth = 0.0f, cameraElevation = 0.0f, cameraDistance = 0.0f;

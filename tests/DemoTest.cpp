@@ -606,6 +606,26 @@ TEST(Demo, TheWatersSkyCloudsOverAndItsHazeThickensWithTheWind) {
     EXPECT_GT(blueOverRed(calm), blueOverRed(rough) + 0.05) << "the storm's sky is as blue as the breeze's";
 }
 
+TEST(Demo, TheWatersFirstFrameIsASeaThatHasBlownAWhile) {
+    // The water's first frame was a clear start: a storm without whitecaps, its streaks crossing
+    // bare water as scratches, where the gallery's frames (--foam-history 20) showed the foam
+    // that five of its half-lives leave. The default now is those 20 s: the log says so, the
+    // frame is --foam-history 20's, and a clear start (0) is another sea (fewer whitecaps, no
+    // streaks yet: OceanShading.AGalesStreaksBuildAsItsFoamDoes).
+    std::string log;
+    const Image settled = flatSceneFrame("water", "foam_default", " --beaufort 10", 128, &log);
+    const Image twenty = flatSceneFrame("water", "foam_20", " --beaufort 10 --foam-history 20", 128);
+    const Image clear = flatSceneFrame("water", "foam_0", " --beaufort 10 --foam-history 0", 128);
+    EXPECT_NE(log.find("; the first frame's foam had 20 s of this wind behind it (--foam-history)"), std::string::npos)
+        << log;
+    const FrameDifference same = frameDifference(settled, twenty), other = frameDifference(settled, clear);
+    std::printf("[foam history] the default against 20 s: %.3f levels apart on average; against a clear start %.2f, "
+                "%.1f%% of pixels more than 16 apart\n",
+                same.mean, other.mean, 100.0 * other.far);
+    EXPECT_LT(same.mean, 0.5) << "the default is not --foam-history 20";
+    EXPECT_GT(other.far, 0.05) << "20 s of foam look like a clear start";
+}
+
 TEST(Demo, TheWatersCloudsStartWithTheSunOutWhereTheDefaultViewLooks) {
     // The clouds' layer starts where it leaves the sea the default view looks at in full sun
     // (the sunniest start under an overcast deck): the middle of its first frames, the waves the

@@ -464,15 +464,16 @@ TEST_F(OceanShading, GalesDrawFoamStreaksDownwind) {
     // OceanEffect: 0 up to the middle of force 7). Beaufort 9 from above: what the streaks add to
     // the frame changes least along one direction, and that is the wind's (0.6 rad from +u; the
     // frame shows u along x and v along y or its mirror), within 15 degrees; across it changes at
-    // least twice as much (3.1x on llvmpipe as bands of foam; 2.2x as the thin lines that meander
-    // and break into patches, 2.6x as unbroken lines). At Beaufort 6 there are none: the frame is
-    // the same with the streaks switched off.
+    // least twice as much (on llvmpipe 2.8x as bands of foam after 25 s of wind, 3.1x after 5 s;
+    // 2.2x as the thin lines that meander and break into patches, 2.6x as unbroken lines). At
+    // Beaufort 6 there are none: the frame is the same with the streaks switched off.
     constexpr float kWind = 0.6f;
     OceanEffect gale(
         cl(),
         {.ocean = {.size = 256,
                    .cascades = 3,
                    .sea = {.wind = {.windSpeed = beaufortWindSpeed(9), .direction = kWind}}}});
+    gale.settleFoam(20.0); // a gale that has blown a while: its streaks built (foamSeconds())
     for (int i = 0; i < 25; ++i)
         gale.update(0.2);
     ASSERT_GT(gale.material().water.spindrift, 0.5f);
@@ -569,11 +570,13 @@ TEST_F(OceanShading, AGalesStreaksNearTheEyeAreBandsOfFoamNotScratches) {
     // foam's own bubbles and crossing them, they read as scratches on the sea (the gallery's
     // Beaufort 10). Now a streak is a band of the foam's own structure, 0.6 to 1.8 m wide, denser
     // in its middle. Beaufort 10 from 24 m (7.5 cm a pixel): the light the streaks add stays
-    // correlated across the wind over at least 15 cm (2 pixels; 2.6 on llvmpipe, the bubbles'
-    // holes cutting it short), where the lines' fell to half within 0.8 pixels.
+    // correlated across the wind over at least 15 cm (2 pixels; on llvmpipe 2.4 after 45 s of
+    // wind, 2.6 after 5 s, the bubbles' holes cutting it short), where the lines' fell to half
+    // within 0.8 pixels.
     OceanEffect gale(cl(), {.ocean = {.size = 256,
                                       .cascades = 3,
                                       .sea = {.wind = {.windSpeed = beaufortWindSpeed(10), .direction = 0.0f}}}});
+    gale.settleFoam(40.0);
     for (int i = 0; i < 25; ++i) gale.update(0.2);
     ASSERT_GT(gale.material().water.spindrift, 0.99f);
     const auto [added, lag] = streaksAcrossTheWind(gale, 24.0f);
@@ -592,6 +595,7 @@ TEST_F(OceanShading, WindStreaksFadeAsAWindChangeBlendsIn) {
     OceanEffect ocean(cl(), {.ocean = {.size = 64,
                                        .cascades = 1,
                                        .sea = {.wind = {.windSpeed = beaufortWindSpeed(10)}}}});
+    ocean.settleFoam(100.0); // the streaks built (foamSeconds()), to a millionth
     const float gale = ocean.material().water.spindrift;
     ASSERT_GT(gale, 0.99f);
     EXPECT_EQ(ocean.material().water.spindriftFrom, 0.0f);
@@ -609,6 +613,38 @@ TEST_F(OceanShading, WindStreaksFadeAsAWindChangeBlendsIn) {
     EXPECT_EQ(ocean.material().water.spindrift, 0.0f);
 }
 
+TEST_F(OceanShading, AGalesStreaksBuildAsItsFoamDoes) {
+    // A gale made at a clear start drew its streaks whole from the first frame, over a sea with no
+    // foam yet: long white lines across bare water, read as scratches (`hfx-demo water --beaufort
+    // 10` without --foam-history, until 2026-11-30). The streaks are the whitecaps' foam drawn out,
+    // so they now build as it does (OceanEffect::foamSeconds): none at the start, half after one
+    // of the foam's half-lives, 1 - 2^-5 of the wind's after five (settleFoam), none again after a
+    // jump in time, which clears the foam.
+    OceanEffect gale(cl(), {.ocean = {.size = 64,
+                                      .cascades = 1,
+                                      .sea = {.wind = {.windSpeed = beaufortWindSpeed(10)}}}});
+    const double halfLife = gale.ocean().config().foam.halfLife;
+    EXPECT_EQ(gale.foamSeconds(), 0.0);
+    EXPECT_EQ(gale.material().water.spindrift, 0.0f) << "a clear start's gale draws streaks before any foam";
+    for (int i = 0; i < 20; ++i) gale.update(0.2 * halfLife / 4.0);
+    EXPECT_NEAR(gale.foamSeconds(), halfLife, 1e-9);
+    EXPECT_NEAR(gale.material().water.spindrift, 0.5f, 1e-4f);
+    gale.settleFoam(5.0 * halfLife); // the foam cleared, then five half-lives of it
+    EXPECT_NEAR(gale.foamSeconds(), 5.0 * halfLife, 1e-9);
+    EXPECT_NEAR(gale.material().water.spindrift, 1.0f - 1.0f / 32.0f, 1e-4f);
+    for (int i = 0; i < 3; ++i) gale.update(0.2);
+    EXPECT_NEAR(gale.foamSeconds(), 5.0 * halfLife + 0.6, 1e-9);
+    gale.setTime(100.0); // a jump: the foam starts clear, and its streaks
+    EXPECT_EQ(gale.foamSeconds(), 0.0);
+    EXPECT_EQ(gale.material().water.spindrift, 0.0f);
+    // A breeze's are none however long it has blown.
+    OceanEffect breeze(cl(), {.ocean = {.size = 64,
+                                        .cascades = 1,
+                                        .sea = {.wind = {.windSpeed = beaufortWindSpeed(6)}}}});
+    breeze.settleFoam(40.0);
+    EXPECT_EQ(breeze.material().water.spindrift, 0.0f);
+}
+
 TEST_F(OceanShading, AGaleThatTurnsCrossFadesItsStreaksWithoutAJump) {
     // A gale turning by 70 degrees over 4 s: its streaks turned at once, swinging every line about
     // the texcoords' origin in one frame. Now the frame right after the change is the frame
@@ -619,6 +655,7 @@ TEST_F(OceanShading, AGaleThatTurnsCrossFadesItsStreaksWithoutAJump) {
         cl(), {.ocean = {.size = 256,
                          .cascades = 3,
                          .sea = {.wind = {.windSpeed = beaufortWindSpeed(10), .direction = kFrom}}}});
+    gale.settleFoam(40.0); // the streaks built (foamSeconds())
     for (int i = 0; i < 10; ++i) gale.update(0.2);
     TopDown view(gale);
     const Image before = view.draw(gale, gale.material());

@@ -106,6 +106,7 @@ void OceanEffect::enqueueSurface() {
 
 void OceanEffect::advance(double dt) {
     ocean_.step(dt);
+    foamSeconds_ += dt;
     material_.depthScale = physicalDepthScale(); // moves while a wind change blends in
     updateRings();
     updateFoamLook(dt);
@@ -130,8 +131,10 @@ void OceanEffect::updateFoamLook(double dt) {
     w.streakCells = float(double(c.patchMeters) / kStreakMeters);
     w.foamCells = foamCellMeters_ > 0.0f ? c.patchMeters / foamCellMeters_ : 0.0f;
     // Streaks from the middle of Beaufort 7 (a near gale, where spray starts to blow off the
-    // crests) to full at that of 10.
-    const float strength =
+    // crests) to full at that of 10, built as the whitecaps' foam they are drawn from builds: none
+    // at a clear start, where a gale's lines crossed a sea without foam as scratches.
+    const double built = 1.0 - std::exp2(-foamSeconds_ / double(c.foam.halfLife));
+    const float strength = float(built) *
         hfx_decal_smoothstep(beaufortWindSpeed(7), beaufortWindSpeed(10), wind.windSpeed);
     // The new wind's streaks fade in as the last wind's fade out where they lie.
     const double blend = ocean_.windBlend().at(ocean_.time());
@@ -201,15 +204,19 @@ void OceanEffect::setWind(float speed, float direction, double blendSeconds) {
 }
 
 void OceanEffect::settleFoam(double seconds) {
-    ocean_.settleFoam(seconds);
+    ocean_.settleFoam(seconds); // the foam cleared, then `seconds` of it
+    foamSeconds_ = seconds;
+    updateFoamLook(0.0);
     refresh();
 }
 
 void OceanEffect::setTime(double seconds) {
-    ocean_.setTime(seconds);
+    ocean_.setTime(seconds); // the foam cleared
+    foamSeconds_ = 0.0;
     rings_.clear();
     material_.water.ringCount = 0;
     material_.depthScale = physicalDepthScale();
+    updateFoamLook(0.0);
     refresh();
 }
 

@@ -59,9 +59,16 @@ public:
     /// The same over `blendSeconds` (0: at once).
     void setWind(float speed, float direction, double blendSeconds);
     /// The foam as `seconds` of this wind would have left it (OceanField::settleFoam), and the
-    /// textures refreshed: a first frame of a sea that has blown a while.
+    /// textures refreshed: a first frame of a sea that has blown a while. The wind's streaks grow
+    /// with it (foamSeconds()).
     void settleFoam(double seconds);
-    /// Jumps to an absolute time (seconds) and refreshes the textures; rings are dropped.
+    /// Seconds of wind the foam has seen: 0 when the effect is made and after setTime (a clear
+    /// start), settleFoam's seconds after it, and every step's added. A gale's streaks are drawn from the whitecaps' foam, so they build
+    /// as it does: their strength is the wind's times 1 - 2^(-foamSeconds / FoamConfig::halfLife)
+    /// (half after one half-life, 97% after five).
+    double foamSeconds() const { return foamSeconds_; }
+    /// Jumps to an absolute time (seconds) and refreshes the textures; rings are dropped, the foam
+    /// starts clear (OceanField::setTime) and the streaks with it.
     void setTime(double seconds);
     /// An impact on the water at `uv` (the mesh's texcoords, in patches: metres over the
     /// largest patch): a ring of waves spreads from it at the group speed of its wavelength,
@@ -103,6 +110,7 @@ private:
     };
     std::vector<Ring> rings_;
     glm::dvec2 foamDrift_{0.0}; ///< texcoords the foam has drifted downwind
+    double foamSeconds_ = 0.0;   ///< seconds of wind the foam has seen (foamSeconds())
     float spindriftFrom_ = 0.0f; ///< the streaks' strength a wind change blends from
     glm::vec2 streaksFrom_{1.0f, 0.0f}; ///< ... and their direction
     OceanField ocean_;
