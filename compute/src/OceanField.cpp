@@ -348,13 +348,13 @@ void OceanField::settleFoam(double seconds, double dt) {
         const double next = end - seconds + seconds * i / steps; // ends on `end` itself
         const double step = next - time_;
         time_ = next;
-        compute(step);
+        compute(step, false); // the foam's history: the heights only at the end
     }
     time_ = end;
     compute(0.0); // the fields at exactly `end` (the foam stays)
 }
 
-void OceanField::compute(double dt) {
+void OceanField::compute(double dt, bool resample) {
     const int N = config_.size;
     const float t = periodicTime(time_, config_.repeatSeconds);
     const int displacement = config_.choppiness > 0.0f ? 1 : 0;
@@ -405,6 +405,7 @@ void OceanField::compute(double dt) {
             lagrangianKernel_.setArg(a++, drift * std::cos(config_.sea.wind.direction));
             lagrangianKernel_.setArg(a++, drift * std::sin(config_.sea.wind.direction));
             cl_.enqueue(lagrangianKernel_, cl::NDRange(N, N));
+            if (!resample) continue;
             a = 0;
             eulerianKernel_.setArg(a++, c.packed);
             eulerianKernel_.setArg(a++, c.height);
