@@ -63,9 +63,9 @@ public:
     /// with it (foamSeconds()).
     void settleFoam(double seconds);
     /// Seconds of wind the foam has seen: 0 when the effect is made and after setTime (a clear
-    /// start), settleFoam's seconds after it, and every step's added. A gale's streaks are drawn from the whitecaps' foam, so they build
-    /// as it does: their strength is the wind's times 1 - 2^(-foamSeconds / FoamConfig::halfLife)
-    /// (half after one half-life, 97% after five).
+    /// start), settleFoam's seconds after it, and every step's added. A gale's streaks are drawn
+    /// from the whitecaps' foam, so they build as it does: their strength is the wind's times
+    /// 1 - 2^(-foamSeconds / FoamConfig::halfLife) (half after one half-life, 97% after five).
     double foamSeconds() const { return foamSeconds_; }
     /// Jumps to an absolute time (seconds) and refreshes the textures; rings are dropped, the foam
     /// starts clear (OceanField::setTime) and the streaks with it.
