@@ -120,6 +120,8 @@ TEST_F(TracerContract, UniformBlocksHaveTheLayoutOfTheirCppMirrors) {
         {"u_cloudDrift", offsetof(WaterUniforms, cloudDrift)},
         {"u_cloudScale", offsetof(WaterUniforms, cloudScale)},
         {"u_cloudThreshold", offsetof(WaterUniforms, cloudThreshold)},
+        {"u_cloudVeil", offsetof(WaterUniforms, cloudVeil)},
+        {"u_cloudMeanThickness", offsetof(WaterUniforms, cloudMeanThickness)},
     };
     for (const auto& [name, offset] : surface) EXPECT_EQ(offsetOf(p, name), GLint(offset)) << name;
     for (const auto& [block, size] : {std::pair{"HfxSurface", sizeof(SurfaceUniforms)}, std::pair{"HfxWater", sizeof(WaterUniforms)},

@@ -114,12 +114,6 @@ LayerPatch layerPatch(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, float
     return {p, spread / y, spread / (y * y)};
 }
 
-/// hfx_cloud_mean's thickness: the layer's clouds' mean.
-float meanThickness(const WaterLook& look) {
-    const float c2 = look.cloudCover * look.cloudCover, c4 = c2 * c2;
-    return 0.15f + 0.55f * look.cloudCover + 0.17f * (c4 * c4 * c4);
-}
-
 /// hfx_clouds' fade towards the horizon: the share of a sample `dir` keeps (y > 0), the rest the
 /// layer's mean.
 float nearness(glm::vec3 dir) { return 1.0f - std::exp(-8.0f * dir.y); }
@@ -129,7 +123,7 @@ float fade(float value, float mean, float near) { return mean + (value - mean) *
 /// layer's mean towards the horizon.
 CloudSample faded(const WaterLook& look, CloudSample sharp, glm::vec3 dir) {
     const float near = nearness(dir);
-    return {fade(sharp.density, look.cloudCover, near), fade(sharp.thickness, meanThickness(look), near)};
+    return {fade(sharp.density, look.cloudCover, near), fade(sharp.thickness, cloudMeanThickness(look), near)};
 }
 
 /// hfx_cloud_veiled: the veil over an overcast deck fills the layer's gaps, half as thick as the
@@ -138,7 +132,7 @@ CloudSample veiled(const WaterLook& look, CloudSample layer, float& sunward) {
     const float veil = cloudVeil(look) * (1.0f - layer.density), density = layer.density + veil;
     const float share = density > 0.0f ? layer.density / density : 0.0f;
     sunward = sunward * share + look.cloudCover * (1.0f - share);
-    return {density, layer.thickness * share + 0.5f * meanThickness(look) * (1.0f - share)};
+    return {density, layer.thickness * share + 0.5f * cloudMeanThickness(look) * (1.0f - share)};
 }
 
 /// hfx_clouds' (density, thickness) over `patch`, faded.
@@ -149,6 +143,11 @@ CloudSample clouds(const WaterLook& look, const LayerPatch& patch, glm::vec3 dir
 } // namespace
 
 float cloudVeil(const WaterLook& look) { return smoothstep(0.7f, 1.0f, look.cloudCover); }
+
+float cloudMeanThickness(const WaterLook& look) {
+    const float c2 = look.cloudCover * look.cloudCover, c4 = c2 * c2;
+    return 0.15f + 0.55f * look.cloudCover + 0.17f * (c4 * c4 * c4);
+}
 
 glm::vec2 cloudSunwardStep(const WaterLook& look, const DirectionalLight& light) {
     const glm::vec3 l = glm::normalize(light.direction);
@@ -185,7 +184,7 @@ glm::vec3 skyColor(const WaterLook& look, const DirectionalLight& light, glm::ve
         base + look.sunGlow * light.color * (0.5f * std::pow(sun, 48.0f) + 0.12f * std::pow(sun, 6.0f));
     if (!(look.cloudCover > 0.0f)) return clear;
     // At and below the horizon the clouds' far field continues: the layer's mean.
-    CloudSample cloud{look.cloudCover, meanThickness(look)};
+    CloudSample cloud{look.cloudCover, cloudMeanThickness(look)};
     float sunward = look.cloudCover;
     if (dir.y > 0.0f) {
         const LayerPatch patch = layerPatch(look, eye, dir, spread);

@@ -56,7 +56,9 @@ WaterUniforms waterUniforms(const WaterLook& w, const DirectionalLight& light) {
             .cloudScale = w.cloudScale,
             .cloudThreshold = cloudThreshold(w.cloudCover),
             .cloudSunward = cloudSunwardStep(w, light),
-            .cloudCover = w.cloudCover};
+            .cloudCover = w.cloudCover,
+            .cloudVeil = cloudVeil(w),
+            .cloudMeanThickness = cloudMeanThickness(w)};
 }
 
 /// The slope variance a format's rounding alone shows in its mip-0 normals (Toksvig must not

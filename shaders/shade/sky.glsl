@@ -35,6 +35,8 @@ layout(std140, binding = HFX_BLOCK_WATER) uniform HfxWater {
     float u_cloudThreshold;   // where the noise is clouded: its (1 - cover) quantile
     vec2 u_cloudSunward;      // where a cloud's direct light came through, cloud heights (hfx::cloudSunwardStep)
     float u_cloudCover;       // the share of the sky under cloud: what the layer fades into at the horizon
+    float u_cloudVeil;        // the veil over an overcast deck's gaps, 0 to 1 (hfx::cloudVeil)
+    float u_cloudMeanThickness; // the layer's clouds' mean thickness (hfx::cloudMeanThickness)
 };
 layout(binding = HFX_UNIT_ENVIRONMENT) uniform sampler2D s_environment;
 #ifndef HFX_SKY
@@ -104,25 +106,22 @@ vec2 hfx_cloud_cover(vec2 p, float across, float along) {
 }
 
 // The layer's mean (density, thickness, sunward): the cover's share of it clouded, its clouds'
-// mean thickness 0.15 + 0.55 cover + 0.17 cover^12 (a deck that covers more of the sky is deeper
-// and greyer underneath; fitted within 0.012 to the mean measured over the layer at covers 0.1 to
-// 0.99: 0.26 at 0.2, 0.76 at 0.95, 0.83 at 0.99; 0.90 at a full cover, 0.03 over the fit), their
-// light crossing the cover's share of cloud.
-vec3 hfx_cloud_mean() {
-    const float c2 = u_cloudCover * u_cloudCover, c4 = c2 * c2;
-    return vec3(u_cloudCover, 0.15 + 0.55 * u_cloudCover + 0.17 * (c4 * c4 * c4), u_cloudCover);
-}
+// mean thickness (hfx::cloudMeanThickness, 0.15 + 0.55 cover + 0.17 cover^12: a deck that covers
+// more of the sky is deeper and greyer underneath; fitted within 0.012 to the mean measured over
+// the layer at covers 0.1 to 0.99: 0.26 at 0.2, 0.76 at 0.95, 0.83 at 0.99; 0.90 at a full cover,
+// 0.03 over the fit), their light crossing the cover's share of cloud.
+vec3 hfx_cloud_mean() { return vec3(u_cloudCover, u_cloudMeanThickness, u_cloudCover); }
 
 // A deck that covers most of the sky lies under a higher, even veil (a storm's altostratus and
 // nimbostratus): from a cover of 0.7 to a full one it hides the clear sky in the layer's gaps,
-// 0 to 1 of it. The veil is half as thick as the deck's mean cloud and lit through it (sunward the
+// 0 to 1 of it (u_cloudVeil, hfx::cloudVeil). The veil is half as thick as the deck's mean cloud and lit through it (sunward the
 // cover): a gap is a paler grey, not blue, and passes the sun's light as that thin a cloud does.
 // `cloud` is (density, thickness, sunward) of the layer; the veil fills the rest of the density,
 // and the thickness and the sunward density become the two's means over it.
 vec3 hfx_cloud_veiled(vec3 cloud) {
-    const float veil = smoothstep(0.7, 1.0, u_cloudCover) * (1.0 - cloud.x), density = cloud.x + veil;
+    const float veil = u_cloudVeil * (1.0 - cloud.x), density = cloud.x + veil;
     const float layer = density > 0.0 ? cloud.x / density : 0.0;
-    return vec3(density, cloud.y * layer + 0.5 * hfx_cloud_mean().y * (1.0 - layer),
+    return vec3(density, cloud.y * layer + 0.5 * u_cloudMeanThickness * (1.0 - layer),
                 cloud.z * layer + u_cloudCover * (1.0 - layer));
 }
 

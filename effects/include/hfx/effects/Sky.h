@@ -45,6 +45,12 @@ CloudSample cloudSample(const WaterLook& look, glm::vec3 eye, glm::vec3 dir, flo
 /// through them as that cloud does (at a full veil to 0.3 less a quarter of its thickness).
 float cloudVeil(const WaterLook& look);
 
+/// The thickness of the layer's clouds, averaged over the layer: 0.15 + 0.55 cover + 0.17 cover^12
+/// (fitted to the mean measured over it, CloudSample's). What the layer fades into at the horizon,
+/// and the veil's thickness is half of it. The shaders read it and cloudVeil as uniforms
+/// (hfx::WaterUniforms), so both are written once, here.
+float cloudMeanThickness(const WaterLook& look);
+
 /// The share of `light`'s direct light that the clouds let through to the world point
 /// `position`, a pixel there spanning `footprint` world units (what the water's shading
 /// multiplies the sun's light by): 1 where the sun's ray from it meets no cloud, 0.3 at a cloud's

@@ -121,7 +121,9 @@ struct WaterUniforms {
     float cloudThreshold = 1.0f;  ///< hfx::cloudThreshold(WaterLook::cloudCover): where the noise is clouded
     glm::vec2 cloudSunward{0.0f}; ///< hfx::cloudSunwardStep(WaterLook, light): where a cloud's light came through
     float cloudCover = 0.0f;      ///< WaterLook::cloudCover: what the layer fades into at the horizon
-    float padding[3] = {0.0f, 0.0f, 0.0f};
+    float cloudVeil = 0.0f;       ///< hfx::cloudVeil(WaterLook): the veil over an overcast deck's gaps
+    float cloudMeanThickness = 0.0f; ///< hfx::cloudMeanThickness(WaterLook): the layer's clouds' mean
+    float padding = 0.0f;
 };
 
 /// HfxRings (shaders/surface/uniforms.glsl, binding 2): the water's impact rings.
