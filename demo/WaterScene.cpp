@@ -91,7 +91,6 @@ public:
         if (o.waves == "fft") {
             ocean_ = std::make_unique<OceanEffect>(cl, oceanConfig(o));
             if (o.foamHistory > 0.0f) ocean_->settleFoam(o.foamHistory);
-            foamHistory_ = o.foamHistory;
             patch = ocean_->ocean().config().patchMeters;
             wind_ = ocean_->ocean().config().sea.wind.windSpeed;
         } else {
@@ -191,11 +190,11 @@ public:
         char veil[64] = "";
         if (const float v = cloudVeil(look); v > 0.0f)
             std::snprintf(veil, sizeof veil, ", a veil over %.2f of their gaps", double(v));
-        // The seconds of wind the foam had seen at the first frame (a clear start shows none).
+        // The seconds of wind the foam has seen, told before the first frame (a clear start: none).
         char foam[96] = "";
         if (ocean_)
             std::snprintf(foam, sizeof foam, "; the first frame's foam had %.0f s of this wind behind it (--foam-history)",
-                          double(foamHistory_));
+                          ocean_->foamSeconds());
         char label[320];
         std::snprintf(label, sizeof label, "weather: clouds over %.2f of the sky (%s)%s, haze half the colour at %.0f m%s",
                       double(look.cloudCover),
@@ -319,7 +318,6 @@ private:
     SurfaceRenderer renderer_;
     float wind_, windDir_;
     bool cloudsFollowWind_ = true; ///< the clouds are the wind's weather (not --clouds, the slider or an environment)
-    float foamHistory_ = 0.0f;     ///< seconds of wind the first frame's foam had seen (--foam-history)
     float pitch_ = 0.0f; ///< degrees the camera looks below the horizon (placeCamera)
 };
 
