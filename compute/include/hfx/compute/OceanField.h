@@ -140,8 +140,8 @@ public:
     void setTime(double seconds);
     /// The foam as `seconds` (0 to 600) of the present wind would have left it: the field runs from
     /// time() - seconds to time() in steps of at most `dt` (0.25 s), the foam bit for bit as
-    /// step() leaves it (the heights resampled only at the end: 35-45% less work a step), and
-    /// ends with the fields at time() exactly as before. A sea that has blown a while, for a
+    /// step() leaves it (the heights resampled only after the last step: no other needs them),
+    /// and ends with the fields at time() exactly as before. A sea that has blown a while, for a
     /// first frame (a clear start shows a storm's whitecaps only after their half-lives). Before
     /// any wind change: a blend in progress would be run again.
     void settleFoam(double seconds, double dt = 0.25);
