@@ -109,6 +109,38 @@ TEST(DamageLog, HealCurvesReachTheirEndValueAtTheSetTime) {
     log.advance(0.3);
     EXPECT_EQ(log.healTime(), 10.25) << "the clock rounded down to healStep = 0.125";
     EXPECT_NE(messageOf([] { DamageLog({.healStep = 0.0}); }).find("healStep"), std::string::npos);
+    EXPECT_NE(messageOf([] { DamageLog({.glowStep = -1.0}); }).find("glowStep"), std::string::npos);
+}
+
+// A crater's embers cool over 3 s: read on the heal clock (8 steps a second) a 60 Hz game drew
+// them dimming in jumps, a quarter of their light at once half way. On their own clock they
+// change every frame by a few percent, while the slower curves keep the heal clock's steps.
+TEST(DamageLog, EmbersCoolFrameByFrame) {
+    DamageLogConfig config;
+    config.look.scorch = {.start = 0.0, .duration = 6.0, .end = 0.0f};
+    DamageLog log(config);
+    log.add({});
+    const BulletHole b = config.look.bullet;
+    auto light = [](const BulletHole& h) { return h.glow * h.glow; }; // the lit model's emission: heat^2
+    float lastLight = light(log.stamps().at(0)), worst = 0.0f;
+    int glowChanges = 0, scorchChanges = 0;
+    float lastScorch = log.stamps().at(0).scorch;
+    const double frame = 1.0 / 60.0;
+    for (int i = 1; i <= 186; ++i) { // 3.1 s of frames
+        const double before = log.now();
+        log.advance(frame);
+        const BulletHole h = log.stamps().at(0);
+        EXPECT_EQ(log.healsBetween(before, log.now()), light(h) != lastLight || h.scorch != lastScorch) << i;
+        if (lastLight > 0.05f * light(b)) worst = std::max(worst, (lastLight - light(h)) / lastLight);
+        glowChanges += light(h) != lastLight;
+        scorchChanges += h.scorch != lastScorch;
+        lastLight = light(h);
+        lastScorch = h.scorch;
+    }
+    EXPECT_EQ(lastLight, 0.0f) << "cold after the glow curve's 3 s";
+    EXPECT_GE(glowChanges, 170) << "a change nearly every frame";
+    EXPECT_LT(worst, 0.1f) << "no frame drops a tenth of the light while it glows brightly enough to see";
+    EXPECT_EQ(scorchChanges, 24) << "the soot on the heal clock: 8 steps a second, 0.125 to 3 s";
 }
 
 TEST(DamageLog, ExplosionsExpandIntoTheirDebrisWithTheirSeed) {

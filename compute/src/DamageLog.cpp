@@ -42,6 +42,8 @@ void DamageLogConfig::validate() const {
     if (budget < 1 || budget > 65536) throw Error(str("DamageLogConfig.budget must be in [1, 65536], got ", budget));
     if (!(healStep > 0.0 && healStep <= 60.0))
         throw Error(str("DamageLogConfig.healStep must be in (0, 60] seconds, got ", healStep));
+    if (!(glowStep > 0.0 && glowStep <= 60.0))
+        throw Error(str("DamageLogConfig.glowStep must be in (0, 60] seconds, got ", glowStep));
     if (!(mergeRadius >= 0.0f && mergeRadius <= 0.5f))
         throw Error(str("DamageLogConfig.mergeRadius must be in [0, 0.5] map widths, got ", mergeRadius));
     look.validate();
@@ -88,17 +90,24 @@ void DamageLog::validate(const ImpactEvent& e) const {
     if (!std::isfinite(e.time)) throw Error(str("impact time must be finite, got ", e.time));
 }
 
-double DamageLog::healTime() const { return std::floor(now_ / config_.healStep) * config_.healStep; }
+namespace {
+double stepped(double clock, double step) { return std::floor(clock / step) * step; }
+} // namespace
+
+double DamageLog::healTime() const { return stepped(now_, config_.healStep); }
+double DamageLog::glowTime() const { return stepped(now_, config_.glowStep); }
 
 bool DamageLog::healsBetween(double t0, double t1) const {
-    if (!(t1 > t0)) return false; // the same heal time reads the same curves
     const DamageLook& look = config_.look;
     for (const HealCurve* c : {&look.height, &look.scorch, &look.roughness, &look.occlusion, &look.glow}) {
         if (c->duration <= 0.0) continue;
+        const double step = c == &look.glow ? config_.glowStep : config_.healStep;
+        const double r0 = stepped(t0, step), r1 = stepped(t1, step);
+        if (!(r1 > r0)) continue; // one step of its clock reads the same curve
         for (int i = 0; i < live_; ++i) {
             const double time = slots_[size_t((oldest_ + i) % config_.budget)].time;
             // Its curve moves while start < age < start + duration.
-            if (t1 - time > c->start && t0 - time < c->start + c->duration) return true;
+            if (r1 - time > c->start && r0 - time < c->start + c->duration) return true;
         }
     }
     return false;
@@ -182,11 +191,11 @@ std::vector<ImpactEvent> DamageLog::events() const {
 std::vector<BulletHole> DamageLog::stamps() const {
     const DamageLook& look = config_.look;
     std::vector<BulletHole> out;
-    const double healTime = this->healTime();
+    const double healTime = this->healTime(), glowTime = this->glowTime();
     for (const ImpactEvent& e : events()) {
         const double age = healTime - e.time;
         const float height = look.height.at(age), scorch = look.scorch.at(age), rough = look.roughness.at(age),
-                    occlusion = look.occlusion.at(age), glow = look.glow.at(age);
+                    occlusion = look.occlusion.at(age), glow = look.glow.at(glowTime - e.time);
         // Merged hits deepen the crater and widen it a little.
         const float deeper = 1.0f + 0.35f * (e.strength - 1.0f), wider = 1.0f + 0.2f * (e.strength - 1.0f);
         auto heal = [&](BulletHole h) {

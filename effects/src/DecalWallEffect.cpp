@@ -108,14 +108,14 @@ void DecalWallEffect::advance(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error(str("DecalWallEffect::update: dt must be positive and finite, got ", dt));
     log_.advance(dt);
-    if (log_.changes() != builtChanges_ || log_.healsBetween(builtHealTime_, log_.healTime())) rebuild();
+    if (log_.changes() != builtChanges_ || log_.healsBetween(builtClock_, log_.now())) rebuild();
 }
 
 void DecalWallEffect::rebuild() {
     decals_.addBulletHoles(log_.stamps());
     decals_.rebuild();
     builtChanges_ = log_.changes();
-    builtHealTime_ = log_.healTime();
+    builtClock_ = log_.now();
 }
 
 void DecalWallEffect::enqueueSurface() {

@@ -69,6 +69,10 @@ struct DamageLogConfig {
     /// healing changes the maps at most 1 / healStep times a second and the maps are a function
     /// of the impacts and that clock alone.
     double healStep = 0.125;
+    /// The glow curve's own step (glowTime()): embers cool in seconds, and read at healStep
+    /// they dimmed in jumps of up to a quarter of their light, 8 a second. The maps change at most
+    /// 1 / glowStep times a second while a crater glows.
+    double glowStep = 1.0 / 60.0;
     DamageLook look;
     void validate() const;
 };
@@ -95,11 +99,13 @@ public:
     double now() const { return now_; }
     /// The clock the heal curves read: now() rounded down to a multiple of healStep.
     double healTime() const;
+    /// The clock the glow curve reads: now() rounded down to a multiple of glowStep.
+    double glowTime() const;
     /// Counts every change to the live impacts (adds, merges, clears, loads).
     std::uint64_t changes() const { return changes_; }
-    /// Whether some live impact's heal curves move between heal times t0 and t1 (false unless
-    /// t0 < t1):
-    /// when not, and changes() has not moved, stamps() are what they were at t0.
+    /// Whether some live impact's heal curves move between the clocks t0 and t1, each curve read
+    /// on its own clock (glow on glowTime()'s steps, the rest on healTime()'s): when not, and
+    /// changes() has not moved, stamps() are what they were at t0.
     bool healsBetween(double t0, double t1) const;
     /// Forgets every impact (the clock keeps running).
     void clear();
@@ -111,8 +117,9 @@ public:
     std::uint64_t evicted() const { return evicted_; } ///< live impacts pushed out by the budget
     /// The live impacts, oldest first.
     std::vector<ImpactEvent> events() const;
-    /// The stamps of the live impacts at healTime(), oldest first (explosions expanded into their
-    /// debris), each channel scaled by its heal curve at the impact's age: what DecalMap rebuilds.
+    /// The stamps of the live impacts at healTime() (their glow at glowTime()), oldest first
+    /// (explosions expanded into their debris), each channel scaled by its heal curve at the
+    /// impact's age: what DecalMap rebuilds.
     std::vector<BulletHole> stamps() const;
     /// The bytes the log holds, fixed at construction (the budget's slots and the merge grid).
     size_t memoryBytes() const;

@@ -108,8 +108,8 @@ private:
     ClContext& cl_;
     DecalWallConfig config_;
     DamageLog log_;
-    std::uint64_t builtChanges_ = ~0ull; ///< the log's changes() and healTime() the maps show
-    double builtHealTime_ = 0.0;
+    std::uint64_t builtChanges_ = ~0ull; ///< the log's changes() and clock the maps show
+    double builtClock_ = 0.0;
     DecalMap decals_;
     SurfacePipeline surface_;
     std::unique_ptr<DetailNormals> detail_; ///< with a normal map
