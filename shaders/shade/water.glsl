@@ -135,6 +135,21 @@ float hfx_spindrift(vec2 uv, float footprint) {
                1.0);
 }
 
+// A foam's look where `young` of it is young: its structure, the ripple and the bubbles (`lace`,
+// hfx_foam_lace) mixed as hfx_shade says, the lace's spread that widens the edge where it shows,
+// and its opacity. One look for the layers' foam and, as aged foam, the wind's streaks.
+struct HfxFoamLook {
+    vec4 structure, spread, opacity;
+};
+HfxFoamLook hfx_foam_look(vec4 young, vec4 ripple, vec2 lace) {
+    return HfxFoamLook(mix(0.3 * ripple + 0.7 * lace.x, 0.7 * ripple + 0.3 * lace.x, young),
+                       lace.y * mix(vec4(0.7), vec4(0.3), young), mix(vec4(0.85), vec4(1.0), young));
+}
+// The share of a pixel a foam of that look shows white where its coverage is `thin`.
+vec4 hfx_foam_shown(vec4 thin, HfxFoamLook look) {
+    return look.opacity * smoothstep(1.0 - thin - look.spread, 1.4 - thin + look.spread, look.structure);
+}
+
 // The sea emits no light of its own (its crest glow is the sun's, through the wave).
 vec3 hfx_emission(HfxSurfacePoint p) { return vec3(0.0); }
 
@@ -179,19 +194,17 @@ vec3 hfx_shade(HfxSurfacePoint p) {
     // without bubbles, its share.
     const float streakFar = u_foamCells > 0.0 ? smoothstep(0.1, 0.4, u_streakCells * p.footprint) : 1.0;
     const float streakShown =
-        streak > 0.0 ? mix(0.85 * smoothstep(1.0 - streak - 0.7 * lace.y, 1.4 - streak + 0.7 * lace.y,
-                                             0.3 * ripple.x + 0.7 * lace.x),
-                           streak, streakFar)
+        streak > 0.0 ? mix(hfx_foam_shown(vec4(streak), hfx_foam_look(vec4(0.0), ripple, lace)).x, streak, streakFar)
                      : 0.0;
-    vec4 structure = ripple, spread = vec4(0.0), opacity = vec4(1.0), thin = coverage;
+    // Without bubbles the ripple, solid.
+    HfxFoamLook look = HfxFoamLook(ripple, vec4(0.0), vec4(1.0));
+    vec4 thin = coverage;
     if (u_foamCells > 0.0 && foamed) {
         const vec4 young = clamp(p.foamYoung / max(coverage, 1.0 / 255.0), 0.0, 1.0);
-        structure = mix(0.3 * ripple + 0.7 * lace.x, 0.7 * ripple + 0.3 * lace.x, young);
-        spread = lace.y * mix(vec4(0.7), vec4(0.3), young);
-        opacity = mix(vec4(0.85), vec4(1.0), young);
+        look = hfx_foam_look(young, ripple, lace);
         thin = coverage * mix(vec4(0.8), vec4(1.0), young); // aged foam's bubbles stay open
     }
-    const vec4 shown = opacity * smoothstep(1.0 - thin - spread, 1.4 - thin + spread, structure);
+    const vec4 shown = hfx_foam_shown(thin, look);
     const vec4 clear = 1.0 - shown;
     const float foam = u_foam != 0 ? max(1.0 - clear.x * clear.y * clear.z * clear.w, streakShown) : 0.0;
     const float variance = p.slopeVariance + foam * u_foamRoughness;
