@@ -222,8 +222,9 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "hier walks every pixel's light ray; 'texels' reads the texel shadows of the light instead where they\n"
                 "hold the ray's shadow, 'no beam' the same without the beam start (DrawOptions::beamStart), 'deferred'\n"
                 "with the light walks they leave done by a compute pass after the draw (DrawOptions::deferShadowWalks);\n"
-                "'computed' hier (every light ray walked) and 'texels, computed' with the walks in a compute pass between a\n"
-                "rays draw and the shading draw (TracePass::Compute; the others walk in the draw, TracePass::InDraw);\n"
+                "'computed' hier (every light ray walked) and 'texels, computed' with the walks in a compute pass before\n"
+                "the shading draw, which finds the plane's rays from the screen (TracePass::Compute, no rays draw on a\n"
+                "flat patch; the others walk in the draw, TracePass::InDraw);\n"
                 "deferred rays: how many it appended, per 100 pixels of the view (past the buffer's room, the draw walks them).\n"
                 "texels ms: the texel shadows' pass after new heights, their pyramid's build included (GL timer queries,\n"
                 "median of 30). Fetches: height and bound fetches per pixel, the view's and the light walk's, counted in\n"
@@ -339,7 +340,8 @@ int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDi
                 "pass (the best cap of those tried, in brackets; 0: none pays; %.0f fetches to take a walk up again):\n\n"
                 "| map | angle | pom | hier, capped (cap) | texels, capped (cap) |\n|---|---|---|---|---|\n%s",
                 kStragglerRestart, stragglers.c_str());
-    std::printf("\nWhere the compute pass's time goes (TracePass::Compute): GPU ms of its rays draw, its walks and its\n"
+    std::printf("\nWhere the compute pass's time goes (TracePass::Compute): GPU ms of its rays draw (0 on these flat\n"
+                "patches: the walks find their rays from the screen), its walks and its\n"
                 "shading draw, medians of the same rounds; the two draws' sum over pom's draw (the fragment stage's\n"
                 "share), and hier's draw walking every light ray over pom's, for comparison (the draws alone: no clear,\n"
                 "no beam).\n\n"

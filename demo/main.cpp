@@ -352,7 +352,8 @@ int main(int argc, char** argv) {
     app.add_option("--trace-pass", o.tracePass,
                    "where hier walks a convex surface's rays (a plane, the planet): auto (the device's: the draw on a "
                    "CPU rasteriser, else whichever of the two this device draws faster, timed on the first draws), "
-                   "draw, or compute (a rays draw, a compute pass a lane per pixel, the shading draw; the same hits)")
+                   "draw, or compute (a rays draw, none on a plane, a compute pass a lane per pixel, the shading draw; the "
+                   "same hits)")
         ->check(CLI::IsMember({"auto", "draw", "compute"}))->capture_default_str();
     app.add_option("--gl-state", o.glState,
                    "what HFX's draws do with the GL state they change (hfx::GlStatePolicy): restore (read it first and "

@@ -65,7 +65,8 @@ def spirv(source, stage, work):
     with open(src, "w") as f:
         f.write(source)
     # Images, storage and uniform buffers moved off the samplers' binding numbers: one set.
-    run = subprocess.run(["glslangValidator", "-V", "--target-env", "vulkan1.2", "--auto-map-locations",
+    # -R: loose uniforms (a pass's own, beside the blocks) gathered into a default uniform block.
+    run = subprocess.run(["glslangValidator", "-V", "-R", "--auto-map-bindings", "--target-env", "vulkan1.2", "--auto-map-locations",
                           "--shift-image-binding", "100", "--shift-ssbo-binding", "200", "--shift-UBO-binding", "300",
                           "-o", spv, src], capture_output=True, text=True)
     if run.returncode:

@@ -238,9 +238,7 @@ float hfx_screen_pixels(vec2 v, vec2 dx, vec2 dy) {
 #if HFX_SHADOW_CASTER
     return 0.0;
 #else
-    const float det = dx.x * dy.y - dx.y * dy.x;
-    if (!(u_pixelBudget > 0.0) || abs(det) < 1e-20) return 0.0;
-    return length(vec2(dy.y * v.x - dy.x * v.y, dx.x * v.y - dx.y * v.x)) / abs(det);
+    return u_pixelBudget > 0.0 ? hfx_screen_length(v, dx, dy) : 0.0;
 #endif
 }
 
@@ -264,7 +262,7 @@ int hfx_budget_samples(int samples, float pixels) {
 // pole into a dark dot (history/tuning.md, the planet's poles).
 const float HFX_FOOTPRINT_LEVELS = 3.0;
 float hfx_shade_level(float entryLevel, vec2 dx, vec2 dy, float texelAspect) {
-    const float hitLevel = 0.5 * log2(max(max(dot(dx, dx), dot(dy, dy)), 1e-12));
+    const float hitLevel = hfx_level_of(dx, dy);
     return clamp(hitLevel, entryLevel, entryLevel + HFX_FOOTPRINT_LEVELS * smoothstep(0.02, 0.1, texelAspect));
 }
 
@@ -374,7 +372,7 @@ HfxShaded hfx_surface(HfxFrame f) {
     const vec2 uv0 = f.uv0, dx = f.dx, dy = f.dy;
     const vec2 texels = vec2(hfx_size());
     const vec2 dxTexels = dx * texels, dyTexels = dy * texels;
-    const float mipLevel = 0.5 * log2(max(max(dot(dxTexels, dxTexels), dot(dyTexels, dyTexels)), 1e-12));
+    const float mipLevel = hfx_level_of(dxTexels, dyTexels);
     const float searchLevel = max(round(mipLevel), 0.0);
 
     vec2 uv = uv0;

@@ -291,12 +291,14 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
 }
 
 TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours) {
-    // TracePass::Compute (trace/hier/trace.glsl): a rays draw stores each pixel's view ray, a
-    // compute pass walks it and its light ray, the shading draw reads the hit. Every pixel must
-    // show what the draw that walks its own rays shows: the hit (uv, depth), the self-shadow, the
-    // fetches and the colour, with and without texel shadows and the beam start, in both layouts
-    // of the bounds, where a nearer plane hides part of the relief (the rays draw must leave the
-    // hidden pixels to it), in a viewport offset into the target (the slots count from its
+    // TracePass::Compute (trace/hier/trace.glsl) on a flat patch: the compute pass finds each
+    // pixel's view ray from the screen (the patch's texcoords are a projective map of it, as a
+    // rasteriser's perspective-correct interpolation has them; no rays draw), walks it and its
+    // light ray, the shading draw reads the hit. Every pixel must show what the draw that walks
+    // its own rays shows: the hit (uv, depth), the self-shadow, the fetches and the colour, with
+    // and without texel shadows and the beam start, in both layouts of the bounds, where a nearer
+    // plane hides part of the relief (the pass walks the hidden pixels too: the shading draw must
+    // leave them to it), in a viewport offset into the target (the slots count from its
     // origin), for two views in a row (a slot of the first view must not serve the second).
     // A shading draw that read nothing, or the wrong slots, shows uv (0, 0) or another pixel's hit.
     // A smooth field, and blocks (plateaus with sharp edges, which a light ray can graze: the
@@ -344,6 +346,7 @@ TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours)
                         SCOPED_TRACE(camera == &nearView ? "near view" : "grazing view");
                         const auto [walkedTrace, walkedColor] = draw(*camera, TracePass::InDraw);
                         const auto [computedTrace, computedColor] = draw(*camera, TracePass::Compute);
+                        EXPECT_TRUE(renderer.tracer().last().patchRays) << "a flat patch";
                         const WalksCompared compared(walkedTrace, computedTrace, walkedColor, computedColor, N);
                         compared.print(str(what, ", ", camera == &nearView ? "near" : "grazing"));
                         EXPECT_GT(compared.traced, size_t(VW * VH / 2)) << "too little relief to tell";
@@ -371,13 +374,16 @@ TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours)
 }
 
 TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
-    // A convex mesh (Mesh::convex) takes the compute pass as a flat patch does: its front faces
+    // A convex mesh (Mesh::convex) takes the compute pass with a rays draw: its front faces
     // meet each pixel once, and a back face's fragment stores nothing and is normal mapped. Where
     // the light is not one for the draw (a sphere's frame turns pixel by pixel; a silhouette fade
     // scales the depth, and the light's texcoords per climb with it) the rays draw stores each
     // pixel's light ray (HFX_TRACE_LIGHTS). The sphere with the planet's fade and without, its
     // back faces drawn behind its front (a back face that stored its ray would take a front
-    // face's slot), and seen from inside (every fragment a back face's); a plane with a fade.
+    // face's slot), and seen from inside (every fragment a back face's); a plane with a fade (its
+    // rays drawn too); a plane whose light has no texel shadows' (its rays and its light from the
+    // screen: the pass finds the light ray itself); a plane seen from below, and one the near
+    // plane cuts (a slot the pass left that the draw's fragment needed would be discarded).
     // A shading draw that read a back face's or another pixel's slot shows its hit or discards.
     // Measured: none differ (seen from outside, the sphere's back faces are culled in both; before
     // they were, 3 and 7 hits differed, where a back face peeked past a front face's grazing hit
@@ -391,10 +397,10 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
     const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
     constexpr int W = 320, H = 180;
     RenderTarget target(W, H, true);
-    auto view = [](float distance, float yaw, float pitch) {
+    auto view = [](float distance, float yaw, float pitch, float nearPlane = 0.05f) {
         Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, distance, yaw, pitch);
         camera.aspect = float(W) / float(H);
-        camera.nearPlane = 0.05f;
+        camera.nearPlane = nearPlane;
         return camera;
     };
     struct Case {
@@ -409,7 +415,12 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
                           {"sphere, no fade", &sphere, view(2.4f, -1.1f, 0.5f), 0.02f, 0.0f, 2.0f, 8000},
                           {"sphere, from inside", &sphere, view(0.4f, 0.4f, 0.3f), 0.02f, 0.25f, 2.0f, 0},
                           {"plane, a fade", &plane, view(1.6f, 0.3f, 0.5f), 0.1f, 0.3f, 2.0f, W * H / 2},
-                          {"plane, a shadow sharpness of 1", &plane, view(1.6f, 0.3f, 0.5f), 0.1f, 0.0f, 1.0f, W * H / 2}};
+                          {"plane, a shadow sharpness of 1", &plane, view(1.6f, 0.3f, 0.5f), 0.1f, 0.0f, 1.0f, W * H / 2},
+                          // (Its rays from the screen: the slots it finds seen from below marked
+                          // normal mapped, and none discarded where the near plane cuts it.)
+                          {"plane, seen from below", &plane, view(1.6f, 0.3f, -0.5f), 0.1f, 0.0f, 2.0f, 0},
+                          {"plane, cut by the near plane", &plane, view(0.6f, 0.3f, 0.35f, 0.4f), 0.1f, 0.0f, 2.0f,
+                           W * H / 4}};
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
         SurfaceMaterial material{.depthScale = c.depthScale, .lodThreshold = 100.0f, .silhouetteFade = c.fade};
@@ -420,8 +431,12 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
             target.clear();
             renderer.draw(*c.mesh, glm::mat4(1.0f), surface.textures(), material, c.camera, light,
                           {.technique = Technique::Hierarchical, .traceOutput = true, .tracePass = pass});
+            // (A plane without a fade has one frame for every pixel: its rays come from the
+            // screen, and its light with them.)
+            const bool patchRays = pass == TracePass::Compute && c.mesh == &plane && c.fade == 0.0f;
             EXPECT_EQ(renderer.tracer().last().computeTrace, pass == TracePass::Compute);
-            EXPECT_EQ(renderer.tracer().last().traceLights, pass == TracePass::Compute)
+            EXPECT_EQ(renderer.tracer().last().patchRays, patchRays);
+            EXPECT_EQ(renderer.tracer().last().traceLights, pass == TracePass::Compute && !patchRays)
                 << "the light is the pixel's here";
             return std::pair(target.readTrace(), target.readColor());
         };
@@ -431,7 +446,7 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
         compared.print(c.name);
         EXPECT_GE(compared.traced, c.leastTraced) << "too little relief to tell";
         if (c.leastTraced == 0) {
-            EXPECT_EQ(compared.traced, 0u) << "from inside, every face is a back face";
+            EXPECT_EQ(compared.traced, 0u) << "from inside or below, every face is a back face";
         }
         EXPECT_GT(compared.drawn, size_t(8000)) << "nothing drawn";
         compared.expectAlike();

@@ -166,6 +166,9 @@ void ShaderProgram::set(std::string_view name, const glm::vec3& v) const {
 void ShaderProgram::set(std::string_view name, const glm::vec4& v) const {
     glProgramUniform4fv(id(), uniform(name), 1, glm::value_ptr(v));
 }
+void ShaderProgram::set(std::string_view name, const glm::mat3& v) const {
+    glProgramUniformMatrix3fv(id(), uniform(name), 1, GL_FALSE, glm::value_ptr(v));
+}
 void ShaderProgram::set(std::string_view name, const glm::mat4& v) const {
     glProgramUniformMatrix4fv(id(), uniform(name), 1, GL_FALSE, glm::value_ptr(v));
 }

@@ -614,14 +614,15 @@ void SurfaceRenderer::drawSurface(const Mesh& mesh, const glm::mat4& model, std:
     }
     if (frame.computeTrace) {
         // The walks in a compute pass (trace/hier/trace.glsl): the rays draw stores each pixel's
-        // ray, the tracer walks them, and the draw below reads the hits.
-        DrawOptions rays = options;
-        rays.traceOutput = false;
-        SurfaceVariant raysVariant = variant;
-        raysVariant.computeTrace = 1;
-        raysVariant.traceLights = frame.traceLights;
-        const ShaderProgram& r = program(rays, raysVariant);
-        {
+        // ray (on a flat patch the tracer finds them from the screen), the tracer walks them,
+        // and the draw below reads the hits.
+        if (!frame.patchRays) {
+            DrawOptions rays = options;
+            rays.traceOutput = false;
+            SurfaceVariant raysVariant = variant;
+            raysVariant.computeTrace = 1;
+            raysVariant.traceLights = frame.traceLights;
+            const ShaderProgram& r = program(rays, raysVariant);
             const GpuScope scope("rays");
             const NoFramebufferWrites none(written);
             r.use();

@@ -33,6 +33,20 @@ mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
     return mat3(tangent, bitangent, unitNormal * sqrt(length(tangent) * length(bitangent)));
 }
 
+// The mip level a pixel's texcoord derivatives select (dx, dy per pixel, in texels): the draw's
+// (surface.frag) and, from the screen, the compute pass's on a flat patch (trace/hier/trace.comp).
+float hfx_level_of(vec2 dx, vec2 dy) {
+    return 0.5 * log2(max(max(dot(dx, dx), dot(dy, dy)), 1e-12));
+}
+
+// How many pixels a texcoord offset v at the polygon spans: |J^-1 v|, J the pixel's texcoord
+// derivatives (dx, dy per pixel); 0 where they are degenerate.
+float hfx_screen_length(vec2 v, vec2 dx, vec2 dy) {
+    const float det = dx.x * dy.y - dx.y * dy.x;
+    if (abs(det) < 1e-20) return 0.0;
+    return length(vec2(dy.y * v.x - dy.x * v.y, dx.x * v.y - dx.y * v.x)) / abs(det);
+}
+
 layout(binding = HFX_UNIT_SURFACE) uniform sampler2D s_surface; // normal.xyz, height w (layer 0)
 // HFX_PYRAMID_ATLAS 1: the height-bounds pyramid in PyramidLayout::Atlas, llvmpipe's workaround
 // (GlWorkarounds::pyramidAtlas in core/GlRenderer.h says why): every level in one RG32F image

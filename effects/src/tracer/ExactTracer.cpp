@@ -112,7 +112,20 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         // rays draw stores each pixel's. A caster's pass walks no light ray.
         const bool uniformLight = patchLight && material.silhouetteFade == 0.0f;
         if (uniformLight) u.shadowLight = {patchLight->uvPerClimb, patchLight->penumbra, patchLight->slack};
-        frame.traceLights = !uniformLight && material.shadows && !caster;
+        // A flat patch's rays are found from the screen where one frame holds for every pixel.
+        // (The rays draw's fragments walk the light ray where self-shadows are drawn, but for a
+        // caster's, and the light is above the polygon: the texel shadows' light where there is
+        // one.)
+        if (mesh.patch() && material.silhouetteFade == 0.0f)
+            if (const std::optional<PatchRays> rays =
+                    patchRaysOf(*mesh.patch(), model, viewProj, u, light.direction, material.depthScale)) {
+                frame.patchRays = true;
+                patchRays_ = *rays;
+                patchRays_.budget = caster ? 0.0f : material.pixelBudget;
+                patchRays_.walksLight = material.shadows && !caster && rays->lightAbove;
+                if (uniformLight) patchRays_.light = patchLight->uvPerClimb;
+            }
+        frame.traceLights = !frame.patchRays && !uniformLight && material.shadows && !caster;
         prepareComputeTrace(viewport, frame.traceLights, u);
     }
 
@@ -418,20 +431,76 @@ void ExactTracer::prepareComputeTrace(const Viewport& viewport, bool lights, Sur
     if (lights) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HFX_BUFFER_TRACE_LIGHTS, traceLights_.id());
 }
 
+std::optional<ExactTracer::PatchRays> ExactTracer::patchRaysOf(const FlatPatch& patch, const glm::mat4& model,
+                                                             const glm::mat4& viewProj, const SurfaceUniforms& u,
+                                                             const glm::vec3& lightDirection, float depthScale) {
+    // surface.vert's frame (dP/du, dP/dv by the model, the normal by its inverse transpose) and
+    // surface.frag's texture space of it (hfx_world_from_texture), in doubles.
+    const glm::dmat4 m(model);
+    const glm::dmat3 linear(m);
+    const glm::dvec3 tangent = linear * glm::dvec3(patch.tangent), bitangent = linear * glm::dvec3(patch.bitangent);
+    const glm::dvec3 normal = glm::normalize(glm::transpose(glm::inverse(linear)) * glm::dvec3(patch.normal));
+    const double t = glm::length(tangent), b = glm::length(bitangent);
+    if (!(t > 1e-3 * b && b > 1e-3 * t)) return std::nullopt; // (surface.frag's test for a texture space)
+    const glm::dmat3 worldFromTexture(tangent, bitangent, normal * std::sqrt(t * b));
+    if (!(std::abs(glm::determinant(worldFromTexture)) > 1e-9 * t * b * std::sqrt(t * b))) return std::nullopt;
+    const glm::dmat3 textureFromWorld = glm::inverse(worldFromTexture);
+    const glm::dvec3 origin(m * glm::dvec4(glm::dvec3(patch.origin), 1.0));
+    // Clip coordinates of the point at (u, v): c0 + u cu + v cv. Their x, y and w, a 3x3 map of
+    // (u, v, 1); the screen's map back is its inverse, where the view does not see the patch edge
+    // on (or from its plane).
+    const glm::dmat4 vp(viewProj);
+    const glm::dvec4 c0 = vp * glm::dvec4(origin, 1.0), cu = vp * glm::dvec4(tangent, 0.0),
+                     cv = vp * glm::dvec4(bitangent, 0.0);
+    const glm::dmat3 toScreen(glm::dvec3(cu.x, cu.y, cu.w), glm::dvec3(cv.x, cv.y, cv.w), glm::dvec3(c0.x, c0.y, c0.w));
+    const double scale = glm::length(glm::dvec3(cu.x, cu.y, cu.w)) * glm::length(glm::dvec3(cv.x, cv.y, cv.w)) *
+                         glm::length(glm::dvec3(c0.x, c0.y, c0.w));
+    if (!(std::abs(glm::determinant(toScreen)) > 1e-9 * scale)) return std::nullopt;
+    // The corners' texcoords, from the patch's own frame.
+    const glm::dmat3 ownInverse =
+        glm::inverse(glm::dmat3(glm::dvec3(patch.tangent), glm::dvec3(patch.bitangent), glm::dvec3(patch.normal)));
+    const glm::dvec2 lo(ownInverse * glm::dvec3(patch.corners[0] - patch.origin));
+    const glm::dvec2 hi(ownInverse * glm::dvec3(patch.corners[2] - patch.origin));
+    // surface.frag's light in texture space, and its ray's texcoords per unit climbed.
+    const glm::dvec3 l = textureFromWorld * glm::normalize(glm::dvec3(lightDirection));
+    PatchRays rays;
+    rays.fromScreen = glm::mat3(glm::inverse(toScreen));
+    rays.depth = glm::vec3(cu.z, cv.z, c0.z);
+    rays.eye = glm::vec3(textureFromWorld * (u.orthographic != 0 ? glm::dvec3(u.towardsEye)
+                                                                  : glm::dvec3(u.cameraPos) - origin));
+    rays.box = glm::vec4(glm::min(lo, hi), glm::max(lo, hi));
+    rays.lightAbove = l.z > 0.0 && glm::dot(normal, glm::dvec3(lightDirection)) > 0.0;
+    if (rays.lightAbove) rays.light = glm::vec2(glm::dvec2(l) / l.z * double(depthScale));
+    return rays;
+}
+
 void ExactTracer::walks(const TracerFrame& frame) {
     if (!frame.computeTrace) return;
     const bool beam = frame.beamStart, texel = frame.texelShadows != nullptr, lights = frame.traceLights;
-    ShaderProgram& walk = traceWalks_[int(frame.atlas) | int(beam) << 1 | int(texel) << 2 | int(lights) << 3];
+    const bool patch = frame.patchRays;
+    ShaderProgram& walk =
+        traceWalks_[int(frame.atlas) | int(beam) << 1 | int(texel) << 2 | int(lights) << 3 | int(patch) << 4];
     if (!walk.id())
         walk = ShaderProgram::compute(surfaceStage("trace/hier/trace.comp"),
                                       {{"HFX_LAYERS", "1"},
                                        {"HFX_PYRAMID_ATLAS", frame.atlas ? "1" : "0"},
                                        {"HFX_BEAM_START", beam ? "1" : "0"},
                                        {"HFX_TEXEL_SHADOWS", texel ? "1" : "0"},
-                                       {"HFX_TRACE_LIGHTS", lights ? "1" : "0"}});
+                                       {"HFX_TRACE_LIGHTS", lights ? "1" : "0"},
+                                       {"HFX_TRACE_PATCH", patch ? "1" : "0"}});
     // The rays draw's stores before the walks read them; the walks' before the shading draw's.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     walk.use();
+    if (patch) {
+        const PatchRays& r = patchRays_;
+        walk.set("u_patchFromScreen", r.fromScreen);
+        walk.set("u_patchDepth", r.depth);
+        walk.set("u_patchEye", r.eye);
+        walk.set("u_patchBox", r.box);
+        walk.set("u_patchBudget", r.budget);
+        walk.set("u_patchWalksLight", r.walksLight ? 1 : 0);
+        walk.set("u_patchLight", r.light);
+    }
     HFX_GL_CHECK(glDispatchCompute(GLuint((traceWidth_ + 7) / 8), GLuint((traceHeight_ + 7) / 8), 1));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

@@ -1,10 +1,11 @@
 #version 450 core
 // The exact tracer's walks (trace/hier/trace.glsl, hfx::ExactTracer): a lane per pixel of the
-// viewport in groups of 8x8 pixels, where the rays draw stored this draw's ray: its view walk
-// (hfx_trace, from the beam start's depth where HFX_BEAM_START), then, where the rays draw marked
-// its light ray walked, that walk as the draw would make it (hfx_surface_shadow: the texel shadows
-// where they hold it), along the flat patch's light or, with HFX_TRACE_LIGHTS, the pixel's. The
-// hit, the shadow and the fetches go back into the slot.
+// viewport in groups of 8x8 pixels, where the rays draw stored this draw's ray or, on a flat patch
+// (HFX_TRACE_PATCH), where the pixel's ray meets the patch (hfx_patch_ray, below: no rays draw):
+// its view walk (hfx_trace, from the beam start's depth where HFX_BEAM_START), then, where its
+// light ray is to be walked, that walk as the draw would make it (hfx_surface_shadow: the texel
+// shadows where they hold it), along the flat patch's light or, with HFX_TRACE_LIGHTS, the pixel's.
+// The hit, the shadow and the fetches go back into the slot.
 
 #include "bindings.glsl"
 #include "surface/uniforms.glsl"
@@ -20,13 +21,84 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = HFX_UNIT_BEAM_START) uniform sampler2D s_beamStart;
 #endif
 
+#ifndef HFX_TRACE_PATCH
+#define HFX_TRACE_PATCH 0
+#endif
+#if HFX_TRACE_PATCH
+// The flat patch (hfx::FlatPatch) as the draw places it (ExactTracer::walks). Its texcoords are a
+// projective map of the screen: with c(u, v) = the clip coordinates of the patch's point at
+// (u, v), (x, y, w) of c is a 3x3 matrix times (u, v, 1), and its inverse, u_patchFromScreen,
+// takes a pixel's (x, y) in clip space over w, with a 1, to (u, v, 1) / w: the pixel's entry, and
+// the clip w that says it lies ahead of the eye. A rasteriser's perspective-correct interpolation
+// is the same map. u_patchDepth: clip z as (u, v, 1) . it, for the near and far planes' tests.
+// u_patchEye: the eye in the patch's texture space (surface.frag's hfx_texture_from_world of the
+// frame, about its point at (0, 0)), or an orthographic eye's direction in it (u_orthographic).
+// u_patchBox: the box of its texcoords (umin, vmin, umax, vmax); u_patchBudget: the pixel budget
+// (0 for a caster's pass: its texels are no screen pixels); u_patchWalksLight: 1 where the light
+// ray is walked (the light above the patch, self-shadows drawn, no caster), u_patchLight its
+// texcoords per unit climbed (the texel shadows' light where they are read).
+uniform mat3 u_patchFromScreen;
+uniform vec3 u_patchDepth;
+uniform vec3 u_patchEye;
+uniform vec4 u_patchBox;
+uniform float u_patchBudget;
+uniform int u_patchWalksLight;
+uniform vec2 u_patchLight;
+
+// The rays draw's work for the pixel, from the screen: where its ray meets the patch ahead of the
+// eye, between the near and the far plane and within a pixel of the box of its texcoords (a
+// fragment of the patch's may lie there; the rest of the box is walked for nothing where the patch
+// is not a rectangle), its ray, its tolerance and whether its light ray is walked (`info`:
+// hfx_traceInfo's, the mark and the level-of-detail blend included) and true; or, where it is seen
+// from below or past the level-of-detail threshold, the slot marked normal mapped, and false. The
+// texcoords' derivatives are the map's own (a rasteriser's differ across its quad by a rounding).
+bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
+    ray = vec4(0.0);
+    info = uvec2(0u);
+    const vec2 perPixel = 2.0 / vec2(u_traceWidth, u_traceHeight);
+    const vec3 h = u_patchFromScreen * vec3((vec2(pixel) + 0.5) * perPixel - 1.0, 1.0);
+    if (!(h.z > 0.0)) return false; // behind the eye (or at infinity)
+    const float w = 1.0 / h.z;
+    const vec2 uv0 = h.xy * w;
+    const float z = dot(u_patchDepth, vec3(uv0, 1.0));
+    const vec2 dx = (u_patchFromScreen[0].xy - uv0 * u_patchFromScreen[0].z) * (w * perPixel.x);
+    const vec2 dy = (u_patchFromScreen[1].xy - uv0 * u_patchFromScreen[1].z) * (w * perPixel.y);
+    const vec2 margin = abs(dx) + abs(dy);
+    // (Clip z within [-w, w]: GL's depth range, and the [0, w] of GL_ZERO_TO_ONE within it.)
+    if (!(abs(z) <= w * 1.0001) || any(lessThan(uv0, u_patchBox.xy - margin)) ||
+        any(greaterThan(uv0, u_patchBox.zw + margin)))
+        return false; // no fragment of the patch's: the slot is left as it is
+    const vec3 viewTS = u_orthographic != 0 ? u_patchEye : u_patchEye - vec3(uv0, 0.0);
+    const vec2 texels = vec2(hfx_size());
+    const float mipLevel = hfx_level_of(dx * texels, dy * texels);
+    if (!(viewTS.z > 0.0 && mipLevel <= u_lodThreshold && u_depthScale > 0.0)) {
+        hfx_traceInfo[slot] = uvec2(0u, hfx_trace_mark(false));
+        return false;
+    }
+    const vec2 parallax = viewTS.xy / viewTS.z * u_depthScale;
+    const float rayPixels = u_patchBudget > 0.0 ? hfx_screen_length(parallax, dx, dy) : 0.0;
+    const float tolerance = rayPixels > 0.0 ? u_patchBudget / rayPixels : 0.0;
+    const float blend = clamp(mipLevel - (u_lodThreshold - 1.0), 0.0, 1.0);
+    ray = vec4(uv0, parallax);
+    info = uvec2(floatBitsToUint(tolerance) | (u_patchWalksLight != 0 ? HFX_TRACE_WALKS_LIGHT : 0u),
+                 hfx_trace_mark(true) | (packUnorm2x16(vec2(blend, 0.0)) & 0xffffu));
+    return true;
+}
+#endif
+
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(u_traceWidth, u_traceHeight)))) return;
     const int slot = pixel.y * u_traceWidth + pixel.x;
+#if HFX_TRACE_PATCH
+    vec4 stored;
+    uvec2 info;
+    if (!hfx_patch_ray(pixel, slot, stored, info)) return;
+#else
     const uvec2 info = hfx_traceInfo[slot];
     if ((info.y & 0xffff0000u) != hfx_trace_mark(true)) return; // no ray of this draw's, or normal mapped
     const vec4 stored = hfx_traceRays[slot];
+#endif
     const float blend = unpackUnorm2x16(info.y & 0xffffu).x;
     HfxRay ray;
     ray.uv = stored.xy;
@@ -51,6 +123,8 @@ void main() {
         // the texel shadows' light (u_shadowLight.xy), every pixel's.
 #if HFX_TRACE_LIGHTS
         const vec2 light = hfx_traceLights[slot];
+#elif HFX_TRACE_PATCH
+        const vec2 light = u_patchLight;
 #else
         const vec2 light = u_shadowLight.xy;
 #endif
@@ -65,5 +139,5 @@ void main() {
         shadow = hfx_surface_shadow(shadowRay, 1.0, deferred);
     }
     hfx_traceRays[slot] = vec4(uv, depthFraction, shadow);
-    hfx_traceInfo[slot].x = uint(g_fetches);
+    hfx_traceInfo[slot] = uvec2(uint(g_fetches), info.y);
 }

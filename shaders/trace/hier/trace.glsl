@@ -9,6 +9,11 @@
 //             (from the texel shadows where they hold it), and stores the hit and its shadow;
 //   3. shade  (surface.frag, HFX_COMPUTE_TRACE 2): the mesh drawn as always, each fragment reading
 //             its hit from its slot instead of walking.
+// On a flat patch (HFX_TRACE_PATCH) there is no rays draw: its texcoords are a projective map of
+// the screen, the one a rasteriser's perspective-correct interpolation computes, so the walks pass
+// finds each pixel's ray as the rays draw's fragment had it and marks the slot; it walks the
+// pixels a nearer surface hides too (their shading fragments fail the depth test), where a
+// fragment pass costs what a GPU that draws with a few cores spends on any pass.
 // The shading draw's fragments are among the rays draw's: a fragment writes the hit's depth, which
 // lies behind the polygon's, under the same depth test, and nothing is drawn in between. A stamp
 // per draw marks the slots it wrote. A fragment whose slot holds no ray of this draw's passed the

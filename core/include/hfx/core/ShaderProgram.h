@@ -11,6 +11,7 @@
 #include "hfx/core/GlObject.h"
 #include "hfx/core/Source.h"
 
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -51,6 +52,7 @@ public:
     void set(std::string_view name, const glm::ivec2& v) const;
     void set(std::string_view name, const glm::vec3& v) const;
     void set(std::string_view name, const glm::vec4& v) const;
+    void set(std::string_view name, const glm::mat3& v) const;
     void set(std::string_view name, const glm::mat4& v) const;
 
 private:

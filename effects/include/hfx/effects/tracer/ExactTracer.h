@@ -18,8 +18,9 @@
 //   walks       it (finish, trace/hier/deferred.glsl): one walk to a lane, not one lane's walk
 //               holding up its warp (DrawOptions::deferShadowWalks)
 //   computed    for a convex mesh (a flat patch, a sphere; a caster's too): a rays draw
-//   walks       stores each pixel's view ray, walks() walks it and its light ray a lane per pixel
-//               in a compute pass, and the shading draw reads the hits (DrawOptions::tracePass,
+//   walks       stores each pixel's view ray (on a flat patch walks() finds it from the screen
+//               instead: no rays draw), walks() walks it and its light ray a lane per pixel in a
+//               compute pass, and the shading draw reads the hits (DrawOptions::tracePass,
 //               trace/hier/trace.glsl); TracePass::Auto takes it where this device draws it
 //               faster, timed on the first draws (TracePassTrial, passTrial)
 //
@@ -36,6 +37,7 @@
 #include "hfx/effects/tracer/TexelShadowPass.h"
 #include "hfx/effects/tracer/TracePassTrial.h"
 
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
 #include <array>
@@ -86,6 +88,12 @@ struct TracerFrame {
     /// With computeTrace: the rays draw stores each pixel's light ray too (HFX_TRACE_LIGHTS), as
     /// the light is not the flat patch's one for the draw (a curved mesh, a silhouette fade).
     bool traceLights = false;
+    /// With computeTrace, on a flat patch without a silhouette fade: walks() finds each pixel's
+    /// ray from the screen (HFX_TRACE_PATCH: the patch's texcoords are a projective map of it, as
+    /// a rasteriser interpolates them), and there is no rays draw. On a GPU that draws with a few
+    /// of its cores a fragment pass has a cost no shader saving removes (a pass like the rays
+    /// draw took 0.36-0.49x POM's draw on an H200).
+    bool patchRays = false;
     /// One of TracePass::Auto's trial draws (TracePassTrial): prepare() began timing its passes
     /// (after its own), finish() ends it.
     bool timed = false;
@@ -109,9 +117,10 @@ public:
     const TracerFrame& last() const { return last_; }
     /// The last shadow caster's hier draw's decision (SurfaceRenderer::drawShadow).
     const TracerFrame& lastCaster() const { return lastCaster_; }
-    /// Between the rays draw and the shading draw of a frame with computeTrace, with the draw's
-    /// textures, units and uniform block bound: walks every ray the rays draw stored, a lane per
-    /// pixel (trace/hier/trace.comp). Changes the program: inside the renderer's GlStateGuard.
+    /// Between the rays draw (none with TracerFrame::patchRays) and the shading draw of a frame
+    /// with computeTrace, with the draw's textures, units and uniform block bound: walks every ray
+    /// the rays draw stored, or the flat patch's pixels' rays, a lane per pixel
+    /// (trace/hier/trace.comp). Changes the program: inside the renderer's GlStateGuard.
     void walks(const TracerFrame& frame);
     /// After every draw that prepare() was for, with its textures, units and uniform block still
     /// bound: where it deferred light walks (TracerFrame::deferredShadows), walks them one to a
@@ -231,6 +240,27 @@ private:
     int traceSlots_ = 0, traceWidth_ = 0, traceHeight_ = 0;
     std::uint32_t traceStamp_ = 0;
     std::map<int, ShaderProgram> traceWalks_;
+    /// The flat patch the last draw with TracerFrame::patchRays placed, as trace.comp reads it
+    /// (its HFX_TRACE_PATCH uniforms, which say what each is): the screen's map to its texcoords,
+    /// clip depth over them, the eye in its texture space, its texcoords' box, the pixel budget,
+    /// and the light ray's texcoords per unit climbed where light rays are walked.
+    struct PatchRays {
+        glm::mat3 fromScreen{1.0f};
+        glm::vec3 depth{0.0f}, eye{0.0f};
+        glm::vec4 box{0.0f};
+        float budget = 0.0f;
+        glm::vec2 light{0.0f};
+        bool lightAbove = false; ///< the light shines on the side the patch's normal faces
+        bool walksLight = false;
+    };
+    /// The patch's rays as `model` and `viewProj` place it, seen from `u`'s eye (setEye's), its
+    /// light from `lightDirection` (world, towards the light) at `depthScale`; empty where its
+    /// frame is degenerate (no texture space: the rays draw normal maps it) or the view sees it
+    /// edge on.
+    static std::optional<PatchRays> patchRaysOf(const FlatPatch& patch, const glm::mat4& model, const glm::mat4& viewProj,
+                                                const SurfaceUniforms& u, const glm::vec3& lightDirection,
+                                                float depthScale);
+    PatchRays patchRays_;
     /// TracePass::Auto's trials, per mesh and kind of view, and their timed draws whose GL
     /// timestamps are not yet read (ended where `end` is issued; or, with
     /// GlWorkarounds::cpuClockTimer, the one under way, timed by the CPU clock between two

@@ -1,9 +1,9 @@
 #pragma once
-// Where the exact tracer walks a draw's rays (TracePass), and how TracePass::Auto picks the side
-// on a device that no workaround decides for: it times both on the device's first draws and keeps
-// the faster, as FFTW_MEASURE times an FFT's plans before it keeps one. Which side is faster
-// depends on the device, not on the view: a graphics GPU runs fragments and compute on the same
-// cores, where the compute pass adds its rays draw and its buffers; a compute chip (an H100, an
+// Where the exact tracer walks a draw's rays (TracePass), and how TracePass::Auto picks the side on
+// a device that no workaround decides for: it times both on the device's first draws and keeps the
+// faster, as FFTW_MEASURE times an FFT's plans before it keeps one. Which side is faster depends on
+// the device, not on the view: a graphics GPU runs fragments and compute on the same cores, where
+// the compute pass adds its buffers (and on a sphere its rays draw); a compute chip (an H100, an
 // H200) gives graphics a few of its cores and compute all of them; llvmpipe's compute stage is
 // slower than its fragment stage (GlWorkarounds::traceInDraw decides there, measured).
 //
@@ -24,9 +24,10 @@ enum class TracePass {
     InDraw, ///< the surface draw's fragments walk their view and light rays
     /// Where it holds (a camera's or a shadow caster's draw of a convex mesh, Mesh::convex: a
     /// flat patch, a sphere; ExactTracer::prepare), a rays draw stores each pixel's view ray (and
-    /// its light ray where that is not one for the draw), a compute pass walks them a lane per
-    /// pixel, and the shading draw reads the hit (trace/hier/trace.glsl): the same hits, walked
-    /// on every core a compute dispatch reaches. Elsewhere InDraw.
+    /// its light ray where that is not one for the draw; on a flat patch the pass finds the rays
+    /// from the screen instead), a compute pass walks them a lane per pixel, and the shading draw
+    /// reads the hit (trace/hier/trace.glsl): the same hits, walked on every core a compute
+    /// dispatch reaches. Elsewhere InDraw.
     Compute,
 };
 
