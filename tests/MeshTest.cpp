@@ -192,8 +192,8 @@ namespace {
 
 TEST(FlatPatch, APlaneKeepsItsTextureFrameAndCornersAndNothingElseHasOne) {
     // makePlane: u along +X, v along -Z, texcoords 0..scale across a size-wide square. The patch
-    // must give its frame (the position at texcoords (0, 0), dP/du, dP/dv, +Y) and its corners;
-    // a sphere and a plane with one vertex lifted have none.
+    // must give its frame (the position at texcoords (0, 0), dP/du, dP/dv, +Y), its corners and its
+    // texcoords' box; a sphere and a plane with one vertex lifted have none.
     const PlaneConfig config{.size = 3.0f, .texcoordScale = 2.0f, .subdivisions = 3};
     const std::optional<FlatPatch> patch = flatPatchOf(makePlane(config));
     ASSERT_TRUE(patch);
@@ -204,6 +204,8 @@ TEST(FlatPatch, APlaneKeepsItsTextureFrameAndCornersAndNothingElseHasOne) {
     EXPECT_TRUE(near(patch->normal, {0.0f, 1.0f, 0.0f}));
     const glm::vec3 corners[4] = {{-1.5f, 0.0f, 1.5f}, {1.5f, 0.0f, 1.5f}, {1.5f, 0.0f, -1.5f}, {-1.5f, 0.0f, -1.5f}};
     for (int i = 0; i < 4; ++i) EXPECT_TRUE(near(patch->corners[size_t(i)], corners[i])) << "corner " << i;
+    EXPECT_EQ(patch->texcoordMin, glm::vec2(0.0f)) << "its texcoords' box";
+    EXPECT_EQ(patch->texcoordMax, glm::vec2(2.0f));
     EXPECT_FALSE(flatPatchOf(makeSphere()));
     MeshData lifted = makePlane(config);
     lifted.vertices[5].position.y += 0.01f;

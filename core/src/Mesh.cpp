@@ -330,7 +330,9 @@ std::optional<FlatPatch> flatPatchOf(const MeshData& data) {
                      .tangent = first.tangent,
                      .bitangent = first.bitangent,
                      .normal = glm::normalize(first.normal),
-                     .corners = {at(lo.x, lo.y), at(hi.x, lo.y), at(hi.x, hi.y), at(lo.x, hi.y)}};
+                     .corners = {at(lo.x, lo.y), at(hi.x, lo.y), at(hi.x, hi.y), at(lo.x, hi.y)},
+                     .texcoordMin = lo,
+                     .texcoordMax = hi};
 }
 
 namespace {

@@ -113,11 +113,11 @@ vec2 hfx_cloud_cover(vec2 p, float across, float along) {
 vec3 hfx_cloud_mean() { return vec3(u_cloudCover, u_cloudMeanThickness, u_cloudCover); }
 
 // A deck that covers most of the sky lies under a higher, even veil (a storm's altostratus and
-// nimbostratus): from a cover of 0.7 to a full one it hides the clear sky in the layer's gaps,
-// 0 to 1 of it (u_cloudVeil, hfx::cloudVeil). The veil is half as thick as the deck's mean cloud and lit through it (sunward the
-// cover): a gap is a paler grey, not blue, and passes the sun's light as that thin a cloud does.
-// `cloud` is (density, thickness, sunward) of the layer; the veil fills the rest of the density,
-// and the thickness and the sunward density become the two's means over it.
+// nimbostratus): from a cover of 0.7 to a full one it hides the clear sky in the layer's gaps, 0 to
+// 1 of it (u_cloudVeil, hfx::cloudVeil). The veil is half as thick as the deck's mean cloud and lit
+// through it (sunward the cover): a gap is a paler grey, not blue, and passes the sun's light as
+// that thin a cloud does. `cloud` is (density, thickness, sunward) of the layer; the veil fills the
+// rest of the density, and the thickness and the sunward density become the two's means over it.
 vec3 hfx_cloud_veiled(vec3 cloud) {
     const float veil = u_cloudVeil * (1.0 - cloud.x), density = cloud.x + veil;
     const float layer = density > 0.0 ? cloud.x / density : 0.0;

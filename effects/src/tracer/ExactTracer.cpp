@@ -122,7 +122,7 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
                 frame.patchRays = true;
                 patchRays_ = *rays;
                 patchRays_.budget = caster ? 0.0f : material.pixelBudget;
-                patchRays_.walksLight = material.shadows && !caster && rays->lightAbove;
+                patchRays_.walksLight = material.shadows && !caster && rays->light.has_value();
                 if (uniformLight) patchRays_.light = patchLight->uvPerClimb;
             }
         frame.traceLights = !frame.patchRays && !uniformLight && material.shadows && !caster;
@@ -456,11 +456,6 @@ std::optional<ExactTracer::PatchRays> ExactTracer::patchRaysOf(const FlatPatch& 
     const double scale = glm::length(glm::dvec3(cu.x, cu.y, cu.w)) * glm::length(glm::dvec3(cv.x, cv.y, cv.w)) *
                          glm::length(glm::dvec3(c0.x, c0.y, c0.w));
     if (!(std::abs(glm::determinant(toScreen)) > 1e-9 * scale)) return std::nullopt;
-    // The corners' texcoords, from the patch's own frame.
-    const glm::dmat3 ownInverse =
-        glm::inverse(glm::dmat3(glm::dvec3(patch.tangent), glm::dvec3(patch.bitangent), glm::dvec3(patch.normal)));
-    const glm::dvec2 lo(ownInverse * glm::dvec3(patch.corners[0] - patch.origin));
-    const glm::dvec2 hi(ownInverse * glm::dvec3(patch.corners[2] - patch.origin));
     // surface.frag's light in texture space, and its ray's texcoords per unit climbed.
     const glm::dvec3 l = textureFromWorld * glm::normalize(glm::dvec3(lightDirection));
     PatchRays rays;
@@ -468,9 +463,9 @@ std::optional<ExactTracer::PatchRays> ExactTracer::patchRaysOf(const FlatPatch& 
     rays.depth = glm::vec3(cu.z, cv.z, c0.z);
     rays.eye = glm::vec3(textureFromWorld * (u.orthographic != 0 ? glm::dvec3(u.towardsEye)
                                                                   : glm::dvec3(u.cameraPos) - origin));
-    rays.box = glm::vec4(glm::min(lo, hi), glm::max(lo, hi));
-    rays.lightAbove = l.z > 0.0 && glm::dot(normal, glm::dvec3(lightDirection)) > 0.0;
-    if (rays.lightAbove) rays.light = glm::vec2(glm::dvec2(l) / l.z * double(depthScale));
+    rays.box = glm::vec4(patch.texcoordMin, patch.texcoordMax);
+    if (l.z > 0.0 && glm::dot(normal, glm::dvec3(lightDirection)) > 0.0)
+        rays.light = glm::vec2(glm::dvec2(l) / l.z * double(depthScale));
     return rays;
 }
 
@@ -499,7 +494,7 @@ void ExactTracer::walks(const TracerFrame& frame) {
         walk.set("u_patchBox", r.box);
         walk.set("u_patchBudget", r.budget);
         walk.set("u_patchWalksLight", r.walksLight ? 1 : 0);
-        walk.set("u_patchLight", r.light);
+        walk.set("u_patchLight", r.light.value_or(glm::vec2(0.0f)));
     }
     HFX_GL_CHECK(glDispatchCompute(GLuint((traceWidth_ + 7) / 8), GLuint((traceHeight_ + 7) / 8), 1));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -112,15 +112,16 @@ void checkMeshClaims(const MeshData& data);
 bool isFlatPatch(const MeshData& data);
 
 /// A flat patch's texture frame and outline in the mesh's own space: the position at texcoords
-/// (0, 0), dP/du, dP/dv and the unit normal, and the corners of its texcoords' bounding box in
-/// order (for makePlane, its four corners). What the exact tracer derives a flat surface's light
-/// and its area on the screen from (ExactTracer).
+/// (0, 0), dP/du, dP/dv and the unit normal, the corners of its texcoords' bounding box in order
+/// (for makePlane, its four corners) and that box. What the exact tracer derives a flat surface's
+/// light, its area on the screen and its pixels' rays from (ExactTracer).
 struct FlatPatch {
     glm::vec3 origin;
     glm::vec3 tangent;
     glm::vec3 bitangent;
     glm::vec3 normal;
     std::array<glm::vec3, 4> corners;
+    glm::vec2 texcoordMin, texcoordMax;
 };
 
 /// The patch of a mesh isFlatPatch accepts; empty for any other.

@@ -89,13 +89,13 @@ struct WaterLook {
     float foamRoughness = 0.6f;
     /// Wind streaks (spindrift, shade/water.glsl): foam drawn out downwind into long bands,
     /// `spindrift` their strength (0: none; OceanEffect sets it from the wind: 0 up to the middle
-    /// of Beaufort 7, 1 from that of 10, times how far its foam has built), windDirection where the wind blows in texcoords (unit),
-    /// streakCells the streaks' lattice cells per texcoord across the wind (OceanEffect: one per
-    /// 3 m; a band is 0.2 to 0.6 of a cell wide). They ride with the foam: foamDrift (texcoords)
-    /// is how far it has drifted downwind (OceanEffect moves it every step). Over a wind change
-    /// the last wind's streaks fade out where they lie, spindriftFrom their strength and
-    /// windDirectionFrom their direction, as the new wind's fade in (OceanEffect blends them as
-    /// the waves are): turned at once, the lines swung about the texcoords' origin.
+    /// of Beaufort 7, 1 from that of 10, times how far its foam has built), windDirection where the
+    /// wind blows in texcoords (unit), streakCells the streaks' lattice cells per texcoord across
+    /// the wind (OceanEffect: one per 3 m; a band is 0.2 to 0.6 of a cell wide). They ride with the
+    /// foam: foamDrift (texcoords) is how far it has drifted downwind (OceanEffect moves it every
+    /// step). Over a wind change the last wind's streaks fade out where they lie, spindriftFrom
+    /// their strength and windDirectionFrom their direction, as the new wind's fade in (OceanEffect
+    /// blends them as the waves are): turned at once, the lines swung about the texcoords' origin.
     glm::vec2 foamDrift{0.0f};
     float spindrift = 0.0f;
     glm::vec2 windDirection{1.0f, 0.0f};

@@ -91,8 +91,7 @@ struct TracerFrame {
     /// With computeTrace, on a flat patch without a silhouette fade: walks() finds each pixel's
     /// ray from the screen (HFX_TRACE_PATCH: the patch's texcoords are a projective map of it, as
     /// a rasteriser interpolates them), and there is no rays draw. On a GPU that draws with a few
-    /// of its cores a fragment pass has a cost no shader saving removes (a pass like the rays
-    /// draw took 0.36-0.49x POM's draw on an H200).
+    /// of its cores a fragment pass has a cost no shader saving removes (docs/DESIGN.md).
     bool patchRays = false;
     /// One of TracePass::Auto's trial draws (TracePassTrial): prepare() began timing its passes
     /// (after its own), finish() ends it.
@@ -243,23 +242,23 @@ private:
     /// The flat patch the last draw with TracerFrame::patchRays placed, as trace.comp reads it
     /// (its HFX_TRACE_PATCH uniforms, which say what each is): the screen's map to its texcoords,
     /// clip depth over them, the eye in its texture space, its texcoords' box, the pixel budget,
-    /// and the light ray's texcoords per unit climbed where light rays are walked.
+    /// the light ray's texcoords per unit climbed (empty where the light is below the patch) and
+    /// whether light rays are walked.
     struct PatchRays {
         glm::mat3 fromScreen{1.0f};
         glm::vec3 depth{0.0f}, eye{0.0f};
         glm::vec4 box{0.0f};
         float budget = 0.0f;
-        glm::vec2 light{0.0f};
-        bool lightAbove = false; ///< the light shines on the side the patch's normal faces
+        std::optional<glm::vec2> light;
         bool walksLight = false;
     };
     /// The patch's rays as `model` and `viewProj` place it, seen from `u`'s eye (setEye's), its
     /// light from `lightDirection` (world, towards the light) at `depthScale`; empty where its
     /// frame is degenerate (no texture space: the rays draw normal maps it) or the view sees it
     /// edge on.
-    static std::optional<PatchRays> patchRaysOf(const FlatPatch& patch, const glm::mat4& model, const glm::mat4& viewProj,
-                                                const SurfaceUniforms& u, const glm::vec3& lightDirection,
-                                                float depthScale);
+    static std::optional<PatchRays> patchRaysOf(const FlatPatch& patch, const glm::mat4& model,
+                                                const glm::mat4& viewProj, const SurfaceUniforms& u,
+                                                const glm::vec3& lightDirection, float depthScale);
     PatchRays patchRays_;
     /// TracePass::Auto's trials, per mesh and kind of view, and their timed draws whose GL
     /// timestamps are not yet read (ended where `end` is issued; or, with
