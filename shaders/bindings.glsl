@@ -39,6 +39,7 @@
 #define HFX_IMAGE_BOUNDS_FINER 5  // the level it reduces (or the atlas)
 #define HFX_IMAGE_BOUNDS 6        // the level it writes (or the atlas)
 #define HFX_IMAGE_RING_SHINE 7    // the rings' light on their planet, as the renderer builds it (shade/ringshine.comp)
+#define HFX_IMAGE_TEXEL_SHADOWS 8 // the texel shadows, as TexelShadowPass writes them (trace/hier/texelshadows.comp)
 
 // Shader storage buffers.
 #define HFX_BUFFER_DEFERRED_SHADOWS 0 // the light walks a surface draw leaves to the pass after it (trace/hier/deferred.glsl)
@@ -52,6 +53,12 @@
 #define HFX_BLOCK_RINGS 2         // HfxRings: hfx::RingUniforms (the water's impact rings)
 #define HFX_BLOCK_PLANET 3        // HfxPlanet: hfx::PlanetUniforms (a planet's rings and their shadows)
 #define HFX_BLOCK_SHADOWS 4       // HfxShadows: hfx::ShadowUniforms (the light's shadow maps a draw receives)
+
+// The texel shadows' pass (trace/hier/texelshadows.comp, TexelShadowPass): a group's lanes on
+// each axis. llvmpipe ran the walks in 8x8 groups 1-17% slower than in the fragment pass the
+// compute pass replaced, and in 16x16 ones within 10% of it either way (2026-11-30,
+// docs/history/tuning.md); a GPU's warp then covers 16x2 texels, whose light rays run side by side.
+#define HFX_TEXEL_GROUP 16
 
 // The exact tracer's beam start: its prepass walks one ray per block of this many pixels on
 // each axis (ExactTracer, trace/hier/beam.frag) and the draw reads the block's depth.

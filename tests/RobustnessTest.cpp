@@ -5,6 +5,7 @@
 #include "support/Fixtures.h"
 
 #include "hfx/compute/StaticField.h"
+#include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
 #include "hfx/core/Mesh.h"
@@ -30,6 +31,7 @@
 #include <functional>
 #include <fstream>
 #include <limits>
+#include <utility>
 
 namespace hfx::test {
 namespace {
@@ -103,8 +105,8 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     // The pass runs before a hier draw, wherever the caller is in its own drawing: a
     // framebuffer bound with a small viewport, blending that zeroes what is drawn, a scissor
     // around one texel, buffer 0's red masked off and an image of the caller's on the unit the
-    // pass reads the pyramid from must neither change a texel nor survive the pass's own state
-    // into the caller's.
+    // pass reads the pyramid from and on the one it writes the texels through must neither change
+    // a texel nor survive the pass's own state into the caller's.
     constexpr int N = 32;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.2, -1, 3, 0.4}});
     const ShadowLight light = ShadowLight::of({0.6f, 0.25f}, 2.0f); // low: long shadows
@@ -136,18 +138,23 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     const GlTexture image = GlTexture::create();
     HFX_GL_CHECK(glTextureStorage2D(image.id(), 1, GL_R32F, 4, 4));
     glBindImageTexture(0, image.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(HFX_IMAGE_TEXEL_SHADOWS, image.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
     GLint boundBefore = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &boundBefore);
     TexelShadowPass fresh; // the same heights, a fresh pass: nothing built before
     fresh.draw(surface.textures(), bounds, light, 1, shadows);
-    GLint imageName = 0, imageAccess = 0, imageFormat = 0;
-    glGetIntegeri_v(GL_IMAGE_BINDING_NAME, 0, &imageName);
-    glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 0, &imageAccess);
-    glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, 0, &imageFormat);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
-    EXPECT_EQ(GLuint(imageName), image.id());
-    EXPECT_EQ(GLenum(imageAccess), GLenum(GL_WRITE_ONLY));
-    EXPECT_EQ(GLenum(imageFormat), GLenum(GL_R32F));
+    for (const auto& [unit, access] :
+         {std::pair{0u, GLenum(GL_WRITE_ONLY)}, std::pair{GLuint(HFX_IMAGE_TEXEL_SHADOWS), GLenum(GL_READ_ONLY)}}) {
+        SCOPED_TRACE(unit);
+        GLint imageName = 0, imageAccess = 0, imageFormat = 0;
+        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, unit, &imageName);
+        glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, unit, &imageAccess);
+        glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, unit, &imageFormat);
+        glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+        EXPECT_EQ(GLuint(imageName), image.id());
+        EXPECT_EQ(GLenum(imageAccess), GLenum(access));
+        EXPECT_EQ(GLenum(imageFormat), GLenum(GL_R32F));
+    }
     GLint bound = 0, viewport[4];
     GLboolean mask[4];
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);

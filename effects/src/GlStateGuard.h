@@ -267,9 +267,10 @@ private:
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
     // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,
-    // the rings' light's pass
-    static constexpr GLuint kImages = HFX_IMAGE_RING_SHINE + 1;
-    static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages,
+    // the rings' light's pass, the texel shadows' pass
+    static constexpr GLuint kImages = HFX_IMAGE_TEXEL_SHADOWS + 1;
+    static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages &&
+                      HFX_IMAGE_RING_SHINE < kImages,
                   "hfx/core/Bindings.h: the guard saves every image unit");
     struct Image {
         GLint name = 0, level = 0, layered = GL_FALSE, layer = 0, access = GL_READ_ONLY, format = GL_R8;

@@ -14,8 +14,8 @@ namespace hfx {
 
 namespace {
 ShaderProgram texelProgram(bool atlas) {
-    return ShaderProgram(surfaceStage("sky.vert"), surfaceStage("trace/hier/texelshadows.frag"),
-                         {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
+    return ShaderProgram::compute(surfaceStage("trace/hier/texelshadows.comp"),
+                                  {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
 }
 } // namespace
 
@@ -36,7 +36,6 @@ int texelShadowStride(double pixels, int width, int height, float pixelBudget, i
     return 0;
 }
 
-TexelShadowPass::TexelShadowPass() : framebuffer_(GlFramebuffer::create()), empty_(GlVertexArray::create()) {}
 
 void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds, const ShadowLight& light, int stride,
                            TexelShadows& into) {
@@ -71,18 +70,18 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds
     GlStateGuard guard;
     bounds_.refresh(textures, bounds); // where stale, and the atlas layout's patch samples (its own program)
     const GpuScope scope("texel shadows");
-    attachPassTarget(framebuffer_, into.texture_.id(), width, height, "R32F", "TexelShadowPass");
-    const PassTarget pass(framebuffer_, width, height); // whatever blending or scissor the caller left
     SurfaceUniforms u{.shadowLight = {light.uvPerClimb, light.penumbra, light.slack}};
     u.setField({config.width, config.height}, config.edges);
     updateBlock(block_, HFX_BLOCK_SURFACE, u);
-    glDisable(GL_DEPTH_TEST);
     program->use();
     program->set("u_texelStride", stride);
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     bounds.bind(0);
-    glBindVertexArray(empty_.id());
-    HFX_GL_CHECK(glDrawArrays(GL_TRIANGLES, 0, 3));
+    HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_TEXEL_SHADOWS, into.texture_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                                    GL_R32F));
+    constexpr int group = HFX_TEXEL_GROUP;
+    HFX_GL_CHECK(glDispatchCompute(GLuint((width + group - 1) / group), GLuint((height + group - 1) / group), 1));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the surface draw gathers them
     into.stride_ = stride;
     into.light_ = light;
     into.uid_ = textures.uid();

@@ -1,6 +1,6 @@
 #pragma once
 // The texel shadows of a flat surface under one light: the exact tracer's self-shadow (shaders/
-// trace/hier.glsl's walk, run by shaders/trace/hier/texelshadows.frag) from every sample of the
+// trace/hier.glsl's walk, run by shaders/trace/hier/texelshadows.comp) from every sample of the
 // field at its own height, towards the light, into a texture of texel shadows. A shadow depends
 // on the point, not on the pixel that sees it: where a texel covers many pixels, each pixel's
 // walk repeats its neighbours'. The renderer then walks only the light rays from cells where the
@@ -75,22 +75,19 @@ private:
 
 class TexelShadowPass {
 public:
-    TexelShadowPass();
     /// Draws `textures`' texel shadows for `light` at every stride-th sample on each axis into
     /// `into` (allocated or remade where the size or stride changes), walking `bounds` (built
     /// here from the texels where they do not hold them). Throws hfx::Error for bounds that do
     /// not fit the textures, an invalid light or a stride that is not a power of two dividing
-    /// the field's size, leaving `into` as it was. The same texels whatever blending, scissor
-    /// test or colour mask the caller has set; it puts those back, and every other GL state it
-    /// changes.
+    /// the field's size, leaving `into` as it was. A compute pass: the same texels whatever
+    /// framebuffer, blending, scissor test or colour mask the caller has set; it puts back every
+    /// GL state it changes.
     void draw(const SurfaceTextures& textures, HeightBounds& bounds, const ShadowLight& light, int stride,
               TexelShadows& into);
 
 private:
     std::optional<ShaderProgram> programs_[2]; ///< by the bounds' layout, each built by its first draw
     BoundsPass bounds_; ///< the walk's bounds and level-0 cells, where they are stale
-    GlFramebuffer framebuffer_;
-    GlVertexArray empty_;
     GlBuffer block_;
 };
 
