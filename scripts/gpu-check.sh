@@ -12,7 +12,8 @@
 # with llvmpipe's pyramid layout) and 3840x2160, the frame bench (water, decals, planet, the
 # transfer table) at both sizes, the decal wall and the planet at 1280x720 again with hier walking
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
-# column gives its medians of both passes), the ringed planet and the noise on the triplanar box at
+# column gives its medians of both passes), the texel shadows forced on and off where the
+# scenes' rule would choose otherwise, the ringed planet and the noise on the triplanar box at
 # 1280x720, and a draw's issue time under both GlStatePolicy values with the driver's threaded
 # optimisation off and on. A step that runs out of time is cut and says so; the rest go on.
 # HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
@@ -33,7 +34,7 @@ run=(bash "$bundle/run.sh")
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10
                    [gl-tests-compute-pass]=4 [bench-tracers-720p]=12 [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
                    [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8 [bench-triplanar-720p]=6
-                   [bench-draw-issue]=3 [bench-planet-gas]=6)
+                   [bench-draw-issue]=3 [bench-planet-gas]=6 [bench-720p-texels]=8)
 # By default every step but gl-tests-compute-pass, which gl-tests-rest holds.
 selected=${HFX_GPU_STEPS:-$(printf '%s\n' "${!shares[@]}" | grep -vx gl-tests-compute-pass | tr '\n' ' ')}
 total=0
@@ -91,6 +92,14 @@ step bench-tracers-4k "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2
 step bench-720p "${run[@]}" hfx-demo bench --bench-only water,decals,planet,transfer --width 1280 --height 720
 step bench-720p-in-draw "${run[@]}" hfx-demo bench --bench-only decals,planet --trace-pass draw --width 1280 --height 720
 step bench-4k "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160
+# The texel shadows' policy on this GPU: texelShadowsPay's 1.75 pixels per texel is llvmpipe's
+# break-even, where their pass walked as slowly as the draw; here it is a compute pass on every
+# unit. The decal wall (1.58 pixels per texel at 1280x720: off by that rule, in bench-720p) with
+# them forced on, and the noise (7.19: on) without and with them: each scene's own technique
+# draw, texel shadows included, against its POM draw.
+step bench-720p-texels bash -c "bash '$bundle/run.sh' hfx-demo bench --bench-only decals --texel-shadows --width 1280 \
+    --height 720 && for t in --no-texel-shadows --texel-shadows; do echo \"noise \$t\"; bash '$bundle/run.sh' hfx-demo \
+    bench --bench-only noise \$t --width 1280 --height 720; done"
 # The ringed planet seen whole (its rings' draw, their shadow and ring shine in the planet's draw).
 step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1 --camera-distance 5 --width 1280 --height 720
 # The noise on a rounded box through the triplanar mapping: what its loop over a pixel's projections
