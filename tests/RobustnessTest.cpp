@@ -212,7 +212,7 @@ TEST(TexelShadowStride, EverySampleWhereThatPaysElseTheFewestWithinThePixelBudge
         EXPECT_EQ(texelShadowStride(pixels, width, N, 64.0f, 0), 0) << pixels << " pixels, width " << width;
 }
 
-TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
+TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByNameAndTheOthersTakeTheWalksSamples) {
     constexpr int N = 32;
     StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}}));
     SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
@@ -248,6 +248,32 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByName) {
     GLint width = 0;
     glGetTextureLevelParameteriv(shadows.texture(), 0, GL_TEXTURE_WIDTH, &width);
     EXPECT_EQ(width, 16);
+
+    // Every stride's texels are the stride-1 walks at their samples, whether the target fills the
+    // pass's groups (HFX_TEXEL_GROUP on each axis) or is smaller than one: 32x32 is 2x2 groups,
+    // 8x8 and 1x1 part of one. A low light, whose long shadows the comparison can see.
+    const ShadowLight low = ShadowLight::of({0.6f, 0.25f}, 2.0f);
+    auto texels = [](const TexelShadows& t, int size) {
+        std::vector<float> v(size_t(size) * size, -1.0f);
+        HFX_GL_CHECK(glGetTextureImage(t.texture(), 0, GL_RED, GL_FLOAT, GLsizei(v.size() * sizeof(float)), v.data()));
+        return v;
+    };
+    TexelShadows full;
+    pass.draw(surface.textures(), bounds, low, 1, full);
+    const std::vector<float> every = texels(full, N);
+    ASSERT_GT(*std::max_element(every.begin(), every.end()), 0.1f) << "the light must cast some shadow";
+    for (const int stride : {4, 32}) {
+        SCOPED_TRACE(stride);
+        TexelShadows spaced;
+        pass.draw(surface.textures(), bounds, low, stride, spaced);
+        const int n = N / stride;
+        const std::vector<float> some = texels(spaced, n);
+        int differ = 0;
+        for (int b = 0; b < n; ++b)
+            for (int a = 0; a < n; ++a)
+                differ += some[size_t(b) * n + a] != every[size_t(b * stride) * N + size_t(a * stride)];
+        EXPECT_EQ(differ, 0) << "of " << n * n;
+    }
 }
 
 TEST_F(Robustness, BadMaterialsCamerasLightsAndModelMatricesDrawNothing) {

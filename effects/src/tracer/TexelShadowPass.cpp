@@ -36,7 +36,6 @@ int texelShadowStride(double pixels, int width, int height, float pixelBudget, i
     return 0;
 }
 
-
 void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds, const ShadowLight& light, int stride,
                            TexelShadows& into) {
     const SurfaceTexturesConfig& config = textures.config();
@@ -81,7 +80,8 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds
                                     GL_R32F));
     constexpr int group = HFX_TEXEL_GROUP;
     HFX_GL_CHECK(glDispatchCompute(GLuint((width + group - 1) / group), GLuint((height + group - 1) / group), 1));
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the surface draw gathers them
+    // The surface draw gathers them; a reader may also copy them out (glGetTextureImage: the tests).
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     into.stride_ = stride;
     into.light_ = light;
     into.uid_ = textures.uid();
