@@ -39,7 +39,10 @@
 #define HFX_IMAGE_BOUNDS_FINER 5  // the level it reduces (or the atlas)
 #define HFX_IMAGE_BOUNDS 6        // the level it writes (or the atlas)
 #define HFX_IMAGE_RING_SHINE 7    // the rings' light on their planet, as the renderer builds it (shade/ringshine.comp)
-#define HFX_IMAGE_TEXEL_SHADOWS 8 // the texel shadows, as TexelShadowPass writes them (trace/hier/texelshadows.comp)
+// The exact tracer's prepasses write their one output through it, one dispatch at a time, and
+// no program reads it: the texel shadows (trace/hier/texelshadows.comp, TexelShadowPass), the beam
+// start (trace/hier/beam.comp, ExactTracer).
+#define HFX_IMAGE_PASS_OUTPUT 8
 
 // Shader storage buffers.
 #define HFX_BUFFER_DEFERRED_SHADOWS 0 // the light walks a surface draw leaves to the pass after it (trace/hier/deferred.glsl)
@@ -61,7 +64,7 @@
 #define HFX_TEXEL_GROUP 16
 
 // The exact tracer's beam start: its prepass walks one ray per block of this many pixels on
-// each axis (ExactTracer, trace/hier/beam.frag) and the draw reads the block's depth.
+// each axis (ExactTracer, trace/hier/beam.comp) and the draw reads the block's depth.
 #define HFX_BEAM_BLOCK 8
 
 // The water sky's clouds (shade/sky.glsl, hfx::cloudSample): the octaves of their value noise,

@@ -28,7 +28,7 @@
 //                     is the light's (its eye's rays, u_viewProj), only the traced depth is
 //                     written, nothing is shaded
 //   HFX_BEAM_START    1 when the exact tracer's rays start where its beam prepass
-//                     (trace/hier/beam.frag) found for their block of HFX_BEAM_BLOCK pixels
+//                     (trace/hier/beam.comp) found for their block of HFX_BEAM_BLOCK pixels
 //                     (bindings.glsl)
 //   HFX_TEXEL_SHADOWS 1 when the exact tracer's shadow is read from its texel shadows where they
 //                     hold it (surface/shadow.glsl)

@@ -100,9 +100,9 @@ TEST_F(BeamStart, AnOffsetViewportGetsTheSameHitsInFewerFetchesAndItsStateBack) 
 }
 
 TEST_F(BeamStart, AShadowMapCastsTheSameTracedDepthWithItAsWithout) {
-    // drawShadow traces the light's parallel rays; the prepass finds its blocks' rays by
-    // unprojecting at the near and the far plane, which an orthographic light's view makes
-    // parallel. The traced depth the map holds must be the walk's from the top, texel for texel.
+    // drawShadow traces the light's parallel rays; the prepass finds its blocks' rays from the
+    // screen through the patch's projective map, where an orthographic light's eye is one
+    // direction. The traced depth the map holds must be the walk's from the top, texel for texel.
     constexpr int N = 64, size = 256;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}});
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);

@@ -138,13 +138,13 @@ TEST_F(Robustness, TheTexelShadowPassDrawsTheSameTexelsWhateverStateTheCallerLef
     const GlTexture image = GlTexture::create();
     HFX_GL_CHECK(glTextureStorage2D(image.id(), 1, GL_R32F, 4, 4));
     glBindImageTexture(0, image.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    glBindImageTexture(HFX_IMAGE_TEXEL_SHADOWS, image.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+    glBindImageTexture(HFX_IMAGE_PASS_OUTPUT, image.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
     GLint boundBefore = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &boundBefore);
     TexelShadowPass fresh; // the same heights, a fresh pass: nothing built before
     fresh.draw(surface.textures(), bounds, light, 1, shadows);
     for (const auto& [unit, access] :
-         {std::pair{0u, GLenum(GL_WRITE_ONLY)}, std::pair{GLuint(HFX_IMAGE_TEXEL_SHADOWS), GLenum(GL_READ_ONLY)}}) {
+         {std::pair{0u, GLenum(GL_WRITE_ONLY)}, std::pair{GLuint(HFX_IMAGE_PASS_OUTPUT), GLenum(GL_READ_ONLY)}}) {
         SCOPED_TRACE(unit);
         GLint imageName = 0, imageAccess = 0, imageFormat = 0;
         glGetIntegeri_v(GL_IMAGE_BINDING_NAME, unit, &imageName);

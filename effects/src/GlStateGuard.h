@@ -1,6 +1,6 @@
 #pragma once
 // Internal to hfx::effects: the GL state a surface pass changes, saved and put back; its uniform
-// blocks written; an off-screen pass's target, attached, checked and drawn with a clean state.
+// blocks written.
 //
 // Thread: the thread whose GL context is current.
 
@@ -18,7 +18,6 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
-#include <ios>
 #include <string>
 
 namespace hfx {
@@ -268,7 +267,7 @@ private:
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
     // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,
     // the rings' light's pass, the texel shadows' pass
-    static constexpr GLuint kImages = HFX_IMAGE_TEXEL_SHADOWS + 1;
+    static constexpr GLuint kImages = HFX_IMAGE_PASS_OUTPUT + 1;
     static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages &&
                       HFX_IMAGE_RING_SHINE < kImages,
                   "hfx/core/Bindings.h: the guard saves every image unit");
@@ -361,50 +360,6 @@ public:
 private:
     // (glColorMask sets every buffer's mask: the first kDrawBuffers are put back.)
     GLboolean masks_[kDrawBuffers][4] = {}, depth_ = GL_TRUE;
-};
-
-/// Attaches `texture` (width x height, `format` named in the error) as colour attachment 0 of
-/// `framebuffer` and checks it is complete; `who` names the pass in the error.
-inline void attachPassTarget(const GlFramebuffer& framebuffer, GLuint texture, int width, int height, const char* format,
-                             const char* who) {
-    HFX_GL_CHECK(glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, texture, 0));
-    const GLenum status = glCheckNamedFramebufferStatus(framebuffer.id(), GL_DRAW_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw Error(str(who, ": the ", width, "x", height, " ", format, " target is incomplete (status 0x", std::hex,
-                        status, ")"));
-}
-
-/// An off-screen pass's draw target for its scope: draws into `framebuffer` over (0, 0, width,
-/// height) with no blending, no scissor test and every channel of buffer 0 written, whatever the
-/// caller had set; puts back the caller's draw framebuffer, viewport, blending, scissor test and
-/// buffer 0's colour mask when it ends (other buffers' masks are not touched).
-class PassTarget {
-public:
-    PassTarget(const GlFramebuffer& framebuffer, int width, int height) {
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer_);
-        glGetIntegerv(GL_VIEWPORT, viewport_);
-        blend_ = glIsEnabled(GL_BLEND);
-        scissor_ = glIsEnabled(GL_SCISSOR_TEST);
-        glGetBooleani_v(GL_COLOR_WRITEMASK, 0, mask_);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer.id());
-        glViewport(0, 0, width, height);
-        glDisable(GL_BLEND);
-        glDisable(GL_SCISSOR_TEST);
-        glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    }
-    ~PassTarget() {
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(framebuffer_));
-        glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
-        (blend_ ? glEnable : glDisable)(GL_BLEND);
-        (scissor_ ? glEnable : glDisable)(GL_SCISSOR_TEST);
-        glColorMaski(0, mask_[0], mask_[1], mask_[2], mask_[3]);
-    }
-    PassTarget(const PassTarget&) = delete;
-    PassTarget& operator=(const PassTarget&) = delete;
-
-private:
-    GLint framebuffer_ = 0, viewport_[4] = {};
-    GLboolean blend_ = GL_FALSE, scissor_ = GL_FALSE, mask_[4] = {};
 };
 
 } // namespace hfx

@@ -27,8 +27,9 @@
 
 // World from texture space at a point of the mesh: columns dP/du, dP/dv and the unit normal scaled
 // to the same units (texture space's z is the depth, one unit = one texture repeat). The draw
-// (surface.frag) turns its pixel's view ray into texture space with it, and the beam prepass
-// (trace/hier/beam.frag) its block's rays: they must agree, or a block's start could pass a hit.
+// (surface.frag) turns its pixel's view ray into texture space with it, and ExactTracer its flat
+// patch's eye for the beam prepass (trace/hier/beam.comp) and the compute pass (trace.comp): they
+// must agree, or a block's start could pass a hit.
 mat3 hfx_world_from_texture(vec3 unitNormal, vec3 tangent, vec3 bitangent) {
     return mat3(tangent, bitangent, unitNormal * sqrt(length(tangent) * length(bitangent)));
 }

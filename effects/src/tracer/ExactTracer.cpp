@@ -106,6 +106,11 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
                             !options.traceOutput && !glIsEnabled(GL_BLEND) && !glIsEnabled(GL_STENCIL_TEST) &&
                             vertexStageReadsBuffer();
     if (frame.deferredShadows) prepareDeferred(viewport);
+    // A flat patch's rays from the screen, where one frame holds for every pixel (no silhouette
+    // fade scales its depth pixel by pixel): the beam start's and the compute pass's.
+    std::optional<PatchRays> patchRays;
+    if (mesh.patch() && material.silhouetteFade == 0.0f && !triplanar)
+        patchRays = patchRaysOf(*mesh.patch(), model, viewProj, u, light.direction, material.depthScale);
     if (frame.computeTrace) {
         // Every pixel's light ray is the flat patch's light (the texel shadows' where they are
         // read) where it has one and no silhouette fade scales its depth pixel by pixel; else the
@@ -116,26 +121,24 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
         // (The rays draw's fragments walk the light ray where self-shadows are drawn, but for a
         // caster's, and the light is above the polygon: the texel shadows' light where there is
         // one.)
-        if (mesh.patch() && material.silhouetteFade == 0.0f)
-            if (const std::optional<PatchRays> rays =
-                    patchRaysOf(*mesh.patch(), model, viewProj, u, light.direction, material.depthScale)) {
-                frame.patchRays = true;
-                patchRays_ = *rays;
-                patchRays_.budget = caster ? 0.0f : material.pixelBudget;
-                patchRays_.walksLight = material.shadows && !caster && rays->light.has_value();
-                if (uniformLight) patchRays_.light = patchLight->uvPerClimb;
-            }
+        if (patchRays) {
+            frame.patchRays = true;
+            patchRays_ = *patchRays;
+            patchRays_.budget = caster ? 0.0f : material.pixelBudget;
+            patchRays_.walksLight = material.shadows && !caster && patchRays->light.has_value();
+            if (uniformLight) patchRays_.light = patchLight->uvPerClimb;
+        }
         frame.traceLights = !frame.patchRays && !uniformLight && material.shadows && !caster;
         prepareComputeTrace(viewport, frame.traceLights, u);
     }
 
-    // The beam start holds only where a block's rays meet one plane in one frame at one depth.
-    frame.beamStart = options.beamStart && layers.size() == 1 && mesh.flatPatch() && material.silhouetteFade == 0.0f &&
-                      material.depthScale > 0.0f && !triplanar;
+    // The beam start holds only where a block's rays meet one plane in one frame at one depth:
+    // they are found from the screen as the patch's.
+    frame.beamStart = options.beamStart && layers.size() == 1 && patchRays && material.depthScale > 0.0f;
     if (frame.beamStart) { // the prepass reads the surface, the pyramid bound above and the block
         glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
         const GpuScope scope("beam");
-        drawBeamStart(mesh, model, u, viewProj, viewport, frame.atlas);
+        drawBeamStart(*patchRays, viewport, u, frame.atlas);
         glBindTextureUnit(HFX_UNIT_BEAM_START, beamTarget_.id());
     }
     // A trial draw is timed from here (what comes before is the same on either side) to finish().
@@ -508,10 +511,10 @@ int ExactTracer::deferredWalks() const {
     return int(count);
 }
 
-void ExactTracer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
-                                const Viewport& viewport, bool atlas) {
+void ExactTracer::drawBeamStart(const PatchRays& rays, const Viewport& viewport, const SurfaceUniforms& u,
+                                bool atlas) {
     // Texel (i, j) covers the window's pixels [B i, B i + B) x [B j, B j + B): the target spans
-    // the viewport's far corner, and the transform maps the draw's NDC onto the target's.
+    // the viewport's far corner.
     const int width = std::max((viewport[0] + viewport[2] + kBeamBlock - 1) / kBeamBlock, 1);
     const int height = std::max((viewport[1] + viewport[3] + kBeamBlock - 1) / kBeamBlock, 1);
     if (width > beamWidth_ || height > beamHeight_ || !beamTarget_) {
@@ -521,35 +524,21 @@ void ExactTracer::drawBeamStart(const Mesh& mesh, const glm::mat4& model, Surfac
         HFX_GL_CHECK(glTextureStorage2D(beamTarget_.id(), 1, GL_R32F, beamWidth_, beamHeight_));
         glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(beamTarget_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        if (!beamFramebuffer_) beamFramebuffer_ = GlFramebuffer::create();
-        attachPassTarget(beamFramebuffer_, beamTarget_.id(), beamWidth_, beamHeight_, "R32F",
-                         "ExactTracer: the beam start");
     }
     ShaderProgram& beam = beam_[atlas ? 1 : 0];
     if (!beam.id())
-        beam = ShaderProgram(surfaceStage("surface.vert"), surfaceStage("trace/hier/beam.frag"),
-                             {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
-    // NDC x of the draw -> window x = vx + (x + 1) vw / 2 -> target x = window x / B.
-    const glm::vec2 scale = glm::vec2(viewport[2], viewport[3]) / (float(kBeamBlock) * glm::vec2(width, height));
-    const glm::vec2 offset = (2.0f * glm::vec2(viewport[0], viewport[1]) + glm::vec2(viewport[2], viewport[3])) /
-                                 (float(kBeamBlock) * glm::vec2(width, height)) -
-                             1.0f;
-    glm::mat4 toTarget(1.0f);
-    toTarget[0][0] = scale.x;
-    toTarget[1][1] = scale.y;
-    toTarget[3][0] = offset.x;
-    toTarget[3][1] = offset.y;
-    const glm::mat4 beamViewProj = toTarget * viewProj;
-    setTransform(u, model, beamViewProj);
+        beam = ShaderProgram::compute(surfaceStage("trace/hier/beam.comp"),
+                                      {{"HFX_LAYERS", "1"}, {"HFX_PYRAMID_ATLAS", atlas ? "1" : "0"}});
     updateBlock(block_, HFX_BLOCK_SURFACE, u);
-    const PassTarget pass(beamFramebuffer_, width, height);
-    glDisable(GL_DEPTH_TEST);
-    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}; // 0: no start, where no block ray was walked
-    glClearNamedFramebufferfv(beamFramebuffer_.id(), GL_COLOR, 0, none);
     beam.use();
-    beam.set("u_beamInverseViewProj", glm::inverse(beamViewProj));
-    beam.set("u_beamPixel", 2.0f / glm::vec2(width, height));
-    mesh.draw();
+    beam.set("u_patchFromScreen", rays.fromScreen);
+    beam.set("u_patchEye", rays.eye);
+    beam.set("u_patchBox", rays.box);
+    beam.set("u_beamViewport", glm::vec4(viewport[0], viewport[1], viewport[2], viewport[3]));
+    beam.set("u_beamBlocks", glm::ivec2(width, height));
+    HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_PASS_OUTPUT, beamTarget_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F));
+    HFX_GL_CHECK(glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), 1));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the draw or the walks pass reads it
 }
 
 } // namespace hfx

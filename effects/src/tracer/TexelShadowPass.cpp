@@ -76,7 +76,7 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds
     program->set("u_texelStride", stride);
     glBindTextureUnit(HFX_UNIT_SURFACE, textures.surface());
     bounds.bind(0);
-    HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_TEXEL_SHADOWS, into.texture_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+    HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_PASS_OUTPUT, into.texture_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                                     GL_R32F));
     constexpr int group = HFX_TEXEL_GROUP;
     HFX_GL_CHECK(glDispatchCompute(GLuint((width + group - 1) / group), GLuint((height + group - 1) / group), 1));

@@ -15,7 +15,7 @@
 #include "trace/hier.glsl"
 
 layout(local_size_x = HFX_TEXEL_GROUP, local_size_y = HFX_TEXEL_GROUP) in;
-layout(binding = HFX_IMAGE_TEXEL_SHADOWS, r32f) uniform writeonly image2D i_texelShadows;
+layout(binding = HFX_IMAGE_PASS_OUTPUT, r32f) uniform writeonly image2D i_texelShadows;
 uniform int u_texelStride;
 
 void main() {

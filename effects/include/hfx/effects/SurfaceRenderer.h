@@ -5,9 +5,7 @@
 // one uniform buffer (SurfaceUniforms). It draws into whatever framebuffer and context the
 // caller has bound and restores the GL state it changes (program, vertex array, depth test, face
 // culling and winding, the texture units, image units, uniform-buffer and storage-buffer bindings
-// of Bindings.h; around the
-// beam start's prepass, the draw framebuffer, viewport, blending, scissor test and draw buffer 0's
-// colour mask; around the computed walks' rays draw, every draw buffer's colour mask and the
+// of Bindings.h; around the computed walks' rays draw, every draw buffer's colour mask and the
 // depth mask). What the exact tracer reads besides the surface textures, and when it is made, is
 // its ExactTracer's (tracer/ExactTracer.h).
 //

@@ -106,7 +106,7 @@ public:
     /// texel shadows (DrawOptions::texelShadows) and the beam start (DrawOptions::beamStart).
     /// `viewProj` is the camera's or, for a caster, the shadow map's (no texel shadows: a caster
     /// writes depth only). `u` is the draw's uniform block, filled but for the transform:
-    /// prepare sets the texel shadows' light, and the beam prepass draws with it. Changes texture
+    /// prepare sets the texel shadows' light, and the beam prepass reads it. Changes texture
     /// and image units, the uniform-buffer binding and the current program: call it inside the
     /// renderer's GlStateGuard.
     TracerFrame prepare(std::span<const SurfaceLayer> layers, const Mesh& mesh, const glm::mat4& model,
@@ -186,8 +186,10 @@ private:
     /// Whether this context's vertex stage can read the deferred rays' buffer (GL 4.5 does not
     /// promise it; the compute stage that walks them has storage buffers and images).
     bool vertexStageReadsBuffer();
-    void drawBeamStart(const Mesh& mesh, const glm::mat4& model, SurfaceUniforms u, const glm::mat4& viewProj,
-                       const Viewport& viewport, bool atlas);
+    struct PatchRays;
+    /// The beam start of a flat patch whose rays `rays` finds (its budget and light unread), for
+    /// `viewport`'s draw, into beamTarget_ (trace/hier/beam.comp); `u` the draw's block.
+    void drawBeamStart(const PatchRays& rays, const Viewport& viewport, const SurfaceUniforms& u, bool atlas);
 
     BoundsPass boundsPass_;
     /// The bounds of the surfaces drawn lately, by SurfaceTextures::uid and layout (0: a free
@@ -215,7 +217,6 @@ private:
     TracerFrame last_, lastCaster_;
     std::optional<GlWorkarounds> workarounds_;
     ShaderProgram beam_[2]; ///< by the pyramid's layout: a mip chain, the atlas
-    GlFramebuffer beamFramebuffer_;
     GlTexture beamTarget_; ///< R32F, a texel per block from the window's origin
     int beamWidth_ = 0, beamHeight_ = 0;
     GlBuffer block_; ///< the prepass's uniform block
