@@ -80,7 +80,7 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds
                                     GL_R32F));
     constexpr int group = HFX_TEXEL_GROUP;
     HFX_GL_CHECK(glDispatchCompute(GLuint((width + group - 1) / group), GLuint((height + group - 1) / group), 1));
-    // The surface draw gathers them; a reader may also copy them out (glGetTextureImage: the tests).
+    // The surface draw gathers them; a reader may copy them out (glGetTextureImage: the tests).
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     into.stride_ = stride;
     into.light_ = light;
