@@ -8,7 +8,8 @@
 # It prints the card and the driver, then runs, each step within its share of the budget and
 # its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
 # GL tests (the tracer's first; gl-tests-compute-pass: the few that hold the exact tracer's
-# compute pass to the draw's hits, shadows, colours and depths), bench-tracers at 1280x720 (also
+# compute passes, the walks, the texel shadows and the beam start, to the draw's hits, shadows,
+# colours and depths, and the GL state they leave), bench-tracers at 1280x720 (also
 # with llvmpipe's pyramid layout) and 3840x2160, the frame bench (water, decals, planet, the
 # transfer table) at both sizes, the decal wall and the planet at 1280x720 again with hier walking
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
@@ -82,7 +83,7 @@ step gl-tests-rest "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="-$tr
 # the water sky's clouds against their CPU model (its integer hash: the same bits on any device) and
 # the CPU's picks on meshes against the GPU's trace output (19 s on llvmpipe, 2 cores: 52 tests).
 step gl-tests-compute-pass "${run[@]}" hfx-tests-gl --gtest_brief=1 \
-    --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*:DeferredOutputs.*:Triplanar.*:Sky.*:SkyModel.*:Picking.*:PickMesh.*'
+    --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*:DeferredOutputs.*:Triplanar.*:Sky.*:SkyModel.*:Picking.*:PickMesh.*:*TexelShadow*:GlState.*'
 step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
 # The same draws with llvmpipe's pyramid layout (GlWorkarounds::pyramidAtlas) on this GPU: what
 # the mip chain and the gather are worth here.
