@@ -266,7 +266,7 @@ private:
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
     // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,
-    // the rings' light's pass, the texel shadows' pass
+    // the rings' light's pass, the tracer's prepasses' output (texel shadows, beam start)
     static constexpr GLuint kImages = HFX_IMAGE_PASS_OUTPUT + 1;
     static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages &&
                       HFX_IMAGE_RING_SHINE < kImages,
