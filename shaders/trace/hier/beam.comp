@@ -7,11 +7,9 @@
 // start) where the block's centre sees no point of the patch's texcoord box, as where a rasteriser
 // would give the block no fragment.
 //
-// The block's rays are found from the screen, as trace.comp's hfx_patch_ray finds a pixel's: the
-// patch's texcoords are a projective map of the screen (u_patchFromScreen takes a point's clip x
-// and y over w, with a 1, to (u, v, 1) / w), and its view ray in texture space is the eye there
-// (u_patchEye) less the entry, or an orthographic eye's direction. Those are the draw's rays to a
-// rounding (the frame is surface.frag's, hfx_world_from_texture, made on the host in doubles). At
+// The block's rays are found from the screen through the patch's projective map, as trace.comp's
+// hfx_patch_ray finds a pixel's (trace/hier/patch.glsl): the draw's rays to a rounding (the
+// frame is surface.frag's, hfx_world_from_texture, made on the host in doubles). At
 // any depth the points of the block's rays lie in the quadrilateral of its corner rays' (the
 // screen maps to each plane of constant depth projectively, keeping the block's convex outline),
 // so no ray strays from the centre's further than a corner does, and a corner's offset from the
@@ -24,12 +22,10 @@
 #include "surface/heights.glsl"
 #include "trace/common.glsl"
 #include "trace/hier.glsl"
+#include "trace/hier/patch.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = HFX_IMAGE_PASS_OUTPUT, r32f) uniform writeonly image2D i_beamStart;
-uniform mat3 u_patchFromScreen;
-uniform vec3 u_patchEye;
-uniform vec4 u_patchBox;     // the box of the patch's texcoords (umin, vmin, umax, vmax)
 uniform vec4 u_beamViewport; // the draw's viewport (x, y, width, height, window pixels)
 uniform ivec2 u_beamBlocks;  // the blocks this draw's window holds
 
@@ -37,12 +33,10 @@ uniform ivec2 u_beamBlocks;  // the blocks this draw's window holds
 // space (uv * size - 0.5) at the polygon (xy) and at the bottom of the relief (zw). False where it
 // does not come down onto the patch's plane from the side its normal faces.
 bool hfx_block_ray(vec2 window, out vec2 uv, out vec4 cells) {
-    uv = vec2(0.0);
     cells = vec4(0.0);
-    const vec3 h = u_patchFromScreen * vec3((window - u_beamViewport.xy) / u_beamViewport.zw * 2.0 - 1.0, 1.0);
-    if (!(h.z > 0.0)) return false; // behind the eye (or at infinity)
-    uv = h.xy / h.z;
-    const vec3 viewTS = u_orthographic != 0 ? u_patchEye : u_patchEye - vec3(uv, 0.0);
+    float w;
+    if (!hfx_patch_point((window - u_beamViewport.xy) / u_beamViewport.zw * 2.0 - 1.0, uv, w)) return false;
+    const vec3 viewTS = hfx_patch_view(uv);
     if (!(viewTS.z > 0.0)) return false;
     const vec2 size = vec2(hfx_size());
     const vec2 top = uv * size - 0.5;

@@ -25,22 +25,14 @@ layout(binding = HFX_UNIT_BEAM_START) uniform sampler2D s_beamStart;
 #define HFX_TRACE_PATCH 0
 #endif
 #if HFX_TRACE_PATCH
-// The flat patch (hfx::FlatPatch) as the draw places it (ExactTracer::walks). Its texcoords are a
-// projective map of the screen: with c(u, v) = the clip coordinates of the patch's point at
-// (u, v), (x, y, w) of c is a 3x3 matrix times (u, v, 1), and its inverse, u_patchFromScreen,
-// takes a pixel's (x, y) in clip space over w, with a 1, to (u, v, 1) / w: the pixel's entry, and
-// the clip w that says it lies ahead of the eye. A rasteriser's perspective-correct interpolation
-// is the same map. u_patchDepth: clip z as (u, v, 1) . it, for the near and far planes' tests.
-// u_patchEye: the eye in the patch's texture space (surface.frag's hfx_texture_from_world of the
-// frame, about its point at (0, 0)), or an orthographic eye's direction in it (u_orthographic).
-// u_patchBox: the box of its texcoords (umin, vmin, umax, vmax); u_patchBudget: the pixel budget
-// (0 for a caster's pass: its texels are no screen pixels); u_patchWalksLight: 1 where the light
-// ray is walked (the light above the patch, self-shadows drawn, no caster), u_patchLight its
-// texcoords per unit climbed (the texel shadows' light where they are read).
-uniform mat3 u_patchFromScreen;
+#include "trace/hier/patch.glsl"
+// The flat patch as the draw places it (ExactTracer::walks; its map from the screen in
+// patch.glsl). u_patchDepth: clip z as (u, v, 1) . it, for the near and far planes' tests.
+// u_patchBudget: the pixel budget (0 for a caster's pass: its texels are no screen pixels);
+// u_patchWalksLight: 1 where the light ray is walked (the light above the patch, self-shadows
+// drawn, no caster), u_patchLight its texcoords per unit climbed (the texel shadows' light where
+// they are read).
 uniform vec3 u_patchDepth;
-uniform vec3 u_patchEye;
-uniform vec4 u_patchBox;
 uniform float u_patchBudget;
 uniform int u_patchWalksLight;
 uniform vec2 u_patchLight;
@@ -56,10 +48,9 @@ bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
     ray = vec4(0.0);
     info = uvec2(0u);
     const vec2 perPixel = 2.0 / vec2(u_traceWidth, u_traceHeight);
-    const vec3 h = u_patchFromScreen * vec3((vec2(pixel) + 0.5) * perPixel - 1.0, 1.0);
-    if (!(h.z > 0.0)) return false; // behind the eye (or at infinity)
-    const float w = 1.0 / h.z;
-    const vec2 uv0 = h.xy * w;
+    vec2 uv0;
+    float w;
+    if (!hfx_patch_point((vec2(pixel) + 0.5) * perPixel - 1.0, uv0, w)) return false;
     const float z = dot(u_patchDepth, vec3(uv0, 1.0));
     const vec2 dx = (u_patchFromScreen[0].xy - uv0 * u_patchFromScreen[0].z) * (w * perPixel.x);
     const vec2 dy = (u_patchFromScreen[1].xy - uv0 * u_patchFromScreen[1].z) * (w * perPixel.y);
@@ -68,7 +59,7 @@ bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
     if (!(abs(z) <= w * 1.0001) || any(lessThan(uv0, u_patchBox.xy - margin)) ||
         any(greaterThan(uv0, u_patchBox.zw + margin)))
         return false; // no fragment of the patch's: the slot is left as it is
-    const vec3 viewTS = u_orthographic != 0 ? u_patchEye : u_patchEye - vec3(uv0, 0.0);
+    const vec3 viewTS = hfx_patch_view(uv0);
     const vec2 texels = vec2(hfx_size());
     const float mipLevel = hfx_level_of(dx * texels, dy * texels);
     if (!(viewTS.z > 0.0 && mipLevel <= u_lodThreshold && u_depthScale > 0.0)) {
