@@ -32,7 +32,7 @@ TEST_F(ImageSurfaceTest, DerivedNormalsMatchTheCpuSobel) {
     const std::string path = writeHeightMap("surface_height.exr", heights, N);
     const float depthScale = 0.07f;
     ImageSurface surface(cl(), {.maps = readSurfaceMaps(path, "", ""), .material = {.depthScale = depthScale},
-                                .surface = {.mipmaps = false}});
+                                .surface = {.mipmaps = false, .format = SurfaceFormat::Float32}});
     std::vector<float> gpu(size_t(N) * N * 4);
     glGetTextureImage(surface.textures().surface(), 0, GL_RGBA, GL_FLOAT, GLsizei(gpu.size() * 4), gpu.data());
     // The file stores 32-bit floats: the CPU Sobel of the same heights.

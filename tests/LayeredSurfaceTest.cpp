@@ -241,8 +241,11 @@ TEST_F(LayeredSurface, RefusesWhatItCannotDraw) {
     EXPECT_NE(draw({{a, 1.0f, 0.5f}, {b, 2.0f, 0.5f, false, 1.5f}}).find("restHeight"), std::string::npos);
     SurfaceTextures clamped({.width = 8, .height = 8, .mipmaps = false, .edges = EdgeMode::Clamp});
     EXPECT_NE(draw({{a, 1.0f, 0.5f}, {&clamped, 2.0f, 0.5f}}).find("does not tile"), std::string::npos);
-    SurfaceTextures half({.width = 8, .height = 8, .mipmaps = false, .format = SurfaceFormat::Float16});
-    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {&half, 2.0f, 0.5f}}).find("one format"), std::string::npos);
+    // A layer in another format than layer 0's (the device's: float32 or float16).
+    const SurfaceFormat other =
+        a->config().format == SurfaceFormat::Float16 ? SurfaceFormat::Float32 : SurfaceFormat::Float16;
+    SurfaceTextures unlike({.width = 8, .height = 8, .mipmaps = false, .format = other});
+    EXPECT_NE(draw({{a, 1.0f, 0.5f}, {&unlike, 2.0f, 0.5f}}).find("one format"), std::string::npos);
 }
 
 } // namespace

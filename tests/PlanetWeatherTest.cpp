@@ -70,7 +70,8 @@ TEST_F(PlanetWeather, ASpunUpPlanetDrawsItsWeatherBeforeAnyUpdate) {
     GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .vorticity = 0.35f, .jetSpeed = 14.0f,
                                           .jetBands = 4.5f, .jetRate = 0.2f, .jetPolar = 1.0f, .maxSpeed = 56.0f,
                                           .initialBands = 4.0f, .bandVariety = 1.0f, .dyeRate = 0.15f},
-                                  .stormsPerSecond = 2.0f});
+                                  .stormsPerSecond = 2.0f,
+                                  .surface = {.format = SurfaceFormat::Float32}}); // the heights to the bit
     auto drawn = [&] {
         const int w = planet.surfaceWidth(), h = planet.surfaceHeight();
         std::vector<float> texels(size_t(w) * h * 4), heights(size_t(w) * h);

@@ -674,7 +674,10 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
     HeightBounds bounds(N, N, EdgeMode::Wrap);
     for (const ShadowField& field : fields) {
         StaticField source(cl(), N, N, EdgeMode::Wrap, field.heights);
-        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false}));
+        // Float32 texels, every effect's on a CPU rasteriser: the walks read the heights the exact
+        // CPU intersection reads (a GPU's float16 rounds them).
+        SurfacePipeline surface(
+            cl(), SurfacePipelineConfig::of(source, depth, {.mipmaps = false, .format = SurfaceFormat::Float32}));
         const HeightFieldTracer exact(field.heights, N, N, EdgeMode::Wrap);
         for (size_t li = 0; li < std::size(lights); ++li) {
             for (const auto& [sharpness, stride] : {std::pair{2.0f, 1}, std::pair{8.0f, 1}, std::pair{2.0f, 2}, std::pair{8.0f, 2}}) {
@@ -770,7 +773,9 @@ TEST_F(TracerContract, TexelShadowsAtAStrideWalkPastTheLastSampleOfAClampedEdge)
     constexpr int N = 128, stride = 2;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 3, 1, 0.0}, {0.12, -4, 7, 0.7}, {0.05, 11, -9, 0.3}});
     StaticField source(cl(), N, N, EdgeMode::Clamp, heights);
-    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(source, 0.1f, {.mipmaps = false}));
+    // Float32 texels: the walks read the heights the exact CPU intersection reads.
+    SurfacePipeline surface(
+        cl(), SurfacePipelineConfig::of(source, 0.1f, {.mipmaps = false, .format = SurfaceFormat::Float32}));
     const HeightFieldTracer exact(heights, N, N, EdgeMode::Clamp);
     DirectionalLight light;
     light.direction = {0.6f, 0.35f, 0.3f}; // towards +u, +v: the rays from the far strips cross the field
@@ -855,7 +860,9 @@ TEST_F(TracerContract, TheRenderersPyramidReadFindsEveryLevelInItsImageOnSquareA
         for (float& h : heights) h = unit(random);
         StaticField field(cl(), W, H, EdgeMode::Wrap, heights);
         for (const PyramidLayout layout : {PyramidLayout::Atlas, PyramidLayout::MipChain}) {
-        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false}));
+        // Float32 texels: the pyramid of the heights themselves.
+        SurfacePipeline surface(
+            cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false, .format = SurfaceFormat::Float32}));
         surface.run(field.buffer());
         const std::vector<float> reference = pyramidReference(heights, W, H);
         std::vector<glm::vec4> items;

@@ -40,7 +40,8 @@ TEST_F(Users, PickingHitsTheDisplacedSurfaceAndTheStampLandsThere) {
     constexpr float level = 0.6f, depthScale = 0.06f;
     const std::string heightMap = outputPath("users_flat_wall.exr");
     writeImage(heightMap, Image{N, N, 1, std::vector<float>(N * N, level)});
-    DecalWallConfig config{.maps = readSurfaceMaps(heightMap, "", "")};
+    // Float32 texels: the stored height is the stamped one, to the bit.
+    DecalWallConfig config{.maps = readSurfaceMaps(heightMap, "", ""), .surface = {.format = SurfaceFormat::Float32}};
     config.material.depthScale = depthScale;
     DecalWallEffect wall(cl(), config);
 
@@ -103,7 +104,9 @@ TEST_F(Users, DecalWallKeepsTheNormalMapWhereUndamagedAndBendsItInCraters) {
     glm::vec3 expected(2.0f * stored.at(0, 0, 0) - 1.0f, 2.0f * stored.at(0, 0, 1) - 1.0f, 2.0f * stored.at(0, 0, 2) - 1.0f);
     expected = glm::normalize(expected);
 
-    DecalWallEffect wall(cl(), {.maps = readSurfaceMaps(heightMap, normalMap, "")});
+    // Float32 texels: the map's normal, to a float's rounding.
+    DecalWallEffect wall(cl(), {.maps = readSurfaceMaps(heightMap, normalMap, ""),
+                                .surface = {.format = SurfaceFormat::Float32}});
     std::vector<float> texels = readSurface(wall.textures());
     for (int i = 0; i < N * N; ++i)
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(texels[i * 4 + c], expected[c], 1e-6f) << "texel " << i;
@@ -306,6 +309,7 @@ TEST_F(Users, PlanetColoursComeFromTheGasThroughTheRamp) {
     config.gas.height = 32;
     config.gas.initialBands = 4.0f;
     config.stormsPerSecond = 5.0f;
+    config.surface.format = SurfaceFormat::Float32; // the stored heights are the ramp's inputs
     GasPlanetEffect planet(cl(), config);
     for (int i = 0; i < 3; ++i) planet.update(1.0 / 30.0);
     const std::vector<float> surface = readSurface(planet.textures());
@@ -359,7 +363,7 @@ TEST_F(Users, OverlappedUpdatesGiveTheSameFieldsIntoTheOtherTextures) {
 }
 
 TEST_F(Users, SmallerFormatsStoreWhatTheyNameAndStayCloseToFloat) {
-    SineWavesEffect full(cl(), {.waves = {.size = 64}});
+    SineWavesEffect full(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Float32}});
     SineWavesEffect half(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Float16}});
     SineWavesEffect bytes(cl(), {.waves = {.size = 64}, .surface = {.format = SurfaceFormat::Unorm8}});
     for (int i = 0; i < 3; ++i) { // the second and third go through the other texture pair

@@ -33,12 +33,14 @@ protected:
     void TearDown() override; ///< fails the test where it left a GL error unchecked
 };
 
-/// Sets HFX_GL_WORKAROUNDS for its lifetime, and puts back what was there.
+/// Sets HFX_GL_WORKAROUNDS for its lifetime, after what the run set (a later entry wins: a run
+/// under HFX_GL_WORKAROUNDS=float32-surfaces=0 keeps that inside), and puts back what was there.
 class WorkaroundsSet {
 public:
     explicit WorkaroundsSet(const char* value) {
         if (const char* old = std::getenv("HFX_GL_WORKAROUNDS")) old_ = old;
-        setenv("HFX_GL_WORKAROUNDS", value, 1);
+        const std::string set = old_ && !old_->empty() ? *old_ + "," + value : std::string(value);
+        setenv("HFX_GL_WORKAROUNDS", set.c_str(), 1);
     }
     ~WorkaroundsSet() {
         if (old_) setenv("HFX_GL_WORKAROUNDS", old_->c_str(), 1);
