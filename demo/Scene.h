@@ -54,8 +54,8 @@ struct SceneOptions {
     std::uint32_t seed = 1;
     int width = 1280, height = 720;    ///< the image: the cameras' aspect, pixel shots
     float aspect() const { return float(width) / float(height); }
-    SurfaceFormat surfaceFormat = SurfaceFormat::Float32; ///< storage of the surface textures
-    TransferPath transfer = TransferPath::Auto;           ///< how the surface reaches GL
+    SurfaceFormat surfaceFormat = SurfaceFormat::Auto; ///< storage of the surface textures
+    TransferPath transfer = TransferPath::Auto;        ///< how the surface reaches GL
     /// An effect's surface options: the storage and the path to GL.
     SurfaceOptions surfaceOptions() const { return {.format = surfaceFormat, .transfer = transfer}; }
     std::string waves = "fft";         ///< water: fft (Tessendorf) or sine (directional waves)

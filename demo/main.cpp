@@ -48,7 +48,7 @@ struct Options {
     int width = 1280, height = 720;
     double dt = 1.0 / 30.0;
     std::string technique = "auto";
-    std::string surfaceFormat = "float32";
+    std::string surfaceFormat = "auto";
     std::string tracePass = "auto";
     std::string glState = "restore";
     std::string transfer = "auto";
@@ -361,9 +361,10 @@ int main(int argc, char** argv) {
                    "own state before each draw; the same frames)")
         ->check(CLI::IsMember({"restore", "defaults"}))->capture_default_str();
     app.add_option("--surface-format", o.surfaceFormat,
-                   "storage of normal + height: float32, float16 (half the memory and transfer) or unorm8 "
-                   "(a quarter; not with --technique hier); docs/ACCURACY.md measures their error")
-        ->check(CLI::IsMember({"float32", "float16", "unorm8"}))->capture_default_str();
+                   "storage of normal + height: float32, float16 (half the memory and transfer), unorm8 "
+                   "(a quarter; not with --technique hier) or auto (float16 on a GPU, float32 on a CPU rasteriser, "
+                   "which converts a float16 texel per fetch); docs/ACCURACY.md measures their error")
+        ->check(CLI::IsMember({"float32", "float16", "unorm8", "auto"}))->capture_default_str();
     app.add_option("--transfer", o.transfer,
                    "how the surface reaches GL: map (from the mapped device buffer), pixel-buffer (the device writes a "
                    "GL pixel buffer), staged (a read into pinned memory, copied into a fenced pixel-buffer ring: for a "

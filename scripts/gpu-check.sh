@@ -14,7 +14,8 @@
 # transfer table) at both sizes, the decal wall and the planet at 1280x720 again with hier walking
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
 # column gives its medians of both passes), the texel shadows forced on and off where the
-# scenes' rule would choose otherwise, the ringed planet and the noise on the triplanar box at
+# scenes' rule would choose otherwise, the hier scenes with float32 surfaces (float16, Auto's
+# choice on a GPU, in bench-720p), the ringed planet and the noise on the triplanar box at
 # 1280x720, and a draw's issue time under both GlStatePolicy values with the driver's threaded
 # optimisation off and on. A step that runs out of time is cut and says so; the rest go on.
 # HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
@@ -35,7 +36,7 @@ run=(bash "$bundle/run.sh")
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10
                    [gl-tests-compute-pass]=4 [bench-tracers-720p]=12 [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
                    [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8 [bench-triplanar-720p]=6
-                   [bench-draw-issue]=3 [bench-planet-gas]=6 [bench-720p-texels]=8)
+                   [bench-draw-issue]=3 [bench-planet-gas]=6 [bench-720p-texels]=8 [bench-720p-float32]=8)
 # By default every step but gl-tests-compute-pass, which gl-tests-rest holds.
 selected=${HFX_GPU_STEPS:-$(printf '%s\n' "${!shares[@]}" | grep -vx gl-tests-compute-pass | tr '\n' ' ')}
 total=0
@@ -101,6 +102,11 @@ step bench-4k "${run[@]}" hfx-demo bench --bench-only water,decals,planet --widt
 step bench-720p-texels bash -c "bash '$bundle/run.sh' hfx-demo bench --bench-only decals --texel-shadows --width 1280 \
     --height 720 && for t in --no-texel-shadows --texel-shadows; do echo \"noise \$t\"; bash '$bundle/run.sh' hfx-demo \
     bench --bench-only noise \$t --width 1280 --height 720; done"
+# The surface format: bench-720p stores the scenes' surfaces as SurfaceFormat::Auto chose here
+# (float16 on a GPU; its transfer table has the water in every format); the hier scenes again with
+# float32 texels, for the transfer and the draws each format costs them.
+step bench-720p-float32 "${run[@]}" hfx-demo bench --bench-only decals,planet --surface-format float32 --width 1280 \
+    --height 720
 # The ringed planet seen whole (its rings' draw, their shadow and ring shine in the planet's draw).
 step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1 --camera-distance 5 --width 1280 --height 720
 # The noise on a rounded box through the triplanar mapping: what its loop over a pixel's projections

@@ -174,6 +174,61 @@ TEST_F(Pipeline, MapsFromFilesTakeEveryFormatPathAndTheirBounds) {
         }
 }
 
+TEST_F(Pipeline, AutoStoresFloat16OnAGpuAndFloat32WhereTheDeviceAsksForIt) {
+    // SurfaceFormat::Auto, every effect's default: a GPU's half floats (half the bytes to move
+    // and to sample), a CPU rasteriser's float32 (GlWorkarounds::float32Surfaces); a format
+    // asked for is itself on either.
+    const GlWorkarounds gpu{}, cpu{.float32Surfaces = true};
+    EXPECT_EQ(chooseSurfaceFormat(SurfaceFormat::Auto, gpu), SurfaceFormat::Float16);
+    EXPECT_EQ(chooseSurfaceFormat(SurfaceFormat::Auto, cpu), SurfaceFormat::Float32);
+    for (const SurfaceFormat format : kSurfaceFormats) {
+        EXPECT_EQ(chooseSurfaceFormat(format, gpu), format) << surfaceFormatName(format);
+        EXPECT_EQ(chooseSurfaceFormat(format, cpu), format) << surfaceFormatName(format);
+    }
+    EXPECT_EQ(SurfaceOptions{}.format, SurfaceFormat::Auto);
+    EXPECT_EQ(parseSurfaceFormat("auto"), SurfaceFormat::Auto);
+
+    // A pipeline of the default options stores the chosen format, in GL too, its texels the
+    // Sobel normals and heights to that format's rounding (half floats round: some texel shows it).
+    constexpr int N = 32;
+    const auto heights = sumOfSines(N, {{0.3, 1, 2, 0.3}, {0.1, 3, -1, 0.0}});
+    const auto sobel = sobelReference(heights, N, 0.05f);
+    for (const bool float32 : {false, true}) {
+        const WorkaroundsSet set(float32 ? "float32-surfaces=1" : "float32-surfaces=0");
+        const SurfaceFormat expected = float32 ? SurfaceFormat::Float32 : SurfaceFormat::Float16;
+        StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
+        SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false}));
+        surface.run(field.buffer());
+        EXPECT_EQ(surface.config().options.format, expected);
+        EXPECT_EQ(surface.textures().config().format, expected);
+        EXPECT_NE(surface.transferDescription().find(surfaceFormatName(expected)), std::string::npos)
+            << surface.transferDescription();
+        GLint internal = 0;
+        glGetTextureLevelParameteriv(surface.textures().surface(), 0, GL_TEXTURE_INTERNAL_FORMAT, &internal);
+        EXPECT_EQ(internal, float32 ? GL_RGBA32F : GL_RGBA16F);
+        const std::vector<float> texels = readSurface(surface.textures());
+        ASSERT_EQ(texels.size(), sobel.size());
+        double worst = 0.0;
+        for (size_t i = 0; i < texels.size(); ++i) worst = std::max(worst, double(std::abs(texels[i] - sobel[i])));
+        EXPECT_LE(worst, float32 ? 1e-6 : 1e-3) << surfaceFormatName(expected);
+        if (!float32) EXPECT_GT(worst, 1e-6) << "float16 texels equal float32's: not stored as half floats";
+    }
+
+    // A stored format is needed where texels are laid out: Auto there is refused by name.
+    const auto refusal = [](const std::function<void()>& f) {
+        try {
+            f();
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(refusal([] { texelBytes(SurfaceFormat::Auto); }).find("auto"), std::string::npos);
+    const std::string unstored =
+        refusal([] { SurfaceTextures t({.width = 8, .height = 8, .format = SurfaceFormat::Auto}); });
+    EXPECT_NE(unstored.find("format is auto"), std::string::npos) << unstored;
+}
+
 TEST_F(Pipeline, ThePyramidGlBuildsFromTheTexelsIsTheComputeDevicesToTheBit) {
     // BoundsPass builds the bounds from what GL holds; on a CPU rasteriser a float32 surface's
     // come from the compute device (GlWorkarounds::pyramidFromCompute, SurfacePipeline::bounds)
@@ -197,7 +252,9 @@ TEST_F(Pipeline, ThePyramidGlBuildsFromTheTexelsIsTheComputeDevicesToTheBit) {
                 const WorkaroundsSet set(str("pyramid-atlas=", layout == PyramidLayout::Atlas ? 1 : 0,
                                              ",pyramid-from-compute=", fromCompute).c_str());
                 StaticField field(cl(), W, H, edges, heights);
-                SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, {.mipmaps = false}));
+                // Float32 texels: the device builds only those (their heights are its own).
+                const SurfaceOptions float32{.mipmaps = false, .format = SurfaceFormat::Float32};
+                SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.05f, float32));
                 surface.run(field.buffer());
                 ASSERT_EQ(surface.bounds() != nullptr, fromCompute == 1);
                 const HeightBounds levels(surface.textures().config(), layout);
@@ -240,7 +297,8 @@ TEST_F(Pipeline, ANormalMapOverUnchangingHeightsIsStoredExactly) {
     const std::string normalMap = outputPath("pipeline_nm.exr");
     writeImage(normalMap, normals);
     const std::vector<float> expected = packNormalMap(readImage(normalMap), normalMap, heights);
-    ImageSurface surface(cl(), {.maps = readSurfaceMaps(map, normalMap, ""), .surface = {.mipmaps = false}});
+    ImageSurface surface(cl(), {.maps = readSurfaceMaps(map, normalMap, ""),
+                                .surface = {.mipmaps = false, .format = SurfaceFormat::Float32}});
     EXPECT_EQ(readSurface(surface.textures()), expected);
     // A static surface derives once: later updates change nothing and refuse a bad dt.
     surface.update(0.1);
@@ -422,7 +480,8 @@ TEST_F(Pipeline, NoiseGrainsTheWallAndDetailsThePlanetsCloudTops) {
     // The planet's cloud tops: its drawn surface is its flow detail's heights (FlowDetailTest
     // holds those to the shared math), at the detail's scale per gas cell, the device's when
     // left to it.
-    GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .initialBands = 4.0f}, .stormsPerSecond = 0.0f});
+    GasPlanetEffect planet(cl(), {.gas = {.width = 64, .height = 32, .initialBands = 4.0f}, .stormsPerSecond = 0.0f,
+                                  .surface = {.format = SurfaceFormat::Float32}}); // its heights to the bit
     planet.update(0.1);
     ASSERT_NE(planet.detail(), nullptr);
     const int scale = autoDetailScale(cl(), 64);

@@ -29,6 +29,7 @@ GlRendererInfo currentGlRenderer() {
 GlWorkarounds glWorkarounds(const GlRendererInfo& renderer) {
     const bool software = renderer.software();
     GlWorkarounds w{.cpuClockTimer = software,
+                    .float32Surfaces = software,
                     .pyramidAtlas = software,
                     .pyramidFromCompute = software,
                     .traceInDraw = software};
@@ -40,13 +41,15 @@ GlWorkarounds glWorkarounds(const GlRendererInfo& renderer) {
         const size_t eq = entry.find('=');
         const std::string name = entry.substr(0, eq), value = eq == std::string::npos ? "" : entry.substr(eq + 1);
         bool* flag = name == "cpu-clock-timer"        ? &w.cpuClockTimer
+                     : name == "float32-surfaces"     ? &w.float32Surfaces
                      : name == "pyramid-atlas"        ? &w.pyramidAtlas
                      : name == "pyramid-from-compute" ? &w.pyramidFromCompute
                      : name == "trace-in-draw"        ? &w.traceInDraw
                                                       : nullptr;
         if (!flag || (value != "0" && value != "1"))
             throw Error(str("HFX_GL_WORKAROUNDS: '", entry, "' is not name=0 or name=1 with a name of "
-                            "cpu-clock-timer, pyramid-atlas, pyramid-from-compute, trace-in-draw (in '", env, "')"));
+                            "cpu-clock-timer, float32-surfaces, pyramid-atlas, pyramid-from-compute, trace-in-draw "
+                            "(in '", env, "')"));
         *flag = value == "1";
     }
     return w;

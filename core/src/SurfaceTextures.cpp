@@ -16,6 +16,9 @@ void SurfaceTexturesConfig::validate() const {
         throw Error(str("surface size must be in 1..16384, got ", width, "x", height));
     if (!(normalDepth > 0.0f) || !std::isfinite(normalDepth))
         throw Error(str("SurfaceTexturesConfig.normalDepth must be positive and finite, got ", normalDepth));
+    if (format == SurfaceFormat::Auto)
+        throw Error("SurfaceTexturesConfig.format is auto: textures store a chosen format (float32, float16, unorm8; "
+                    "SurfacePipeline chooses the device's with chooseSurfaceFormat)");
 }
 
 namespace {

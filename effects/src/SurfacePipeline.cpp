@@ -28,8 +28,24 @@ SurfacePipelineConfig SurfacePipelineConfig::of(const HeightSource& source, floa
             .options = options};
 }
 
+SurfaceFormat chooseSurfaceFormat(SurfaceFormat requested, const GlWorkarounds& device) {
+    if (requested != SurfaceFormat::Auto) return requested;
+    return device.float32Surfaces ? SurfaceFormat::Float32 : SurfaceFormat::Float16;
+}
+
+SurfaceFormat chooseSurfaceFormat(SurfaceFormat requested) {
+    return requested != SurfaceFormat::Auto ? requested
+                                            : chooseSurfaceFormat(requested, glWorkarounds(currentGlRenderer()));
+}
+
 namespace {
 
+/// `config` validated, its format chosen for the current GL context's device.
+SurfacePipelineConfig chosen(const SurfacePipelineConfig& config) {
+    SurfacePipelineConfig c = validated(config);
+    c.options.format = chooseSurfaceFormat(c.options.format);
+    return c;
+}
 
 SurfaceTexturesConfig texturesConfig(const SurfacePipelineConfig& c) {
     return {.width = c.width,
@@ -67,22 +83,22 @@ double SurfacePipeline::nowMs() {
 }
 
 SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& config)
-    : cl_(cl), config_(validated(config)), transfer_(chooseTransferPath(cl, config.options.transfer)),
-      pixels_(makePixels(transfer_, config)),
+    : cl_(cl), config_(chosen(config)), transfer_(chooseTransferPath(cl, config_.options.transfer)),
+      pixels_(makePixels(transfer_, config_)),
       // A float32 surface's texels are the normals themselves: with a pixel buffer, they lie in it.
-      sobel_(cl, config.sobel(),
-             pixels_ && config.options.format == SurfaceFormat::Float32 ? pixels_->memory() : nullptr),
-      textures_{std::make_unique<SurfaceTextures>(texturesConfig(config)),
-                std::make_unique<SurfaceTextures>(texturesConfig(config))} {
+      sobel_(cl, config_.sobel(),
+             pixels_ && config_.options.format == SurfaceFormat::Float32 ? pixels_->memory() : nullptr),
+      textures_{std::make_unique<SurfaceTextures>(texturesConfig(config_)),
+                std::make_unique<SurfaceTextures>(texturesConfig(config_))} {
     // A float32 surface's stored heights are the device's: where GL builds the bounds slower than
     // the device and the copy (GlWorkarounds::pyramidFromCompute), they come from the device.
-    boundsFromDevice_ = config.options.format == SurfaceFormat::Float32 &&
+    boundsFromDevice_ = config_.options.format == SurfaceFormat::Float32 &&
                         glWorkarounds(currentGlRenderer()).pyramidFromCompute &&
                         carriesBounds(textures_[0]->config());
     if (boundsFromDevice_)
         for (auto& b : bounds_) b = std::make_unique<HeightBounds>(textures_[0]->config()); // storage on first upload
-    if (config.options.format != SurfaceFormat::Float32)
-        packer_ = std::make_unique<SurfacePacker>(cl, config.width, config.height, config.options.format,
+    if (config_.options.format != SurfaceFormat::Float32)
+        packer_ = std::make_unique<SurfacePacker>(cl, config_.width, config_.height, config_.options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);
     if (transfer_ == TransferPath::Staged || transfer_ == TransferPath::GlSharing)
         streams_ = std::make_unique<StreamTransfer>(cl, transfer_);

@@ -24,12 +24,19 @@ GlRendererInfo currentGlRenderer();
 /// Where HFX does, on a CPU rasteriser, what a GPU would not want: each switch measured to pay
 /// there (docs/BENCHMARKS.md), and all of them here, detected from the renderer. Everywhere else
 /// the code is written for a GPU. HFX_GL_WORKAROUNDS overrides them, "name=0|1" separated by
-/// commas (cpu-clock-timer, pyramid-atlas, pyramid-from-compute, trace-in-draw), so either side runs on any
+/// commas (cpu-clock-timer, float32-surfaces, pyramid-atlas, pyramid-from-compute, trace-in-draw), so either
+/// side runs on any
 /// device: tests hold the two sides to the same results, benches time one against the other.
 struct GlWorkarounds {
     /// GpuTimer: the CPU clock between two glFinish times a pass. A CPU rasteriser has no device
     /// clock: its timer queries stamp one tile of a pass, a fraction of the work.
     bool cpuClockTimer = false;
+    /// SurfacePipeline (effects): SurfaceFormat::Auto stores a surface as float32 (RGBA32F), not
+    /// float16. llvmpipe converts an RGBA16F texel on every fetch, and its transfer is a copy in
+    /// the same memory: the water's POM draw costs more with float16 for no faster transfer. A
+    /// GPU moves and samples half the bytes: on an H100 float16 took the water's transfer to
+    /// 0.65-0.81x and its POM draw to 0.67x float32's (docs/BENCHMARKS.md).
+    bool float32Surfaces = false;
     /// HeightBounds (effects): the bounds pyramid as one RG32F image read with imageLoad, and the level-0
     /// cells' samples as an RGBA32F image (BoundsPass), instead of a mip chain read with
     /// texelFetch at the lane's level and a textureGather of the heights. On llvmpipe a texelFetch

@@ -27,6 +27,7 @@
 #include "hfx/compute/BoundsPyramid.h"
 #include "hfx/compute/SobelNormals.h"
 #include "hfx/compute/SurfacePacker.h"
+#include "hfx/core/GlRenderer.h"
 #include "hfx/core/Image.h"
 #include "hfx/core/PixelBuffer.h"
 #include "hfx/core/SurfaceTextures.h"
@@ -44,10 +45,17 @@ class StreamTransfer;
 struct SurfaceOptions {
     bool mipmaps = true;
     /// The surface textures' storage; other than Float32, a SurfacePacker packs the texels on
-    /// the device before the transfer.
-    SurfaceFormat format = SurfaceFormat::Float32;
+    /// the device before the transfer. Auto: the device's (chooseSurfaceFormat).
+    SurfaceFormat format = SurfaceFormat::Auto;
     TransferPath transfer = TransferPath::Auto; ///< resolved by chooseTransferPath
 };
+
+/// The format `requested` resolves to: Auto takes Float16 (half the bytes to move and to sample,
+/// heights to 2^-11 near 1: docs/ACCURACY.md) where `device` is a GPU, Float32 where it asks for
+/// it (GlWorkarounds::float32Surfaces, a CPU rasteriser); any other format is itself.
+SurfaceFormat chooseSurfaceFormat(SurfaceFormat requested, const GlWorkarounds& device);
+/// The same for the current GL context's device.
+SurfaceFormat chooseSurfaceFormat(SurfaceFormat requested);
 
 struct SurfacePipelineConfig {
     int width = 512;
@@ -127,6 +135,7 @@ public:
     TransferPath transferPath() const { return transfer_; }
     /// "float16 texels packed on the device, pixel-buffer path", for start-up reports.
     std::string transferDescription() const;
+    /// The configuration, its format chosen (never Auto: chooseSurfaceFormat's).
     const SurfacePipelineConfig& config() const { return config_; }
 
 private:
