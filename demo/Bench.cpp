@@ -185,8 +185,11 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
     auto wanted = [&](const std::string& part) { return only.empty() || std::ranges::find(only, part) != only.end(); };
     const Devices devices = openDevices(deviceOptions, {.width = width, .height = height}, false);
     ClContext& cl = *devices.cl;
-    std::printf("hfx-demo bench: %dx%d, medians of %d frames per case after %d warm-up frames\n%s\n\n", width, height,
+    std::printf("hfx-demo bench: %dx%d, medians of %d frames per case after %d warm-up frames\n%s\n", width, height,
                 frames, kWarmupFrames, devices.summary().c_str());
+    // The scenes' surfaces as this device stores them (SurfaceFormat::Auto: float16 on a GPU).
+    std::printf("Surfaces: %s texels (--surface-format %s)\n\n",
+                surfaceFormatName(chooseSurfaceFormat(options.surfaceFormat)), surfaceFormatName(options.surfaceFormat));
     std::printf("Device time, ms (CL kernels by event profiling, VkFFT's included; GL passes by timer queries). A draw\n"
                 "is the whole scene drawn with that technique (its shadow map, the pyramids' build from the new heights\n"
                 "(bounds: hier's, and the bounded searches' of the ocean's POM), hier's texel shadows where they pay and\n"
