@@ -32,9 +32,9 @@ struct GlWorkarounds {
     /// clock: its timer queries stamp one tile of a pass, a fraction of the work.
     bool cpuClockTimer = false;
     /// SurfacePipeline (effects): SurfaceFormat::Auto stores a surface as float32 (RGBA32F), not
-    /// float16. llvmpipe converts an RGBA16F texel on every fetch (the water's POM draw 1.11-1.21x
+    /// float16. llvmpipe converts an RGBA16F texel on every fetch (the water's POM draw 1.09-1.22x
     /// float32's) and a float16 surface's bounds are built by GL, not the compute device
-    /// (pyramidFromCompute: 1.6-1.8x), for a transfer of 0.76-0.97x: frames 0.99-1.05x. A GPU
+    /// (pyramidFromCompute: 1.6-1.9x), for a transfer of 0.70-1.01x: frames 0.98-1.07x. A GPU
     /// moves and samples half the bytes: on an H100 float16 took the water's transfer to
     /// 0.65-0.81x and its POM draw to 0.67x float32's (docs/BENCHMARKS.md).
     bool float32Surfaces = false;
