@@ -24,9 +24,9 @@ GlRendererInfo currentGlRenderer();
 /// Where HFX does, on a CPU rasteriser, what a GPU would not want: each switch measured to pay
 /// there (docs/BENCHMARKS.md), and all of them here, detected from the renderer. Everywhere else
 /// the code is written for a GPU. HFX_GL_WORKAROUNDS overrides them, "name=0|1" separated by
-/// commas (cpu-clock-timer, float32-surfaces, pyramid-atlas, pyramid-from-compute, trace-in-draw), so either
-/// side runs on any
-/// device: tests hold the two sides to the same results, benches time one against the other.
+/// commas (cpu-clock-timer, float32-surfaces, pyramid-atlas, pyramid-from-compute, trace-in-draw),
+/// so either side runs on any device: tests hold the two sides to the same results, benches time
+/// one against the other.
 struct GlWorkarounds {
     /// GpuTimer: the CPU clock between two glFinish times a pass. A CPU rasteriser has no device
     /// clock: its timer queries stamp one tile of a pass, a fraction of the work.
