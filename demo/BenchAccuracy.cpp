@@ -184,7 +184,6 @@ int runBenchAccuracy(const DeviceOptions& deviceOptions, const std::string& outD
 /// and with --out writes tracers.csv (row by row, as they come). `only` restricts the maps by name.
 int runBenchTracers(const DeviceOptions& deviceOptions, const std::string& outDir, int field,
                     const std::vector<std::string>& only, int rounds, int width, int height) {
-    rounds = std::max(rounds, kTimedFrames);
     const Devices devices = openDevices(deviceOptions, {.width = 64, .height = 64}, false);
     ClContext& cl = *devices.cl;
     const glm::vec3 light = accuracyLight(); // 60 degrees off the normal
