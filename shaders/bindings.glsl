@@ -57,12 +57,6 @@
 #define HFX_BLOCK_PLANET 3        // HfxPlanet: hfx::PlanetUniforms (a planet's rings and their shadows)
 #define HFX_BLOCK_SHADOWS 4       // HfxShadows: hfx::ShadowUniforms (the light's shadow maps a draw receives)
 
-// The texel shadows' pass (trace/hier/texelshadows.comp, TexelShadowPass): a group's lanes on
-// each axis. llvmpipe ran the walks in 8x8 groups in 1.01-1.26x the time of the fragment pass the
-// compute pass replaced, in 16x16 ones in 0.91-1.13x, its noise (2026-11-30,
-// docs/history/tuning.md); a GPU's warp then covers 16x2 texels, whose light rays run side by side.
-#define HFX_TEXEL_GROUP 16
-
 // The exact tracer's beam start: its prepass walks one ray per block of this many pixels on
 // each axis (ExactTracer, trace/hier/beam.comp) and the draw reads the block's depth.
 #define HFX_BEAM_BLOCK 8

@@ -250,7 +250,7 @@ TEST_F(Robustness, TexelShadowStridesThatDoNotDivideTheFieldAreRefusedByNameAndT
     EXPECT_EQ(width, 16);
 
     // Every stride's texels are the stride-1 walks at their samples, whether the target fills the
-    // pass's groups (HFX_TEXEL_GROUP on each axis) or is smaller than one: 32x32 is 2x2 groups,
+    // pass's groups (16x16 lanes: texelshadows.comp's local_size) or is smaller than one: 32x32 is 2x2 groups,
     // 8x8 and 1x1 part of one. A low light, whose long shadows the comparison can see.
     const ShadowLight low = ShadowLight::of({0.6f, 0.25f}, 2.0f);
     auto texels = [](const TexelShadows& t, int size) {

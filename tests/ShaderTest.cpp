@@ -1,9 +1,11 @@
 #include "support/Fixtures.h"
 
 #include "hfx/core/Error.h"
+#include "hfx/core/GlObject.h"
 #include "hfx/core/ShaderProgram.h"
 
 #include <map>
+#include <vector>
 
 namespace hfx::test {
 namespace {
@@ -108,6 +110,55 @@ TEST_F(Shader, MissingVersionLineIsRefused) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("noversion.frag"), std::string::npos);
     }
+}
+
+TEST_F(Shader, DispatchOverCoversAGridWithTheProgramsOwnGroups) {
+    // Groups of 8x4 lanes over a 13x7 grid: 2x2 groups, 128 lanes, each texel of the grid written
+    // once by the lane at it (the lanes past its edges count and store nothing).
+    const SourceFile grid{"grid.comp", R"(#version 450 core
+layout(local_size_x = 8, local_size_y = 4) in;
+layout(binding = 0, r32f) uniform writeonly image2D i_grid;
+layout(std430, binding = 0) buffer Lanes { uint lanes; };
+uniform ivec2 u_size;
+void main() {
+    atomicAdd(lanes, 1u);
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (all(lessThan(p, u_size))) imageStore(i_grid, p, vec4(float(p.y * u_size.x + p.x + 1)));
+}
+)",
+                          "test"};
+    const ShaderProgram program = ShaderProgram::compute({grid});
+    constexpr int width = 13, height = 7;
+    GlTexture image = GlTexture::create();
+    glTextureStorage2D(image.id(), 1, GL_R32F, 16, 8); // a texel past the grid on each axis stays 0
+    const std::vector<float> zeros(16 * 8, 0.0f);
+    glTextureSubImage2D(image.id(), 0, 0, 0, 16, 8, GL_RED, GL_FLOAT, zeros.data());
+    GlBuffer lanes = GlBuffer::create();
+    const GLuint none = 0;
+    glNamedBufferStorage(lanes.id(), sizeof none, &none, GL_DYNAMIC_STORAGE_BIT);
+    glBindImageTexture(0, image.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lanes.id());
+    program.use();
+    program.set("u_size", glm::ivec2(width, height));
+    program.dispatchOver(width, height);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glUseProgram(0);
+    GLuint count = 0;
+    glGetNamedBufferSubData(lanes.id(), 0, sizeof count, &count);
+    EXPECT_EQ(count, 128u);
+    std::vector<float> texels(16 * 8, -1.0f);
+    glGetTextureImage(image.id(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x)
+            EXPECT_EQ(texels[size_t(y) * 16 + x], x < width && y < height ? float(y * width + x + 1) : 0.0f)
+                << x << ", " << y;
+
+    // A drawing program has no groups: refused by name, and no GL error left behind for the next call.
+    const SourceFile fragment{"ok.frag", "#version 450 core\nout vec4 o;\nvoid main() { o = vec4(1); }\n", "test"};
+    const ShaderProgram draw(vertex, fragment);
+    const std::string m = messageOf([&] { draw.dispatchOver(4, 4); });
+    EXPECT_NE(m.find("not a linked compute program"), std::string::npos) << m;
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 } // namespace

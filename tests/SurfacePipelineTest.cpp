@@ -211,7 +211,9 @@ TEST_F(Pipeline, AutoStoresFloat16OnAGpuAndFloat32WhereTheDeviceAsksForIt) {
         double worst = 0.0;
         for (size_t i = 0; i < texels.size(); ++i) worst = std::max(worst, double(std::abs(texels[i] - sobel[i])));
         EXPECT_LE(worst, float32 ? 1e-6 : 1e-3) << surfaceFormatName(expected);
-        if (!float32) EXPECT_GT(worst, 1e-6) << "float16 texels equal float32's: not stored as half floats";
+        if (!float32) {
+            EXPECT_GT(worst, 1e-6) << "float16 texels equal float32's: not stored as half floats";
+        }
     }
 
     // A stored format is needed where texels are laid out: Auto there is refused by name.

@@ -148,6 +148,16 @@ GLint ShaderProgram::uniform(std::string_view name) const {
     return it->second;
 }
 
+void ShaderProgram::dispatchOver(int width, int height) const {
+    if (group_[0] == 0) glGetProgramiv(id(), GL_COMPUTE_WORK_GROUP_SIZE, group_);
+    if (group_[0] <= 0 || group_[1] <= 0) {
+        while (glGetError() != GL_NO_ERROR) {} // the query's GL_INVALID_OPERATION, named here instead
+        throw Error(str("ShaderProgram::dispatchOver: program ", id(), " is not a linked compute program"));
+    }
+    HFX_GL_CHECK(glDispatchCompute(GLuint((std::max(width, 0) + group_[0] - 1) / group_[0]),
+                                   GLuint((std::max(height, 0) + group_[1] - 1) / group_[1]), 1));
+}
+
 void ShaderProgram::set(std::string_view name, int v) const {
     glProgramUniform1i(id(), uniform(name), v);
 }

@@ -43,7 +43,7 @@ GLuint RingShine::texture(GLuint profile, float inner, float outer, float sinEle
     p.set("u_around", kAround);
     glBindTextureUnit(HFX_UNIT_RING_PROFILE, profile);
     HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_RING_SHINE, table.texture.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F));
-    HFX_GL_CHECK(glDispatchCompute(GLuint((kLongitudes + 7) / 8), GLuint((kLatitudes + 7) / 8), 1));
+    p.dispatchOver(kLongitudes, kLatitudes);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the planet's draw samples it
     glUseProgram(0);
     table.key = key;

@@ -62,7 +62,7 @@ void BoundsPass::refresh(const SurfaceTextures& textures, HeightBounds& bounds, 
             p.set("u_size", glm::ivec2(w, h));
             p.set("u_finerSize", glm::ivec2(std::max(c.width >> std::max(level - 1, 0), 1),
                                                    std::max(c.height >> std::max(level - 1, 0), 1)));
-            HFX_GL_CHECK(glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1));
+            p.dispatchOver(w, h);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); // the next level reads this one
         }
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // a mip chain's walk reads them as a texture

@@ -499,7 +499,7 @@ void ExactTracer::walks(const TracerFrame& frame) {
         walk.set("u_patchWalksLight", r.walksLight ? 1 : 0);
         walk.set("u_patchLight", r.light.value_or(glm::vec2(0.0f)));
     }
-    HFX_GL_CHECK(glDispatchCompute(GLuint((traceWidth_ + 7) / 8), GLuint((traceHeight_ + 7) / 8), 1));
+    walk.dispatchOver(traceWidth_, traceHeight_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -537,7 +537,7 @@ void ExactTracer::drawBeamStart(const PatchRays& rays, const Viewport& viewport,
     beam.set("u_beamViewport", glm::vec4(viewport[0], viewport[1], viewport[2], viewport[3]));
     beam.set("u_beamBlocks", glm::ivec2(width, height));
     HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_PASS_OUTPUT, beamTarget_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F));
-    HFX_GL_CHECK(glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), 1));
+    beam.dispatchOver(width, height);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the draw or the walks pass reads it
 }
 

@@ -78,8 +78,7 @@ void TexelShadowPass::draw(const SurfaceTextures& textures, HeightBounds& bounds
     bounds.bind(0);
     HFX_GL_CHECK(glBindImageTexture(HFX_IMAGE_PASS_OUTPUT, into.texture_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
                                     GL_R32F));
-    constexpr int group = HFX_TEXEL_GROUP;
-    HFX_GL_CHECK(glDispatchCompute(GLuint((width + group - 1) / group), GLuint((height + group - 1) / group), 1));
+    program->dispatchOver(width, height);
     // The surface draw gathers them; a reader may copy them out (glGetTextureImage: the tests).
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     into.stride_ = stride;

@@ -3,8 +3,7 @@
 // the target, the exact tracer's self-shadow (trace/hier.glsl's hfx_shadow, the walk every pixel
 // would make) of a light ray from the sample at its own height, towards the pass's light
 // (u_shadowLight: texcoords per unit climbed, penumbra). A compute pass: the walks need no
-// rasteriser, and a compute chip runs them on every unit where it draws on a few. Groups of
-// HFX_TEXEL_GROUP x HFX_TEXEL_GROUP lanes (bindings.glsl).
+// rasteriser, and a compute chip runs them on every unit where it draws on a few.
 // Sample (i, j) sits at texcoords ((i, j) + 0.5) / size; the target holds every u_texelStride-th
 // sample on each axis (its texel (a, b) is sample (a, b) * stride).
 
@@ -14,7 +13,11 @@
 #include "trace/common.glsl"
 #include "trace/hier.glsl"
 
-layout(local_size_x = HFX_TEXEL_GROUP, local_size_y = HFX_TEXEL_GROUP) in;
+// Groups of 16x16 lanes (TexelShadowPass reads the size from the program). llvmpipe ran the walks
+// in 8x8 groups in 1.01-1.26x the time of the fragment pass the compute pass replaced, in 16x16
+// ones in 0.91-1.13x, its noise (2026-11-30, docs/history/tuning.md); a GPU's warp then covers
+// 16x2 texels, whose light rays run side by side.
+layout(local_size_x = 16, local_size_y = 16) in;
 layout(binding = HFX_IMAGE_PASS_OUTPUT, r32f) uniform writeonly image2D i_texelShadows;
 uniform int u_texelStride;
 

@@ -43,6 +43,10 @@ public:
 
     GLuint id() const { return program_.id(); }
     void use() const { glUseProgram(program_.id()); }
+    /// A compute program, current: dispatches as many of its work groups as cover width x height
+    /// invocations (a grid's texels or pixels), the group's size read from the program's own
+    /// local_size, which is then the one place that names it.
+    void dispatchOver(int width, int height) const;
 
     /// Uniform location, cached; -1 (silently ignored by GL) when the linker removed it.
     GLint uniform(std::string_view name) const;
@@ -62,6 +66,7 @@ private:
         size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
     };
     GlProgram program_;
+    mutable GLint group_[3] = {0, 0, 0}; // a compute program's local_size, read when first dispatched
     mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> uniforms_;
 };
 
