@@ -376,9 +376,11 @@ int main(int argc, char** argv) {
                    "how the surface reaches GL: map (from the mapped device buffer), pixel-buffer (the device writes a "
                    "GL pixel buffer), staged (a read into pinned memory, copied into a fenced pixel-buffer ring: for a "
                    "discrete GPU), gl-sharing (cl_khr_gl_sharing: the device copies into shared GL buffers; a GLX window "
-                   "on NVIDIA) or auto (gl-sharing where the contexts share, pixel-buffer where the device shares host "
-                   "memory, else staged)")
-        ->check(CLI::IsMember({"auto", "map", "pixel-buffer", "staged", "gl-sharing"}))->capture_default_str();
+                   "on NVIDIA), external-memory (the device copies into memory Vulkan allocates on GL's device and both "
+                   "import: any GL context, EGL's included, with libvulkan.so.1) or auto (gl-sharing where the contexts "
+                   "share, pixel-buffer where the device shares host memory, else staged)")
+        ->check(CLI::IsMember({"auto", "map", "pixel-buffer", "staged", "gl-sharing", "external-memory"}))
+        ->capture_default_str();
     app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")
         ->check(CLI::IsMember({"fft", "sine"}))->capture_default_str();
     app.add_option("--wind-speed", s.windSpeed, "water: wind speed in m/s")->check(kFinite)->check(CLI::Range(0.5, 100.0))->capture_default_str();

@@ -40,6 +40,9 @@ skip='^(linux-vdso|ld-linux|libc\.so|libm\.so|libdl\.so|libpthread\.so|librt\.so
 for b in "$out"/bin/*; do ldd "$b" | awk '$3 ~ /^\// {print $1, $3}'; done | sort -u | while read -r name path; do
     [[ $name =~ $skip ]] || cp -L "$path" "$out/lib/$name"
 done
+# The Vulkan loader, which the external-memory transfer path opens at run time (not in ldd's list).
+vulkan=$(ldconfig -p 2>/dev/null | grep -o '/[^ ]*libvulkan\.so\.1$' | head -1 || true)
+[ -n "$vulkan" ] && cp -L "$vulkan" "$out/lib/libvulkan.so.1"
 if ls "$out/lib" | grep -qi -E 'OpenImageIO|LLVM|OSMesa'; then
     echo "bundle: a heavy library slipped in: $(ls "$out/lib" | grep -i -E 'OpenImageIO|LLVM|OSMesa')" >&2
     exit 1
@@ -74,6 +77,16 @@ if ! grep -qs nvidia "$icd"/*.icd; then
     [ -n "$lib" ] && echo "$lib" > "$icd/nvidia.icd"
 fi
 export OCL_ICD_VENDORS="$icd"
+# NVIDIA's Vulkan driver is its GLX library; a container that mounts the library without its
+# manifest gets one of ours, added to the loader's list (the external-memory transfer path).
+if ! ls /usr/share/vulkan/icd.d/nvidia* /etc/vulkan/icd.d/nvidia* >/dev/null 2>&1; then
+    glx=$(ldconfig -p 2>/dev/null | grep -o '/[^ ]*libGLX_nvidia\.so\.0' | head -1 || true)
+    if [ -n "$glx" ]; then
+        printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.3.0"}}\n' \
+            "$glx" > "$icd/nvidia_icd.json"
+        export VK_ADD_DRIVER_FILES="$icd/nvidia_icd.json"
+    fi
+fi
 export HFX_SHADER_SOURCE_DIR="$b/shaders"
 export HFX_TEST_OUTPUT_DIR="${HFX_TEST_OUTPUT_DIR:-$PWD/hfx-test-output}"
 [ $# -ge 1 ] || { echo "usage: run.sh PROGRAM [ARGS...]; programs: $(ls "$b/bin" | tr '\n' ' ')" >&2; exit 2; }

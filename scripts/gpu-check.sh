@@ -15,7 +15,7 @@
 # in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
 # column gives its medians of both passes), the texel shadows forced on and off where the
 # scenes' rule would choose otherwise, the hier scenes with float32 surfaces (float16, Auto's
-# choice on a GPU, in bench-720p), the ringed planet and the noise on the triplanar box at
+# choice on a GPU, in bench-720p), the external-memory transfer path's tests and table, the ringed planet and the noise on the triplanar box at
 # 1280x720, and a draw's issue time under both GlStatePolicy values with the driver's threaded
 # optimisation off and on. A step that runs out of time is cut and says so; the rest go on.
 # HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
@@ -36,7 +36,8 @@ run=(bash "$bundle/run.sh")
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10
                    [gl-tests-compute-pass]=4 [bench-tracers-720p]=12 [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
                    [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8 [bench-triplanar-720p]=6
-                   [bench-draw-issue]=3 [bench-planet-gas]=6 [bench-720p-texels]=8 [bench-720p-float32]=8)
+                   [bench-draw-issue]=3 [bench-planet-gas]=6 [bench-720p-texels]=8 [bench-720p-float32]=8
+                   [transfer-external]=8)
 # By default every step but gl-tests-compute-pass, which gl-tests-rest holds.
 selected=${HFX_GPU_STEPS:-$(printf '%s\n' "${!shares[@]}" | grep -vx gl-tests-compute-pass | tr '\n' ' ')}
 total=0
@@ -107,6 +108,12 @@ step bench-720p-texels bash -c "bash '$bundle/run.sh' hfx-demo bench --bench-onl
 # float32 texels, for the transfer and the draws each format costs them.
 step bench-720p-float32 "${run[@]}" hfx-demo bench --bench-only decals,planet --surface-format float32 --width 1280 \
     --height 720
+# The external-memory transfer path (Vulkan allocates on GL's device, GL and the GPU's OpenCL
+# import it: no host copy for an EGL context), untried on a GPU: the transfer tests (it against
+# every other path, bit for bit, or why it is not offered), then the water's transfer table, every
+# path and format (its rows: external-memory against staged).
+step transfer-external bash -c "bash '$bundle/run.sh' hfx-tests-gl --gtest_brief=1 --gtest_filter='Transfer.*' && \
+    bash '$bundle/run.sh' hfx-demo bench --bench-only transfer --width 1280 --height 720"
 # The ringed planet seen whole (its rings' draw, their shadow and ring shine in the planet's draw).
 step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1 --camera-distance 5 --width 1280 --height 720
 # The noise on a rounded box through the triplanar mapping: what its loop over a pixel's projections

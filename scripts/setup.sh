@@ -7,7 +7,7 @@ packages=(
     build-essential cmake pkg-config python3-glad
     libglm-dev libglfw3-dev libxrandr-dev libosmesa6-dev libgl-dev libegl-dev libegl-mesa0
     ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
-    libopenimageio-dev libstb-dev libtinyexr-dev libvkfft-dev libfftw3-dev
+    libopenimageio-dev libstb-dev libtinyexr-dev libvkfft-dev libfftw3-dev libvulkan-dev mesa-vulkan-drivers
     libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libimgui-dev ffmpeg xvfb xauth
     python3 glslang-tools spirv-tools ccache
 )

@@ -8,9 +8,13 @@
 #include "hfx/effects/SineWavesEffect.h"
 #include "hfx/effects/SurfaceRenderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <optional>
 
 namespace hfx::test {
 namespace {
@@ -143,7 +147,7 @@ TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
         << water.transferDescription();
     EXPECT_EQ(parseTransferPath("pixel-buffer"), TransferPath::PixelBuffer);
     EXPECT_EQ(parseTransferPath("staged"), TransferPath::Staged);
-    EXPECT_NE(messageOf([] { parseTransferPath("dma"); }).find("known: auto, map, pixel-buffer, staged, gl-sharing"),
+    EXPECT_NE(messageOf([] { parseTransferPath("dma"); }).find("known: auto, map, pixel-buffer, staged, gl-sharing, external-memory"),
               std::string::npos);
     // Sharing asked for where the context shares no GL: refused, saying why.
     if (!cl().sharesGl()) {
@@ -154,6 +158,65 @@ TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
                   }).find("gl-sharing"),
                   std::string::npos);
     }
+}
+
+// The external-memory path is offered exactly where it can be made, and asked for where it cannot
+// it is refused naming what is missing: here with the Vulkan drivers hidden from the loader. Where
+// it is offered, EveryPathDeliversTheSameTexturesInEveryFormat holds it to the other paths bit for
+// bit. llvmpipe with lavapipe installed (scripts/setup.sh: this machine's and CI's) must offer it:
+// lavapipe allocates on llvmpipe's device (the same UUID), and PoCL takes the memory over its mapping.
+TEST_F(Transfer, ExternalMemoryIsOfferedWhereGlVulkanAndTheDeviceShareMemoryAndRefusedSayingWhyElsewhere) {
+    const std::vector<TransferPath> paths = availableTransferPaths(cl());
+    const bool offered = std::find(paths.begin(), paths.end(), TransferPath::ExternalMemory) != paths.end();
+    std::string refusal;
+    try {
+        EXPECT_EQ(chooseTransferPath(cl(), TransferPath::ExternalMemory), TransferPath::ExternalMemory);
+    } catch (const Error& e) {
+        refusal = e.what();
+    }
+    EXPECT_EQ(offered, refusal.empty()) << refusal;
+    std::printf("external-memory: %s\n", offered ? "offered" : refusal.c_str());
+    const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    bool lavapipe = false;
+    for (const char* dir : {"/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"})
+        if (std::filesystem::is_directory(dir))
+            for (const auto& f : std::filesystem::directory_iterator(dir))
+                lavapipe |= f.path().filename().string().starts_with("lvp_icd");
+    if (renderer.find("llvmpipe") != std::string::npos && lavapipe && !std::getenv("VK_ICD_FILENAMES") &&
+        !std::getenv("VK_DRIVER_FILES")) {
+        EXPECT_TRUE(offered) << "llvmpipe with lavapipe installed: " << refusal;
+    }
+    if (offered) {
+        SineWavesEffect water(cl(), {.waves = {.size = 64}, .surface = {.transfer = TransferPath::ExternalMemory}});
+        EXPECT_EQ(water.transferPath(), TransferPath::ExternalMemory);
+        EXPECT_NE(water.transferDescription().find("external-memory"), std::string::npos)
+            << water.transferDescription();
+    }
+
+    // No Vulkan driver: refused by name, and not offered.
+    const char* const variables[] = {"VK_ICD_FILENAMES", "VK_DRIVER_FILES"};
+    std::vector<std::pair<std::string, std::optional<std::string>>> saved;
+    for (const char* v : variables) {
+        const char* value = std::getenv(v);
+        saved.emplace_back(v, value ? std::optional<std::string>(value) : std::nullopt);
+        setenv(v, "/nonexistent/hfx_icd.json", 1);
+    }
+    const std::string none = messageOf([&] { chooseTransferPath(cl(), TransferPath::ExternalMemory); });
+    const std::vector<TransferPath> without = availableTransferPaths(cl());
+    const std::string effect = messageOf(
+        [&] { SineWavesEffect(cl(), {.waves = {.size = 64}, .surface = {.transfer = TransferPath::ExternalMemory}}); });
+    for (const auto& [name, value] : saved) {
+        if (value)
+            setenv(name.c_str(), value->c_str(), 1);
+        else
+            unsetenv(name.c_str());
+    }
+    EXPECT_NE(none.find("the external-memory transfer path is not available here: "), std::string::npos) << none;
+    if (GLAD_GL_EXT_memory_object_fd) { // else GL's own lack is the reason, before Vulkan is asked
+        EXPECT_NE(none.find("Vulkan"), std::string::npos) << none;
+    }
+    EXPECT_EQ(std::find(without.begin(), without.end(), TransferPath::ExternalMemory), without.end());
+    EXPECT_NE(effect.find("external-memory"), std::string::npos) << effect;
 }
 
 TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {

@@ -21,13 +21,15 @@ const char* streamName(int stream) {
 } // namespace
 
 StreamTransfer::StreamTransfer(ClContext& cl, TransferPath path) : cl_(cl), path_(path) {
-    if (path != TransferPath::Staged && path != TransferPath::GlSharing)
-        throw Error(str("StreamTransfer: the ", transferPathName(path), " path is not one of its two"));
+    if (path != TransferPath::Staged && path != TransferPath::GlSharing && path != TransferPath::ExternalMemory)
+        throw Error(str("StreamTransfer: the ", transferPathName(path), " path is not one of its three"));
     if (path == TransferPath::GlSharing && !cl.sharesGl())
         throw Error(str("the gl-sharing transfer path needs an OpenCL context made with the GL context "
                         "(cl_khr_gl_sharing for it: ClContextConfig::glShare); ",
                         cl.description(), " does not share this one"));
+    if (path == TransferPath::ExternalMemory) external_ = std::make_unique<ExternalMemory>(cl);
     acquired_.reserve(kStreams);
+    acquiredExternal_.reserve(kStreams);
 }
 
 StreamTransfer::~StreamTransfer() {
@@ -68,6 +70,8 @@ void StreamTransfer::allocate(StreamMemory& m, size_t bytes) {
             throw Error(str("the staged transfer could not map a ", 2 * m.slotStride,
                             "-byte pixel buffer persistently (GL error 0x", std::hex, glGetError(), ")"));
         std::memset(m.ringMemory, 0, 2 * m.slotStride);
+    } else if (path_ == TransferPath::ExternalMemory) {
+        for (Slot& s : m.slots) s.external = external_->allocate(bytes);
     } else {
         for (Slot& s : m.slots) {
             s.gl = GlBuffer::create();
@@ -92,6 +96,14 @@ void StreamTransfer::enqueue(Stream stream, const cl::Buffer& source, size_t byt
         // The pinned memory is free: the last frame's arrive() copied it out before this submit.
         clGuard("reading the surface into pinned memory",
                 [&] { q.enqueueReadBuffer(source, CL_FALSE, 0, bytes, m.pinnedMemory); });
+    } else if (path_ == TransferPath::ExternalMemory) {
+        // GL read this slot's memory two frames ago: finished before the device writes it again.
+        if (acquiredExternal_.empty()) waitForGl(slot_);
+        const cl::Buffer& shared = m.slots[size_t(slot_)].external.cl();
+        acquiredExternal_.push_back(shared()); // capacity for every stream, reserved at construction
+        external_->acquire({shared()});
+        clGuard("copying the surface into the shared memory",
+                [&] { q.enqueueCopyBuffer(source, shared, 0, 0, bytes); });
     } else {
         // GL read this slot's buffers two frames ago: the extension wants that finished first.
         if (acquired_.empty()) waitForGl(slot_);
@@ -105,6 +117,11 @@ void StreamTransfer::enqueue(Stream stream, const cl::Buffer& source, size_t byt
 }
 
 void StreamTransfer::arrive() {
+    if (path_ == TransferPath::ExternalMemory) {
+        external_->release(acquiredExternal_); // returns once GL may read them
+        acquiredExternal_.clear();
+        return;
+    }
     if (path_ == TransferPath::GlSharing) {
         if (!acquired_.empty()) {
             cl::Event released;
@@ -129,7 +146,8 @@ const void* StreamTransfer::source(Stream stream) {
         // With an unpack buffer bound, GL reads the pointer as an offset into it.
         return reinterpret_cast<const void*>(size_t(slot_) * m.slotStride);
     }
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, m.slots[size_t(slot_)].gl.id());
+    const Slot& s = m.slots[size_t(slot_)];
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, path_ == TransferPath::ExternalMemory ? s.external.gl() : s.gl.id());
     return nullptr;
 }
 

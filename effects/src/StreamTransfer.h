@@ -1,6 +1,6 @@
 #pragma once
-// The two transfer paths that keep a device's results in device memory until they are copied
-// (SurfacePipeline's TransferPath::Staged and TransferPath::GlSharing), behind one interface:
+// The three transfer paths that keep a device's results in device memory until they are copied
+// (SurfacePipeline's TransferPath::Staged, GlSharing and ExternalMemory), behind one interface:
 //
 //   enqueue(stream, buffer)   // in submit(): the copy enqueued behind the frame's kernels
 //   ... the caller waits for the queue (its frame marker) ...
@@ -20,8 +20,14 @@
 // clEnqueueReleaseGLObjects; GL uploads from them without a host copy. The copy into a buffer
 // waits (a GL fence) until GL has read it two frames ago, as the sharing extension requires.
 //
+// ExternalMemory (ExternalMemory.h: memory Vulkan allocates and both GL and the device import):
+// per stream two such buffers, used as GlSharing's are (the device's queue copies into one between
+// cl_khr_external_memory's acquire and release, GL uploads from it, a fence guards its reuse).
+//
 // A stream's memory is made on its first enqueue. Owns its CL and GL objects. Thread: the thread
 // that owns both the ClContext and the current GL context.
+
+#include "ExternalMemory.h"
 
 #include "hfx/compute/ClContext.h"
 #include "hfx/core/GlObject.h"
@@ -29,6 +35,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace hfx {
@@ -37,7 +44,8 @@ class StreamTransfer {
 public:
     enum Stream { Texels, Pyramid, Albedo, Channels, kStreams };
 
-    /// path: TransferPath::Staged or TransferPath::GlSharing (the latter needs cl.sharesGl()).
+    /// path: TransferPath::Staged, GlSharing (needs cl.sharesGl()) or ExternalMemory (needs
+    /// ExternalMemory::unavailable(cl) to be "", else throws its reason).
     StreamTransfer(ClContext& cl, TransferPath path);
     /// Waits for the device's copies and GL's reads before the memory goes.
     ~StreamTransfer();
@@ -61,6 +69,7 @@ private:
         GlBuffer gl;            ///< GlSharing: the shared buffer of this slot
         cl::BufferGL shared;    ///< GlSharing: its CL view
         std::vector<cl::Memory> objects; ///< GlSharing: {shared}, as the acquire call takes it (made once)
+        ExternalMemory::SharedBuffer external; ///< ExternalMemory: this slot's memory
     };
     struct StreamMemory {
         size_t bytes = 0;
@@ -71,7 +80,7 @@ private:
         GlBuffer ring;              ///< two slots of `bytes` (256-byte aligned), persistently mapped
         unsigned char* ringMemory = nullptr;
         size_t slotStride = 0;
-        // GlSharing:
+        // GlSharing, ExternalMemory:
         std::array<Slot, 2> slots;
     };
     void allocate(StreamMemory& m, size_t bytes);
@@ -79,10 +88,12 @@ private:
 
     ClContext& cl_;
     TransferPath path_;
+    std::unique_ptr<ExternalMemory> external_; ///< ExternalMemory: the allocator (outlives the streams' memory)
     std::array<StreamMemory, kStreams> streams_;
     std::array<GLsync, 2> fences_{nullptr, nullptr};
     int slot_ = 0;
     std::vector<cl::Memory> acquired_; ///< GlSharing: this frame's buffers the queue holds
+    std::vector<cl_mem> acquiredExternal_; ///< ExternalMemory: the same
 };
 
 } // namespace hfx

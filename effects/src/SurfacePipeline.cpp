@@ -100,7 +100,8 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
     if (config_.options.format != SurfaceFormat::Float32)
         packer_ = std::make_unique<SurfacePacker>(cl, config_.width, config_.height, config_.options.format,
                                                   pixels_ ? pixels_->memory() : nullptr);
-    if (transfer_ == TransferPath::Staged || transfer_ == TransferPath::GlSharing)
+    if (transfer_ == TransferPath::Staged || transfer_ == TransferPath::GlSharing ||
+        transfer_ == TransferPath::ExternalMemory)
         streams_ = std::make_unique<StreamTransfer>(cl, transfer_);
 }
 

@@ -11,10 +11,16 @@
 //   the host's work until finish(). For a discrete GPU (a map of its memory moved 0.3 GB/s on an
 //   H200; pinned memory moves 10+);
 // - GlSharing: cl_khr_gl_sharing, the device copies into GL buffers it shares with the caller's
-//   context (ClContext::sharesGl(): NVIDIA offers it for GLX contexts, not EGL); no host copy.
-// (StreamTransfer.h in effects/src holds the last two.)
+//   context (ClContext::sharesGl(): NVIDIA offers it for GLX contexts, not EGL); no host copy;
+// - ExternalMemory: the device copies into memory that Vulkan allocates on GL's device and both
+//   GL and the device import (GL_EXT_memory_object_fd; cl_khr_external_memory_opaque_fd, which
+//   NVIDIA's OpenCL has, or a CPU device over the memory's mapping); no host copy, for any GL
+//   context, EGL's included. Vulkan is loaded at run time (libvulkan.so.1). Not Auto's choice
+//   until a GPU has timed it against Staged.
+// (StreamTransfer.h in effects/src holds the last three, ExternalMemory.h the allocator.)
 //
-// Thread: any (chooseTransferPath asks the device).
+// Thread: the thread whose GL context is current (chooseTransferPath asks the device, and for
+// ExternalMemory GL and Vulkan).
 
 #include "hfx/compute/ClContext.h"
 
@@ -29,8 +35,9 @@ enum class TransferPath {
     PixelBuffer, ///< device writes a persistently mapped GL pixel buffer, GL uploads from it
     Staged,      ///< non-blocking read into pinned memory, copied into a fenced GL pixel-buffer ring
     GlSharing,   ///< the device copies into GL buffers shared through cl_khr_gl_sharing
+    ExternalMemory, ///< the device copies into memory Vulkan allocates and GL and the device import
 };
-/// "auto", "map", "pixel-buffer", "staged", "gl-sharing".
+/// "auto", "map", "pixel-buffer", "staged", "gl-sharing", "external-memory".
 const char* transferPathName(TransferPath path);
 /// The inverse of transferPathName; throws hfx::Error naming the known paths.
 TransferPath parseTransferPath(std::string_view name);
@@ -38,9 +45,11 @@ TransferPath parseTransferPath(std::string_view name);
 /// shares the GL context (no host copy), else PixelBuffer when the device reports host-unified
 /// memory (CPU devices, integrated GPUs: the kernels' writes land in the GL buffer directly),
 /// else Staged (a discrete GPU: pinned memory at the bus's speed). Asking for GlSharing where the
-/// context shares none throws hfx::Error saying so.
+/// context shares none, or for ExternalMemory where the machine lacks a part of it, throws
+/// hfx::Error saying what is missing.
 TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested);
-/// The paths this device can take (Auto left out): GlSharing only where the context shares GL.
+/// The paths this device can take (Auto left out): GlSharing only where the context shares GL,
+/// ExternalMemory only where GL, Vulkan and the device can share memory.
 std::vector<TransferPath> availableTransferPaths(const ClContext& cl);
 
 } // namespace hfx

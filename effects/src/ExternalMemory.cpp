@@ -1,0 +1,468 @@
+#include "ExternalMemory.h"
+
+#include "hfx/core/Error.h"
+
+#define VK_NO_PROTOTYPES // every entry point through the loader opened at run time
+#include <vulkan/vulkan.h>
+
+#include <CL/cl_ext.h>
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <iomanip>
+#include <sstream>
+
+namespace hfx {
+namespace {
+
+using Uuid = std::array<unsigned char, 16>;
+
+std::string hex(const Uuid& u) {
+    std::ostringstream s;
+    for (unsigned char c : u) s << std::hex << std::setw(2) << std::setfill('0') << int(c);
+    return s.str();
+}
+
+const char* glErrorText(GLenum e) {
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    default: return "a GL error";
+    }
+}
+
+/// Throws naming `what` where GL reports an error after it.
+void glChecked(const char* what) {
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR)
+        throw Error(str("external memory: ", what, " failed (", glErrorText(e), ")"));
+}
+
+bool hasExtension(const std::string& list, std::string_view name) {
+    std::istringstream words(list);
+    for (std::string w; words >> w;)
+        if (w == name) return true;
+    return false;
+}
+
+// clCreateBufferWithProperties is OpenCL 3.0 (the build targets 1.2's headers and loaders):
+// looked up in the loader, as the extension's own entry points are in the platform.
+using CreateBufferWithProperties = cl_mem(CL_API_CALL*)(cl_context, const cl_ulong*, cl_mem_flags, size_t, void*,
+                                                         cl_int*);
+using EnqueueExternal = cl_int(CL_API_CALL*)(cl_command_queue, cl_uint, const cl_mem*, cl_uint, const cl_event*,
+                                             cl_event*);
+
+/// The memory GL's buffers lie in is this much larger than the buffer: Mesa 22's llvmpipe refuses a
+/// GL buffer exactly as large as its memory object (GL_OUT_OF_MEMORY), one a page smaller it takes.
+constexpr VkDeviceSize kSlack = 4096;
+
+} // namespace
+
+struct ExternalMemory::Vulkan {
+    void* library = nullptr;
+    PFN_vkGetInstanceProcAddr getInstanceProc = nullptr;
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    std::string name;
+    Import import = Import::OpaqueFd;
+    bool dedicated = false; ///< the driver wants the memory dedicated to its buffer
+    VkPhysicalDeviceMemoryProperties memory{};
+    // Instance and device entry points.
+    PFN_vkDestroyInstance destroyInstance = nullptr;
+    PFN_vkDestroyDevice destroyDevice = nullptr;
+    PFN_vkCreateBuffer createBuffer = nullptr;
+    PFN_vkDestroyBuffer destroyBuffer = nullptr;
+    PFN_vkGetBufferMemoryRequirements requirements = nullptr;
+    PFN_vkAllocateMemory allocateMemory = nullptr;
+    PFN_vkFreeMemory freeMemory = nullptr;
+    PFN_vkBindBufferMemory bindBufferMemory = nullptr;
+    PFN_vkMapMemory mapMemory = nullptr;
+    PFN_vkUnmapMemory unmapMemory = nullptr;
+    PFN_vkGetMemoryFdKHR getMemoryFd = nullptr;
+    // OpenCL's.
+    CreateBufferWithProperties createClBuffer = nullptr;
+    EnqueueExternal acquire = nullptr, release = nullptr;
+
+    ~Vulkan() {
+        if (device && destroyDevice) destroyDevice(device, nullptr);
+        if (instance && destroyInstance) destroyInstance(instance, nullptr);
+        if (library) dlclose(library);
+    }
+
+    /// The Vulkan device GL draws with, ready to export memory that `cl` can import; null with
+    /// `why` saying what is missing.
+    static std::unique_ptr<Vulkan> open(const ClContext& cl, std::string& why);
+};
+
+std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClContext& cl, std::string& why) {
+    const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    if (!GLAD_GL_EXT_memory_object || !GLAD_GL_EXT_memory_object_fd) {
+        why = str("GL (", renderer, ") does not import memory (GL_EXT_memory_object_fd)");
+        return nullptr;
+    }
+    Uuid glUuid{};
+    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, glUuid.data());
+    glChecked("reading GL's device UUID");
+
+    auto vk = std::make_unique<Vulkan>();
+    const cl::Device& device = cl.device();
+    const std::string clExtensions = device.getInfo<CL_DEVICE_EXTENSIONS>();
+    Uuid clUuid{};
+    if (hasExtension(clExtensions, "cl_khr_external_memory_opaque_fd") && hasExtension(clExtensions, "cl_khr_device_uuid")) {
+        vk->import = Import::OpaqueFd;
+        clGuard("reading the OpenCL device's UUID", [&] {
+            return clGetDeviceInfo(device(), CL_DEVICE_UUID_KHR, clUuid.size(), clUuid.data(), nullptr);
+        });
+        vk->createClBuffer =
+            reinterpret_cast<CreateBufferWithProperties>(dlsym(RTLD_DEFAULT, "clCreateBufferWithProperties"));
+        const cl_platform_id platform = device.getInfo<CL_DEVICE_PLATFORM>();
+        vk->acquire = reinterpret_cast<EnqueueExternal>(
+            clGetExtensionFunctionAddressForPlatform(platform, "clEnqueueAcquireExternalMemObjectsKHR"));
+        vk->release = reinterpret_cast<EnqueueExternal>(
+            clGetExtensionFunctionAddressForPlatform(platform, "clEnqueueReleaseExternalMemObjectsKHR"));
+        if (!vk->createClBuffer || !vk->acquire || !vk->release) {
+            why = str("the OpenCL loader or ", cl.description(), " lacks clCreateBufferWithProperties or "
+                      "cl_khr_external_memory's acquire and release");
+            return nullptr;
+        }
+    } else if (device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>()) {
+        vk->import = Import::HostPointer;
+    } else {
+        why = str(cl.description(), " imports no external memory (cl_khr_external_memory_opaque_fd with "
+                  "cl_khr_device_uuid) and shares no host memory");
+        return nullptr;
+    }
+
+    vk->library = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!vk->library) {
+        why = "no Vulkan loader (libvulkan.so.1) to allocate the memory with";
+        return nullptr;
+    }
+    vk->getInstanceProc = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(vk->library, "vkGetInstanceProcAddr"));
+    if (!vk->getInstanceProc) {
+        why = "libvulkan.so.1 has no vkGetInstanceProcAddr";
+        return nullptr;
+    }
+    auto global = [&](const char* name) { return vk->getInstanceProc(VK_NULL_HANDLE, name); };
+    auto enumerateVersion = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(global("vkEnumerateInstanceVersion"));
+    uint32_t version = VK_API_VERSION_1_0;
+    if (enumerateVersion) enumerateVersion(&version);
+    if (version < VK_API_VERSION_1_1) {
+        why = "the Vulkan loader is older than 1.1 (device UUIDs, external memory)";
+        return nullptr;
+    }
+    VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                          .pApplicationName = "hfx",
+                          .apiVersion = VK_API_VERSION_1_1};
+    const VkInstanceCreateInfo instanceInfo{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
+    auto createInstance = reinterpret_cast<PFN_vkCreateInstance>(global("vkCreateInstance"));
+    if (const VkResult r = createInstance ? createInstance(&instanceInfo, nullptr, &vk->instance) : VK_ERROR_UNKNOWN;
+        r != VK_SUCCESS) {
+        why = str("no Vulkan driver (vkCreateInstance: VkResult ", int(r), ")");
+        vk->instance = VK_NULL_HANDLE;
+        return nullptr;
+    }
+    auto instanceProc = [&](const char* name) { return vk->getInstanceProc(vk->instance, name); };
+#define HFX_VK_INSTANCE(type, name) auto name = reinterpret_cast<PFN_##type>(instanceProc(#type))
+    HFX_VK_INSTANCE(vkDestroyInstance, destroyInstance);
+    vk->destroyInstance = destroyInstance;
+    HFX_VK_INSTANCE(vkEnumeratePhysicalDevices, enumerate);
+    HFX_VK_INSTANCE(vkGetPhysicalDeviceProperties2, properties2);
+    HFX_VK_INSTANCE(vkGetPhysicalDeviceMemoryProperties, memoryProperties);
+    HFX_VK_INSTANCE(vkEnumerateDeviceExtensionProperties, deviceExtensions);
+    HFX_VK_INSTANCE(vkGetPhysicalDeviceExternalBufferProperties, externalBuffer);
+    HFX_VK_INSTANCE(vkCreateDevice, createDevice);
+    HFX_VK_INSTANCE(vkGetDeviceProcAddr, deviceProc);
+#undef HFX_VK_INSTANCE
+    if (!enumerate || !properties2 || !memoryProperties || !deviceExtensions || !externalBuffer || !createDevice ||
+        !deviceProc) {
+        why = "the Vulkan instance lacks 1.1's entry points";
+        return nullptr;
+    }
+
+    // GL's device among Vulkan's (and the compute device's, where it imports by descriptor).
+    uint32_t count = 0;
+    enumerate(vk->instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    enumerate(vk->instance, &count, devices.data());
+    std::string seen;
+    for (VkPhysicalDevice d : devices) {
+        VkPhysicalDeviceIDProperties id{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
+        VkPhysicalDeviceProperties2 p{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &id};
+        properties2(d, &p);
+        Uuid u;
+        std::copy(std::begin(id.deviceUUID), std::end(id.deviceUUID), u.begin());
+        seen += str(seen.empty() ? "" : ", ", "'", p.properties.deviceName, "' ", hex(u));
+        if (u == glUuid && !vk->physical) {
+            vk->physical = d;
+            vk->name = p.properties.deviceName;
+        }
+    }
+    if (!vk->physical) {
+        why = str("no Vulkan device is GL's (", renderer, ", device UUID ", hex(glUuid), "; Vulkan has ",
+                  seen.empty() ? "none" : seen, ")");
+        return nullptr;
+    }
+    if (vk->import == Import::OpaqueFd && clUuid != glUuid) {
+        why = str(cl.description(), " is not the device GL draws with (UUIDs ", hex(clUuid), " and ", hex(glUuid), ")");
+        return nullptr;
+    }
+    uint32_t extensions = 0;
+    deviceExtensions(vk->physical, nullptr, &extensions, nullptr);
+    std::vector<VkExtensionProperties> available(extensions);
+    deviceExtensions(vk->physical, nullptr, &extensions, available.data());
+    if (std::none_of(available.begin(), available.end(), [](const VkExtensionProperties& e) {
+            return std::strcmp(e.extensionName, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) == 0;
+        })) {
+        why = str("Vulkan device '", vk->name, "' does not export memory (", VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME, ")");
+        return nullptr;
+    }
+    const VkPhysicalDeviceExternalBufferInfo bufferInfo{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_BUFFER_INFO,
+        .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        .handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
+    VkExternalBufferProperties external{.sType = VK_STRUCTURE_TYPE_EXTERNAL_BUFFER_PROPERTIES};
+    externalBuffer(vk->physical, &bufferInfo, &external);
+    const VkExternalMemoryFeatureFlags features = external.externalMemoryProperties.externalMemoryFeatures;
+    if (!(features & VK_EXTERNAL_MEMORY_FEATURE_EXPORTABLE_BIT)) {
+        why = str("Vulkan device '", vk->name, "' exports no buffer memory as a file descriptor");
+        return nullptr;
+    }
+    vk->dedicated = (features & VK_EXTERNAL_MEMORY_FEATURE_DEDICATED_ONLY_BIT) != 0;
+    memoryProperties(vk->physical, &vk->memory);
+
+    const float priority = 1.0f;
+    const VkDeviceQueueCreateInfo queue{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                        .queueFamilyIndex = 0,
+                                        .queueCount = 1,
+                                        .pQueuePriorities = &priority};
+    const char* const enabled[] = {VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME};
+    const VkDeviceCreateInfo deviceInfo{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                                        .queueCreateInfoCount = 1,
+                                        .pQueueCreateInfos = &queue,
+                                        .enabledExtensionCount = 1,
+                                        .ppEnabledExtensionNames = enabled};
+    if (const VkResult r = createDevice(vk->physical, &deviceInfo, nullptr, &vk->device); r != VK_SUCCESS) {
+        why = str("vkCreateDevice on '", vk->name, "' failed (VkResult ", int(r), ")");
+        vk->device = VK_NULL_HANDLE;
+        return nullptr;
+    }
+    auto proc = [&](const char* name) { return deviceProc(vk->device, name); };
+    vk->destroyDevice = reinterpret_cast<PFN_vkDestroyDevice>(proc("vkDestroyDevice"));
+    vk->createBuffer = reinterpret_cast<PFN_vkCreateBuffer>(proc("vkCreateBuffer"));
+    vk->destroyBuffer = reinterpret_cast<PFN_vkDestroyBuffer>(proc("vkDestroyBuffer"));
+    vk->requirements = reinterpret_cast<PFN_vkGetBufferMemoryRequirements>(proc("vkGetBufferMemoryRequirements"));
+    vk->allocateMemory = reinterpret_cast<PFN_vkAllocateMemory>(proc("vkAllocateMemory"));
+    vk->freeMemory = reinterpret_cast<PFN_vkFreeMemory>(proc("vkFreeMemory"));
+    vk->bindBufferMemory = reinterpret_cast<PFN_vkBindBufferMemory>(proc("vkBindBufferMemory"));
+    vk->mapMemory = reinterpret_cast<PFN_vkMapMemory>(proc("vkMapMemory"));
+    vk->unmapMemory = reinterpret_cast<PFN_vkUnmapMemory>(proc("vkUnmapMemory"));
+    vk->getMemoryFd = reinterpret_cast<PFN_vkGetMemoryFdKHR>(proc("vkGetMemoryFdKHR"));
+    if (!vk->destroyDevice || !vk->createBuffer || !vk->destroyBuffer || !vk->requirements || !vk->allocateMemory ||
+        !vk->freeMemory || !vk->bindBufferMemory || !vk->mapMemory || !vk->unmapMemory || !vk->getMemoryFd) {
+        why = str("Vulkan device '", vk->name, "' lacks an entry point of the buffers' or vkGetMemoryFdKHR");
+        return nullptr;
+    }
+    // A mapping needs memory the host sees, coherent: find out now, not at the first allocation.
+    if (vk->import == Import::HostPointer) {
+        bool visible = false;
+        for (uint32_t i = 0; i < vk->memory.memoryTypeCount; ++i)
+            visible |= (vk->memory.memoryTypes[i].propertyFlags &
+                        (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) ==
+                       (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        if (!visible) {
+            why = str(cl.description(), " would take the memory over a mapping, and Vulkan device '", vk->name,
+                      "' has none the host sees");
+            return nullptr;
+        }
+    }
+    return vk;
+}
+
+std::string ExternalMemory::unavailable(const ClContext& cl) {
+    std::string why;
+    Vulkan::open(cl, why);
+    return why;
+}
+
+ExternalMemory::ExternalMemory(ClContext& cl) : cl_(cl) {
+    std::string why;
+    vk_ = Vulkan::open(cl, why);
+    if (!vk_) throw Error(str("the external-memory transfer path is not available here: ", why));
+}
+
+ExternalMemory::~ExternalMemory() = default;
+
+ExternalMemory::Import ExternalMemory::import() const { return vk_->import; }
+
+std::string ExternalMemory::description() const {
+    return str("Vulkan device '", vk_->name, "', OpenCL imports ",
+               vk_->import == Import::OpaqueFd ? "by descriptor" : "over the mapping");
+}
+
+ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
+    Vulkan& vk = *vk_;
+    SharedBuffer b;
+    b.owner_ = this;
+    b.bytes_ = bytes;
+    const VkExternalMemoryBufferCreateInfo external{.sType = VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_BUFFER_CREATE_INFO,
+                                                    .handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
+    const VkBufferCreateInfo bufferInfo{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                                        .pNext = &external,
+                                        .size = VkDeviceSize(bytes) + kSlack,
+                                        .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                        .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
+    VkBuffer buffer = VK_NULL_HANDLE;
+    if (const VkResult r = vk.createBuffer(vk.device, &bufferInfo, nullptr, &buffer); r != VK_SUCCESS)
+        throw Error(str("external memory: vkCreateBuffer of ", bytes, " bytes failed (VkResult ", int(r), ")"));
+    b.vkBuffer_ = reinterpret_cast<uint64_t>(buffer);
+    VkMemoryRequirements need{};
+    vk.requirements(vk.device, buffer, &need);
+    // Device memory where the device imports by descriptor; memory the host sees where it maps.
+    const VkMemoryPropertyFlags wanted = vk.import == Import::OpaqueFd
+                                             ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
+                                             : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    uint32_t type = vk.memory.memoryTypeCount;
+    for (uint32_t i = 0; i < vk.memory.memoryTypeCount && type == vk.memory.memoryTypeCount; ++i)
+        if ((need.memoryTypeBits >> i & 1u) && (vk.memory.memoryTypes[i].propertyFlags & wanted) == wanted) type = i;
+    if (type == vk.memory.memoryTypeCount)
+        throw Error(str("external memory: Vulkan device '", vk.name, "' offers no ",
+                        vk.import == Import::OpaqueFd ? "device-local" : "host-visible, coherent",
+                        " memory type for an exported buffer"));
+    const VkMemoryDedicatedAllocateInfo dedicated{.sType = VK_STRUCTURE_TYPE_MEMORY_DEDICATED_ALLOCATE_INFO,
+                                                  .buffer = buffer};
+    const VkExportMemoryAllocateInfo exported{.sType = VK_STRUCTURE_TYPE_EXPORT_MEMORY_ALLOCATE_INFO,
+                                              .pNext = vk.dedicated ? &dedicated : nullptr,
+                                              .handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
+    const VkMemoryAllocateInfo allocation{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                          .pNext = &exported,
+                                          .allocationSize = need.size,
+                                          .memoryTypeIndex = type};
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    if (const VkResult r = vk.allocateMemory(vk.device, &allocation, nullptr, &memory); r != VK_SUCCESS)
+        throw Error(str("external memory: vkAllocateMemory of ", need.size, " bytes on '", vk.name,
+                        "' failed (VkResult ", int(r), ")"));
+    b.vkMemory_ = reinterpret_cast<uint64_t>(memory);
+    if (const VkResult r = vk.bindBufferMemory(vk.device, buffer, memory, 0); r != VK_SUCCESS)
+        throw Error(str("external memory: vkBindBufferMemory failed (VkResult ", int(r), ")"));
+    auto descriptor = [&] {
+        const VkMemoryGetFdInfoKHR info{.sType = VK_STRUCTURE_TYPE_MEMORY_GET_FD_INFO_KHR,
+                                        .memory = memory,
+                                        .handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
+        int fd = -1;
+        if (const VkResult r = vk.getMemoryFd(vk.device, &info, &fd); r != VK_SUCCESS)
+            throw Error(str("external memory: vkGetMemoryFdKHR failed (VkResult ", int(r), ")"));
+        return fd;
+    };
+
+    // GL: a memory object over the descriptor (GL owns it once imported), a buffer in it.
+    glCreateMemoryObjectsEXT(1, &b.memoryObject_);
+    glChecked("glCreateMemoryObjectsEXT");
+    if (vk.dedicated) {
+        const GLint yes = GL_TRUE;
+        glMemoryObjectParameterivEXT(b.memoryObject_, GL_DEDICATED_MEMORY_OBJECT_EXT, &yes);
+    }
+    const int glFd = descriptor();
+    glImportMemoryFdEXT(b.memoryObject_, GLuint64(need.size), GL_HANDLE_TYPE_OPAQUE_FD_EXT, glFd);
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        close(glFd); // not taken
+        throw Error(str("external memory: glImportMemoryFdEXT of ", need.size, " bytes failed (", glErrorText(e), ")"));
+    }
+    b.gl_ = GlBuffer::create();
+    glNamedBufferStorageMemEXT(b.gl_.id(), GLsizeiptr(bytes), b.memoryObject_, 0);
+    glChecked("glNamedBufferStorageMemEXT");
+
+    // The compute device: by its own descriptor, or over the mapping.
+    if (vk.import == Import::OpaqueFd) {
+        const int clFd = descriptor();
+        const cl_ulong properties[] = {CL_EXTERNAL_MEMORY_HANDLE_OPAQUE_FD_KHR,
+                                       cl_ulong(clFd),
+                                       CL_DEVICE_HANDLE_LIST_KHR,
+                                       cl_ulong(reinterpret_cast<uintptr_t>(cl_.device()())),
+                                       CL_DEVICE_HANDLE_LIST_END_KHR,
+                                       0};
+        cl_int error = CL_SUCCESS;
+        const cl_mem m = vk.createClBuffer(cl_.context()(), properties, CL_MEM_READ_WRITE, bytes, nullptr, &error);
+        if (!m || error != CL_SUCCESS) {
+            close(clFd);
+            throw Error(str("external memory: clCreateBufferWithProperties over a Vulkan descriptor failed (CL error ",
+                            error, ")"));
+        }
+        // The extension does not say who closes the descriptor; NVIDIA's keeps it. It is left open.
+        b.cl_ = cl::Buffer(m); // takes the reference
+    } else {
+        void* mapped = nullptr;
+        if (const VkResult r = vk.mapMemory(vk.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped); r != VK_SUCCESS)
+            throw Error(str("external memory: vkMapMemory failed (VkResult ", int(r), ")"));
+        b.mapped_ = true;
+        clGuard("making a device buffer over the shared memory's mapping",
+                [&] { b.cl_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes, mapped); });
+    }
+    return b;
+}
+
+void ExternalMemory::acquire(const std::vector<cl_mem>& buffers) const {
+    if (vk_->import != Import::OpaqueFd || buffers.empty()) return;
+    const cl_int e = vk_->acquire(cl_.queue()(), cl_uint(buffers.size()), buffers.data(), 0, nullptr, nullptr);
+    if (e != CL_SUCCESS) throw Error(str("external memory: clEnqueueAcquireExternalMemObjectsKHR failed (CL error ", e, ")"));
+}
+
+void ExternalMemory::release(const std::vector<cl_mem>& buffers) const {
+    if (vk_->import == Import::OpaqueFd && !buffers.empty()) {
+        cl_event done = nullptr;
+        const cl_int e = vk_->release(cl_.queue()(), cl_uint(buffers.size()), buffers.data(), 0, nullptr, &done);
+        if (e != CL_SUCCESS)
+            throw Error(str("external memory: clEnqueueReleaseExternalMemObjectsKHR failed (CL error ", e, ")"));
+        const cl_int w = clWaitForEvents(1, &done);
+        clReleaseEvent(done);
+        if (w != CL_SUCCESS) throw Error(str("external memory: waiting for the release failed (CL error ", w, ")"));
+    } else {
+        clGuard("waiting for the copies into the shared memory", [&] { cl_.queue().finish(); });
+    }
+}
+
+ExternalMemory::SharedBuffer::SharedBuffer(SharedBuffer&& o) noexcept { *this = std::move(o); }
+
+ExternalMemory::SharedBuffer& ExternalMemory::SharedBuffer::operator=(SharedBuffer&& o) noexcept {
+    if (this != &o) {
+        reset();
+        owner_ = std::exchange(o.owner_, nullptr);
+        cl_ = std::move(o.cl_);
+        gl_ = std::move(o.gl_);
+        memoryObject_ = std::exchange(o.memoryObject_, 0);
+        vkBuffer_ = std::exchange(o.vkBuffer_, 0);
+        vkMemory_ = std::exchange(o.vkMemory_, 0);
+        bytes_ = std::exchange(o.bytes_, 0);
+        mapped_ = std::exchange(o.mapped_, false);
+    }
+    return *this;
+}
+
+ExternalMemory::SharedBuffer::~SharedBuffer() { reset(); }
+
+void ExternalMemory::SharedBuffer::reset() {
+    if (!owner_) return;
+    const Vulkan& vk = *owner_->vk_;
+    cl_ = cl::Buffer(); // the device's view first, then GL's, then the memory under both
+    gl_.reset();
+    if (memoryObject_) glDeleteMemoryObjectsEXT(1, &memoryObject_);
+    if (vkBuffer_) vk.destroyBuffer(vk.device, reinterpret_cast<VkBuffer>(vkBuffer_), nullptr);
+    if (vkMemory_) {
+        const auto memory = reinterpret_cast<VkDeviceMemory>(vkMemory_);
+        if (mapped_) vk.unmapMemory(vk.device, memory);
+        vk.freeMemory(vk.device, memory, nullptr);
+    }
+    owner_ = nullptr;
+    memoryObject_ = 0;
+    vkBuffer_ = vkMemory_ = 0;
+    bytes_ = 0;
+    mapped_ = false;
+}
+
+} // namespace hfx

@@ -1,0 +1,90 @@
+#pragma once
+// Memory that the compute device and GL both address, for TransferPath::ExternalMemory (the
+// StreamTransfer's third path). Neither OpenCL nor GL exports its own memory, so Vulkan allocates
+// it (VK_KHR_external_memory_fd) on the physical device that GL draws with (the device UUID of
+// GL_EXT_memory_object), and both import it by file descriptor:
+// - GL as a buffer (GL_EXT_memory_object_fd), which uploads to textures as a pixel buffer;
+// - OpenCL as a buffer by the same descriptor (cl_khr_external_memory_opaque_fd, a GPU's driver:
+//   NVIDIA's, whose OpenCL shares no memory with an EGL context otherwise), on the device whose
+//   UUID is the memory's (cl_khr_device_uuid); or, where the compute device shares host memory (a
+//   CPU device) and the memory is host-visible, over Vulkan's mapping of it (CL_MEM_USE_HOST_PTR).
+// The device copies a frame's results into it and GL uploads from it: no host copy, no bus.
+//
+// Vulkan is loaded at run time (libvulkan.so.1, its loader): HFX neither links nor needs it, and
+// `unavailable` says what a machine lacks (the loader, a Vulkan device that is GL's, an extension
+// of any of the three).
+//
+// Owns its Vulkan instance and device, and each SharedBuffer its allocation and imports (made
+// and destroyed with the GL context current; destroyed before their ExternalMemory). Thread: the
+// thread that owns the ClContext, with the GL context current.
+
+#include "hfx/compute/ClContext.h"
+#include "hfx/core/GlObject.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hfx {
+
+class ExternalMemory {
+public:
+    /// How the compute device takes the memory.
+    enum class Import {
+        OpaqueFd, ///< by the descriptor (cl_khr_external_memory_opaque_fd): device memory
+        HostPointer, ///< over Vulkan's mapping (CL_MEM_USE_HOST_PTR): a CPU device, host-visible memory
+    };
+
+    /// A buffer of memory both see: GL's buffer name and the device's buffer over the same bytes.
+    class SharedBuffer {
+    public:
+        SharedBuffer() = default;
+        SharedBuffer(SharedBuffer&&) noexcept;
+        SharedBuffer& operator=(SharedBuffer&&) noexcept;
+        ~SharedBuffer();
+        GLuint gl() const { return gl_.id(); }
+        const cl::Buffer& cl() const { return cl_; }
+        size_t bytes() const { return bytes_; }
+
+    private:
+        friend class ExternalMemory;
+        void reset();
+        const ExternalMemory* owner_ = nullptr;
+        cl::Buffer cl_;
+        GlBuffer gl_;
+        GLuint memoryObject_ = 0;
+        uint64_t vkBuffer_ = 0, vkMemory_ = 0; // VkBuffer, VkDeviceMemory (non-dispatchable)
+        size_t bytes_ = 0;
+        bool mapped_ = false; // Import::HostPointer: Vulkan's mapping, under the device's buffer
+    };
+
+    /// "" where the current GL context and `cl` can share memory this way; else why not, naming
+    /// what is missing. Makes (and destroys) a Vulkan instance and device to find out.
+    static std::string unavailable(const ClContext& cl);
+
+    /// Throws hfx::Error with `unavailable`'s reason where it is not "".
+    explicit ExternalMemory(ClContext& cl);
+    ~ExternalMemory();
+    ExternalMemory(const ExternalMemory&) = delete;
+    ExternalMemory& operator=(const ExternalMemory&) = delete;
+
+    /// `bytes` of memory both see. Throws hfx::Error naming the call that failed.
+    SharedBuffer allocate(size_t bytes);
+    Import import() const;
+    /// The queue's hold on the buffers around the commands that use them (cl_khr_external_memory's
+    /// acquire and release; nothing for a mapping).
+    void acquire(const std::vector<cl_mem>& buffers) const;
+    /// Returns once the device has let them go: GL may read them.
+    void release(const std::vector<cl_mem>& buffers) const;
+    /// "Vulkan device 'NAME', OpenCL imports by descriptor|over the mapping".
+    std::string description() const;
+
+private:
+    struct Vulkan;
+    ClContext& cl_;
+    std::unique_ptr<Vulkan> vk_;
+};
+
+} // namespace hfx
