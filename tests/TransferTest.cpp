@@ -147,7 +147,8 @@ TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
         << water.transferDescription();
     EXPECT_EQ(parseTransferPath("pixel-buffer"), TransferPath::PixelBuffer);
     EXPECT_EQ(parseTransferPath("staged"), TransferPath::Staged);
-    EXPECT_NE(messageOf([] { parseTransferPath("dma"); }).find("known: auto, map, pixel-buffer, staged, gl-sharing, external-memory"),
+    EXPECT_NE(messageOf([] { parseTransferPath("dma"); })
+                  .find("known: auto, map, pixel-buffer, staged, gl-sharing, external-memory"),
               std::string::npos);
     // Sharing asked for where the context shares no GL: refused, saying why.
     if (!cl().sharesGl()) {

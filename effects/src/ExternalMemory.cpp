@@ -63,6 +63,12 @@ constexpr VkDeviceSize kSlack = 4096;
 
 } // namespace
 
+// The device's entry points ExternalMemory calls, each loaded by vkGetDeviceProcAddr.
+#define HFX_VK_DEVICE_FUNCTIONS(X)                                                                 \
+    X(vkDestroyDevice) X(vkCreateBuffer) X(vkDestroyBuffer) X(vkGetBufferMemoryRequirements)      \
+    X(vkAllocateMemory) X(vkFreeMemory) X(vkBindBufferMemory) X(vkMapMemory) X(vkUnmapMemory)     \
+    X(vkGetMemoryFdKHR)
+
 struct ExternalMemory::Vulkan {
     void* library = nullptr;
     PFN_vkGetInstanceProcAddr getInstanceProc = nullptr;
@@ -73,25 +79,18 @@ struct ExternalMemory::Vulkan {
     Import import = Import::OpaqueFd;
     bool dedicated = false; ///< the driver wants the memory dedicated to its buffer
     VkPhysicalDeviceMemoryProperties memory{};
-    // Instance and device entry points.
-    PFN_vkDestroyInstance destroyInstance = nullptr;
-    PFN_vkDestroyDevice destroyDevice = nullptr;
-    PFN_vkCreateBuffer createBuffer = nullptr;
-    PFN_vkDestroyBuffer destroyBuffer = nullptr;
-    PFN_vkGetBufferMemoryRequirements requirements = nullptr;
-    PFN_vkAllocateMemory allocateMemory = nullptr;
-    PFN_vkFreeMemory freeMemory = nullptr;
-    PFN_vkBindBufferMemory bindBufferMemory = nullptr;
-    PFN_vkMapMemory mapMemory = nullptr;
-    PFN_vkUnmapMemory unmapMemory = nullptr;
-    PFN_vkGetMemoryFdKHR getMemoryFd = nullptr;
+    // The instance's and the device's entry points, by their Vulkan names.
+    PFN_vkDestroyInstance vkDestroyInstance = nullptr;
+#define HFX_VK_MEMBER(name) PFN_##name name = nullptr;
+    HFX_VK_DEVICE_FUNCTIONS(HFX_VK_MEMBER)
+#undef HFX_VK_MEMBER
     // OpenCL's.
     CreateBufferWithProperties createClBuffer = nullptr;
     EnqueueExternal acquire = nullptr, release = nullptr;
 
     ~Vulkan() {
-        if (device && destroyDevice) destroyDevice(device, nullptr);
-        if (instance && destroyInstance) destroyInstance(instance, nullptr);
+        if (device && vkDestroyDevice) vkDestroyDevice(device, nullptr);
+        if (instance && vkDestroyInstance) vkDestroyInstance(instance, nullptr);
         if (library) dlclose(library);
     }
 
@@ -108,17 +107,23 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
     }
     Uuid glUuid{};
     glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, glUuid.data());
-    glChecked("reading GL's device UUID");
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        why = str("GL (", renderer, ") did not say its device's UUID (", glErrorText(e), ")");
+        return nullptr;
+    }
 
     auto vk = std::make_unique<Vulkan>();
     const cl::Device& device = cl.device();
     const std::string clExtensions = device.getInfo<CL_DEVICE_EXTENSIONS>();
     Uuid clUuid{};
-    if (hasExtension(clExtensions, "cl_khr_external_memory_opaque_fd") && hasExtension(clExtensions, "cl_khr_device_uuid")) {
+    if (hasExtension(clExtensions, "cl_khr_external_memory_opaque_fd") &&
+        hasExtension(clExtensions, "cl_khr_device_uuid")) {
         vk->import = Import::OpaqueFd;
-        clGuard("reading the OpenCL device's UUID", [&] {
-            return clGetDeviceInfo(device(), CL_DEVICE_UUID_KHR, clUuid.size(), clUuid.data(), nullptr);
-        });
+        if (const cl_int e = clGetDeviceInfo(device(), CL_DEVICE_UUID_KHR, clUuid.size(), clUuid.data(), nullptr);
+            e != CL_SUCCESS) {
+            why = str(cl.description(), " did not say its UUID (CL error ", e, ")");
+            return nullptr;
+        }
         vk->createClBuffer =
             reinterpret_cast<CreateBufferWithProperties>(dlsym(RTLD_DEFAULT, "clCreateBufferWithProperties"));
         const cl_platform_id platform = device.getInfo<CL_DEVICE_PLATFORM>();
@@ -170,8 +175,7 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
     }
     auto instanceProc = [&](const char* name) { return vk->getInstanceProc(vk->instance, name); };
 #define HFX_VK_INSTANCE(type, name) auto name = reinterpret_cast<PFN_##type>(instanceProc(#type))
-    HFX_VK_INSTANCE(vkDestroyInstance, destroyInstance);
-    vk->destroyInstance = destroyInstance;
+    vk->vkDestroyInstance = reinterpret_cast<PFN_vkDestroyInstance>(instanceProc("vkDestroyInstance"));
     HFX_VK_INSTANCE(vkEnumeratePhysicalDevices, enumerate);
     HFX_VK_INSTANCE(vkGetPhysicalDeviceProperties2, properties2);
     HFX_VK_INSTANCE(vkGetPhysicalDeviceMemoryProperties, memoryProperties);
@@ -220,7 +224,8 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
     if (std::none_of(available.begin(), available.end(), [](const VkExtensionProperties& e) {
             return std::strcmp(e.extensionName, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) == 0;
         })) {
-        why = str("Vulkan device '", vk->name, "' does not export memory (", VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME, ")");
+        why = str("Vulkan device '", vk->name, "' does not export memory (", VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME,
+                  ")");
         return nullptr;
     }
     const VkPhysicalDeviceExternalBufferInfo bufferInfo{
@@ -253,20 +258,14 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         vk->device = VK_NULL_HANDLE;
         return nullptr;
     }
-    auto proc = [&](const char* name) { return deviceProc(vk->device, name); };
-    vk->destroyDevice = reinterpret_cast<PFN_vkDestroyDevice>(proc("vkDestroyDevice"));
-    vk->createBuffer = reinterpret_cast<PFN_vkCreateBuffer>(proc("vkCreateBuffer"));
-    vk->destroyBuffer = reinterpret_cast<PFN_vkDestroyBuffer>(proc("vkDestroyBuffer"));
-    vk->requirements = reinterpret_cast<PFN_vkGetBufferMemoryRequirements>(proc("vkGetBufferMemoryRequirements"));
-    vk->allocateMemory = reinterpret_cast<PFN_vkAllocateMemory>(proc("vkAllocateMemory"));
-    vk->freeMemory = reinterpret_cast<PFN_vkFreeMemory>(proc("vkFreeMemory"));
-    vk->bindBufferMemory = reinterpret_cast<PFN_vkBindBufferMemory>(proc("vkBindBufferMemory"));
-    vk->mapMemory = reinterpret_cast<PFN_vkMapMemory>(proc("vkMapMemory"));
-    vk->unmapMemory = reinterpret_cast<PFN_vkUnmapMemory>(proc("vkUnmapMemory"));
-    vk->getMemoryFd = reinterpret_cast<PFN_vkGetMemoryFdKHR>(proc("vkGetMemoryFdKHR"));
-    if (!vk->destroyDevice || !vk->createBuffer || !vk->destroyBuffer || !vk->requirements || !vk->allocateMemory ||
-        !vk->freeMemory || !vk->bindBufferMemory || !vk->mapMemory || !vk->unmapMemory || !vk->getMemoryFd) {
-        why = str("Vulkan device '", vk->name, "' lacks an entry point of the buffers' or vkGetMemoryFdKHR");
+    std::string missing;
+#define HFX_VK_LOAD(name)                                                                          \
+    vk->name = reinterpret_cast<PFN_##name>(deviceProc(vk->device, #name));                        \
+    if (!vk->name) missing += str(missing.empty() ? "" : ", ", #name);
+    HFX_VK_DEVICE_FUNCTIONS(HFX_VK_LOAD)
+#undef HFX_VK_LOAD
+    if (!missing.empty()) {
+        why = str("Vulkan device '", vk->name, "' lacks ", missing);
         return nullptr;
     }
     // A mapping needs memory the host sees, coherent: find out now, not at the first allocation.
@@ -299,11 +298,9 @@ ExternalMemory::ExternalMemory(ClContext& cl) : cl_(cl) {
 
 ExternalMemory::~ExternalMemory() = default;
 
-ExternalMemory::Import ExternalMemory::import() const { return vk_->import; }
-
 std::string ExternalMemory::description() const {
-    return str("Vulkan device '", vk_->name, "', OpenCL imports ",
-               vk_->import == Import::OpaqueFd ? "by descriptor" : "over the mapping");
+    return str("memory of Vulkan device '", vk_->name, "', imported ",
+               vk_->import == Import::OpaqueFd ? "by descriptor" : "over its mapping");
 }
 
 ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
@@ -319,15 +316,15 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
                                         .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                         .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
     VkBuffer buffer = VK_NULL_HANDLE;
-    if (const VkResult r = vk.createBuffer(vk.device, &bufferInfo, nullptr, &buffer); r != VK_SUCCESS)
+    if (const VkResult r = vk.vkCreateBuffer(vk.device, &bufferInfo, nullptr, &buffer); r != VK_SUCCESS)
         throw Error(str("external memory: vkCreateBuffer of ", bytes, " bytes failed (VkResult ", int(r), ")"));
     b.vkBuffer_ = reinterpret_cast<uint64_t>(buffer);
     VkMemoryRequirements need{};
-    vk.requirements(vk.device, buffer, &need);
+    vk.vkGetBufferMemoryRequirements(vk.device, buffer, &need);
     // Device memory where the device imports by descriptor; memory the host sees where it maps.
-    const VkMemoryPropertyFlags wanted = vk.import == Import::OpaqueFd
-                                             ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
-                                             : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    const VkMemoryPropertyFlags wanted =
+        vk.import == Import::OpaqueFd ? VkMemoryPropertyFlags(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)
+                                      : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     uint32_t type = vk.memory.memoryTypeCount;
     for (uint32_t i = 0; i < vk.memory.memoryTypeCount && type == vk.memory.memoryTypeCount; ++i)
         if ((need.memoryTypeBits >> i & 1u) && (vk.memory.memoryTypes[i].propertyFlags & wanted) == wanted) type = i;
@@ -345,18 +342,18 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
                                           .allocationSize = need.size,
                                           .memoryTypeIndex = type};
     VkDeviceMemory memory = VK_NULL_HANDLE;
-    if (const VkResult r = vk.allocateMemory(vk.device, &allocation, nullptr, &memory); r != VK_SUCCESS)
+    if (const VkResult r = vk.vkAllocateMemory(vk.device, &allocation, nullptr, &memory); r != VK_SUCCESS)
         throw Error(str("external memory: vkAllocateMemory of ", need.size, " bytes on '", vk.name,
                         "' failed (VkResult ", int(r), ")"));
     b.vkMemory_ = reinterpret_cast<uint64_t>(memory);
-    if (const VkResult r = vk.bindBufferMemory(vk.device, buffer, memory, 0); r != VK_SUCCESS)
+    if (const VkResult r = vk.vkBindBufferMemory(vk.device, buffer, memory, 0); r != VK_SUCCESS)
         throw Error(str("external memory: vkBindBufferMemory failed (VkResult ", int(r), ")"));
     auto descriptor = [&] {
         const VkMemoryGetFdInfoKHR info{.sType = VK_STRUCTURE_TYPE_MEMORY_GET_FD_INFO_KHR,
                                         .memory = memory,
                                         .handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
         int fd = -1;
-        if (const VkResult r = vk.getMemoryFd(vk.device, &info, &fd); r != VK_SUCCESS)
+        if (const VkResult r = vk.vkGetMemoryFdKHR(vk.device, &info, &fd); r != VK_SUCCESS)
             throw Error(str("external memory: vkGetMemoryFdKHR failed (VkResult ", int(r), ")"));
         return fd;
     };
@@ -398,7 +395,7 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
         b.cl_ = cl::Buffer(m); // takes the reference
     } else {
         void* mapped = nullptr;
-        if (const VkResult r = vk.mapMemory(vk.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped); r != VK_SUCCESS)
+        if (const VkResult r = vk.vkMapMemory(vk.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped); r != VK_SUCCESS)
             throw Error(str("external memory: vkMapMemory failed (VkResult ", int(r), ")"));
         b.mapped_ = true;
         clGuard("making a device buffer over the shared memory's mapping",
@@ -410,7 +407,8 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
 void ExternalMemory::acquire(const std::vector<cl_mem>& buffers) const {
     if (vk_->import != Import::OpaqueFd || buffers.empty()) return;
     const cl_int e = vk_->acquire(cl_.queue()(), cl_uint(buffers.size()), buffers.data(), 0, nullptr, nullptr);
-    if (e != CL_SUCCESS) throw Error(str("external memory: clEnqueueAcquireExternalMemObjectsKHR failed (CL error ", e, ")"));
+    if (e != CL_SUCCESS)
+        throw Error(str("external memory: clEnqueueAcquireExternalMemObjectsKHR failed (CL error ", e, ")"));
 }
 
 void ExternalMemory::release(const std::vector<cl_mem>& buffers) const {
@@ -452,11 +450,11 @@ void ExternalMemory::SharedBuffer::reset() {
     cl_ = cl::Buffer(); // the device's view first, then GL's, then the memory under both
     gl_.reset();
     if (memoryObject_) glDeleteMemoryObjectsEXT(1, &memoryObject_);
-    if (vkBuffer_) vk.destroyBuffer(vk.device, reinterpret_cast<VkBuffer>(vkBuffer_), nullptr);
+    if (vkBuffer_) vk.vkDestroyBuffer(vk.device, reinterpret_cast<VkBuffer>(vkBuffer_), nullptr);
     if (vkMemory_) {
         const auto memory = reinterpret_cast<VkDeviceMemory>(vkMemory_);
-        if (mapped_) vk.unmapMemory(vk.device, memory);
-        vk.freeMemory(vk.device, memory, nullptr);
+        if (mapped_) vk.vkUnmapMemory(vk.device, memory);
+        vk.vkFreeMemory(vk.device, memory, nullptr);
     }
     owner_ = nullptr;
     memoryObject_ = 0;

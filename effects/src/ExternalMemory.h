@@ -72,13 +72,12 @@ public:
 
     /// `bytes` of memory both see. Throws hfx::Error naming the call that failed.
     SharedBuffer allocate(size_t bytes);
-    Import import() const;
     /// The queue's hold on the buffers around the commands that use them (cl_khr_external_memory's
     /// acquire and release; nothing for a mapping).
     void acquire(const std::vector<cl_mem>& buffers) const;
     /// Returns once the device has let them go: GL may read them.
     void release(const std::vector<cl_mem>& buffers) const;
-    /// "Vulkan device 'NAME', OpenCL imports by descriptor|over the mapping".
+    /// "memory of Vulkan device 'NAME', imported by descriptor|over its mapping".
     std::string description() const;
 
 private:

@@ -151,6 +151,8 @@ const void* StreamTransfer::source(Stream stream) {
     return nullptr;
 }
 
+std::string StreamTransfer::description() const { return external_ ? external_->description() : ""; }
+
 void StreamTransfer::unbind() { glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0); }
 
 void StreamTransfer::uploaded() {

@@ -36,6 +36,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace hfx {
@@ -63,6 +64,8 @@ public:
     void unbind();
     /// After this frame's uploads: fences GL's reads of its memory and moves to the other slot.
     void uploaded();
+    /// What the path's memory is, where it says more than its name (ExternalMemory's); else "".
+    std::string description() const;
 
 private:
     struct Slot {

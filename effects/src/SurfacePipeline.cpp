@@ -118,7 +118,8 @@ SurfacePipeline::~SurfacePipeline() {
 
 std::string SurfacePipeline::transferDescription() const {
     return str(surfaceFormatName(config_.options.format), " texels", packer_ ? " packed on the device" : "", ", ",
-               transferPathName(transfer_), " path");
+               transferPathName(transfer_), " path",
+               streams_ && !streams_->description().empty() ? str(" (", streams_->description(), ")") : "");
 }
 
 void SurfacePipeline::setAlbedo(const Image& albedo) {
