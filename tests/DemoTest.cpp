@@ -939,6 +939,22 @@ TEST(Demo, NoOpenClPlatformSaysWhatToInstall) {
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
 }
 
+TEST(Demo, TheExternalMemoryPathWithoutAVulkanDriverSaysWhatIsMissing) {
+    // The Vulkan loader reads its drivers' manifests from VK_ICD_FILENAMES (VK_DRIVER_FILES since
+    // 1.3.234): one that does not exist means no driver. The path is asked for by name, so it is
+    // refused, naming what is missing, before a frame is drawn.
+    const Result r = runDemo("noise --headless --frames 1 --width 64 --height 64 --field 64 --transfer external-memory "
+                             "--out " + outputPath("demo_no_vulkan"),
+                             "env -u DISPLAY -u WAYLAND_DISPLAY VK_ICD_FILENAMES=/nonexistent/hfx_icd.json "
+                             "VK_DRIVER_FILES=/nonexistent/hfx_icd.json");
+    EXPECT_NE(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("the external-memory transfer path is not available here: "), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("Vulkan"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(outputPath("demo_no_vulkan") + "/noise_0000.png")) << r.output;
+}
+
 TEST(Demo, TheGlContextAndTheClDeviceAreChosenByOptionAndNamed) {
     // Both EGL and OSMesa give llvmpipe here: the same frame, and each run says which it got.
     std::string osmesaLog, eglLog;

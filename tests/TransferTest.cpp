@@ -14,7 +14,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <optional>
 
 namespace hfx::test {
 namespace {
@@ -162,11 +161,12 @@ TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
 }
 
 // The external-memory path is offered exactly where it can be made, and asked for where it cannot
-// it is refused naming what is missing: here with the Vulkan drivers hidden from the loader. Where
-// it is offered, EveryPathDeliversTheSameTexturesInEveryFormat holds it to the other paths bit for
-// bit. llvmpipe with lavapipe installed (scripts/setup.sh: this machine's and CI's) must offer it:
-// lavapipe allocates on llvmpipe's device (the same UUID), and PoCL takes the memory over its mapping.
-TEST_F(Transfer, ExternalMemoryIsOfferedWhereGlVulkanAndTheDeviceShareMemoryAndRefusedSayingWhyElsewhere) {
+// it is refused naming what is missing (Demo.TheExternalMemoryPathWithoutAVulkanDriverSaysWhatIsMissing
+// hides the Vulkan drivers from a run). Where it is offered,
+// EveryPathDeliversTheSameTexturesInEveryFormat holds it to the other paths bit for bit. llvmpipe
+// with lavapipe installed (scripts/setup.sh: this machine's and CI's) must offer it: lavapipe
+// allocates on llvmpipe's device (the same UUID), and PoCL takes the memory over its mapping.
+TEST_F(Transfer, ExternalMemoryIsOfferedWhereGlVulkanAndTheDeviceShareMemory) {
     const std::vector<TransferPath> paths = availableTransferPaths(cl());
     const bool offered = std::find(paths.begin(), paths.end(), TransferPath::ExternalMemory) != paths.end();
     std::string refusal;
@@ -193,31 +193,6 @@ TEST_F(Transfer, ExternalMemoryIsOfferedWhereGlVulkanAndTheDeviceShareMemoryAndR
         EXPECT_NE(water.transferDescription().find("external-memory"), std::string::npos)
             << water.transferDescription();
     }
-
-    // No Vulkan driver: refused by name, and not offered.
-    const char* const variables[] = {"VK_ICD_FILENAMES", "VK_DRIVER_FILES"};
-    std::vector<std::pair<std::string, std::optional<std::string>>> saved;
-    for (const char* v : variables) {
-        const char* value = std::getenv(v);
-        saved.emplace_back(v, value ? std::optional<std::string>(value) : std::nullopt);
-        setenv(v, "/nonexistent/hfx_icd.json", 1);
-    }
-    const std::string none = messageOf([&] { chooseTransferPath(cl(), TransferPath::ExternalMemory); });
-    const std::vector<TransferPath> without = availableTransferPaths(cl());
-    const std::string effect = messageOf(
-        [&] { SineWavesEffect(cl(), {.waves = {.size = 64}, .surface = {.transfer = TransferPath::ExternalMemory}}); });
-    for (const auto& [name, value] : saved) {
-        if (value)
-            setenv(name.c_str(), value->c_str(), 1);
-        else
-            unsetenv(name.c_str());
-    }
-    EXPECT_NE(none.find("the external-memory transfer path is not available here: "), std::string::npos) << none;
-    if (GLAD_GL_EXT_memory_object_fd) { // else GL's own lack is the reason, before Vulkan is asked
-        EXPECT_NE(none.find("Vulkan"), std::string::npos) << none;
-    }
-    EXPECT_EQ(std::find(without.begin(), without.end(), TransferPath::ExternalMemory), without.end());
-    EXPECT_NE(effect.find("external-memory"), std::string::npos) << effect;
 }
 
 TEST_F(Transfer, DestroyingAnEffectWithAnUpdateInFlightWaitsForIt) {

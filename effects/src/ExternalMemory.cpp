@@ -69,18 +69,79 @@ constexpr VkDeviceSize kSlack = 4096;
     X(vkAllocateMemory) X(vkFreeMemory) X(vkBindBufferMemory) X(vkMapMemory) X(vkUnmapMemory)     \
     X(vkGetMemoryFdKHR)
 
-struct ExternalMemory::Vulkan {
-    void* library = nullptr;
-    PFN_vkGetInstanceProcAddr getInstanceProc = nullptr;
+/// The Vulkan loader and one instance for the process, made when first asked for and kept to its
+/// end (never unloaded: a loader unloads its drivers with their last instance, and making them
+/// again for every question would cost as much again), or why there is none.
+struct VulkanInstance {
+    std::string failure; ///< "" where there is an instance
     VkInstance instance = VK_NULL_HANDLE;
+    PFN_vkEnumeratePhysicalDevices enumerate = nullptr;
+    PFN_vkGetPhysicalDeviceProperties2 properties2 = nullptr;
+    PFN_vkGetPhysicalDeviceMemoryProperties memoryProperties = nullptr;
+    PFN_vkEnumerateDeviceExtensionProperties deviceExtensions = nullptr;
+    PFN_vkGetPhysicalDeviceExternalBufferProperties externalBuffer = nullptr;
+    PFN_vkCreateDevice createDevice = nullptr;
+    PFN_vkGetDeviceProcAddr deviceProc = nullptr;
+
+    static const VulkanInstance& get() {
+        static const VulkanInstance* const one = new VulkanInstance(); // thread-safe, kept
+        return *one;
+    }
+
+private:
+    VulkanInstance() {
+        void* library = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+        if (!library) {
+            failure = "no Vulkan loader (libvulkan.so.1) to allocate the memory with";
+            return;
+        }
+        const auto getProc = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(library, "vkGetInstanceProcAddr"));
+        if (!getProc) {
+            failure = "libvulkan.so.1 has no vkGetInstanceProcAddr";
+            return;
+        }
+        const auto version = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(
+            getProc(VK_NULL_HANDLE, "vkEnumerateInstanceVersion"));
+        uint32_t loader = VK_API_VERSION_1_0;
+        if (version) version(&loader);
+        if (loader < VK_API_VERSION_1_1) {
+            failure = "the Vulkan loader is older than 1.1 (device UUIDs, external memory)";
+            return;
+        }
+        const VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                                    .pApplicationName = "hfx",
+                                    .apiVersion = VK_API_VERSION_1_1};
+        const VkInstanceCreateInfo info{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
+        const auto create = reinterpret_cast<PFN_vkCreateInstance>(getProc(VK_NULL_HANDLE, "vkCreateInstance"));
+        if (const VkResult r = create ? create(&info, nullptr, &instance) : VK_ERROR_INITIALIZATION_FAILED;
+            r != VK_SUCCESS) {
+            failure = str("no Vulkan driver (vkCreateInstance: VkResult ", int(r), ")");
+            instance = VK_NULL_HANDLE;
+            return;
+        }
+#define HFX_VK_INSTANCE(name, type) name = reinterpret_cast<PFN_##type>(getProc(instance, #type))
+        HFX_VK_INSTANCE(enumerate, vkEnumeratePhysicalDevices);
+        HFX_VK_INSTANCE(properties2, vkGetPhysicalDeviceProperties2);
+        HFX_VK_INSTANCE(memoryProperties, vkGetPhysicalDeviceMemoryProperties);
+        HFX_VK_INSTANCE(deviceExtensions, vkEnumerateDeviceExtensionProperties);
+        HFX_VK_INSTANCE(externalBuffer, vkGetPhysicalDeviceExternalBufferProperties);
+        HFX_VK_INSTANCE(createDevice, vkCreateDevice);
+        HFX_VK_INSTANCE(deviceProc, vkGetDeviceProcAddr);
+#undef HFX_VK_INSTANCE
+        if (!enumerate || !properties2 || !memoryProperties || !deviceExtensions || !externalBuffer || !createDevice ||
+            !deviceProc)
+            failure = "the Vulkan instance lacks 1.1's entry points";
+    }
+};
+
+struct ExternalMemory::Vulkan {
     VkPhysicalDevice physical = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
     std::string name;
     Import import = Import::OpaqueFd;
     bool dedicated = false; ///< the driver wants the memory dedicated to its buffer
     VkPhysicalDeviceMemoryProperties memory{};
-    // The instance's and the device's entry points, by their Vulkan names.
-    PFN_vkDestroyInstance vkDestroyInstance = nullptr;
+    // The device's entry points, by their Vulkan names.
 #define HFX_VK_MEMBER(name) PFN_##name name = nullptr;
     HFX_VK_DEVICE_FUNCTIONS(HFX_VK_MEMBER)
 #undef HFX_VK_MEMBER
@@ -90,8 +151,6 @@ struct ExternalMemory::Vulkan {
 
     ~Vulkan() {
         if (device && vkDestroyDevice) vkDestroyDevice(device, nullptr);
-        if (instance && vkDestroyInstance) vkDestroyInstance(instance, nullptr);
-        if (library) dlclose(library);
     }
 
     /// The Vulkan device GL draws with, ready to export memory that `cl` can import; null with
@@ -144,62 +203,22 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         return nullptr;
     }
 
-    vk->library = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
-    if (!vk->library) {
-        why = "no Vulkan loader (libvulkan.so.1) to allocate the memory with";
-        return nullptr;
-    }
-    vk->getInstanceProc = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(vk->library, "vkGetInstanceProcAddr"));
-    if (!vk->getInstanceProc) {
-        why = "libvulkan.so.1 has no vkGetInstanceProcAddr";
-        return nullptr;
-    }
-    auto global = [&](const char* name) { return vk->getInstanceProc(VK_NULL_HANDLE, name); };
-    auto enumerateVersion = reinterpret_cast<PFN_vkEnumerateInstanceVersion>(global("vkEnumerateInstanceVersion"));
-    uint32_t version = VK_API_VERSION_1_0;
-    if (enumerateVersion) enumerateVersion(&version);
-    if (version < VK_API_VERSION_1_1) {
-        why = "the Vulkan loader is older than 1.1 (device UUIDs, external memory)";
-        return nullptr;
-    }
-    VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
-                          .pApplicationName = "hfx",
-                          .apiVersion = VK_API_VERSION_1_1};
-    const VkInstanceCreateInfo instanceInfo{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
-    auto createInstance = reinterpret_cast<PFN_vkCreateInstance>(global("vkCreateInstance"));
-    if (const VkResult r = createInstance ? createInstance(&instanceInfo, nullptr, &vk->instance) : VK_ERROR_UNKNOWN;
-        r != VK_SUCCESS) {
-        why = str("no Vulkan driver (vkCreateInstance: VkResult ", int(r), ")");
-        vk->instance = VK_NULL_HANDLE;
-        return nullptr;
-    }
-    auto instanceProc = [&](const char* name) { return vk->getInstanceProc(vk->instance, name); };
-#define HFX_VK_INSTANCE(type, name) auto name = reinterpret_cast<PFN_##type>(instanceProc(#type))
-    vk->vkDestroyInstance = reinterpret_cast<PFN_vkDestroyInstance>(instanceProc("vkDestroyInstance"));
-    HFX_VK_INSTANCE(vkEnumeratePhysicalDevices, enumerate);
-    HFX_VK_INSTANCE(vkGetPhysicalDeviceProperties2, properties2);
-    HFX_VK_INSTANCE(vkGetPhysicalDeviceMemoryProperties, memoryProperties);
-    HFX_VK_INSTANCE(vkEnumerateDeviceExtensionProperties, deviceExtensions);
-    HFX_VK_INSTANCE(vkGetPhysicalDeviceExternalBufferProperties, externalBuffer);
-    HFX_VK_INSTANCE(vkCreateDevice, createDevice);
-    HFX_VK_INSTANCE(vkGetDeviceProcAddr, deviceProc);
-#undef HFX_VK_INSTANCE
-    if (!enumerate || !properties2 || !memoryProperties || !deviceExtensions || !externalBuffer || !createDevice ||
-        !deviceProc) {
-        why = "the Vulkan instance lacks 1.1's entry points";
+    const VulkanInstance& in = VulkanInstance::get();
+    if (!in.failure.empty()) {
+        why = in.failure;
         return nullptr;
     }
 
     // GL's device among Vulkan's (and the compute device's, where it imports by descriptor).
     uint32_t count = 0;
-    enumerate(vk->instance, &count, nullptr);
+    in.enumerate(in.instance, &count, nullptr);
     std::vector<VkPhysicalDevice> devices(count);
-    enumerate(vk->instance, &count, devices.data());
+    in.enumerate(in.instance, &count, devices.data());
     std::string seen;
     for (VkPhysicalDevice d : devices) {
         VkPhysicalDeviceIDProperties id{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
         VkPhysicalDeviceProperties2 p{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &id};
-        properties2(d, &p);
+        in.properties2(d, &p);
         Uuid u;
         std::copy(std::begin(id.deviceUUID), std::end(id.deviceUUID), u.begin());
         seen += str(seen.empty() ? "" : ", ", "'", p.properties.deviceName, "' ", hex(u));
@@ -218,9 +237,9 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         return nullptr;
     }
     uint32_t extensions = 0;
-    deviceExtensions(vk->physical, nullptr, &extensions, nullptr);
+    in.deviceExtensions(vk->physical, nullptr, &extensions, nullptr);
     std::vector<VkExtensionProperties> available(extensions);
-    deviceExtensions(vk->physical, nullptr, &extensions, available.data());
+    in.deviceExtensions(vk->physical, nullptr, &extensions, available.data());
     if (std::none_of(available.begin(), available.end(), [](const VkExtensionProperties& e) {
             return std::strcmp(e.extensionName, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) == 0;
         })) {
@@ -233,14 +252,14 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
         .handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
     VkExternalBufferProperties external{.sType = VK_STRUCTURE_TYPE_EXTERNAL_BUFFER_PROPERTIES};
-    externalBuffer(vk->physical, &bufferInfo, &external);
+    in.externalBuffer(vk->physical, &bufferInfo, &external);
     const VkExternalMemoryFeatureFlags features = external.externalMemoryProperties.externalMemoryFeatures;
     if (!(features & VK_EXTERNAL_MEMORY_FEATURE_EXPORTABLE_BIT)) {
         why = str("Vulkan device '", vk->name, "' exports no buffer memory as a file descriptor");
         return nullptr;
     }
     vk->dedicated = (features & VK_EXTERNAL_MEMORY_FEATURE_DEDICATED_ONLY_BIT) != 0;
-    memoryProperties(vk->physical, &vk->memory);
+    in.memoryProperties(vk->physical, &vk->memory);
 
     const float priority = 1.0f;
     const VkDeviceQueueCreateInfo queue{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -253,14 +272,14 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
                                         .pQueueCreateInfos = &queue,
                                         .enabledExtensionCount = 1,
                                         .ppEnabledExtensionNames = enabled};
-    if (const VkResult r = createDevice(vk->physical, &deviceInfo, nullptr, &vk->device); r != VK_SUCCESS) {
+    if (const VkResult r = in.createDevice(vk->physical, &deviceInfo, nullptr, &vk->device); r != VK_SUCCESS) {
         why = str("vkCreateDevice on '", vk->name, "' failed (VkResult ", int(r), ")");
         vk->device = VK_NULL_HANDLE;
         return nullptr;
     }
     std::string missing;
 #define HFX_VK_LOAD(name)                                                                          \
-    vk->name = reinterpret_cast<PFN_##name>(deviceProc(vk->device, #name));                        \
+    vk->name = reinterpret_cast<PFN_##name>(in.deviceProc(vk->device, #name));                     \
     if (!vk->name) missing += str(missing.empty() ? "" : ", ", #name);
     HFX_VK_DEVICE_FUNCTIONS(HFX_VK_LOAD)
 #undef HFX_VK_LOAD
@@ -420,9 +439,9 @@ void ExternalMemory::release(const std::vector<cl_mem>& buffers) const {
         const cl_int w = clWaitForEvents(1, &done);
         clReleaseEvent(done);
         if (w != CL_SUCCESS) throw Error(str("external memory: waiting for the release failed (CL error ", w, ")"));
-    } else {
-        clGuard("waiting for the copies into the shared memory", [&] { cl_.queue().finish(); });
     }
+    // Over a mapping there is nothing to release: the caller has waited for the queue's frame
+    // marker, behind the copies (an in-order queue).
 }
 
 ExternalMemory::SharedBuffer::SharedBuffer(SharedBuffer&& o) noexcept { *this = std::move(o); }

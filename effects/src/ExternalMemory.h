@@ -14,8 +14,11 @@
 // `unavailable` says what a machine lacks (the loader, a Vulkan device that is GL's, an extension
 // of any of the three).
 //
-// Owns its Vulkan instance and device, and each SharedBuffer its allocation and imports (made
-// and destroyed with the GL context current; destroyed before their ExternalMemory). Thread: the
+// The process keeps one Vulkan instance from its first use to its end (a loader unloads its
+// drivers with their last instance; made for every question, they leaked a little each time in
+// lavapipe, and cost as much again). Owns its Vulkan device, and each SharedBuffer its allocation
+// and imports (made and destroyed with the GL context current; destroyed before their
+// ExternalMemory). Thread: the
 // thread that owns the ClContext, with the GL context current.
 
 #include "hfx/compute/ClContext.h"
@@ -61,7 +64,7 @@ public:
     };
 
     /// "" where the current GL context and `cl` can share memory this way; else why not, naming
-    /// what is missing. Makes (and destroys) a Vulkan instance and device to find out.
+    /// what is missing. Makes (and destroys) a Vulkan device to find out.
     static std::string unavailable(const ClContext& cl);
 
     /// Throws hfx::Error with `unavailable`'s reason where it is not "".
@@ -75,7 +78,8 @@ public:
     /// The queue's hold on the buffers around the commands that use them (cl_khr_external_memory's
     /// acquire and release; nothing for a mapping).
     void acquire(const std::vector<cl_mem>& buffers) const;
-    /// Returns once the device has let them go: GL may read them.
+    /// Returns once the device has let them go: GL may read them. Call after the queue has
+    /// finished the commands that wrote them (over a mapping that is all it takes).
     void release(const std::vector<cl_mem>& buffers) const;
     /// "memory of Vulkan device 'NAME', imported by descriptor|over its mapping".
     std::string description() const;
