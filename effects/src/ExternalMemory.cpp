@@ -61,13 +61,17 @@ using EnqueueExternal = cl_int(CL_API_CALL*)(cl_command_queue, cl_uint, const cl
 /// GL buffer exactly as large as its memory object (GL_OUT_OF_MEMORY), one a page smaller it takes.
 constexpr VkDeviceSize kSlack = 4096;
 
-} // namespace
-
 // The device's entry points ExternalMemory calls, each loaded by vkGetDeviceProcAddr.
 #define HFX_VK_DEVICE_FUNCTIONS(X)                                                                 \
     X(vkDestroyDevice) X(vkCreateBuffer) X(vkDestroyBuffer) X(vkGetBufferMemoryRequirements)      \
     X(vkAllocateMemory) X(vkFreeMemory) X(vkBindBufferMemory) X(vkMapMemory) X(vkUnmapMemory)     \
     X(vkGetMemoryFdKHR)
+
+// The instance's entry points ExternalMemory calls, each loaded by vkGetInstanceProcAddr.
+#define HFX_VK_INSTANCE_FUNCTIONS(X)                                                               \
+    X(vkEnumeratePhysicalDevices) X(vkGetPhysicalDeviceProperties2)                                \
+    X(vkGetPhysicalDeviceMemoryProperties) X(vkEnumerateDeviceExtensionProperties)                 \
+    X(vkGetPhysicalDeviceExternalBufferProperties) X(vkCreateDevice) X(vkGetDeviceProcAddr)
 
 /// The Vulkan loader and one instance for the process, made when first asked for and kept to its
 /// end (never unloaded: a loader unloads its drivers with their last instance, and making them
@@ -75,13 +79,9 @@ constexpr VkDeviceSize kSlack = 4096;
 struct VulkanInstance {
     std::string failure; ///< "" where there is an instance
     VkInstance instance = VK_NULL_HANDLE;
-    PFN_vkEnumeratePhysicalDevices enumerate = nullptr;
-    PFN_vkGetPhysicalDeviceProperties2 properties2 = nullptr;
-    PFN_vkGetPhysicalDeviceMemoryProperties memoryProperties = nullptr;
-    PFN_vkEnumerateDeviceExtensionProperties deviceExtensions = nullptr;
-    PFN_vkGetPhysicalDeviceExternalBufferProperties externalBuffer = nullptr;
-    PFN_vkCreateDevice createDevice = nullptr;
-    PFN_vkGetDeviceProcAddr deviceProc = nullptr;
+#define HFX_VK_MEMBER(name) PFN_##name name = nullptr;
+    HFX_VK_INSTANCE_FUNCTIONS(HFX_VK_MEMBER)
+#undef HFX_VK_MEMBER
 
     static const VulkanInstance& get() {
         static const VulkanInstance* const one = new VulkanInstance(); // thread-safe, kept
@@ -119,20 +119,17 @@ private:
             instance = VK_NULL_HANDLE;
             return;
         }
-#define HFX_VK_INSTANCE(name, type) name = reinterpret_cast<PFN_##type>(getProc(instance, #type))
-        HFX_VK_INSTANCE(enumerate, vkEnumeratePhysicalDevices);
-        HFX_VK_INSTANCE(properties2, vkGetPhysicalDeviceProperties2);
-        HFX_VK_INSTANCE(memoryProperties, vkGetPhysicalDeviceMemoryProperties);
-        HFX_VK_INSTANCE(deviceExtensions, vkEnumerateDeviceExtensionProperties);
-        HFX_VK_INSTANCE(externalBuffer, vkGetPhysicalDeviceExternalBufferProperties);
-        HFX_VK_INSTANCE(createDevice, vkCreateDevice);
-        HFX_VK_INSTANCE(deviceProc, vkGetDeviceProcAddr);
-#undef HFX_VK_INSTANCE
-        if (!enumerate || !properties2 || !memoryProperties || !deviceExtensions || !externalBuffer || !createDevice ||
-            !deviceProc)
-            failure = "the Vulkan instance lacks 1.1's entry points";
+        std::string missing;
+#define HFX_VK_LOAD(name)                                                                          \
+    name = reinterpret_cast<PFN_##name>(getProc(instance, #name));                                 \
+    if (!name) missing += str(missing.empty() ? "" : ", ", #name);
+        HFX_VK_INSTANCE_FUNCTIONS(HFX_VK_LOAD)
+#undef HFX_VK_LOAD
+        if (!missing.empty()) failure = str("the Vulkan instance lacks 1.1's ", missing);
     }
 };
+
+} // namespace
 
 struct ExternalMemory::Vulkan {
     VkPhysicalDevice physical = VK_NULL_HANDLE;
@@ -211,14 +208,14 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
 
     // GL's device among Vulkan's (and the compute device's, where it imports by descriptor).
     uint32_t count = 0;
-    in.enumerate(in.instance, &count, nullptr);
+    in.vkEnumeratePhysicalDevices(in.instance, &count, nullptr);
     std::vector<VkPhysicalDevice> devices(count);
-    in.enumerate(in.instance, &count, devices.data());
+    in.vkEnumeratePhysicalDevices(in.instance, &count, devices.data());
     std::string seen;
     for (VkPhysicalDevice d : devices) {
         VkPhysicalDeviceIDProperties id{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
         VkPhysicalDeviceProperties2 p{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &id};
-        in.properties2(d, &p);
+        in.vkGetPhysicalDeviceProperties2(d, &p);
         Uuid u;
         std::copy(std::begin(id.deviceUUID), std::end(id.deviceUUID), u.begin());
         seen += str(seen.empty() ? "" : ", ", "'", p.properties.deviceName, "' ", hex(u));
@@ -237,9 +234,9 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         return nullptr;
     }
     uint32_t extensions = 0;
-    in.deviceExtensions(vk->physical, nullptr, &extensions, nullptr);
+    in.vkEnumerateDeviceExtensionProperties(vk->physical, nullptr, &extensions, nullptr);
     std::vector<VkExtensionProperties> available(extensions);
-    in.deviceExtensions(vk->physical, nullptr, &extensions, available.data());
+    in.vkEnumerateDeviceExtensionProperties(vk->physical, nullptr, &extensions, available.data());
     if (std::none_of(available.begin(), available.end(), [](const VkExtensionProperties& e) {
             return std::strcmp(e.extensionName, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME) == 0;
         })) {
@@ -252,14 +249,14 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
         .handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
     VkExternalBufferProperties external{.sType = VK_STRUCTURE_TYPE_EXTERNAL_BUFFER_PROPERTIES};
-    in.externalBuffer(vk->physical, &bufferInfo, &external);
+    in.vkGetPhysicalDeviceExternalBufferProperties(vk->physical, &bufferInfo, &external);
     const VkExternalMemoryFeatureFlags features = external.externalMemoryProperties.externalMemoryFeatures;
     if (!(features & VK_EXTERNAL_MEMORY_FEATURE_EXPORTABLE_BIT)) {
         why = str("Vulkan device '", vk->name, "' exports no buffer memory as a file descriptor");
         return nullptr;
     }
     vk->dedicated = (features & VK_EXTERNAL_MEMORY_FEATURE_DEDICATED_ONLY_BIT) != 0;
-    in.memoryProperties(vk->physical, &vk->memory);
+    in.vkGetPhysicalDeviceMemoryProperties(vk->physical, &vk->memory);
 
     const float priority = 1.0f;
     const VkDeviceQueueCreateInfo queue{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -272,14 +269,14 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
                                         .pQueueCreateInfos = &queue,
                                         .enabledExtensionCount = 1,
                                         .ppEnabledExtensionNames = enabled};
-    if (const VkResult r = in.createDevice(vk->physical, &deviceInfo, nullptr, &vk->device); r != VK_SUCCESS) {
+    if (const VkResult r = in.vkCreateDevice(vk->physical, &deviceInfo, nullptr, &vk->device); r != VK_SUCCESS) {
         why = str("vkCreateDevice on '", vk->name, "' failed (VkResult ", int(r), ")");
         vk->device = VK_NULL_HANDLE;
         return nullptr;
     }
     std::string missing;
 #define HFX_VK_LOAD(name)                                                                          \
-    vk->name = reinterpret_cast<PFN_##name>(in.deviceProc(vk->device, #name));                     \
+    vk->name = reinterpret_cast<PFN_##name>(in.vkGetDeviceProcAddr(vk->device, #name));            \
     if (!vk->name) missing += str(missing.empty() ? "" : ", ", #name);
     HFX_VK_DEVICE_FUNCTIONS(HFX_VK_LOAD)
 #undef HFX_VK_LOAD
