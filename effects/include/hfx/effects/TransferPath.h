@@ -14,9 +14,9 @@
 //   context (ClContext::sharesGl(): NVIDIA offers it for GLX contexts, not EGL); no host copy;
 // - ExternalMemory: the device copies into memory that Vulkan allocates on GL's device and both
 //   GL and the device import (GL_EXT_memory_object_fd; cl_khr_external_memory_opaque_fd, which
-//   NVIDIA's OpenCL has, or a CPU device over the memory's mapping); no host copy, for any GL
-//   context, EGL's included. Vulkan is loaded at run time (libvulkan.so.1). Not Auto's choice
-//   until a GPU has timed it against Staged.
+//   NVIDIA's recent OpenCL drivers list, or a CPU device over the memory's mapping); no host
+//   copy, for any GL context, EGL's included. Vulkan is loaded at run time (libvulkan.so.1). Not
+//   Auto's choice until a GPU has timed it against Staged.
 // (StreamTransfer.h in effects/src holds the last three, ExternalMemory.h the allocator.)
 //
 // Thread: the thread whose GL context is current (chooseTransferPath asks the device, and for
