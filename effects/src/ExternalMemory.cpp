@@ -407,7 +407,8 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
             throw Error(str("external memory: clCreateBufferWithProperties over a Vulkan descriptor failed (CL error ",
                             error, ")"));
         }
-        // The extension does not say who closes the descriptor; NVIDIA's keeps it. It is left open.
+        // The extension does not say who closes the descriptor: it is left open rather than risk
+        // closing one the driver owns (up to 8 a pipeline).
         b.cl_ = cl::Buffer(m); // takes the reference
     } else {
         void* mapped = nullptr;
