@@ -18,8 +18,6 @@ void loadGl(GlProcLoader loader) {
                         "); on a machine without GPU use Mesa's OSMesa (libosmesa6)"));
 }
 
-namespace detail {
-namespace {
 const char* glErrorName(GLenum e) {
     switch (e) {
     case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
@@ -32,8 +30,8 @@ const char* glErrorName(GLenum e) {
     default: return "GL error";
     }
 }
-} // namespace
 
+namespace detail {
 void glCheck(const char* call, const char* file, int line) {
     std::string errors;
     // A lost context reports errors forever: a bounded number is enough to name them.

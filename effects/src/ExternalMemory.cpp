@@ -27,22 +27,6 @@ std::string hex(const Uuid& u) {
     return s.str();
 }
 
-const char* glErrorText(GLenum e) {
-    switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    default: return "a GL error";
-    }
-}
-
-/// Throws naming `what` where GL reports an error after it.
-void glChecked(const char* what) {
-    if (const GLenum e = glGetError(); e != GL_NO_ERROR)
-        throw Error(str("external memory: ", what, " failed (", glErrorText(e), ")"));
-}
-
 bool hasExtension(const std::string& list, std::string_view name) {
     std::istringstream words(list);
     for (std::string w; words >> w;)
@@ -164,7 +148,7 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
     Uuid glUuid{};
     glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, glUuid.data());
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
-        why = str("GL (", renderer, ") did not say its device's UUID (", glErrorText(e), ")");
+        why = str("GL (", renderer, ") did not say its device's UUID (", glErrorName(e), ")");
         return nullptr;
     }
 
@@ -323,7 +307,6 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
     Vulkan& vk = *vk_;
     SharedBuffer b;
     b.owner_ = this;
-    b.bytes_ = bytes;
     const VkExternalMemoryBufferCreateInfo external{.sType = VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_BUFFER_CREATE_INFO,
                                                     .handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT};
     const VkBufferCreateInfo bufferInfo{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
@@ -376,7 +359,7 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
 
     // GL: a memory object over the descriptor (GL owns it once imported), a buffer in it.
     glCreateMemoryObjectsEXT(1, &b.memoryObject_);
-    glChecked("glCreateMemoryObjectsEXT");
+    detail::glCheck("glCreateMemoryObjectsEXT", __FILE__, __LINE__);
     if (vk.dedicated) {
         const GLint yes = GL_TRUE;
         glMemoryObjectParameterivEXT(b.memoryObject_, GL_DEDICATED_MEMORY_OBJECT_EXT, &yes);
@@ -385,11 +368,11 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
     glImportMemoryFdEXT(b.memoryObject_, GLuint64(need.size), GL_HANDLE_TYPE_OPAQUE_FD_EXT, glFd);
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
         close(glFd); // not taken
-        throw Error(str("external memory: glImportMemoryFdEXT of ", need.size, " bytes failed (", glErrorText(e), ")"));
+        throw Error(str("external memory: glImportMemoryFdEXT of ", need.size, " bytes failed (", glErrorName(e), ")"));
     }
     b.gl_ = GlBuffer::create();
     glNamedBufferStorageMemEXT(b.gl_.id(), GLsizeiptr(bytes), b.memoryObject_, 0);
-    glChecked("glNamedBufferStorageMemEXT");
+    detail::glCheck("glNamedBufferStorageMemEXT", __FILE__, __LINE__);
 
     // The compute device: by its own descriptor, or over the mapping.
     if (vk.import == Import::OpaqueFd) {
@@ -421,14 +404,14 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
     return b;
 }
 
-void ExternalMemory::acquire(const std::vector<cl_mem>& buffers) const {
+void ExternalMemory::acquire(std::span<const cl_mem> buffers) const {
     if (vk_->import != Import::OpaqueFd || buffers.empty()) return;
     const cl_int e = vk_->acquire(cl_.queue()(), cl_uint(buffers.size()), buffers.data(), 0, nullptr, nullptr);
     if (e != CL_SUCCESS)
         throw Error(str("external memory: clEnqueueAcquireExternalMemObjectsKHR failed (CL error ", e, ")"));
 }
 
-void ExternalMemory::release(const std::vector<cl_mem>& buffers) const {
+void ExternalMemory::release(std::span<const cl_mem> buffers) const {
     if (vk_->import == Import::OpaqueFd && !buffers.empty()) {
         cl_event done = nullptr;
         const cl_int e = vk_->release(cl_.queue()(), cl_uint(buffers.size()), buffers.data(), 0, nullptr, &done);
@@ -453,7 +436,6 @@ ExternalMemory::SharedBuffer& ExternalMemory::SharedBuffer::operator=(SharedBuff
         memoryObject_ = std::exchange(o.memoryObject_, 0);
         vkBuffer_ = std::exchange(o.vkBuffer_, 0);
         vkMemory_ = std::exchange(o.vkMemory_, 0);
-        bytes_ = std::exchange(o.bytes_, 0);
         mapped_ = std::exchange(o.mapped_, false);
     }
     return *this;
@@ -476,7 +458,6 @@ void ExternalMemory::SharedBuffer::reset() {
     owner_ = nullptr;
     memoryObject_ = 0;
     vkBuffer_ = vkMemory_ = 0;
-    bytes_ = 0;
     mapped_ = false;
 }
 

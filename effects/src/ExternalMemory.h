@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,7 +50,6 @@ public:
         ~SharedBuffer();
         GLuint gl() const { return gl_.id(); }
         const cl::Buffer& cl() const { return cl_; }
-        size_t bytes() const { return bytes_; }
 
     private:
         friend class ExternalMemory;
@@ -59,7 +59,6 @@ public:
         GlBuffer gl_;
         GLuint memoryObject_ = 0;
         uint64_t vkBuffer_ = 0, vkMemory_ = 0; // VkBuffer, VkDeviceMemory (non-dispatchable)
-        size_t bytes_ = 0;
         bool mapped_ = false; // Import::HostPointer: Vulkan's mapping, under the device's buffer
     };
 
@@ -77,10 +76,10 @@ public:
     SharedBuffer allocate(size_t bytes);
     /// The queue's hold on the buffers around the commands that use them (cl_khr_external_memory's
     /// acquire and release; nothing for a mapping).
-    void acquire(const std::vector<cl_mem>& buffers) const;
+    void acquire(std::span<const cl_mem> buffers) const;
     /// Returns once the device has let them go: GL may read them. Call after the queue has
     /// finished the commands that wrote them (over a mapping that is all it takes).
-    void release(const std::vector<cl_mem>& buffers) const;
+    void release(std::span<const cl_mem> buffers) const;
     /// "memory of Vulkan device 'NAME', imported by descriptor|over its mapping".
     std::string description() const;
 

@@ -101,7 +101,7 @@ void StreamTransfer::enqueue(Stream stream, const cl::Buffer& source, size_t byt
         if (acquiredExternal_.empty()) waitForGl(slot_);
         const cl::Buffer& shared = m.slots[size_t(slot_)].external.cl();
         acquiredExternal_.push_back(shared()); // capacity for every stream, reserved at construction
-        external_->acquire({shared()});
+        external_->acquire({&acquiredExternal_.back(), 1});
         clGuard("copying the surface into the shared memory",
                 [&] { q.enqueueCopyBuffer(source, shared, 0, 0, bytes); });
     } else {

@@ -8,6 +8,9 @@
 #include "hfx/core/GlLoader.h"
 
 namespace hfx {
+/// "GL_INVALID_OPERATION" and so on: the name of a glGetError code.
+const char* glErrorName(GLenum error);
+
 namespace detail {
 /// Throws hfx::Error naming `call`, where it stands and every GL error pending after it
 /// ("GL_INVALID_OPERATION after glBindTexture(...) at Texture.cpp:12"); nothing when none is.
