@@ -135,11 +135,13 @@ struct ExternalMemory::Vulkan {
     }
 
     /// The Vulkan device GL draws with, ready to export memory that `cl` can import; null with
-    /// `why` saying what is missing.
-    static std::unique_ptr<Vulkan> open(const ClContext& cl, std::string& why);
+    /// `why` saying what is missing. A probe finds the physical device and checks what it offers,
+    /// but makes no VkDevice (and returns null with `why` empty where all is there).
+    static std::unique_ptr<Vulkan> open(const ClContext& cl, std::string& why, bool probe = false);
 };
 
-std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClContext& cl, std::string& why) {
+std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClContext& cl, std::string& why,
+                                                                     bool probe) {
     const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     if (!GLAD_GL_EXT_memory_object || !GLAD_GL_EXT_memory_object_fd) {
         why = str("GL (", renderer, ") does not import memory (GL_EXT_memory_object_fd)");
@@ -241,6 +243,20 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
     }
     vk->dedicated = (features & VK_EXTERNAL_MEMORY_FEATURE_DEDICATED_ONLY_BIT) != 0;
     in.vkGetPhysicalDeviceMemoryProperties(vk->physical, &vk->memory);
+    // A mapping needs memory the host sees, coherent: find out now, not at the first allocation.
+    if (vk->import == Import::HostPointer) {
+        bool visible = false;
+        for (uint32_t i = 0; i < vk->memory.memoryTypeCount; ++i)
+            visible |= (vk->memory.memoryTypes[i].propertyFlags &
+                        (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) ==
+                       (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        if (!visible) {
+            why = str(cl.description(), " would take the memory over a mapping, and Vulkan device '", vk->name,
+                      "' has none the host sees");
+            return nullptr;
+        }
+    }
+    if (probe) return nullptr;
 
     const float priority = 1.0f;
     const VkDeviceQueueCreateInfo queue{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -268,25 +284,12 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         why = str("Vulkan device '", vk->name, "' lacks ", missing);
         return nullptr;
     }
-    // A mapping needs memory the host sees, coherent: find out now, not at the first allocation.
-    if (vk->import == Import::HostPointer) {
-        bool visible = false;
-        for (uint32_t i = 0; i < vk->memory.memoryTypeCount; ++i)
-            visible |= (vk->memory.memoryTypes[i].propertyFlags &
-                        (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) ==
-                       (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-        if (!visible) {
-            why = str(cl.description(), " would take the memory over a mapping, and Vulkan device '", vk->name,
-                      "' has none the host sees");
-            return nullptr;
-        }
-    }
     return vk;
 }
 
 std::string ExternalMemory::unavailable(const ClContext& cl) {
     std::string why;
-    Vulkan::open(cl, why);
+    Vulkan::open(cl, why, true);
     return why;
 }
 
@@ -390,8 +393,8 @@ ExternalMemory::SharedBuffer ExternalMemory::allocate(size_t bytes) {
             throw Error(str("external memory: clCreateBufferWithProperties over a Vulkan descriptor failed (CL error ",
                             error, ")"));
         }
-        // The extension does not say who closes the descriptor: it is left open rather than risk
-        // closing one the driver owns (up to 8 a pipeline).
+        // A successful import hands the descriptor to the implementation (OpenCL 3.0, 5.5.2.1 "File
+        // descriptor handle types"): the application must not touch it again, so it is not closed here.
         b.cl_ = cl::Buffer(m); // takes the reference
     } else {
         void* mapped = nullptr;

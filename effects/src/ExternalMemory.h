@@ -63,7 +63,8 @@ public:
     };
 
     /// "" where the current GL context and `cl` can share memory this way; else why not, naming
-    /// what is missing. Makes (and destroys) a Vulkan device to find out.
+    /// what is missing. Asks the physical device, makes no Vulkan device: one that then fails to
+    /// be made is the constructor's error.
     static std::string unavailable(const ClContext& cl);
 
     /// Throws hfx::Error with `unavailable`'s reason where it is not "".
