@@ -64,17 +64,24 @@ double gpuMedian(const GpuTimer& timer, const char* pass) {
     return it == timer.samples().end() ? 0.0 : median(it->second);
 }
 
+/// What measure() draws each frame.
+enum class Draws {
+    All,    ///< POM, POM without shadows, NM, the own technique, the clear-sky pair: the scene table
+    PomOnly ///< POM with shadows alone, all the transfer and scaling tables read (the others stay 0)
+};
+
 /// `frames` frames after kWarmupFrames warm-up frames, each: an update (staged: every stage
-/// waited for and timed), then the scene drawn with POM, POM without shadows, normal mapping and
-/// its own technique (and, for a water look with clouds, POM and normal mapping under a clear
-/// sky), interleaved frame by frame so a noisy neighbour hits them alike.
-Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
+/// waited for and timed), then the scene drawn with POM, and with Draws::All also POM without
+/// shadows, normal mapping and its own technique (and, for a water look with clouds, POM and
+/// normal mapping under a clear sky), interleaved frame by frame so a noisy neighbour hits them alike.
+Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames, Draws draws = Draws::All) {
     std::vector<double> field, normals, extra, upload, pom, unshadowed, nm, own, kernels;
     const SurfaceMaterial material = scene.effect().material();
     const Technique ownTechnique = scene.technique;
     // One timer per kind of work, so that each one's passes ("draw", "beam", ...) stay its own.
     GpuTimer updateTimer, pomTimer, unshadowedTimer, nmTimer, ownTimer, pomClearTimer, nmClearTimer;
-    const bool clouds = material.shading == Shading::Water && material.water.sky() == SkyKind::Clouds;
+    const bool all = draws == Draws::All;
+    const bool clouds = all && material.shading == Shading::Water && material.water.sky() == SkyKind::Clouds;
     for (int frame = -kWarmupFrames; frame < frames; ++frame) {
         if (frame == 0)
             for (GpuTimer* t : {&updateTimer, &pomTimer, &unshadowedTimer, &nmTimer, &ownTimer, &pomClearTimer, &nmClearTimer}) {
@@ -109,9 +116,9 @@ Budget measure(Scene& scene, RenderTarget& target, ClContext& cl, int frames) {
             return ms;
         };
         const double p = draw(pomTimer, Technique::ParallaxOcclusion, true);
-        const double q = draw(unshadowedTimer, Technique::ParallaxOcclusion, false);
-        const double n = draw(nmTimer, Technique::NormalMapping, true);
-        const double o = ownTechnique == Technique::ParallaxOcclusion ? 0.0 : draw(ownTimer, ownTechnique, true);
+        const double q = all ? draw(unshadowedTimer, Technique::ParallaxOcclusion, false) : 0.0;
+        const double n = all ? draw(nmTimer, Technique::NormalMapping, true) : 0.0;
+        const double o = !all || ownTechnique == Technique::ParallaxOcclusion ? 0.0 : draw(ownTimer, ownTechnique, true);
         if (clouds) {
             draw(pomClearTimer, Technique::ParallaxOcclusion, true, true);
             draw(nmClearTimer, Technique::NormalMapping, true, true);
@@ -294,7 +301,7 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
                     o.width = width;
                     o.height = height;
                     auto scene = makeScene("water", cl, o);
-                    const Budget b = measure(*scene, target, cl, frames);
+                    const Budget b = measure(*scene, target, cl, frames, Draws::PomOnly);
                     // The ocean's cascades: one surface each, all moved every frame.
                     const double bytes = double(texelBytes(format)) * size * size *
                                          double(scene->effect().layers().size());
@@ -320,7 +327,7 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
         RenderTarget t(w, h);
         t.bind();
         auto scene = makeScene("water", cl, o);
-        const Budget b = measure(*scene, t, cl, frames);
+        const Budget b = measure(*scene, t, cl, frames, Draws::PomOnly);
         std::printf("| %d² | %dx%d | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size, w, h, b.kernels, b.upload, b.glUpload,
                     b.gpuPom, b.gpuFrame());
         std::fflush(stdout);
