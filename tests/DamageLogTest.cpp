@@ -4,6 +4,7 @@
 // refuses, by file and line, what it is not).
 
 #include "support/Fixtures.h"
+#include "support/Locale.h"
 
 #include "hfx/compute/DamageLog.h"
 #include "hfx/core/Error.h"
@@ -12,9 +13,20 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 namespace hfx::test {
 namespace {
+
+/// The same impacts to the bit, in the same order.
+bool sameEvents(const std::vector<ImpactEvent>& a, const std::vector<ImpactEvent>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (std::memcmp(&a[i].u, &b[i].u, sizeof(float) * 6) != 0 || a[i].kind != b[i].kind ||
+            a[i].seed != b[i].seed || a[i].time != b[i].time || a[i].strength != b[i].strength)
+            return false;
+    return true;
+}
 
 TEST(DamageLog, TenThousandImpactsIntoABudgetOf256KeepMemoryFlatAndEvictTheOldest) {
     DamageLog log({.budget = 256, .mergeRadius = 0.0f});
@@ -171,19 +183,62 @@ TEST(DamageLog, ASavedLogReadsBackBitForBit) {
     log.save(path);
     const DamageLog back = DamageLog::load(path, {.budget = 100, .mergeRadius = 0.02f});
     EXPECT_EQ(back.now(), log.now());
-    const auto a = log.events(), b = back.events();
-    ASSERT_EQ(a.size(), b.size());
-    for (size_t i = 0; i < a.size(); ++i) {
-        EXPECT_EQ(std::memcmp(&a[i].u, &b[i].u, sizeof(float) * 6), 0) << i;
-        EXPECT_EQ(a[i].kind, b[i].kind);
-        EXPECT_EQ(a[i].seed, b[i].seed);
-        EXPECT_EQ(a[i].time, b[i].time);
-        EXPECT_EQ(a[i].strength, b[i].strength);
-    }
+    EXPECT_TRUE(sameEvents(log.events(), back.events()));
     const auto sa = log.stamps(), sb = back.stamps();
     ASSERT_EQ(sa.size(), sb.size());
     EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(BulletHole)), 0);
     EXPECT_NE(messageOf([&] { DamageLog::load(path, {.budget = 10}); }).find("budget of 10"), std::string::npos);
+}
+
+TEST(DamageLog, ALogSavedIntoAStreamUnderAnyLocaleIsTheFilesTextAndReadsBackBitForBit) {
+    // A server's snapshot for a client joining late goes through a string stream; the server and
+    // the client may run under different locales. With the program's C++ locale grouping digits
+    // and writing ',' for the decimal point (as std::locale::global(std::locale("")) gives on a
+    // German desktop), the text is the classic locale's to the byte (the seeds, 64-bit, are where
+    // grouping would show) and reads back into the same impacts.
+    DamageLog log({.budget = 64, .mergeRadius = 0.0f});
+    SplitMix64 random(17);
+    for (int i = 0; i < 40; ++i) {
+        log.add({.u = float(random.next()), .v = float(random.next()), .nx = -0.25f, .ny = 0.0f, .nz = 0.96875f,
+                 .radius = float(random.uniform(0.001, 0.05)),
+                 .kind = i % 5 == 0 ? ImpactKind::Explosion : ImpactKind::Bullet, .seed = random.nextBits()});
+        log.advance(random.uniform(0.0, 0.3));
+    }
+    const std::string path = outputPath("damage-classic.log");
+    log.save(path);
+    std::ifstream file(path, std::ios::binary);
+    const std::string classic{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+    ASSERT_NE(classic.find("impact explosion"), std::string::npos);
+
+    std::string german;
+    DamageLog back({.budget = 64});
+    std::string refusal;
+    {
+        const GermanLocale locale;
+        std::ostringstream out; // takes the global locale
+        log.save(out, "the server's snapshot");
+        german = out.str();
+        std::istringstream in(german);
+        back = DamageLog::load(in, {.budget = 64, .mergeRadius = 0.0f}, "the server's snapshot");
+        std::istringstream bad("hfx-damage 1\nnow 0x1p+0\nimpact bullet 0,5 0.5 0 0 1 0.1 1 0 1\n");
+        refusal = messageOf([&] { DamageLog::load(bad, {}, "the server's snapshot"); });
+        std::ostringstream grouped; // the test can tell: this locale groups a seed's digits
+        grouped << std::uint64_t(1234567);
+        ASSERT_EQ(grouped.str(), "1.234.567");
+        // And the messages HFX builds (and its kernels' options) read as anywhere else.
+        EXPECT_EQ(str(1234567, ' ', 0.5), "1234567 0.5");
+    }
+    EXPECT_EQ(german, classic);
+    EXPECT_EQ(refusal, "the server's snapshot:3: bad u '0,5'");
+    EXPECT_EQ(back.now(), log.now());
+    EXPECT_TRUE(sameEvents(log.events(), back.events()));
+    // Files from Windows (CRLF lines) and decimals written by hand read too.
+    std::istringstream windows("hfx-damage 1\r\nnow 2.5\r\nimpact bullet 0.5 0.25 0 0 1 0.01 7 1.5 1\r\n");
+    const DamageLog hand = DamageLog::load(windows, {}, "a hand-written log");
+    EXPECT_EQ(hand.now(), 2.5);
+    ASSERT_EQ(hand.size(), 1);
+    EXPECT_EQ(hand.events()[0].v, 0.25f);
+    EXPECT_EQ(hand.events()[0].seed, 7u);
 }
 
 TEST(DamageLog, AClientAddingTheServersImpactsLateWithTheirTimesHoldsTheSameDamage) {
@@ -219,15 +274,7 @@ TEST(DamageLog, AClientAddingTheServersImpactsLateWithTheirTimesHoldsTheSameDama
     ASSERT_GT(server.merged(), 0u);
     ASSERT_GT(server.evicted(), 0u);
     ASSERT_EQ(client.now(), server.now());
-    const auto same = [](const std::vector<ImpactEvent>& a, const std::vector<ImpactEvent>& b) {
-        if (a.size() != b.size()) return false;
-        for (size_t i = 0; i < a.size(); ++i)
-            if (std::memcmp(&a[i].u, &b[i].u, sizeof(float) * 6) != 0 || a[i].kind != b[i].kind ||
-                a[i].seed != b[i].seed || a[i].time != b[i].time || a[i].strength != b[i].strength)
-                return false;
-        return true;
-    };
-    EXPECT_TRUE(same(server.events(), client.events()));
+    EXPECT_TRUE(sameEvents(server.events(), client.events()));
     // (By 200 s every heal curve has reached its end: the careless client catches up there.)
     for (const double later : {0.0, 30.0, 200.0}) {
         server.advance(later);
@@ -248,7 +295,7 @@ TEST(DamageLog, AClientAddingTheServersImpactsLateWithTheirTimesHoldsTheSameDama
     EXPECT_NE(messageOf([&] { client.addAt(e, client.now() + 1.0); }).find("at most the log's clock"), std::string::npos);
     EXPECT_NE(messageOf([&] { client.addAt(e, 0.0); }).find("no earlier than the last impact added"), std::string::npos);
     EXPECT_NE(messageOf([&] { client.addAt(e, std::nan("")); }).find("DamageLog::addAt: the time nan"), std::string::npos);
-    EXPECT_TRUE(same(before, client.events()));
+    EXPECT_TRUE(sameEvents(before, client.events()));
 }
 
 TEST(DamageLog, BadImpactsAndBadFilesAreRefusedByNameAndChangeNothing) {

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <sstream>
 #include <vector>
 
 namespace hfx::test {
@@ -191,6 +192,44 @@ TEST_F(Users, AClientWallThatAddsTheServersImpactsAtTheirTimesDrawsTheServersWal
     EXPECT_EQ(server.readHeights(), client.readHeights());
     EXPECT_NE(messageOf([&] { client.impactAt({}, client.damage().now() + 1.0); }).find("DamageLog::addAt"),
               std::string::npos);
+}
+
+TEST_F(Users, AClientJoiningLateLoadsTheServersSnapshotFromAStreamAndDrawsTheServersWall) {
+    // A client that joins after the fighting started gets the server's damage as one message
+    // (saveDamage into a string stream) and loads it (loadDamage from one): after the same
+    // updates both walls hold the same heights to the bit. A message cut short is refused naming
+    // the stream and the line, and the client keeps the damage it had.
+    DecalWallEffect server(cl(), {.bricks = {.size = 64}}), client(cl(), {.bricks = {.size = 64}});
+    SplitMix64 random(8);
+    for (int frame = 0; frame < 10; ++frame) {
+        server.impact({.u = float(random.next()), .v = float(random.next()), .radius = 0.05f,
+                       .kind = frame % 4 == 0 ? ImpactKind::Explosion : ImpactKind::Bullet, .seed = random.nextBits()});
+        server.update(1.5);
+    }
+    client.impact({.u = 0.5f, .v = 0.5f, .radius = 0.08f}); // what the client had before it joined
+    client.update(0.1);
+    std::ostringstream message;
+    server.saveDamage(message, "the server's snapshot");
+    const std::string text = message.str();
+    ASSERT_GT(server.damage().size(), 5);
+
+    std::istringstream cut(text.substr(0, text.size() / 2)); // ends inside an impact's line
+    const std::string refusal = messageOf([&] { client.loadDamage(cut, "the server's snapshot"); });
+    EXPECT_EQ(refusal.rfind("the server's snapshot:", 0), 0u) << refusal;
+    ASSERT_EQ(client.damage().size(), 1) << "a failed load changed the client's damage";
+
+    std::istringstream whole(text);
+    client.loadDamage(whole, "the server's snapshot");
+    EXPECT_EQ(client.damage().size(), server.damage().size());
+    EXPECT_NE(server.readHeights(), DecalWallEffect(cl(), {.bricks = {.size = 64}}).readHeights());
+    for (int frame = 0; frame < 3; ++frame) {
+        server.update(4.0);
+        client.update(4.0);
+        const std::vector<BulletHole> a = server.damage().stamps(), b = client.damage().stamps();
+        ASSERT_EQ(a.size(), b.size());
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(BulletHole)), 0) << "frame " << frame;
+        EXPECT_EQ(server.readHeights(), client.readHeights()) << "frame " << frame;
+    }
 }
 
 TEST_F(Users, AFreshCratersEmbersGlowInCracksAndCool) {

@@ -3,7 +3,10 @@
 #include "hfx/core/Error.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <iterator>
+#include <locale>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -230,74 +233,122 @@ size_t DamageLog::memoryBytes() const {
 }
 
 namespace {
+
+// Numbers are written and read with <charconv>, which no locale touches: a log saved where the
+// C locale's radix is ',' or the C++ locale groups digits reads back anywhere (a server and a
+// client of a networked game need not share one).
+
+/// x as C's "%a" writes it in the C locale ("0x1.8p+0"), every bit kept.
 std::string hex(double x) {
     char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%a", x);
-    return buffer;
+    char* at = buffer;
+    if (std::signbit(x)) *at++ = '-';
+    *at++ = '0';
+    *at++ = 'x';
+    const auto r = std::to_chars(at, std::end(buffer), std::fabs(x), std::chars_format::hex);
+    return std::string(buffer, r.ptr);
 }
+
+std::string decimal(std::uint64_t x) {
+    char buffer[24];
+    const auto r = std::to_chars(std::begin(buffer), std::end(buffer), x);
+    return std::string(buffer, r.ptr);
+}
+
+/// A word as hex() writes it (with or without "0x") or a decimal; false where it is neither, or
+/// has more after it.
+bool parseNumber(const std::string& word, double& value) {
+    const char* first = word.data();
+    const char* const last = word.data() + word.size();
+    const bool negative = first != last && *first == '-';
+    if (negative || (first != last && *first == '+')) ++first;
+    auto format = std::chars_format::general;
+    if (last - first > 2 && first[0] == '0' && (first[1] == 'x' || first[1] == 'X')) {
+        first += 2;
+        format = std::chars_format::hex;
+    }
+    if (first == last || *first == '-' || *first == '+') return false;
+    const auto r = std::from_chars(first, last, value, format);
+    if (r.ec != std::errc() || r.ptr != last) return false;
+    if (negative) value = -value;
+    return true;
+}
+
 } // namespace
 
-void DamageLog::save(const std::string& path) const {
-    std::ofstream file(path, std::ios::trunc);
-    if (!file) throw Error(str("cannot write the damage log '", path, "'"));
-    file << "hfx-damage 1\n";
-    file << "now " << hex(now_) << "\n";
+void DamageLog::save(std::ostream& out, const std::string& name) const {
+    std::string text = "hfx-damage 1\nnow " + hex(now_) + "\n";
     for (const ImpactEvent& e : events())
-        file << "impact " << impactKindName(e.kind) << ' ' << hex(e.u) << ' ' << hex(e.v) << ' ' << hex(e.nx) << ' '
-             << hex(e.ny) << ' ' << hex(e.nz) << ' ' << hex(e.radius) << ' ' << e.seed << ' ' << hex(e.time) << ' '
-             << hex(e.strength) << "\n";
-    file.flush();
-    if (!file) throw Error(str("writing the damage log '", path, "' failed"));
+        text += str("impact ", impactKindName(e.kind), ' ', hex(e.u), ' ', hex(e.v), ' ', hex(e.nx), ' ', hex(e.ny), ' ',
+                    hex(e.nz), ' ', hex(e.radius), ' ', decimal(e.seed), ' ', hex(e.time), ' ', hex(e.strength), "\n");
+    out.write(text.data(), std::streamsize(text.size()));
+    out.flush();
+    if (!out) throw Error(str("writing the damage log to ", name, " failed"));
+}
+
+void DamageLog::save(const std::string& path) const {
+    std::ofstream file(path, std::ios::trunc | std::ios::binary);
+    if (!file) throw Error(str("cannot write the damage log '", path, "'"));
+    save(file, str("'", path, "'"));
 }
 
 DamageLog DamageLog::load(const std::string& path, const DamageLogConfig& config) {
-    std::ifstream file(path);
+    std::ifstream file(path, std::ios::binary);
     if (!file) throw Error(str("cannot read the damage log '", path, "'"));
+    return load(file, config, path);
+}
+
+DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const std::string& name) {
     DamageLog log(config);
     std::string line;
     int number = 0;
-    auto fail = [&](const std::string& why) { return Error(str(path, ":", number, ": ", why)); };
-    auto number64 = [&](std::istringstream& in, const char* what) {
+    auto fail = [&](const std::string& why) { return Error(str(name, ":", number, ": ", why)); };
+    auto number64 = [&](std::istringstream& words, const char* what) {
         std::string word;
-        if (!(in >> word)) throw fail(str("missing ", what));
-        char* end = nullptr;
-        const double value = std::strtod(word.c_str(), &end);
-        if (*end != '\0' || !std::isfinite(value)) throw fail(str("bad ", what, " '", word, "'"));
+        if (!(words >> word)) throw fail(str("missing ", what));
+        double value = 0.0;
+        if (!parseNumber(word, value) || !std::isfinite(value)) throw fail(str("bad ", what, " '", word, "'"));
         return value;
     };
     bool header = false, clock = false;
     std::vector<ImpactEvent> impacts;
-    while (std::getline(file, line)) {
+    while (std::getline(in, line)) {
         ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back(); // a log that passed through Windows
         if (line.empty()) continue;
-        std::istringstream in(line);
+        std::istringstream words(line);
+        words.imbue(std::locale::classic());
         std::string word;
-        in >> word;
+        words >> word;
         if (!header) {
-            int version = 0;
-            if (word != "hfx-damage" || !(in >> version) || version != 1)
+            std::string version;
+            if (word != "hfx-damage" || !(words >> version) || version != "1" || (words >> word))
                 throw fail("not an HFX damage log (expected 'hfx-damage 1')");
             header = true;
         } else if (word == "now") {
-            log.now_ = number64(in, "clock");
+            log.now_ = number64(words, "clock");
             clock = true;
         } else if (word == "impact") {
             ImpactEvent e;
             std::string kind;
-            in >> kind;
+            words >> kind;
             if (kind == "bullet") e.kind = ImpactKind::Bullet;
             else if (kind == "explosion") e.kind = ImpactKind::Explosion;
             else throw fail(str("unknown impact kind '", kind, "' (bullet or explosion)"));
-            e.u = float(number64(in, "u"));
-            e.v = float(number64(in, "v"));
-            e.nx = float(number64(in, "normal x"));
-            e.ny = float(number64(in, "normal y"));
-            e.nz = float(number64(in, "normal z"));
-            e.radius = float(number64(in, "radius"));
-            if (!(in >> e.seed)) throw fail("missing or bad seed");
-            e.time = number64(in, "time");
-            e.strength = float(number64(in, "strength"));
-            if (in >> word) throw fail(str("unexpected '", word, "' after the impact"));
+            e.u = float(number64(words, "u"));
+            e.v = float(number64(words, "v"));
+            e.nx = float(number64(words, "normal x"));
+            e.ny = float(number64(words, "normal y"));
+            e.nz = float(number64(words, "normal z"));
+            e.radius = float(number64(words, "radius"));
+            std::string seed;
+            if (!(words >> seed)) throw fail("missing seed");
+            const auto r = std::from_chars(seed.data(), seed.data() + seed.size(), e.seed);
+            if (r.ec != std::errc() || r.ptr != seed.data() + seed.size())
+                throw fail(str("bad seed '", seed, "' (a whole number below 2^64)"));
+            e.time = number64(words, "time");
+            e.strength = float(number64(words, "strength"));
+            if (words >> word) throw fail(str("unexpected '", word, "' after the impact"));
             try {
                 log.validate(e);
             } catch (const Error& error) {
@@ -308,10 +359,11 @@ DamageLog DamageLog::load(const std::string& path, const DamageLogConfig& config
             throw fail(str("unknown record '", word, "'"));
         }
     }
-    if (!header) throw Error(str(path, ": empty, not an HFX damage log"));
-    if (!clock) throw Error(str(path, ": no 'now' line (the log's clock)"));
+    if (in.bad()) throw Error(str("reading the damage log ", name, " failed at line ", number + 1));
+    if (!header) throw Error(str(name, ": empty, not an HFX damage log"));
+    if (!clock) throw Error(str(name, ": no 'now' line (the log's clock)"));
     if (int(impacts.size()) > config.budget)
-        throw Error(str(path, ": ", impacts.size(), " impacts do not fit a budget of ", config.budget));
+        throw Error(str(name, ": ", impacts.size(), " impacts do not fit a budget of ", config.budget));
     for (const ImpactEvent& e : impacts) {
         log.insert(e);
         log.latest_ = std::max(log.latest_, e.time); // (a merge's restarted clock is the latest)

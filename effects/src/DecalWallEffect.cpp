@@ -142,8 +142,13 @@ bool DecalWallEffect::impact(const ImpactEvent& impact) { return log_.add(impact
 
 bool DecalWallEffect::impactAt(const ImpactEvent& impact, double time) { return log_.addAt(impact, time); }
 
-void DecalWallEffect::loadDamage(const std::string& path) {
-    DamageLog loaded = DamageLog::load(path, config_.damage);
+void DecalWallEffect::loadDamage(const std::string& path) { replaceDamage(DamageLog::load(path, config_.damage)); }
+
+void DecalWallEffect::loadDamage(std::istream& in, const std::string& name) {
+    replaceDamage(DamageLog::load(in, config_.damage, name));
+}
+
+void DecalWallEffect::replaceDamage(DamageLog&& loaded) {
     log_ = std::move(loaded);
     rebuild();
     refresh();

@@ -15,6 +15,7 @@
 #include "hfx/compute/DecalMap.h"
 
 #include <cstdint>
+#include <iosfwd>
 #include <limits>
 #include <string>
 #include <vector>
@@ -125,11 +126,17 @@ public:
     size_t memoryBytes() const;
 
     /// Writes the clock and the live impacts (text, one per line, every float in hexadecimal so
-    /// it reads back exactly). Throws hfx::Error naming the file when it cannot be written.
+    /// it reads back exactly, whatever the C or C++ locale). Throws hfx::Error naming the file
+    /// when it cannot be written.
     void save(const std::string& path) const;
+    /// The same text into a stream: a string stream for a message to a client joining late, a
+    /// save game's own file. `name` says what the stream is in an error.
+    void save(std::ostream& out, const std::string& name = "a stream") const;
     /// Reads what save() wrote into a log of `config` (its budget must hold the saved impacts).
     /// Throws hfx::Error naming the file and line for anything else.
     static DamageLog load(const std::string& path, const DamageLogConfig& config = {});
+    /// The same from a stream, its errors naming `name` and the line.
+    static DamageLog load(std::istream& in, const DamageLogConfig& config = {}, const std::string& name = "a stream");
 
 private:
     int cellOf(float u, float v) const;

@@ -5,6 +5,7 @@
 //
 // Thread: any. Every HFX failure is an hfx::Error carrying its message.
 
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -27,6 +28,7 @@ const char* sourceName(const char* file);
 template <typename A, typename B>
 std::string describe(const char* op, const A& a, const B& b) {
     std::ostringstream s;
+    s.imbue(std::locale::classic());
     s << a << ' ' << op << ' ' << b;
     return s.str();
 }
@@ -40,10 +42,13 @@ const Config& validated(const Config& config) {
     return config;
 }
 
-/// Concatenates its arguments with operator<<, for error messages.
+/// Concatenates its arguments with operator<<, for error messages (and the kernels' build
+/// options): in the classic locale, whatever the program's global one, so a number reads the
+/// same to a compiler and in a log ("1234.5", never "1.234,5").
 template <typename... Args>
 std::string str(const Args&... args) {
     std::ostringstream s;
+    s.imbue(std::locale::classic());
     (s << ... << args);
     return s.str();
 }

@@ -20,6 +20,7 @@
 #include "hfx/effects/Effect.h"
 #include "hfx/effects/Picking.h"
 
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -72,6 +73,10 @@ public:
     /// file; a failed load keeps the damage there was.
     void saveDamage(const std::string& path) const { log_.save(path); }
     void loadDamage(const std::string& path);
+    /// The same through streams (a server's snapshot sent to a client joining late: a string
+    /// stream); `name` says what the stream is in an error.
+    void saveDamage(std::ostream& out, const std::string& name = "a stream") const { log_.save(out, name); }
+    void loadDamage(std::istream& in, const std::string& name = "a stream");
     const DecalMap& decals() const { return decals_; }
     /// The configuration it was made with, less its maps (they live on the device).
     const DecalWallConfig& config() const { return config_; }
@@ -96,6 +101,8 @@ private:
     /// The procedural wall's heights with the stone grain added (the caller's are kept as they are).
     static SurfaceMaps withGrain(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
     DecalWallEffect(ClContext& cl, const DecalWallConfig& config, SurfaceMaps maps);
+    /// loadDamage's second half: the log taken, the maps rebuilt and drawn from it.
+    void replaceDamage(DamageLog&& loaded);
     const SurfacePipeline& surface() const override { return surface_; }
     /// Moves the log's clock and rebuilds the maps from it when they would change: an impact
     /// came, merged or went, or a heal curve moved (the decal pass costs what the budget's
