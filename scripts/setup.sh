@@ -9,7 +9,7 @@ packages=(
     ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
     libopenimageio-dev libstb-dev libtinyexr-dev libvkfft-dev libfftw3-dev libvulkan-dev mesa-vulkan-drivers
     libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libimgui-dev ffmpeg xvfb xauth
-    python3 glslang-tools spirv-tools ccache
+    python3 glslang-tools spirv-tools ccache locales
 )
 
 missing=()

@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <cmath>
 #include <complex>
+#include <filesystem>
+#include <locale.h>
 #include <numbers>
 #include <random>
 #include <string>
@@ -159,46 +161,63 @@ TEST_F(InverseFft, BadSizesAndBuffersAreRefusedByName) {
     EXPECT_NE(m.find(std::to_string(fft.spectrumBytes())), std::string::npos) << m;
 }
 
+/// A random W x H field's RealFft against the plain DFT: {the largest error of its half spectrum
+/// over the largest value, the largest error of its inverse, unscaled, over the field's}.
+/// `fft` is made by the caller (its plan is what a test may be about).
+std::pair<double, double> realFftErrors(ClContext& cl, RealFft& fft, const std::vector<float>& field) {
+    const int W = fft.width(), H = fft.height(), K = W / 2 + 1;
+    const bool both = fft.axes() == RealFft::Axes::Both;
+    cl::Buffer in(cl.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, fft.fieldBytes(),
+                  const_cast<float*>(field.data()));
+    cl::Buffer spectrum(cl.context(), CL_MEM_READ_WRITE, fft.spectrumBytes());
+    cl::Buffer back(cl.context(), CL_MEM_READ_WRITE, fft.fieldBytes());
+    fft.forward(in, spectrum);
+    const std::vector<float> s = readFloats(cl, spectrum, fft.spectrumBytes() / sizeof(float));
+    double worst = 0.0, largest = 0.0;
+    for (int l = 0; l < H; ++l)
+        for (int k = 0; k < K; ++k) {
+            Complex dft = 0.0;
+            for (int y = both ? 0 : l; y < (both ? H : l + 1); ++y)
+                for (int x = 0; x < W; ++x) {
+                    const double turns = double(k) * x / W + (both ? double(l) * y / H : 0.0);
+                    dft += double(field[size_t(y) * W + x]) * std::polar(1.0, -2.0 * std::numbers::pi * turns);
+                }
+            const Complex got(s[2 * (size_t(l) * K + k)], s[2 * (size_t(l) * K + k) + 1]);
+            worst = std::max(worst, std::abs(got - dft));
+            largest = std::max(largest, std::abs(dft));
+        }
+    fft.inverse(spectrum, back);
+    const std::vector<float> b = readFloats(cl, back, field.size());
+    const double scale = both ? double(W) * H : double(W);
+    double roundTrip = 0.0;
+    for (size_t i = 0; i < field.size(); ++i) roundTrip = std::max(roundTrip, std::abs(b[i] / scale - field[i]));
+    return {worst / largest, roundTrip};
+}
+
+std::vector<float> randomField(int width, int height, unsigned seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::vector<float> field(size_t(width) * height);
+    for (float& f : field) f = unit(random);
+    return field;
+}
+
 TEST_F(InverseFft, TheGassRealFftIsAPlainDftAlongTheRowsOrBothAxesAndItsInverseUndoesIt) {
     // A random 24x10 field (a width VkFFT splits into radices 2 and 3): its transform is the plain
     // DFT's half spectrum to 1e-5 of the largest value, along the rows (RealFft::Rows, the gas
     // between walls) and along both axes (Both, on a torus); the inverse of that spectrum is the
     // field times W (Rows) or W H (Both). Bad buffers are refused by name.
-    constexpr int W = 24, H = 10, K = W / 2 + 1;
-    std::mt19937 random(5);
-    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-    std::vector<float> field(size_t(W) * H);
-    for (float& f : field) f = unit(random);
+    const std::vector<float> field = randomField(24, 10, 5);
     for (const RealFft::Axes axes : {RealFft::Axes::Rows, RealFft::Axes::Both}) {
         const bool both = axes == RealFft::Axes::Both;
-        RealFft fft(cl(), W, H, axes);
-        cl::Buffer in(cl().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, fft.fieldBytes(), field.data());
-        cl::Buffer spectrum(cl().context(), CL_MEM_READ_WRITE, fft.spectrumBytes());
-        cl::Buffer back(cl().context(), CL_MEM_READ_WRITE, fft.fieldBytes());
-        fft.forward(in, spectrum);
-        const std::vector<float> s = readFloats(cl(), spectrum, fft.spectrumBytes() / sizeof(float));
-        double worst = 0.0, largest = 0.0;
-        for (int l = 0; l < H; ++l)
-            for (int k = 0; k < K; ++k) {
-                Complex dft = 0.0;
-                for (int y = both ? 0 : l; y < (both ? H : l + 1); ++y)
-                    for (int x = 0; x < W; ++x) {
-                        const double turns = double(k) * x / W + (both ? double(l) * y / H : 0.0);
-                        dft += double(field[size_t(y) * W + x]) * std::polar(1.0, -2.0 * std::numbers::pi * turns);
-                    }
-                const Complex got(s[2 * (size_t(l) * K + k)], s[2 * (size_t(l) * K + k) + 1]);
-                worst = std::max(worst, std::abs(got - dft));
-                largest = std::max(largest, std::abs(dft));
-            }
-        fft.inverse(spectrum, back);
-        const std::vector<float> b = readFloats(cl(), back, field.size());
-        const double scale = both ? double(W) * H : double(W);
-        double roundTrip = 0.0;
-        for (size_t i = 0; i < field.size(); ++i) roundTrip = std::max(roundTrip, std::abs(b[i] / scale - field[i]));
+        RealFft fft(cl(), 24, 10, axes);
+        const auto [dft, roundTrip] = realFftErrors(cl(), fft, field);
         std::printf("[real fft] %s: %.2g of the largest value off the DFT; the inverse %.2g off the field\n",
-                    both ? "both axes" : "rows", worst / largest, roundTrip);
-        EXPECT_LT(worst / largest, 1e-5);
+                    both ? "both axes" : "rows", dft, roundTrip);
+        EXPECT_LT(dft, 1e-5);
         EXPECT_LT(roundTrip, 1e-5);
+        cl::Buffer in(cl().context(), CL_MEM_READ_WRITE, fft.fieldBytes());
+        cl::Buffer spectrum(cl().context(), CL_MEM_READ_WRITE, fft.spectrumBytes());
         cl::Buffer small(cl().context(), CL_MEM_READ_WRITE, 64);
         EXPECT_NE(messageOf([&] { fft.forward(in, small); })
                       .find("RealFft: the spectrum holds 64 bytes, a 24x10 transform"),
@@ -207,6 +226,51 @@ TEST_F(InverseFft, TheGassRealFftIsAPlainDftAlongTheRowsOrBothAxesAndItsInverseU
                   std::string::npos);
     }
     EXPECT_NE(messageOf([&] { RealFft(cl(), 23, 10, RealFft::Axes::Rows); }).find("even width"), std::string::npos);
+}
+
+/// A locale whose numbers read "0,5": glibc's German one, compiled from Debian's locale sources
+/// (the locales package, scripts/setup.sh) into the tests' output folder, as newlocale returns it;
+/// 0 where it cannot be made.
+locale_t commaLocale() {
+    const std::string dir = outputPath("locales");
+    std::filesystem::create_directories(dir);
+    if (!std::filesystem::exists(dir + "/de_DE.UTF-8/LC_NUMERIC")) {
+        // (localedef exits non-zero for warnings too: what it wrote is what counts.)
+        const std::string command = "localedef -i de_DE -f UTF-8 '" + dir + "/de_DE.UTF-8' >/dev/null 2>&1";
+        [[maybe_unused]] const int status = std::system(command.c_str());
+    }
+    setenv("LOCPATH", dir.c_str(), 1);
+    const locale_t comma = newlocale(LC_ALL_MASK, "de_DE.UTF-8", locale_t(0));
+    unsetenv("LOCPATH");
+    return comma;
+}
+
+TEST_F(InverseFft, APlanMadeOnAThreadInItsOwnCommaLocaleBuildsAndLeavesThatLocale) {
+    // A host thread may run in a locale of its own (uselocale), which a process-wide
+    // setlocale("C") does not reach. VkFFT's generator, which set one around its sprintf, wrote
+    // the constants of a radix-3 or radix-5 pass as "8,66...e-01" there, which C reads as its
+    // comma operator: the gas's 24x10 pressure transform (both axes) came out 34x its largest
+    // value off the DFT, with no error. The plan now runs this thread alone in the C locale and
+    // gives it back its own. (The ocean's powers of two read their twiddles from a table on
+    // PoCL and wrote no number; a GPU's plan may compute them.)
+    const locale_t comma = commaLocale();
+    ASSERT_TRUE(comma) << "localedef could not make de_DE.UTF-8 (Debian's locales package: scripts/setup.sh)";
+    const std::vector<float> field = randomField(24, 10, 9);
+    const locale_t before = uselocale(comma);
+    char probe[16];
+    std::snprintf(probe, sizeof probe, "%.1f", 0.5);
+    std::pair<double, double> errors{1.0, 1.0};
+    const std::string error = messageOf([&] {
+        RealFft fft(cl(), 24, 10, RealFft::Axes::Both);
+        errors = realFftErrors(cl(), fft, field);
+    });
+    const locale_t after = uselocale(before);
+    freelocale(comma);
+    EXPECT_STREQ(probe, "0,5") << "the locale writes no comma: the test cannot tell";
+    EXPECT_EQ(after, comma) << "the plan did not give the thread back its locale";
+    EXPECT_EQ(error, "(no error)");
+    EXPECT_LT(errors.first, 1e-5);
+    EXPECT_LT(errors.second, 1e-5);
 }
 
 } // namespace

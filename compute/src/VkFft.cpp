@@ -5,12 +5,24 @@
 
 #include "hfx/core/Error.h"
 
-#include <clocale>
 #include <cstdlib>
+#include <locale.h> // newlocale, uselocale (POSIX)
 #include <string>
 
+// VkFFT's code generator writes its kernels' constants with sprintf, and sets the process's
+// locale to "C" around that with setlocale: a call that races with every other thread of the
+// host (setlocale is not thread-safe), and that does not reach a thread which has its own locale
+// (uselocale), whose sprintf kept writing "8,66...e-01" into the kernels, which C reads as its
+// comma operator: the transform came out wrong with no error. Its setlocale calls are made no-ops
+// here (compiled into this file only); the plan runs with this thread alone in the C locale
+// (inTheCLocale).
+namespace hfx::detail {
+inline const char* vkfftSetlocale(const char*) { return "C"; }
+} // namespace hfx::detail
+#define setlocale(category, name) ::hfx::detail::vkfftSetlocale(name)
 #define VKFFT_BACKEND 3
 #include <vkFFT.h>
+#undef setlocale
 
 namespace hfx {
 namespace {
@@ -49,19 +61,21 @@ auto withoutPoclWarnings(F&& plan) {
     return result;
 }
 
-/// VkFFT's code generator keeps the pointer setlocale(LC_ALL, NULL) returns, sets "C", and
-/// restores the locale through that pointer, which the "C" call has freed where the locale was a
-/// composite one (GLFW's X11 start sets LC_CTYPE alone: AddressSanitizer found the read in a
-/// window run). The plan is made under "C" here, so its save and restore both name the C
-/// locale's own string, and the caller's locale is put back from a copy.
+/// Runs `plan` with this thread in the C locale (uselocale), and puts back the thread's own
+/// locale, or the process's where it had none: the process's locale is never touched. (VkFFT's
+/// own setlocale, made a no-op above, also restored through a pointer its "C" call had freed
+/// where the locale was a composite one: AddressSanitizer found the read in a window run, GLFW's
+/// X11 start setting LC_CTYPE alone.)
 template <typename F>
 auto inTheCLocale(F&& plan) {
-    const char* current = std::setlocale(LC_ALL, nullptr);
-    const std::string saved = current ? current : "C";
-    std::setlocale(LC_ALL, "C");
-    const auto result = plan();
-    std::setlocale(LC_ALL, saved.c_str());
-    return result;
+    static const locale_t c = newlocale(LC_ALL_MASK, "C", locale_t(0));
+    if (!c) throw Error("VkFFT: newlocale could not make the C locale to plan in");
+    const locale_t before = uselocale(c);
+    struct Restore {
+        locale_t before;
+        ~Restore() { uselocale(before); }
+    } restore{before};
+    return plan();
 }
 
 /// A VkFFT application and the handles it reads through pointers: VkFFT keeps pointers to these
