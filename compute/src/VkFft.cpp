@@ -5,7 +5,7 @@
 
 #include "hfx/core/Error.h"
 
-#include <cstdlib>
+#include <CL/cl.h>
 #include <locale.h> // newlocale, uselocale (POSIX)
 #include <string>
 
@@ -16,12 +16,25 @@
 // comma operator: the transform came out wrong with no error. Its setlocale calls are made no-ops
 // here (compiled into this file only); the plan runs with this thread alone in the C locale
 // (inTheCLocale).
+//
+// It builds its kernels with no options and no hook for them, and PoCL's clang printed "N
+// warnings generated" for them on a cold build; its clBuildProgram calls get "-w" here (a
+// standard OpenCL option: PoCL then prints nothing, checked with a #warning), where HFX once set
+// POCL_EXTRA_BUILD_FLAGS in the process's environment for the plan, which no other thread may
+// touch meanwhile. HFX's own kernels are held to -Werror by ClContextTest.EveryKernelBuildsWithoutWarnings.
 namespace hfx::detail {
 inline const char* vkfftSetlocale(const char*) { return "C"; }
+inline cl_int vkfftBuildProgram(cl_program program, cl_uint count, const cl_device_id* devices,
+                                void(CL_CALLBACK* notify)(cl_program, void*), void* data) {
+    return clBuildProgram(program, count, devices, "-w", notify, data);
+}
 } // namespace hfx::detail
 #define setlocale(category, name) ::hfx::detail::vkfftSetlocale(name)
+#define clBuildProgram(program, count, devices, options, notify, data)                             \
+    ::hfx::detail::vkfftBuildProgram(program, count, devices, notify, data)
 #define VKFFT_BACKEND 3
 #include <vkFFT.h>
+#undef clBuildProgram
 #undef setlocale
 
 namespace hfx {
@@ -46,19 +59,6 @@ std::string vkfftResultName(VkFFTResult r) {
 #undef HFX_CASE
     default: return str("VkFFT error ", int(r));
     }
-}
-
-/// VkFFT builds its generated kernels with no hook for build options, and PoCL's clang prints
-/// "N warnings generated" for them on a cold build. PoCL reads POCL_EXTRA_BUILD_FLAGS at each
-/// build, so "-w" is set for the plan alone, unless the user set the variable. HFX's own kernels
-/// are held to -Werror by ClContextTest.EveryKernelBuildsWithoutWarnings.
-template <typename F>
-auto withoutPoclWarnings(F&& plan) {
-    const bool ours = std::getenv("POCL_EXTRA_BUILD_FLAGS") == nullptr;
-    if (ours) setenv("POCL_EXTRA_BUILD_FLAGS", "-w", 0);
-    const auto result = plan();
-    if (ours) unsetenv("POCL_EXTRA_BUILD_FLAGS");
-    return result;
 }
 
 /// Runs `plan` with this thread in the C locale (uselocale), and puts back the thread's own
@@ -134,8 +134,7 @@ struct VkFftPlan {
     /// Makes the plan; `what` names it in the error (VkFFT has then freed what it made, and
     /// printed the build log of a kernel that failed).
     void initialise(const VkFFTConfiguration& c, ClContext& cl, const std::string& what) {
-        const VkFFTResult result =
-            withoutPoclWarnings([&] { return inTheCLocale([&] { return initializeVkFFT(&app, c); }); });
+        const VkFFTResult result = inTheCLocale([&] { return initializeVkFFT(&app, c); });
         if (result != VKFFT_SUCCESS)
             throw Error(
                 str("VkFFT could not plan the ", what, " on ", cl.description(), ": ", vkfftResultName(result)));
