@@ -329,6 +329,14 @@ TEST(DamageLog, BadImpactsAndBadFilesAreRefusedByNameAndChangeNothing) {
               std::string::npos);
     EXPECT_NE(loadText("hfx-damage 1\nimpact bullet 0.5 0.5 0 0 1 0.1 1 0 1\n").find("no 'now' line"),
               std::string::npos);
+    // Version 2 counts its impacts: a log cut short at a line's end is refused.
+    EXPECT_NE(loadText("hfx-damage 2\nnow 0\nimpact bullet 0.5 0.5 0 0 1 0.1 1 0 1\n").find("no 'impacts' line"),
+              std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 2\nnow 0\nimpacts 2\nimpact bullet 0.5 0.5 0 0 1 0.1 1 0 1\n")
+                  .find("1 impacts where its 'impacts' line says 2 (the log was cut short)"),
+              std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 2\nnow 0\nimpacts two\n").find(":3: bad impact count 'two'"), std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 3\nnow 0\n").find(":1: not an HFX damage log"), std::string::npos);
     EXPECT_NE(messageOf([] { DamageLog::load("/no/such/damage.log"); }).find("/no/such/damage.log"), std::string::npos);
 }
 

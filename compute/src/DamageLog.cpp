@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstddef>
+#include <fstream>
 #include <iterator>
 #include <locale>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace hfx {
@@ -277,8 +277,11 @@ bool parseNumber(const std::string& word, double& value) {
 } // namespace
 
 void DamageLog::save(std::ostream& out, const std::string& name) const {
-    std::string text = "hfx-damage 1\nnow " + hex(now_) + "\n";
-    for (const ImpactEvent& e : events())
+    // Version 2 counts its impacts, so that a message cut short at a line's end is refused rather
+    // than read as a log with fewer impacts.
+    const std::vector<ImpactEvent> live = events();
+    std::string text = "hfx-damage 2\nnow " + hex(now_) + "\nimpacts " + decimal(live.size()) + "\n";
+    for (const ImpactEvent& e : live)
         text += str("impact ", impactKindName(e.kind), ' ', hex(e.u), ' ', hex(e.v), ' ', hex(e.nx), ' ', hex(e.ny), ' ',
                     hex(e.nz), ' ', hex(e.radius), ' ', decimal(e.seed), ' ', hex(e.time), ' ', hex(e.strength), "\n");
     out.write(text.data(), std::streamsize(text.size()));
@@ -311,6 +314,8 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
         return value;
     };
     bool header = false, clock = false;
+    int version = 0;
+    std::optional<std::uint64_t> count; // version 2's "impacts N"
     std::vector<ImpactEvent> impacts;
     while (std::getline(in, line)) {
         ++number;
@@ -321,10 +326,19 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
         std::string word;
         words >> word;
         if (!header) {
-            std::string version;
-            if (word != "hfx-damage" || !(words >> version) || version != "1" || (words >> word))
-                throw fail("not an HFX damage log (expected 'hfx-damage 1')");
+            std::string v;
+            if (word != "hfx-damage" || !(words >> v) || (v != "1" && v != "2") || (words >> word))
+                throw fail("not an HFX damage log (expected 'hfx-damage 2', or 1)");
+            version = v[0] - '0';
             header = true;
+        } else if (word == "impacts" && version == 2 && !count) {
+            std::string n;
+            std::uint64_t value = 0;
+            if (!(words >> n) || std::from_chars(n.data(), n.data() + n.size(), value).ptr != n.data() + n.size() ||
+                n.empty() || (words >> word))
+                throw fail(str("bad impact count '", n, "'"));
+            if (!impacts.empty()) throw fail("the impact count comes after impacts");
+            count = value;
         } else if (word == "now") {
             log.now_ = number64(words, "clock");
             clock = true;
@@ -362,6 +376,10 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
     if (in.bad()) throw Error(str("reading the damage log ", name, " failed at line ", number + 1));
     if (!header) throw Error(str(name, ": empty, not an HFX damage log"));
     if (!clock) throw Error(str(name, ": no 'now' line (the log's clock)"));
+    if (version == 2 && !count) throw Error(str(name, ": no 'impacts' line (the count of its impacts)"));
+    if (count && *count != impacts.size())
+        throw Error(str(name, ": ", impacts.size(), " impacts where its 'impacts' line says ", *count,
+                        " (the log was cut short)"));
     if (int(impacts.size()) > config.budget)
         throw Error(str(name, ": ", impacts.size(), " impacts do not fit a budget of ", config.budget));
     for (const ImpactEvent& e : impacts) {

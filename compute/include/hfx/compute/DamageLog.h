@@ -125,15 +125,17 @@ public:
     /// The bytes the log holds, fixed at construction (the budget's slots and the merge grid).
     size_t memoryBytes() const;
 
-    /// Writes the clock and the live impacts (text, one per line, every float in hexadecimal so
-    /// it reads back exactly, whatever the C or C++ locale). Throws hfx::Error naming the file
-    /// when it cannot be written.
+    /// Writes the clock, the count of the live impacts and the impacts (text, one per line, every
+    /// float in hexadecimal so it reads back exactly, whatever the C or C++ locale; version 2:
+    /// version 1, without the count, still reads). Throws hfx::Error naming the file when it
+    /// cannot be written.
     void save(const std::string& path) const;
     /// The same text into a stream: a string stream for a message to a client joining late, a
     /// save game's own file. `name` says what the stream is in an error.
     void save(std::ostream& out, const std::string& name = "a stream") const;
     /// Reads what save() wrote into a log of `config` (its budget must hold the saved impacts).
-    /// Throws hfx::Error naming the file and line for anything else.
+    /// Throws hfx::Error naming the file and line for anything else, and where fewer impacts
+    /// follow than the count says (a log cut short).
     static DamageLog load(const std::string& path, const DamageLogConfig& config = {});
     /// The same from a stream, its errors naming `name` and the line.
     static DamageLog load(std::istream& in, const DamageLogConfig& config = {}, const std::string& name = "a stream");
