@@ -17,7 +17,8 @@
 # scenes' rule would choose otherwise, the hier scenes with float32 surfaces (float16, Auto's
 # choice on a GPU, in bench-720p), the external-memory transfer path's tests and table, the ringed
 # planet and the noise on the triplanar box at 1280x720, and a draw's issue time under both
-# GlStatePolicy values with the driver's threaded optimisation off and on. A step that runs out of time is cut and says so; the rest go on.
+# GlStatePolicy values with the driver's threaded optimisation off and on. A step that runs out of
+# time is cut and says so; the rest go on.
 # HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
 # then shared among those.
 # Nothing here installs anything: the bundle carries what the binaries need

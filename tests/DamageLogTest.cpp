@@ -336,6 +336,8 @@ TEST(DamageLog, BadImpactsAndBadFilesAreRefusedByNameAndChangeNothing) {
                   .find("1 impacts where its 'impacts' line says 2 (the log was cut short)"),
               std::string::npos);
     EXPECT_NE(loadText("hfx-damage 2\nnow 0\nimpacts two\n").find(":3: bad impact count 'two'"), std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 2\nnow 0\nimpacts 99999999999999999999\n").find(":3: bad impact count"),
+              std::string::npos); // past 2^64: not read as 0
     EXPECT_NE(loadText("hfx-damage 3\nnow 0\n").find(":1: not an HFX damage log"), std::string::npos);
     EXPECT_NE(messageOf([] { DamageLog::load("/no/such/damage.log"); }).find("/no/such/damage.log"), std::string::npos);
 }

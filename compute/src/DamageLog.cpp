@@ -313,6 +313,15 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
         if (!parseNumber(word, value) || !std::isfinite(value)) throw fail(str("bad ", what, " '", word, "'"));
         return value;
     };
+    auto whole64 = [&](std::istringstream& words, const char* what) {
+        std::string word;
+        if (!(words >> word)) throw fail(str("missing ", what));
+        std::uint64_t value = 0;
+        const auto r = std::from_chars(word.data(), word.data() + word.size(), value);
+        if (word.empty() || r.ec != std::errc() || r.ptr != word.data() + word.size())
+            throw fail(str("bad ", what, " '", word, "' (a whole number below 2^64)"));
+        return value;
+    };
     bool header = false, clock = false;
     int version = 0;
     std::optional<std::uint64_t> count; // version 2's "impacts N"
@@ -332,13 +341,9 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
             version = v[0] - '0';
             header = true;
         } else if (word == "impacts" && version == 2 && !count) {
-            std::string n;
-            std::uint64_t value = 0;
-            if (!(words >> n) || std::from_chars(n.data(), n.data() + n.size(), value).ptr != n.data() + n.size() ||
-                n.empty() || (words >> word))
-                throw fail(str("bad impact count '", n, "'"));
             if (!impacts.empty()) throw fail("the impact count comes after impacts");
-            count = value;
+            count = whole64(words, "impact count");
+            if (words >> word) throw fail(str("unexpected '", word, "' after the impact count"));
         } else if (word == "now") {
             log.now_ = number64(words, "clock");
             clock = true;
@@ -355,11 +360,7 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
             e.ny = float(number64(words, "normal y"));
             e.nz = float(number64(words, "normal z"));
             e.radius = float(number64(words, "radius"));
-            std::string seed;
-            if (!(words >> seed)) throw fail("missing seed");
-            const auto r = std::from_chars(seed.data(), seed.data() + seed.size(), e.seed);
-            if (r.ec != std::errc() || r.ptr != seed.data() + seed.size())
-                throw fail(str("bad seed '", seed, "' (a whole number below 2^64)"));
+            e.seed = whole64(words, "seed");
             e.time = number64(words, "time");
             e.strength = float(number64(words, "strength"));
             if (words >> word) throw fail(str("unexpected '", word, "' after the impact"));

@@ -287,16 +287,23 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
     return vk;
 }
 
+namespace {
+/// The refusal of the path, saying what is missing; "" where nothing is.
+std::string refusal(const std::string& why) {
+    return why.empty() ? "" : str("the external-memory transfer path is not available here: ", why);
+}
+} // namespace
+
 std::string ExternalMemory::unavailable(const ClContext& cl) {
     std::string why;
     Vulkan::open(cl, why, true);
-    return why;
+    return refusal(why);
 }
 
 ExternalMemory::ExternalMemory(ClContext& cl) : cl_(cl) {
     std::string why;
     vk_ = Vulkan::open(cl, why);
-    if (!vk_) throw Error(str("the external-memory transfer path is not available here: ", why));
+    if (!vk_) throw Error(refusal(why));
 }
 
 ExternalMemory::~ExternalMemory() = default;

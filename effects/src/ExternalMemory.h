@@ -62,12 +62,12 @@ public:
         bool mapped_ = false; // Import::HostPointer: Vulkan's mapping, under the device's buffer
     };
 
-    /// "" where the current GL context and `cl` can share memory this way; else why not, naming
-    /// what is missing. Asks the physical device, makes no Vulkan device: one that then fails to
+    /// "" where the current GL context and `cl` can share memory this way; else the path's
+    /// refusal, naming what is missing. Asks the physical device, makes no Vulkan device: one that then fails to
     /// be made is the constructor's error.
     static std::string unavailable(const ClContext& cl);
 
-    /// Throws hfx::Error with `unavailable`'s reason where it is not "".
+    /// Throws hfx::Error with the same refusal where a part is missing.
     explicit ExternalMemory(ClContext& cl);
     ~ExternalMemory();
     ExternalMemory(const ExternalMemory&) = delete;

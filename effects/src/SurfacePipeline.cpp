@@ -117,9 +117,9 @@ SurfacePipeline::~SurfacePipeline() {
 }
 
 std::string SurfacePipeline::transferDescription() const {
+    const std::string memory = streams_ ? streams_->description() : "";
     return str(surfaceFormatName(config_.options.format), " texels", packer_ ? " packed on the device" : "", ", ",
-               transferPathName(transfer_), " path",
-               streams_ && !streams_->description().empty() ? str(" (", streams_->description(), ")") : "");
+               transferPathName(transfer_), " path", memory.empty() ? "" : str(" (", memory, ")"));
 }
 
 void SurfacePipeline::setAlbedo(const Image& albedo) {

@@ -27,7 +27,7 @@ TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested) {
                         cl.description(), " shares none here (NVIDIA offers it for GLX windows, not for EGL)"));
     if (requested == TransferPath::ExternalMemory)
         if (const std::string why = ExternalMemory::unavailable(cl); !why.empty())
-            throw Error(str("the external-memory transfer path is not available here: ", why));
+            throw Error(why);
     if (requested != TransferPath::Auto) return requested;
     if (cl.sharesGl()) return TransferPath::GlSharing;
     const cl_bool unified = clGuard("asking the device about host memory", [&] {
