@@ -278,13 +278,9 @@ int runBench(const DeviceOptions& deviceOptions, const SceneOptions& options, in
     if (wanted("transfer")) {
         // A path the device lacks is named with its reason, which a lent machine's run should say.
         std::printf("\n");
-        for (TransferPath path : {TransferPath::GlSharing, TransferPath::ExternalMemory}) {
-            try {
-                chooseTransferPath(cl, path);
-            } catch (const Error& e) {
-                std::printf("Not offered: %s\n", e.what());
-            }
-        }
+        for (TransferPath path : {TransferPath::GlSharing, TransferPath::ExternalMemory})
+            if (const std::string why = transferPathRefusal(cl, path); !why.empty())
+                std::printf("Not offered: %s\n", why.c_str());
         std::printf("\nTransfer of the water field by surface format and path (POM with shadows): the transfer's CPU wall\n"
                     "clock (what the frame waits for: map or read, copy, GL upload calls) and its rate, the GL upload's GPU\n"
                     "time, the kernels' device time (extra: packing included), the POM draw's GPU time:\n\n"

@@ -150,9 +150,13 @@ TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
                   .find("known: auto, map, pixel-buffer, staged, gl-sharing, external-memory"),
               std::string::npos);
     // Sharing asked for where the context shares no GL: refused, saying why.
+    EXPECT_EQ(transferPathRefusal(cl(), TransferPath::GlSharing).empty(), cl().sharesGl());
+    for (TransferPath path : {TransferPath::Auto, TransferPath::Map, TransferPath::PixelBuffer, TransferPath::Staged})
+        EXPECT_EQ(transferPathRefusal(cl(), path), "") << transferPathName(path);
     if (!cl().sharesGl()) {
         const std::string m = messageOf([&] { chooseTransferPath(cl(), TransferPath::GlSharing); });
         EXPECT_NE(m.find("cl_khr_gl_sharing"), std::string::npos) << m;
+        EXPECT_EQ(m, transferPathRefusal(cl(), TransferPath::GlSharing));
         EXPECT_NE(messageOf([&] {
                       SineWavesEffect(cl(), {.waves = {.size = 64}, .surface = {.transfer = TransferPath::GlSharing}});
                   }).find("gl-sharing"),
@@ -165,18 +169,36 @@ TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
 // hides the Vulkan drivers from a run). Where it is offered,
 // EveryPathDeliversTheSameTexturesInEveryFormat holds it to the other paths bit for bit. llvmpipe
 // with lavapipe installed (scripts/setup.sh: this machine's and CI's) must offer it: lavapipe
-// allocates on llvmpipe's device (the same UUID), and PoCL takes the memory over its mapping.
+// allocates on llvmpipe's device (the same UUID), and PoCL takes the memory over its mapping. Where
+// GL or the device lists none of what it takes, it is refused naming that, whatever Vulkan has.
 TEST_F(Transfer, ExternalMemoryIsOfferedWhereGlVulkanAndTheDeviceShareMemory) {
     const std::vector<TransferPath> paths = availableTransferPaths(cl());
     const bool offered = std::find(paths.begin(), paths.end(), TransferPath::ExternalMemory) != paths.end();
-    std::string refusal;
-    try {
-        EXPECT_EQ(chooseTransferPath(cl(), TransferPath::ExternalMemory), TransferPath::ExternalMemory);
-    } catch (const Error& e) {
-        refusal = e.what();
-    }
+    const std::string refusal = transferPathRefusal(cl(), TransferPath::ExternalMemory);
     EXPECT_EQ(offered, refusal.empty()) << refusal;
+    // chooseTransferPath, the pipelines' way in, throws that same refusal.
+    EXPECT_EQ(messageOf([&] {
+                  EXPECT_EQ(chooseTransferPath(cl(), TransferPath::ExternalMemory), TransferPath::ExternalMemory);
+              }),
+              offered ? "(no error)" : refusal);
     std::printf("external-memory: %s\n", offered ? "offered" : refusal.c_str());
+    // What GL and the device list, read here apart from the probe.
+    bool glImports = false;
+    GLint glExtensions = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &glExtensions);
+    for (GLint i = 0; i < glExtensions; ++i)
+        glImports |= std::string_view(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)))) ==
+                     "GL_EXT_memory_object_fd";
+    if (!glImports) {
+        EXPECT_FALSE(offered);
+        EXPECT_NE(refusal.find("GL_EXT_memory_object_fd"), std::string::npos) << refusal;
+    }
+    const std::string clExtensions = cl().device().getInfo<CL_DEVICE_EXTENSIONS>();
+    if (glImports && clExtensions.find("cl_khr_external_memory_opaque_fd") == std::string::npos &&
+        !cl().device().getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>()) {
+        EXPECT_FALSE(offered);
+        EXPECT_NE(refusal.find("imports no external memory"), std::string::npos) << refusal;
+    }
     const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     bool lavapipe = false;
     for (const char* dir : {"/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"})

@@ -23,10 +23,8 @@ const char* streamName(int stream) {
 StreamTransfer::StreamTransfer(ClContext& cl, TransferPath path) : cl_(cl), path_(path) {
     if (path != TransferPath::Staged && path != TransferPath::GlSharing && path != TransferPath::ExternalMemory)
         throw Error(str("StreamTransfer: the ", transferPathName(path), " path is not one of its three"));
-    if (path == TransferPath::GlSharing && !cl.sharesGl())
-        throw Error(str("the gl-sharing transfer path needs an OpenCL context made with the GL context "
-                        "(cl_khr_gl_sharing for it: ClContextConfig::glShare); ",
-                        cl.description(), " does not share this one"));
+    if (path == TransferPath::GlSharing)
+        if (const std::string why = transferPathRefusal(cl, path); !why.empty()) throw Error(why);
     if (path == TransferPath::ExternalMemory) external_ = std::make_unique<ExternalMemory>(cl);
     acquired_.reserve(kStreams);
     acquiredExternal_.reserve(kStreams);

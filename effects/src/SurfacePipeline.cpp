@@ -40,10 +40,10 @@ SurfaceFormat chooseSurfaceFormat(SurfaceFormat requested) {
 
 namespace {
 
-/// `config` validated, its format chosen for the current GL context's device.
-SurfacePipelineConfig chosen(const SurfacePipelineConfig& config) {
+/// `config` validated, its format chosen for the GL context's device (`device`).
+SurfacePipelineConfig chosen(const SurfacePipelineConfig& config, const GlWorkarounds& device) {
     SurfacePipelineConfig c = validated(config);
-    c.options.format = chooseSurfaceFormat(c.options.format);
+    c.options.format = chooseSurfaceFormat(c.options.format, device);
     return c;
 }
 
@@ -83,7 +83,10 @@ double SurfacePipeline::nowMs() {
 }
 
 SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& config)
-    : cl_(cl), config_(chosen(config)), transfer_(chooseTransferPath(cl, config_.options.transfer)),
+    : SurfacePipeline(cl, config, glWorkarounds(currentGlRenderer())) {}
+
+SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& config, const GlWorkarounds& device)
+    : cl_(cl), config_(chosen(config, device)), transfer_(chooseTransferPath(cl, config_.options.transfer)),
       pixels_(makePixels(transfer_, config_)),
       // A float32 surface's texels are the normals themselves: with a pixel buffer, they lie in it.
       sobel_(cl, config_.sobel(),
@@ -93,7 +96,7 @@ SurfacePipeline::SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& con
     // A float32 surface's stored heights are the device's: where GL builds the bounds slower than
     // the device and the copy (GlWorkarounds::pyramidFromCompute), they come from the device.
     boundsFromDevice_ = config_.options.format == SurfaceFormat::Float32 &&
-                        glWorkarounds(currentGlRenderer()).pyramidFromCompute &&
+                        device.pyramidFromCompute &&
                         carriesBounds(textures_[0]->config());
     if (boundsFromDevice_)
         for (auto& b : bounds_) b = std::make_unique<HeightBounds>(textures_[0]->config()); // storage on first upload

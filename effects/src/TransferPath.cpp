@@ -20,14 +20,17 @@ const char* transferPathName(TransferPath path) { return nameOf(kNames, path); }
 
 TransferPath parseTransferPath(std::string_view name) { return parseName(kNames, name, "transfer path"); }
 
+std::string transferPathRefusal(const ClContext& cl, TransferPath path) {
+    if (path == TransferPath::GlSharing && !cl.sharesGl())
+        return str("the gl-sharing transfer path needs an OpenCL context made with the GL context it draws in "
+                   "(cl_khr_gl_sharing for it; ClContextConfig::glShare); ",
+                   cl.description(), " shares none here (NVIDIA offers it for GLX windows, not for EGL)");
+    if (path == TransferPath::ExternalMemory) return ExternalMemory::unavailable(cl);
+    return "";
+}
+
 TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested) {
-    if (requested == TransferPath::GlSharing && !cl.sharesGl())
-        throw Error(str("the gl-sharing transfer path needs an OpenCL context made with the GL context it draws in "
-                        "(cl_khr_gl_sharing for it; ClContextConfig::glShare); ",
-                        cl.description(), " shares none here (NVIDIA offers it for GLX windows, not for EGL)"));
-    if (requested == TransferPath::ExternalMemory)
-        if (const std::string why = ExternalMemory::unavailable(cl); !why.empty())
-            throw Error(why);
+    if (const std::string why = transferPathRefusal(cl, requested); !why.empty()) throw Error(why);
     if (requested != TransferPath::Auto) return requested;
     if (cl.sharesGl()) return TransferPath::GlSharing;
     const cl_bool unified = clGuard("asking the device about host memory", [&] {
@@ -37,9 +40,9 @@ TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested) {
 }
 
 std::vector<TransferPath> availableTransferPaths(const ClContext& cl) {
-    std::vector<TransferPath> paths{TransferPath::Map, TransferPath::PixelBuffer, TransferPath::Staged};
-    if (cl.sharesGl()) paths.push_back(TransferPath::GlSharing);
-    if (ExternalMemory::unavailable(cl).empty()) paths.push_back(TransferPath::ExternalMemory);
+    std::vector<TransferPath> paths;
+    for (const NamedValue<TransferPath>& n : kNames)
+        if (n.value != TransferPath::Auto && transferPathRefusal(cl, n.value).empty()) paths.push_back(n.value);
     return paths;
 }
 

@@ -140,6 +140,8 @@ public:
 
 private:
     enum class State { Idle, Begun, Derived, Submitted };
+    /// The constructor, with the GL context's workarounds asked for once.
+    SurfacePipeline(ClContext& cl, const SurfacePipelineConfig& config, const GlWorkarounds& device);
     void wait(); ///< Staged: the queue's work so far
     static double nowMs();
 

@@ -24,6 +24,7 @@
 
 #include "hfx/compute/ClContext.h"
 
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -51,5 +52,8 @@ TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested);
 /// The paths this device can take (Auto left out): GlSharing only where the context shares GL,
 /// ExternalMemory only where GL, Vulkan and the device can share memory.
 std::vector<TransferPath> availableTransferPaths(const ClContext& cl);
+/// Why `path` cannot be taken here, in the words chooseTransferPath throws ("" where it can: Auto,
+/// Map, PixelBuffer and Staged always can). For a settings menu that shows each path's reason.
+std::string transferPathRefusal(const ClContext& cl, TransferPath path);
 
 } // namespace hfx
