@@ -339,6 +339,21 @@ TEST(DamageLog, BadImpactsAndBadFilesAreRefusedByNameAndChangeNothing) {
     EXPECT_NE(loadText("hfx-damage 2\nnow 0\nimpacts 99999999999999999999\n").find(":3: bad impact count"),
               std::string::npos); // past 2^64: not read as 0
     EXPECT_NE(loadText("hfx-damage 3\nnow 0\n").find(":1: not an HFX damage log"), std::string::npos);
+    // A clock no log reaches (a peer's message is not trusted): below 0, or so far on that the heal
+    // curves' clocks (now over the step) are infinite, which fed NaN ages to the stamps (found by
+    // scripts/fuzz.sh); and an impact later than the clock, which addAt() refuses.
+    EXPECT_NE(loadText("hfx-damage 2\nnow -0x1p+0\nimpacts 0\n").find(":2: the clock -1 is not one a log reaches"),
+              std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 2\nnow 0x1.fffffffffffffp+1023\nimpacts 0\n").find(":2: the clock "),
+              std::string::npos);
+    EXPECT_NE(loadText("hfx-damage 2\nnow 0x1p+3\nimpacts 1\nimpact bullet 0.5 0.5 0 0 1 0.1 1 0x1p+4 1\n")
+                  .find(":4: the impact's time 16 is past the log's clock 8"),
+              std::string::npos);
+    DamageLog running;
+    running.advance(1e300);
+    EXPECT_NE(messageOf([&] { running.advance(1.7e308); }).find("past any its heal curves read"), std::string::npos);
+    EXPECT_EQ(running.now(), 1e300);
+    EXPECT_TRUE(std::isfinite(running.healTime()));
     EXPECT_NE(messageOf([] { DamageLog::load("/no/such/damage.log"); }).find("/no/such/damage.log"), std::string::npos);
 }
 

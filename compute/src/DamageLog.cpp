@@ -171,9 +171,16 @@ bool DamageLog::addAt(ImpactEvent impact, double time) {
     return false;
 }
 
+bool DamageLog::reaches(double clock) const {
+    return clock >= 0.0 && std::isfinite(stepped(clock, config_.healStep)) &&
+           std::isfinite(stepped(clock, config_.glowStep));
+}
+
 void DamageLog::advance(double seconds) {
     if (!(seconds >= 0.0) || !std::isfinite(seconds))
         throw Error(str("DamageLog::advance: seconds must be >= 0 and finite, got ", seconds));
+    if (!reaches(now_ + seconds))
+        throw Error(str("DamageLog::advance: ", seconds, " s would take the clock past any its heal curves read"));
     now_ += seconds;
 }
 
@@ -326,6 +333,7 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
     int version = 0;
     std::optional<std::uint64_t> count; // version 2's "impacts N"
     std::vector<ImpactEvent> impacts;
+    std::vector<int> lines; // each impact's
     while (std::getline(in, line)) {
         ++number;
         if (!line.empty() && line.back() == '\r') line.pop_back(); // a log that passed through Windows
@@ -346,6 +354,9 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
             if (words >> word) throw fail(str("unexpected '", word, "' after the impact count"));
         } else if (word == "now") {
             log.now_ = number64(words, "clock");
+            if (!log.reaches(log.now_))
+                throw fail(str("the clock ", log.now_, " is not one a log reaches (from 0 on, its heal curves' "
+                               "clocks finite)"));
             clock = true;
         } else if (word == "impact") {
             ImpactEvent e;
@@ -370,6 +381,7 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
                 throw fail(error.what());
             }
             impacts.push_back(e);
+            lines.push_back(number);
         } else {
             throw fail(str("unknown record '", word, "'"));
         }
@@ -383,6 +395,11 @@ DamageLog DamageLog::load(std::istream& in, const DamageLogConfig& config, const
                         " (the log was cut short)"));
     if (int(impacts.size()) > config.budget)
         throw Error(str(name, ": ", impacts.size(), " impacts do not fit a budget of ", config.budget));
+    // As addAt() has it: no impact is later than the clock (a merge's restarted clock included).
+    for (size_t i = 0; i < impacts.size(); ++i)
+        if (impacts[i].time > log.now_)
+            throw Error(str(name, ":", lines[i], ": the impact's time ", impacts[i].time, " is past the log's clock ",
+                            log.now_));
     for (const ImpactEvent& e : impacts) {
         log.insert(e);
         log.latest_ = std::max(log.latest_, e.time); // (a merge's restarted clock is the latest)

@@ -1,7 +1,8 @@
 // Writes the fuzzers' seed corpus: small valid height maps in the formats the loader meets
 // (8/16-bit PNG and TIFF, float EXR and HDR, 1-4 channels), prefixed with the byte that picks
-// their extension in FuzzHeightMap, and a few shot lists.
-//   hfx-fuzz-corpus DIR   ->  DIR/heightmap/*, DIR/shots/*
+// their extension in FuzzHeightMap, a few shot lists and a few damage logs.
+//   hfx-fuzz-corpus DIR   ->  DIR/heightmap/*, DIR/shots/*, DIR/damage/*
+#include "hfx/compute/DamageLog.h"
 #include "hfx/tools/ImageFiles.h"
 
 #include <OpenImageIO/imageio.h>
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
     const std::filesystem::path dir = argv[1];
     std::filesystem::create_directories(dir / "heightmap");
     std::filesystem::create_directories(dir / "shots");
+    std::filesystem::create_directories(dir / "damage");
     struct Seed {
         const char* ext;
         int index, channels;
@@ -52,6 +54,19 @@ int main(int argc, char** argv) {
     const char* lists[] = {"bullet 0 0.5 0.5\n", "# volley\nbullet 1 0.25 0.75\nexplosion 2 1.5 -0.5 42\nclick 3 640 360\n",
                            "explosion 10 0.1 0.9\n\n\nbullet 11 1e-3 0.999\n"};
     for (int i = 0; i < 3; ++i) std::ofstream(dir / "shots" / ("seed" + std::to_string(i))) << lists[i];
-    std::printf("hfx-fuzz-corpus: wrote %d height maps and 3 shot lists to %s\n", n, dir.c_str());
+    // Damage logs as save() writes them: empty, a few impacts of both kinds (one merged), a log
+    // whose clock ran on past its heal curves, and the older format (no count line).
+    hfx::DamageLog log;
+    log.save((dir / "damage" / "seed0").string());
+    log.add({.u = 0.25f, .v = 0.5f, .radius = 0.02f});
+    log.advance(0.75);
+    log.add({.u = 0.7f, .v = 0.1f, .radius = 0.05f, .kind = hfx::ImpactKind::Explosion, .seed = 42});
+    log.add({.u = 0.7f, .v = 0.1f, .radius = 0.05f, .kind = hfx::ImpactKind::Explosion, .seed = 43});
+    log.save((dir / "damage" / "seed1").string());
+    log.advance(600.0);
+    log.save((dir / "damage" / "seed2").string());
+    std::ofstream(dir / "damage" / "seed3") << "hfx-damage 1\nnow 0x1p+3\n"
+                                               "impact bullet 0x1p-2 0x1p-1 0x0p+0 0x0p+0 0x1p+0 0x1p-6 7 0x1p+2 0x1p+0\n";
+    std::printf("hfx-fuzz-corpus: wrote %d height maps, 3 shot lists and 4 damage logs to %s\n", n, dir.c_str());
     return 0;
 }

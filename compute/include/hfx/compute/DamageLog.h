@@ -95,7 +95,8 @@ public:
     /// holds the same impacts and stamps to the bit (network sync of damage). Throws hfx::Error
     /// naming the time and changes nothing otherwise, or on a bad impact as add() does.
     bool addAt(ImpactEvent impact, double time);
-    /// Moves the clock on (seconds, >= 0 and finite).
+    /// Moves the clock on (seconds, >= 0 and finite; throws hfx::Error where the clock would pass
+    /// any its heal curves read, about 1e307 s).
     void advance(double seconds);
     double now() const { return now_; }
     /// The clock the heal curves read: now() rounded down to a multiple of healStep.
@@ -135,7 +136,8 @@ public:
     void save(std::ostream& out, const std::string& name = "a stream") const;
     /// Reads what save() wrote into a log of `config` (its budget must hold the saved impacts).
     /// Throws hfx::Error naming the file and line for anything else, and where fewer impacts
-    /// follow than the count says (a log cut short).
+    /// follow than the count says (a log cut short), the clock is one no log reaches (below 0, or
+    /// so large that its heal curves read it as infinite) or an impact's time is past it.
     static DamageLog load(const std::string& path, const DamageLogConfig& config = {});
     /// The same from a stream, its errors naming `name` and the line.
     static DamageLog load(std::istream& in, const DamageLogConfig& config = {}, const std::string& name = "a stream");
@@ -145,6 +147,8 @@ private:
     void link(int slot);
     void unlink(int slot);
     void validate(const ImpactEvent& impact) const;
+    /// Whether the clock can stand at `clock`: from 0 on, where its heal curves' clocks are finite.
+    bool reaches(double clock) const;
     /// Takes the next slot for `impact` as it is (no merging): add() and load().
     void insert(const ImpactEvent& impact);
 
