@@ -52,7 +52,10 @@ TEST_F(ClContextTest, EveryKernelBuildsWithoutWarnings) {
                 builds.emplace_back("noise.cl", str("-cl-fp32-correctly-rounded-divide-sqrt -DKIND=", kind,
                                                     " -DFRACTAL=", fractal, " ", edgeOptions(edges)));
     }
-    for (const auto& [file, options] : builds) {
+    for (const auto& build : builds) {
+        // (Not a structured binding: clang before 16 cannot capture one in a lambda.)
+        const std::string& file = build.first;
+        const std::string& options = build.second;
         const std::string m = messageOf([&] { cl().program(file, options + " -Werror"); });
         EXPECT_EQ(m, "(no error)") << file << " " << options;
     }

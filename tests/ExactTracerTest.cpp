@@ -220,7 +220,10 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
     // In both layouts of the bounds: the pass's walk is compiled for each.
     constexpr int N = 64;
     const CoveredPlane scene;
-    const auto& [plane, cover, material, light, nearer] = scene;
+    const auto &plane = scene.plane, &cover = scene.cover;
+    const auto& material = scene.material;
+    const auto& light = scene.light;
+    const auto& nearer = scene.nearer;
     for (const int size : {320, 64}) {
         SCOPED_TRACE(str(size, "x", size * 9 / 16));
         // At 64x36 a rougher field: more of its cells hold a shadow's edge than the buffer holds rays.
@@ -313,7 +316,10 @@ TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours)
     };
     const Case cases[] = {{"smooth", sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}})}, {"blocks", blocks(N, 4)}};
     const CoveredPlane scene;
-    const auto& [plane, cover, material, light, nearer] = scene;
+    const auto &plane = scene.plane, &cover = scene.cover;
+    const auto& material = scene.material;
+    const auto& light = scene.light;
+    const auto& nearer = scene.nearer;
     constexpr int W = 320, H = 180, X0 = 24, Y0 = 16, VW = 256, VH = 144;
     RenderTarget target(W, H, true);
     Camera nearView = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f);

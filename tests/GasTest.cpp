@@ -384,7 +384,7 @@ TEST_F(Gas, AFedColourWindsIntoSpiralArmsThatTrailTheSpin) {
                                .sweep = sweep}});
         gas.step(0.01);
         const std::vector<float> dye = gas.readHeights();
-        auto reference = [&](double i, double j) {
+        auto reference = [&, winding = winding, sweep = sweep](double i, double j) {
             const double ex = (i + 0.5 - x) / (2.0 * b), ey = (j + 0.5 - y) / b, rho2 = ex * ex + ey * ey;
             const double rim = 1.0 - std::exp(-rho2);
             double crest2 = rho2 < 9.0 ? 0.0 : 0.375; // beyond 3 radii the arms' mean (GasArms)

@@ -79,7 +79,7 @@ TEST_F(NoiseSurface, ATilingNoiseContinuesAcrossItsEdgesToFloatRounding) {
             const std::vector<float> h = readHeights(cl(), field);
             const int W = c.width, H = c.height;
             const float t = field.timeCoordinate(field.time());
-            auto shared = [&](float u, float v) {
+            auto shared = [&, edges = edges](float u, float v) {
                 return hfx_noise_texel(int(c.kind), int(c.fractal), u, v, c.frequency, c.frequencyY(), wrapsU(edges),
                                        wrapsV(edges), t, c.octaves, c.lacunarity, c.gain, c.warp);
             };

@@ -186,7 +186,10 @@ TEST_F(PlanetRingsTest, TheirShadowFallsOnTheCloudTopsWhereTheSunsRayCrossesThem
     // traces the pixel's ray to the unit sphere, the sun's ray from there to the rings' plane,
     // and takes the profile's opacity there, averaged over the sun's disc, along the slant.
     const RingedPlanet ringed(cl());
-    const auto& [planet, rc, profile, sphere] = ringed;
+    const auto& planet = ringed.planet;
+    const auto& rc = ringed.config;
+    const auto& profile = ringed.profile;
+    const auto& sphere = ringed.sphere;
     SurfaceRenderer renderer;
     const Camera camera = cameraAt({0.0f, -1.4f, 2.8f});
     DirectionalLight light;
@@ -415,7 +418,10 @@ TEST_F(PlanetRingsTest, TheirLightOnTheNightSideIsWhatTheyScatterTowardsIt) {
     // a pixel is then (B - A) / (U / 0.05) in linear light, per colour; the CPU integrates it
     // over the rings at the point the pixel's ray meets the sphere.
     const RingedPlanet ringed(cl());
-    const auto& [planet, rc, profile, sphere] = ringed;
+    const auto& planet = ringed.planet;
+    const auto& rc = ringed.config;
+    const auto& profile = ringed.profile;
+    const auto& sphere = ringed.sphere;
     SurfaceRenderer renderer;
     const Camera camera = cameraAt({2.6f, -0.9f, 1.2f});
     const glm::dvec3 l = glm::normalize(glm::dvec3(-std::cos(25.0 * kPi / 180.0), -std::sin(25.0 * kPi / 180.0), 0.3));

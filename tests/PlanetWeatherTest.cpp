@@ -303,7 +303,7 @@ TEST_F(PlanetWeather, AStormKeepsItsColourAndRidesTheWindAtItsCentre) {
                                                            {"stormHold", {.stormHold = NAN}},
                                                            {"stormFeed", {.stormFeed = 1e3f}}};
     for (const auto& [field, config] : bad)
-        EXPECT_NE(messageOf([&] { config.validate(); }).find(field), std::string::npos) << field;
+        EXPECT_NE(messageOf([&c = config] { c.validate(); }).find(field), std::string::npos) << field;
 }
 
 TEST_F(PlanetWeather, AStormsCloudsWindIntoArmsThatTurnWithIt) {

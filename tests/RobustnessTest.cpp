@@ -296,7 +296,8 @@ TEST_F(Robustness, BadMaterialsCamerasLightsAndModelMatricesDrawNothing) {
           std::pair{SurfaceMaterial{.specularPower = std::nanf("")}, "specularPower"},
           std::pair{SurfaceMaterial{.silhouetteFade = 1.5f}, "silhouetteFade"},
           std::pair{SurfaceMaterial{.pixelBudget = -0.5f}, "pixelBudget"}}) {
-        const std::string m = messageOf([&] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), material, camera, {}); });
+        const std::string m =
+            messageOf([&, &m = material] { renderer.draw(plane, glm::mat4(1.0f), water.textures(), m, camera, {}); });
         EXPECT_NE(m.find(field), std::string::npos) << m;
     }
     Camera noDirection = camera;

@@ -444,7 +444,8 @@ TEST_F(Sky, AStillWaterMirrorsTheClouds) {
     material.water.fresnelF0 = 1.0f;
     material.water.cloudCover = 0.5f;
     material.water.cloudScale = 3.0f;
-    const auto [mirrored, plain] = water.draw(camera, kSun);
+    const auto drawn = water.draw(camera, kSun);
+    const auto &mirrored = drawn.first, &plain = drawn.second;
     Agreement mirror{.tolerance = 2.5f / 255.0f, .changedBy = 10.0f / 255.0f};
     int clouded = 0;
     const int pixels = water.forEachWaterPixel(camera, 0.05, [&](int x, int y, const Ray& ray) {
@@ -473,7 +474,8 @@ TEST_F(Sky, TheSeaFadesIntoTheCloudsGreyAtTheHorizonUnderOvercast) {
     SurfaceMaterial& material = water.material;
     material.water.cloudCover = 0.9f;
     material.water.hazeDistance = 0.05f;
-    const auto [overcast, plain] = water.draw(camera, kSun);
+    const auto drawn = water.draw(camera, kSun);
+    const auto &overcast = drawn.first, &plain = drawn.second;
     Agreement haze{.tolerance = 3.0f / 255.0f, .changedBy = 20.0f / 255.0f};
     const int pixels = water.forEachWaterPixel(camera, 0.02, [&](int x, int y, const Ray& ray) {
         const glm::vec3 level = glm::normalize(glm::vec3(float(ray.direction.x), 0.0f, float(ray.direction.z)));

@@ -699,7 +699,7 @@ TEST_F(TracerContract, TexelShadowsAreTheWalkAtEverySampleAndStandInForItWhereTh
                     return traceInHarness(textures, Technique::Hierarchical, r, kShadowMain, Accessors::Renderer,
                                           read ? &shadows : nullptr);
                 };
-                const auto rayFrom = [&](std::vector<glm::vec4>& r, glm::vec2 uv, float h0) {
+                const auto rayFrom = [&, sharpness = sharpness](std::vector<glm::vec4>& r, glm::vec2 uv, float h0) {
                     const glm::vec2 span = c->uvPerClimb * (1.0f - h0);
                     r.emplace_back(uv.x, uv.y, span.x, span.y);
                     r.emplace_back(h0, 0.0f, 8.0f, sharpness);

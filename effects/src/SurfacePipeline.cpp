@@ -155,7 +155,10 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
     // Either pair's bounds read since the last frame: the device goes on building them.
-    boundsThisFrame_ = boundsFromDevice_ && (bounds_[0]->takeWanted() | bounds_[1]->takeWanted());
+    // (Both pairs' wishes taken, whichever holds one.)
+    const bool wanted0 = boundsFromDevice_ && bounds_[0]->takeWanted();
+    const bool wanted1 = boundsFromDevice_ && bounds_[1]->takeWanted();
+    boundsThisFrame_ = wanted0 || wanted1;
     if (boundsThisFrame_) {
         if (!pyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
         pyramid_->build(heights);

@@ -120,7 +120,7 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
                                              // mip level 0 only: the figures speak of the search, not the filter
                                              {.mipmaps = false, .format = format})),
       plane_(makePlane({.size = kPlaneSize})), timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})),
-      cl_(cl), layout_(resolvedLayout(layout)) {
+      layout_(resolvedLayout(layout)) {
     surface_.run(field_.buffer());
 }
 

@@ -36,7 +36,7 @@ public:
     WaveField(ClContext& cl, const WaveConfig& config);
 
     /// Advances time by dt seconds (dt > 0, finite) and recomputes the field.
-    void step(double dt);
+    void step(double dt) override;
     /// Sets the absolute time and recomputes the field.
     void setTime(double seconds);
     double time() const { return time_; }

@@ -204,7 +204,6 @@ private:
     Mesh plane_, timedPlane_;
     TexelShadowPass texelPass_; ///< timeTexelShadows' pass, and what it draws into
     TexelShadows texels_;
-    ClContext& cl_;
     GpuTimer timer_;
     // timeCompute's rays (for the view and size they were made for) and programs.
     std::tuple<double, int, int, float> computeKey_{};
