@@ -340,8 +340,9 @@ TEST(DamageLog, BadImpactsAndBadFilesAreRefusedByNameAndChangeNothing) {
               std::string::npos); // past 2^64: not read as 0
     EXPECT_NE(loadText("hfx-damage 3\nnow 0\n").find(":1: not an HFX damage log"), std::string::npos);
     // A clock no log reaches (a peer's message is not trusted): below 0, or so far on that the heal
-    // curves' clocks (now over the step) are infinite, which fed NaN ages to the stamps (the
-    // fuzz target's check, tests/fuzz/FuzzDamageLog.cpp, fails on it); and an impact later than the clock, which addAt() refuses.
+    // curves' clocks (now over the step) are infinite, which fed NaN ages to the stamps (the fuzz
+    // target's check, tests/fuzz/FuzzDamageLog.cpp, fails on it); and an impact later than the
+    // clock, which addAt() refuses.
     EXPECT_NE(loadText("hfx-damage 2\nnow -0x1p+0\nimpacts 0\n").find(":2: the clock -1 is not one a log reaches"),
               std::string::npos);
     EXPECT_NE(loadText("hfx-damage 2\nnow 0x1.fffffffffffffp+1023\nimpacts 0\n").find(":2: the clock "),

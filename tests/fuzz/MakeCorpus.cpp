@@ -65,8 +65,8 @@ int main(int argc, char** argv) {
     log.save((dir / "damage" / "seed1").string());
     log.advance(600.0);
     log.save((dir / "damage" / "seed2").string());
-    std::ofstream(dir / "damage" / "seed3") << "hfx-damage 1\nnow 0x1p+3\n"
-                                               "impact bullet 0x1p-2 0x1p-1 0x0p+0 0x0p+0 0x1p+0 0x1p-6 7 0x1p+2 0x1p+0\n";
+    std::ofstream(dir / "damage" / "seed3")
+        << "hfx-damage 1\nnow 0x1p+3\nimpact bullet 0x1p-2 0x1p-1 0x0p+0 0x0p+0 0x1p+0 0x1p-6 7 0x1p+2 0x1p+0\n";
     std::printf("hfx-fuzz-corpus: wrote %d height maps, 3 shot lists and 4 damage logs to %s\n", n, dir.c_str());
     return 0;
 }
