@@ -19,8 +19,8 @@
 //   Auto's choice until a GPU has timed it against Staged.
 // (StreamTransfer.h in effects/src holds the last three, ExternalMemory.h the allocator.)
 //
-// Thread: the thread whose GL context is current (chooseTransferPath asks the device, and for
-// ExternalMemory GL and Vulkan).
+// Thread: the thread whose GL context is current (chooseTransferPath and transferPathRefusal ask
+// the device, and for ExternalMemory GL and Vulkan).
 
 #include "hfx/compute/ClContext.h"
 
