@@ -29,7 +29,7 @@ for target in heightmap shots damage; do
     mkdir -p build-fuzz/findings/$target
     echo "fuzz: $target for ${seconds}s"
     dict=()
-    [ -f tests/fuzz/$target.dict ] && dict=(-dict=tests/fuzz/$target.dict)
+    [ -f "tests/fuzz/$target.dict" ] && dict=("-dict=tests/fuzz/$target.dict")
     ./build-fuzz/tests/fuzz/hfx-fuzz-$target "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
         -max_len=65536 -artifact_prefix=build-fuzz/findings/$target/ -print_final_stats=1 \
         "$corpus/$target" 2> build-fuzz/$target.log ||
