@@ -5,13 +5,7 @@
 # arguments go to ctest (`bash scripts/clang.sh -L core` for a quick look).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-if ! command -v clang++ > /dev/null; then
-    echo "clang: installing clang"
-    sudo_cmd=()
-    [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends clang > /dev/null
-fi
+bash scripts/setup.sh clang
 CC=clang CXX=clang++ cmake -S . -B build-clang -DCMAKE_BUILD_TYPE=Release -Wno-dev > build-clang.log 2>&1 ||
     { cat build-clang.log; exit 1; }
 cmake --build build-clang -j"$(nproc)" >> build-clang.log 2>&1 || { grep -E "error|warning:" build-clang.log | head -40; exit 1; }

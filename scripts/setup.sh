@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian packages HFX builds and tests with. Idempotent: when everything is
-# already there it checks with dpkg and prints nothing.
+# Installs the Debian packages HFX builds and tests with, and any named as arguments (the checks
+# that need more: `bash scripts/setup.sh clang`). Idempotent: when everything is already there it
+# checks with dpkg and prints nothing.
 set -euo pipefail
 
 packages=(
@@ -10,6 +11,7 @@ packages=(
     libopenimageio-dev libstb-dev libtinyexr-dev libvkfft-dev libfftw3-dev libvulkan-dev mesa-vulkan-drivers
     libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libimgui-dev ffmpeg xvfb xauth
     python3 glslang-tools spirv-tools ccache locales
+    "$@"
 )
 
 missing=()

@@ -154,11 +154,11 @@ void SurfacePipeline::derive(const cl::Buffer& heights) {
     sobel_.run(heights);
     if (timing_ == StageTiming::Staged) wait();
     normalsDone_ = nowMs();
-    // Either pair's bounds read since the last frame: the device goes on building them.
-    // (Both pairs' wishes taken, whichever holds one.)
-    const bool wanted0 = boundsFromDevice_ && bounds_[0]->takeWanted();
-    const bool wanted1 = boundsFromDevice_ && bounds_[1]->takeWanted();
-    boundsThisFrame_ = wanted0 || wanted1;
+    // Either pair's bounds read since the last frame: the device goes on building them (both
+    // pairs' wishes are taken, each once).
+    boundsThisFrame_ = false;
+    if (boundsFromDevice_)
+        for (auto& b : bounds_) boundsThisFrame_ = b->takeWanted() || boundsThisFrame_;
     if (boundsThisFrame_) {
         if (!pyramid_) pyramid_ = std::make_unique<BoundsPyramid>(cl_, config_.width, config_.height, config_.edges);
         pyramid_->build(heights);
