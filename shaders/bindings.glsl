@@ -31,18 +31,21 @@
 #define HFX_UNIT_RING_SHINE 19    // planet: the light its rings scatter onto it (shade/ringshine.comp)
 #define HFX_TEXTURE_UNITS 20      // the table's units: a draw's fragment stage binds at most these
 
-// Image units (PyramidLayout::Atlas, llvmpipe's: GlWorkarounds::pyramidAtlas).
-#define HFX_IMAGE_PYRAMID 0       // layer i's atlas pyramid at HFX_IMAGE_PYRAMID + i
+// Image units. GL 4.5 promises 8 (GL_MAX_IMAGE_UNITS), and NVIDIA's driver has exactly 8: its
+// compiler refuses a binding of 8 or more (llvmpipe has 32, so nothing here would say so; C++
+// static_asserts that every unit below is under HFX_IMAGE_UNITS).
+#define HFX_IMAGE_UNITS 8
+#define HFX_IMAGE_PYRAMID 0       // layer i's atlas pyramid at HFX_IMAGE_PYRAMID + i (PyramidLayout::Atlas, llvmpipe's)
 #define HFX_IMAGE_CELLS 4         // layer 0's level-0 cells' samples (BoundsPass writes them)
-// The bounds pass's (trace/hier/bounds.comp, BoundsPass): its own, so that building one layer's
-// pyramid leaves every other binding as it was.
-#define HFX_IMAGE_BOUNDS_FINER 5  // the level it reduces (or the atlas)
-#define HFX_IMAGE_BOUNDS 6        // the level it writes (or the atlas)
+// The unit a compute pass writes its one output through, one dispatch at a time, and that no
+// program reads: the bounds pass's level (trace/hier/bounds.comp), the texel shadows
+// (trace/hier/texelshadows.comp, TexelShadowPass), the beam start (trace/hier/beam.comp, ExactTracer).
+#define HFX_IMAGE_PASS_OUTPUT 5
+// The bounds pass's (BoundsPass): building one layer's pyramid leaves the tracer's units
+// (HFX_IMAGE_PYRAMID + i, HFX_IMAGE_CELLS) as they were.
+#define HFX_IMAGE_BOUNDS_FINER 6  // the level it reduces (or the atlas)
+#define HFX_IMAGE_BOUNDS HFX_IMAGE_PASS_OUTPUT // the level it writes (or the atlas)
 #define HFX_IMAGE_RING_SHINE 7    // the rings' light on their planet, as the renderer builds it (shade/ringshine.comp)
-// The exact tracer's prepasses write their one output through it, one dispatch at a time, and
-// no program reads it: the texel shadows (trace/hier/texelshadows.comp, TexelShadowPass), the beam
-// start (trace/hier/beam.comp, ExactTracer).
-#define HFX_IMAGE_PASS_OUTPUT 8
 
 // Shader storage buffers.
 #define HFX_BUFFER_DEFERRED_SHADOWS 0 // the light walks a surface draw leaves to the pass after it (trace/hier/deferred.glsl)

@@ -134,7 +134,7 @@ std::string notDefault() {
         check(value == 0, "sampler " + std::to_string(unit));
     }
     glActiveTexture(GL_TEXTURE0);
-    for (GLuint image = 0; image <= HFX_IMAGE_PASS_OUTPUT; ++image) {
+    for (GLuint image = 0; image < HFX_IMAGE_UNITS; ++image) {
         glGetIntegeri_v(GL_IMAGE_BINDING_NAME, image, &value);
         check(value == 0, "image unit " + std::to_string(image));
     }

@@ -148,6 +148,9 @@ std::unique_ptr<ExternalMemory::Vulkan> ExternalMemory::Vulkan::open(const ClCon
         return nullptr;
     }
     Uuid glUuid{};
+    // An error the caller left is not this query's: the first H200 run read a GlStateGuard's
+    // GL_INVALID_VALUE here and blamed the UUID.
+    while (glGetError() != GL_NO_ERROR) {}
     glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, glUuid.data());
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
         why = str("GL (", renderer, ") did not say its device's UUID (", glErrorName(e), ")");

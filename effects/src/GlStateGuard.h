@@ -265,12 +265,15 @@ private:
     GLint64 storageStart_[kStorage] = {}, storageSize_[kStorage] = {};
     // every unit of hfx/core/Bindings.h
     static constexpr int kUnits = HFX_TEXTURE_UNITS;
-    // the atlas pyramids of layers 0-3 (HeightBounds::bind), layer 0's cells, BoundsPass's two,
-    // the rings' light's pass, the tracer's prepasses' output (texel shadows, beam start)
-    static constexpr GLuint kImages = HFX_IMAGE_PASS_OUTPUT + 1;
-    static_assert(HFX_IMAGE_CELLS < kImages && HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages &&
-                      HFX_IMAGE_RING_SHINE < kImages,
-                  "hfx/core/Bindings.h: the guard saves every image unit");
+    // every image unit of hfx/core/Bindings.h: the atlas pyramids of layers 0-3 (HeightBounds::bind),
+    // layer 0's cells, the passes' output (the bounds level, texel shadows, beam start), the bounds
+    // pass's finer level, the rings' light's pass. GL 4.5 promises no more than HFX_IMAGE_UNITS (NVIDIA
+    // has no more), and querying a unit past a context's last is GL_INVALID_VALUE.
+    static constexpr GLuint kImages = HFX_IMAGE_UNITS;
+    static_assert(HFX_IMAGE_UNITS <= 8, "hfx/core/Bindings.h: GL 4.5 promises 8 image units");
+    static_assert(HFX_IMAGE_PYRAMID + 3 < kImages && HFX_IMAGE_CELLS < kImages && HFX_IMAGE_PASS_OUTPUT < kImages &&
+                      HFX_IMAGE_BOUNDS_FINER < kImages && HFX_IMAGE_BOUNDS < kImages && HFX_IMAGE_RING_SHINE < kImages,
+                  "hfx/core/Bindings.h: every image unit is one of GL 4.5's 8, and the guard saves it");
     struct Image {
         GLint name = 0, level = 0, layered = GL_FALSE, layer = 0, access = GL_READ_ONLY, format = GL_R8;
     };
