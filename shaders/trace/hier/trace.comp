@@ -43,7 +43,11 @@ uniform vec2 u_patchLight;
 // is not a rectangle), its ray, its tolerance and whether its light ray is walked (`info`:
 // hfx_traceInfo's, the mark and the level-of-detail blend included) and true; or, where it is seen
 // from below or past the level-of-detail threshold, the slot marked normal mapped, and false. The
-// texcoords' derivatives are the map's own (a rasteriser's differ across its quad by a rounding).
+// texcoords' derivatives are the draw's: the differences across the pixel's 2x2 quad of the window,
+// along its row and its column (dFdx and dFdy; PixelNeighbours), not the map's derivative at the
+// pixel, which differs from them by the map's curvature: enough to move the level-of-detail fade
+// and a pixel budget's tolerance, and so the hits (Picking's fade, on llvmpipe: 8589 of 24590
+// pixels up to 0.24 texels apart).
 bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
     ray = vec4(0.0);
     info = uvec2(0u);
@@ -52,8 +56,20 @@ bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
     float w;
     if (!hfx_patch_point((vec2(pixel) + 0.5) * perPixel - 1.0, uv0, w)) return false;
     const float z = dot(u_patchDepth, vec3(uv0, 1.0));
-    const vec2 dx = (u_patchFromScreen[0].xy - uv0 * u_patchFromScreen[0].z) * (w * perPixel.x);
-    const vec2 dy = (u_patchFromScreen[1].xy - uv0 * u_patchFromScreen[1].z) * (w * perPixel.y);
+    // The quad's other pixel along the row and along the column (window coordinates pair them).
+    const ivec2 other = ((pixel + u_traceOrigin) ^ 1) - u_traceOrigin;
+    const ivec2 sign = other - pixel; // +1 where the pixel is the quad's left (lower) one
+    vec2 uvAcross, uvUp;
+    float wAcross, wUp;
+    vec2 dx, dy;
+    if (hfx_patch_point((vec2(other.x, pixel.y) + 0.5) * perPixel - 1.0, uvAcross, wAcross) &&
+        hfx_patch_point((vec2(pixel.x, other.y) + 0.5) * perPixel - 1.0, uvUp, wUp)) {
+        dx = (uvAcross - uv0) * float(sign.x);
+        dy = (uvUp - uv0) * float(sign.y);
+    } else { // a neighbour behind the eye: the map's derivative at the pixel
+        dx = (u_patchFromScreen[0].xy - uv0 * u_patchFromScreen[0].z) * (w * perPixel.x);
+        dy = (u_patchFromScreen[1].xy - uv0 * u_patchFromScreen[1].z) * (w * perPixel.y);
+    }
     const vec2 margin = abs(dx) + abs(dy);
     // (Clip z within [-w, w]: GL's depth range, and the [0, w] of GL_ZERO_TO_ONE within it.)
     if (!(abs(z) <= w * 1.0001) || any(lessThan(uv0, u_patchBox.xy - margin)) ||
