@@ -54,7 +54,8 @@ TEST_F(BeamStart, AnOffsetViewportGetsTheSameHitsInFewerFetchesAndItsStateBack) 
         glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE); // the colour's alpha only: the trace is whole
         const Camera camera = cameraAtAngle(angle, 1.6f, 171.0f / 101.0f);
         renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, {},
-                      {.technique = Technique::Hierarchical, .traceOutput = true, .beamStart = beam});
+                      {.technique = Technique::Hierarchical, .traceOutput = true, .beamStart = beam,
+                       .tracePass = deviceTracePass()});
         Traced t;
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &t.framebuffer);
         glGetIntegerv(GL_VIEWPORT, t.viewport);
@@ -119,7 +120,8 @@ TEST_F(BeamStart, AShadowMapCastsTheSameTracedDepthWithItAsWithout) {
             map.fit(towardsLight, {0.0f, 0.0f, 0.0f}, 1.5f);
             map.begin();
             renderer.drawShadow(plane, glm::mat4(1.0f), surface.textures(), material, map,
-                                {.technique = Technique::Hierarchical, .beamStart = beam == 1});
+                                {.technique = Technique::Hierarchical, .beamStart = beam == 1,
+                                 .tracePass = deviceTracePass()});
             map.end();
             depth[beam].resize(size_t(size) * size);
             glGetTextureImage(map.texture(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(depth[beam].size() * sizeof(float)),

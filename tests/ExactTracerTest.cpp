@@ -37,11 +37,16 @@ struct CoveredPlane {
 };
 
 /// Two draws' trace outputs and colours, pixel by pixel: the one that walks in the draw (a) and
-/// the one whose walks ran in the compute pass (b).
+/// the one whose walks ran in the compute pass (b). On llvmpipe the two rays are the same to the
+/// bit (its interpolation is the screen map's arithmetic) and so are the hits; on a GPU the draw's
+/// ray is its rasteriser's rounding, and a walk carries it to the hit: within kDrawHitTexels /
+/// 5 and a thousandth of the relief's depth, or it counts as another hit (the H200: 1709 of
+/// 21916 grazing pixels more than 0.001 texels apart, 0 on llvmpipe).
 struct WalksCompared {
+    static constexpr float kHitTexels = float(kDrawHitTexels) / 5.0f;
     size_t traced = 0, hitsOff = 0, shadowsOff = 0, colours = 0, channels = 0, sameUntraced = 0, untraced = 0,
            drawn = 0;
-    double fetchesWalked = 0.0, fetchesComputed = 0.0;
+    double fetchesWalked = 0.0, fetchesComputed = 0.0, worstHit = 0.0;
 
     WalksCompared(const std::vector<glm::vec4>& walked, const std::vector<glm::vec4>& computed, const Image& walkedColor,
                   const Image& computedColor, int fieldSize) {
@@ -54,8 +59,9 @@ struct WalksCompared {
                 continue;
             }
             ++traced;
-            const bool off = glm::length(glm::vec2(a) - glm::vec2(b)) * float(fieldSize) > 1e-3f || std::abs(a.z - b.z) > 1e-4f;
-            hitsOff += off;
+            const float apart = glm::length(glm::vec2(a) - glm::vec2(b)) * float(fieldSize);
+            worstHit = std::max(worstHit, double(apart));
+            hitsOff += apart > kHitTexels || std::abs(a.z - b.z) > 1e-3f;
             const float litA = 2.0f * (a.w - std::floor(a.w)), litB = 2.0f * (b.w - std::floor(b.w));
             shadowsOff += std::abs(litA - litB) > 1e-3f;
             fetchesWalked += std::floor(a.w);
@@ -66,9 +72,10 @@ struct WalksCompared {
             colours += std::abs(walkedColor.pixels[i] - computedColor.pixels[i]) > 1.0f / 255.0f + 1e-6f;
     }
     void print(const std::string& what) const {
-        std::printf("[computed walks] %s: %zu traced pixels, %zu hits and %zu shadows differ, %zu colour channels by "
-                    "more than 1/255; fetches %.2f walked in the draw, %.2f computed\n",
-                    what.c_str(), traced, hitsOff, shadowsOff, colours, fetchesWalked / double(std::max<size_t>(traced, 1)),
+        std::printf("[computed walks] %s: %zu traced pixels, %zu hits (%.2g texels apart at most) and %zu shadows "
+                    "differ, %zu colour channels by more than 1/255; fetches %.2f walked in the draw, %.2f computed\n",
+                    what.c_str(), traced, hitsOff, worstHit, shadowsOff, colours,
+                    fetchesWalked / double(std::max<size_t>(traced, 1)),
                     fetchesComputed / double(std::max<size_t>(traced, 1)));
     }
     /// The bounds both tests hold the pass to: one pixel in 2,000 (none differ where measured).
@@ -105,7 +112,7 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
         target.bind();
         target.clear();
         renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, l,
-                      {.technique = Technique::Hierarchical, .texelShadows = choice});
+                      {.technique = Technique::Hierarchical, .texelShadows = choice, .tracePass = deviceTracePass()});
         return target.readColor().pixels;
     };
 
@@ -178,7 +185,7 @@ TEST_F(ExactTracerTest, ItReadsAProducersBoundsWhereTheyHoldAndItsOwnElsewhere) 
         const SurfaceLayer layer{.textures = &surface.textures(), .bounds = withTheirs ? surface.bounds() : nullptr};
         renderer.draw(plane, glm::mat4(1.0f), std::span(&layer, 1), material, camera, light,
                       {.technique = Technique::Hierarchical, .beamStart = false,
-                       .texelShadows = TexelShadowChoice::Off});
+                       .texelShadows = TexelShadowChoice::Off, .tracePass = deviceTracePass()});
         return target.readColor().pixels;
     };
     const std::vector<float> own = draw(true); // the tracer's, built from the texels
@@ -247,7 +254,7 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
                                   {.technique = Technique::NormalMapping});
                 renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, light,
                               {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On,
-                               .deferShadowWalks = defer, .boundsLayout = layout});
+                               .deferShadowWalks = defer, .tracePass = TracePass::InDraw, .boundsLayout = layout});
                 EXPECT_EQ(renderer.tracer().last().deferredShadows, defer);
                 EXPECT_EQ(renderer.tracer().last().atlas, layout == PyramidLayout::Atlas);
                 return target.readColor();
@@ -537,7 +544,8 @@ TEST_F(ExactTracerTest, AutoTimesBothPassesOnTheFirstDrawsThenKeepsTheFaster) {
         EXPECT_EQ(renderer.tracer().last().computeTrace, other == TracePass::Compute);
         EXPECT_FALSE(renderer.tracer().last().timed);
     }
-    // llvmpipe's own workarounds (trace-in-draw): Auto walks in the draw, untimed.
+    // llvmpipe's workaround (trace-in-draw, forced on here): Auto walks in the draw, untimed.
+    const WorkaroundsSet inDraw("trace-in-draw=1");
     SurfaceRenderer renderer;
     for (int draw = 0; draw < 3; ++draw) {
         renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, light,

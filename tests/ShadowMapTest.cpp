@@ -161,8 +161,12 @@ TEST_F(ShadowMaps, ACastersWalksInAComputePassWriteTheDepthsTheDrawWrites) {
     // the depths the draw that walks writes: where a board in front hides part of the relief (the
     // rays draw leaves those texels to it), for a plane and a sphere (a back face stores nothing),
     // with the light at two angles. A draw that read no slot, or another texel's, writes the
-    // polygon's depth or another texel's hit. Measured: the maps are the same to the bit (the
-    // sphere's back faces culled: before they were, 8 and 3 texels on its silhouette differed).
+    // polygon's depth or another texel's hit. Measured on llvmpipe: the maps are the same to the
+    // bit (the sphere's back faces culled: before they were, 8 and 3 texels on its silhouette
+    // differed). On a GPU the plane's rays are the rasteriser's rounding in the draw and the
+    // screen map's in the pass (no rays draw on a flat patch), and the blocks' walls carry it into
+    // the depth (the H200: 16123 of 72044 texels more than 1e-6 apart, 0.036 at most): a texel
+    // counts as apart past 1e-4 of the map's depth (the relief spans about 0.03 of it).
     const AccuracyProbe probe(cl(), blocks(kField, 8), kField, kDepthScale);
     const Mesh plane(makePlane({.size = kPlane})), sphere(makeSphere({.radius = 0.8f}));
     const Mesh board(makePlane({.size = 0.5f}));
@@ -190,16 +194,18 @@ TEST_F(ShadowMaps, ACastersWalksInAComputePassWriteTheDepthsTheDrawWrites) {
                 return depth;
             };
             const std::vector<float> walked = cast(TracePass::InDraw), computed = cast(TracePass::Compute);
-            size_t relief = 0, differ = 0;
+            size_t relief = 0, differ = 0, rounded = 0;
             double largest = 0.0;
             for (size_t i = 0; i < walked.size(); ++i) {
                 relief += walked[i] < 1.0f;
                 const double d = std::abs(double(walked[i]) - double(computed[i]));
-                differ += d > 1e-6;
+                differ += d > 1e-4;
+                rounded += d > 1e-6;
                 largest = std::max(largest, d);
             }
-            std::printf("[caster's computed walks] %s: %zu of %zu map texels hold a depth, %zu differ (largest %.2g)\n",
-                        what.c_str(), relief, walked.size(), differ, largest);
+            std::printf("[caster's computed walks] %s: %zu of %zu map texels hold a depth, %zu differ by more than 1e-4 "
+                        "(%zu by more than 1e-6, largest %.2g)\n",
+                        what.c_str(), relief, walked.size(), differ, rounded, largest);
             EXPECT_GT(relief, walked.size() / 8) << "too little cast to tell";
             EXPECT_LE(differ, relief / 2000);
         }
@@ -280,6 +286,12 @@ TEST_F(ShadowMaps, AnEnginesOwnMapsHoldTheTracedReliefAlongEachLightsRays) {
          Camera::fromMatrices(glm::lookAt(centre + 3.0f * sunward, centre, glm::vec3(0, 1, 0)),
                               glm::orthoRH_ZO(-0.8f, 0.8f, -0.8f, 0.8f, 5.0f, 1.0f), true)}};
     EngineShadowAtlas atlas(2 * kTile, kTile);
+    const auto recoloured = [&] {
+        size_t count = 0;
+        for (const glm::u8vec4& c : atlas.colours()) count += c != glm::u8vec4(glm::round(EngineShadowAtlas::kColour * 255.0f));
+        return count;
+    };
+    ASSERT_EQ(recoloured(), 0u) << "the atlas's own clear did not take";
     for (const TracePass pass : {TracePass::InDraw, TracePass::Compute}) {
         SurfaceRenderer renderer;
         for (int tile = 0; tile < 2; ++tile) {
@@ -291,6 +303,8 @@ TEST_F(ShadowMaps, AnEnginesOwnMapsHoldTheTracedReliefAlongEachLightsRays) {
             renderer.drawFlatShadow(board, boardModel, light);
             EngineShadowAtlas::endTile();
         }
+        EXPECT_EQ(recoloured(), 0u) << "the casters wrote the engine's colour attachment, "
+                                    << (pass == TracePass::Compute ? "walking in a compute pass" : "walking in the draw");
         const std::vector<float> depth = atlas.depths();
         for (int tile = 0; tile < 2; ++tile) {
             const Camera& light = lights[tile].view;
@@ -341,10 +355,6 @@ TEST_F(ShadowMaps, AnEnginesOwnMapsHoldTheTracedReliefAlongEachLightsRays) {
             EXPECT_LE(off, (relief + boards) / 500);
         }
     }
-    size_t recoloured = 0;
-    for (const glm::u8vec4& c : atlas.colours())
-        recoloured += c != glm::u8vec4(glm::round(EngineShadowAtlas::kColour * 255.0f));
-    EXPECT_EQ(recoloured, 0u) << "the casters wrote the engine's colour attachment";
 }
 
 /// An engine's cascade of a directional light: an orthographic view of the sphere (centre,
@@ -611,7 +621,7 @@ TEST_F(ShadowMaps, ACallersScissorAndDepthMaskNeitherSpoilTheMapNorOutliveItsPas
         {
             const auto casting = map.scope();
             renderer.drawShadow(plane, glm::mat4(1.0f), probe.textures(), material, map,
-                                {.technique = Technique::Hierarchical});
+                                {.technique = Technique::Hierarchical, .tracePass = deviceTracePass()});
         }
         if (spoiled) {
             EXPECT_TRUE(glIsEnabled(GL_SCISSOR_TEST));

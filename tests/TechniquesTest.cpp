@@ -410,7 +410,9 @@ TEST_F(Techniques, ATimedDrawReportsItsPassesAndTheComputePassItsParts) {
     EXPECT_FALSE(passes.count("rays")) << "a flat patch's rays come from the screen";
     EXPECT_DOUBLE_EQ(passes.at("draw total"), whole.gpu);
     EXPECT_LE(passes.at("walks") + passes.at("draw"), 1.001 * whole.gpu);
-    probe.timeDraw(Technique::Hierarchical, {.angleDegrees = 45, .shadows = true, .light = accuracyLight()}, 160, 90, 1);
+    probe.timeDraw(Technique::Hierarchical,
+                   {.angleDegrees = 45, .shadows = true, .light = accuracyLight(), .tracePass = TracePass::InDraw}, 160,
+                   90, 1);
     EXPECT_TRUE(probe.lastPasses().count("draw"));
     EXPECT_FALSE(probe.lastPasses().count("rays"));
     EXPECT_FALSE(probe.lastPasses().count("walks"));

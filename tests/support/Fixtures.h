@@ -8,6 +8,7 @@
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/tracer/HeightBounds.h"
+#include "hfx/effects/tracer/TracePassTrial.h"
 
 #include <gtest/gtest.h>
 
@@ -75,6 +76,20 @@ std::vector<float> readPyramidLevel(const SurfaceTextures& textures, int level,
 std::vector<float> readFloats(ClContext& cl, const cl::Buffer& buffer, size_t count);
 /// All of a height source's heights, row 0 at v = 0.
 std::vector<float> readHeights(ClContext& cl, const HeightSource& source);
+
+/// How far a draw's hit may lie from the CPU's exact one, texels, where the test's rays cross the
+/// view at a slant: a GPU's rasteriser interpolates the fragments' inputs to its own rounding, and
+/// an exact walk carries it to the hit (an H200 put the triplanar box's hits up to 0.081 texels
+/// off, an orthographic plane's 0.006; llvmpipe, whose interpolation is the CPU's own arithmetic,
+/// 0.002). A hit from another pixel's ray or another projection lies a texel or more away.
+constexpr double kDrawHitTexels = 0.1;
+
+/// The pass hier walks in where TracePass::Auto has decided on this device, for tests that compare
+/// two draws of one renderer: the draw where GlWorkarounds::traceInDraw (a CPU rasteriser), else the
+/// compute pass. Auto's trial takes the two by turns on the first draws, and on a GPU they walk
+/// rays that differ by a rounding (its rasteriser's interpolation; the compute pass's map of the
+/// screen), enough to move a hit at a grazing angle: such a test names its pass.
+TracePass deviceTracePass();
 
 /// The message of the hfx::Error that `f` throws, or "(no error)".
 std::string messageOf(const std::function<void()>& f);

@@ -3,6 +3,7 @@
 #include "hfx/core/Bindings.h"
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
+#include "hfx/core/GlRenderer.h"
 #include "hfx/core/Mesh.h"
 #include "hfx/core/Source.h"
 #include "hfx/effects/SurfaceUniforms.h"
@@ -152,15 +153,20 @@ GlTime AccuracyProbe::timeTexelShadows(const AccuracyConfig& config, int repeats
 }
 
 /// The draw options of config: its beam start, its texel shadows (forced either way: the probe
-/// measures them where asked, not where they would pay).
+/// measures them where asked, not where they would pay), its pass (AccuracyConfig::tracePass: Auto
+/// is the device's side without TracePassTrial's turns, so that two measures compare the same walks).
 DrawOptions AccuracyProbe::drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput) const {
+    TracePass pass = config.tracePass;
+    if (pass == TracePass::Auto)
+        pass = config.deferShadowWalks || glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw
+                                                                                        : TracePass::Compute;
     return {.technique = technique,
             .traceOutput = traceOutput,
             .beamStart = config.beamStart,
             .texelShadows = config.texelShadows ? TexelShadowChoice::On : TexelShadowChoice::Off,
             .texelStride = config.texelStride,
             .deferShadowWalks = config.deferShadowWalks,
-            .tracePass = config.tracePass,
+            .tracePass = pass,
             .boundsLayout = layout_};
 }
 

@@ -69,7 +69,11 @@ struct AccuracyConfig {
     /// With texelShadows: the light walks they leave go to the pass after the draw
     /// (DrawOptions::deferShadowWalks; never where the draw writes its trace output).
     bool deferShadowWalks = false;
-    /// Where hier walks its rays (DrawOptions::tracePass): Auto, the device's choice.
+    /// Where hier walks its rays (DrawOptions::tracePass). Auto: the device's side, with no trial
+    /// (TracePassTrial takes the sides by turns on a renderer's first draws, and the two walk a
+    /// GPU's rays to different roundings: its rasteriser's interpolation, and the screen's map):
+    /// in the draw where GlWorkarounds::traceInDraw or deferShadowWalks (the draw's), else the
+    /// compute pass, what the trial keeps on a GPU. Every measure() of a probe then walks in one pass.
     TracePass tracePass = TracePass::Auto;
     /// measure()'s camera distance from the plane's centre, world units (the plane is 2 wide);
     /// 0: the default, 8, from where the whole plane is seen.
