@@ -378,7 +378,8 @@ int main(int argc, char** argv) {
                    "discrete GPU), gl-sharing (cl_khr_gl_sharing: the device copies into shared GL buffers; a GLX window "
                    "on NVIDIA), external-memory (the device copies into memory Vulkan allocates on GL's device and both "
                    "import: any GL context, EGL's included, with libvulkan.so.1) or auto (gl-sharing where the contexts "
-                   "share, pixel-buffer where the device shares host memory, else staged)")
+                   "share, pixel-buffer where the device shares host memory, else external-memory where offered, else "
+                   "staged)")
         ->check(CLI::IsMember({"auto", "map", "pixel-buffer", "staged", "gl-sharing", "external-memory"}))
         ->capture_default_str();
     app.add_option("--waves", s.waves, "water: fft (Tessendorf ocean) or sine (directional waves)")

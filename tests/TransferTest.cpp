@@ -136,8 +136,11 @@ TEST_F(Transfer, EveryPathDeliversTheSameTexturesInEveryFormat) {
 
 TEST_F(Transfer, AutoPicksTheFastestPathTheDeviceAllows) {
     const bool unified = cl().device().getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
-    EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Auto),
-              cl().sharesGl() ? TransferPath::GlSharing : unified ? TransferPath::PixelBuffer : TransferPath::Staged);
+    const bool external = transferPathRefusal(cl(), TransferPath::ExternalMemory).empty();
+    EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Auto), cl().sharesGl() ? TransferPath::GlSharing
+                                                            : unified      ? TransferPath::PixelBuffer
+                                                            : external     ? TransferPath::ExternalMemory
+                                                                           : TransferPath::Staged);
     EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Map), TransferPath::Map);
     EXPECT_EQ(chooseTransferPath(cl(), TransferPath::Staged), TransferPath::Staged);
     SineWavesEffect water(cl(), {.waves = {.size = 64}});

@@ -36,7 +36,12 @@ TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested) {
     const cl_bool unified = clGuard("asking the device about host memory", [&] {
         return cl.device().getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>();
     });
-    return unified ? TransferPath::PixelBuffer : TransferPath::Staged;
+    if (unified) return TransferPath::PixelBuffer;
+    // A discrete GPU: no host copy where GL, Vulkan and the device share memory. An H200 moved the
+    // water's texels 2.7-4.0x faster that way than staged at 1024² (float16 2.42 against 8.75 ms,
+    // float32 3.27 against 13.16) and 1.3-2.1x at 512².
+    return transferPathRefusal(cl, TransferPath::ExternalMemory).empty() ? TransferPath::ExternalMemory
+                                                                        : TransferPath::Staged;
 }
 
 std::vector<TransferPath> availableTransferPaths(const ClContext& cl) {

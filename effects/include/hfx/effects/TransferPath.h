@@ -15,8 +15,9 @@
 // - ExternalMemory: the device copies into memory that Vulkan allocates on GL's device and both
 //   GL and the device import (GL_EXT_memory_object_fd; cl_khr_external_memory_opaque_fd, which
 //   NVIDIA's recent OpenCL drivers list, or a CPU device over the memory's mapping); no host
-//   copy, for any GL context, EGL's included. Vulkan is loaded at run time (libvulkan.so.1). Not
-//   Auto's choice until a GPU has timed it against Staged.
+//   copy, for any GL context, EGL's included. Vulkan is loaded at run time (libvulkan.so.1). Auto's
+//   choice for a discrete GPU where it is offered: an H200 moved the water's texels 1.3-4.0x
+//   faster that way than Staged, in every format (docs/BENCHMARKS.md).
 // (StreamTransfer.h in effects/src holds the last three, ExternalMemory.h the allocator.)
 //
 // Thread: the thread whose GL context is current (chooseTransferPath and transferPathRefusal ask
@@ -31,7 +32,8 @@
 namespace hfx {
 
 enum class TransferPath {
-    Auto,        ///< GlSharing where the context shares GL, PixelBuffer where the device shares host memory, else Staged
+    Auto,        ///< GlSharing where the context shares GL, PixelBuffer where the device shares host memory,
+                 ///< else ExternalMemory where offered, else Staged
     Map,         ///< device buffer mapped, GL uploads from the mapping (client memory)
     PixelBuffer, ///< device writes a persistently mapped GL pixel buffer, GL uploads from it
     Staged,      ///< non-blocking read into pinned memory, copied into a fenced GL pixel-buffer ring
@@ -45,7 +47,8 @@ TransferPath parseTransferPath(std::string_view name);
 /// The path `requested` resolves to on this device: Auto picks GlSharing when the CL context
 /// shares the GL context (no host copy), else PixelBuffer when the device reports host-unified
 /// memory (CPU devices, integrated GPUs: the kernels' writes land in the GL buffer directly),
-/// else Staged (a discrete GPU: pinned memory at the bus's speed). Asking for GlSharing where the
+/// else (a discrete GPU) ExternalMemory where GL, Vulkan and the device can share memory (no host
+/// copy), else Staged (pinned memory at the bus's speed). Asking for GlSharing where the
 /// context shares none, or for ExternalMemory where the machine lacks a part of it, throws
 /// hfx::Error saying what is missing.
 TransferPath chooseTransferPath(const ClContext& cl, TransferPath requested);
