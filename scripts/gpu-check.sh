@@ -5,20 +5,22 @@
 #   bash scripts/bundle.sh .gpu-bundle                       # here
 #   bash scripts/gpu-check.sh .gpu-bundle "$OUT" [SECONDS]   # there (SECONDS: the budget, 540 by default)
 #
-# It prints the card and the driver, then runs, each step within its share of the budget and
-# its output kept in OUT: the CL tests on the GPU's OpenCL and on PoCL where it is installed, the
-# GL tests (the tracer's first; gl-tests-compute-pass: the few that hold the exact tracer's
-# compute passes, the walks, the texel shadows and the beam start, to the draw's hits, shadows,
-# colours and depths, and the GL state they leave), bench-tracers at 1280x720 (also
-# with llvmpipe's pyramid layout) and 3840x2160, the frame bench (water, decals, planet, the
-# transfer table) at both sizes, the decal wall and the planet at 1280x720 again with hier walking
-# in the draw (bench-720p has them where TracePass::Auto's trial put them: the wall table's last
-# column gives its medians of both passes), the texel shadows forced on and off where the
-# scenes' rule would choose otherwise, the hier scenes with float32 surfaces (float16, Auto's
-# choice on a GPU, in bench-720p), the external-memory transfer path's tests and table, the ringed
-# planet and the noise on the triplanar box at 1280x720, and a draw's issue time under both
-# GlStatePolicy values with the driver's threaded optimisation off and on. A step that runs out of
-# time is cut and says so; the rest go on.
+# It prints the card and the driver, then runs, each step within its share of the budget and its
+# output kept in OUT/steps.tgz (remade after every step: a lent machine's tool brings back a few
+# files, 8 on the H200's, and run 12 lost the tracer's tests to that; OUT/summary.txt beside it):
+# the CL tests on the GPU's OpenCL and on PoCL where it is installed, the GL tests (the tracer's
+# first; gl-tests-compute-pass: the few that hold the exact tracer's compute passes, the walks,
+# the texel shadows and the beam start, to the draw's hits, shadows, colours and depths, and the
+# GL state they leave), bench-tracers at 1280x720 (also with llvmpipe's pyramid layout) and
+# 3840x2160, the frame bench (water, decals, planet, the transfer table) at both sizes, the decal
+# wall and the planet at 1280x720 again with hier walking in the draw (bench-720p has them where
+# TracePass::Auto's trial put them: the wall table's last column gives its medians of both
+# passes), the texel shadows forced on and off where the scenes' rule would choose otherwise, the
+# hier scenes with float32 surfaces (float16, Auto's choice on a GPU, in bench-720p), the
+# external-memory transfer path's tests and table, the ringed planet and the noise on the
+# triplanar box at 1280x720, and a draw's issue time under both GlStatePolicy values with the
+# driver's threaded optimisation off and on. A step that runs out of time is cut and says so; the
+# rest go on.
 # HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
 # then shared among those.
 # Nothing here installs anything: the bundle carries what the binaries need
@@ -30,6 +32,7 @@ bundle=$(cd "${1:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}" && pwd)
 out=$(realpath -m "${2:?usage: gpu-check.sh BUNDLE OUT [SECONDS]}")
 budget=${3:-540}
 mkdir -p "$out"
+work=$(mktemp -d) # the steps' logs and tables, packed into $out/steps.tgz after each step
 start=$(date +%s)
 run=(bash "$bundle/run.sh")
 
@@ -60,13 +63,15 @@ step() {
         return
     fi
     echo "== $name (at most ${limit}s)"
-    local t0=$(date +%s)
-    timeout -k 5 "$limit" "$@" > "$out/$name.txt" 2>&1
+    local t0
+    t0=$(date +%s)
+    timeout -k 5 "$limit" "$@" > "$work/$name.txt" 2>&1
     local rc=$?
     local verdict="rc $rc"
     [ $rc -eq 124 ] && verdict="cut at ${limit}s"
     echo "== $name: $verdict in $(($(date +%s) - t0))s" | tee -a "$out/summary.txt"
-    tail -n 25 "$out/$name.txt"
+    tail -n 25 "$work/$name.txt"
+    tar -czf "$out/steps.tgz" -C "$work" .
 }
 
 {
@@ -87,12 +92,12 @@ step gl-tests-rest "${run[@]}" hfx-tests-gl --gtest_brief=1 --gtest_filter="-$tr
 # the CPU's picks on meshes against the GPU's trace output (19 s on llvmpipe, 2 cores: 52 tests).
 step gl-tests-compute-pass "${run[@]}" hfx-tests-gl --gtest_brief=1 \
     --gtest_filter='ExactTracerTest.*:ShadowMaps.*:DepthOutput.*:BeamStart.*:MotionOutput.*:DeferredOutputs.*:Triplanar.*:Sky.*:SkyModel.*:Picking.*:PickMesh.*:*TexelShadow*:GlState.*'
-step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$out/720p"
+step bench-tracers-720p "${run[@]}" hfx-demo bench-tracers --width 1280 --height 720 --out "$work/720p"
 # The same draws with llvmpipe's pyramid layout (GlWorkarounds::pyramidAtlas) on this GPU: what
 # the mip chain and the gather are worth here.
 step bench-tracers-720p-atlas env HFX_GL_WORKAROUNDS=pyramid-atlas=1 "${run[@]}" hfx-demo bench-tracers --width 1280 \
-    --height 720 --out "$out/720p-atlas"
-step bench-tracers-4k "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2160 --out "$out/4k"
+    --height 720 --out "$work/720p-atlas"
+step bench-tracers-4k "${run[@]}" hfx-demo bench-tracers --width 3840 --height 2160 --out "$work/4k"
 step bench-720p "${run[@]}" hfx-demo bench --bench-only water,decals,planet,transfer --width 1280 --height 720
 step bench-720p-in-draw "${run[@]}" hfx-demo bench --bench-only decals,planet --trace-pass draw --width 1280 --height 720
 step bench-4k "${run[@]}" hfx-demo bench --bench-only water,decals,planet --width 3840 --height 2160
@@ -110,7 +115,7 @@ step bench-720p-texels bash -c "bash '$bundle/run.sh' hfx-demo bench --bench-onl
 step bench-720p-float32 "${run[@]}" hfx-demo bench --bench-only decals,planet --surface-format float32 --width 1280 \
     --height 720
 # The external-memory transfer path (Vulkan allocates on GL's device, GL and the GPU's OpenCL
-# import it: no host copy for an EGL context), untried on a GPU: the transfer tests (it against
+# import it: no host copy for an EGL context; 1.3-4.0x staged's speed on an H200): the transfer tests (it against
 # every other path, bit for bit, or why it is not offered), then the water's transfer table, every
 # path and format (its rows: external-memory against staged).
 step transfer-external bash -c "bash '$bundle/run.sh' hfx-tests-gl --gtest_brief=1 --gtest_filter='Transfer.*' && \
@@ -130,7 +135,7 @@ step bench-draw-issue bash -c "for t in 0 1; do echo \"__GL_THREADED_OPTIMIZATIO
 # The planet's gas step on the GPU's OpenCL: its pressure solved exactly (FFTs and a tridiagonal
 # solve per wavenumber, one work-item walking each column's rows) against Jacobi's sweeps, on the
 # CPU device's 512x256 grid and the GPU's 1024x512 (on PoCL the exact solve costs less than 30
-# sweeps; on a GPU the column walks are a chain of dependent steps, untimed until this step).
+# sweeps; on an H200 the exact solve took 1.03x the sweeps' time).
 step bench-planet-gas env HFX_CL_PLATFORM=NVIDIA "${run[@]}" hfx-bench-kernels --benchmark_filter=BM_PlanetGas \
     --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 echo "== done in $(($(date +%s) - start))s of ${budget}s" | tee -a "$out/summary.txt"
