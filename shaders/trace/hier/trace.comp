@@ -58,14 +58,14 @@ bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
     const float z = dot(u_patchDepth, vec3(uv0, 1.0));
     // The quad's other pixel along the row and along the column (window coordinates pair them).
     const ivec2 other = ((pixel + u_traceOrigin) ^ 1) - u_traceOrigin;
-    const ivec2 sign = other - pixel; // +1 where the pixel is the quad's left (lower) one
+    const ivec2 toOther = other - pixel; // +1 where the pixel is the quad's left (lower) one
     vec2 uvAcross, uvUp;
     float wAcross, wUp;
     vec2 dx, dy;
     if (hfx_patch_point((vec2(other.x, pixel.y) + 0.5) * perPixel - 1.0, uvAcross, wAcross) &&
         hfx_patch_point((vec2(pixel.x, other.y) + 0.5) * perPixel - 1.0, uvUp, wUp)) {
-        dx = (uvAcross - uv0) * float(sign.x);
-        dy = (uvUp - uv0) * float(sign.y);
+        dx = (uvAcross - uv0) * float(toOther.x);
+        dy = (uvUp - uv0) * float(toOther.y);
     } else { // a neighbour behind the eye: the map's derivative at the pixel
         dx = (u_patchFromScreen[0].xy - uv0 * u_patchFromScreen[0].z) * (w * perPixel.x);
         dy = (u_patchFromScreen[1].xy - uv0 * u_patchFromScreen[1].z) * (w * perPixel.y);
