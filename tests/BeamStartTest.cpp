@@ -13,6 +13,7 @@
 #include "hfx/effects/ShadowMap.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/AccuracyProbe.h"
 
 #include <gtest/gtest.h>
 

@@ -11,6 +11,7 @@
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/tools/AccuracyProbe.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>

@@ -2,7 +2,6 @@
 
 #include "hfx/core/Error.h"
 #include "hfx/core/Gl.h"
-#include "hfx/core/GlRenderer.h"
 #include "hfx/effects/tracer/BoundsPass.h"
 
 #include <cstdio>
@@ -53,10 +52,6 @@ GlContext* acquireGl() {
 }
 } // namespace
 
-
-TracePass deviceTracePass() {
-    return glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw : TracePass::Compute;
-}
 
 std::string messageOf(const std::function<void()>& f) {
     try {

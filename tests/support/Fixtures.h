@@ -8,7 +8,6 @@
 #include "hfx/tools/ImageFiles.h"
 #include "hfx/core/SurfaceTextures.h"
 #include "hfx/effects/tracer/HeightBounds.h"
-#include "hfx/effects/tracer/TracePassTrial.h"
 
 #include <gtest/gtest.h>
 
@@ -83,13 +82,6 @@ std::vector<float> readHeights(ClContext& cl, const HeightSource& source);
 /// off, an orthographic plane's 0.006; llvmpipe, whose interpolation is the CPU's own arithmetic,
 /// 0.002). A hit from another pixel's ray or another projection lies a texel or more away.
 constexpr double kDrawHitTexels = 0.1;
-
-/// The pass hier walks in where TracePass::Auto has decided on this device, for tests that compare
-/// two draws of one renderer: the draw where GlWorkarounds::traceInDraw (a CPU rasteriser), else the
-/// compute pass. Auto's trial takes the two by turns on the first draws, and on a GPU they walk
-/// rays that differ by a rounding (its rasteriser's interpolation; the compute pass's map of the
-/// screen), enough to move a hit at a grazing angle: such a test names its pass.
-TracePass deviceTracePass();
 
 /// The message of the hfx::Error that `f` throws, or "(no error)".
 std::string messageOf(const std::function<void()>& f);

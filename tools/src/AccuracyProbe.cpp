@@ -121,7 +121,7 @@ AccuracyProbe::AccuracyProbe(ClContext& cl, std::vector<float> heights, int size
                                              // mip level 0 only: the figures speak of the search, not the filter
                                              {.mipmaps = false, .format = format})),
       plane_(makePlane({.size = kPlaneSize})), timedPlane_(makePlane({.size = kPlaneSize, .texcoordScale = 2.0f})),
-      layout_(resolvedLayout(layout)) {
+      layout_(resolvedLayout(layout)), devicePass_(deviceTracePass()) {
     surface_.run(field_.buffer());
 }
 
@@ -152,14 +152,16 @@ GlTime AccuracyProbe::timeTexelShadows(const AccuracyConfig& config, int repeats
     return median(times);
 }
 
+TracePass deviceTracePass() {
+    return glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw : TracePass::Compute;
+}
+
 /// The draw options of config: its beam start, its texel shadows (forced either way: the probe
 /// measures them where asked, not where they would pay), its pass (AccuracyConfig::tracePass: Auto
-/// is the device's side without TracePassTrial's turns, so that two measures compare the same walks).
+/// is deviceTracePass(), so that two measures compare the same walks).
 DrawOptions AccuracyProbe::drawOptions(Technique technique, const AccuracyConfig& config, bool traceOutput) const {
     TracePass pass = config.tracePass;
-    if (pass == TracePass::Auto)
-        pass = config.deferShadowWalks || glWorkarounds(currentGlRenderer()).traceInDraw ? TracePass::InDraw
-                                                                                        : TracePass::Compute;
+    if (pass == TracePass::Auto) pass = config.deferShadowWalks ? TracePass::InDraw : devicePass_;
     return {.technique = technique,
             .traceOutput = traceOutput,
             .beamStart = config.beamStart,

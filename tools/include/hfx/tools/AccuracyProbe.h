@@ -27,6 +27,14 @@
 
 namespace hfx {
 
+/// The pass hier walks in where TracePass::Auto has decided on this device (the current GL
+/// context's), with no trial: the draw where GlWorkarounds::traceInDraw (a CPU rasteriser), else the
+/// compute pass, what the trial keeps on a GPU. Auto's trial takes the two by turns on a renderer's
+/// first draws, and on a GPU they walk rays that differ by a rounding (its rasteriser's
+/// interpolation; the compute pass's map of the screen), enough to move a hit at a grazing angle:
+/// what compares two draws of one renderer (AccuracyProbe's Auto, the tests) names its pass.
+TracePass deviceTracePass();
+
 /// The accuracy renders' camera: looking at the origin from `angleDegrees` off +Y (the plane's
 /// normal), `distance` away, a narrow field of view.
 Camera accuracyCamera(double angleDegrees, float distance = 8.0f, float aspect = 1.0f);
@@ -69,11 +77,8 @@ struct AccuracyConfig {
     /// With texelShadows: the light walks they leave go to the pass after the draw
     /// (DrawOptions::deferShadowWalks; never where the draw writes its trace output).
     bool deferShadowWalks = false;
-    /// Where hier walks its rays (DrawOptions::tracePass). Auto: the device's side, with no trial
-    /// (TracePassTrial takes the sides by turns on a renderer's first draws, and the two walk a
-    /// GPU's rays to different roundings: its rasteriser's interpolation, and the screen's map):
-    /// in the draw where GlWorkarounds::traceInDraw or deferShadowWalks (the draw's), else the
-    /// compute pass, what the trial keeps on a GPU. Every measure() of a probe then walks in one pass.
+    /// Where hier walks its rays (DrawOptions::tracePass). Auto: deviceTracePass(), or the draw
+    /// with deferShadowWalks (the draw's): every measure() of a probe walks in one pass.
     TracePass tracePass = TracePass::Auto;
     /// measure()'s camera distance from the plane's centre, world units (the plane is 2 wide);
     /// 0: the default, 8, from where the whole plane is seen.
@@ -215,6 +220,7 @@ private:
     GlBuffer computeIn_, computeOut_, computeBlock_;
     std::map<std::tuple<Technique, bool, bool>, ShaderProgram> computePrograms_; ///< by technique, atlas, bounded search
     PyramidLayout layout_; ///< resolved
+    TracePass devicePass_; ///< deviceTracePass(), asked once: drawOptions runs inside the timed draws
     /// The texel-shadow pass's and the compute harness's bounds of the surface, made on first use
     /// (the renderer's tracer holds its own)
     HeightBounds& bounds();
