@@ -226,15 +226,17 @@ TEST_F(PlanetWeather, ASeededVortexIsStillThereAfterTwentyRotations) {
 
 TEST_F(PlanetWeather, AStormKeepsItsColourAndRidesTheWindAtItsCentre) {
     // A storm seeded in a band's middle on the planet's sphere (a 128x64 gas), read at rotations 3
-    // to 7: the gas's wind at its centre carries it (GasField::velocityAt, once a frame), so its
-    // vortex, held there, is where the planet says the storm is. The core of its spin (over half
-    // its strongest, within two storm lengths) is centred inside the hold's oval (rho < 1 in its
-    // semi-axes a and b), by the median of the five readings (measured: 0.76): the flow about it
-    // is chaotic, and one reading varies from rho 0.36 to 1.17 (a single reading at rotation 5,
-    // which this test once took, was as chance made it: on the flat gas the storm then had, 1.5
-    // cells off at rotation 5 but 3.3 to 4.8 at rotations 3, 4, 6 and 7). Its clouds keep its
-    // colour (the feed) within 0.15 (median 0.08) where, unheld and unfed, the shear and the dye's
-    // relaxation leave its band's (0.48 off).
+    // to 7. Each frame the gas's wind at its centre (GasField::velocityAt, read before the frame's
+    // steps) carries it along its band: u / metricAt(v) cells a second. Its clouds keep its colour
+    // (the feed) within 0.15 (median 0.08 on PoCL) where, unheld and unfed, the shear and the
+    // dye's relaxation leave its band's (0.48 off).
+    // This test once also asked that the core of the spin about the storm be centred inside its
+    // oval (rho < 1, median of the five readings: 0.76 on PoCL, 1.01 on an H200). That measure
+    // could not fail for a storm elsewhere: about points a quarter, a half and three quarters of
+    // the way round its latitude, where no storm is, it gave medians of 1.01, 0.81 and 0.77 on
+    // PoCL, the band's own eddies spinning there as hard (the oval's mean spin 0.86 an eighth of
+    // a turn west of the storm against 0.77 about it). That the held vortex stands out of its
+    // band is ASeededVortexIsStillThereAfterTwentyRotations's, and the hold's wind Gas's.
     constexpr int W = 128, H = 64;
     auto make = [&](float hold, float feed) {
         GasPlanetConfig config{.gas = {.width = W, .height = H, .sphere = true, .pressure = GasPressure::Jacobi,
@@ -256,45 +258,35 @@ TEST_F(PlanetWeather, AStormKeepsItsColourAndRidesTheWindAtItsCentre) {
         const GasPlanetEffect::Storm& storm = planet.storms().at(0);
         return std::abs(dye[size_t(storm.v * H) * W + size_t(storm.u * W)] - storm.colour);
     };
-    // Where the held storm's vortex is against where the planet has it, in the oval's rho.
-    auto offset = [&] {
-        std::vector<float> u, v, dye;
-        held->gas().readState(u, v, dye);
-        const std::vector<float>& table = held->gas().metricTable();
-        const GasPlanetEffect::Storm& storm = held->storms().at(0);
-        const int ci = int(storm.u * W), cj = int(storm.v * H), reach = int(2.0f * storm.radius * W);
-        // Its spin (clockwise: the negative curl) within two storm lengths; the vortex's core is
-        // where the spin is over half its strongest, and its centre that core's centroid.
-        std::vector<std::array<double, 3>> spins;
-        double strongest = 0.0;
-        for (int j = std::max(1, cj - reach); j <= std::min(H - 2, cj + reach); ++j)
-            for (int di = -reach; di <= reach; ++di) {
-                const double spin = -hfx_gas_curl(u.data(), v.data(), table.data(), W, H, ((ci + di) % W + W) % W, j);
-                spins.push_back({spin, double(di) + 0.5, double(j - cj) + 0.5});
-                strongest = std::max(strongest, spin);
-            }
-        double weight = 0.0, x = 0.0, y = 0.0;
-        for (const auto& [spin, dx, dy] : spins)
-            if (spin > 0.5 * strongest) weight += spin, x += spin * dx, y += spin * dy;
-        const double a = storm.radius * W, b = a / held->config().stormAspect;
-        return std::hypot((x / weight + ci - storm.u * W) / a, (y / weight + cj - storm.v * H) / b);
+    // One frame's move along the band against the wind at the storm's centre before it, in cells.
+    auto ride = [&](GasPlanetEffect& planet) {
+        const GasPlanetEffect::Storm before = planet.storms().at(0);
+        const glm::vec2 wind = planet.gas().velocityAt({{float(before.u), float(before.v)}}).at(0);
+        const double t0 = planet.time();
+        planet.update(1.0 / 30.0);
+        const GasPlanetEffect::Storm& after = planet.storms().at(0);
+        const double moved = std::remainder(after.u - before.u, 1.0) * W;
+        const double expected = double(wind.x) / planet.gas().metricAt(float(before.v)) * (planet.time() - t0);
+        EXPECT_EQ(after.v, before.v) << "a storm stays on its latitude";
+        return std::pair{moved, expected};
     };
-    std::vector<double> rho, heldErrors, looseErrors;
+    std::vector<double> heldErrors, looseErrors;
     for (int r = 3; r <= 7; ++r) {
         while (held->time() < r * rotation) held->update(1.0 / 30.0);
         while (loose->time() < r * rotation) loose->update(1.0 / 30.0);
-        rho.push_back(offset());
         heldErrors.push_back(colourError(*held));
         looseErrors.push_back(colourError(*loose));
-        std::printf("[storm] rotation %d: its vortex at rho %.2f from where the planet has it; its colour %.2f off "
-                    "held and fed, %.2f off without\n",
-                    r, rho.back(), heldErrors.back(), looseErrors.back());
+        const auto [moved, expected] = ride(*held);
+        std::printf("[storm] rotation %d: it moved %.4f cells in a frame, its centre's wind %.4f; its colour %.2f "
+                    "off held and fed, %.2f off without\n",
+                    r, moved, expected, heldErrors.back(), looseErrors.back());
+        EXPECT_GT(std::abs(expected), 0.01) << "rotation " << r << ": the test's premise, a wind at the storm";
+        EXPECT_NEAR(moved, expected, 1e-3 * std::abs(expected) + 1e-5) << "rotation " << r;
     }
     auto median = [](std::vector<double> x) {
         std::nth_element(x.begin(), x.begin() + 2, x.end());
         return x[2];
     };
-    EXPECT_LT(median(rho), 1.0) << "the storm's vortex is not where the planet says the storm is";
     EXPECT_LT(median(heldErrors), 0.15) << "the storm lost its colour";
     EXPECT_GT(median(looseErrors), 0.2) << "unfed, the storm kept its colour (the test's premise)";
     // Bad storm settings are refused by name.
