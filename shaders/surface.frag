@@ -741,7 +741,12 @@ void main() {
     }
     s.normal.xyz = normalize(s.normal.xyz);
 #else
-    const HfxShaded s = hfx_surface(HfxFrame(v_texcoord, dFdx(v_texcoord), dFdy(v_texcoord), v_tangent, v_bitangent));
+    // The fine differences, each along the pixel's own row and column of its quad, as the compute
+    // pass takes them from the screen (trace.comp): dFdx leaves fine or coarse to the driver, and
+    // a coarse one would move the level of detail and a pixel budget's tolerance off the pass's.
+    // (llvmpipe's dFdx is fine: the same frames to the byte.)
+    const HfxShaded s =
+        hfx_surface(HfxFrame(v_texcoord, dFdxFine(v_texcoord), dFdyFine(v_texcoord), v_tangent, v_bitangent));
 #endif
 #if HFX_COMPUTE_TRACE == 1
     return; // the rays draw stored its ray

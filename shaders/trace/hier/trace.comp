@@ -44,9 +44,9 @@ uniform vec2 u_patchLight;
 // hfx_traceInfo's, the mark and the level-of-detail blend included) and true; or, where it is seen
 // from below or past the level-of-detail threshold, the slot marked normal mapped, and false. The
 // texcoords' derivatives are the draw's: the differences across the pixel's 2x2 quad of the window,
-// along its row and its column (dFdx and dFdy; PixelNeighbours), not the map's derivative at the
-// pixel, which differs from them by the map's curvature: enough to move the level-of-detail fade
-// and a pixel budget's tolerance, and so the hits (Picking's fade, on llvmpipe: 8589 of 24590
+// along its row and its column (dFdxFine and dFdyFine; PixelNeighbours), not the map's derivative
+// at the pixel, which differs from them by the map's curvature: enough to move the level-of-detail
+// fade and a pixel budget's tolerance, and so the hits (Picking's fade, on llvmpipe: 8589 of 24590
 // pixels up to 0.24 texels apart).
 bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
     ray = vec4(0.0);
