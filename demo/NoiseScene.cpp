@@ -20,19 +20,53 @@ namespace {
 /// The plane the surface repeats on, twice each way.
 constexpr PlaneConfig kPlane{.size = 4.0f, .texcoordScale = 2.0f, .subdivisions = 1};
 
-/// A box with rounded edges, 2.4 across: the superellipsoid |x|^4 + |y|^4 + |z|^4 = r^4 on a
-/// sphere's grid, its normals the surface's. Its texcoords and tangents stay the sphere's (a
-/// triplanar mapping reads neither).
+/// A box with rounded edges, 2.4 across: a 1.6 box grown by 0.4 every way (its faces flat, its
+/// edges quarter cylinders, its corners eighths of a sphere), each vertex where the grown box's
+/// normal is a sphere grid's direction. Each quarter turn of longitude and each hemisphere has
+/// its own corner, so a grid line where they meet is there twice, once on either side, and the
+/// quads between the copies are the flat faces and the edges; two triangles cap the top and the
+/// bottom. So it is convex (Mesh::convex) and closed, which the mapping's walks in a compute pass
+/// ask for. Its texcoords and tangents are the sphere's (a triplanar mapping reads neither).
 MeshData roundedBox() {
-    constexpr float r = 1.2f;
-    MeshData mesh = makeSphere({.radius = 1.0f, .segments = 96, .rings = 64});
-    for (Vertex& v : mesh.vertices) {
-        const glm::vec3 d = v.normal, d4 = d * d * d * d;
-        const glm::vec3 p = d * (r / std::pow(d4.x + d4.y + d4.z, 0.25f));
-        v.position = p;
-        v.normal = glm::normalize(p * p * p);
+    constexpr double half = 0.8, radius = 0.4, pi = 3.14159265358979323846;
+    constexpr int quarter = 24, hemisphere = 16; // a corner's grid: its steps in longitude, in latitude
+    constexpr int columns = 4 * (quarter + 1), rows = 2 * (hemisphere + 1);
+    MeshData mesh;
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            const int q = i / (quarter + 1), h = j / (hemisphere + 1);
+            const double lon = 0.5 * pi * (q + double(i % (quarter + 1)) / quarter);
+            const double lat = 0.5 * pi * (h - 1 + double(j % (hemisphere + 1)) / hemisphere);
+            const double cl = std::cos(lat), sl = std::sin(lat), co = std::cos(lon), so = std::sin(lon);
+            const glm::dvec3 d(cl * co, sl, -cl * so);
+            // The quarter's corner: x's sign is cos(lon)'s over the quarter, z's -sin(lon)'s.
+            const glm::dvec3 corner(q == 0 || q == 3 ? half : -half, h == 1 ? half : -half, q < 2 ? -half : half);
+            Vertex v;
+            v.position = glm::vec3(corner + radius * d);
+            v.normal = glm::vec3(d);
+            v.tangent = glm::vec3(glm::dvec3(-cl * so, 0.0, -cl * co) * (2.0 * pi));
+            v.bitangent = glm::vec3(glm::dvec3(-sl * co, cl, sl * so) * pi);
+            v.texcoord = {float(double(i) / (columns - 1)), float(double(j) / (rows - 1))};
+            mesh.vertices.push_back(v);
+        }
+    // Counter-clockwise seen from outside, as makeSphere's (longitude grows along a row, latitude
+    // up the rows); the last column meets the first.
+    for (int j = 0; j + 1 < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            const uint32_t a = uint32_t(j * columns + i), b = uint32_t(j * columns + (i + 1) % columns);
+            const uint32_t c = a + columns, d = b + columns;
+            mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+        }
+    // The caps: each pole's row holds the four corners of a flat face, a quarter's first column.
+    for (const int j : {0, rows - 1}) {
+        const auto corner = [&](int q) { return uint32_t(j * columns + q * (quarter + 1)); };
+        if (j == 0)
+            mesh.indices.insert(mesh.indices.end(), {corner(0), corner(2), corner(1), corner(0), corner(3), corner(2)});
+        else
+            mesh.indices.insert(mesh.indices.end(), {corner(0), corner(1), corner(2), corner(0), corner(2), corner(3)});
     }
-    mesh.convex = false; // (the grid's diagonals on its flattish sides need not bound a convex solid)
+    mesh.convex = true;
+    mesh.closed = true;
     return mesh;
 }
 

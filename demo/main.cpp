@@ -528,16 +528,13 @@ int main(int argc, char** argv) {
             o.cameraPath = CameraPath::load(cameraPath);
         }
         if (isSceneName(o.scene)) refuseOtherScenesOptions(app, o.scene, o.cameraPath);
-        // The triplanar box's hier walks in the draw: what follows a flat patch's texcoords is
-        // refused by name rather than left undone.
+        // The triplanar box is no flat patch: what follows a flat patch's light is refused by
+        // name rather than left undone.
         if (s.triplanar > 0.0f)
             for (const std::string& asked : o.hierOptions)
-                if (asked == "--texel-shadows" || asked == "--defer-shadow-walks" ||
-                    (asked == "--trace-pass" && o.tracePass == "compute"))
-                    throw Error(str(asked, asked == "--trace-pass" ? " compute" : "",
-                                    " is for the plane: --triplanar's box walks hier in the draw (the texel shadows, the "
-                                    "deferred walks and the compute pass follow a flat patch's or a convex mesh's "
-                                    "texcoords)"));
+                if (asked == "--texel-shadows" || asked == "--defer-shadow-walks")
+                    throw Error(str(asked, " is for the plane: --triplanar's box is no flat patch (the texel shadows "
+                                           "and the deferred walks follow a flat patch's light)"));
         // The pillar is no flat patch either: the texel shadows and the deferred walks follow a
         // flat patch's light, and would be left undone without a word.
         if (s.pillar)

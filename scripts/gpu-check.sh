@@ -18,7 +18,7 @@
 # passes), the texel shadows forced on and off where the scenes' rule would choose otherwise, the
 # hier scenes with float32 surfaces (float16, Auto's choice on a GPU, in bench-720p), the
 # external-memory transfer path's tests and table, the ringed planet and the noise on the
-# triplanar box at 1280x720, and a draw's issue time under both GlStatePolicy values with the
+# triplanar box at 1280x720 (the box's hier where Auto puts it and in the draw), and a draw's issue time under both GlStatePolicy values with the
 # driver's threaded optimisation off and on. A step that runs out of time is cut and says so; the
 # rest go on.
 # HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
@@ -40,6 +40,7 @@ run=(bash "$bundle/run.sh")
 declare -A shares=([cl-tests-gpu]=12 [cl-tests-pocl]=8 [gl-tests-tracer]=16 [gl-tests-rest]=10
                    [gl-tests-compute-pass]=4 [bench-tracers-720p]=12 [bench-tracers-720p-atlas]=10 [bench-tracers-4k]=12 [bench-720p]=18
                    [bench-720p-in-draw]=8 [bench-4k]=14 [bench-planet-rings]=8 [bench-triplanar-720p]=6
+                   [bench-triplanar-720p-in-draw]=6
                    [bench-draw-issue]=3 [bench-planet-gas]=6 [bench-720p-texels]=8 [bench-720p-float32]=8
                    [transfer-external]=8)
 # By default every step but gl-tests-compute-pass, which gl-tests-rest holds.
@@ -124,8 +125,11 @@ step transfer-external bash -c "bash '$bundle/run.sh' hfx-tests-gl --gtest_brief
 step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1 --camera-distance 5 --width 1280 --height 720
 # The noise on a rounded box through the triplanar mapping: what its loop over a pixel's projections
 # costs a warp (its POM / NM beside the plane's in bench-720p's tables; on llvmpipe 1.6-1.9x the
-# box's own texcoords, docs/BENCHMARKS.md).
+# box's own texcoords, docs/BENCHMARKS.md), hier where TracePass::Auto's trial puts it (the box is
+# convex: each projection may walk in the compute pass), then walking in the draw.
 step bench-triplanar-720p "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 --height 720
+step bench-triplanar-720p-in-draw "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 --height 720 \
+    --trace-pass draw
 # The host's time to issue a POM draw restoring the caller's GL state (about 120 queries) and under
 # GlStatePolicy::Defaults (none), with NVIDIA's threaded optimisation off and on: on, each query
 # waits for the driver's thread (docs/BENCHMARKS.md).

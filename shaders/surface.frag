@@ -103,8 +103,8 @@
 #ifndef HFX_TRIPLANAR
 #define HFX_TRIPLANAR 0
 #endif
-#if HFX_TRIPLANAR && (HFX_COMPUTE_TRACE || HFX_TEXEL_SHADOWS || HFX_BEAM_START || HFX_LAYERS > 1)
-#error "HFX_TRIPLANAR traces each projection in the draw: not with the compute pass, the texel shadows, the beam start or layers"
+#if HFX_TRIPLANAR && (HFX_TEXEL_SHADOWS || HFX_BEAM_START || HFX_LAYERS > 1)
+#error "HFX_TRIPLANAR traces each projection in its own frame: not with the texel shadows, the beam start or layers"
 #endif
 #if HFX_COMPUTE_TRACE && (HFX_DEFERRED_SHADOWS || !HFX_TRACES)
 #error "HFX_COMPUTE_TRACE walks the view rays in a compute pass: not with HFX_DEFERRED_SHADOWS, only for a tracer"
@@ -284,6 +284,7 @@ struct HfxFrame {
     vec2 uv0;                // the texcoords at the polygon
     vec2 dx, dy;             // their derivatives across the screen, per pixel
     vec3 tangent, bitangent; // dP/du, dP/dv, world space
+    int plane;               // the compute pass's plane of slots: a triplanar projection's axis, else 0
 };
 
 #if HFX_TRIPLANAR
@@ -306,6 +307,7 @@ HfxFrame hfx_projected_frame(int axis, vec3 n, vec3 dpdx, vec3 dpdy) {
     const mat3 model = mat3(u_model);
     f.tangent = model * (eu - dot(n, eu) / n[axis] * ea) / u_triplanarScale;
     f.bitangent = model * (ev - dot(n, ev) / n[axis] * ea) / u_triplanarScale;
+    f.plane = axis;
     return f;
 }
 #endif
@@ -378,7 +380,7 @@ HfxShaded hfx_surface(HfxFrame f) {
     vec2 uv = uv0;
     float depthFraction = 0.0; // of u_depthScale, along the view ray, at the hit
 #if HFX_COMPUTE_TRACE
-    const int slot = hfx_trace_slot(ivec2(gl_FragCoord.xy));
+    const int slot = hfx_trace_slot(ivec2(gl_FragCoord.xy), f.plane);
 #endif
 #if HFX_COMPUTE_TRACE == 1
     uvec2 traceInfo = uvec2(0u, hfx_trace_mark(false)); // normal mapped, unless traced below
@@ -452,12 +454,12 @@ HfxShaded hfx_surface(HfxFrame f) {
 #if HFX_COMPUTE_TRACE == 1
     hfx_traceInfo[slot] = traceInfo;
     return s; // the walks pass takes it from here
-#elif HFX_COMPUTE_TRACE == 2
+#elif HFX_COMPUTE_TRACE == 2 && !HFX_TRIPLANAR
     // A helper lane past the mesh's edge has no slot. The hits' spread below (the shading's level)
     // needs its hit: its own ray at the depth of a quad neighbour that has one, across, else
     // above or below (a lane of a 2x2 quad at even window coordinates finds its neighbour's value
     // from the difference and which side it is on). Walking it here would cost this program the
-    // walk's registers.
+    // walk's registers. (A triplanar projection's spread is its entry's: its lane needs none.)
     const float known = computed != 0u ? 1.0 : 0.0, knownDepth = known * depthFraction;
     const bool left = (int(gl_FragCoord.x) & 1) == 0, below = (int(gl_FragCoord.y) & 1) == 0;
     const vec2 acrossKnown = vec2(dFdxFine(known), dFdxFine(knownDepth)) * (left ? 1.0 : -1.0);
@@ -746,7 +748,7 @@ void main() {
     // a coarse one would move the level of detail and a pixel budget's tolerance off the pass's.
     // (llvmpipe's dFdx is fine: the same frames to the byte.)
     const HfxShaded s =
-        hfx_surface(HfxFrame(v_texcoord, dFdxFine(v_texcoord), dFdyFine(v_texcoord), v_tangent, v_bitangent));
+        hfx_surface(HfxFrame(v_texcoord, dFdxFine(v_texcoord), dFdyFine(v_texcoord), v_tangent, v_bitangent, 0));
 #endif
 #if HFX_COMPUTE_TRACE == 1
     return; // the rays draw stored its ray

@@ -425,6 +425,7 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
         Camera camera;
         float depthScale, fade, sharpness;
         size_t leastTraced; // pixels
+        float triplanar = 0.0f; // its scale; 0: the mesh's texcoords
     };
     // (A sharpness of 1 has no flat patch's light either: flatSurfaceLight gives none at or below 1.)
     const Case cases[] = {{"sphere, the planet's fade", &sphere, view(2.4f, 0.4f, 0.3f), 0.02f, 0.25f, 2.0f, 8000},
@@ -436,11 +437,16 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
                           // normal mapped, and none discarded where the near plane cuts it.)
                           {"plane, seen from below", &plane, view(1.6f, 0.3f, -0.5f), 0.1f, 0.0f, 2.0f, 0},
                           {"plane, cut by the near plane", &plane, view(0.6f, 0.3f, 0.35f, 0.4f), 0.1f, 0.0f, 2.0f,
-                           W * H / 4}};
+                           W * H / 4},
+                          // (Each projection it weighs walks in its own plane of slots.)
+                          {"sphere, a triplanar mapping", &sphere, view(2.4f, 0.4f, 0.3f), 0.04f, 0.0f, 2.0f, 8000, 1.5f},
+                          {"sphere, a triplanar mapping and a fade", &sphere, view(2.4f, -1.1f, 0.5f), 0.04f, 0.25f, 2.0f,
+                           8000, 1.5f}};
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
         SurfaceMaterial material{.depthScale = c.depthScale, .lodThreshold = 100.0f, .silhouetteFade = c.fade};
         material.shadowSharpness = c.sharpness;
+        if (c.triplanar > 0.0f) material.triplanar = {.scale = c.triplanar, .sharpness = 2.0f};
         SurfaceRenderer renderer;
         auto draw = [&](TracePass pass) {
             target.bind();
@@ -454,6 +460,9 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
             EXPECT_EQ(renderer.tracer().last().patchRays, patchRays);
             EXPECT_EQ(renderer.tracer().last().traceLights, pass == TracePass::Compute && !patchRays)
                 << "the light is the pixel's here";
+            if (pass == TracePass::Compute) {
+                EXPECT_EQ(renderer.tracer().last().tracePlanes, c.triplanar > 0.0f ? 3 : 1);
+            }
             return std::pair(target.readTrace(), target.readColor());
         };
         const auto [walkedTrace, walkedColor] = draw(TracePass::InDraw);

@@ -232,14 +232,17 @@ TEST_F(Triplanar, AFaceBetweenTwoAxesBlendsTheirProjectionsByWeight) {
 
 // A triplanar caster writes the depth its projection traces along the light's rays: on a face
 // towards +y, that of makePlane's texcoords (the same projection, a whole repeat apart), whatever
-// texcoords the face's mesh carries.
+// texcoords the face's mesh carries; walking in the draw and in the compute pass (a convex mesh:
+// the face lies in one plane), where each projection walks in its own plane of slots.
 TEST_F(Triplanar, ACasterWritesTheDepthItsProjectionTraces) {
     constexpr int size = 128;
     constexpr float depthScale = 0.12f;
     const SineRelief relief(kField, depthScale);
     const Mesh plane(makePlane({.size = 2.0f, .texcoordScale = 2.0f, .subdivisions = 4}));
     // The same square, whose own texcoords the mapping must not read.
-    const Mesh face(square({0, 1, 0}, {1, 0, 0}, [](glm::dvec3) { return projection(2, {0, 0, 1}); }, 0.7));
+    MeshData faceData = square({0, 1, 0}, {1, 0, 0}, [](glm::dvec3) { return projection(2, {0, 0, 1}); }, 0.7);
+    faceData.convex = true;
+    const Mesh face(faceData);
     const SurfaceMaterial planar{.depthScale = depthScale, .lodThreshold = 100.0f};
     SurfaceMaterial triplanar = planar;
     triplanar.triplanar = {.scale = 1.0f};
@@ -247,37 +250,41 @@ TEST_F(Triplanar, ACasterWritesTheDepthItsProjectionTraces) {
                                                   glm::ortho(-1.8f, 1.8f, -1.8f, 1.8f, 0.5f, 6.0f));
     RenderTarget target(size, size);
     SurfaceRenderer renderer;
-    const auto depthOf = [&](const Mesh& mesh, const SurfaceMaterial& material) {
+    const auto depthOf = [&](const Mesh& mesh, const SurfaceMaterial& material, TracePass pass) {
         target.bind();
         target.clear();
-        // (In the draw, where the triplanar caster walks: on a GPU the plane's compute pass finds its
-        // rays from the screen, to another rounding.)
         renderer.drawShadow(mesh, glm::mat4(1.0f), relief.textures, material, lightView,
-                            {.technique = Technique::Hierarchical, .tracePass = TracePass::InDraw});
+                            {.technique = Technique::Hierarchical, .tracePass = pass});
+        EXPECT_EQ(renderer.tracer().lastCaster().computeTrace, pass == TracePass::Compute);
         return target.readDepth();
     };
-    const std::vector<float> expected = depthOf(plane, planar), actual = depthOf(face, triplanar);
+    // (The plane in the draw, as the triplanar caster's rays are its rasteriser's: on a GPU the
+    // plane's compute pass finds its rays from the screen, to another rounding.)
+    const std::vector<float> expected = depthOf(plane, planar, TracePass::InDraw);
     const std::vector<float> flat = [&] {
         target.bind();
         target.clear();
         renderer.drawFlatShadow(plane, glm::mat4(1.0f), lightView);
         return target.readDepth();
     }();
-    size_t covered = 0, off = 0, below = 0;
-    float worst = 0.0f;
-    for (size_t i = 0; i < expected.size(); ++i) {
-        if (!(expected[i] < 1.0f)) continue;
-        ++covered;
-        worst = std::max(worst, std::abs(actual[i] - expected[i]));
-        off += std::abs(actual[i] - expected[i]) > 1e-5f;
-        below += expected[i] > flat[i] + 1e-4f;
+    for (const TracePass pass : {TracePass::InDraw, TracePass::Compute}) {
+        const std::vector<float> actual = depthOf(face, triplanar, pass);
+        size_t covered = 0, off = 0, below = 0;
+        float worst = 0.0f;
+        for (size_t i = 0; i < expected.size(); ++i) {
+            if (!(expected[i] < 1.0f)) continue;
+            ++covered;
+            worst = std::max(worst, std::abs(actual[i] - expected[i]));
+            off += std::abs(actual[i] - expected[i]) > 1e-5f;
+            below += expected[i] > flat[i] + 1e-4f;
+        }
+        std::printf("[caster, %s] %zu texels, %zu below the polygon, %zu off the planar caster's depth by more than "
+                    "1e-5 (%.2g at most)\n",
+                    pass == TracePass::Compute ? "a compute pass" : "the draw", covered, below, off, double(worst));
+        ASSERT_GT(covered, size_t(size * size / 4));
+        ASSERT_GT(below, covered / 2); // (or a caster writing the polygon's depth would pass)
+        EXPECT_LE(off, covered / 1000);
     }
-    std::printf("[caster] %zu texels, %zu below the polygon, %zu off the planar caster's depth by more than 1e-5 (%.2g "
-                "at most)\n",
-                covered, below, off, double(worst));
-    ASSERT_GT(covered, size_t(size * size / 4));
-    ASSERT_GT(below, covered / 2); // (or a caster writing the polygon's depth would pass)
-    EXPECT_LE(off, covered / 1000);
 }
 
 TEST_F(Triplanar, BadMappingsAreRefusedByNameAndDrawNothing) {

@@ -233,10 +233,9 @@ const ShaderProgram& SurfaceRenderer::program(const DrawOptions& options, const 
     v.texelShadows = v.texelShadows && !v.caster && v.selfShadows && v.layers == 1 &&
                      options.technique == Technique::Hierarchical;
     v.beamStart = v.beamStart && v.layers == 1 && options.technique == Technique::Hierarchical;
-    if (v.triplanar) { // (each projection is walked in the draw)
+    if (v.triplanar) { // (no flat patch: each projection is walked in the draw or the compute pass)
         if (v.layers != 1) throw Error(str("SurfaceVariant.triplanar takes one layer, got ", v.layers));
         v.texelShadows = v.beamStart = false;
-        v.computeTrace = 0;
     }
     v.deferredShadows = v.deferredShadows && v.texelShadows && !options.traceOutput;
     v.traceLights = v.traceLights && v.computeTrace == 1 && v.selfShadows; // only the rays draw stores them

@@ -71,10 +71,10 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
     // side are timed for it).
     const bool inDrawOnly = options.tracePass == TracePass::InDraw ||
                             (options.tracePass == TracePass::Auto && workarounds().traceInDraw);
-    // (A triplanar mapping's projections are walked in the draw.)
+    // (A triplanar mapping's projections each walk their own ray: three planes of slots.)
     const bool triplanar = material.triplanar.on();
     bool computable = false;
-    if (!inDrawOnly && !triplanar && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
+    if (!inDrawOnly && mesh.convex() && layers.size() == 1 && material.depthScale > 0.0f &&
         !glIsEnabled(GL_STENCIL_TEST)) {
         GLint samples = 0;
         glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
@@ -129,7 +129,8 @@ TracerFrame ExactTracer::prepare(std::span<const SurfaceLayer> layers, const Mes
             if (uniformLight) patchRays_.light = patchLight->uvPerClimb;
         }
         frame.traceLights = !frame.patchRays && !uniformLight && material.shadows && !caster;
-        prepareComputeTrace(viewport, frame.traceLights, u);
+        frame.tracePlanes = triplanar ? 3 : 1;
+        prepareComputeTrace(viewport, frame.tracePlanes, frame.traceLights, u);
     }
 
     // The beam start holds only where a block's rays meet one plane in one frame at one depth:
@@ -399,8 +400,8 @@ const GlWorkarounds& ExactTracer::workarounds() {
     return *workarounds_;
 }
 
-void ExactTracer::prepareComputeTrace(const Viewport& viewport, bool lights, SurfaceUniforms& u) {
-    const int slots = std::max(viewport[2], 1) * std::max(viewport[3], 1);
+void ExactTracer::prepareComputeTrace(const Viewport& viewport, int planes, bool lights, SurfaceUniforms& u) {
+    const int slots = std::max(viewport[2], 1) * std::max(viewport[3], 1) * planes;
     // The last computed draw's shading draw reads its slots before this one's rays draw writes them.
     if (traceRays_) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // A stamp per draw tells a slot this draw's rays draw wrote from another's (a helper lane past
@@ -425,6 +426,7 @@ void ExactTracer::prepareComputeTrace(const Viewport& viewport, bool lights, Sur
     ++traceStamp_;
     traceWidth_ = std::max(viewport[2], 1);
     traceHeight_ = std::max(viewport[3], 1);
+    tracePlanes_ = planes;
     u.traceWidth = traceWidth_;
     u.traceStamp = traceStamp_;
     u.traceOrigin = {viewport[0], viewport[1]};
@@ -499,7 +501,8 @@ void ExactTracer::walks(const TracerFrame& frame) {
         walk.set("u_patchWalksLight", r.walksLight ? 1 : 0);
         walk.set("u_patchLight", r.light.value_or(glm::vec2(0.0f)));
     }
-    walk.dispatchOver(traceWidth_, traceHeight_);
+    walk.set("u_tracePlanes", tracePlanes_);
+    walk.dispatchOver(traceWidth_, traceHeight_ * tracePlanes_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -1,6 +1,6 @@
 #version 450 core
-// The exact tracer's walks (trace/hier/trace.glsl, hfx::ExactTracer): a lane per pixel of the
-// viewport in groups of 8x8 pixels, where the rays draw stored this draw's ray or, on a flat patch
+// The exact tracer's walks (trace/hier/trace.glsl, hfx::ExactTracer): a lane per slot (a pixel of
+// the viewport in each plane) in groups of 8x8 slots, where the rays draw stored this draw's ray or, on a flat patch
 // (HFX_TRACE_PATCH), where the pixel's ray meets the patch (hfx_patch_ray, below: no rays draw):
 // its view walk (hfx_trace, from the beam start's depth where HFX_BEAM_START), then, where its
 // light ray is to be walked, that walk as the draw would make it (hfx_surface_shadow: the texel
@@ -93,9 +93,14 @@ bool hfx_patch_ray(ivec2 pixel, int slot, out vec4 ray, out uvec2 info) {
 }
 #endif
 
+// The planes of slots: a triplanar mapping's three (its projections' rays), else one. Past the
+// first, a pixel's row is its row in the plane (only the first plane reads the beam start or a
+// flat patch's rays, which a triplanar mapping has not).
+uniform int u_tracePlanes;
+
 void main() {
     const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, ivec2(u_traceWidth, u_traceHeight)))) return;
+    if (pixel.x >= u_traceWidth || pixel.y >= u_traceHeight * u_tracePlanes) return;
     const int slot = pixel.y * u_traceWidth + pixel.x;
 #if HFX_TRACE_PATCH
     vec4 stored;

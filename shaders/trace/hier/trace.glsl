@@ -25,8 +25,11 @@
 // a sphere): its front faces do not overlap on the screen. Only front faces store a ray; a back
 // face's fragment (hidden behind a front face, or seen from inside) is normal mapped, as the
 // draw's own test (the view below the polygon) has it.
+// A triplanar mapping walks a ray for each projection the pixel weighs: each has its own plane
+// of slots (its axis), and the walks pass a lane per slot of every plane.
 //
-// The buffers, a slot per pixel of the viewport, (y - y0) * u_traceWidth + x - x0:
+// The buffers, a slot per pixel of the viewport in each plane (one, or a triplanar mapping's
+// three), ((plane * u_traceHeight) + y - y0) * u_traceWidth + x - x0:
 //   hfx_traceRays   rays: (the ray's uv, its parallax); walks: (the hit's uv, depth fraction, the
 //                   self-shadow before the caller's fade, or -1 where no light ray is walked)
 //   hfx_traceInfo   x: rays: the ray's tolerance (its float's bits), the sign bit set where the
@@ -52,6 +55,8 @@ layout(std430, binding = HFX_BUFFER_TRACE_LIGHTS) HFX_TRACE_ACCESS buffer HfxTra
 // hfx_traceInfo's x: the tolerance's bits, its sign bit where the light ray is walked.
 const uint HFX_TRACE_WALKS_LIGHT = 0x80000000u;
 
-int hfx_trace_slot(ivec2 window) { return (window.y - u_traceOrigin.y) * u_traceWidth + window.x - u_traceOrigin.x; }
+int hfx_trace_slot(ivec2 window, int plane) {
+    return (plane * u_traceHeight + window.y - u_traceOrigin.y) * u_traceWidth + window.x - u_traceOrigin.x;
+}
 // A slot's mark for this draw (u_traceStamp: 1 to 32767): its stamp and whether its ray is traced.
 uint hfx_trace_mark(bool traced) { return (u_traceStamp * 2u + uint(traced)) << 16; }

@@ -405,8 +405,8 @@ struct SurfaceVariant {
     /// HFX_NORMAL_OUTPUT, HFX_ALBEDO_OUTPUT, HFX_MATERIAL_OUTPUT, HFX_EMISSION_OUTPUT: the draw
     /// buffers a deferred engine reads (SurfaceRenderer::setSurfaceOutputs)
     SurfaceOutputs outputs;
-    /// HFX_TRIPLANAR: SurfaceMaterial::triplanar is on (not with the compute pass, texel shadows,
-    /// beam start or layers)
+    /// HFX_TRIPLANAR: SurfaceMaterial::triplanar is on (not with texel shadows, beam start or
+    /// layers; in the compute pass each projection walks in its own plane of slots)
     bool triplanar = false;
     auto operator<=>(const SurfaceVariant&) const = default;
 };

@@ -93,6 +93,9 @@ struct TracerFrame {
     /// a rasteriser interpolates them), and there is no rays draw. On a GPU that draws with a few
     /// of its cores a fragment pass has a cost no shader saving removes (docs/DESIGN.md).
     bool patchRays = false;
+    /// With computeTrace: the planes of slots, a pixel's ray in each (trace/hier/trace.glsl): a
+    /// triplanar mapping's three (each projection it weighs walks its own), else one.
+    int tracePlanes = 1;
     /// One of TracePass::Auto's trial draws (TracePassTrial): prepare() began timing its passes
     /// (after its own), finish() ends it.
     bool timed = false;
@@ -182,7 +185,7 @@ private:
     void walkDeferred(const TracerFrame& frame);
     /// Sizes the computed walks' buffers for the viewport (the lights' where `lights`), stamps
     /// this draw, binds them and fills the uniform block's trace fields.
-    void prepareComputeTrace(const Viewport& viewport, bool lights, SurfaceUniforms& u);
+    void prepareComputeTrace(const Viewport& viewport, int planes, bool lights, SurfaceUniforms& u);
     /// Whether this context's vertex stage can read the deferred rays' buffer (GL 4.5 does not
     /// promise it; the compute stage that walks them has storage buffers and images).
     bool vertexStageReadsBuffer();
@@ -237,7 +240,7 @@ private:
     static constexpr size_t kTraceRay = 16, kTraceInfo = 8, kTraceLight = 8; // bytes a slot
     static constexpr std::uint32_t kTraceStamps = 32767; // a slot's mark holds 15 bits of it
     GlBuffer traceRays_, traceInfo_, traceLights_;
-    int traceSlots_ = 0, traceWidth_ = 0, traceHeight_ = 0;
+    int traceSlots_ = 0, traceWidth_ = 0, traceHeight_ = 0, tracePlanes_ = 1;
     std::uint32_t traceStamp_ = 0;
     std::map<int, ShaderProgram> traceWalks_;
     /// The flat patch the last draw with TracerFrame::patchRays placed, as trace.comp reads it
