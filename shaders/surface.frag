@@ -285,6 +285,7 @@ struct HfxFrame {
     vec2 dx, dy;             // their derivatives across the screen, per pixel
     vec3 tangent, bitangent; // dP/du, dP/dv, world space
     int plane;               // the compute pass's plane of slots: a triplanar projection's axis, else 0
+    bool decides;            // its slot says whether the pixel was drawn: the mesh's, the heaviest projection's
 };
 
 #if HFX_TRIPLANAR
@@ -308,6 +309,7 @@ HfxFrame hfx_projected_frame(int axis, vec3 n, vec3 dpdx, vec3 dpdy) {
     f.tangent = model * (eu - dot(n, eu) / n[axis] * ea) / u_triplanarScale;
     f.bitangent = model * (ev - dot(n, ev) / n[axis] * ea) / u_triplanarScale;
     f.plane = axis;
+    f.decides = false; // (main: true for the heaviest)
     return f;
 }
 #endif
@@ -515,8 +517,11 @@ HfxShaded hfx_surface(HfxFrame f) {
 
 #if HFX_COMPUTE_TRACE == 2
     // A fragment whose slot holds no ray of this draw's failed the rays draw's depth test at the
-    // polygon: its hit lies behind what is there (its depth here passed by a rounding).
-    if (computed == 0u) discard;
+    // polygon: its hit lies behind what is there (its depth here passed by a rounding). A
+    // triplanar mapping's heaviest projection says so for the pixel; another's slot may hold none
+    // where the rays draw, another program, weighed it 0 and this one a rounding above (a weight
+    // at the dead zone's edge): it is normal mapped, its weight next to nothing.
+    if (computed == 0u && f.decides) discard;
 #endif
     // Silhouettes of finite patches: a ray that left the patch hit nothing of it.
     if (u_clipToPatch != 0 && (any(lessThan(uv, u_patchBounds.xy)) || any(greaterThan(uv, u_patchBounds.zw))))
@@ -729,7 +734,9 @@ void main() {
         const int axis = findLSB(left);
         left &= left - 1u;
         const float w = weights[axis];
-        const HfxShaded a = hfx_surface(hfx_projected_frame(axis, n, dpdx, dpdy));
+        HfxFrame f = hfx_projected_frame(axis, n, dpdx, dpdy);
+        f.decides = axis == heaviest;
+        const HfxShaded a = hfx_surface(f);
         s.color += w * a.color;
         s.position += w * a.position;
         s.normal += w * a.normal;
@@ -748,7 +755,7 @@ void main() {
     // a coarse one would move the level of detail and a pixel budget's tolerance off the pass's.
     // (llvmpipe's dFdx is fine: the same frames to the byte.)
     const HfxShaded s =
-        hfx_surface(HfxFrame(v_texcoord, dFdxFine(v_texcoord), dFdyFine(v_texcoord), v_tangent, v_bitangent, 0));
+        hfx_surface(HfxFrame(v_texcoord, dFdxFine(v_texcoord), dFdyFine(v_texcoord), v_tangent, v_bitangent, 0, true));
 #endif
 #if HFX_COMPUTE_TRACE == 1
     return; // the rays draw stored its ray

@@ -72,38 +72,15 @@ double shimmer(OceanEffect& ocean, const ShimmerView& v = {}) {
     return double(sparkles) / double(n);
 }
 
-/// What `measure` gives with surface.frag's line `from` made `to` (through the live-editing
-/// override, in a copy of the shaders named `name`).
-template <class Measure>
-double withPatchedSurfaceShader(const std::string& name, const std::string& from,
-                                const std::string& to, Measure measure) {
-    const std::filesystem::path dir = outputPath(name);
-    std::filesystem::remove_all(dir);
-    std::filesystem::copy(shaderSourceDir(), dir, std::filesystem::copy_options::recursive);
-    std::stringstream frag;
-    frag << std::ifstream(dir / "surface.frag").rdbuf();
-    std::string text = frag.str();
-    if (text.find(from) == std::string::npos)
-        throw Error(str("surface.frag has no '", from, "' to patch"));
-    text.replace(text.find(from), from.size(), to);
-    std::ofstream(dir / "surface.frag") << text;
-    // The caller's own override (a mutation check of the other tests) comes back afterwards.
-    const char* callers = std::getenv("HFX_SHADER_DIR");
-    const std::string saved = callers ? callers : "";
-    setenv("HFX_SHADER_DIR", dir.c_str(), 1);
-    const double measured = measure();
-    if (callers) setenv("HFX_SHADER_DIR", saved.c_str(), 1);
-    else unsetenv("HFX_SHADER_DIR");
-    return measured;
-}
-
 TEST_F(OceanShading, NormalVarianceDampsTheFarFieldsShimmer) {
     OceanEffect ocean(cl(), {.ocean = {.size = 256, .cascades = 3}});
     const double filtered = shimmer(ocean);
     // The same shaders with the variance forced to zero.
-    const double plain =
-        withPatchedSurfaceShader("ocean_shading_no_toksvig", "point.slopeVariance = slopeVariance;",
-                                 "point.slopeVariance = 0.0;", [&] { return shimmer(ocean); });
+    const double plain = [&] {
+        const PatchedShaders none("ocean_shading_no_toksvig", "point.slopeVariance = slopeVariance;",
+                                  "point.slopeVariance = 0.0;");
+        return shimmer(ocean);
+    }();
 
     std::printf("[shimmer] far field, quarter-pixel move: %.2f%% of pixels sparkle with Toksvig, %.2f%% without\n",
                 100.0 * filtered, 100.0 * plain);
@@ -142,9 +119,11 @@ TEST_F(OceanShading, TheRoughSeasCrestsShadedOverTheirHitsFootprintDoNotShimmer)
                            .distance = 80.0f,
                            .upwards = true};
     const double footprint = shimmer(ocean, band);
-    const double entry = withPatchedSurfaceShader(
-        "ocean_shading_entry_level", "hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect)",
-        "(mipLevel)", [&] { return shimmer(ocean, band); });
+    const double entry = [&] {
+        const PatchedShaders atEntry("ocean_shading_entry_level",
+                                     "hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect)", "(mipLevel)");
+        return shimmer(ocean, band);
+    }();
     std::printf("[shimmer] Beaufort 7 at 3-8 degrees, quarter-pixel move: %.2f%% of pixels sparkle "
                 "shaded over the hits' footprint, %.2f%% over the entry's\n",
                 100.0 * footprint, 100.0 * entry);

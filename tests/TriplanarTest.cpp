@@ -287,6 +287,53 @@ TEST_F(Triplanar, ACasterWritesTheDepthItsProjectionTraces) {
     }
 }
 
+// In the compute pass the rays draw stores a ray for each projection it weighs, and the shading
+// draw, another program, reads one for each it weighs: at the dead zone's edge a GPU's compilers
+// may round a weight to 0 in one and just above in the other. A slot the rays draw left is then
+// normal mapped at that weight (next to nothing), and only the heaviest projection's slot says
+// whether the pixel is drawn. Played here by a copy of the shaders whose rays draw has a dead zone
+// of 0.32 (the shading draw's 0.3): every pixel the draw draws is drawn, in the same colour.
+// (Discarding the pixel instead left 1721 of the sphere's 29101 pixels as holes.)
+TEST_F(Triplanar, AProjectionTheRaysDrawDidNotWeighIsNormalMappedNotAHole) {
+    constexpr int W = 320, H = 180;
+    constexpr float depthScale = 0.04f;
+    const SineRelief relief(kField, depthScale);
+    const Mesh sphere(makeSphere({}));
+    const SurfaceMaterial material{.depthScale = depthScale, .lodThreshold = 100.0f,
+                                   .triplanar = {.scale = 1.5f, .sharpness = 2.0f}};
+    const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 2.4f, 0.4f, 0.3f);
+    camera.aspect = float(W) / float(H);
+    RenderTarget target(W, H, true);
+    const auto draw = [&](TracePass pass) {
+        SurfaceRenderer renderer; // (its programs compiled from the shaders of the moment)
+        target.bind();
+        target.clear();
+        renderer.draw(sphere, glm::mat4(1.0f), relief.textures, material, camera, light,
+                      {.technique = Technique::Hierarchical, .traceOutput = true, .tracePass = pass});
+        EXPECT_EQ(renderer.tracer().last().computeTrace, pass == TracePass::Compute);
+        return std::pair(target.readTrace(), target.readColor());
+    };
+    const auto [walkedTrace, walkedColor] = draw(TracePass::InDraw);
+    const PatchedShaders narrower("triplanar_rays_dead_zone", "const float HFX_TRIPLANAR_DEAD_ZONE = 0.3;",
+                                  "const float HFX_TRIPLANAR_DEAD_ZONE = HFX_COMPUTE_TRACE == 1 ? 0.32 : 0.3;");
+    const auto [computedTrace, computedColor] = draw(TracePass::Compute);
+    size_t drawn = 0, holes = 0, off = 0;
+    for (size_t i = 0; i < walkedTrace.size(); ++i) {
+        if (walkedTrace[i] == glm::vec4(0.0f)) continue;
+        ++drawn;
+        holes += computedTrace[i] == glm::vec4(0.0f);
+    }
+    for (size_t i = 0; i < walkedColor.pixels.size(); ++i)
+        off += std::abs(walkedColor.pixels[i] - computedColor.pixels[i]) > 2.0f / 255.0f;
+    std::printf("[dead zone 0.32 in the rays draw] %zu pixels drawn, %zu holes, %zu colour channels off by more than "
+                "2/255\n",
+                drawn, holes, off);
+    ASSERT_GT(drawn, size_t(W * H / 4));
+    EXPECT_EQ(holes, 0u);
+    EXPECT_LE(off, walkedColor.pixels.size() / 2000);
+}
+
 TEST_F(Triplanar, BadMappingsAreRefusedByNameAndDrawNothing) {
     constexpr float depthScale = 0.1f;
     const SineRelief relief(kField, depthScale);

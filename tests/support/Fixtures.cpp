@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
+#include <fstream>
 
 namespace hfx::test {
 namespace {
@@ -114,6 +116,26 @@ std::string outputPath(const std::string& fileName) {
 std::string shaderSourceDir() {
     const char* env = std::getenv("HFX_SHADER_SOURCE_DIR");
     return env && *env ? env : HFX_SHADER_SOURCE_DIR;
+}
+
+PatchedShaders::PatchedShaders(const std::string& name, const std::string& from, const std::string& to,
+                               const std::string& file) {
+    const std::filesystem::path dir = outputPath(name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::copy(shaderSourceDir(), dir, std::filesystem::copy_options::recursive);
+    std::stringstream source;
+    source << std::ifstream(dir / file).rdbuf();
+    std::string text = source.str();
+    if (text.find(from) == std::string::npos) throw Error(str(file, " has no '", from, "' to patch"));
+    text.replace(text.find(from), from.size(), to);
+    std::ofstream(dir / file) << text;
+    if (const char* callers = std::getenv("HFX_SHADER_DIR")) callers_ = callers;
+    setenv("HFX_SHADER_DIR", dir.c_str(), 1);
+}
+
+PatchedShaders::~PatchedShaders() {
+    if (callers_) setenv("HFX_SHADER_DIR", callers_->c_str(), 1);
+    else unsetenv("HFX_SHADER_DIR");
 }
 
 std::vector<float> readBoundsLevel(const HeightBounds& bounds, int level) {

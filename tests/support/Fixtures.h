@@ -94,4 +94,20 @@ std::string outputPath(const std::string& fileName);
 /// else the tree the tests were built from.
 std::string shaderSourceDir();
 
+/// While it lives, the renderers made read a copy of the shaders (outputPath(name)) whose `file`
+/// has its one `from` made `to` (the live-editing override, HFX_SHADER_DIR): a mutation, or a
+/// device's rounding played on this one. Throws hfx::Error where the file holds no `from`. The
+/// caller's own override comes back after.
+class PatchedShaders {
+public:
+    PatchedShaders(const std::string& name, const std::string& from, const std::string& to,
+                   const std::string& file = "surface.frag");
+    ~PatchedShaders();
+    PatchedShaders(const PatchedShaders&) = delete;
+    PatchedShaders& operator=(const PatchedShaders&) = delete;
+
+private:
+    std::optional<std::string> callers_;
+};
+
 } // namespace hfx::test
