@@ -18,9 +18,9 @@
 # passes), the texel shadows forced on and off where the scenes' rule would choose otherwise, the
 # hier scenes with float32 surfaces (float16, Auto's choice on a GPU, in bench-720p), the
 # external-memory transfer path's tests and table, the ringed planet and the noise on the
-# triplanar box at 1280x720 (the box's hier where Auto puts it and in the draw), and a draw's issue time under both GlStatePolicy values with the
-# driver's threaded optimisation off and on. A step that runs out of time is cut and says so; the
-# rest go on.
+# triplanar box at 1280x720 (the box's hier where Auto puts it and in the draw), and a draw's
+# issue time under both GlStatePolicy values with the driver's threaded optimisation off and on. A
+# step that runs out of time is cut and says so; the rest go on.
 # HFX_GPU_STEPS may name fewer steps (say "gl-tests-tracer bench-tracers-720p"): the budget is
 # then shared among those.
 # Nothing here installs anything: the bundle carries what the binaries need
@@ -128,8 +128,8 @@ step bench-planet-rings "${run[@]}" hfx-demo bench --bench-only planet --rings 1
 # box's own texcoords, docs/BENCHMARKS.md), hier where TracePass::Auto's trial puts it (the box is
 # convex: each projection may walk in the compute pass), then walking in the draw.
 step bench-triplanar-720p "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 --height 720
-step bench-triplanar-720p-in-draw "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 --height 720 \
-    --trace-pass draw
+step bench-triplanar-720p-in-draw "${run[@]}" hfx-demo bench --bench-only noise --triplanar 0.8 --width 1280 \
+    --height 720 --trace-pass draw
 # The host's time to issue a POM draw restoring the caller's GL state (about 120 queries) and under
 # GlStatePolicy::Defaults (none), with NVIDIA's threaded optimisation off and on: on, each query
 # waits for the driver's thread (docs/BENCHMARKS.md).

@@ -439,9 +439,10 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
                           {"plane, cut by the near plane", &plane, view(0.6f, 0.3f, 0.35f, 0.4f), 0.1f, 0.0f, 2.0f,
                            W * H / 4},
                           // (Each projection it weighs walks in its own plane of slots.)
-                          {"sphere, a triplanar mapping", &sphere, view(2.4f, 0.4f, 0.3f), 0.04f, 0.0f, 2.0f, 8000, 1.5f},
-                          {"sphere, a triplanar mapping and a fade", &sphere, view(2.4f, -1.1f, 0.5f), 0.04f, 0.25f, 2.0f,
-                           8000, 1.5f}};
+                          {"sphere, a triplanar mapping", &sphere, view(2.4f, 0.4f, 0.3f), 0.04f, 0.0f, 2.0f,
+                           8000, 1.5f},
+                          {"sphere, a triplanar mapping and a fade", &sphere, view(2.4f, -1.1f, 0.5f), 0.04f, 0.25f,
+                           2.0f, 8000, 1.5f}};
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
         SurfaceMaterial material{.depthScale = c.depthScale, .lodThreshold = 100.0f, .silhouetteFade = c.fade};

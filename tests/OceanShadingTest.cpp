@@ -121,7 +121,8 @@ TEST_F(OceanShading, TheRoughSeasCrestsShadedOverTheirHitsFootprintDoNotShimmer)
     const double footprint = shimmer(ocean, band);
     const double entry = [&] {
         const PatchedShaders atEntry("ocean_shading_entry_level",
-                                     "hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect)", "(mipLevel)");
+                                     "hfx_shade_level(mipLevel, hitDx * texels, hitDy * texels, texelAspect)",
+                                     "(mipLevel)");
         return shimmer(ocean, band);
     }();
     std::printf("[shimmer] Beaufort 7 at 3-8 degrees, quarter-pixel move: %.2f%% of pixels sparkle "
