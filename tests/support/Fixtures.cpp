@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 #include <fstream>
+#include <sstream>
 
 namespace hfx::test {
 namespace {

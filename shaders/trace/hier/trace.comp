@@ -1,10 +1,11 @@
 #version 450 core
 // The exact tracer's walks (trace/hier/trace.glsl, hfx::ExactTracer): a lane per slot (a pixel of
-// the viewport in each plane) in groups of 8x8 slots, where the rays draw stored this draw's ray or, on a flat patch
-// (HFX_TRACE_PATCH), where the pixel's ray meets the patch (hfx_patch_ray, below: no rays draw):
-// its view walk (hfx_trace, from the beam start's depth where HFX_BEAM_START), then, where its
-// light ray is to be walked, that walk as the draw would make it (hfx_surface_shadow: the texel
-// shadows where they hold it), along the flat patch's light or, with HFX_TRACE_LIGHTS, the pixel's.
+// the viewport in each plane) in groups of 8x8 slots, where the rays draw stored this draw's ray
+// or, on a flat patch (HFX_TRACE_PATCH), where the pixel's ray meets the patch (hfx_patch_ray,
+// below: no rays draw): its view walk (hfx_trace, from the beam start's depth where
+// HFX_BEAM_START), then, where its light ray is to be walked, that walk as the draw would make it
+// (hfx_surface_shadow: the texel shadows where they hold it), along the flat patch's light or,
+// with HFX_TRACE_LIGHTS, the pixel's.
 // The hit, the shadow and the fetches go back into the slot.
 
 #include "bindings.glsl"
