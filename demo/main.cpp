@@ -331,8 +331,9 @@ int main(int argc, char** argv) {
     app.add_flag("--texel-shadows", texelShadowsOn,
                  "decals, noise, maps: hier draws the flat surface's self-shadow at every texel each frame "
                  "(TexelShadowPass): pixels walk their light ray only where a hard shadow's edge crosses their cell; "
-                 "by default they do wherever the pass pays (from 1.75 pixels per texel) or, under --pixel-budget, "
-                 "at every 2nd, 4th... texel where that pays and stays within the budget on screen")
+                 "by default they do where hier walks in the draw and the pass pays (from 1.75 pixels per texel) or, "
+                 "under --pixel-budget, at every 2nd, 4th... texel where that pays and stays within the budget on "
+                 "screen; a compute pass walks every pixel's light ray by default")
         ->excludes("--no-shadows");
     app.add_flag("--no-texel-shadows", texelShadowsOff,
                  "decals, noise, maps: hier never draws the texel shadows (every pixel walks its light ray)")

@@ -445,10 +445,11 @@ TEST(Demo, TheTexelShadowsAreDrawnByDefaultWhereTheSurfaceHasFewerTexelsThanPixe
     // The noise plane covers most of a 320x180 image: a 64² field shows on about ten pixels per
     // texel (the texel shadows pay), a 256² one on well under one (they do not). The default
     // frame is the forced one's, to the byte, and the two forced frames differ (so the
-    // comparison can tell them apart).
+    // comparison can tell them apart). The walks in the draw, where the policy can take them (a
+    // compute pass's never do by default).
     for (const auto& [field, pays] : {std::pair{64, true}, std::pair{256, false}}) {
-        const std::string args = "noise --headless --frames 2 --width 320 --height 180 --field " + std::to_string(field) +
-                                 " --out ";
+        const std::string args = "noise --headless --frames 2 --width 320 --height 180 --trace-pass draw --field " +
+                                 std::to_string(field) + " --out ";
         std::string frames[3];
         const char* flags[3] = {"", " --texel-shadows", " --no-texel-shadows"};
         for (int k = 0; k < 3; ++k) {
@@ -490,11 +491,13 @@ TEST(Demo, APixelBudgetDrawsTheTexelShadowsAtAStrideWithinItWhereEverySampleWoul
     // shadows at every sample do not pay and are off by default. A budget of 3 pixels takes every
     // 8th sample on each axis (2.5 pixels apart on the screen, 6.4 pixels per sample): the frame
     // is drawn with them (it differs from the walked one) and stays close to the walked frame,
-    // far closer than the frame without self-shadows is.
+    // far closer than the frame without self-shadows is. The walks in the draw, where the policy
+    // can take them.
     std::string log;
-    const Image read = flatSceneFrame("decals", "stride_read", " --pixel-budget 3", 512, &log),
-                walked = flatSceneFrame("decals", "stride_walked", " --pixel-budget 3 --no-texel-shadows", 512),
-                unshadowed = flatSceneFrame("decals", "stride_unshadowed", " --pixel-budget 3 --no-shadows", 512);
+    const std::string flags = " --pixel-budget 3 --trace-pass draw";
+    const Image read = flatSceneFrame("decals", "stride_read", flags, 512, &log),
+                walked = flatSceneFrame("decals", "stride_walked", flags + " --no-texel-shadows", 512),
+                unshadowed = flatSceneFrame("decals", "stride_unshadowed", flags + " --no-shadows", 512);
     EXPECT_NE(log.find("texel shadows on, stride 8"), std::string::npos) << log;
     const auto [mean, far] = frameDifference(walked, read);
     const double meanOff = frameDifference(walked, unshadowed).mean;

@@ -94,7 +94,8 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
     // texel and the texel shadows pay (drawn at every sample); from far, on well under one, and
     // they do not. Off and On override the view. Spoiling the drawn texels changes the next
     // frame only while the tracer keeps them (same heights, same light); new heights or a moved
-    // light redraw them, which puts the frame back.
+    // light redraw them, which puts the frame back. With the walks in a compute pass they do not
+    // pay (a GPU's): Auto leaves them off there, and On draws them.
     constexpr int N = 64;
     const std::vector<float> heights = sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}});
     StaticField field(cl(), N, N, EdgeMode::Wrap, heights);
@@ -109,11 +110,13 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
     Camera nearCamera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f);
     Camera farCamera = Camera::orbit({0.0f, 0.0f, 0.0f}, 40.0f, 0.3f, 1.2f);
     nearCamera.aspect = farCamera.aspect = 320.0f / 180.0f;
-    auto draw = [&](const Camera& camera, TexelShadowChoice choice, const DirectionalLight& l) {
+    auto draw = [&](const Camera& camera, TexelShadowChoice choice, const DirectionalLight& l,
+                    TracePass pass = TracePass::InDraw) {
         target.bind();
         target.clear();
         renderer.draw(plane, glm::mat4(1.0f), surface.textures(), material, camera, l,
-                      {.technique = Technique::Hierarchical, .texelShadows = choice, .tracePass = deviceTracePass()});
+                      {.technique = Technique::Hierarchical, .texelShadows = choice, .tracePass = pass});
+        EXPECT_EQ(renderer.tracer().last().computeTrace, pass == TracePass::Compute);
         return target.readColor().pixels;
     };
 
@@ -131,6 +134,14 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
     EXPECT_LT(renderer.tracer().last().pixelsPerTexel, 0.5);
     draw(farCamera, TexelShadowChoice::On, light);
     EXPECT_EQ(renderer.tracer().last().texelStride, 1);
+    draw(nearCamera, TexelShadowChoice::Auto, light, TracePass::Compute);
+    EXPECT_EQ(renderer.tracer().last().texelShadows, nullptr) << "read with the walks in a compute pass";
+    EXPECT_GT(renderer.tracer().last().pixelsPerTexel, 1.75);
+    const std::vector<float> computedRead = draw(nearCamera, TexelShadowChoice::On, light, TracePass::Compute);
+    EXPECT_EQ(renderer.tracer().last().texelStride, 1);
+    EXPECT_NE(renderer.tracer().last().texelShadows, nullptr);
+    EXPECT_NE(computedRead, draw(nearCamera, TexelShadowChoice::Off, light, TracePass::Compute))
+        << "the computed frame does not show the texel shadows";
 
     // Spoiled while kept: the next frame reads the spoiled ones.
     auto spoil = [&] {
@@ -452,8 +463,11 @@ TEST_F(ExactTracerTest, TheComputedWalksHoldOnASphereAndUnderASilhouetteFade) {
         auto draw = [&](TracePass pass) {
             target.bind();
             target.clear();
+            // (Texel shadows on in both passes where the patch has a light for them: Auto takes
+            // them only in the draw.)
             renderer.draw(*c.mesh, glm::mat4(1.0f), surface.textures(), material, c.camera, light,
-                          {.technique = Technique::Hierarchical, .traceOutput = true, .tracePass = pass});
+                          {.technique = Technique::Hierarchical, .traceOutput = true,
+                           .texelShadows = TexelShadowChoice::On, .tracePass = pass});
             // (A plane without a fade has one frame for every pixel: its rays come from the
             // screen, and its light with them.)
             const bool patchRays = pass == TracePass::Compute && c.mesh == &plane && c.fade == 0.0f;

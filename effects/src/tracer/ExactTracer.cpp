@@ -292,6 +292,10 @@ const TexelShadows* ExactTracer::texelShadowsFor(const SurfaceTextures& textures
     frame.pixelsPerTexel = pixels / (double(field.width) * field.height);
     if (options.texelShadows == TexelShadowChoice::Off) return nullptr;
     if (!light) return nullptr; // no shadow ray is traced
+    // With the walks in a compute pass they do not pay: on the H200 (docs/BENCHMARKS.md) the
+    // pixels' own light walks there cost about what reading them saved, and their pass cost
+    // 0.03-0.14 ms after each change of heights.
+    if (options.texelShadows == TexelShadowChoice::Auto && frame.computeTrace) return nullptr;
     // Every sample where that pays; under a pixel budget, every few samples where their spacing
     // on screen stays within it; forced on: the stride asked for, or the policy's, or every one.
     if (strides_.size() > 64) strides_.clear(); // meshes come and go: a held choice is a hint

@@ -325,7 +325,8 @@ struct DrawOptions {
     /// The exact tracer's texel shadows on a flat patch (ExactTracer, TexelShadowPass): hier's
     /// self-shadow read from the four samples around the point wherever the hard shadow does not
     /// change between them (the penumbra their bilinear blend; a hard shadow finer than the
-    /// samples can be missed), walked elsewhere. Auto: where they pay on this view.
+    /// samples can be missed), walked elsewhere. Auto: where they pay on this view with the
+    /// walks in the draw; not with the walks in a compute pass (a GPU's), where they do not pay.
     TexelShadowChoice texelShadows = TexelShadowChoice::Auto;
     /// With texelShadows On: every texelStride-th sample on each axis (a power of two dividing
     /// the field's size; 0: the policy's stride, or 1).

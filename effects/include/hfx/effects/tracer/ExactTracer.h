@@ -59,7 +59,9 @@ struct SurfaceLayer;
 
 /// Whether a hier draw reads texel shadows (DrawOptions::texelShadows).
 enum class TexelShadowChoice {
-    Auto, ///< where they pay on the view, at the stride the policy picks (texelShadowStride)
+    /// where they pay on the view, at the stride the policy picks (texelShadowStride), with the
+    /// walks in the draw; off with the walks in a compute pass (TracerFrame::computeTrace)
+    Auto,
     On,   ///< always on a flat patch: at DrawOptions::texelStride, else the policy's, else 1
     Off,  ///< never: every pixel walks its light ray
 };
