@@ -7,10 +7,12 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace hfx {
 namespace {
@@ -182,6 +184,62 @@ TEST(Convex, AMeshsClaimsAreCheckedAtItsEdgesAndAFalseOneNamesTheEdge) {
     EXPECT_NE(message(valley).find("MeshData::convex"), std::string::npos) << message(valley);
     valley.convex = false; // said of none: nothing to check
     EXPECT_EQ(message(valley), "");
+}
+
+/// `b`'s triangles moved by `offset` and added to `a`'s, the claims `a`'s.
+MeshData joined(MeshData a, const MeshData& b, glm::vec3 offset) {
+    const auto base = uint32_t(a.vertices.size());
+    for (Vertex v : b.vertices) {
+        v.position += offset;
+        a.vertices.push_back(v);
+    }
+    for (const uint32_t i : b.indices) a.indices.push_back(base + i);
+    return a;
+}
+
+TEST(Convex, AConvexClaimOnFacesInPartsThatShareNoEdgeIsCheckedWhole) {
+    // Each of two spheres side by side is convex at every edge, and each is closed: only the whole
+    // can tell that their front faces overlap on the screen. Parts that lie on one convex solid
+    // (a sphere's two caps without the band between them) or in one plane (a plane in two
+    // pieces) are convex; past 2e8 face-vertex pairs the claim is refused by name, not checked
+    // for minutes.
+    auto message = [](const MeshData& mesh) {
+        try {
+            checkMeshClaims(mesh);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const MeshData sphere = makeSphere({.segments = 12, .rings = 6});
+    const MeshData pair = joined(sphere, sphere, {3.0f, 0.0f, 0.0f});
+    EXPECT_NE(message(pair).find("MeshData::convex, but its faces form 2 parts that share no edge, and the point ("),
+              std::string::npos)
+        << message(pair);
+    std::printf("[claims] %s\n", message(pair).c_str());
+    MeshData closedOnly = pair;
+    closedOnly.convex = false;
+    EXPECT_EQ(message(closedOnly), "") << "two closed solids are closed";
+
+    MeshData caps = sphere;
+    caps.closed = false;
+    caps.indices.clear();
+    for (size_t t = 0; t < sphere.indices.size(); t += 3) {
+        float y = 0.0f;
+        for (size_t k = 0; k < 3; ++k) y += sphere.vertices[sphere.indices[t + k]].position.y / 3.0f;
+        if (std::abs(y) > 0.45f)
+            for (size_t k = 0; k < 3; ++k) caps.indices.push_back(sphere.indices[t + k]);
+    }
+    ASSERT_LT(caps.indices.size(), sphere.indices.size());
+    EXPECT_EQ(message(caps), "") << "two caps of one sphere";
+    const MeshData pieces = joined(makePlane({}), makePlane({}), {3.0f, 0.0f, 0.0f});
+    EXPECT_EQ(message(pieces), "") << "a plane in two pieces";
+    const MeshData step = joined(makePlane({}), makePlane({}), {3.0f, 0.5f, 0.0f});
+    EXPECT_NE(message(step).find("2 parts that share no edge"), std::string::npos) << message(step);
+
+    const MeshData fine = makeSphere({.segments = 128, .rings = 64});
+    const MeshData large = joined(fine, fine, {3.0f, 0.0f, 0.0f});
+    EXPECT_NE(message(large).find("too many to check"), std::string::npos) << message(large);
 }
 
 } // namespace

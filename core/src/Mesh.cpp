@@ -12,11 +12,13 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <numeric>
 #include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace hfx {
 
@@ -239,6 +241,54 @@ std::vector<uint32_t> pointIds(const MeshData& data, double tolerance, std::vect
     return ids;
 }
 
+/// A convex claim's faces that share no edge: each part is convex at its edges, but two convex
+/// solids side by side are not one (their front faces overlap on the screen). Where the faces
+/// form more than one part (joined through the edges of `sides`, sorted by edge), either all of
+/// them lie in one plane (a patch in pieces: nothing overlaps), or every vertex must lie on or
+/// behind every face's plane, checked whole: O(faces x vertices), so refused by name past
+/// kConvexPartsChecked pairs rather than taking minutes.
+constexpr double kConvexPartsChecked = 2e8;
+
+template <typename Side>
+void checkConvexParts(const MeshData& data, const std::vector<Side>& sides, const std::vector<glm::dvec3>& normals,
+                      double tolerance) {
+    std::vector<uint32_t> parent(normals.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto root = [&](uint32_t t) {
+        while (parent[t] != t) t = parent[t] = parent[parent[t]];
+        return t;
+    };
+    for (size_t i = 1; i < sides.size(); ++i)
+        if (sides[i].edge == sides[i - 1].edge) parent[root(sides[i].triangle)] = root(sides[i - 1].triangle);
+    // The faces with a plane (degenerate ones have no sides) and their parts.
+    std::vector<uint32_t> faces;
+    for (uint32_t t = 0; t < normals.size(); ++t)
+        if (normals[t] != glm::dvec3(0.0)) faces.push_back(t);
+    if (faces.empty()) return;
+    size_t parts = 0;
+    for (const uint32_t t : faces) parts += root(t) == t;
+    if (parts < 2) return;
+    const auto corner = [&](uint32_t t) { return glm::dvec3(data.vertices[data.indices[3 * size_t(t)]].position); };
+    const glm::dvec3 n0 = normals[faces[0]], a0 = corner(faces[0]);
+    const bool onePlane = std::ranges::all_of(faces, [&](uint32_t t) { return glm::length(normals[t] - n0) <= 1e-6; }) &&
+                          std::ranges::all_of(data.vertices, [&](const Vertex& v) {
+                              return std::abs(glm::dot(n0, glm::dvec3(v.position) - a0)) <= tolerance;
+                          });
+    if (onePlane) return;
+    if (double(faces.size()) * double(data.vertices.size()) > kConvexPartsChecked)
+        throw Error(str("MeshData::convex, but its faces form ", parts, " parts that share no edge, and its ",
+                        faces.size(), " faces and ", data.vertices.size(),
+                        " vertices are too many to check that they lie on one convex solid: join the parts, or "
+                        "draw each as its own mesh"));
+    for (const uint32_t t : faces)
+        for (const Vertex& v : data.vertices)
+            if (glm::dot(normals[t], glm::dvec3(v.position) - corner(t)) > tolerance)
+                throw Error(str("MeshData::convex, but its faces form ", parts,
+                                " parts that share no edge, and the point ", text(glm::dvec3(v.position)),
+                                " lies in front of the face at ", text(corner(t)),
+                                ": they are not one convex solid (draw each as its own mesh)"));
+}
+
 } // namespace
 
 void checkMeshClaims(const MeshData& data) {
@@ -292,6 +342,8 @@ void checkMeshClaims(const MeshData& data) {
             }
         i = j;
     }
+    // (Across parts, the tolerance of isConvex: a thin face's plane, carried far, tilts more.)
+    if (data.convex) checkConvexParts(data, sides, normals, 10.0 * tolerance);
 }
 
 bool isFlatPatch(const MeshData& data) {
