@@ -5,7 +5,8 @@
 #   bash scripts/bundle.sh .gpu-bundle                       # here
 #   bash scripts/gpu-check.sh .gpu-bundle "$OUT" [SECONDS]   # there (SECONDS: the budget, 540 by default)
 #
-# It prints the card and the driver, then runs, each step within its share of the budget and its
+# It prints the card and the driver, then runs, each step within its share of the budget (and
+# what the steps before it left unused) and its
 # output kept in OUT/steps.tgz (remade after every step: a lent machine's tool brings back a few
 # files, 8 on the H200's, and run 12 lost the tracer's tests to that; OUT/summary.txt beside it):
 # the CL tests on the GPU's OpenCL and on PoCL where it is installed, the GL tests (the tracer's
@@ -51,13 +52,18 @@ for n in $selected; do
     total=$((total + shares[$n]))
 done
 
-# step NAME CMD...: runs CMD, if selected, with at most its share of the budget (never past it).
+# step NAME CMD...: runs CMD, if selected, until the budget's share of the steps so far, this one
+# included, is spent: its own share and whatever the steps before it left (a fast step hands its
+# time on; none takes a later step's).
+done_shares=0
 step() {
     local name=$1
     shift
     [[ " $selected " == *" $name "* ]] || return 0
-    local left=$((budget - ($(date +%s) - start)))
-    local limit=$((budget * shares[$name] / total))
+    done_shares=$((done_shares + shares[$name]))
+    local elapsed=$(($(date +%s) - start))
+    local left=$((budget - elapsed))
+    local limit=$((budget * done_shares / total - elapsed))
     [ "$limit" -gt "$left" ] && limit=$left
     if [ "$limit" -lt 10 ]; then
         echo "== $name: skipped, the budget is spent" | tee -a "$out/summary.txt"
