@@ -261,9 +261,11 @@ void checkConvexParts(const MeshData& data, const std::vector<Side>& sides, cons
     for (size_t i = 1; i < sides.size(); ++i)
         if (sides[i].edge == sides[i - 1].edge) parent[root(sides[i].triangle)] = root(sides[i - 1].triangle);
     // The faces with a plane (degenerate ones have no sides) and their parts.
+    std::vector<char> planar(normals.size(), 0);
+    for (const Side& side : sides) planar[side.triangle] = 1;
     std::vector<uint32_t> faces;
     for (uint32_t t = 0; t < normals.size(); ++t)
-        if (normals[t] != glm::dvec3(0.0)) faces.push_back(t);
+        if (planar[t]) faces.push_back(t);
     if (faces.empty()) return;
     size_t parts = 0;
     for (const uint32_t t : faces) parts += root(t) == t;
