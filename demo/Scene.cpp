@@ -129,6 +129,7 @@ void Scene::drawSurface(SurfaceRenderer& renderer, const DirectionalLight& light
     traced_ = technique == Technique::Hierarchical ? renderer.tracer().last() : TracerFrame{};
     trial_ = renderer.tracer().passTrial(mesh(), false);
     casterTrial_ = renderer.tracer().passTrial(mesh(), true); // where the scene casts it (the decal wall)
+    tracerMemory_ = renderer.tracer().memory();
     if (wireframe) {
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         renderer.drawFlat(mesh(), model(), camera_, {0.1f, 1.0f, 0.3f, 1.0f});

@@ -197,6 +197,8 @@ public:
     /// per field texel they were chosen from (0 where not flat or not hier).
     std::string texelShadowsLabel() const;
     double pixelsPerTexel() const { return traced_.pixelsPerTexel; }
+    /// What the renderer's exact tracer held at the last drawSurface (ExactTracer::memory).
+    const TracerMemory& tracerMemory() const { return tracerMemory_; }
 
 protected:
     /// Draws the effect's surface with its own material (the one owner: the panel edits it there).
@@ -210,6 +212,7 @@ private:
     TracerFrame traced_; ///< the exact tracer's choice at the last drawSurface (none: not hier)
     TracePassTrialReport trial_; ///< its TracePass::Auto trial of the mesh's camera views then
     TracePassTrialReport casterTrial_; ///< ... and of its casts into a shadow map
+    TracerMemory tracerMemory_; ///< what the renderer's exact tracer held then
 };
 
 /// A scene whose surface takes impacts through routeImpact (water, planet): a click fires a

@@ -11,6 +11,7 @@
 #include "hfx/core/RenderTarget.h"
 #include "hfx/effects/SurfacePipeline.h"
 #include "hfx/effects/SurfaceRenderer.h"
+#include "hfx/effects/tracer/HeightBounds.h"
 #include "hfx/tools/AccuracyProbe.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -312,6 +313,68 @@ TEST_F(ExactTracerTest, TheLightWalksItsTexelShadowsLeaveAreWalkedAfterTheDrawIn
         EXPECT_NE(renderer.tracer().last().texelShadows, nullptr);
         EXPECT_FALSE(renderer.tracer().last().deferredShadows);
     }
+}
+
+TEST_F(ExactTracerTest, ItSaysTheMemoryItHoldsAndLetsGoOfItAll) {
+    // What an engine's budget counts: the bounds of the surface drawn (its pyramid, and the atlas
+    // layout's cells), its texel shadows, the beam start's target (a texel per 8x8-pixel block),
+    // and the compute pass's slots: 24 bytes a pixel, 32 once a sphere stored its light rays,
+    // three planes of them under a triplanar mapping. release() lets go of all of it, and the next
+    // draw makes what it needs again: the same frame.
+    constexpr int N = 64, W = 320, H = 180;
+    StaticField field(cl(), N, N, EdgeMode::Wrap, sumOfSines(N, {{0.3, 2, 1, 0.0}, {0.15, -1, 3, 0.7}}));
+    SurfacePipeline surface(cl(), SurfacePipelineConfig::of(field, 0.1f, {.mipmaps = false}));
+    surface.run(field.buffer());
+    const Mesh plane(makePlane({.size = 2.0f}));
+    const Mesh sphere(makeSphere({}));
+    SurfaceMaterial material{.depthScale = 0.1f, .lodThreshold = 100.0f};
+    const DirectionalLight light{.direction = {0.7f, 0.45f, 0.3f}};
+    Camera camera = Camera::orbit({0.0f, 0.0f, 0.0f}, 1.6f, 0.3f, 1.2f);
+    camera.aspect = float(W) / float(H);
+    RenderTarget target(W, H, true);
+    SurfaceRenderer renderer;
+    EXPECT_EQ(renderer.tracer().memory().total(), 0u) << "before any draw";
+    const auto draw = [&](const Mesh& mesh, TracePass pass) {
+        target.bind();
+        target.clear();
+        renderer.draw(mesh, glm::mat4(1.0f), surface.textures(), material, camera, light,
+                      {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On, .tracePass = pass});
+        EXPECT_EQ(renderer.tracer().last().computeTrace, pass == TracePass::Compute);
+        return target.readColor().pixels;
+    };
+    draw(plane, TracePass::InDraw);
+    const TracerMemory drawn = renderer.tracer().memory();
+    size_t pyramid = 0;
+    if (resolvedLayout(PyramidLayout::Auto) == PyramidLayout::Atlas) {
+        const auto [w, h] = HeightBounds::atlasSize(N, N);
+        pyramid = size_t(w) * h * 8 + size_t(N) * N * 16; // RG32F levels, RGBA32F cells
+    } else {
+        for (int n = N; n >= 1; n /= 2) pyramid += size_t(n) * n * 8;
+    }
+    EXPECT_EQ(drawn.bounds, pyramid);
+    EXPECT_EQ(drawn.texelShadows, size_t(N) * N * 4);
+    EXPECT_EQ(drawn.prepasses, size_t((W + kBeamBlock - 1) / kBeamBlock) * ((H + kBeamBlock - 1) / kBeamBlock) * 4);
+    EXPECT_EQ(drawn.slots, 0u) << "the walks in the draw";
+    const std::vector<float> computed = draw(plane, TracePass::Compute);
+    EXPECT_EQ(renderer.tracer().memory().slots, size_t(W) * H * 24);
+    draw(sphere, TracePass::Compute);
+    EXPECT_EQ(renderer.tracer().memory().slots, size_t(W) * H * 32) << "with its light rays";
+    material.triplanar = {.scale = 1.5f, .sharpness = 2.0f};
+    draw(sphere, TracePass::Compute);
+    EXPECT_EQ(renderer.tracer().memory().slots, size_t(W) * H * 3 * 32) << "three planes";
+    const TracerMemory most = renderer.tracer().memory();
+    std::printf("[tracer memory] %dx%d, %d² field: bounds %zu, texel shadows %zu, prepasses %zu, slots %zu bytes\n", W,
+                H, N, most.bounds, most.texelShadows, most.prepasses, most.slots);
+    EXPECT_EQ(most.total(), most.slots + most.bounds + most.texelShadows + most.prepasses);
+
+    renderer.tracer().release();
+    EXPECT_EQ(renderer.tracer().memory().total(), 0u) << "after release()";
+    material.triplanar = {};
+    EXPECT_EQ(draw(plane, TracePass::Compute), computed) << "the frame after release()";
+    const TracerMemory again = renderer.tracer().memory();
+    EXPECT_EQ(again.slots, size_t(W) * H * 24);
+    EXPECT_EQ(again.bounds, pyramid);
+    EXPECT_EQ(again.texelShadows, size_t(N) * N * 4);
 }
 
 TEST_F(ExactTracerTest, TheWalksInAComputePassGiveTheDrawsHitsShadowsAndColours) {

@@ -510,6 +510,33 @@ void ExactTracer::walks(const TracerFrame& frame) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+TracerMemory ExactTracer::memory() const {
+    TracerMemory m;
+    if (traceRays_) m.slots = size_t(traceSlots_) * (kTraceRay + kTraceInfo + (traceLights_ ? kTraceLight : 0));
+    for (const Bounds& b : bounds_)
+        if (b.bounds) m.bounds += b.bounds->bytes();
+    for (const Cached& c : cache_) m.texelShadows += c.shadows.bytes();
+    if (beamTarget_) m.prepasses += size_t(beamWidth_) * size_t(beamHeight_) * 4; // R32F
+    if (deferred_) m.prepasses += kDeferredHeader + size_t(deferredCapacity_) * kDeferredRay;
+    return m;
+}
+
+void ExactTracer::release() {
+    traceRays_ = {};
+    traceInfo_ = {};
+    traceLights_ = {};
+    traceSlots_ = 0;
+    traceStamp_ = 0;
+    for (Bounds& b : bounds_) b = Bounds{};
+    // (The entries stay where they are: a frame prepare() handed out points at one.)
+    for (Cached& c : cache_) c = Cached{};
+    beamTarget_ = {};
+    beamWidth_ = beamHeight_ = 0;
+    deferred_ = {};
+    deferredCapacity_ = 0;
+    deferredDone_ = {};
+}
+
 int ExactTracer::deferredWalks() const {
     if (!deferred_) return 0;
     GLuint count = 0;

@@ -55,6 +55,18 @@ bool HeightBounds::fits(const SurfaceTexturesConfig& config) const {
     return config.width == width_ && config.height == height_ && config.edges == edges_;
 }
 
+size_t HeightBounds::bytes() const {
+    size_t texels = 0;
+    if (pyramid_ && layout_ == PyramidLayout::Atlas) {
+        const auto [w, h] = atlasSize(width_, height_);
+        texels = size_t(w) * size_t(h);
+    } else if (pyramid_) {
+        for (int level = 0; level < levels_; ++level)
+            texels += size_t(std::max(width_ >> level, 1)) * size_t(std::max(height_ >> level, 1));
+    }
+    return texels * 8 + (cells_ ? size_t(width_) * size_t(height_) * 16 : 0); // RG32F, RGBA32F
+}
+
 GLuint HeightBounds::pyramid() const {
     if (pyramid_) return pyramid_.id();
     GlTexture t = GlTexture::create();

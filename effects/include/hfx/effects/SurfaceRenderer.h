@@ -493,6 +493,7 @@ public:
     /// The exact tracer's unit: its last decision (TracerFrame: the texel shadows' stride, the
     /// pixels per texel it was made from) for reports.
     const ExactTracer& tracer() const { return tracer_; }
+    ExactTracer& tracer() { return tracer_; } ///< its memory(), release()
 
 private:
     /// Fills the transforms and binds the blocks' buffers (the guard restores them).

@@ -103,6 +103,21 @@ struct TracerFrame {
     bool timed = false;
 };
 
+/// The GL storage an ExactTracer holds, bytes: what an engine's memory budget counts (its
+/// programs and uniform blocks aside).
+struct TracerMemory {
+    /// The compute pass's slots (TracePass::Compute): 24 bytes a pixel of the largest viewport it
+    /// drew, 32 once a curved mesh's light rays were stored, three planes of them for a triplanar
+    /// mapping; held while a trial may take the pass or it took it.
+    size_t slots = 0;
+    /// The height bounds of the surfaces drawn lately (up to eight; a producer's own,
+    /// SurfaceLayer::bounds, are the producer's).
+    size_t bounds = 0;
+    size_t texelShadows = 0; ///< the texel shadows of the surfaces drawn lately (up to four)
+    size_t prepasses = 0;    ///< the beam start's target and the deferred light walks' buffer
+    size_t total() const { return slots + bounds + texelShadows + prepasses; }
+};
+
 class ExactTracer {
 public:
     /// Makes and binds what a draw of `layers` reads besides their textures, as the view, the
@@ -147,6 +162,12 @@ public:
     /// How many rays the deferred walks' buffer holds: a ray per 16 pixels of the viewport, grown
     /// to what a draw appended once the GPU is past it (up to a ray per 4 pixels).
     int deferredCapacity() const { return deferredCapacity_; }
+    /// The GL storage it holds now. Its buffers grow to the largest viewport drawn and its caches
+    /// hold the surfaces drawn lately: release() lets go of all of it (after a screenshot at 4K,
+    /// or a level's surfaces), and the next draws make what they need again (the bounds built
+    /// from the stored heights, the texel shadows drawn); the trials' choices stay.
+    TracerMemory memory() const;
+    void release();
 
 private:
     using Viewport = std::array<GLint, 4>; ///< x, y, width, height (GL_VIEWPORT)

@@ -64,6 +64,8 @@ public:
     PyramidLayout layout() const { return layout_; } ///< MipChain or Atlas, never Auto
     /// Whether they fit textures of `config`: their size and edges.
     bool fits(const SurfaceTexturesConfig& config) const;
+    /// The GL storage they hold, bytes: the pyramid and the cells once made (0 before).
+    size_t bytes() const;
 
     /// The pyramid's texture (made here on first call): an RG32F mip chain, or in the Atlas
     /// layout a single-level RG32F image holding every level side by side (atlasOrigin).

@@ -55,6 +55,8 @@ class TexelShadows {
 public:
     GLuint texture() const { return drawn_ ? texture_.id() : 0; } ///< 0 before the first draw
     int stride() const { return stride_; }
+    /// The GL storage they hold, bytes (R32F, a texel per stride-th sample; 0 before the first draw).
+    size_t bytes() const { return texture_ ? size_t(width_) * size_t(height_) * 4 : 0; }
     /// The light they hold the shadows of; empty before the first draw.
     const std::optional<ShadowLight>& light() const { return light_; }
     /// Whether they hold `light`'s shadows of `textures`' current texels at `stride`.
