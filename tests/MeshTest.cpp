@@ -242,6 +242,55 @@ TEST(Convex, AConvexClaimOnFacesInPartsThatShareNoEdgeIsCheckedWhole) {
     EXPECT_NE(message(large).find("too many to check"), std::string::npos) << message(large);
 }
 
+/// A sheet 1 high rolled `turns` times about the y axis, its radius growing from 1 by `growth`
+/// a turn, facing out: convex at every edge.
+MeshData scroll(double turns, double growth) {
+    constexpr double pi = 3.14159265358979323846;
+    MeshData mesh;
+    const int segments = int(std::ceil(turns * 24.0));
+    for (int j = 0; j <= 1; ++j)
+        for (int i = 0; i <= segments; ++i) {
+            const double a = 2.0 * pi * turns * i / segments, r = 1.0 + growth * a / (2.0 * pi);
+            const double c = std::cos(a), s = std::sin(a);
+            Vertex v;
+            v.position = glm::vec3(glm::dvec3(r * c, j, -r * s));
+            v.normal = glm::vec3(glm::dvec3(c, 0.0, -s));
+            v.tangent = glm::vec3(glm::dvec3(-s, 0.0, -c));
+            v.bitangent = glm::vec3(0.0f, 1.0f, 0.0f);
+            v.texcoord = {float(i) / float(segments), float(j)};
+            mesh.vertices.push_back(v);
+        }
+    const auto row = uint32_t(segments + 1);
+    for (uint32_t i = 0; i < uint32_t(segments); ++i) {
+        const uint32_t a = i, b = a + 1, c = a + row, d = c + 1;
+        mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+    }
+    mesh.convex = true;
+    return mesh;
+}
+
+TEST(Convex, AnOpenSheetConvexAtEveryEdgeIsCheckedWhole) {
+    // A sheet rolled one and a half turns is convex at every edge, in one part, and open: its
+    // outer turn's faces lie over its inner turn's on the screen. Half a turn of it is convex.
+    auto message = [](const MeshData& mesh) {
+        try {
+            checkMeshClaims(mesh);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(message(scroll(0.5, 0.05)), "") << "half a turn";
+    EXPECT_EQ(message(makeCylinder({})), "") << "an open tube";
+    const std::string rolled = message(scroll(1.5, 0.05));
+    EXPECT_NE(rolled.find("MeshData::convex, but the point ("), std::string::npos) << rolled;
+    EXPECT_NE(rolled.find("wraps past one convex solid"), std::string::npos) << rolled;
+    std::printf("[claims] %s\n", rolled.c_str());
+    MeshData unclaimed = scroll(1.5, 0.05);
+    unclaimed.convex = false;
+    EXPECT_EQ(message(unclaimed), "");
+}
+
 } // namespace
 } // namespace hfx
 

@@ -241,16 +241,18 @@ std::vector<uint32_t> pointIds(const MeshData& data, double tolerance, std::vect
     return ids;
 }
 
-/// A convex claim's faces that share no edge: each part is convex at its edges, but two convex
-/// solids side by side are not one (their front faces overlap on the screen). Where the faces
-/// form more than one part (joined through the edges of `sides`, sorted by edge), either all of
-/// them lie in one plane (a patch in pieces: nothing overlaps), or every vertex must lie on or
-/// behind every face's plane, checked whole: O(faces x vertices), so refused by name past
-/// kConvexPartsChecked pairs rather than taking minutes.
-constexpr double kConvexPartsChecked = 2e8;
+/// A convex claim where the edges cannot settle it: faces convex at every edge may still be two
+/// convex solids side by side (parts that share no edge), or an open sheet that wraps past one
+/// (a scroll rolled one and a half turns); either way front faces overlap on the screen. A closed
+/// mesh in one part is convex (its edges said so); else either every face lies in one plane (a
+/// patch, whole or in pieces: nothing overlaps), or every vertex must lie on or behind every
+/// face's plane, checked whole: O(faces x vertices), up to kConvexWholeChecked pairs. Past that
+/// a claim on parts is refused by name rather than checked for minutes, and an open mesh in one
+/// part is taken on its edges' word.
+constexpr double kConvexWholeChecked = 2e8;
 
 template <typename Side>
-void checkConvexParts(const MeshData& data, const std::vector<Side>& sides, const std::vector<glm::dvec3>& normals,
+void checkConvexWhole(const MeshData& data, const std::vector<Side>& sides, const std::vector<glm::dvec3>& normals,
                       double tolerance) {
     std::vector<uint32_t> parent(normals.size());
     std::iota(parent.begin(), parent.end(), 0u);
@@ -269,7 +271,7 @@ void checkConvexParts(const MeshData& data, const std::vector<Side>& sides, cons
     if (faces.empty()) return;
     size_t parts = 0;
     for (const uint32_t t : faces) parts += root(t) == t;
-    if (parts < 2) return;
+    if (parts < 2 && data.closed) return;
     const auto corner = [&](uint32_t t) { return glm::dvec3(data.vertices[data.indices[3 * size_t(t)]].position); };
     const glm::dvec3 n0 = normals[faces[0]], a0 = corner(faces[0]);
     const bool onePlane = std::ranges::all_of(faces, [&](uint32_t t) { return glm::length(normals[t] - n0) <= 1e-6; }) &&
@@ -277,18 +279,23 @@ void checkConvexParts(const MeshData& data, const std::vector<Side>& sides, cons
                               return std::abs(glm::dot(n0, glm::dvec3(v.position) - a0)) <= tolerance;
                           });
     if (onePlane) return;
-    if (double(faces.size()) * double(data.vertices.size()) > kConvexPartsChecked)
+    if (double(faces.size()) * double(data.vertices.size()) > kConvexWholeChecked) {
+        if (parts < 2) return;
         throw Error(str("MeshData::convex, but its faces form ", parts, " parts that share no edge, and its ",
                         faces.size(), " faces and ", data.vertices.size(),
                         " vertices are too many to check that they lie on one convex solid: join the parts, or "
                         "draw each as its own mesh"));
+    }
     for (const uint32_t t : faces)
         for (const Vertex& v : data.vertices)
             if (glm::dot(normals[t], glm::dvec3(v.position) - corner(t)) > tolerance)
-                throw Error(str("MeshData::convex, but its faces form ", parts,
-                                " parts that share no edge, and the point ", text(glm::dvec3(v.position)),
-                                " lies in front of the face at ", text(corner(t)),
-                                ": they are not one convex solid (draw each as its own mesh)"));
+                throw Error(parts > 1 ? str("MeshData::convex, but its faces form ", parts,
+                                            " parts that share no edge, and the point ", text(glm::dvec3(v.position)),
+                                            " lies in front of the face at ", text(corner(t)),
+                                            ": they are not one convex solid (draw each as its own mesh)")
+                                      : str("MeshData::convex, but the point ", text(glm::dvec3(v.position)),
+                                            " lies in front of the face at ", text(corner(t)),
+                                            ": the open mesh, convex at every edge, wraps past one convex solid"));
 }
 
 } // namespace
@@ -345,7 +352,7 @@ void checkMeshClaims(const MeshData& data) {
         i = j;
     }
     // (Across parts, the tolerance of isConvex: a thin face's plane, carried far, tilts more.)
-    if (data.convex) checkConvexParts(data, sides, normals, 10.0 * tolerance);
+    if (data.convex) checkConvexWhole(data, sides, normals, 10.0 * tolerance);
 }
 
 bool isFlatPatch(const MeshData& data) {

@@ -97,14 +97,15 @@ bool isConvex(const MeshData& data);
 /// What MeshData::closed and convex claim, checked at the edges (vertices within 1e-6 of the
 /// mesh's extent are one point: a sphere's seam and poles): a closed mesh has two faces on every
 /// edge, running along it in opposite directions; a convex one has each face's far corner on or
-/// behind the plane of the face beside it, and where its faces form parts that share no edge
-/// (two spheres side by side are each convex at every edge), either all lie in one plane or every
-/// vertex lies on or behind every face (checked whole, O(triangles x vertices), refused by name
-/// past 2e8 pairs). Throws hfx::Error naming the claim and the edge or point (or
-/// MeshData::validate's fault: it calls that first); the Mesh constructor calls it. O(triangles
-/// log triangles) for a mesh in one part: 3.5 ms for makeSphere's default, 0.7 s for a million
-/// triangles (on the 2-core development machine). A closed mesh in one part convex at every edge
-/// is convex; for an open one this is the part of isConvex that is cheap.
+/// behind the plane of the face beside it; and unless it is closed and in one part (then convex
+/// at every edge is convex), either all its faces lie in one plane or every vertex lies on or
+/// behind every face (two spheres side by side, a sheet rolled past a turn: each convex at every
+/// edge), checked whole, O(triangles x vertices), up to 2e8 pairs (past that, faces in parts that
+/// share no edge are refused by name, and an open mesh in one part is checked at its edges only).
+/// Throws hfx::Error naming the claim and the edge or point (or MeshData::validate's fault: it
+/// calls that first); the Mesh constructor calls it. O(triangles log triangles) for a closed mesh
+/// in one part or a flat one: 3.5 ms for makeSphere's default, 0.7 s for a million triangles (on
+/// the 2-core development machine).
 void checkMeshClaims(const MeshData& data);
 
 /// True where the mesh is one flat patch with one texture frame: every vertex has the first's
