@@ -165,8 +165,8 @@ int runHeadless(const Options& o, Scene& scene) {
     if (const TracerMemory& m = scene.tracerMemory(); m.total() > 0) {
         constexpr double kMiB = 1024.0 * 1024.0;
         std::fprintf(stderr,
-                     "hfx: the exact tracer holds %.1f MiB (the compute pass's slots %.1f, bounds %.1f, texel "
-                     "shadows %.1f, prepasses %.1f)\n",
+                     "hfx: the exact tracer holds %.1f MiB (the compute pass's slots %.1f, "
+                     "bounds %.1f, texel shadows %.1f, prepasses %.1f)\n",
                      double(m.total()) / kMiB, double(m.slots) / kMiB, double(m.bounds) / kMiB,
                      double(m.texelShadows) / kMiB, double(m.prepasses) / kMiB);
     }

@@ -138,7 +138,8 @@ TEST_F(ExactTracerTest, TheViewDecidesTheTexelShadowsWhichLastAsLongAsTheirHeigh
     draw(nearCamera, TexelShadowChoice::Auto, light, TracePass::Compute);
     EXPECT_EQ(renderer.tracer().last().texelShadows, nullptr) << "read with the walks in a compute pass";
     EXPECT_GT(renderer.tracer().last().pixelsPerTexel, 1.75);
-    const std::vector<float> computedRead = draw(nearCamera, TexelShadowChoice::On, light, TracePass::Compute);
+    const std::vector<float> computedRead =
+        draw(nearCamera, TexelShadowChoice::On, light, TracePass::Compute);
     EXPECT_EQ(renderer.tracer().last().texelStride, 1);
     EXPECT_NE(renderer.tracer().last().texelShadows, nullptr);
     EXPECT_NE(computedRead, draw(nearCamera, TexelShadowChoice::Off, light, TracePass::Compute))
@@ -338,7 +339,9 @@ TEST_F(ExactTracerTest, ItSaysTheMemoryItHoldsAndLetsGoOfItAll) {
         target.bind();
         target.clear();
         renderer.draw(mesh, glm::mat4(1.0f), surface.textures(), material, camera, light,
-                      {.technique = Technique::Hierarchical, .texelShadows = TexelShadowChoice::On, .tracePass = pass});
+                      {.technique = Technique::Hierarchical,
+                       .texelShadows = TexelShadowChoice::On,
+                       .tracePass = pass});
         EXPECT_EQ(renderer.tracer().last().computeTrace, pass == TracePass::Compute);
         return target.readColor().pixels;
     };
@@ -353,7 +356,8 @@ TEST_F(ExactTracerTest, ItSaysTheMemoryItHoldsAndLetsGoOfItAll) {
     }
     EXPECT_EQ(drawn.bounds, pyramid);
     EXPECT_EQ(drawn.texelShadows, size_t(N) * N * 4);
-    EXPECT_EQ(drawn.prepasses, size_t((W + kBeamBlock - 1) / kBeamBlock) * ((H + kBeamBlock - 1) / kBeamBlock) * 4);
+    const size_t blocks = size_t((W + kBeamBlock - 1) / kBeamBlock) * ((H + kBeamBlock - 1) / kBeamBlock);
+    EXPECT_EQ(drawn.prepasses, blocks * 4);
     EXPECT_EQ(drawn.slots, 0u) << "the walks in the draw";
     const std::vector<float> computed = draw(plane, TracePass::Compute);
     EXPECT_EQ(renderer.tracer().memory().slots, size_t(W) * H * 24);
@@ -363,8 +367,9 @@ TEST_F(ExactTracerTest, ItSaysTheMemoryItHoldsAndLetsGoOfItAll) {
     draw(sphere, TracePass::Compute);
     EXPECT_EQ(renderer.tracer().memory().slots, size_t(W) * H * 3 * 32) << "three planes";
     const TracerMemory most = renderer.tracer().memory();
-    std::printf("[tracer memory] %dx%d, %d² field: bounds %zu, texel shadows %zu, prepasses %zu, slots %zu bytes\n", W,
-                H, N, most.bounds, most.texelShadows, most.prepasses, most.slots);
+    std::printf("[tracer memory] %dx%d, %d² field: bounds %zu, texel shadows %zu, prepasses %zu, "
+                "slots %zu bytes\n",
+                W, H, N, most.bounds, most.texelShadows, most.prepasses, most.slots);
     EXPECT_EQ(most.total(), most.slots + most.bounds + most.texelShadows + most.prepasses);
 
     renderer.tracer().release();

@@ -213,9 +213,9 @@ TEST(Convex, AConvexClaimOnFacesInPartsThatShareNoEdgeIsCheckedWhole) {
     };
     const MeshData sphere = makeSphere({.segments = 12, .rings = 6});
     const MeshData pair = joined(sphere, sphere, {3.0f, 0.0f, 0.0f});
-    EXPECT_NE(message(pair).find("MeshData::convex, but its faces form 2 parts that share no edge, and the point ("),
-              std::string::npos)
-        << message(pair);
+    const std::string twoParts = "MeshData::convex, but its faces form 2 parts that share no edge, "
+                                 "and the point (";
+    EXPECT_NE(message(pair).find(twoParts), std::string::npos) << message(pair);
     std::printf("[claims] %s\n", message(pair).c_str());
     MeshData closedOnly = pair;
     closedOnly.convex = false;

@@ -252,8 +252,8 @@ std::vector<uint32_t> pointIds(const MeshData& data, double tolerance, std::vect
 constexpr double kConvexWholeChecked = 2e8;
 
 template <typename Side>
-void checkConvexWhole(const MeshData& data, const std::vector<Side>& sides, const std::vector<glm::dvec3>& normals,
-                      double tolerance) {
+void checkConvexWhole(const MeshData& data, const std::vector<Side>& sides,
+                      const std::vector<glm::dvec3>& normals, double tolerance) {
     std::vector<uint32_t> parent(normals.size());
     std::iota(parent.begin(), parent.end(), 0u);
     auto root = [&](uint32_t t) {
@@ -261,7 +261,8 @@ void checkConvexWhole(const MeshData& data, const std::vector<Side>& sides, cons
         return t;
     };
     for (size_t i = 1; i < sides.size(); ++i)
-        if (sides[i].edge == sides[i - 1].edge) parent[root(sides[i].triangle)] = root(sides[i - 1].triangle);
+        if (sides[i].edge == sides[i - 1].edge)
+            parent[root(sides[i].triangle)] = root(sides[i - 1].triangle);
     // The faces with a plane (degenerate ones have no sides) and their parts.
     std::vector<char> planar(normals.size(), 0);
     for (const Side& side : sides) planar[side.triangle] = 1;
@@ -272,30 +273,36 @@ void checkConvexWhole(const MeshData& data, const std::vector<Side>& sides, cons
     size_t parts = 0;
     for (const uint32_t t : faces) parts += root(t) == t;
     if (parts < 2 && data.closed) return;
-    const auto corner = [&](uint32_t t) { return glm::dvec3(data.vertices[data.indices[3 * size_t(t)]].position); };
+    const auto corner = [&](uint32_t t) {
+        return glm::dvec3(data.vertices[data.indices[3 * size_t(t)]].position);
+    };
     const glm::dvec3 n0 = normals[faces[0]], a0 = corner(faces[0]);
-    const bool onePlane = std::ranges::all_of(faces, [&](uint32_t t) { return glm::length(normals[t] - n0) <= 1e-6; }) &&
-                          std::ranges::all_of(data.vertices, [&](const Vertex& v) {
-                              return std::abs(glm::dot(n0, glm::dvec3(v.position) - a0)) <= tolerance;
-                          });
+    const auto inPlane = [&](uint32_t t) { return glm::length(normals[t] - n0) <= 1e-6; };
+    const auto onPlane = [&](const Vertex& v) {
+        return std::abs(glm::dot(n0, glm::dvec3(v.position) - a0)) <= tolerance;
+    };
+    const bool onePlane = std::ranges::all_of(faces, inPlane) && std::ranges::all_of(data.vertices, onPlane);
     if (onePlane) return;
     if (double(faces.size()) * double(data.vertices.size()) > kConvexWholeChecked) {
         if (parts < 2) return;
-        throw Error(str("MeshData::convex, but its faces form ", parts, " parts that share no edge, and its ",
-                        faces.size(), " faces and ", data.vertices.size(),
-                        " vertices are too many to check that they lie on one convex solid: join the parts, or "
-                        "draw each as its own mesh"));
+        throw Error(str("MeshData::convex, but its faces form ", parts,
+                        " parts that share no edge, and its ", faces.size(), " faces and ",
+                        data.vertices.size(), " vertices are too many to check that they lie on ",
+                        "one convex solid: join the parts, or draw each as its own mesh"));
     }
     for (const uint32_t t : faces)
         for (const Vertex& v : data.vertices)
-            if (glm::dot(normals[t], glm::dvec3(v.position) - corner(t)) > tolerance)
+            if (glm::dot(normals[t], glm::dvec3(v.position) - corner(t)) > tolerance) {
+                const std::string where = str("the point ", text(glm::dvec3(v.position)),
+                                              " lies in front of the face at ", text(corner(t)));
                 throw Error(parts > 1 ? str("MeshData::convex, but its faces form ", parts,
-                                            " parts that share no edge, and the point ", text(glm::dvec3(v.position)),
-                                            " lies in front of the face at ", text(corner(t)),
-                                            ": they are not one convex solid (draw each as its own mesh)")
-                                      : str("MeshData::convex, but the point ", text(glm::dvec3(v.position)),
-                                            " lies in front of the face at ", text(corner(t)),
-                                            ": the open mesh, convex at every edge, wraps past one convex solid"));
+                                            " parts that share no edge, and ", where,
+                                            ": they are not one convex solid (draw each as its "
+                                            "own mesh)")
+                                      : str("MeshData::convex, but ", where,
+                                            ": the open mesh, convex at every edge, wraps past "
+                                            "one convex solid"));
+            }
 }
 
 } // namespace

@@ -512,7 +512,8 @@ void ExactTracer::walks(const TracerFrame& frame) {
 
 TracerMemory ExactTracer::memory() const {
     TracerMemory m;
-    if (traceRays_) m.slots = size_t(traceSlots_) * (kTraceRay + kTraceInfo + (traceLights_ ? kTraceLight : 0));
+    const size_t slot = kTraceRay + kTraceInfo + (traceLights_ ? kTraceLight : 0);
+    if (traceRays_) m.slots = size_t(traceSlots_) * slot;
     for (const Bounds& b : bounds_)
         if (b.bounds) m.bounds += b.bounds->bytes();
     for (const Cached& c : cache_) m.texelShadows += c.shadows.bytes();
