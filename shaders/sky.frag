@@ -23,7 +23,7 @@ void main() {
     const vec4 far = u_inverseViewProj * vec4(v_ndc, u_reversedZ != 0 ? 0.0 : 1.0, 1.0);
     const vec3 dir = normalize(hfx_away_from_eye(-hfx_to_eye(far.xyz / far.w)));
     // The clouds are filtered over the pixel's width (the directions to its neighbours).
-    const float spread = max(length(dFdx(dir)), length(dFdy(dir)));
+    const float spread = max(length(dFdxFine(dir)), length(dFdyFine(dir)));
     o_color = vec4(hfx_output(hfx_sky(dir, spread)), 1.0);
 #if HFX_MOTION_OUTPUT
     o_motion = hfx_motion(vec4(dir, 0.0)); // a direction: the sky moves as the view turns

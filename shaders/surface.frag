@@ -498,11 +498,13 @@ HfxShaded hfx_surface(HfxFrame f) {
 #endif
 
     // The traced hits' spread to the next pixel (derivatives: here, in uniform control flow; a
-    // triplanar projection's branch takes none, and the entry's spread stands for its hits').
+    // triplanar projection's branch takes none, and the entry's spread stands for its hits'). Fine
+    // ones, as every derivative here: dFdx leaves fine or coarse to the driver, and a coarse one
+    // would give the four pixels of a quad one shading level.
 #if HFX_TRIPLANAR
     const vec2 hitDx = dx, hitDy = dy;
 #else
-    const vec2 hitDx = dFdx(uv), hitDy = dFdy(uv);
+    const vec2 hitDx = dFdxFine(uv), hitDy = dFdyFine(uv);
 #endif
     // The texels' sides on the surface squared, both times (texels.x * texels.y)^2: their ratio is
     // all that counts. Dividing by texels held 1/texels in two registers through the layers'
@@ -705,7 +707,7 @@ void main() {
 #if HFX_SKY == 1
     // The clouds' shadow on the water, at the polygon's point and over its pixel there: the
     // relief's depth is nothing beside the clouds' height (shade/sky.glsl's g_cloudSunlight).
-    g_cloudSunlight = hfx_cloud_sunlight(v_worldPos, max(length(dFdx(v_worldPos)), length(dFdy(v_worldPos))));
+    g_cloudSunlight = hfx_cloud_sunlight(v_worldPos, max(length(dFdxFine(v_worldPos)), length(dFdyFine(v_worldPos))));
 #endif
 #if HFX_COMPUTE_TRACE == 1
     // A back face stores nothing (trace/hier/trace.glsl): its pixel's front face does, if any.
@@ -719,7 +721,7 @@ void main() {
     // normal: |n| less the dead zone, to the power u_triplanarSharpness, summing to 1 (the
     // largest component of a unit normal, at least 0.577, always has one).
     const vec3 n = length(v_objectNormal) > 1e-6 ? normalize(v_objectNormal) : vec3(0.0, 1.0, 0.0);
-    const vec3 dpdx = dFdx(v_objectPos), dpdy = dFdy(v_objectPos);
+    const vec3 dpdx = dFdxFine(v_objectPos), dpdy = dFdyFine(v_objectPos);
     vec3 weights = pow(max(abs(n) - HFX_TRIPLANAR_DEAD_ZONE, 0.0), vec3(u_triplanarSharpness));
     weights /= weights.x + weights.y + weights.z;
     const int heaviest = weights.x >= weights.y && weights.x >= weights.z ? 0 : weights.y >= weights.z ? 1 : 2;
