@@ -370,7 +370,6 @@ TEST_F(ExactTracerTest, ItSaysTheMemoryItHoldsAndLetsGoOfItAll) {
     std::printf("[tracer memory] %dx%d, %d² field: bounds %zu, texel shadows %zu, prepasses %zu, "
                 "slots %zu bytes\n",
                 W, H, N, most.bounds, most.texelShadows, most.prepasses, most.slots);
-    EXPECT_EQ(most.total(), most.slots + most.bounds + most.texelShadows + most.prepasses);
 
     renderer.tracer().release();
     EXPECT_EQ(renderer.tracer().memory().total(), 0u) << "after release()";

@@ -153,37 +153,34 @@ TEST(Convex, PlanesAndSpheresSayTheyAreConvexAndAreAndBumpsAndFlippedFacesAreNot
     EXPECT_FALSE(MeshData{}.convex) << "a mesh of one's own is not trusted unless it says so";
 }
 
+/// What checkMeshClaims says of `mesh`: its error's message, or "(no error)".
+std::string claimsMessage(const MeshData& mesh) {
+    return test::messageOf([&] { checkMeshClaims(mesh); });
+}
+
 TEST(Convex, AMeshsClaimsAreCheckedAtItsEdgesAndAFalseOneNamesTheEdge) {
     // Mesh's constructor calls checkMeshClaims: the renderer culls a closed mesh's back faces and
     // walks a convex one's rays in the compute pass, so a false claim would show as wrong pixels.
     for (const MeshData& mesh : {makePlane({}), makePlane({.subdivisions = 8}), makeSphere({}),
                                  makeSphere({.radius = 3.0f, .segments = 7, .rings = 3})})
         EXPECT_NO_THROW(checkMeshClaims(mesh));
-    auto message = [](const MeshData& mesh) {
-        try {
-            checkMeshClaims(mesh);
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
     MeshData holed = makeSphere({.segments = 12, .rings = 6});
     // (Triangle 83: ring 3's quad 5, away from the poles, whose first triangles have no area.)
     holed.indices.erase(holed.indices.begin() + 249, holed.indices.begin() + 252); // one triangle gone
-    EXPECT_NE(message(holed).find("MeshData::closed, but the edge from ("), std::string::npos) << message(holed);
-    EXPECT_NE(message(holed).find("has 1 face, not 2 (a hole)"), std::string::npos) << message(holed);
-    std::printf("[claims] %s\n", message(holed).c_str());
+    EXPECT_NE(claimsMessage(holed).find("MeshData::closed, but the edge from ("), std::string::npos) << claimsMessage(holed);
+    EXPECT_NE(claimsMessage(holed).find("has 1 face, not 2 (a hole)"), std::string::npos) << claimsMessage(holed);
+    std::printf("[claims] %s\n", claimsMessage(holed).c_str());
     MeshData turned = makeSphere({.segments = 12, .rings = 6});
     std::swap(turned.indices[250], turned.indices[251]); // one triangle wound the other way
-    EXPECT_NE(message(turned).find("wound the same way"), std::string::npos) << message(turned);
+    EXPECT_NE(claimsMessage(turned).find("wound the same way"), std::string::npos) << claimsMessage(turned);
     MeshData dent = makeSphere({.segments = 12, .rings = 6});
     dent.vertices[30].position *= 0.9f;
-    EXPECT_NE(message(dent).find("MeshData::convex, but at the edge"), std::string::npos) << message(dent);
+    EXPECT_NE(claimsMessage(dent).find("MeshData::convex, but at the edge"), std::string::npos) << claimsMessage(dent);
     MeshData valley = makePlane({.subdivisions = 2});
     valley.vertices[4].position.y -= 0.1f;
-    EXPECT_NE(message(valley).find("MeshData::convex"), std::string::npos) << message(valley);
+    EXPECT_NE(claimsMessage(valley).find("MeshData::convex"), std::string::npos) << claimsMessage(valley);
     valley.convex = false; // said of none: nothing to check
-    EXPECT_EQ(message(valley), "");
+    EXPECT_EQ(claimsMessage(valley), "(no error)");
 }
 
 /// `b`'s triangles moved by `offset` and added to `a`'s, the claims `a`'s.
@@ -203,23 +200,15 @@ TEST(Convex, AConvexClaimOnFacesInPartsThatShareNoEdgeIsCheckedWhole) {
     // (a sphere's two caps without the band between them) or in one plane (a plane in two
     // pieces) are convex; past 2e8 face-vertex pairs the claim is refused by name, not checked
     // for minutes.
-    auto message = [](const MeshData& mesh) {
-        try {
-            checkMeshClaims(mesh);
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
     const MeshData sphere = makeSphere({.segments = 12, .rings = 6});
     const MeshData pair = joined(sphere, sphere, {3.0f, 0.0f, 0.0f});
     const std::string twoParts = "MeshData::convex, but its faces form 2 parts that share no edge, "
                                  "and the point (";
-    EXPECT_NE(message(pair).find(twoParts), std::string::npos) << message(pair);
-    std::printf("[claims] %s\n", message(pair).c_str());
+    EXPECT_NE(claimsMessage(pair).find(twoParts), std::string::npos) << claimsMessage(pair);
+    std::printf("[claims] %s\n", claimsMessage(pair).c_str());
     MeshData closedOnly = pair;
     closedOnly.convex = false;
-    EXPECT_EQ(message(closedOnly), "") << "two closed solids are closed";
+    EXPECT_EQ(claimsMessage(closedOnly), "(no error)") << "two closed solids are closed";
 
     MeshData caps = sphere;
     caps.closed = false;
@@ -231,15 +220,15 @@ TEST(Convex, AConvexClaimOnFacesInPartsThatShareNoEdgeIsCheckedWhole) {
             for (size_t k = 0; k < 3; ++k) caps.indices.push_back(sphere.indices[t + k]);
     }
     ASSERT_LT(caps.indices.size(), sphere.indices.size());
-    EXPECT_EQ(message(caps), "") << "two caps of one sphere";
+    EXPECT_EQ(claimsMessage(caps), "(no error)") << "two caps of one sphere";
     const MeshData pieces = joined(makePlane({}), makePlane({}), {3.0f, 0.0f, 0.0f});
-    EXPECT_EQ(message(pieces), "") << "a plane in two pieces";
+    EXPECT_EQ(claimsMessage(pieces), "(no error)") << "a plane in two pieces";
     const MeshData step = joined(makePlane({}), makePlane({}), {3.0f, 0.5f, 0.0f});
-    EXPECT_NE(message(step).find("2 parts that share no edge"), std::string::npos) << message(step);
+    EXPECT_NE(claimsMessage(step).find("2 parts that share no edge"), std::string::npos) << claimsMessage(step);
 
     const MeshData fine = makeSphere({.segments = 128, .rings = 64});
     const MeshData large = joined(fine, fine, {3.0f, 0.0f, 0.0f});
-    EXPECT_NE(message(large).find("too many to check"), std::string::npos) << message(large);
+    EXPECT_NE(claimsMessage(large).find("too many to check"), std::string::npos) << claimsMessage(large);
 }
 
 /// A sheet 1 high rolled `turns` times about the y axis, its radius growing from 1 by `growth`
@@ -272,23 +261,15 @@ MeshData scroll(double turns, double growth) {
 TEST(Convex, AnOpenSheetConvexAtEveryEdgeIsCheckedWhole) {
     // A sheet rolled one and a half turns is convex at every edge, in one part, and open: its
     // outer turn's faces lie over its inner turn's on the screen. Half a turn of it is convex.
-    auto message = [](const MeshData& mesh) {
-        try {
-            checkMeshClaims(mesh);
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
-    EXPECT_EQ(message(scroll(0.5, 0.05)), "") << "half a turn";
-    EXPECT_EQ(message(makeCylinder({})), "") << "an open tube";
-    const std::string rolled = message(scroll(1.5, 0.05));
+    EXPECT_EQ(claimsMessage(scroll(0.5, 0.05)), "(no error)") << "half a turn";
+    EXPECT_EQ(claimsMessage(makeCylinder({})), "(no error)") << "an open tube";
+    const std::string rolled = claimsMessage(scroll(1.5, 0.05));
     EXPECT_NE(rolled.find("MeshData::convex, but the point ("), std::string::npos) << rolled;
     EXPECT_NE(rolled.find("wraps past one convex solid"), std::string::npos) << rolled;
     std::printf("[claims] %s\n", rolled.c_str());
     MeshData unclaimed = scroll(1.5, 0.05);
     unclaimed.convex = false;
-    EXPECT_EQ(message(unclaimed), "");
+    EXPECT_EQ(claimsMessage(unclaimed), "(no error)");
 }
 
 } // namespace
