@@ -305,6 +305,40 @@ TEST_F(Gas, TheDyeRelaxesTowardsItsBandsAndVarietyShadesThem) {
     EXPECT_LE(highest, 0.5 + 1e-6);
 }
 
+TEST_F(Gas, TheJetsPullEachRowTowardsItsProfileAtTheirRate) {
+    // A still gas under jets alone: each row's u moves 1 - e^(-rate dt) of the way to its jet,
+    // U sin(2 pi bands y) sin(pi y)^polar, y the row's centre over H. A zonal wind has no
+    // divergence and carries itself along its own row, so nothing else in the step moves it.
+    constexpr int W = 64, H = 32;
+    const double U = 6.0, bands = 2.5, polar = 2.0, rate = 0.5, dt = 0.4;
+    GasField gas(cl(), {.width = W, .height = H, .edges = EdgeMode::WrapU, .jetSpeed = float(U),
+                        .jetBands = float(bands), .jetRate = float(rate), .jetPolar = float(polar)});
+    const std::vector<float> zero(size_t(W) * H, 0.0f);
+    gas.setState(zero, zero, zero);
+    gas.step(dt);
+    std::vector<float> u, v, dye;
+    gas.readState(u, v, dye);
+    const double share = 1.0 - std::exp(-rate * dt);
+    double worst = 0, peak = 0, stray = 0;
+    for (int j = 0; j < H; ++j) {
+        const double y = (j + 0.5) / H;
+        const double expected = share * U * std::sin(kTwoPi * bands * y) * std::pow(std::sin(std::numbers::pi * y), polar);
+        peak = std::max(peak, std::abs(expected));
+        for (int i = 0; i < W; ++i) {
+            const size_t k = size_t(j) * W + i;
+            worst = std::max(worst, std::abs(u[k] - expected));
+            stray = std::max(stray, double(std::abs(v[k])));
+        }
+    }
+    EXPECT_GT(peak, 0.5) << "the test's premise: the jets blow";
+    EXPECT_LT(worst, 1e-6 * U) << "a row's wind is not its jet's share";
+    EXPECT_EQ(stray, 0.0) << "the jets moved the gas across the rows";
+    const GasConfig config{.width = W, .height = H, .jetSpeed = float(U), .jetBands = float(bands),
+                           .jetPolar = float(polar)};
+    EXPECT_NEAR(gasJetAt(config, 0.3), U * std::sin(kTwoPi * bands * 0.3) * std::pow(std::sin(0.3 * std::numbers::pi), polar),
+                1e-9);
+}
+
 TEST_F(Gas, ASplatIsItsGaussianEverywhereAcrossTheSeam) {
     // Dye alone into a still, empty gas, centred half a radius from the seam at u = 0 and near
     // a wall: the splat runs over a window 6 radii about its centre, wrapped in x and cut at the

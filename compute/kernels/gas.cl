@@ -18,14 +18,33 @@ __kernel void advect(__global const float* restrict u, __global const float* res
                                             : hfx_gas_advect(u, v, metric, src, W, H, i, j, ox, oy, dt, WALLS);
 }
 
-__kernel void maccormack(__global const float* u, __global const float* v, __global const float* metric,
-                         __global const float* src, __global const float* forward,
-                         __global const float* backward, __global float* dst, int W, int H, float ox,
-                         float oy, float dt, int wallRow) {
+/* MacCormack's first pass: advect's, keeping each cell's departure point for the correction,
+   which would otherwise trace it again (a third of the advection's time on a CPU device). */
+__kernel void advect_forward(__global const float* restrict u, __global const float* restrict v,
+                             __global const float* restrict metric, __global const float* restrict src,
+                             __global float* restrict dst, __global float2* restrict departures, int W, int H,
+                             float ox, float oy, float dt, int wallRow) {
     ID
-    dst[k] = (WALLS && wallRow && j == 0)
-                 ? 0.0f
-                 : hfx_gas_maccormack(u, v, metric, src, forward, backward, W, H, i, j, ox, oy, dt, WALLS);
+    if (WALLS && wallRow && j == 0) { /* (maccormack writes the wall's 0 without its departure) */
+        dst[k] = 0.0f;
+        return;
+    }
+    float px, py;
+    hfx_gas_departure(u, v, metric, W, H, i, j, ox, oy, dt, WALLS, &px, &py);
+    departures[k] = (float2)(px, py);
+    dst[k] = hfx_gas_sample(src, W, H, px, py, ox, oy, WALLS);
+}
+
+__kernel void maccormack(__global const float* src, __global const float* forward, __global const float* backward,
+                         __global const float2* departures, __global float* dst, int W, int H, float ox, float oy,
+                         int wallRow) {
+    ID
+    if (WALLS && wallRow && j == 0) {
+        dst[k] = 0.0f;
+        return;
+    }
+    const float2 d = departures[k];
+    dst[k] = hfx_gas_maccormack_from(src, forward, backward, W, H, i, j, ox, oy, d.x, d.y, WALLS);
 }
 
 /* The wind turned by the sphere's frame over dt (hfx_gas_turn; zonal: each row's sum of u), into
@@ -151,14 +170,12 @@ __kernel void sample_velocity(__global const float* u, __global const float* v, 
     out[2 * i + 1] = hfx_gas_sample(v, W, H, x, y, 0.5f, 0.0f, WALLS);
 }
 
-/* Zonal jets: u relaxes towards speed * sin(2 pi bands y / H) at `rate` per second, faded
-   towards the walls by sin(pi y / H)^polar (polar = 0: no fade). */
-__kernel void jets(__global float* u, int W, int H, float speed, float bands, float rate, float dt, float polar) {
+/* Zonal jets: u moves `share` of the way to its row's jet (GasField's jetRows: a function of the
+   row alone, worked out once on the host, where three transcendentals a cell took a CPU device a
+   fifth of the planet's step). */
+__kernel void jets(__global float* u, __global const float* rows, int W, int H, float share) {
     ID
-    float y = ((float)j + 0.5f) / (float)H;
-    float target = speed * sin(6.28318530717958647692f * bands * y);
-    if (polar > 0.0f) target *= pow(sin(3.14159265358979323846f * y), polar);
-    u[k] += (target - u[k]) * (1.0f - exp(-rate * dt));
+    u[k] += (rows[j] - u[k]) * share;
 }
 
 /* The dye moves `share` of the way to its row's band (GasConfig::dyeRate). */

@@ -73,6 +73,11 @@ std::vector<float> gasMetricTable(const GasConfig& config) {
     return table;
 }
 
+double gasJetAt(const GasConfig& config, double v) {
+    const double fade = config.jetPolar > 0.0f ? std::pow(std::sin(std::numbers::pi * v), double(config.jetPolar)) : 1.0;
+    return double(config.jetSpeed) * std::sin(2.0 * std::numbers::pi * config.jetBands * v) * fade;
+}
+
 std::vector<float> gasPolarWidths(const GasConfig& config) {
     if (!config.sphere) return {};
     // A cell of latitude spans 1 / m cells of longitude (5.8 at 80 degrees): the box takes the
@@ -133,6 +138,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         for (cl::Buffer* b : {&u_, &v_, &dye_, &work_[0], &work_[1], &work_[2], &work_[3], &p_, &div_, &curl_,
                               &height_})
             *b = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, bytes);
+        if (config.maccormack) departures_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, 2 * bytes);
         sumsBefore_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
         sumsAfter_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float) * size_t(config.height));
         factor_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(float));
@@ -144,6 +150,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         const cl::Program& program = cl.program("gas.cl", edgeOptions(config.edges));
         advect_ = cl::Kernel(program, "advect");
         maccormack_ = cl::Kernel(program, "maccormack");
+        advectForward_ = cl::Kernel(program, "advect_forward");
         turn_ = cl::Kernel(program, "turn");
         removeRowMean_ = cl::Kernel(program, "remove_row_mean");
         splat_ = cl::Kernel(program, "splat");
@@ -197,7 +204,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
     });
     if (config.sphere) polar_ = std::make_unique<PolarFilter>(cl, config.width, config.height, gasPolarWidths(config));
     // Initial state: jets already blowing, banded dye with a little noise to seed the storms.
-    std::vector<float> u(n), v(n, 0.0f), dye(n), rows(size_t(config.height), 0.0f);
+    std::vector<float> u(n), v(n, 0.0f), dye(n), rows(size_t(config.height), 0.0f), jets(size_t(config.height));
     SplitMix64 random(config.seed);
     const double twoPi = 2.0 * std::numbers::pi;
     // Each half period's depth and inner bands (their own stream: variety 0 draws nothing).
@@ -215,6 +222,7 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
         const double band = 0.45 * depth[half] * swing +
                             inner[half] * std::abs(swing) * std::sin(3.0 * twoPi * config.initialBands * y);
         rows[size_t(j)] = config.initialBands > 0 ? float(std::clamp(0.5 + band, 0.0, 1.0)) : 0.0f;
+        jets[size_t(j)] = float(gasJetAt(config, y)); // what the row's u relaxes to (gas.cl's jets)
         for (int i = 0; i < config.width; ++i) {
             u[size_t(j) * config.width + i] =
                 float(config.jetSpeed * std::sin(twoPi * config.jetBands * y) * (1.0 + 0.05 * random.uniform(-1, 1)));
@@ -226,6 +234,8 @@ GasField::GasField(ClContext& cl, const GasConfig& config) : cl_(cl), config_(co
     clGuard("creating the gas's bands", [&] {
         bandRows_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(float) * rows.size(),
                                rows.data());
+        jetRows_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * jets.size(),
+                              jets.data());
     });
     setState(u, v, dye);
 }
@@ -325,9 +335,9 @@ void GasField::advectField(cl::Buffer& field, float ox, float oy, float dt, bool
     if (!config_.maccormack) {
         run(advect_, u_, v_, m, field, work_[0], W, H, ox, oy, dt, wall);
     } else {
-        run(advect_, u_, v_, m, field, work_[1], W, H, ox, oy, dt, wall);
+        run(advectForward_, u_, v_, m, field, work_[1], departures_, W, H, ox, oy, dt, wall);
         run(advect_, u_, v_, m, work_[1], work_[2], W, H, ox, oy, back, wall);
-        run(maccormack_, u_, v_, m, field, work_[1], work_[2], work_[0], W, H, ox, oy, dt, wall);
+        run(maccormack_, field, work_[1], work_[2], departures_, work_[0], W, H, ox, oy, wall);
     }
 }
 
@@ -363,8 +373,10 @@ void GasField::step(double dtSeconds) {
                     s.arms.turned, s.arms.winding, sinc1, sinc2);
         }
         splats_.clear();
-        if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f)
-            run(jets_, u_, W, H, config_.jetSpeed, config_.jetBands, config_.jetRate, dt, config_.jetPolar);
+        if (config_.jetSpeed != 0.0f && config_.jetRate > 0.0f) {
+            const float share = float(1.0 - std::exp(-double(config_.jetRate) * dtSeconds));
+            run(jets_, u_, jetRows_, W, H, share);
+        }
         for (const GasVortex& vx : vortices_) {
             // Within 3 of its sizes (the weight and its wind there 10^-4 of their peaks) and the
             // faces' half cell: a planet holds each of its storms every step.

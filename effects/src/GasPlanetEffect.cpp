@@ -174,12 +174,7 @@ void GasPlanetEffect::spin(const Storm& storm, float force) {
     gas_.addSplat({.u = float(storm.u), .v = float(storm.v) - dv, .radius = storm.radius, .forceX = -signed_});
 }
 
-float GasPlanetEffect::jetProfile(double v) const {
-    const GasConfig& g = config_.gas;
-    double u = double(g.jetSpeed) * std::sin(2.0 * std::numbers::pi * g.jetBands * v);
-    if (g.jetPolar > 0.0f) u *= std::pow(std::sin(std::numbers::pi * v), double(g.jetPolar));
-    return float(u);
-}
+float GasPlanetEffect::jetProfile(double v) const { return float(gasJetAt(config_.gas, v)); }
 
 float GasPlanetEffect::relativeShear(double v) const {
     const double h = 1e-4;

@@ -149,6 +149,10 @@ std::vector<float> gasMetricTable(const GasConfig& config);
 /// (none up to 60 degrees of latitude, 4.8 cells at 80); none on a flat grid (empty).
 std::vector<float> gasPolarWidths(const GasConfig& config);
 
+/// The zonal jet the wind relaxes to at v (0 at row 0's wall, 1 at the top), cells per second:
+/// jetSpeed sin(2 pi jetBands v) sin(pi v)^jetPolar.
+double gasJetAt(const GasConfig& config, double v);
+
 class GasField final : public HeightSource {
 public:
     GasField(ClContext& cl, const GasConfig& config);
@@ -220,8 +224,9 @@ private:
     cl::Buffer samplePoints_, sampleWinds_; ///< velocityAt's, sampleCapacity_ points each
     size_t sampleCapacity_ = 0;
     std::vector<float> sampleCells_; ///< velocityAt's points in cells, uploaded from here
-    cl::Buffer u_, v_, dye_, work_[4], p_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_,
+    cl::Buffer u_, v_, dye_, work_[4], p_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_, jetRows_,
         metric_, gridMetric_; ///< the grid's metric, and a flat one's (1s) for the vorticity confinement
+    cl::Buffer departures_; ///< MacCormack's: each cell's departure point, two floats (gas.cl's advect_forward)
     /// GasPressure::Exact's elimination between walls (gas.cl's solve_columns) on the device.
     struct PressureColumns {
         cl::Buffer upper, pivots, lower, rhs;
@@ -230,7 +235,7 @@ private:
     std::unique_ptr<RealFft> fft_; ///< the rows' transforms: GasPressure::Exact's, the spin's, the sphere's viscosity's
     cl::Buffer spectrum_, scratch_; ///< the transforms' spectrum; the spin's and viscosity's eliminations' c'
     PressureColumns pressureColumns_;
-    cl::Kernel advect_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
+    cl::Kernel advect_, advectForward_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
         curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,
         relaxDye_, solveColumns_, betaColumns_, addStream_, cornerLaplacian_, viscousColumns_;
 };

@@ -109,17 +109,26 @@ HFX_FN_INLINE float hfx_gas_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const f
 
 /* MacCormack's correction (Selle et al. 2008): forward = advect(src, dt), backward =
    advect(forward, -dt); the estimate forward + (src - backward) / 2 is second order, and is
-   clamped to the values around the departure point so it adds no new extrema. */
+   clamped to the values around the departure point (px, py), the forward advection's, so it adds
+   no new extrema. */
+HFX_FN_INLINE float hfx_gas_maccormack_from(HFX_GLOBAL const float* src, HFX_GLOBAL const float* forward,
+                                            HFX_GLOBAL const float* backward, int W, int H, int i, int j,
+                                            float ox, float oy, float px, float py, int walls) {
+    int k = j * W + i;
+    float corrected = forward[k] + 0.5f * (src[k] - backward[k]);
+    float lo, hi;
+    hfx_gas_bounds(src, W, H, px, py, ox, oy, walls, &lo, &hi);
+    return HFX_MIN(HFX_MAX(corrected, lo), hi);
+}
+
+/* The same, its departure point traced again. */
 HFX_FN_INLINE float hfx_gas_maccormack(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
                                 HFX_GLOBAL const float* metric, HFX_GLOBAL const float* src,
                                 HFX_GLOBAL const float* forward, HFX_GLOBAL const float* backward,
                                 int W, int H, int i, int j, float ox, float oy, float dt, int walls) {
-    int k = j * W + i;
-    float corrected = forward[k] + 0.5f * (src[k] - backward[k]);
-    float px, py, lo, hi;
+    float px, py;
     hfx_gas_departure(u, v, metric, W, H, i, j, ox, oy, dt, walls, &px, &py);
-    hfx_gas_bounds(src, W, H, px, py, ox, oy, walls, &lo, &hi);
-    return HFX_MIN(HFX_MAX(corrected, lo), hi);
+    return hfx_gas_maccormack_from(src, forward, backward, W, H, i, j, ox, oy, px, py, walls);
 }
 
 /* The wind turned as the sphere's frame turns under it (GasConfig::sphere): moving along x, the
