@@ -842,6 +842,31 @@ TEST_F(Gas, OnASpinningSphereARossbyHaurwitzWaveDriftsWestAtItsAngularSpeed) {
     EXPECT_NEAR(energy[1] / energy[0], 1.0, 0.02);
 }
 
+TEST(GasMath, TheFramesSinCosIsWithinAnUlpAndAHalf) {
+    // hfx_gas_sincos (the sphere's frame turns by it) against double precision over the angles a
+    // turn takes, |x| < 60, and small ones down to 2^-30: within 1e-7, and 1.6 ulp where the value
+    // is over 0.01 (near a zero of sin or cos the reduction's last part bounds the error, not ulps).
+    SplitMix64 random(11);
+    double worstAbs = 0, worstUlps = 0;
+    for (int n = 0; n < 2000000; ++n) {
+        const float x = std::ldexp(float(random.uniform(-60.0, 60.0)), n % 2 ? 0 : -(n / 2 % 31));
+        float s, c;
+        hfx_gas_sincos(x, &s, &c);
+        for (const auto& [value, truth] : {std::pair{s, std::sin(double(x))}, std::pair{c, std::cos(double(x))}}) {
+            const double error = std::abs(value - truth);
+            worstAbs = std::max(worstAbs, error);
+            if (std::abs(truth) >= 0.01)
+                worstUlps = std::max(worstUlps, error / std::ldexp(1.0, std::ilogb(truth) - 23));
+        }
+    }
+    EXPECT_LT(worstAbs, 1e-7);
+    EXPECT_LT(worstUlps, 1.6);
+    float s, c;
+    hfx_gas_sincos(0.0f, &s, &c);
+    EXPECT_EQ(s, 0.0f);
+    EXPECT_EQ(c, 1.0f);
+}
+
 TEST_F(Gas, TheSpheresFrameTurnsTheWindButNotItsZonalMean) {
     // hfx_gas_turn at a u face in the row at 50.6 degrees north: an eddy wind (u +-5 along the
     // row, its zonal mean 0; v 2) is turned by -u tan(latitude) dt / R exactly, R = H / pi, its
