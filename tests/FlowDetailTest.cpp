@@ -1,8 +1,9 @@
 // The gas's advected detail (FlowDetail, FlowMath.h): a uniform wind carries the noise's
-// coordinates exactly, the kernels match the shared math run on the host, a shear stretches the
-// noise into filaments along it, a warp frays the gas's edges and leaves its flats flat, the
-// layers regenerate at their period, the detail stays periodic in u and finite at 10^4 times the
-// time scale, and a lattice a shear squeezes keeps only the octaves its texels can show.
+// coordinates exactly, the kernels match the shared math run on the host (on the sphere's map
+// too), a shear stretches the noise into filaments along it, a warp frays the gas's edges and
+// leaves its flats flat, the layers regenerate at their period, the detail stays periodic in u
+// and finite at 10^4 times the time scale, and a lattice a shear squeezes keeps only the octaves
+// its texels can show.
 
 #include "support/Fixtures.h"
 
@@ -123,6 +124,56 @@ TEST_F(Flow, KernelsMatchTheSharedMathOnTheHostAndThePolesAreOneValue) {
         EXPECT_EQ(drawn[size_t(fx)], 0.5f);
         EXPECT_EQ(drawn[size_t(rows - 1) * columns + fx], 0.5f);
     }
+}
+
+TEST_F(Flow, OnASphereTheKernelsMatchTheSharedMathOnTheHost) {
+    // The planet's detail: a gas on the sphere's map, warped and added. A step's advection of the
+    // four displacement planes (the departure traced once for all of them) and the strain against
+    // hfx_flow_advect and hfx_flow_strain; the heights, both layers' two noises read at one point
+    // of the sphere, against hfx_flow_height.
+    GasConfig config = gasConfig();
+    config.sphere = true;
+    config.jetSpeed = 6.0f; // jets, and storms' worth of vorticity between them
+    config.vorticity = 0.35f;
+    GasField gas(cl(), config);
+    FlowDetail detail(cl(), gas, {.scale = 2, .amount = 0.25f, .warp = 2.0f, .period = 3.0f});
+    for (int s = 0; s < 5; ++s) { // to t = 1: neither layer starts again in the next step
+        gas.step(0.2);
+        detail.step(0.2);
+    }
+    const std::vector<float> before = detail.readPlanes(), metric = gasMetricTable(config);
+    std::vector<float> u, v, dye;
+    gas.readState(u, v, dye);
+    detail.step(0.2);
+    const std::vector<float> after = detail.readPlanes();
+    const int n = W * H;
+    double advected = 0, strain = 0, moved = 0;
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            const int k = j * W + i;
+            for (int plane = 0; plane < 4; ++plane) {
+                const float host = hfx_flow_advect(u.data(), v.data(), metric.data(), before.data() + plane * n, W, H,
+                                                   i, j, 0.2f, plane & 1);
+                advected = std::max(advected, double(std::abs(after[size_t(plane * n + k)] - host)));
+                moved = std::max(moved, double(std::abs(after[size_t(plane * n + k)] - before[size_t(plane * n + k)])));
+            }
+            strain = std::max(strain, double(std::abs(after[size_t(HFX_FLOW_STRAIN * n + k)] -
+                                                      hfx_flow_strain(u.data(), v.data(), metric.data(), W, H, i, j))));
+        }
+    EXPECT_GT(moved, 0.01) << "the test's premise: the wind moves the planes";
+    EXPECT_LT(advected, 1e-5);
+    EXPECT_LT(strain, 1e-5);
+    detail.run();
+    const std::vector<float> drawn = detail.readHeights(), heights = gas.readHeights();
+    ASSERT_GT(detail.params().w0 * detail.params().w1, 0.0f) << "both layers show";
+    double worst = 0;
+    for (int fy = 0; fy < 2 * H; ++fy)
+        for (int fx = 0; fx < 2 * W; ++fx) {
+            const float x = (float(fx) + 0.5f) / 2.0f, y = (float(fy) + 0.5f) / 2.0f;
+            const float host = hfx_flow_height(heights.data(), after.data(), W, H, x, y, detail.params());
+            worst = std::max(worst, double(std::abs(drawn[size_t(fy) * 2 * W + fx] - host)));
+        }
+    EXPECT_LT(worst, 1e-5);
 }
 
 TEST_F(Flow, AShearStretchesTheNoiseIntoFilamentsAlongIt) {

@@ -322,7 +322,8 @@ TEST_F(Gas, TheJetsPullEachRowTowardsItsProfileAtTheirRate) {
     double worst = 0, peak = 0, stray = 0;
     for (int j = 0; j < H; ++j) {
         const double y = (j + 0.5) / H;
-        const double expected = share * U * std::sin(kTwoPi * bands * y) * std::pow(std::sin(std::numbers::pi * y), polar);
+        const double expected =
+            share * U * std::sin(kTwoPi * bands * y) * std::pow(std::sin(std::numbers::pi * y), polar);
         peak = std::max(peak, std::abs(expected));
         for (int i = 0; i < W; ++i) {
             const size_t k = size_t(j) * W + i;
@@ -335,8 +336,8 @@ TEST_F(Gas, TheJetsPullEachRowTowardsItsProfileAtTheirRate) {
     EXPECT_EQ(stray, 0.0) << "the jets moved the gas across the rows";
     const GasConfig config{.width = W, .height = H, .jetSpeed = float(U), .jetBands = float(bands),
                            .jetPolar = float(polar)};
-    EXPECT_NEAR(gasJetAt(config, 0.3), U * std::sin(kTwoPi * bands * 0.3) * std::pow(std::sin(0.3 * std::numbers::pi), polar),
-                1e-9);
+    const double at = U * std::sin(kTwoPi * bands * 0.3) * std::pow(std::sin(0.3 * std::numbers::pi), polar);
+    EXPECT_NEAR(gasJetAt(config, 0.3), at, 1e-9);
 }
 
 TEST_F(Gas, ASplatIsItsGaussianEverywhereAcrossTheSeam) {

@@ -11,9 +11,11 @@ __kernel void flow_advect(__global const float* restrict u, __global const float
     int i = get_global_id(0), j = get_global_id(1);
     if (i >= W || j >= H) return;
     int k = j * W + i, n = W * H;
+    float px, py; /* the cell centre's departure, the same for every plane */
+    hfx_gas_departure(u, v, metric, W, H, i, j, 0.5f, 0.5f, dt, 1, &px, &py);
     for (int plane = 0; plane < 4; ++plane) {
         int reset = plane < 2 ? reset0 : reset1;
-        dst[plane * n + k] = reset ? 0.0f : hfx_flow_advect(u, v, metric, src + plane * n, W, H, i, j, dt, plane & 1);
+        dst[plane * n + k] = reset ? 0.0f : hfx_flow_advect_from(src + plane * n, W, H, i, j, px, py, plane & 1);
     }
     dst[HFX_FLOW_STRAIN * n + k] = hfx_flow_strain(u, v, metric, W, H, i, j);
 }

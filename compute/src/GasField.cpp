@@ -74,7 +74,8 @@ std::vector<float> gasMetricTable(const GasConfig& config) {
 }
 
 double gasJetAt(const GasConfig& config, double v) {
-    const double fade = config.jetPolar > 0.0f ? std::pow(std::sin(std::numbers::pi * v), double(config.jetPolar)) : 1.0;
+    const double polar = double(config.jetPolar);
+    const double fade = polar > 0.0 ? std::pow(std::sin(std::numbers::pi * v), polar) : 1.0;
     return double(config.jetSpeed) * std::sin(2.0 * std::numbers::pi * config.jetBands * v) * fade;
 }
 

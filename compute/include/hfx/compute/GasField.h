@@ -235,7 +235,8 @@ private:
     std::unique_ptr<RealFft> fft_; ///< the rows' transforms: GasPressure::Exact's, the spin's, the sphere's viscosity's
     cl::Buffer spectrum_, scratch_; ///< the transforms' spectrum; the spin's and viscosity's eliminations' c'
     PressureColumns pressureColumns_;
-    cl::Kernel advect_, advectForward_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_, clampSpeed_,
+    cl::Kernel advect_, advectForward_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_,
+        clampSpeed_,
         curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,
         relaxDye_, solveColumns_, betaColumns_, addStream_, cornerLaplacian_, viscousColumns_;
 };

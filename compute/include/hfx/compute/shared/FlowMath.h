@@ -45,14 +45,21 @@ HFX_FN_INLINE float hfx_flow_strain(HFX_GLOBAL const float* u, HFX_GLOBAL const 
     return HFX_SQRT(a * a + b * b);
 }
 
-/* One displacement plane (W x H, at the cell centres) advected dt: its new value at cell (i, j). */
+/* One displacement plane (W x H, at the cell centres) advected: its new value at cell (i, j), whose
+   centre the flow carried from (px, py) (hfx_gas_departure; one for all the planes). */
+HFX_FN_INLINE float hfx_flow_advect_from(HFX_GLOBAL const float* d, int W, int H, int i, int j, float px,
+                                         float py, int axis) {
+    float moved = axis == 0 ? px - ((float)i + 0.5f) : py - ((float)j + 0.5f);
+    return hfx_gas_sample(d, W, H, px, py, 0.5f, 0.5f, 1) + moved;
+}
+
+/* The same over dt, its departure traced here. */
 HFX_FN_INLINE float hfx_flow_advect(HFX_GLOBAL const float* u, HFX_GLOBAL const float* v,
                                     HFX_GLOBAL const float* metric, HFX_GLOBAL const float* d, int W,
                                     int H, int i, int j, float dt, int axis) {
     float px, py;
     hfx_gas_departure(u, v, metric, W, H, i, j, 0.5f, 0.5f, dt, 1, &px, &py);
-    float moved = axis == 0 ? px - ((float)i + 0.5f) : py - ((float)j + 0.5f);
-    return hfx_gas_sample(d, W, H, px, py, 0.5f, 0.5f, 1) + moved;
+    return hfx_flow_advect_from(d, W, H, i, j, px, py, axis);
 }
 
 /* The detail noise at the noise-domain point (x, y) (cells) of generation z: Perlin fBm of
