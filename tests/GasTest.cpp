@@ -14,6 +14,7 @@
 #include <cmath>
 #include <complex>
 #include <functional>
+#include <limits>
 #include <cstdio>
 #include <numbers>
 #include <tuple>
@@ -866,6 +867,10 @@ TEST(GasMath, TheFramesSinCosIsWithinAnUlpAndAHalf) {
     hfx_gas_sincos(0.0f, &s, &c);
     EXPECT_EQ(s, 0.0f);
     EXPECT_EQ(c, 1.0f);
+    for (const float bad : {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+        hfx_gas_sincos(bad, &s, &c);
+        EXPECT_TRUE(std::isnan(s) && std::isnan(c)) << bad << ": " << s << ", " << c;
+    }
 }
 
 TEST_F(Gas, TheSpheresFrameTurnsTheWindButNotItsZonalMean) {

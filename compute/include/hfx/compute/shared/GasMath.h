@@ -144,7 +144,9 @@ HFX_FN_INLINE void hfx_gas_sincos(float x, float* s, float* c) {
     float sr = r + r * r2 * (-1.6666654611e-1f + r2 * (8.3321608736e-3f + r2 * -1.9515295891e-4f));
     float cr = 1.0f - 0.5f * r2 +
                r2 * r2 * (4.166664568298827e-2f + r2 * (-1.388731625493765e-3f + r2 * 2.443315711809948e-5f));
-    int q = (int)k & 3;
+    /* The quadrant, 0 to 3, k held within 2^24 first so that its conversion cannot overflow (an
+       infinite or NaN x gives NaN through r, as sin and cos do). */
+    int q = (int)HFX_MIN(HFX_MAX(k, -16777216.0f), 16777216.0f) & 3;
     *s = q == 0 ? sr : q == 1 ? cr : q == 2 ? -sr : -cr;
     *c = q == 0 ? cr : q == 1 ? -sr : q == 2 ? -cr : sr;
 }
