@@ -224,8 +224,8 @@ private:
     cl::Buffer samplePoints_, sampleWinds_; ///< velocityAt's, sampleCapacity_ points each
     size_t sampleCapacity_ = 0;
     std::vector<float> sampleCells_; ///< velocityAt's points in cells, uploaded from here
-    cl::Buffer u_, v_, dye_, work_[4], p_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_, jetRows_,
-        metric_, gridMetric_; ///< the grid's metric, and a flat one's (1s) for the vorticity confinement
+    cl::Buffer u_, v_, dye_, work_[4], p_, div_, curl_, height_, sumsBefore_, sumsAfter_, factor_, bandRows_,
+        jetRows_, metric_, gridMetric_; ///< the grid's metric, and a flat one's (1s) for the vorticity confinement
     cl::Buffer departures_; ///< MacCormack's: each cell's departure point, two floats (gas.cl's advect_forward)
     /// GasPressure::Exact's elimination between walls (gas.cl's solve_columns) on the device.
     struct PressureColumns {
@@ -236,9 +236,8 @@ private:
     cl::Buffer spectrum_, scratch_; ///< the transforms' spectrum; the spin's and viscosity's eliminations' c'
     PressureColumns pressureColumns_;
     cl::Kernel advect_, advectForward_, maccormack_, turn_, removeRowMean_, splat_, vortex_, sampleVelocity_, jets_,
-        clampSpeed_,
-        curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_, massFactor_, scale_,
-        relaxDye_, solveColumns_, betaColumns_, addStream_, cornerLaplacian_, viscousColumns_;
+        clampSpeed_, curlKernel_, confine_, diffuse_, divergence_, pressure_, project_, dyeHeight_, rowSums_,
+        massFactor_, scale_, relaxDye_, solveColumns_, betaColumns_, addStream_, cornerLaplacian_, viscousColumns_;
 };
 
 } // namespace hfx
