@@ -129,8 +129,8 @@ TEST_F(Flow, KernelsMatchTheSharedMathOnTheHostAndThePolesAreOneValue) {
 TEST_F(Flow, OnASphereTheKernelsMatchTheSharedMathOnTheHost) {
     // The planet's detail: a gas on the sphere's map, warped and added. A step's advection of the
     // four displacement planes (the departure traced once for all of them) and the strain against
-    // hfx_flow_advect and hfx_flow_strain; the heights, both layers' two noises read at one point
-    // of the sphere, against hfx_flow_height.
+    // hfx_flow_advect and hfx_flow_strain; the heights, both layers' two noises each, against
+    // hfx_flow_height.
     GasConfig config = gasConfig();
     config.sphere = true;
     config.jetSpeed = 6.0f; // jets, and storms' worth of vorticity between them

@@ -312,8 +312,9 @@ TEST_F(Gas, TheJetsPullEachRowTowardsItsProfileAtTheirRate) {
     // divergence and carries itself along its own row, so nothing else in the step moves it.
     constexpr int W = 64, H = 32;
     const double U = 6.0, bands = 2.5, polar = 2.0, rate = 0.5, dt = 0.4;
-    GasField gas(cl(), {.width = W, .height = H, .edges = EdgeMode::WrapU, .jetSpeed = float(U),
-                        .jetBands = float(bands), .jetRate = float(rate), .jetPolar = float(polar)});
+    const GasConfig config{.width = W, .height = H, .edges = EdgeMode::WrapU, .jetSpeed = float(U),
+                           .jetBands = float(bands), .jetRate = float(rate), .jetPolar = float(polar)};
+    GasField gas(cl(), config);
     const std::vector<float> zero(size_t(W) * H, 0.0f);
     gas.setState(zero, zero, zero);
     gas.step(dt);
@@ -335,8 +336,6 @@ TEST_F(Gas, TheJetsPullEachRowTowardsItsProfileAtTheirRate) {
     EXPECT_GT(peak, 0.5) << "the test's premise: the jets blow";
     EXPECT_LT(worst, 1e-6 * U) << "a row's wind is not its jet's share";
     EXPECT_EQ(stray, 0.0) << "the jets moved the gas across the rows";
-    const GasConfig config{.width = W, .height = H, .jetSpeed = float(U), .jetBands = float(bands),
-                           .jetPolar = float(polar)};
     const double at = U * std::sin(kTwoPi * bands * 0.3) * std::pow(std::sin(0.3 * std::numbers::pi), polar);
     EXPECT_NEAR(gasJetAt(config, 0.3), at, 1e-9);
 }

@@ -19,7 +19,7 @@ __kernel void advect(__global const float* restrict u, __global const float* res
 }
 
 /* MacCormack's first pass: advect's, keeping each cell's departure point for the correction,
-   which would otherwise trace it again (a third of the advection's time on a CPU device). */
+   which would otherwise trace it again (on PoCL, a third of the advection's time). */
 __kernel void advect_forward(__global const float* restrict u, __global const float* restrict v,
                              __global const float* restrict metric, __global const float* restrict src,
                              __global float* restrict dst, __global float2* restrict departures, int W, int H,
