@@ -167,9 +167,10 @@ TEST(Convex, AMeshsClaimsAreCheckedAtItsEdgesAndAFalseOneNamesTheEdge) {
     MeshData holed = makeSphere({.segments = 12, .rings = 6});
     // (Triangle 83: ring 3's quad 5, away from the poles, whose first triangles have no area.)
     holed.indices.erase(holed.indices.begin() + 249, holed.indices.begin() + 252); // one triangle gone
-    EXPECT_NE(claimsMessage(holed).find("MeshData::closed, but the edge from ("), std::string::npos) << claimsMessage(holed);
-    EXPECT_NE(claimsMessage(holed).find("has 1 face, not 2 (a hole)"), std::string::npos) << claimsMessage(holed);
-    std::printf("[claims] %s\n", claimsMessage(holed).c_str());
+    const std::string hole = claimsMessage(holed);
+    EXPECT_NE(hole.find("MeshData::closed, but the edge from ("), std::string::npos) << hole;
+    EXPECT_NE(hole.find("has 1 face, not 2 (a hole)"), std::string::npos) << hole;
+    std::printf("[claims] %s\n", hole.c_str());
     MeshData turned = makeSphere({.segments = 12, .rings = 6});
     std::swap(turned.indices[250], turned.indices[251]); // one triangle wound the other way
     EXPECT_NE(claimsMessage(turned).find("wound the same way"), std::string::npos) << claimsMessage(turned);
